@@ -1,0 +1,178 @@
+/* dembox — discrete element method laboratory for granular element tests.
+ *
+ * The one public header of libdembox. Data flows one way:
+ *   config text -> struct dem_config (validated plain data)
+ *   -> struct dem_sim (engine) -> stages -> measurements -> outputs.
+ * The library never calls exit(); every fallible function returns a
+ * dem status (0 = success, negative = error) and fills a struct dem_error
+ * with a one-line message naming what was wrong.
+ *
+ * Units are SI throughout. In 2D, stresses are force per length (N/m) and
+ * volumes are areas (m^2).
+ */
+#ifndef DEMBOX_H
+#define DEMBOX_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define DEM_VERSION "0.1.0"
+
+/* ---------------------------------------------------------------- errors */
+
+/* X-macro list: symbol, value, short description. */
+#define DEM_STATUS_LIST(X)                                                   \
+    X(DEM_OK, 0, "success")                                                  \
+    X(DEM_ECONFIG, -1, "invalid configuration")                              \
+    X(DEM_EIO, -2, "input/output error")                                     \
+    X(DEM_ENOMEM, -3, "out of memory")                                       \
+    X(DEM_EUNSTABLE, -4, "simulation unstable")                              \
+    X(DEM_EINTERRUPTED, -5, "interrupted")                                   \
+    X(DEM_EUSAGE, -6, "bad usage")                                           \
+    X(DEM_EINTERNAL, -7, "internal error")
+
+enum dem_status {
+#define DEM_STATUS_ENUM_(sym, val, text) sym = val,
+    DEM_STATUS_LIST(DEM_STATUS_ENUM_)
+#undef DEM_STATUS_ENUM_
+};
+
+#define DEM_ERRMSG_MAX 1024
+
+struct dem_error {
+    int code;                  /* enum dem_status of the last failure */
+    char msg[DEM_ERRMSG_MAX];  /* one line, no trailing newline */
+};
+
+/* Short description of a status code. */
+const char *dem_status_str(int code);
+/* Fill err (may be NULL) with code and a printf-style message; returns code. */
+int dem_error_set(struct dem_error *err, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* ---------------------------------------------------------------- config */
+
+enum dem_radius_dist {
+    DEM_DIST_MONO = 0,     /* all radii = mean */
+    DEM_DIST_UNIFORM = 1,  /* uniform in [min, max] */
+    DEM_DIST_GAUSSIAN = 2  /* N(mean, std), redrawn outside [min, max] */
+};
+
+enum dem_placement {
+    DEM_PLACE_LATTICE = 0, /* square/cubic lattice, spacing 2 r_max (seed 000) */
+    DEM_PLACE_RANDOM = 1,  /* random, no overlap, in a large box (seed 001) */
+    DEM_PLACE_FILE = 2     /* from a CSV file with particles_final.csv columns */
+};
+
+enum dem_mass_model {
+    DEM_MASS_SPHERE = 0, /* m = 4/3 pi rho a^3, I = 2/5 m a^2 (both seeds) */
+    DEM_MASS_DISC = 1    /* 2D only: m = pi rho a^2 (per unit thickness), I = m a^2/2 */
+};
+
+enum dem_normal_law {
+    DEM_NORMAL_LINEAR = 0, /* seed 000 Eq. 1 */
+    DEM_NORMAL_LUDING = 1  /* seed 001 Fig. 2, hysteretic adhesive */
+};
+
+enum dem_stage_type {
+    DEM_STAGE_ISOTROPIC = 0,
+    DEM_STAGE_COMPRESS = 1,
+    DEM_STAGE_CYCLIC = 2,
+    DEM_STAGE_HOLD = 3,
+    DEM_STAGE_NTYPES
+};
+
+enum dem_profile {
+    DEM_PROFILE_COSINE = 0, /* x0 + D (1 - cos(pi t/T))/2 */
+    DEM_PROFILE_LINEAR = 1, /* x0 + D t/T */
+    DEM_PROFILE_CYCLIC = 2  /* x0 + D (1 - cos(2 pi t/T))/2 */
+};
+
+#define DEM_MAX_STAGES 32
+#define DEM_PATH_MAX 1024
+#define DEM_NAME_MAX 128
+
+struct dem_stage_config {
+    int type;          /* enum dem_stage_type */
+    double pressure;   /* Pa (2D: N/m); isotropic target, confining or p0 */
+    double tolerance;  /* isotropic: stop when E_kin/E_pot < tolerance */
+    double max_time;   /* s; isotropic: give up relaxing after this time */
+    int axis;          /* 0 = x, 1 = y, 2 = z; compress and cyclic */
+    double strain;     /* compress: total axial strain (compression > 0) */
+    double duration;   /* s; compress and hold */
+    int profile;       /* enum dem_profile; compress */
+    double amplitude;  /* Pa; cyclic: delta sigma */
+    double period;     /* s; cyclic: t0 */
+    int cycles;        /* cyclic: number of periods */
+    double mu;         /* contact friction during this stage; < 0 = contact.mu */
+};
+
+struct dem_config {
+    char name[DEM_NAME_MAX];   /* run name (example or config file stem) */
+    char source[DEM_PATH_MAX]; /* file the config came from, for messages */
+
+    int dim;            /* 2 or 3; default 3 */
+    uint64_t seed;      /* RNG seed; default 1 */
+    double time_step;   /* s; <= 0 after parsing means "auto" was resolved */
+    int time_step_auto; /* 1 if time_step = "auto" (t_c/50 of stiffest pair) */
+    double gravity[3];  /* m/s^2; default 0 */
+
+    struct {
+        int count;          /* number of particles (file: taken from file) */
+        double density;     /* kg/m^3; default 2000 */
+        int distribution;   /* enum dem_radius_dist */
+        double mean;        /* m */
+        double std;         /* m; gaussian only */
+        double min;         /* m; uniform, gaussian lower cut */
+        double max;         /* m; uniform, gaussian upper cut */
+        int placement;      /* enum dem_placement */
+        char file[DEM_PATH_MAX]; /* placement = "file": CSV path */
+        int mass_model;     /* enum dem_mass_model; default sphere */
+        double volume_fraction; /* random placement: solid fraction of the
+                                   initial gas box (default 0.1 3D, 0.2 2D) */
+    } particles;
+
+    struct {
+        int normal;       /* enum dem_normal_law */
+        double k;         /* N/m; linear stiffness */
+        double k1;        /* N/m; luding loading stiffness */
+        double k2;        /* N/m; luding un-/re-loading stiffness */
+        double kc;        /* N/m; luding adhesive stiffness (>= 0) */
+        double phi_f;     /* luding 2008 plasticity depth; 0 = constant k2 */
+        double gamma_n;   /* kg/s; normal viscosity */
+        double kt;        /* N/m; tangential stiffness */
+        double gamma_t;   /* kg/s; tangential viscosity */
+        double mu_s;      /* static friction coefficient */
+        double mu_d;      /* dynamic friction coefficient (<= mu_s) */
+        double wall_mu;   /* particle-wall friction (static = dynamic) */
+        double wall_kc;   /* N/m; particle-wall adhesive stiffness; default 0 */
+    } contact;
+
+    struct {
+        double gamma_b;   /* kg/s; background translational damping */
+        double gamma_br;  /* kg/s; background rotational damping, torque
+                             -gamma_br a^2 omega */
+    } damping;
+
+    struct {
+        double size[3];   /* m; initial box; all 0 = derive from placement */
+    } box;
+
+    struct {
+        double mass;      /* kg; stress-controlled wall mass */
+        double gamma;     /* kg/s; stress-controlled wall viscosity */
+    } walls;
+
+    int nstages;
+    struct dem_stage_config stages[DEM_MAX_STAGES];
+
+    struct {
+        double interval;          /* s; timeseries row interval */
+        double snapshot_interval; /* s; VTU snapshot interval; 0 = none */
+    } output;
+};
+
+#endif /* DEMBOX_H */

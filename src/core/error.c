@@ -1,0 +1,28 @@
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "dembox.h"
+
+const char *dem_status_str(int code)
+{
+    switch (code) {
+#define DEM_STATUS_CASE_(sym, val, text)                                     \
+    case val:                                                                \
+        return text;
+        DEM_STATUS_LIST(DEM_STATUS_CASE_)
+#undef DEM_STATUS_CASE_
+    }
+    return "unknown status";
+}
+
+int dem_error_set(struct dem_error *err, int code, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        err->code = code;
+        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        va_end(ap);
+    }
+    return code;
+}

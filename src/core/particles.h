@@ -1,0 +1,41 @@
+/* Particle data as a structure of arrays.
+ *
+ * Every per-particle quantity is one contiguous array of n doubles so that
+ * the force and integration loops stream through memory. In 2D the z
+ * components of position, velocity, force and the x, y components of the
+ * angular velocity and torque stay exactly zero.
+ */
+#ifndef DEM_CORE_PARTICLES_H
+#define DEM_CORE_PARTICLES_H
+
+#include "dembox.h"
+
+struct dem_particles {
+    int n;          /* number of particles */
+    int cap;        /* allocated length of every array */
+    double *x, *y, *z;      /* m; centre position */
+    double *vx, *vy, *vz;   /* m/s; velocity */
+    double *wx, *wy, *wz;   /* rad/s; angular velocity */
+    double *fx, *fy, *fz;   /* N; total force of the current step */
+    double *tx, *ty, *tz;   /* N m; total torque of the current step */
+    double *r;              /* m; radius */
+    double *m;              /* kg; mass */
+    double *inv_m;          /* 1/kg */
+    double *inv_I;          /* 1/(kg m^2); moment of inertia inverse */
+    double *x0, *y0, *z0;   /* m; position at the last neighbour-list build */
+    int *id;                /* original index (stable across re-ordering) */
+    int *ncontact;          /* contacts (particles and walls) of the step */
+};
+
+/* Allocate arrays for cap particles, all zero; n = 0. */
+int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err);
+void dem_particles_free(struct dem_particles *p);
+/* Append one particle at rest; mass and inertia from radius, density and
+ * mass model. Returns its index or a negative status when full. */
+int dem_particles_add(struct dem_particles *p, double x, double y, double z,
+                      double radius, double density, int mass_model, int dim);
+/* Mass and moment of inertia of a particle of radius a (see dem_mass_model). */
+void dem_particle_mass(double a, double density, int mass_model, int dim,
+                       double *mass, double *inertia);
+
+#endif

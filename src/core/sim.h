@@ -1,0 +1,94 @@
+/* The simulation: a small top-level struct of sub-objects.
+ *
+ * Particles are a structure of arrays (core/particles.h); pair contacts
+ * live in a neighbour list whose entries carry their own history
+ * (neighbor/pairs.h); each particle has one history slot per wall; the
+ * box is bounded by one planar wall per face (wall/wall.h).
+ */
+#ifndef DEM_CORE_SIM_H
+#define DEM_CORE_SIM_H
+
+#include "core/particles.h"
+#include "core/rng.h"
+#include "dembox.h"
+#include "neighbor/pairs.h"
+#include "wall/wall.h"
+
+#define DEM_MAX_WALLS 6
+
+/* Contact parameters as the force loop uses them (resolved from config). */
+struct dem_contact_params {
+    int normal;      /* enum dem_normal_law */
+    double k;        /* N/m; linear stiffness */
+    double k1, k2;   /* N/m; luding loading, un-/re-loading stiffness */
+    double kc;       /* N/m; luding adhesive stiffness */
+    double phi_f;    /* luding 2008 plasticity depth (0 = constant k2) */
+    double gamma_n;  /* kg/s */
+    double kt;       /* N/m */
+    double gamma_t;  /* kg/s */
+    double mu_s, mu_d;  /* particle-particle friction */
+    double wall_mu;     /* particle-wall friction */
+    double wall_kc;     /* N/m; particle-wall adhesive stiffness */
+};
+
+/* Per particle-wall contact history: slot [w * cap + i]. */
+struct dem_wall_history {
+    double *xi_x, *xi_y, *xi_z; /* m; tangential spring */
+    double *dmax;               /* m; largest overlap (luding) */
+    unsigned char *state;       /* DEM_CONTACT_* bits */
+};
+
+/* Sums gathered by the force loop when measurement is requested. */
+struct dem_contact_sums {
+    double fabric_stress[3][3]; /* N m; sum over contacts of l (x) f,
+                                   compression positive (Love-Weber) */
+    double fabric[3][3];        /* sum over pair contacts of n (x) n */
+    double e_pot;               /* J; elastic energy in all contacts */
+    long n_pp;                  /* particle-particle contacts */
+    long n_pw;                  /* particle-wall contacts */
+    long n_sliding;             /* sliding contacts (pp and pw) */
+    double max_overlap_ratio;   /* largest delta / radius */
+};
+
+struct dem_sim {
+    struct dem_config cfg;      /* the validated config this run started from */
+    int dim;                    /* 2 or 3 */
+    double dt;                  /* s; time step */
+    double t;                   /* s; simulated time */
+    long step;                  /* steps done */
+
+    struct dem_particles p;     /* particle data */
+    struct dem_pairs pairs;     /* Verlet pair list with contact history */
+    struct dem_wall_history wh; /* particle-wall contact history */
+    struct dem_contact_params cp; /* contact law in force now */
+    struct dem_rng rng;         /* seeded random numbers */
+
+    int nwall;                  /* 2 * dim */
+    struct dem_wall wall[DEM_MAX_WALLS]; /* index 2*axis + side */
+
+    double skin;                /* m; Verlet skin */
+    long nbuild;                /* neighbour-list builds so far */
+    int measure;                /* 1: the next force pass fills sums */
+    struct dem_contact_sums sums;
+};
+
+/* Build the simulation from a validated config: particles placed, walls
+ * around them, all fixed. */
+int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
+                   struct dem_error *err);
+void dem_sim_destroy(struct dem_sim *s);
+
+/* One time step (velocity Verlet): half kick, drift, walls, neighbour
+ * check, forces, half kick. */
+int dem_sim_step(struct dem_sim *s, struct dem_error *err);
+
+/* Recompute forces of the current state without moving anything
+ * (fills s->sums when s->measure is set). */
+void dem_sim_forces(struct dem_sim *s);
+
+/* Box edge lengths and volume (area in 2D) from the wall positions. */
+void dem_sim_box(const struct dem_sim *s, double L[3], double *volume);
+/* Area of the face that wall w bounds (2D: the other side's length). */
+double dem_sim_wall_area(const struct dem_sim *s, int w);
+
+#endif
