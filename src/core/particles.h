@@ -24,7 +24,11 @@ struct dem_particles {
     double *inv_I;          /* 1/(kg m^2); moment of inertia inverse */
     double *x0, *y0, *z0;   /* m; position at the last neighbour-list build */
     int *id;                /* original index (stable across re-ordering) */
-    int *ncontact;          /* contacts (particles and walls) of the step */
+    int *ncontact;          /* contacts (particles and walls) of the last
+                               measured force pass */
+    double *fsum;           /* N; sum of |normal force| over the particle's
+                               contacts in the last measured force pass (the
+                               "force felt" used to colour pictures) */
 };
 
 /* Allocate arrays for cap particles, all zero; n = 0. */
