@@ -1,9 +1,225 @@
+/* The dembox command: argument parsing only. Everything else is in
+ * libdembox; this file turns its status codes into exit statuses and
+ * one-line messages on stderr. */
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "dembox.h"
+#include "io/config.h"
+#include "io/examples.h"
 
-int main(void)
+#define DEFAULT_EXAMPLE "biaxial2d"
+#define MAX_SETS 256
+
+static const char *const usage_main =
+    "usage: dembox COMMAND [ARGS]\n"
+    "\n"
+    "DEM laboratory for granular element tests (biaxial 2D, triaxial 3D).\n"
+    "\n"
+    "commands:\n"
+    "  run [CONFIG|EXAMPLE] [-o OUTDIR] [--set KEY=VALUE]... [--threads N] "
+    "[--quiet]\n"
+    "                      run a scenario (default: the example " DEFAULT_EXAMPLE
+    ")\n"
+    "  examples            list the built-in examples\n"
+    "  example NAME        print a built-in example as a config file\n"
+    "  help [COMMAND|config]  help on a command, or every config key\n"
+    "  --version           print the version\n";
+
+static const char *const usage_run =
+    "usage: dembox run [CONFIG|EXAMPLE] [-o OUTDIR] [--set KEY=VALUE]... "
+    "[--threads N] [--quiet]\n"
+    "\n"
+    "Run the stages of a config file or a built-in example (default: "
+    DEFAULT_EXAMPLE ").\n"
+    "\n"
+    "  -o, --output OUTDIR  output folder (default dembox-out/NAME)\n"
+    "  --set KEY=VALUE      override a config key by its dotted path, e.g.\n"
+    "                       --set contact.mu=0.3 --set stages.1.pressure=250\n"
+    "  --threads N          OpenMP threads (default: all cores)\n"
+    "  --quiet              no progress display\n"
+    "\n"
+    "OUTDIR receives config.cfg (the resolved config), timeseries.csv,\n"
+    "particles_final.csv and particles_NNNNN.vtu snapshots with\n"
+    "particles.pvd. Files being written end in .part until the run is done.\n";
+
+static const char *const usage_examples =
+    "usage: dembox examples\n\nList the built-in examples.\n";
+static const char *const usage_example =
+    "usage: dembox example NAME\n\nPrint a built-in example as a config "
+    "file to start from.\n";
+
+static int fail(const char *msg)
 {
-    printf("dembox %s\n", DEM_VERSION);
+    fprintf(stderr, "dembox: %s\n", msg);
+    return 1;
+}
+
+/* The file name without folders and extension. */
+static void stem(const char *path, char *out, size_t n)
+{
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    snprintf(out, n, "%s", b);
+    char *dot = strrchr(out, '.');
+    if (dot && dot != out)
+        *dot = '\0';
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    const char *target = 0, *outdir = 0;
+    const char *sets[MAX_SETS];
+    int nsets = 0;
+    struct dem_run_options opt = {0, 0, 0};
+    for (int k = 0; k < argc; k++) {
+        const char *a = argv[k];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(usage_run, stdout);
+            return 0;
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            if (++k >= argc)
+                return fail("run: -o needs a folder");
+            outdir = argv[k];
+        } else if (!strcmp(a, "--set")) {
+            if (++k >= argc)
+                return fail("run: --set needs KEY=VALUE");
+            if (nsets >= MAX_SETS)
+                return fail("run: too many --set options");
+            sets[nsets++] = argv[k];
+        } else if (!strncmp(a, "--set=", 6)) {
+            if (nsets >= MAX_SETS)
+                return fail("run: too many --set options");
+            sets[nsets++] = a + 6;
+        } else if (!strcmp(a, "--threads")) {
+            char *end;
+            if (++k >= argc)
+                return fail("run: --threads needs a number");
+            long t = strtol(argv[k], &end, 10);
+            if (*end || t < 1 || t > 4096)
+                return fail("run: --threads must be a positive integer");
+            opt.threads = (int)t;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            opt.quiet = 1;
+        } else if (a[0] == '-') {
+            fprintf(stderr, "dembox: run: unknown option %s (see dembox help run)\n", a);
+            return 1;
+        } else if (!target) {
+            target = a;
+        } else {
+            return fail("run: more than one config given");
+        }
+    }
+    if (!target)
+        target = DEFAULT_EXAMPLE;
+
+    struct dem_config cfg;
+    struct dem_error err = {0, ""};
+    int rc;
+    char name[DEM_NAME_MAX];
+    const struct dem_example *ex = dem_example_find(target);
+    if (ex && !strchr(target, '/')) {
+        char source[DEM_PATH_MAX];
+        snprintf(source, sizeof source, "example %s", ex->name);
+        rc = dem_config_parse(&cfg, ex->text, source, sets, nsets, &err);
+        snprintf(name, sizeof name, "%s", ex->name);
+    } else {
+        rc = dem_config_load_file(&cfg, target, sets, nsets, &err);
+        stem(target, name, sizeof name);
+    }
+    if (rc)
+        return fail(err.msg);
+    snprintf(cfg.name, sizeof cfg.name, "%s", name);
+
+    char outbuf[DEM_PATH_MAX];
+    if (!outdir) {
+        snprintf(outbuf, sizeof outbuf, "dembox-out/%s", name);
+        outdir = outbuf;
+    }
+    opt.outdir = outdir;
+    rc = dem_run(&cfg, &opt, &err);
+    if (rc)
+        return fail(err.msg);
+    if (!opt.quiet)
+        fprintf(stderr, "dembox: results in %s\n", outdir);
     return 0;
+}
+
+static int cmd_examples(void)
+{
+    for (int k = 0; k < dem_n_examples; k++) {
+        /* the first comment line of an example says what it is */
+        const char *t = dem_examples[k].text;
+        const char *nl = strchr(t, '\n');
+        int len = nl ? (int)(nl - t) : (int)strlen(t);
+        while (len > 0 && (*t == '#' || *t == ' ')) {
+            t++;
+            len--;
+        }
+        printf("%-22s %.*s\n", dem_examples[k].name, len, t);
+    }
+    return 0;
+}
+
+static int cmd_example(int argc, char **argv)
+{
+    if (argc != 1)
+        return fail("example: give one NAME (see dembox examples)");
+    const struct dem_example *ex = dem_example_find(argv[0]);
+    if (!ex) {
+        fprintf(stderr, "dembox: example: no example called '%s' (see dembox examples)\n", argv[0]);
+        return 1;
+    }
+    fputs(ex->text, stdout);
+    return 0;
+}
+
+static int cmd_help(int argc, char **argv)
+{
+    if (argc == 0) {
+        fputs(usage_main, stdout);
+        return 0;
+    }
+    const char *c = argv[0];
+    if (!strcmp(c, "run"))
+        fputs(usage_run, stdout);
+    else if (!strcmp(c, "examples"))
+        fputs(usage_examples, stdout);
+    else if (!strcmp(c, "example"))
+        fputs(usage_example, stdout);
+    else if (!strcmp(c, "config"))
+        dem_config_print_keys(stdout);
+    else if (!strcmp(c, "help"))
+        fputs(usage_main, stdout);
+    else {
+        fprintf(stderr, "dembox: help: no command called '%s'\n", c);
+        return 1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(usage_main, stderr);
+        return 1;
+    }
+    const char *c = argv[1];
+    if (!strcmp(c, "run"))
+        return cmd_run(argc - 2, argv + 2);
+    if (!strcmp(c, "examples"))
+        return cmd_examples();
+    if (!strcmp(c, "example"))
+        return cmd_example(argc - 2, argv + 2);
+    if (!strcmp(c, "help"))
+        return cmd_help(argc - 2, argv + 2);
+    if (!strcmp(c, "--help") || !strcmp(c, "-h"))
+        return cmd_help(0, 0);
+    if (!strcmp(c, "--version")) {
+        printf("dembox %s\n", DEM_VERSION);
+        return 0;
+    }
+    fprintf(stderr, "dembox: unknown command '%s' (see dembox --help)\n", c);
+    return 1;
 }

@@ -175,4 +175,17 @@ struct dem_config {
     } output;
 };
 
+/* ------------------------------------------------------------------- run */
+
+struct dem_run_options {
+    const char *outdir; /* output folder, created with its parents */
+    int quiet;          /* 1: no progress display on stderr */
+    int threads;        /* OpenMP threads; 0 = all cores */
+};
+
+/* Run every stage of cfg (validated) and write the outputs of SPEC §7 to
+ * opt->outdir. On failure no output is left looking complete. */
+int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
+            struct dem_error *err);
+
 #endif /* DEMBOX_H */

@@ -78,9 +78,24 @@ int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
                    struct dem_error *err);
 void dem_sim_destroy(struct dem_sim *s);
 
+/* For tests and tools: a simulation with room for cap particles and no
+ * particle yet, walls at lo/hi. Add particles with dem_particles_add, then
+ * call dem_sim_ready. */
+int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
+                         int cap, const double lo[3], const double hi[3],
+                         struct dem_error *err);
+/* Allocate contact storage, build the neighbour list, compute forces. */
+int dem_sim_ready(struct dem_sim *s, struct dem_error *err);
+
 /* One time step (velocity Verlet): half kick, drift, walls, neighbour
  * check, forces, half kick. */
 int dem_sim_step(struct dem_sim *s, struct dem_error *err);
+
+/* Rebuild the neighbour list now (carrying contact history). */
+int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err);
+
+/* Friction coefficients of particle-particle contacts from now on. */
+void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d);
 
 /* Recompute forces of the current state without moving anything
  * (fills s->sums when s->measure is set). */

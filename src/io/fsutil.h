@@ -1,0 +1,14 @@
+/* Small file-system helpers. */
+#ifndef DEM_IO_FSUTIL_H
+#define DEM_IO_FSUTIL_H
+
+#include "dembox.h"
+
+/* mkdir -p: create path and its parents (mode 0755). */
+int dem_mkdir_p(const char *path, struct dem_error *err);
+
+/* Join dir and name into out (size n); error when it does not fit. */
+int dem_path_join(char *out, size_t n, const char *dir, const char *name,
+                  struct dem_error *err);
+
+#endif

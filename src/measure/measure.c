@@ -1,0 +1,128 @@
+#include "measure/measure.h"
+
+#include <math.h>
+#include <string.h>
+
+void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
+                 int stage, struct dem_sample *o)
+{
+    const struct dem_particles *P = &s->p;
+    const struct dem_contact_sums *S = &s->sums;
+    const int dim = s->dim;
+    memset(o, 0, sizeof *o);
+    o->t = s->t;
+    o->stage = stage;
+    dem_sim_box(s, o->L, &o->V);
+    for (int a = 0; a < dim; a++)
+        o->eps[a] = L0[a] > 0.0 ? 1.0 - o->L[a] / L0[a] : 0.0;
+    o->eps_v = V0 > 0.0 ? o->V / V0 - 1.0 : 0.0;
+
+    for (int w = 0; w < s->nwall; w++) {
+        const struct dem_wall *W = &s->wall[w];
+        o->wall_pos[w] = W->pos;
+        o->wall_vel[w] = W->vel;
+        o->wall_force[w] = W->force;
+        o->sigma_wall[w] = W->force / dem_sim_wall_area(s, w);
+    }
+    for (int a = 0; a < dim; a++) {
+        o->sigma[a] = 0.5 * (o->sigma_wall[2 * a] + o->sigma_wall[2 * a + 1]);
+        o->p += o->sigma[a] / dim;
+    }
+    if (dim == 3) {
+        double d01 = o->sigma[0] - o->sigma[1], d12 = o->sigma[1] - o->sigma[2],
+               d20 = o->sigma[2] - o->sigma[0];
+        o->q = sqrt(0.5 * (d01 * d01 + d12 * d12 + d20 * d20));
+    } else {
+        o->q = 0.5 * fabs(o->sigma[1] - o->sigma[0]);
+    }
+
+    double vs = 0.0;
+    for (int i = 0; i < P->n; i++) {
+        const double m = P->m[i], I = 1.0 / P->inv_I[i];
+        const double v[3] = {P->vx[i], P->vy[i], P->vz[i]};
+        o->e_kin += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        o->e_rot += 0.5 * I * (P->wx[i] * P->wx[i] + P->wy[i] * P->wy[i] +
+                               P->wz[i] * P->wz[i]);
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++)
+                o->sigma_kin[a][c] += m * v[a] * v[c];
+        const double r = P->r[i];
+        vs += dim == 3 ? 4.0 / 3.0 * M_PI * r * r * r : M_PI * r * r;
+    }
+    for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++) {
+            o->sigma_kin[a][c] /= o->V;
+            o->sigma_lw[a][c] = S->fabric_stress[a][c] / o->V + o->sigma_kin[a][c];
+            o->fabric[a][c] = S->n_pp ? S->fabric[a][c] / (double)S->n_pp : 0.0;
+        }
+    o->e_pot = S->e_pot;
+    o->n_pp = (double)S->n_pp;
+    o->n_pw = (double)S->n_pw;
+    o->coordination = P->n ? 2.0 * (double)S->n_pp / P->n : 0.0;
+    long nc = S->n_pp + S->n_pw;
+    o->sliding_fraction = nc ? (double)S->n_sliding / (double)nc : 0.0;
+    o->solid_fraction = vs / o->V;
+    o->void_ratio = (o->V - vs) / vs;
+    o->max_overlap = S->max_overlap_ratio;
+}
+
+/* The timeseries columns, in order: name and value. Extend at the end;
+ * the first 23 are the user-facing contract (SPEC §7). */
+#define DEM_SAMPLE_COLUMNS(X)                                                \
+    X("t", s->t)                                                             \
+    X("stage", (double)s->stage)                                             \
+    X("Lx", s->L[0]) X("Ly", s->L[1]) X("Lz", s->L[2])                       \
+    X("eps_xx", s->eps[0]) X("eps_yy", s->eps[1]) X("eps_zz", s->eps[2])     \
+    X("eps_v", s->eps_v)                                                     \
+    X("sigma_xx", s->sigma[0]) X("sigma_yy", s->sigma[1])                    \
+    X("sigma_zz", s->sigma[2])                                               \
+    X("sigma_lw_xx", s->sigma_lw[0][0]) X("sigma_lw_yy", s->sigma_lw[1][1])  \
+    X("sigma_lw_zz", s->sigma_lw[2][2])                                      \
+    X("p", s->p) X("q", s->q)                                                \
+    X("e_kin", s->e_kin) X("e_rot", s->e_rot) X("e_pot", s->e_pot)           \
+    X("coordination", s->coordination)                                       \
+    X("sliding_fraction", s->sliding_fraction)                               \
+    X("void_ratio", s->void_ratio)                                           \
+    X("solid_fraction", s->solid_fraction)                                   \
+    X("sigma_lw_xy", s->sigma_lw[0][1]) X("sigma_lw_xz", s->sigma_lw[0][2])  \
+    X("sigma_lw_yz", s->sigma_lw[1][2])                                      \
+    X("sigma_kin_xx", s->sigma_kin[0][0])                                    \
+    X("sigma_kin_yy", s->sigma_kin[1][1])                                    \
+    X("sigma_kin_zz", s->sigma_kin[2][2])                                    \
+    X("fabric_xx", s->fabric[0][0]) X("fabric_yy", s->fabric[1][1])          \
+    X("fabric_zz", s->fabric[2][2])                                          \
+    X("contacts_pp", s->n_pp) X("contacts_pw", s->n_pw)                      \
+    X("max_overlap", s->max_overlap)                                         \
+    X("xmin_pos", s->wall_pos[0]) X("xmax_pos", s->wall_pos[1])              \
+    X("ymin_pos", s->wall_pos[2]) X("ymax_pos", s->wall_pos[3])              \
+    X("zmin_pos", s->wall_pos[4]) X("zmax_pos", s->wall_pos[5])              \
+    X("xmin_vel", s->wall_vel[0]) X("xmax_vel", s->wall_vel[1])              \
+    X("ymin_vel", s->wall_vel[2]) X("ymax_vel", s->wall_vel[3])              \
+    X("zmin_vel", s->wall_vel[4]) X("zmax_vel", s->wall_vel[5])              \
+    X("xmin_force", s->wall_force[0]) X("xmax_force", s->wall_force[1])      \
+    X("ymin_force", s->wall_force[2]) X("ymax_force", s->wall_force[3])      \
+    X("zmin_force", s->wall_force[4]) X("zmax_force", s->wall_force[5])
+
+void dem_sample_write_header(FILE *f, int dim)
+{
+    (void)dim;
+    const char *sep = "";
+#define HEADER_(name, value)                                                 \
+    fprintf(f, "%s%s", sep, name);                                           \
+    sep = ",";
+    DEM_SAMPLE_COLUMNS(HEADER_)
+#undef HEADER_
+    fputc('\n', f);
+}
+
+void dem_sample_write_row(FILE *f, const struct dem_sample *s, int dim)
+{
+    (void)dim;
+    const char *sep = "";
+#define ROW_(name, value)                                                    \
+    fprintf(f, "%s%.10g", sep, (double)(value));                             \
+    sep = ",";
+    DEM_SAMPLE_COLUMNS(ROW_)
+#undef ROW_
+    fputc('\n', f);
+}

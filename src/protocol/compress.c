@@ -1,0 +1,37 @@
+/* compress: strain-controlled compression along `axis` (seed 001 Fig. 3).
+ * The max-side wall of the axis moves inwards by strain * L0 over
+ * `duration` with `profile`; the min-side wall is fixed. The lateral walls
+ * are stress-controlled at `pressure`; in 2D the min-side lateral wall is
+ * fixed too, so the left and bottom walls do not move (seed 001). */
+#include "protocol/stage.h"
+
+static int begin(struct dem_sim *s, struct dem_stage_state *st,
+                 struct dem_error *err)
+{
+    (void)err;
+    const struct dem_stage_config *c = st->cfg;
+    double L[3];
+    dem_sim_box(s, L, 0);
+    for (int w = 0; w < s->nwall; w++) {
+        struct dem_wall *W = &s->wall[w];
+        if (W->axis == c->axis) {
+            if (W->side)
+                dem_wall_set_strain(W, c->profile, -c->strain * L[c->axis],
+                                    c->duration, s->t);
+            else
+                dem_wall_set_fixed(W);
+        } else if (s->dim == 2 && W->side == 0) {
+            dem_wall_set_fixed(W);
+        } else {
+            dem__stage_walls_stress(s, w, c->pressure, 0.0, 0.0);
+        }
+    }
+    st->t_end = s->t + c->duration;
+    st->sets_reference = 1;
+    return DEM_OK;
+}
+
+const struct dem_stage_ops dem_stage_compress = {
+    "compress",
+    "strain-controlled axial compression, lateral walls at pressure", begin,
+    0};

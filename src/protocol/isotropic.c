@@ -1,0 +1,36 @@
+/* isotropic: every wall stress-controlled at `pressure`, until the packing
+ * is relaxed: E_kin/E_pot < tolerance (the seeds' criterion, kinetic
+ * energy including rotation) and every wall's stress within 1% of the
+ * target, or until max_time. */
+#include <math.h>
+
+#include "protocol/stage.h"
+
+static int begin(struct dem_sim *s, struct dem_stage_state *st,
+                 struct dem_error *err)
+{
+    (void)err;
+    for (int w = 0; w < s->nwall; w++)
+        dem__stage_walls_stress(s, w, st->cfg->pressure, 0.0, 0.0);
+    st->t_end = s->t + st->cfg->max_time;
+    st->sets_reference = 1;
+    return DEM_OK;
+}
+
+static int done(const struct dem_sim *s, const struct dem_stage_state *st,
+                const struct dem_sample *smp)
+{
+    if (!(smp->e_pot > 0.0))
+        return 0;
+    if (smp->e_kin + smp->e_rot >= st->cfg->tolerance * smp->e_pot)
+        return 0;
+    for (int w = 0; w < s->nwall; w++)
+        if (fabs(smp->sigma_wall[w] / st->cfg->pressure - 1.0) > 0.01)
+            return 0;
+    return 1;
+}
+
+const struct dem_stage_ops dem_stage_isotropic = {
+    "isotropic",
+    "all walls stress-controlled at pressure until E_kin/E_pot < tolerance",
+    begin, done};

@@ -1,0 +1,27 @@
+#include "protocol/stage.h"
+
+extern const struct dem_stage_ops dem_stage_isotropic;
+extern const struct dem_stage_ops dem_stage_compress;
+extern const struct dem_stage_ops dem_stage_cyclic;
+extern const struct dem_stage_ops dem_stage_hold;
+
+static const struct dem_stage_ops *const registry[DEM_STAGE_NTYPES] = {
+    [DEM_STAGE_ISOTROPIC] = &dem_stage_isotropic,
+    [DEM_STAGE_COMPRESS] = &dem_stage_compress,
+    [DEM_STAGE_CYCLIC] = &dem_stage_cyclic,
+    [DEM_STAGE_HOLD] = &dem_stage_hold,
+};
+
+const struct dem_stage_ops *dem_stage_lookup(int type)
+{
+    if (type < 0 || type >= DEM_STAGE_NTYPES)
+        return 0;
+    return registry[type];
+}
+
+void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
+                             double t0)
+{
+    dem_wall_set_stress(&s->wall[w], s->cfg.walls.mass, s->cfg.walls.gamma,
+                        p0, amp, t0, s->t);
+}

@@ -1,0 +1,43 @@
+/* Stages of a run (SPEC §4, §8).
+ *
+ * A stage type is a const table of functions selected by its
+ * enum dem_stage_type: begin() sets the wall modes from the stage config,
+ * done() says whether the end criterion holds at a sample. Every stage
+ * starts from the previous stage's state. Adding a stage type is one file
+ * plus one line in the registry (protocol/registry.c).
+ */
+#ifndef DEM_PROTOCOL_STAGE_H
+#define DEM_PROTOCOL_STAGE_H
+
+#include "core/sim.h"
+#include "measure/measure.h"
+
+struct dem_stage_state {
+    const struct dem_stage_config *cfg; /* this stage's config */
+    int index;          /* position in the stage list */
+    double t_start;     /* s; simulated time the stage began */
+    double t_end;       /* s; the stage ends at this time at the latest */
+    int sets_reference; /* 1: strains are referred to this stage's start */
+    int timed_out;      /* set by the runner when t_end ended the stage */
+};
+
+struct dem_stage_ops {
+    const char *name;   /* the config's type string */
+    const char *doc;    /* one line for --help */
+    /* Set wall modes; set st->t_end and st->sets_reference. */
+    int (*begin)(struct dem_sim *s, struct dem_stage_state *st,
+                 struct dem_error *err);
+    /* 1 when the end criterion holds at this sample (time-bounded stages
+     * may leave this NULL: they end at t_end). */
+    int (*done)(const struct dem_sim *s, const struct dem_stage_state *st,
+                const struct dem_sample *smp);
+};
+
+/* The stage type table entry, or NULL for an unknown type. */
+const struct dem_stage_ops *dem_stage_lookup(int type);
+
+/* Helpers shared by the stage types. */
+void dem__stage_walls_stress(struct dem_sim *s, int w, double p0,
+                             double amp, double t0);
+
+#endif

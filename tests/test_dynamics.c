@@ -1,0 +1,107 @@
+/* Equations of motion: energy conservation without dissipation over many
+ * contacts, and 2D runs that never leave the plane. */
+#include "testutil.h"
+
+#include "core/rng.h"
+#include "measure/measure.h"
+
+static void gas(struct dem_sim *s, int dim, int nside, double a, double v,
+                uint64_t seed)
+{
+    struct dem_rng g;
+    dem_rng_seed(&g, seed);
+    const double h = 0.1 / nside;
+    int nz = dim == 3 ? nside : 1;
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < nside; j++)
+            for (int i = 0; i < nside; i++) {
+                double r = a * (0.7 + 0.3 * dem_rng_uniform(&g));
+                int id = test_add(s, (i + 0.5) * h, (j + 0.5) * h,
+                                  dim == 3 ? (k + 0.5) * h : 0.0, r);
+                s->p.vx[id] = v * (2 * dem_rng_uniform(&g) - 1);
+                s->p.vy[id] = v * (2 * dem_rng_uniform(&g) - 1);
+                if (dim == 3)
+                    s->p.vz[id] = v * (2 * dem_rng_uniform(&g) - 1);
+            }
+}
+
+static double total_energy(struct dem_sim *s)
+{
+    /* recompute forces with measurement on: same state, same forces */
+    s->measure = 1;
+    dem_sim_forces(s);
+    struct dem_sample smp;
+    const double L0[3] = {1, 1, 1};
+    dem_measure(s, L0, 1.0, 0, &smp);
+    return smp.e_kin + smp.e_rot + smp.e_pot;
+}
+
+/* Frictionless, undamped elastic spheres in a closed box: total energy
+ * (kinetic + elastic) is conserved over thousands of collisions. */
+static void energy_conserved_without_damping(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    c.contact.mu_s = c.contact.mu_d = 0.0;
+    c.contact.gamma_n = 0.0;
+    c.time_step = 2e-5; /* t_c / 50 for the lightest pair */
+    struct dem_sim s;
+    const int nside = 6;
+    test_sim(&s, &c, nside * nside * nside, 0.0, 0.1);
+    gas(&s, 3, nside, 7e-3, 0.5, 5);
+    test_ready(&s);
+    double e0 = total_energy(&s);
+    long contacts = 0;
+    for (int k = 0; k < 100; k++) {
+        s.measure = 1;
+        test_step(&s, 100);
+        contacts += (long)s.sums.n_pp;
+    }
+    double e1 = total_energy(&s);
+    /* contacts seen at 100 samples: many collisions happened */
+    assert_true(contacts > 500);
+    assert_rel(e1, e0, 2e-3);
+    dem_sim_destroy(&s);
+}
+
+/* 2D: z, v_z, w_x and w_y stay exactly zero, with friction, rotation,
+ * walls and gravity in the plane. */
+static void two_d_stays_in_plane(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 2);
+    c.gravity[1] = -9.81;
+    c.contact.gamma_n = 0.05;
+    c.contact.gamma_t = 0.01;
+    c.contact.wall_mu = 0.3;
+    c.damping.gamma_br = 0.05;
+    c.time_step = 2e-5;
+    struct dem_sim s;
+    test_sim(&s, &c, 100, 0.0, 0.1);
+    gas(&s, 2, 10, 5e-3, 0.5, 6);
+    for (int i = 0; i < s.p.n; i++)
+        s.p.wz[i] = 10.0 * (i % 3 - 1);
+    test_ready(&s);
+    test_step(&s, 5000);
+    int moved = 0;
+    for (int i = 0; i < s.p.n; i++) {
+        assert_true(s.p.z[i] == 0.0);
+        assert_true(s.p.vz[i] == 0.0);
+        assert_true(s.p.wx[i] == 0.0);
+        assert_true(s.p.wy[i] == 0.0);
+        moved += fabs(s.p.wz[i]) > 0.0;
+    }
+    assert_true(moved > 50);
+    dem_sim_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(energy_conserved_without_damping),
+        cmocka_unit_test(two_d_stays_in_plane),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,114 @@
+/* Linked cells find exactly the pairs brute force finds, for polydisperse
+ * radii in 2D and 3D, and the contact history survives a rebuild. */
+#include "testutil.h"
+
+#include <stdlib.h>
+
+#include "contact/tangential.h"
+#include "core/rng.h"
+
+static int cmp_pair(const void *a, const void *b)
+{
+    const long *x = a, *y = b;
+    return (*x > *y) - (*x < *y);
+}
+
+static void check_same_pairs(int dim)
+{
+    struct dem_config c;
+    test_config(&c, dim);
+    struct dem_sim s;
+    const int n = 1500;
+    test_sim(&s, &c, n, 0.0, 0.2);
+    struct dem_rng g;
+    dem_rng_seed(&g, 99 + dim);
+    for (int i = 0; i < n; i++) {
+        /* radii spread over a factor 6; positions may overlap and poke
+         * through the walls */
+        double r = 1e-3 + 5e-3 * dem_rng_uniform(&g);
+        double z = dim == 3 ? -0.01 + 0.22 * dem_rng_uniform(&g) : 0.0;
+        test_add(&s, -0.01 + 0.22 * dem_rng_uniform(&g),
+                 -0.01 + 0.22 * dem_rng_uniform(&g), z, r);
+    }
+    test_ready(&s);
+    for (int round = 0; round < 2; round++) {
+        int *bi, *bj;
+        int nb = dem_pairs_brute(&s.p, dim, s.skin, &bi, &bj);
+        assert_true(nb > 100);
+        const struct dem_pair_list *L = &s.pairs.cur;
+        assert_int_equal(L->n, nb);
+        long *a = malloc((size_t)nb * sizeof *a), *b = malloc((size_t)nb * sizeof *b);
+        for (int k = 0; k < nb; k++) {
+            a[k] = (long)bi[k] * n + bj[k];
+            b[k] = (long)L->i[k] * n + L->j[k];
+            assert_true(L->i[k] < L->j[k]);
+        }
+        qsort(a, (size_t)nb, sizeof *a, cmp_pair);
+        /* the list is kept sorted by (i, j), which the history merge needs */
+        for (int k = 1; k < nb; k++)
+            assert_true(b[k - 1] < b[k]);
+        for (int k = 0; k < nb; k++)
+            assert_true(a[k] == b[k]);
+        free(a);
+        free(b);
+        free(bi);
+        free(bj);
+        /* move everything a little and build again */
+        for (int i = 0; i < n; i++) {
+            s.p.x[i] += 2e-3 * (dem_rng_uniform(&g) - 0.5);
+            s.p.y[i] += 2e-3 * (dem_rng_uniform(&g) - 0.5);
+        }
+        struct dem_error err;
+        assert_int_equal(dem_sim_rebuild(&s, &err), 0);
+    }
+    dem_sim_destroy(&s);
+}
+
+static void cells_find_brute_force_pairs_3d(void **state)
+{
+    (void)state;
+    check_same_pairs(3);
+}
+
+static void cells_find_brute_force_pairs_2d(void **state)
+{
+    (void)state;
+    check_same_pairs(2);
+}
+
+/* A contact's tangential spring and dmax are carried over a rebuild. */
+static void history_survives_rebuild(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_sim s;
+    test_sim(&s, &c, 4, 0.0, 0.1);
+    test_add(&s, 0.03, 0.05, 0.05, 5e-3);
+    test_add(&s, 0.0399, 0.05, 0.05, 5e-3);
+    test_add(&s, 0.07, 0.05, 0.05, 5e-3);
+    test_add(&s, 0.0799, 0.05, 0.05, 5e-3);
+    s.p.vy[0] = 1e-3;
+    test_ready(&s);
+    test_step(&s, 10);
+    const struct dem_pair_list *L = &s.pairs.cur;
+    assert_int_equal(L->n, 2);
+    double xi = L->xi_y[0];
+    assert_true(xi != 0.0);
+    struct dem_error err;
+    assert_int_equal(dem_sim_rebuild(&s, &err), 0);
+    assert_int_equal(L->n, 2);
+    assert_true(L->xi_y[0] == xi);
+    assert_true(L->state[0] & DEM_CONTACT_ACTIVE);
+    dem_sim_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(cells_find_brute_force_pairs_3d),
+        cmocka_unit_test(cells_find_brute_force_pairs_2d),
+        cmocka_unit_test(history_survives_rebuild),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

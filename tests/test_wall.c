@@ -1,0 +1,172 @@
+/* Walls: prescribed profiles, the cyclic target stress, a stress-controlled
+ * wall that settles where the packing's force balances sigma A, and the
+ * Love-Weber stress of a relaxed packing equal to the wall stress. */
+#include "testutil.h"
+
+#include "core/rng.h"
+#include "measure/measure.h"
+
+static void strain_profiles_start_and_end_at_rest(void **state)
+{
+    (void)state;
+    struct dem_wall w;
+    memset(&w, 0, sizeof w);
+    w.pos = 1.0;
+    const double T = 2.0, D = -0.1;
+    double x, v;
+    dem_wall_set_strain(&w, DEM_PROFILE_COSINE, D, T, 5.0);
+    dem_wall_strain_state(&w, 5.0, &x, &v);
+    assert_close(x, 1.0, 1e-15);
+    assert_close(v, 0.0, 1e-15);
+    dem_wall_strain_state(&w, 6.0, &x, &v);
+    assert_close(x, 1.0 + D / 2, 1e-15);
+    assert_close(v, D * M_PI / (2 * T), 1e-15); /* peak speed at T/2 */
+    dem_wall_strain_state(&w, 7.0, &x, &v);
+    assert_close(x, 1.0 + D, 1e-15);
+    assert_close(v, 0.0, 1e-15);
+    dem_wall_strain_state(&w, 9.0, &x, &v); /* holds after T */
+    assert_close(x, 1.0 + D, 1e-15);
+    assert_close(v, 0.0, 0.0);
+    dem_wall_set_strain(&w, DEM_PROFILE_LINEAR, D, T, 0.0);
+    dem_wall_strain_state(&w, 0.5, &x, &v);
+    assert_close(x, 1.0 + D * 0.25, 1e-15);
+    assert_close(v, D / T, 1e-15);
+    w.pos = 1.0;
+    dem_wall_set_strain(&w, DEM_PROFILE_CYCLIC, D, T, 0.0);
+    dem_wall_strain_state(&w, 1.0, &x, &v);
+    assert_close(x, 1.0 + D, 1e-15);
+    dem_wall_strain_state(&w, 2.0, &x, &v);
+    assert_close(x, 1.0, 1e-15);
+    assert_close(v, 0.0, 1e-15);
+}
+
+/* 2 sigma = 2 p0 + Dsigma [1 - cos(2 pi t/t0)] (seed 000) at sampled times. */
+static void cyclic_target_follows_formula(void **state)
+{
+    (void)state;
+    struct dem_wall w;
+    memset(&w, 0, sizeof w);
+    const double p0 = 1000.0, ds = 200.0, t0 = 10.0, ts = 3.0;
+    dem_wall_set_stress(&w, 2.0, 200.0, p0, ds, t0, ts);
+    for (int k = 0; k <= 40; k++) {
+        double t = ts + 0.37 * k;
+        double expect = p0 + 0.5 * ds * (1 - cos(2 * M_PI * (t - ts) / t0));
+        assert_close(dem_wall_target_stress(&w, t), expect, 1e-9);
+    }
+    assert_close(dem_wall_target_stress(&w, ts + t0 / 2), p0 + ds, 1e-9);
+}
+
+/* A 2D square packing: polydisperse discs on a lattice. */
+static void lattice_2d(struct dem_sim *s, int nside, double a, uint64_t seed)
+{
+    struct dem_rng g;
+    dem_rng_seed(&g, seed);
+    for (int j = 0; j < nside; j++)
+        for (int i = 0; i < nside; i++)
+            test_add(s, (2 * i + 1) * a, (2 * j + 1) * a, 0.0,
+                     a * (0.8 + 0.2 * dem_rng_uniform(&g)));
+}
+
+static void relax(struct dem_sim *s, double tmax)
+{
+    const double L0[3] = {1, 1, 1};
+    struct dem_sample smp;
+    while (s->t < tmax) {
+        s->measure = 1;
+        test_step(s, 500);
+        dem_measure(s, L0, 1.0, 0, &smp);
+        if (smp.e_kin + smp.e_rot < 1e-8 * smp.e_pot &&
+            fabs(s->wall[3].vel) < 1e-7)
+            return;
+    }
+    fail_msg("did not relax by t = %g s", tmax);
+}
+
+/* Only the top wall is stress-controlled; it comes to rest where the
+ * packing pushes it out with exactly sigma times the current face length. */
+static void stress_wall_balances_pressure(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 2);
+    c.contact.gamma_n = 0.05;
+    c.damping.gamma_b = 0.2;
+    c.time_step = 2e-5;
+    c.walls.mass = 0.05;
+    c.walls.gamma = 5.0;
+    const int nside = 8;
+    const double a = 5e-3, L = 2 * nside * a;
+    struct dem_sim s;
+    test_sim(&s, &c, nside * nside, 0.0, L);
+    lattice_2d(&s, nside, a, 3);
+    test_ready(&s);
+    const double sigma = 500.0; /* N/m */
+    dem_wall_set_stress(&s.wall[3], c.walls.mass, c.walls.gamma, sigma, 0, 0,
+                        s.t);
+    relax(&s, 20.0);
+    double A = dem_sim_wall_area(&s, 3);
+    assert_rel(s.wall[3].force, sigma * A, 1e-4);
+    /* the fixed bottom wall carries the same load */
+    assert_rel(s.wall[2].force, sigma * A, 1e-3);
+    dem_sim_destroy(&s);
+}
+
+/* All walls stress-controlled at p in 3D: once relaxed, the Love-Weber
+ * stress (contacts and walls, kinetic part included) equals the wall
+ * stress on every axis within 1%. */
+static void love_weber_equals_wall_stress(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    c.contact.gamma_n = 0.05;
+    c.contact.gamma_t = 0.01;
+    c.damping.gamma_b = 0.2;
+    c.damping.gamma_br = 0.05;
+    c.time_step = 2e-5;
+    c.walls.mass = 0.05;
+    c.walls.gamma = 5.0;
+    const int nside = 5;
+    const double a = 5e-3, L = 2 * nside * a;
+    struct dem_sim s;
+    test_sim(&s, &c, nside * nside * nside, 0.0, L);
+    struct dem_rng g;
+    dem_rng_seed(&g, 11);
+    for (int k = 0; k < nside; k++)
+        for (int j = 0; j < nside; j++)
+            for (int i = 0; i < nside; i++)
+                test_add(&s, (2 * i + 1) * a, (2 * j + 1) * a,
+                         (2 * k + 1) * a, a * (0.75 + 0.25 * dem_rng_uniform(&g)));
+    test_ready(&s);
+    const double p = 1000.0;
+    for (int w = 0; w < 6; w++)
+        dem_wall_set_stress(&s.wall[w], c.walls.mass, c.walls.gamma, p, 0, 0,
+                            s.t);
+    const double L0[3] = {1, 1, 1};
+    struct dem_sample smp;
+    int relaxed = 0;
+    while (s.t < 20.0 && !relaxed) {
+        s.measure = 1;
+        test_step(&s, 500);
+        dem_measure(&s, L0, 1.0, 0, &smp);
+        relaxed = smp.e_kin + smp.e_rot < 1e-7 * smp.e_pot;
+    }
+    assert_true(relaxed);
+    for (int a3 = 0; a3 < 3; a3++) {
+        assert_rel(smp.sigma[a3], p, 0.01);
+        assert_rel(smp.sigma_lw[a3][a3], smp.sigma[a3], 0.01);
+    }
+    assert_true(smp.coordination > 3.0);
+    dem_sim_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(strain_profiles_start_and_end_at_rest),
+        cmocka_unit_test(cyclic_target_follows_formula),
+        cmocka_unit_test(stress_wall_balances_pressure),
+        cmocka_unit_test(love_weber_equals_wall_stress),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
