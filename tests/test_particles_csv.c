@@ -41,7 +41,10 @@ static void write_text(const char *path, const char *text)
     assert_int_equal(fclose(f), 0);
 }
 
-static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
 
 /* Swap particles i and j in memory, as a spatial re-ordering would. */
 static void swap_particles(struct dem_particles *p, int i, int j)

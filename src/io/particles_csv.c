@@ -142,8 +142,8 @@ static int parse_header(char *line, const char *path, int lineno, int dim,
             c++;
         if (c == NCOL)
             return dem_error_set(err, DEM_ECONFIG,
-                                 "%s:%d: unknown column '%.64s' (known: " COL_LIST
-                                 ")",
+                                 "%s:%d: unknown column '%.64s' "
+                                 "(known: " COL_LIST ")",
                                  path, lineno, name);
         if (present[c])
             return dem_error_set(err, DEM_ECONFIG,
@@ -284,7 +284,7 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
         return rc;
     }
     for (int i = 0; i < r.n; i++) {
-        const double *row = &r.rows[(size_t)i * NCOL];
+        const double *row = r.rows + (size_t)i * NCOL;
         double a = row[COL_RADIUS];
         dem_particles_add(p, row[COL_X], row[COL_Y], row[COL_Z], a, density,
                           mass_model, dim);
