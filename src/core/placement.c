@@ -1,0 +1,459 @@
+/* Initial particle placement (see placement.h).
+ *
+ * Radius distributions (SPEC §1): mono (all = mean); uniform in [min, max];
+ * Gaussian N(mean, std) redrawn until inside [min, max] (and > 0).
+ *
+ * Lattice: square/cubic, spacing 2 r_max (1 + DEM_LATTICE_GAP), filled
+ * x fastest, then y, then z; the box is the lattice extent or the given
+ * box.size with the lattice centred in it.
+ *
+ * Random: random sequential insertion, largest particles first, each
+ * centre uniform over the positions that keep the particle inside the box,
+ * rejected on overlap with any particle already placed. A cell grid of
+ * edge >= 2 r_max limits the overlap test to the 3^dim neighbouring cells,
+ * so the whole insertion costs O(N) for a dilute box.
+ */
+#include "core/placement.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/particles_csv.h"
+
+/* Tries for one Gaussian radius before the distribution is declared
+ * (numerically) empty inside [min, max]. */
+#define DEM_GAUSS_MAX_DRAWS 100000
+
+static int box_given(const struct dem_config *cfg, int dim)
+{
+    for (int a = 0; a < dim; a++)
+        if (cfg->box.size[a] != 0.0)
+            return 1;
+    return 0;
+}
+
+static int check_box(const struct dem_config *cfg, int dim,
+                     struct dem_error *err)
+{
+    for (int a = 0; a < dim; a++) {
+        double L = cfg->box.size[a];
+        if (!(L > 0.0) || !isfinite(L))
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "box.size: component %d must be a positive "
+                                 "length (m), got %g",
+                                 a, L);
+    }
+    return DEM_OK;
+}
+
+/* One radius (m) from the configured distribution. */
+static int draw_radius(const struct dem_config *cfg, struct dem_rng *rng,
+                       double *r, struct dem_error *err)
+{
+    double mean = cfg->particles.mean, sd = cfg->particles.std;
+    double lo = cfg->particles.min, hi = cfg->particles.max;
+    switch (cfg->particles.distribution) {
+    case DEM_DIST_UNIFORM:
+        if (!(lo > 0.0) || !(hi >= lo) || !isfinite(hi))
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "particles.radius.min: uniform radii need "
+                                 "0 < min <= max, got min %g max %g (m)",
+                                 lo, hi);
+        *r = lo + (hi - lo) * dem_rng_uniform(rng);
+        return DEM_OK;
+    case DEM_DIST_GAUSSIAN:
+        if (!(sd > 0.0) || !isfinite(sd) || !isfinite(mean))
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "particles.radius.std: Gaussian radii need a "
+                                 "positive standard deviation, got %g (m)",
+                                 sd);
+        for (int k = 0; k < DEM_GAUSS_MAX_DRAWS; k++) {
+            double x = mean + sd * dem_rng_normal(rng);
+            if (x >= lo && x <= hi && x > 0.0) {
+                *r = x;
+                return DEM_OK;
+            }
+        }
+        return dem_error_set(err, DEM_ECONFIG,
+                             "particles.radius.min: a Gaussian of mean %g and "
+                             "std %g almost never falls in [min %g, max %g] "
+                             "(m); widen the cuts",
+                             mean, sd, lo, hi);
+    default:
+        if (!(mean > 0.0) || !isfinite(mean))
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "particles.radius.mean: must be a positive "
+                                 "radius (m), got %g",
+                                 mean);
+        *r = mean;
+        return DEM_OK;
+    }
+}
+
+/* Allocate p and add cfg->particles.count particles at the origin with
+ * drawn radii; returns r_max (m) in *rmax. */
+static int add_with_radii(struct dem_particles *p, const struct dem_config *cfg,
+                          int dim, struct dem_rng *rng, double *rmax,
+                          struct dem_error *err)
+{
+    int n = cfg->particles.count;
+    if (n <= 0)
+        return dem_error_set(err, DEM_ECONFIG,
+                             "particles.count: must be at least 1, got %d", n);
+    int rc = dem_particles_init(p, n, err);
+    if (rc)
+        return rc;
+    *rmax = 0.0;
+    for (int i = 0; i < n; i++) {
+        double r = 0.0;
+        rc = draw_radius(cfg, rng, &r, err);
+        if (rc)
+            return rc;
+        dem_particles_add(p, 0.0, 0.0, 0.0, r, cfg->particles.density,
+                          cfg->particles.mass_model, dim);
+        if (r > *rmax)
+            *rmax = r;
+    }
+    return DEM_OK;
+}
+
+static long long ipow(long long b, int e)
+{
+    long long r = 1;
+    while (e-- > 0)
+        r *= b;
+    return r;
+}
+
+/* "[Lx, Ly]" or "[Lx, Ly, Lz]" for messages. */
+static void format_size(char *buf, size_t len, const double *L, int dim)
+{
+    if (dim == 3)
+        snprintf(buf, len, "[%g, %g, %g]", L[0], L[1], L[2]);
+    else
+        snprintf(buf, len, "[%g, %g]", L[0], L[1]);
+}
+
+static int place_lattice(struct dem_particles *p, const struct dem_config *cfg,
+                         int dim, double rmax, double lo[3], double hi[3],
+                         struct dem_error *err)
+{
+    /* Smallest n_side with n_side^dim >= n, corrected in integers because
+     * pow() may round either way at perfect powers. */
+    long long n = p->n;
+    long long side = (long long)ceil(pow((double)n, 1.0 / dim));
+    if (side < 1)
+        side = 1;
+    while (side > 1 && ipow(side - 1, dim) >= n)
+        side--;
+    while (ipow(side, dim) < n)
+        side++;
+    double s = 2.0 * rmax * (1.0 + DEM_LATTICE_GAP); /* m; spacing */
+    double extent = (double)side * s;                /* m */
+
+    double origin[3] = {0.0, 0.0, 0.0}; /* m; lattice corner */
+    if (box_given(cfg, dim)) {
+        int rc = check_box(cfg, dim, err);
+        if (rc)
+            return rc;
+        for (int a = 0; a < dim; a++)
+            if (extent > cfg->box.size[a]) {
+                char size[96];
+                format_size(size, sizeof size, cfg->box.size, dim);
+                return dem_error_set(
+                    err, DEM_ECONFIG,
+                    "particles.count: %d particles of largest radius %g m "
+                    "need a lattice of %g m per side but box.size is %s m",
+                    p->n, rmax, extent, size);
+            }
+        for (int a = 0; a < dim; a++) {
+            lo[a] = 0.0;
+            hi[a] = cfg->box.size[a];
+            origin[a] = 0.5 * (cfg->box.size[a] - extent);
+        }
+    } else {
+        for (int a = 0; a < dim; a++) {
+            lo[a] = 0.0;
+            hi[a] = extent;
+        }
+    }
+    for (int i = 0; i < p->n; i++) {
+        long long k = i;
+        p->x[i] = origin[0] + ((double)(k % side) + 0.5) * s;
+        p->y[i] = origin[1] + ((double)((k / side) % side) + 0.5) * s;
+        p->z[i] = dim == 3 ? origin[2] + ((double)(k / (side * side)) + 0.5) * s
+                           : 0.0;
+    }
+    return DEM_OK;
+}
+
+/* Insertion order: largest first (small ones fill the gaps), ties by
+ * index so the order is fully determined. */
+struct by_radius {
+    double r;
+    int i;
+};
+
+static int cmp_radius_desc(const void *a, const void *b)
+{
+    const struct by_radius *u = a, *v = b;
+    if (u->r != v->r)
+        return u->r > v->r ? -1 : 1;
+    return (u->i > v->i) - (u->i < v->i);
+}
+
+/* Cell grid for the overlap test during insertion. */
+struct grid {
+    int nc[3];   /* cells per axis */
+    double edge; /* m; cell edge, >= 2 r_max */
+    double lo[3];
+    int *head;   /* first particle in each cell, -1 = empty */
+    int *next;   /* next particle in the same cell */
+};
+
+static int grid_cell(const struct grid *g, int a, double x)
+{
+    int c = (int)floor((x - g->lo[a]) / g->edge);
+    /* The last cell absorbs the remainder L - nc edge, so it is wider. */
+    if (c < 0)
+        c = 0;
+    if (c >= g->nc[a])
+        c = g->nc[a] - 1;
+    return c;
+}
+
+static int overlaps(const struct grid *g, const struct dem_particles *p,
+                    double x, double y, double z, double r)
+{
+    int c[3] = {grid_cell(g, 0, x), grid_cell(g, 1, y), grid_cell(g, 2, z)};
+    int c0[3], c1[3];
+    for (int a = 0; a < 3; a++) {
+        c0[a] = c[a] > 0 ? c[a] - 1 : 0;
+        c1[a] = c[a] < g->nc[a] - 1 ? c[a] + 1 : g->nc[a] - 1;
+    }
+    for (int k = c0[2]; k <= c1[2]; k++)
+        for (int j = c0[1]; j <= c1[1]; j++)
+            for (int i = c0[0]; i <= c1[0]; i++) {
+                int cell = (k * g->nc[1] + j) * g->nc[0] + i;
+                for (int q = g->head[cell]; q >= 0; q = g->next[q]) {
+                    double dx = p->x[q] - x, dy = p->y[q] - y,
+                           dz = p->z[q] - z, s = p->r[q] + r;
+                    if (dx * dx + dy * dy + dz * dz <= s * s)
+                        return 1;
+                }
+            }
+    return 0;
+}
+
+static int place_random(struct dem_particles *p, const struct dem_config *cfg,
+                        int dim, struct dem_rng *rng, double rmax,
+                        double lo[3], double hi[3], struct dem_error *err)
+{
+    int n = p->n;
+    double L[3] = {0.0, 0.0, 0.0}; /* m; box edges */
+    const char *key;               /* what to change when it does not fit */
+    if (box_given(cfg, dim)) {
+        int rc = check_box(cfg, dim, err);
+        if (rc)
+            return rc;
+        for (int a = 0; a < dim; a++)
+            L[a] = cfg->box.size[a];
+        key = "enlarge box.size";
+    } else {
+        double phi = cfg->particles.volume_fraction;
+        if (!(phi > 0.0) || !isfinite(phi))
+            phi = dim == 3 ? DEM_RANDOM_FRACTION_3D : DEM_RANDOM_FRACTION_2D;
+        double vs = 0.0; /* m^3 (2D: m^2); solid volume */
+        for (int i = 0; i < n; i++)
+            vs += dim == 3 ? 4.0 / 3.0 * M_PI * p->r[i] * p->r[i] * p->r[i]
+                           : M_PI * p->r[i] * p->r[i];
+        double side = dim == 3 ? cbrt(vs / phi) : sqrt(vs / phi);
+        for (int a = 0; a < dim; a++)
+            L[a] = side;
+        key = "lower particles.volume_fraction";
+    }
+    double volume = dim == 3 ? L[0] * L[1] * L[2] : L[0] * L[1];
+
+    /* Cells of edge 2 r_max, coarsened when the box is so large that the
+     * grid would hold many more cells than particles. */
+    struct grid g = {.edge = 2.0 * rmax};
+    double max_cells = 8.0 * n + 64.0;
+    for (;;) {
+        double total = 1.0;
+        for (int a = 0; a < 3; a++) {
+            double c = a < dim ? floor(L[a] / g.edge) : 1.0;
+            g.nc[a] = c < 1.0 ? 1 : (c > 1e9 ? 1000000000 : (int)c);
+            total *= g.nc[a];
+        }
+        if (total <= max_cells)
+            break;
+        g.edge *= 1.25;
+    }
+    g.lo[0] = g.lo[1] = g.lo[2] = 0.0;
+    if (dim == 2)
+        g.lo[2] = -rmax;
+    size_t ncell = (size_t)g.nc[0] * (size_t)g.nc[1] * (size_t)g.nc[2];
+    g.head = malloc(ncell * sizeof *g.head);
+    g.next = malloc((size_t)n * sizeof *g.next);
+    struct by_radius *order = malloc((size_t)n * sizeof *order);
+    if (!g.head || !g.next || !order) {
+        free(g.head);
+        free(g.next);
+        free(order);
+        return dem_error_set(err, DEM_ENOMEM,
+                             "particles: out of memory placing %d particles",
+                             n);
+    }
+    for (size_t c = 0; c < ncell; c++)
+        g.head[c] = -1;
+    for (int i = 0; i < n; i++) {
+        order[i].r = p->r[i];
+        order[i].i = i;
+    }
+    qsort(order, (size_t)n, sizeof *order, cmp_radius_desc);
+
+    int rc = DEM_OK;
+    for (int k = 0; k < n && rc == DEM_OK; k++) {
+        int i = order[k].i;
+        double r = p->r[i], pos[3] = {0.0, 0.0, 0.0};
+        int placed = 0;
+        for (int t = 0; t < DEM_PLACE_MAX_ATTEMPTS && !placed; t++) {
+            int fits = 1;
+            /* Draw every coordinate even when one cannot fit, so the
+             * stream consumed does not depend on the outcome. */
+            for (int a = 0; a < dim; a++) {
+                double free_len = L[a] - 2.0 * r; /* m; room for the centre */
+                pos[a] = r + free_len * dem_rng_uniform(rng);
+                fits = fits && free_len >= 0.0;
+            }
+            placed = fits && !overlaps(&g, p, pos[0], pos[1], pos[2], r);
+        }
+        if (!placed) {
+            double vs = 0.0;
+            for (int q = 0; q < n; q++)
+                vs += dim == 3
+                          ? 4.0 / 3.0 * M_PI * p->r[q] * p->r[q] * p->r[q]
+                          : M_PI * p->r[q] * p->r[q];
+            rc = dem_error_set(
+                err, DEM_ECONFIG,
+                "particles.count: could not place particle %d of %d "
+                "(radius %g m) without overlap after %d attempts in a box "
+                "of solid fraction %.3g; lower particles.count or %s",
+                k + 1, n, r, DEM_PLACE_MAX_ATTEMPTS, vs / volume, key);
+            break;
+        }
+        p->x[i] = pos[0];
+        p->y[i] = pos[1];
+        p->z[i] = pos[2];
+        int cell = (grid_cell(&g, 2, pos[2]) * g.nc[1] +
+                    grid_cell(&g, 1, pos[1])) * g.nc[0] +
+                   grid_cell(&g, 0, pos[0]);
+        g.next[i] = g.head[cell];
+        g.head[cell] = i;
+    }
+    free(g.head);
+    free(g.next);
+    free(order);
+    if (rc)
+        return rc;
+    for (int a = 0; a < dim; a++) {
+        lo[a] = 0.0;
+        hi[a] = L[a];
+    }
+    return DEM_OK;
+}
+
+static int place_file(struct dem_particles *p, const struct dem_config *cfg,
+                      int dim, double *rmax, double lo[3], double hi[3],
+                      struct dem_error *err)
+{
+    const char *path = cfg->particles.file;
+    int *lines = NULL;
+    int rc = dem_particles_read_csv_lines(p, path, dim, cfg->particles.density,
+                                          cfg->particles.mass_model, &lines,
+                                          err);
+    if (rc)
+        return rc;
+    *rmax = 0.0;
+    for (int i = 0; i < p->n; i++)
+        if (p->r[i] > *rmax)
+            *rmax = p->r[i];
+    if (box_given(cfg, dim)) {
+        rc = check_box(cfg, dim, err);
+        for (int i = 0; i < p->n && rc == DEM_OK; i++) {
+            const double c[3] = {p->x[i], p->y[i], p->z[i]};
+            for (int a = 0; a < dim; a++)
+                if (c[a] - p->r[i] < 0.0 || c[a] + p->r[i] > cfg->box.size[a]) {
+                    rc = dem_error_set(
+                        err, DEM_ECONFIG,
+                        "%s:%d: particle at %c = %g m with radius %g m is not "
+                        "inside box.size (0 to %g m)",
+                        path, lines[i], "xyz"[a], c[a], p->r[i],
+                        cfg->box.size[a]);
+                    break;
+                }
+        }
+        for (int a = 0; a < dim && rc == DEM_OK; a++) {
+            lo[a] = 0.0;
+            hi[a] = cfg->box.size[a];
+        }
+    } else {
+        /* Bounding box grown by a thousandth of the largest radius, so the
+         * walls start just clear of every particle. */
+        double margin = 1e-3 * *rmax; /* m */
+        for (int a = 0; a < dim; a++) {
+            const double *c = a == 0 ? p->x : a == 1 ? p->y : p->z;
+            lo[a] = c[0] - p->r[0];
+            hi[a] = c[0] + p->r[0];
+            for (int i = 1; i < p->n; i++) {
+                if (c[i] - p->r[i] < lo[a])
+                    lo[a] = c[i] - p->r[i];
+                if (c[i] + p->r[i] > hi[a])
+                    hi[a] = c[i] + p->r[i];
+            }
+            lo[a] -= margin;
+            hi[a] += margin;
+        }
+    }
+    free(lines);
+    return rc;
+}
+
+int dem_place_particles(struct dem_particles *p, const struct dem_config *cfg,
+                        struct dem_rng *rng, double lo[3], double hi[3],
+                        struct dem_error *err)
+{
+    memset(p, 0, sizeof *p);
+    int dim = cfg->dim == 2 ? 2 : 3;
+    double rmax = 0.0; /* m */
+    int rc;
+    if (cfg->particles.placement == DEM_PLACE_FILE) {
+        rc = place_file(p, cfg, dim, &rmax, lo, hi, err);
+    } else {
+        rc = add_with_radii(p, cfg, dim, rng, &rmax, err);
+        if (rc == DEM_OK && cfg->particles.placement == DEM_PLACE_RANDOM)
+            rc = place_random(p, cfg, dim, rng, rmax, lo, hi, err);
+        else if (rc == DEM_OK)
+            rc = place_lattice(p, cfg, dim, rmax, lo, hi, err);
+    }
+    if (rc) {
+        dem_particles_free(p);
+        return rc;
+    }
+    if (dim == 2) {
+        /* The engine has no z walls in 2D; a slab one diameter thick keeps
+         * box volumes and pictures meaningful. */
+        lo[2] = -rmax;
+        hi[2] = rmax;
+    }
+    for (int i = 0; i < p->n; i++) {
+        if (dim == 2)
+            p->z[i] = 0.0;
+        p->x0[i] = p->x[i];
+        p->y0[i] = p->y[i];
+        p->z0[i] = p->z[i];
+    }
+    return DEM_OK;
+}

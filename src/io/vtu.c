@@ -1,0 +1,204 @@
+/* VTK XML writers (format: "VTK File Formats", Kitware, XML section). */
+#include "io/vtu.h"
+
+#include <stdio.h>
+
+#include "io/outfile.h"
+
+/* VTK cell type numbers (vtkCellType.h). */
+enum { VTK_VERTEX = 1, VTK_POLY_LINE = 4, VTK_HEXAHEDRON = 12 };
+
+static void header(FILE *f, const char *type)
+{
+    fprintf(f,
+            "<?xml version=\"1.0\"?>\n"
+            "<VTKFile type=\"%s\" version=\"1.0\" "
+            "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+            type);
+}
+
+/* Values of one or three double arrays, one particle per line and not
+ * indented (indentation would add a third to the file). 9 significant
+ * digits are more than a picture needs; 17 would double the size. */
+static void array3(FILE *f, const char *name, int n, const double *a,
+                   const double *b, const double *c)
+{
+    fprintf(f,
+            "        <DataArray type=\"Float64\" Name=\"%s\" "
+            "NumberOfComponents=\"3\" format=\"ascii\">\n",
+            name);
+    for (int i = 0; i < n; i++)
+        fprintf(f, "%.9g %.9g %.9g\n", a[i], b[i], c[i]);
+    fputs("        </DataArray>\n", f);
+}
+
+static void array1(FILE *f, const char *name, int n, const double *a)
+{
+    fprintf(f,
+            "        <DataArray type=\"Float64\" Name=\"%s\" "
+            "format=\"ascii\">\n",
+            name);
+    for (int i = 0; i < n; i++)
+        fprintf(f, "%.9g\n", a[i]);
+    fputs("        </DataArray>\n", f);
+}
+
+static void array1i(FILE *f, const char *name, int n, const int *a)
+{
+    fprintf(f,
+            "        <DataArray type=\"Int32\" Name=\"%s\" "
+            "format=\"ascii\">\n",
+            name);
+    for (int i = 0; i < n; i++)
+        fprintf(f, "%d\n", a[i]);
+    fputs("        </DataArray>\n", f);
+}
+
+/* Cells section: ncell cells of one type; conn lists the points of all
+ * cells, ends[c] is where cell c's list ends. NULL conn and ends mean one
+ * point per cell, cell c = point c. */
+static void cells(FILE *f, int ncell, int type, const int *conn,
+                  const int *ends)
+{
+    int nconn = ends ? (ncell > 0 ? ends[ncell - 1] : 0) : ncell;
+    fputs("      <Cells>\n"
+          "        <DataArray type=\"Int64\" Name=\"connectivity\" "
+          "format=\"ascii\">\n",
+          f);
+    for (int k = 0; k < nconn; k++)
+        fprintf(f, "%d\n", conn ? conn[k] : k);
+    fputs("        </DataArray>\n"
+          "        <DataArray type=\"Int64\" Name=\"offsets\" "
+          "format=\"ascii\">\n",
+          f);
+    for (int c = 0; c < ncell; c++)
+        fprintf(f, "%d\n", ends ? ends[c] : c + 1);
+    fputs("        </DataArray>\n"
+          "        <DataArray type=\"UInt8\" Name=\"types\" "
+          "format=\"ascii\">\n",
+          f);
+    for (int c = 0; c < ncell; c++)
+        fprintf(f, "%d\n", type);
+    fputs("        </DataArray>\n"
+          "      </Cells>\n",
+          f);
+}
+
+int dem_vtu_write_particles(const char *path, const struct dem_particles *p,
+                            struct dem_error *err)
+{
+    struct dem__outfile o;
+    int rc = dem__outfile_open(&o, path, err);
+    if (rc)
+        return rc;
+    FILE *f = o.f;
+    int n = p->n > 0 ? p->n : 0;
+    header(f, "UnstructuredGrid");
+    fprintf(f,
+            "  <UnstructuredGrid>\n"
+            "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n"
+            "      <Points>\n",
+            n, n);
+    array3(f, "position", n, p->x, p->y, p->z);
+    fputs("      </Points>\n", f);
+    /* Vertex cells: cell i is point i. */
+    cells(f, n, VTK_VERTEX, NULL, NULL);
+    fputs("      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n",
+          f);
+    array1(f, "radius", n, p->r);
+    array3(f, "velocity", n, p->vx, p->vy, p->vz);
+    array3(f, "omega", n, p->wx, p->wy, p->wz);
+    array1(f, "force", n, p->fsum);
+    array1i(f, "coordination", n, p->ncontact);
+    array1i(f, "id", n, p->id);
+    fputs("      </PointData>\n"
+          "    </Piece>\n"
+          "  </UnstructuredGrid>\n"
+          "</VTKFile>\n",
+          f);
+    return dem__outfile_commit(&o, err);
+}
+
+int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
+                      int dim, struct dem_error *err)
+{
+    struct dem__outfile o;
+    int rc = dem__outfile_open(&o, path, err);
+    if (rc)
+        return rc;
+    FILE *f = o.f;
+    /* 3D: the 8 corners in VTK hexahedron order (bottom face counter-
+     * clockwise, then top face). 2D: the 4 corners at z = 0, the polyline
+     * returning to the first to close the outline. */
+    double pts[8][3];
+    int npts = dim == 2 ? 4 : 8;
+    for (int k = 0; k < npts; k++) {
+        int ix = (k & 1) ^ ((k >> 1) & 1); /* 0 1 1 0 around a face */
+        int iy = (k >> 1) & 1;
+        pts[k][0] = ix ? hi[0] : lo[0];
+        pts[k][1] = iy ? hi[1] : lo[1];
+        pts[k][2] = dim == 2 ? 0.0 : (k >= 4 ? hi[2] : lo[2]);
+    }
+    static const int loop2d[5] = {0, 1, 2, 3, 0};
+    int nconn = dim == 2 ? 5 : 8;
+    int ends[1] = {nconn};
+    header(f, "UnstructuredGrid");
+    fprintf(f,
+            "  <UnstructuredGrid>\n"
+            "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"1\">\n"
+            "      <Points>\n"
+            "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+            "format=\"ascii\">\n",
+            npts);
+    for (int k = 0; k < npts; k++)
+        fprintf(f, "%.17g %.17g %.17g\n", pts[k][0], pts[k][1],
+                pts[k][2]);
+    fputs("        </DataArray>\n"
+          "      </Points>\n",
+          f);
+    cells(f, 1, dim == 2 ? VTK_POLY_LINE : VTK_HEXAHEDRON,
+          dim == 2 ? loop2d : NULL, ends);
+    fputs("    </Piece>\n"
+          "  </UnstructuredGrid>\n"
+          "</VTKFile>\n",
+          f);
+    return dem__outfile_commit(&o, err);
+}
+
+/* A file name as an XML attribute value. */
+static void put_attr(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        default: fputc(*s, f);
+        }
+    }
+}
+
+int dem_pvd_write(const char *path, int n, const double *times,
+                  const char *const *files, struct dem_error *err)
+{
+    struct dem__outfile o;
+    int rc = dem__outfile_open(&o, path, err);
+    if (rc)
+        return rc;
+    FILE *f = o.f;
+    header(f, "Collection");
+    fputs("  <Collection>\n", f);
+    for (int k = 0; k < n; k++) {
+        fprintf(f,
+                "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" "
+                "file=\"",
+                times[k]);
+        put_attr(f, files[k]);
+        fputs("\"/>\n", f);
+    }
+    fputs("  </Collection>\n"
+          "</VTKFile>\n",
+          f);
+    return dem__outfile_commit(&o, err);
+}

@@ -1,0 +1,30 @@
+/* ParaView output: VTK XML UnstructuredGrid snapshots (.vtu) of the
+ * particles and the box, and the PVD collection that strings them into a
+ * time series. ASCII encoding keeps the files greppable and dependency
+ * free. Every file is written to PATH.tmp and renamed into place.
+ */
+#ifndef DEM_IO_VTU_H
+#define DEM_IO_VTU_H
+
+#include "core/particles.h"
+#include "dembox.h"
+
+/* One vertex cell per particle at its centre (m), with PointData radius
+ * (m), velocity (m/s, 3 components), omega (rad/s, 3), force (N; the sum
+ * of contact normal force magnitudes, p->fsum), coordination (contacts,
+ * p->ncontact) and id (original index). Use ParaView's "Point Gaussian"
+ * representation with radius as the scale array to see spheres. */
+int dem_vtu_write_particles(const char *path, const struct dem_particles *p,
+                            struct dem_error *err);
+
+/* The box [lo, hi] (m): a hexahedron in 3D, a closed polyline in the
+ * z = 0 plane in 2D (a filled quad would hide the particles). */
+int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
+                      int dim, struct dem_error *err);
+
+/* PVD collection of n datasets: files[k] (written as given, normally
+ * relative to the .pvd) at times[k] (s). Rewritten completely each call. */
+int dem_pvd_write(const char *path, int n, const double *times,
+                  const char *const *files, struct dem_error *err);
+
+#endif

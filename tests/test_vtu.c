@@ -1,0 +1,302 @@
+/* VTU/PVD writers: files exist, are well-formed XML, declare the right
+ * number of points and hold the right number of values per array. */
+#include <ctype.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "core/particles.h"
+#include "io/vtu.h"
+
+static char tmpdir[64];
+
+static int make_tmpdir(void **state)
+{
+    (void)state;
+    strcpy(tmpdir, "/tmp/dembox_vtu_XXXXXX");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int remove_tmpdir(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long len = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)len + 1);
+    assert_non_null(s);
+    assert_int_equal(fread(s, 1, (size_t)len, f), (size_t)len);
+    s[len] = '\0';
+    fclose(f);
+    return s;
+}
+
+/* A cheap well-formedness check: one prolog, properly nested and matched
+ * tags, quoted attribute values, no stray '<' or '&' in text, one root.
+ * Returns NULL when fine, else a description of the first problem. */
+static const char *xml_problem(const char *s)
+{
+    enum { DEPTH = 32, NAME = 64 };
+    char stack[DEPTH][NAME];
+    int depth = 0, roots = 0;
+    if (strncmp(s, "<?xml", 5) != 0)
+        return "no <?xml prolog";
+    s = strstr(s, "?>");
+    if (!s)
+        return "unterminated prolog";
+    s += 2;
+    while (*s) {
+        if (*s == '&') {
+            const char *ents[] = {"&amp;", "&lt;", "&gt;", "&quot;", "&apos;"};
+            size_t k = 0;
+            while (k < 5 && strncmp(s, ents[k], strlen(ents[k])) != 0)
+                k++;
+            if (k == 5)
+                return "bare '&' in text";
+            s++;
+            continue;
+        }
+        if (*s == '>')
+            return "stray '>' in text";
+        if (*s != '<') {
+            if (depth == 0 && !isspace((unsigned char)*s))
+                return "text outside the root element";
+            s++;
+            continue;
+        }
+        s++;
+        int closing = *s == '/';
+        if (closing)
+            s++;
+        char name[NAME];
+        size_t n = 0;
+        while (isalnum((unsigned char)*s) || *s == '_' || *s == ':') {
+            if (n + 1 >= NAME)
+                return "tag name too long";
+            name[n++] = *s++;
+        }
+        name[n] = '\0';
+        if (n == 0)
+            return "empty tag name";
+        if (closing) {
+            while (isspace((unsigned char)*s))
+                s++;
+            if (*s != '>')
+                return "junk in closing tag";
+            s++;
+            if (depth == 0 || strcmp(stack[depth - 1], name) != 0)
+                return "closing tag does not match the open one";
+            depth--;
+            continue;
+        }
+        /* Attributes: name="value" pairs until '>' or '/>'. */
+        for (;;) {
+            while (isspace((unsigned char)*s))
+                s++;
+            if (*s == '>' || (s[0] == '/' && s[1] == '>'))
+                break;
+            if (!isalpha((unsigned char)*s))
+                return "bad attribute name";
+            while (isalnum((unsigned char)*s) || *s == '_')
+                s++;
+            if (*s++ != '=' || *s++ != '"')
+                return "attribute value not quoted";
+            while (*s && *s != '"') {
+                if (*s == '<')
+                    return "'<' inside an attribute value";
+                s++;
+            }
+            if (*s++ != '"')
+                return "unterminated attribute value";
+        }
+        if (depth == 0)
+            roots++;
+        if (*s == '/') {
+            s += 2;
+            continue;
+        }
+        s++;
+        if (depth == DEPTH)
+            return "nested too deep";
+        strcpy(stack[depth++], name);
+    }
+    if (depth != 0)
+        return "unclosed element at end of file";
+    if (roots != 1)
+        return "not exactly one root element";
+    return NULL;
+}
+
+static void assert_well_formed(const char *path, const char *text)
+{
+    const char *why = xml_problem(text);
+    if (why)
+        fail_msg("%s is not well-formed XML: %s", path, why);
+    char tmp[256];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    assert_int_equal(access(tmp, F_OK), -1); /* renamed into place */
+}
+
+/* Number of whitespace-separated values in the DataArray named name. */
+static int array_values(const char *text, const char *name)
+{
+    char key[80];
+    snprintf(key, sizeof key, "Name=\"%s\"", name);
+    const char *s = strstr(text, key);
+    assert_non_null(s);
+    s = strchr(s, '>') + 1;
+    const char *end = strstr(s, "</DataArray>");
+    assert_non_null(end);
+    int n = 0;
+    while (s < end) {
+        while (s < end && isspace((unsigned char)*s))
+            s++;
+        if (s >= end)
+            break;
+        n++;
+        while (s < end && !isspace((unsigned char)*s))
+            s++;
+    }
+    return n;
+}
+
+static int count_of(const char *text, const char *needle)
+{
+    int n = 0;
+    for (const char *s = strstr(text, needle); s; s = strstr(s + 1, needle))
+        n++;
+    return n;
+}
+
+static void particle_snapshot_is_well_formed_with_all_arrays(void **state)
+{
+    (void)state;
+    for (int n = 0; n <= 37; n += 37) {
+        struct dem_particles p;
+        struct dem_error err = {0};
+        assert_int_equal(dem_particles_init(&p, n, &err), DEM_OK);
+        for (int i = 0; i < n; i++) {
+            dem_particles_add(&p, 0.01 * i, -0.02 * i, 1e-3, 1e-3 * (1 + i % 3),
+                              2000.0, DEM_MASS_SPHERE, 3);
+            p.vx[i] = 0.5 * i;
+            p.wz[i] = -1.0;
+            p.fsum[i] = 3.25 * i;
+            p.ncontact[i] = i % 7;
+        }
+        char path[128];
+        snprintf(path, sizeof path, "%s/particles_%05d.vtu", tmpdir, n);
+        assert_int_equal(dem_vtu_write_particles(path, &p, &err), DEM_OK);
+        char *text = slurp(path);
+        assert_well_formed(path, text);
+        char want[80];
+        snprintf(want, sizeof want, "NumberOfPoints=\"%d\"", n);
+        assert_non_null(strstr(text, want));
+        snprintf(want, sizeof want, "NumberOfCells=\"%d\"", n);
+        assert_non_null(strstr(text, want));
+        assert_int_equal(array_values(text, "position"), 3 * n);
+        assert_int_equal(array_values(text, "connectivity"), n);
+        assert_int_equal(array_values(text, "offsets"), n);
+        assert_int_equal(array_values(text, "types"), n);
+        assert_int_equal(array_values(text, "radius"), n);
+        assert_int_equal(array_values(text, "velocity"), 3 * n);
+        assert_int_equal(array_values(text, "omega"), 3 * n);
+        assert_int_equal(array_values(text, "force"), n);
+        assert_int_equal(array_values(text, "coordination"), n);
+        assert_int_equal(array_values(text, "id"), n);
+        free(text);
+        dem_particles_free(&p);
+    }
+}
+
+static void box_is_a_hexahedron_in_3d_and_a_closed_outline_in_2d(void **state)
+{
+    (void)state;
+    const double lo[3] = {0.0, -0.1, -0.005}, hi[3] = {0.3, 0.2, 0.005};
+    struct dem_error err = {0};
+    char path[128];
+    snprintf(path, sizeof path, "%s/box3.vtu", tmpdir);
+    assert_int_equal(dem_vtu_write_box(path, lo, hi, 3, &err), DEM_OK);
+    char *text = slurp(path);
+    assert_well_formed(path, text);
+    assert_non_null(strstr(text, "NumberOfPoints=\"8\""));
+    assert_int_equal(array_values(text, "connectivity"), 8);
+    assert_int_equal(array_values(text, "types"), 1);
+    const char *types = strstr(strstr(text, "Name=\"types\""), ">") + 1;
+    assert_int_equal(atoi(types), 12); /* VTK_HEXAHEDRON */
+    /* Every corner appears: x takes both values four times each. */
+    assert_int_equal(count_of(text, "\n0.29999999999999999 "), 4);
+    free(text);
+
+    snprintf(path, sizeof path, "%s/box2.vtu", tmpdir);
+    assert_int_equal(dem_vtu_write_box(path, lo, hi, 2, &err), DEM_OK);
+    text = slurp(path);
+    assert_well_formed(path, text);
+    assert_non_null(strstr(text, "NumberOfPoints=\"4\""));
+    assert_int_equal(array_values(text, "connectivity"), 5);
+    types = strstr(strstr(text, "Name=\"types\""), ">") + 1;
+    assert_int_equal(atoi(types), 4); /* VTK_POLY_LINE */
+    free(text);
+}
+
+static void pvd_lists_every_snapshot_in_order(void **state)
+{
+    (void)state;
+    const char *files[] = {"particles_00000.vtu", "particles_00001.vtu",
+                           "odd & <name>.vtu"};
+    const double times[] = {0.0, 0.1, 0.2};
+    struct dem_error err = {0};
+    char path[128];
+    snprintf(path, sizeof path, "%s/particles.pvd", tmpdir);
+    /* Rewritten completely: the second call replaces the first. */
+    assert_int_equal(dem_pvd_write(path, 1, times, files, &err), DEM_OK);
+    assert_int_equal(dem_pvd_write(path, 3, times, files, &err), DEM_OK);
+    char *text = slurp(path);
+    assert_well_formed(path, text);
+    assert_non_null(strstr(text, "type=\"Collection\""));
+    assert_int_equal(count_of(text, "<DataSet "), 3);
+    const char *a = strstr(text, "file=\"particles_00000.vtu\"");
+    const char *b = strstr(text, "file=\"particles_00001.vtu\"");
+    const char *c = strstr(text, "file=\"odd &amp; &lt;name&gt;.vtu\"");
+    assert_true(a && b && c && a < b && b < c);
+    assert_non_null(strstr(text, "timestep=\"0.10000000000000001\""));
+    free(text);
+}
+
+static void unwritable_path_is_an_io_error(void **state)
+{
+    (void)state;
+    struct dem_error err = {0};
+    const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    char path[128];
+    snprintf(path, sizeof path, "%s/missing/box.vtu", tmpdir);
+    assert_int_equal(dem_vtu_write_box(path, lo, hi, 3, &err), DEM_EIO);
+    assert_non_null(strstr(err.msg, path));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(particle_snapshot_is_well_formed_with_all_arrays),
+        cmocka_unit_test(box_is_a_hexahedron_in_3d_and_a_closed_outline_in_2d),
+        cmocka_unit_test(pvd_lists_every_snapshot_in_order),
+        cmocka_unit_test(unwritable_path_is_an_io_error),
+    };
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
+}
