@@ -257,7 +257,10 @@ static void loop_dissipation_equals_enclosed_area(void **state)
     (void)state;
     const double cases[4][3] = {
         /* kc, phi_f, d1 */
-        {0.0, 0.0, 1e-5}, {KC, 0.0, 1e-5}, {KC, 0.01, 1e-5}, {2 * K2, 0.0, 1e-5}};
+        {0.0, 0.0, 1e-5},
+        {KC, 0.0, 1e-5},
+        {KC, 0.01, 1e-5},
+        {2 * K2, 0.0, 1e-5}};
     for (int c = 0; c < 4; c++) {
         const double kc = cases[c][0], phi = cases[c][1], d1 = cases[c][2];
         const struct dem_luding L = {K1, K2, kc, phi};
@@ -490,8 +493,9 @@ static void refined_restitution_depends_on_impact_speed(void **state)
             eout = 0.5 * k1 * k1 * dm * dm / k;
         } else {
             double d0s = phi * 2.0 * A12;
+            double w0 = (ds - d0s) * (ds - d0s);
             ein = 0.5 * k1 * ds * ds +
-                  0.5 * K2 * ((dm - d0s) * (dm - d0s) - (ds - d0s) * (ds - d0s));
+                  0.5 * K2 * ((dm - d0s) * (dm - d0s) - w0);
             eout = 0.5 * K2 * (dm - d0s) * (dm - d0s);
         }
         assert_close(ein, 0.5 * MIJ * v0 * v0, 1e-12, 0.0);

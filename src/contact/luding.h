@@ -18,7 +18,8 @@
  *
  *   f_hys = k1 delta              if k2^ (delta - delta_0) >= k1 delta
  *                                    (virgin loading; delta_max = delta)
- *         = k2^ (delta - delta_0) if k1 delta > k2^ (delta - delta_0) > -kc delta
+ *         = k2^ (delta - delta_0) if k1 delta > k2^ (delta - delta_0)
+ *                                                > -kc delta
  *         = -kc delta             if -kc delta >= k2^ (delta - delta_0)
  *
  *   delta_0 = (1 - k1/k2^) delta_max          plastic overlap (force-free)
@@ -136,7 +137,8 @@ static inline double dem_luding_remap(double delta, const struct dem_luding *L,
         return (k2 + kc) / (k2 - k1) * delta;
     double s = (k2 - k1) / ds; /* N/m^2; d k2^ / d delta_max */
     /* both terms positive: no cancellation in the root */
-    double x = 0.5 * (delta + sqrt(delta * delta + 4.0 * (k1 + kc) * delta / s));
+    double disc = delta * delta + 4.0 * (k1 + kc) * delta / s; /* m^2 */
+    double x = 0.5 * (delta + sqrt(disc));
     return x < ds ? x : ds;
 }
 
