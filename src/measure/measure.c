@@ -1,7 +1,10 @@
 #include "measure/measure.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+
+#include "contact/tangential.h"
 
 void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
                  int stage, struct dem_sample *o)
@@ -64,6 +67,85 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     o->solid_fraction = vs / o->V;
     o->void_ratio = (o->V - vs) / vs;
     o->max_overlap = S->max_overlap_ratio;
+
+    int *scratch = malloc((size_t)(P->n ? P->n : 1) * sizeof *scratch);
+    if (scratch) {
+        long c_nr = 0;
+        long nr = dem_measure_rattlers(s, scratch, &c_nr);
+        o->rattler_fraction = P->n ? (double)nr / P->n : 0.0;
+        o->coordination_nr = P->n > nr ? 2.0 * (double)c_nr / (double)(P->n - nr) : 0.0;
+        free(scratch);
+    }
+
+    /* inertial number from the fastest axial strain rate of the box */
+    double rate = 0.0;
+    for (int a = 0; a < dim; a++) {
+        double Ld = s->wall[2 * a + 1].vel - s->wall[2 * a].vel;
+        double r = fabs(Ld) / o->L[a];
+        rate = r > rate ? r : rate;
+    }
+    double msum = 0.0, dsum = 0.0;
+    for (int i = 0; i < P->n; i++) {
+        msum += P->m[i];
+        dsum += 2.0 * P->r[i];
+    }
+    if (P->n && o->p > 0.0) {
+        double m = msum / P->n, d = dsum / P->n;
+        double F = o->p * (dim == 3 ? d * d : d);
+        o->inertial_number = rate * sqrt(m * d / F);
+    }
+}
+
+/* Contacts of every surviving particle (cnt >= 0) with surviving
+ * particles and walls; removed particles keep cnt = -1. */
+static void count_contacts(const struct dem_sim *s, int *cnt)
+{
+    const struct dem_particles *P = &s->p;
+    const struct dem_pair_list *L = &s->pairs.cur;
+    for (int i = 0; i < P->n; i++)
+        if (cnt[i] >= 0)
+            cnt[i] = 0;
+    for (int k = 0; k < L->n; k++)
+        if ((L->state[k] & DEM_CONTACT_ACTIVE) && cnt[L->i[k]] >= 0 &&
+            cnt[L->j[k]] >= 0) {
+            cnt[L->i[k]]++;
+            cnt[L->j[k]]++;
+        }
+    for (int w = 0; w < s->nwall; w++)
+        for (int i = 0; i < P->n; i++)
+            if (cnt[i] >= 0 && (s->wh.state[w * P->cap + i] & DEM_CONTACT_ACTIVE))
+                cnt[i]++;
+}
+
+long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
+{
+    const struct dem_particles *P = &s->p;
+    const struct dem_pair_list *L = &s->pairs.cur;
+    const int need = s->dim == 3 ? 4 : 2;
+    memset(cnt, 0, (size_t)P->n * sizeof *cnt);
+    count_contacts(s, cnt);
+    /* a removed rattler no longer supports its neighbours: repeat until
+     * every survivor has enough contacts among survivors */
+    long removed = 0;
+    for (;;) {
+        int changed = 0;
+        for (int i = 0; i < P->n; i++)
+            if (cnt[i] >= 0 && cnt[i] < need) {
+                cnt[i] = -1;
+                removed++;
+                changed = 1;
+            }
+        if (!changed)
+            break;
+        count_contacts(s, cnt);
+    }
+    long c = 0;
+    for (int k = 0; k < L->n; k++)
+        if ((L->state[k] & DEM_CONTACT_ACTIVE) && cnt[L->i[k]] >= 0 &&
+            cnt[L->j[k]] >= 0)
+            c++;
+    *contacts_nr = c;
+    return removed;
 }
 
 /* The timeseries columns, in order: name and value. Extend at the end;
@@ -83,6 +165,9 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     X("coordination", s->coordination)                                       \
     X("sliding_fraction", s->sliding_fraction)                               \
     X("void_ratio", s->void_ratio)                                           \
+    X("coordination_nr", s->coordination_nr)                                 \
+    X("rattler_fraction", s->rattler_fraction)                               \
+    X("inertial_number", s->inertial_number)                                 \
     X("solid_fraction", s->solid_fraction)                                   \
     X("sigma_lw_xy", s->sigma_lw[0][1]) X("sigma_lw_xz", s->sigma_lw[0][2])  \
     X("sigma_lw_yz", s->sigma_lw[1][2])                                      \

@@ -32,6 +32,13 @@ struct dem_sample {
     double e_rot;          /* J; rotational kinetic energy */
     double e_pot;          /* J; elastic energy in contacts */
     double coordination;   /* 2 N_pp / N: particle contacts per particle */
+    double coordination_nr;/* the same without rattlers: particles with
+                              fewer than 2 (2D) or 4 (3D) contacts, walls
+                              counted, removed recursively */
+    double rattler_fraction; /* rattlers / N */
+    double inertial_number;/* I = rate sqrt(m d / (p d^(dim-1))): rate the
+                              fastest axial strain rate of the box, m and d
+                              the mean particle mass and diameter */
     double sliding_fraction; /* sliding / all contacts (walls included) */
     double solid_fraction; /* V_solid / V */
     double void_ratio;     /* (V - V_solid)/V_solid */
@@ -48,6 +55,11 @@ struct dem_sample {
  * the current loading stage. */
 void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
                  int stage, struct dem_sample *out);
+
+/* Number of rattlers (see coordination_nr) and the contacts between the
+ * remaining particles; scratch holds n ints. */
+long dem_measure_rattlers(const struct dem_sim *s, int *scratch,
+                          long *contacts_nr);
 
 /* Timeseries columns: the header line and one row (CSV, no newline
  * handling beyond the trailing '\n'). */

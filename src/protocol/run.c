@@ -164,6 +164,9 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
     const double dt = s->dt, out = s->cfg.output.interval;
     const double snap = s->cfg.output.snapshot_interval;
     double next_out = s->t + out;
+    const int loading =
+        c->type == DEM_STAGE_COMPRESS || c->type == DEM_STAGE_CYCLIC;
+    int warned_inertia = 0;
     for (;;) {
         int last = s->t + 1.5 * dt > st.t_end;
         int sample = last || s->t + 1.5 * dt >= next_out;
@@ -183,6 +186,16 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
         rc = check_stable(s, &smp, err);
         if (rc)
             return rc;
+        if (loading && !warned_inertia && smp.inertial_number > 1e-3) {
+            warned_inertia = 1;
+            if (r->show_progress)
+                fputc('\n', stderr);
+            fprintf(stderr,
+                    "dembox: warning: stage %d: inertial number %.2g > 1e-3 "
+                    "at t = %.4g s: the loading is not quasi-static; load "
+                    "more slowly (longer duration or period)\n",
+                    index, smp.inertial_number, s->t);
+        }
         if (snap > 0 && s->t + 0.5 * dt >= r->next_snap) {
             rc = write_snapshot(r, err);
             if (rc)
