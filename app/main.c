@@ -39,6 +39,8 @@ static const char *const usage_run =
     "                       --set contact.mu=0.3 --set stages.1.pressure=250\n"
     "  --threads N          OpenMP threads (default: all cores)\n"
     "  --quiet              no progress display\n"
+    "  --max-steps N        stop after N steps in all (smoke tests); the\n"
+    "                       outputs are written as for a finished run\n"
     "\n"
     "OUTDIR receives config.cfg (the resolved config), timeseries.csv,\n"
     "particles_final.csv and particles_NNNNN.vtu snapshots with\n"
@@ -72,7 +74,7 @@ static int cmd_run(int argc, char **argv)
     const char *target = 0, *outdir = 0;
     const char *sets[MAX_SETS];
     int nsets = 0;
-    struct dem_run_options opt = {0, 0, 0};
+    struct dem_run_options opt = {0, 0, 0, 0};
     for (int k = 0; k < argc; k++) {
         const char *a = argv[k];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -100,6 +102,14 @@ static int cmd_run(int argc, char **argv)
             if (*end || t < 1 || t > 4096)
                 return fail("run: --threads must be a positive integer");
             opt.threads = (int)t;
+        } else if (!strcmp(a, "--max-steps")) {
+            char *end;
+            if (++k >= argc)
+                return fail("run: --max-steps needs a number");
+            long m = strtol(argv[k], &end, 10);
+            if (*end || m < 1)
+                return fail("run: --max-steps must be a positive integer");
+            opt.max_steps = m;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             opt.quiet = 1;
         } else if (a[0] == '-') {

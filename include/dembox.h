@@ -181,6 +181,8 @@ struct dem_run_options {
     const char *outdir; /* output folder, created with its parents */
     int quiet;          /* 1: no progress display on stderr */
     int threads;        /* OpenMP threads; 0 = all cores */
+    long max_steps;     /* > 0: end the run after this many steps (smoke
+                           tests); outputs are written as for a full run */
 };
 
 /* Run every stage of cfg (validated) and write the outputs of SPEC §7 to

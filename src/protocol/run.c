@@ -168,7 +168,9 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
         c->type == DEM_STAGE_COMPRESS || c->type == DEM_STAGE_CYCLIC;
     int warned_inertia = 0;
     for (;;) {
-        int last = s->t + 1.5 * dt > st.t_end;
+        const int by_time = s->t + 1.5 * dt > st.t_end;
+        const int last = by_time || (r->opt->max_steps > 0 &&
+                                     s->step + 1 >= r->opt->max_steps);
         int sample = last || s->t + 1.5 * dt >= next_out;
         if (sample)
             s->measure = 1;
@@ -204,7 +206,7 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
         }
         show_progress(r, &st, 0);
         if (last) {
-            st.timed_out = 1;
+            st.timed_out = by_time;
             break;
         }
         if (ops->done && ops->done(s, &st, &smp))
@@ -306,8 +308,11 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
             rc = write_snapshot(&r, err);
         r.next_snap = cfg->output.snapshot_interval;
     }
-    for (int k = 0; !rc && k < cfg->nstages; k++)
+    for (int k = 0; !rc && k < cfg->nstages; k++) {
+        if (opt->max_steps > 0 && r.sim.step >= opt->max_steps)
+            break;
         rc = run_stage(&r, k, err);
+    }
     if (!rc)
         rc = finish_outputs(&r, err);
     if (rc == DEM_EUNSTABLE) {
