@@ -452,6 +452,8 @@ static int fail_key(const struct ctx *x, int stage, const char *name,
 
 /* ------------------------------------------------- tree -> struct values */
 
+static void range_text(const struct key *k, char *buf, size_t n);
+
 static const char *setting_kind(const config_setting_t *s)
 {
     switch (config_setting_type(s)) {
@@ -540,7 +542,11 @@ static int convert(const struct ctx *x, const struct key *k,
             return fail_at(x, s, kname, err, "must be an integer (got %s)",
                            setting_kind(s));
         if (iv < 0)
-            return fail_at(x, s, kname, err, "must be >= 0 (got %lld)", iv);
+            return fail_at(x, s, kname, err,
+                           "must be >= 0 (got %lld; libconfig wraps integers "
+                           "above 2147483647 unless written with an L "
+                           "suffix, e.g. 3000000000L)",
+                           iv);
         *(uint64_t *)field(base, k) = (uint64_t)iv;
         return 0;
     case K_TIME_STEP:
@@ -607,6 +613,24 @@ static int convert(const struct ctx *x, const struct key *k,
     }
 }
 
+/* A value given for a key whose stored 0 (or negative) means "not given"
+ * must still be in its range: phi_f = 0 or a stage mu = -1 in the text is
+ * an error, not a silent default. */
+static int check_sentinel(const struct ctx *x, const struct key *k,
+                          const config_setting_t *s, const char *kname,
+                          const void *base, struct dem_error *err)
+{
+    const double v = key_value(base, k);
+    if (((k->flags & F_UNSET_ZERO) && v == 0) ||
+        ((k->flags & F_UNSET_NEG) && v < 0)) {
+        char r[96];
+        range_text(k, r, sizeof r);
+        return fail_at(x, s, kname, err, "must be %s when given (got %g)", r,
+                       v);
+    }
+    return 0;
+}
+
 /* One element of the stages list: type first (it decides which keys are
  * used), then every member, then the keys this type requires. */
 static int walk_stage(struct ctx *x, struct dem_config *c, int i,
@@ -644,7 +668,8 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
         if (!(keys[k].uses & bit))
             return fail_at(x, s, kname, err, "not used by a %s stage",
                            stage_names[st->type]);
-        if (convert(x, &keys[k], s, kname, st, err))
+        if (convert(x, &keys[k], s, kname, st, err) ||
+            check_sentinel(x, &keys[k], s, kname, st, err))
             return DEM_ECONFIG;
         x->stage_at[i][k] = s;
     }
@@ -709,7 +734,8 @@ static int walk_group(struct ctx *x, struct dem_config *c,
         if (keys[k].kind == K_STAGES) {
             if (walk_stages(x, c, s, err))
                 return DEM_ECONFIG;
-        } else if (convert(x, &keys[k], s, name, c, err)) {
+        } else if (convert(x, &keys[k], s, name, c, err) ||
+                   check_sentinel(x, &keys[k], s, name, c, err)) {
             return DEM_ECONFIG;
         }
     }
@@ -831,8 +857,11 @@ static int check_key(const struct ctx *x, const struct key *k,
                                 v[d], d);
         return 0;
     }
-    if (k->kind == K_PATH || k->kind == K_STAGES || k->kind == K_TIME_STEP ||
-        (k->flags & F_MU))
+    if (k->kind == K_PATH || k->kind == K_STAGES || k->kind == K_TIME_STEP)
+        return 0;
+    /* contact.mu is stored in mu_s: check it only where it was given, so
+     * that a bad mu_s is reported as mu_s. */
+    if ((k->flags & F_MU) && !x->at[k - keys])
         return 0;
     double v = key_value(base, k);
     if (!isfinite(v))
@@ -1382,8 +1411,9 @@ static int syntax_error(const struct ctx *x, const config_t *cfg,
                            x->source, unterminated_string_line(text), what,
                            line);
     } else {
-        rc = dem_error_set(err, DEM_ECONFIG, "%s:%d: %s (libconfig syntax)",
-                           x->source, line, what);
+        rc = dem_error_set(err, DEM_ECONFIG, "%s:%d: %s%s", x->source, line,
+                           strstr(what, "syntax") ? "" : "syntax error: ",
+                           what);
     }
     if (err)
         one_line(err->msg);
