@@ -207,7 +207,7 @@ static const struct key keys[] = {
      GE(0), .unit = "kg/s", .doc = "viscosity of a stress-controlled wall"},
 
     {.name = "stages", .kind = K_STAGES, .scope = S_TOP, .unit = "-",
-     .def_text = "one isotropic stage at 1000 Pa",
+     .def_text = "isotropic at 1000 Pa",
      .doc = "list of stage groups ( { type = ...; ... }, ... ), run in order"},
 
     {.name = "output.interval", .kind = K_DOUBLE, TOP(output.interval),
@@ -1262,7 +1262,7 @@ static int apply_set(config_t *cfg, const char *set, struct dem_error *err)
                 goto out;
             }
             next = config_setting_get_elem(cur, (unsigned)idx);
-            if (last && config_setting_is_array(cur)) {
+            if (last && !config_setting_is_group(next)) {
                 if (!set_array_elem(config_setting_parent(cur), cur, (int)idx,
                                     val)) {
                     rc = dem_error_set(err, DEM_ECONFIG,
@@ -1272,9 +1272,8 @@ static int apply_set(config_t *cfg, const char *set, struct dem_error *err)
                 break;
             }
             if (last) {
-                /* A list element is a stage group: replace its members. */
-                if (!config_setting_is_group(next) ||
-                    !config_setting_is_group(val)) {
+                /* A group element (a stage): replace its members. */
+                if (!config_setting_is_group(val)) {
                     rc = dem_error_set(err, DEM_ECONFIG,
                                        "--set %s: a stage takes a group value "
                                        "{ type = ...; ... }",
@@ -1770,14 +1769,34 @@ static void key_doc(const struct key *k, struct key_doc *d)
 
 void dem_config_print_keys(FILE *f)
 {
-    fprintf(f, "%-32s %-30s %-18s %-14s %s\n", "KEY", "TYPE", "DEFAULT",
-            "UNIT", "MEANING");
+    /* Column widths from the content, so that the table stays aligned when
+     * keys are added; very long enum lists may push one row out. */
+    int w[3] = {(int)strlen("KEY"), (int)strlen("TYPE"),
+                (int)strlen("DEFAULT")};
+    int wu = (int)strlen("UNIT");
     for (size_t k = 0; k < NKEYS; k++) {
         struct key_doc d;
         key_doc(&keys[k], &d);
-        fprintf(f, "%-32s %-30s %-18s %-14s %s\n", d.name, d.type, d.def,
-                keys[k].unit, d.doc);
+        const int len[3] = {(int)strlen(d.name), (int)strlen(d.type),
+                            (int)strlen(d.def)};
+        const int cap[3] = {32, 28, 20};
+        for (int i = 0; i < 3; i++)
+            if (len[i] > w[i] && len[i] <= cap[i])
+                w[i] = len[i];
+        if ((int)strlen(keys[k].unit) > wu)
+            wu = (int)strlen(keys[k].unit);
     }
+    fprintf(f, "%-*s  %-*s  %-*s  %-*s  %s\n", w[0], "KEY", w[1], "TYPE", w[2],
+            "DEFAULT", wu, "UNIT", "MEANING");
+    for (size_t k = 0; k < NKEYS; k++) {
+        struct key_doc d;
+        key_doc(&keys[k], &d);
+        fprintf(f, "%-*s  %-*s  %-*s  %-*s  %s\n", w[0], d.name, w[1], d.type,
+                w[2], d.def, wu, keys[k].unit, d.doc);
+    }
+    fprintf(f, "\nstages.N.KEY is a key of element N (from 0) of the stages "
+               "list. Override any key with --set KEY=VALUE (e.g. "
+               "stages.1.pressure=250).\n");
 }
 
 void dem_config_print_keys_markdown(FILE *f)
