@@ -428,6 +428,11 @@ static const struct bad bad_inputs[] = {
     {"", "stages.x.pressure=1.0", "--set stages.x.pressure", 0},
     {"", "stages.0.strain=0.1", "stages.0.strain", 0},
     {"", "gravity.5=1.0", "--set gravity.5", 0},
+    {"", "gravity.1.x=1.0", "--set gravity.1.x: unknown key", 0},
+    {"", "contact.k=1\n2", "--set contact.k", 0},
+    {"contact = 5;", "contact.k=1.0", "--set contact.k: the config has a value",
+     0},
+    {"box = { size = 5; };", "box.size.1=1.0", "--set box.size.1", 0},
     {"dimension = 2;\n", "stages.0={ type = \"compress\"; axis = \"z\"; "
                          "strain = 0.1; duration = 0.1; pressure = 1.0; }",
      "stages.0.axis", 0},

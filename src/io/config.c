@@ -1182,15 +1182,94 @@ static int parse_value(config_t *tmp, const char *value, const char **why)
     return 1;
 }
 
-/* Apply one "KEY=VALUE" to the tree. */
-static int apply_set(config_t *cfg, const char *set, struct dem_error *err)
+/* Element seg of the list or array cur, or NULL after an error. */
+static config_setting_t *elem_of(config_setting_t *cur, const char *seg,
+                                 const char *key, struct dem_error *err)
 {
-    enum { MAXSEG = 8 };
-    char key[DEM_NAME_MAX], *seg[MAXSEG];
+    const int len = config_setting_length(cur);
+    if (!is_index(seg) || strtol(seg, 0, 10) >= len) {
+        dem_error_set(err, DEM_ECONFIG,
+                      "--set %s: index %s beyond the list (%d element%s)", key,
+                      seg, len, len == 1 ? "" : "s");
+        return 0;
+    }
+    return config_setting_get_elem(cur, (unsigned)strtol(seg, 0, 10));
+}
+
+/* The member seg of group cur on the way to the key, created when absent:
+ * the default stages, a zero vector, or an empty group. */
+static config_setting_t *member_of(config_setting_t *cur, const char *seg,
+                                   const char *nextseg, void *hook)
+{
+    config_setting_t *next = config_setting_get_member(cur, seg);
+    if (next)
+        return next;
+    if (config_setting_is_root(cur) && strcmp(seg, "stages") == 0)
+        return add_default_stages(cur);
+    if (is_index(nextseg))
+        return add_zero_vec3(cur, seg);
+    next = config_setting_add(cur, seg, CONFIG_TYPE_GROUP);
+    if (next)
+        config_setting_set_hook(next, hook);
+    return next;
+}
+
+/* Put val at the last segment seg below cur. */
+static int assign(config_setting_t *cur, const char *seg,
+                  const config_setting_t *val, void *hook, const char *key,
+                  struct dem_error *err)
+{
+    config_setting_t *dst;
+    if (config_setting_is_group(cur)) {
+        if (config_setting_get_member(cur, seg))
+            config_setting_remove(cur, seg);
+        if (!(dst = copy_setting(cur, seg, val)))
+            return dem_error_set(err, DEM_ECONFIG, "--set %s: cannot apply",
+                                 key);
+        config_setting_set_hook(dst, hook);
+        return 0;
+    }
+    if (!config_setting_is_aggregate(cur))
+        return dem_error_set(err, DEM_ECONFIG,
+                             "--set %s: the config has a value, not a group, "
+                             "where %s should be",
+                             key, seg);
+    if (!(dst = elem_of(cur, seg, key, err)))
+        return DEM_ECONFIG;
+    if (!config_setting_is_group(dst)) {
+        if (!set_array_elem(config_setting_parent(cur), cur,
+                            (int)strtol(seg, 0, 10), val))
+            return dem_error_set(err, DEM_ECONFIG, "--set %s: needs a number",
+                                 key);
+        return 0;
+    }
+    /* A group element (a stage): replace its members in place, keeping
+     * its position in the list. */
+    if (!config_setting_is_group(val))
+        return dem_error_set(err, DEM_ECONFIG,
+                             "--set %s: a stage takes a group value "
+                             "{ type = ...; ... }",
+                             key);
+    while (config_setting_length(dst) > 0)
+        config_setting_remove_elem(dst, 0);
+    for (int m = 0; m < config_setting_length(val); m++) {
+        const config_setting_t *e = config_setting_get_elem(val, (unsigned)m);
+        if (!copy_setting(dst, config_setting_name(e), e))
+            return dem_error_set(err, DEM_ECONFIG, "--set %s: cannot apply",
+                                 key);
+    }
+    config_setting_set_hook(dst, hook);
+    return 0;
+}
+
+/* Split "KEY=VALUE": key into key[] and its dotted segments. */
+static int split_set(const char *set, char *key, size_t keysz, char *path,
+                     char **seg, int maxseg, int *nseg, struct dem_error *err)
+{
     const char *eq = strchr(set, '=');
     size_t klen = eq ? (size_t)(eq - set) : strlen(set);
-    if (klen >= sizeof key)
-        klen = sizeof key - 1;
+    if (klen >= keysz)
+        klen = keysz - 1;
     memcpy(key, set, klen);
     key[klen] = '\0';
     if (!eq || klen == 0)
@@ -1198,110 +1277,70 @@ static int apply_set(config_t *cfg, const char *set, struct dem_error *err)
                              "--set %s: expected KEY=VALUE, e.g. "
                              "contact.mu=0.3",
                              key);
-    char path[DEM_NAME_MAX];
     memcpy(path, key, klen + 1);
     int n = 0;
-    for (char *p = path, *tok; n < MAXSEG && (tok = strsep(&p, "."));)
+    for (char *p = path, *tok; (tok = strsep(&p, "."));) {
+        if (!*tok || n == maxseg)
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "--set %s: unknown key (see `dembox help "
+                                 "config`)",
+                                 key);
         seg[n++] = tok;
-    for (int i = 0; i < n; i++)
-        if (!*seg[i])
-            return dem_error_set(err, DEM_ECONFIG, "--set %s: empty name "
-                                                   "between dots", key);
+    }
     if (!settable(seg, n))
         return dem_error_set(err, DEM_ECONFIG,
                              "--set %s: unknown key (see `dembox help "
                              "config`)",
                              key);
+    *nseg = n;
+    return 0;
+}
+
+/* Apply one "KEY=VALUE" to the tree; the new setting's hook is the set
+ * text, so that messages about it name the override. */
+static int apply_set(config_t *cfg, const char *set, struct dem_error *err)
+{
+    enum { MAXSEG = 4 };
+    char key[DEM_NAME_MAX], path[DEM_NAME_MAX], *seg[MAXSEG];
+    int n = 0;
+    if (split_set(set, key, sizeof key, path, seg, MAXSEG, &n, err))
+        return DEM_ECONFIG;
 
     config_t tmp;
-    const char *why = 0;
-    config_init(&tmp);
+    const char *why = 0, *value = strchr(set, '=') + 1;
+    void *hook = (void *)(uintptr_t)set;
     int rc = 0;
-    if (!parse_value(&tmp, eq + 1, &why)) {
+    config_init(&tmp);
+    if (!parse_value(&tmp, value, &why)) {
         rc = dem_error_set(err, DEM_ECONFIG,
                            "--set %s: cannot read value \"%s\" (%s)", key,
-                           eq + 1, why);
+                           value, why);
         goto out;
+    }
+    config_setting_t *cur = config_root_setting(cfg);
+    for (int i = 0; i < n - 1; i++) {
+        config_setting_t *next = 0;
+        if (config_setting_is_group(cur)) {
+            if (!(next = member_of(cur, seg[i], seg[i + 1], hook)))
+                rc = dem_error_set(err, DEM_ECONFIG, "--set %s: cannot apply",
+                                   key);
+        } else if (config_setting_is_aggregate(cur)) {
+            if (!(next = elem_of(cur, seg[i], key, err)))
+                rc = DEM_ECONFIG;
+        } else {
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "--set %s: the config has a value, not a "
+                               "group, at %s",
+                               key, seg[i - 1]);
+        }
+        if (rc)
+            goto out;
+        cur = next;
     }
     config_setting_t *val = config_setting_get_elem(config_root_setting(&tmp),
                                                     0);
-    void *hook = (void *)(uintptr_t)set;
     config_setting_set_hook(val, hook);
-
-    config_setting_t *cur = config_root_setting(cfg), *next;
-    for (int i = 0; i < n; i++) {
-        const int last = i == n - 1;
-        if (config_setting_is_group(cur)) {
-            next = config_setting_get_member(cur, seg[i]);
-            if (last) {
-                if (next)
-                    config_setting_remove(cur, seg[i]);
-                next = copy_setting(cur, seg[i], val);
-                if (!next)
-                    goto internal;
-                config_setting_set_hook(next, hook);
-                break;
-            }
-            if (!next && strcmp(seg[i], "stages") == 0 && i == 0)
-                next = add_default_stages(cur);
-            else if (!next && is_index(seg[i + 1]))
-                next = add_zero_vec3(cur, seg[i]);
-            else if (!next && (next = config_setting_add(cur, seg[i],
-                                                         CONFIG_TYPE_GROUP)))
-                config_setting_set_hook(next, hook);
-            if (!next)
-                goto internal;
-        } else if (config_setting_is_aggregate(cur)) {
-            long idx = strtol(seg[i], 0, 10);
-            int len = config_setting_length(cur);
-            if (!is_index(seg[i]) || idx >= len) {
-                rc = dem_error_set(err, DEM_ECONFIG,
-                                   "--set %s: index %s beyond the list (%d "
-                                   "element%s)",
-                                   key, seg[i], len, len == 1 ? "" : "s");
-                goto out;
-            }
-            next = config_setting_get_elem(cur, (unsigned)idx);
-            if (last && !config_setting_is_group(next)) {
-                if (!set_array_elem(config_setting_parent(cur), cur, (int)idx,
-                                    val)) {
-                    rc = dem_error_set(err, DEM_ECONFIG,
-                                       "--set %s: needs a number", key);
-                    goto out;
-                }
-                break;
-            }
-            if (last) {
-                /* A group element (a stage): replace its members. */
-                if (!config_setting_is_group(val)) {
-                    rc = dem_error_set(err, DEM_ECONFIG,
-                                       "--set %s: a stage takes a group value "
-                                       "{ type = ...; ... }",
-                                       key);
-                    goto out;
-                }
-                while (config_setting_length(next) > 0)
-                    config_setting_remove_elem(next, 0);
-                for (int m = 0; m < config_setting_length(val); m++) {
-                    const config_setting_t *e =
-                        config_setting_get_elem(val, (unsigned)m);
-                    if (!copy_setting(next, config_setting_name(e), e))
-                        goto internal;
-                }
-                config_setting_set_hook(next, hook);
-                break;
-            }
-        } else {
-            rc = dem_error_set(err, DEM_ECONFIG,
-                               "--set %s: %s is not a group in the config",
-                               key, seg[i - 1]);
-            goto out;
-        }
-        cur = next;
-    }
-    goto out;
-internal:
-    rc = dem_error_set(err, DEM_ECONFIG, "--set %s: cannot apply", key);
+    rc = assign(cur, seg[n - 1], val, hook, key, err);
 out:
     config_destroy(&tmp);
     return rc;
@@ -1465,8 +1504,11 @@ int dem_config_parse(struct dem_config *c, const char *text,
         goto out;
     }
     for (int i = 0; i < nsets; i++)
-        if (sets[i] && (rc = apply_set(&cfg, sets[i], err)) != 0)
+        if (sets[i] && (rc = apply_set(&cfg, sets[i], err)) != 0) {
+            if (err)
+                one_line(err->msg); /* the value may hold a newline */
             goto out;
+        }
     if ((rc = walk_group(x, c, config_root_setting(&cfg), "", err)) != 0 ||
         (rc = check_given(x, c, err)) != 0)
         goto out;
