@@ -450,8 +450,8 @@ static void check_bad(const struct bad *b)
         fail_msg("message has more than one line: %s", err.msg);
     if (!strstr(err.msg, b->want))
         fail_msg("message \"%s\" does not contain \"%s\"", err.msg, b->want);
-    char prefix[64];
     if (b->line > 0) {
+        char prefix[64];
         snprintf(prefix, sizeof prefix, SRC ":%d: ", b->line);
         if (strncmp(err.msg, prefix, strlen(prefix)) != 0)
             fail_msg("message \"%s\" does not start with \"%s\"", err.msg,

@@ -1817,7 +1817,7 @@ void dem_config_print_keys(FILE *f)
                 (int)strlen("DEFAULT")};
     int wu = (int)strlen("UNIT");
     for (size_t k = 0; k < NKEYS; k++) {
-        struct key_doc d;
+        struct key_doc d = {0};
         key_doc(&keys[k], &d);
         const int len[3] = {(int)strlen(d.name), (int)strlen(d.type),
                             (int)strlen(d.def)};
@@ -1831,7 +1831,7 @@ void dem_config_print_keys(FILE *f)
     fprintf(f, "%-*s  %-*s  %-*s  %-*s  %s\n", w[0], "KEY", w[1], "TYPE", w[2],
             "DEFAULT", wu, "UNIT", "MEANING");
     for (size_t k = 0; k < NKEYS; k++) {
-        struct key_doc d;
+        struct key_doc d = {0};
         key_doc(&keys[k], &d);
         fprintf(f, "%-*s  %-*s  %-*s  %-*s  %s\n", w[0], d.name, w[1], d.type,
                 w[2], d.def, wu, keys[k].unit, d.doc);
@@ -1846,7 +1846,7 @@ void dem_config_print_keys_markdown(FILE *f)
     fprintf(f, "| key | type | default | unit | meaning |\n");
     fprintf(f, "|---|---|---|---|---|\n");
     for (size_t k = 0; k < NKEYS; k++) {
-        struct key_doc d;
+        struct key_doc d = {0};
         key_doc(&keys[k], &d);
         /* A "|" inside a cell would end it. */
         for (char *p = d.type; *p; p++)
