@@ -41,4 +41,8 @@ double dem_config_contact_time(const struct dem_config *c);
 /* Print the documentation of every key (name, type, default, unit, doc). */
 void dem_config_print_keys(FILE *f);
 
+/* The same documentation as a Markdown table (the key table of
+ * docs/config.md, which a test keeps identical). */
+void dem_config_print_keys_markdown(FILE *f);
+
 #endif

@@ -1,0 +1,580 @@
+/* Config: defaults, --set overrides, the resolved config round trip, the
+ * contact time behind the time-step check, and one line per bad input. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "io/config.h"
+#include "io/examples.h"
+
+#define SRC "test.cfg"
+
+static int parse(struct dem_config *c, const char *text, const char *set,
+                 struct dem_error *err)
+{
+    const char *sets[1] = {set};
+    return dem_config_parse(c, text, SRC, sets, set ? 1 : 0, err);
+}
+
+static void parse_ok(struct dem_config *c, const char *text,
+                     const char *const *sets, int nsets)
+{
+    struct dem_error err = {0};
+    int rc = dem_config_parse(c, text, SRC, sets, nsets, &err);
+    if (rc != 0)
+        fail_msg("unexpected error: %s", err.msg);
+}
+
+/* The resolved config as text. */
+static char *written(const struct dem_config *c)
+{
+    char *buf = 0;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    assert_int_equal(dem_config_write(c, f), 0);
+    fclose(f);
+    return buf;
+}
+
+static void defaults_are_seed_000_values(void **state)
+{
+    (void)state;
+    struct dem_config c, d;
+    parse_ok(&c, "", 0, 0);
+    assert_int_equal(c.dim, 3);
+    assert_int_equal(c.seed, 1);
+    assert_true(c.time_step == 2e-5 && !c.time_step_auto);
+    assert_int_equal(c.particles.count, 3375);
+    assert_true(c.particles.density == 2000.0);
+    assert_int_equal(c.particles.distribution, DEM_DIST_GAUSSIAN);
+    assert_true(c.particles.mean == 5e-3 && c.particles.std == 0.7e-3);
+    assert_true(c.particles.min == 3e-3 && c.particles.max == 1.0);
+    assert_int_equal(c.particles.placement, DEM_PLACE_LATTICE);
+    assert_true(c.particles.volume_fraction == 0.1);
+    assert_int_equal(c.contact.normal, DEM_NORMAL_LINEAR);
+    assert_true(c.contact.k == 5000.0 && c.contact.kt == 1000.0);
+    assert_true(c.contact.k1 == 5e4 && c.contact.k2 == 1e5);
+    assert_true(c.contact.kc == 0.0 && c.contact.phi_f == 0.0);
+    assert_true(c.contact.gamma_n == 0.05 && c.contact.gamma_t == 0.01);
+    assert_true(c.contact.mu_s == 0.5 && c.contact.mu_d == 0.5);
+    assert_true(c.contact.wall_mu == 0.0 && c.contact.wall_kc == 0.0);
+    assert_true(c.damping.gamma_b == 0.2 && c.damping.gamma_br == 0.05);
+    assert_true(c.walls.mass == 2.0 && c.walls.gamma == 200.0);
+    assert_true(c.output.interval == 1e-3);
+    assert_true(c.output.snapshot_interval == 0.1);
+    assert_int_equal(c.nstages, 1);
+    assert_int_equal(c.stages[0].type, DEM_STAGE_ISOTROPIC);
+    assert_true(c.stages[0].pressure == 1000.0);
+    assert_true(c.stages[0].tolerance == 1e-4 && c.stages[0].max_time == 5.0);
+    assert_true(c.stages[0].mu < 0);
+    assert_string_equal(c.name, "test");
+    /* dem_config_defaults is the same config, without a source. */
+    dem_config_defaults(&d);
+    memcpy(d.name, c.name, sizeof d.name);
+    memcpy(d.source, c.source, sizeof d.source);
+    assert_memory_equal(&c, &d, sizeof c);
+    assert_int_equal(dem_config_validate(&d, 0), 0);
+}
+
+static void two_d_defaults_resolve_by_dimension(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c, "dimension = 2;", 0, 0);
+    assert_true(c.particles.volume_fraction == 0.2);
+    parse_ok(&c, "dimension = 2; particles = { volume_fraction = 0.3; };", 0,
+             0);
+    assert_true(c.particles.volume_fraction == 0.3);
+    parse_ok(&c, "dimension = 2; particles = { mass_model = \"disc\"; };", 0,
+             0);
+    assert_int_equal(c.particles.mass_model, DEM_MASS_DISC);
+}
+
+/* parse -> write -> parse gives the same struct, byte for byte. */
+static void assert_round_trip(const char *text)
+{
+    struct dem_config a, b;
+    parse_ok(&a, text, 0, 0);
+    char *out = written(&a);
+    struct dem_error err = {0};
+    int rc = dem_config_parse(&b, out, SRC, 0, 0, &err);
+    if (rc != 0)
+        fail_msg("resolved config does not parse: %s\n%s", err.msg, out);
+    /* "auto" is written as the number it resolved to. */
+    assert_int_equal(b.time_step_auto, 0);
+    b.time_step_auto = a.time_step_auto;
+    assert_memory_equal(&a, &b, sizeof a);
+    free(out);
+}
+
+static const char rich_cfg[] =
+    "dimension = 3; seed = 12345; time_step = 1.0e-6;\n"
+    "gravity = [0.0, -9.81, 0.125];\n"
+    "particles = { count = 500; density = 2500.0;\n"
+    "  radius = { distribution = \"uniform\"; min = 1.0e-3; max = 2.0e-3; };\n"
+    "  placement = \"file\"; file = \"pack \\\"1\\\".csv\"; };\n"
+    "contact = { normal = \"luding\"; k1 = 2.0e4; k2 = 8.0e4; kc = 1.0e3;\n"
+    "  phi_f = 0.05; gamma_n = 0.02; kt = 1.6e4; gamma_t = 0.01;\n"
+    "  mu_s = 0.6; mu_d = 0.4; wall_mu = 0.1; wall_kc = 10.0; };\n"
+    "box = { size = [0.1, 0.2, 0.3]; };\n"
+    "stages = (\n"
+    "  { type = \"isotropic\"; pressure = 100.0; mu = 0.0; },\n"
+    "  { type = \"compress\"; axis = \"x\"; strain = -0.05; duration = 0.2;\n"
+    "    profile = \"linear\"; pressure = 100.0; },\n"
+    "  { type = \"cyclic\"; axis = \"z\"; pressure = 100.0; amplitude = 20.0;\n"
+    "    period = 1.0; cycles = 3; },\n"
+    "  { type = \"hold\"; duration = 0.01; mu = 0.3; }\n"
+    ");\n"
+    "output = { interval = 2.0e-3; snapshot_interval = 0.0; };\n";
+
+static void resolved_config_reads_back_identically(void **state)
+{
+    (void)state;
+    assert_round_trip("");
+    assert_round_trip("dimension = 2;");
+    assert_round_trip(rich_cfg);
+    assert_round_trip("time_step = \"auto\"; seed = 3000000000L;");
+    for (int i = 0; i < dem_n_examples; i++)
+        assert_round_trip(dem_examples[i].text);
+}
+
+static void resolved_config_documents_each_key(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c, "time_step = \"auto\";", 0, 0);
+    char *out = written(&c);
+    assert_non_null(strstr(out, "k = 5000.0;"));
+    assert_non_null(strstr(out, "# N/m; linear normal stiffness"));
+    assert_non_null(strstr(out, "resolved from \"auto\""));
+    /* keys of the other law are shown, but commented out */
+    assert_non_null(strstr(out, "# k1 = 50000.0;"));
+    free(out);
+}
+
+static void set_overrides_scalars_enums_arrays_and_stages(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    const char *text =
+        "contact = { mu = 0.5; };\n"
+        "stages = ( { type = \"isotropic\"; pressure = 500.0; },\n"
+        "           { type = \"compress\"; strain = 0.1; duration = 0.1;\n"
+        "             pressure = 500.0; } );\n";
+    const char *sets[] = {
+        "contact.mu=0.3",              /* scalar in the text */
+        "damping.gamma_b=0.1",         /* scalar absent from the text */
+        "contact.normal=luding",       /* enum as a bare word */
+        "particles.radius.distribution=\"mono\"", /* enum as a string */
+        "gravity=[0.0, 0.0, -9.81]",   /* array */
+        "box.size.1=0.5",              /* array element, array absent */
+        "box.size.0=0.5",
+        "box.size.2=0.5",
+        "stages.1.pressure=250",       /* list element, integer for a float */
+        "stages.1.axis=x",
+        "time_step=auto",
+        "seed=7",
+    };
+    parse_ok(&c, text, sets, (int)(sizeof sets / sizeof sets[0]));
+    assert_true(c.contact.mu_s == 0.3 && c.contact.mu_d == 0.3);
+    assert_true(c.damping.gamma_b == 0.1);
+    assert_int_equal(c.contact.normal, DEM_NORMAL_LUDING);
+    assert_int_equal(c.particles.distribution, DEM_DIST_MONO);
+    assert_true(c.gravity[0] == 0 && c.gravity[2] == -9.81);
+    assert_true(c.box.size[0] == 0.5 && c.box.size[1] == 0.5 &&
+                c.box.size[2] == 0.5);
+    assert_true(c.stages[0].pressure == 500.0);
+    assert_true(c.stages[1].pressure == 250.0);
+    assert_int_equal(c.stages[1].axis, 0);
+    assert_true(c.time_step_auto &&
+                c.time_step == dem_config_contact_time(&c) / 50);
+    assert_int_equal(c.seed, 7);
+
+    /* A config without stages: the default stage can be changed. */
+    const char *s2[] = {"stages.0.pressure=123.0", "gravity.2=-1.5"};
+    parse_ok(&c, "", s2, 2);
+    assert_int_equal(c.nstages, 1);
+    assert_true(c.stages[0].pressure == 123.0);
+    assert_true(c.gravity[2] == -1.5);
+
+    /* A whole stage, and a whole list of stages. */
+    const char *s3[] = {"stages.0={ type = \"hold\"; duration = 0.5; }"};
+    parse_ok(&c, text, s3, 1);
+    assert_int_equal(c.stages[0].type, DEM_STAGE_HOLD);
+    assert_true(c.stages[0].duration == 0.5);
+    assert_int_equal(c.stages[1].type, DEM_STAGE_COMPRESS);
+    const char *s4[] = {"stages=({type=\"hold\"; duration=1.0;})"};
+    parse_ok(&c, text, s4, 1);
+    assert_int_equal(c.nstages, 1);
+    assert_int_equal(c.stages[0].type, DEM_STAGE_HOLD);
+}
+
+static void contact_time_matches_seed_000(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    /* SPEC 2.1: k = 5000 N/m, gamma_n = 0.05 kg/s, a = 5 mm, rho = 2000
+     * kg/m^3 gives t_c ~ 1.02 ms. */
+    parse_ok(&c,
+             "particles = { radius = { distribution = \"mono\"; mean = 5e-3; "
+             "}; };",
+             0, 0);
+    const double m = 4.0 / 3.0 * M_PI * 2000 * 5e-3 * 5e-3 * 5e-3;
+    const double mij = m / 2, eta = 0.05 / (2 * mij);
+    const double tc = M_PI / sqrt(5000 / mij - eta * eta);
+    assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
+    assert_float_equal(dem_config_contact_time(&c), 1.02e-3, 0.005e-3);
+    /* restitution r = exp(-eta t_c) ~ 0.953 */
+    assert_float_equal(exp(-eta * tc), 0.953, 0.001);
+
+    /* the smallest radius sets it: uniform min, gaussian lower cut */
+    parse_ok(&c,
+             "particles = { radius = { distribution = \"uniform\"; min = 5e-3; "
+             "max = 8e-3; }; };",
+             0, 0);
+    assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
+    parse_ok(&c, "particles = { radius = { min = 5e-3; mean = 6e-3; }; };",
+             0, 0);
+    assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
+
+    /* luding: the stiffest spring k2; undamped here */
+    parse_ok(&c,
+             "contact = { normal = \"luding\"; k2 = 2e4; k1 = 1e4; gamma_n = "
+             "0.0; };\nparticles = { radius = { distribution = \"mono\"; "
+             "mean = 5e-3; }; };",
+             0, 0);
+    assert_float_equal(dem_config_contact_time(&c), M_PI / sqrt(2e4 / mij),
+                       1e-12);
+
+    /* overdamped: the undamped half period */
+    parse_ok(&c,
+             "contact = { gamma_n = 100.0; };\nparticles = { radius = { "
+             "distribution = \"mono\"; mean = 5e-3; }; };",
+             0, 0);
+    assert_float_equal(dem_config_contact_time(&c), M_PI / sqrt(5000 / mij),
+                       1e-12);
+
+    /* disc mass in 2D: m = pi rho a^2 */
+    parse_ok(&c,
+             "dimension = 2; contact = { gamma_n = 0.0; };\nparticles = { "
+             "mass_model = \"disc\"; radius = { distribution = \"mono\"; "
+             "mean = 5e-3; }; };",
+             0, 0);
+    const double md = M_PI * 2000 * 5e-3 * 5e-3;
+    assert_float_equal(dem_config_contact_time(&c),
+                       M_PI / sqrt(5000 / (md / 2)), 1e-12);
+}
+
+static void auto_time_step_is_a_fiftieth_of_contact_time(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c, "time_step = \"auto\";", 0, 0);
+    assert_int_equal(c.time_step_auto, 1);
+    assert_float_equal(c.time_step, dem_config_contact_time(&c) / 50, 1e-20);
+}
+
+static void every_example_parses(void **state)
+{
+    (void)state;
+    assert_true(dem_n_examples >= 2);
+    assert_non_null(dem_example_find("biaxial2d"));
+    assert_non_null(dem_example_find("hold3d"));
+    for (int i = 0; i < dem_n_examples; i++) {
+        struct dem_config c;
+        struct dem_error err = {0};
+        char src[256];
+        snprintf(src, sizeof src, "example %s", dem_examples[i].name);
+        if (dem_config_parse(&c, dem_examples[i].text, src, 0, 0, &err))
+            fail_msg("%s", err.msg);
+        assert_string_equal(c.name, dem_examples[i].name);
+        /* each example starts with the comment block naming its source */
+        assert_true(dem_examples[i].text[0] == '#');
+    }
+    struct dem_config c;
+    parse_ok(&c, dem_example_find("biaxial2d")->text, 0, 0);
+    assert_int_equal(c.dim, 2);
+    assert_int_equal(c.particles.count, 400);
+    assert_int_equal(c.contact.normal, DEM_NORMAL_LUDING);
+    assert_int_equal(c.nstages, 2);
+    parse_ok(&c, dem_example_find("hold3d")->text, 0, 0);
+    assert_int_equal(c.particles.count, 64);
+    assert_int_equal(c.stages[1].type, DEM_STAGE_HOLD);
+}
+
+/* -------------------------------------------------------- bad inputs */
+
+struct bad {
+    const char *text; /* config text */
+    const char *set;  /* one --set, or NULL */
+    const char *want; /* substring of the message (the key) */
+    int line;         /* > 0: "test.cfg:LINE: "; 0: from --set; -1: no line */
+};
+
+static const struct bad bad_inputs[] = {
+    /* unknown keys, anywhere */
+    {"dimension = 3;\nfoo = 1;\n", 0, "foo: unknown key", 2},
+    {"contact = {\n  k = 5000.0;\n  kk = 1.0;\n};\n", 0, "contact.kk", 3},
+    {"particles = { radius = {\n  sdev = 1.0; }; };", 0,
+     "particles.radius.sdev", 2},
+    {"stages = (\n { type = \"hold\"; duration = 0.1;\n   bogus = 1; }\n);",
+     0, "stages.0.bogus", 3},
+    /* duplicates and syntax */
+    {"contact = {\n  k = 1.0;\n  k = 2.0;\n};\n", 0, "k: duplicate key", 3},
+    {"dimension = 3;\ncontact = { k = ; };\n", 0, "syntax error", 2},
+    {"\x01\x02\xff\xfe garbage", 0, "syntax error", 1},
+    {"dimension = 3;\nparticles = { placement = \"random;\n};\noutput = {};\n",
+     0, "unterminated string", 2},
+    {"gravity = [0, 0, -9.81];", 0, "float", 1},
+    /* wrong types */
+    {"contact = {\n  k = \"stiff\";\n};", 0, "contact.k: must be a number", 2},
+    {"particles = {\n  count = 3.5;\n};", 0, "particles.count", 2},
+    {"contact = 5;", 0, "contact: must be a group", 1},
+    {"contact = {\n  normal = \"hertz\";\n};", 0, "contact.normal", 2},
+    {"time_step = \"fast\";", 0, "time_step", 1},
+    {"gravity = [0.0, 1.0];", 0, "gravity", 1},
+    {"stages = ( 5 );", 0, "stages.0", 1},
+    {"seed = -1;", 0, "seed", 1},
+    /* numbers out of range */
+    {"contact = {\n  k = 1e400;\n};", 0, "contact.k: must be finite", 2},
+    {"gravity = [0.0, 0.0, -1e400];", 0, "gravity: must be finite", 1},
+    {"contact = {\n  k = -5.0;\n};", 0, "contact.k: must be > 0 (got -5)", 2},
+    {"contact = {\n  kt = 0.0;\n};", 0, "contact.kt", 2},
+    {"particles = {\n  density = 0.0;\n};", 0, "particles.density", 2},
+    {"contact = {\n  mu_s = 0.3;\n  mu_d = 0.5;\n};", 0, "contact.mu_d", 3},
+    {"contact = {\n  mu = 0.3;\n  mu_s = 0.5;\n};", 0, "contact.mu_s", 3},
+    {"contact = {\n  mu_s = 0.5;\n};", 0, "contact.mu_s", 2},
+    {"contact = {\n  mu = -0.1;\n};", 0, "contact.mu", 2},
+    {"damping = {\n  gamma_b = -0.1;\n};", 0, "damping.gamma_b", 2},
+    {"contact = {\n  gamma_n = -0.1;\n};", 0, "contact.gamma_n", 2},
+    {"particles = {\n  count = 0;\n};", 0, "particles.count", 2},
+    {"particles = { radius = { distribution = \"uniform\";\n  min = 2e-3; "
+     "max = 1e-3; }; };",
+     0, "particles.radius.min", 2},
+    {"particles = { radius = {\n  std = -1e-3; }; };", 0,
+     "particles.radius.std", 2},
+    {"particles = { radius = { distribution = \"mono\";\n  mean = 0.0; }; };",
+     0, "particles.radius.mean", 2},
+    {"box = {\n  size = [0.1, -0.1, 0.1];\n};", 0, "box.size: empty box", 2},
+    {"box = {\n  size = [0.1, 0.1, 0.0];\n};", 0, "box.size", 2},
+    {"dimension = 2;\nbox = {\n  size = [0.0, 0.1, 0.1];\n};", 0, "box.size",
+     3},
+    {"box = { size = [0.05, 0.05, 0.05]; };\nparticles = {\n  count = 3375;\n"
+     "};",
+     0, "particles.count", 3},
+    {"time_step = 1e-3;", 0, "time_step", 1},
+    {"contact = { k = 1e9; };", 0, "time_step", -1},
+    {"dimension = 4;", 0, "dimension: must be in [2, 3]", 1},
+    {"particles = {\n  placement = \"file\";\n};", 0, "particles.placement",
+     2},
+    {"particles = {\n  mass_model = \"disc\";\n};", 0, "particles.mass_model",
+     2},
+    {"particles = {\n  volume_fraction = 0.0;\n};", 0,
+     "particles.volume_fraction", 2},
+    {"output = {\n  interval = 0.0;\n};", 0, "output.interval", 2},
+    {"output = {\n  snapshot_interval = -1.0;\n};", 0,
+     "output.snapshot_interval", 2},
+    {"walls = {\n  mass = 0.0;\n};", 0, "walls.mass", 2},
+    {"dimension = 2;\ngravity = [0.0, 0.0, -9.81];", 0, "gravity", 2},
+    /* contact laws */
+    {"contact = {\n  normal = \"luding\";\n  k1 = 2e5;\n  k2 = 1e5;\n};", 0,
+     "contact.k1: must be <= contact.k2", 3},
+    {"contact = {\n  normal = \"luding\";\n  kc = -1.0;\n};", 0, "contact.kc",
+     3},
+    {"contact = {\n  normal = \"luding\";\n  phi_f = 1.5;\n};", 0,
+     "contact.phi_f", 3},
+    {"contact = {\n  normal = \"luding\";\n  phi_f = 0.0;\n};", 0,
+     "contact.phi_f", 3},
+    {"contact = {\n  k1 = 5e4;\n};", 0,
+     "contact.k1: Luding parameter given with the linear law", 2},
+    {"contact = {\n  phi_f = 0.5;\n};", 0, "contact.phi_f", 2},
+    {"contact = {\n  normal = \"luding\";\n  k = 5000.0;\n};", 0, "contact.k",
+     3},
+    /* stages */
+    {"stages = (\n { type = \"compress\"; strain = 0.1; duration = 0.1; }\n);",
+     0, "stages.0.pressure: required", 2},
+    {"stages = (\n { type = \"cyclic\"; pressure = 1.0; amplitude = 0.1;\n"
+     "   period = 1.0; }\n);",
+     0, "stages.0.cycles: required", 2},
+    {"stages = (\n { type = \"hold\"; duration = 0.1;\n   strain = 0.1; }\n);",
+     0, "stages.0.strain: not used by a hold stage", 3},
+    {"stages = (\n { pressure = 5.0; }\n);", 0, "stages.0.type", 2},
+    {"stages = ();", 0, "stages", 1},
+    {"dimension = 2;\nstages = (\n { type = \"compress\"; axis = \"z\"; "
+     "strain = 0.1;\n   duration = 0.1; pressure = 100.0; }\n);",
+     0, "stages.0.axis", 3},
+    {"stages = (\n { type = \"hold\"; duration = 0.1;\n   mu = -0.5; }\n);", 0,
+     "stages.0.mu", 3},
+    {"stages = (\n { type = \"isotropic\";\n   pressure = -1.0; }\n);", 0,
+     "stages.0.pressure", 3},
+    {"stages = (\n { type = \"compress\"; pressure = 1.0; duration = 1.0;\n"
+     "   strain = 1.5; }\n);",
+     0, "stages.0.strain: must be in (-1, 1)", 3},
+    /* --set */
+    {"", "contact.k=-5", "--set contact.k=-5: contact.k: must be > 0", 0},
+    {"", "contact.k=stiff", "--set contact.k", 0},
+    {"", "contact.kk=1", "--set contact.kk: unknown key", 0},
+    {"", "contact.k", "--set contact.k", 0},
+    {"", "contact.k=[1,", "--set contact.k", 0},
+    {"", "stages.3.pressure=1.0", "--set stages.3.pressure: index 3", 0},
+    {"", "stages.x.pressure=1.0", "--set stages.x.pressure", 0},
+    {"", "stages.0.strain=0.1", "stages.0.strain", 0},
+    {"", "gravity.5=1.0", "--set gravity.5", 0},
+    {"", "gravity.1.x=1.0", "--set gravity.1.x: unknown key", 0},
+    {"", "contact.k=1\n2", "--set contact.k", 0},
+    {"contact = 5;", "contact.k=1.0", "--set contact.k: the config has a value",
+     0},
+    {"box = { size = 5; };", "box.size.1=1.0", "--set box.size.1", 0},
+    {"dimension = 2;\n", "stages.0={ type = \"compress\"; axis = \"z\"; "
+                         "strain = 0.1; duration = 0.1; pressure = 1.0; }",
+     "stages.0.axis", 0},
+};
+
+static void check_bad(const struct bad *b)
+{
+    struct dem_config c;
+    struct dem_error err = {0};
+    int rc = parse(&c, b->text, b->set, &err);
+    if (rc != DEM_ECONFIG)
+        fail_msg("accepted: \"%s\" --set %s (rc %d)", b->text,
+                 b->set ? b->set : "-", rc);
+    if (strchr(err.msg, '\n'))
+        fail_msg("message has more than one line: %s", err.msg);
+    if (!strstr(err.msg, b->want))
+        fail_msg("message \"%s\" does not contain \"%s\"", err.msg, b->want);
+    if (b->line > 0) {
+        char prefix[64];
+        snprintf(prefix, sizeof prefix, SRC ":%d: ", b->line);
+        if (strncmp(err.msg, prefix, strlen(prefix)) != 0)
+            fail_msg("message \"%s\" does not start with \"%s\"", err.msg,
+                     prefix);
+    } else if (b->line < 0) {
+        if (strncmp(err.msg, SRC ": ", strlen(SRC ": ")) != 0)
+            fail_msg("message \"%s\" should name " SRC " without a line",
+                     err.msg);
+    } else if (strncmp(err.msg, "--set ", 6) != 0) {
+        fail_msg("message \"%s\" should start with --set", err.msg);
+    }
+}
+
+static void bad_inputs_fail_with_one_line_naming_key_and_line(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < sizeof bad_inputs / sizeof bad_inputs[0]; i++)
+        check_bad(&bad_inputs[i]);
+}
+
+static void too_many_stages_is_an_error(void **state)
+{
+    (void)state;
+    char text[8192] = "stages = (\n";
+    for (int i = 0; i <= DEM_MAX_STAGES; i++)
+        strcat(text, i ? ",{ type = \"hold\"; duration = 0.1; }\n"
+                       : " { type = \"hold\"; duration = 0.1; }\n");
+    strcat(text, ");\n");
+    struct bad b = {text, 0, "stages: too many stages", 1};
+    check_bad(&b);
+}
+
+static void validate_checks_a_struct_without_lines(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_error err = {0};
+    dem_config_defaults(&c);
+    c.contact.mu_d = 0.9;
+    assert_int_equal(dem_config_validate(&c, &err), DEM_ECONFIG);
+    assert_string_equal(err.msg,
+                        "config: contact.mu_d: must be <= contact.mu_s (got "
+                        "0.9 > 0.5)");
+    dem_config_defaults(&c);
+    c.stages[0].tolerance = NAN;
+    assert_int_equal(dem_config_validate(&c, &err), DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "stages.0.tolerance: must be finite"));
+}
+
+/* ------------------------------------------------------- documentation */
+
+static char *printed(void (*print)(FILE *))
+{
+    char *buf = 0;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    print(f);
+    fclose(f);
+    return buf;
+}
+
+static void key_help_lists_every_key(void **state)
+{
+    (void)state;
+    char *t = printed(dem_config_print_keys);
+    const char *names[] = {"dimension", "time_step", "particles.radius.std",
+                           "contact.phi_f", "contact.wall_kc",
+                           "output.snapshot_interval", "stages.N.cycles",
+                           "stages.N.mu"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        assert_non_null(strstr(t, names[i]));
+    free(t);
+}
+
+/* docs/config.md holds the key table exactly as the descriptor table
+ * prints it. On a mismatch the expected table is written to
+ * config-keys.md in the test's working directory (build/tests/), to paste
+ * between the markers in docs/config.md. */
+static void docs_key_table_matches_descriptor_table(void **state)
+{
+    (void)state;
+    const char *dir = getenv("DEMBOX_SOURCE_DIR");
+    if (!dir)
+        skip();
+    char path[1024];
+    snprintf(path, sizeof path, "%s/docs/config.md", dir);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        fail_msg("cannot open %s", path);
+    static char doc[1 << 17];
+    size_t n = fread(doc, 1, sizeof doc - 1, f);
+    fclose(f);
+    doc[n] = '\0';
+    char *table = printed(dem_config_print_keys_markdown);
+    if (!strstr(doc, table)) {
+        FILE *out = fopen("config-keys.md", "wb");
+        if (out) {
+            fputs(table, out);
+            fclose(out);
+        }
+        fail_msg("the key table in docs/config.md differs from "
+                 "dem_config_print_keys_markdown; see config-keys.md");
+    }
+    free(table);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(defaults_are_seed_000_values),
+        cmocka_unit_test(two_d_defaults_resolve_by_dimension),
+        cmocka_unit_test(resolved_config_reads_back_identically),
+        cmocka_unit_test(resolved_config_documents_each_key),
+        cmocka_unit_test(set_overrides_scalars_enums_arrays_and_stages),
+        cmocka_unit_test(contact_time_matches_seed_000),
+        cmocka_unit_test(auto_time_step_is_a_fiftieth_of_contact_time),
+        cmocka_unit_test(every_example_parses),
+        cmocka_unit_test(bad_inputs_fail_with_one_line_naming_key_and_line),
+        cmocka_unit_test(too_many_stages_is_an_error),
+        cmocka_unit_test(validate_checks_a_struct_without_lines),
+        cmocka_unit_test(key_help_lists_every_key),
+        cmocka_unit_test(docs_key_table_matches_descriptor_table),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
