@@ -164,6 +164,8 @@ struct dem_config {
     struct {
         double mass;      /* kg; stress-controlled wall mass */
         double gamma;     /* kg/s; stress-controlled wall viscosity */
+        double max_speed; /* m/s; speed limit of a stress-controlled wall,
+                             0 = none */
     } walls;
 
     int nstages;

@@ -47,7 +47,7 @@ static void cyclic_target_follows_formula(void **state)
     struct dem_wall w;
     memset(&w, 0, sizeof w);
     const double p0 = 1000.0, ds = 200.0, t0 = 10.0, ts = 3.0;
-    dem_wall_set_stress(&w, 2.0, 200.0, p0, ds, t0, ts);
+    dem_wall_set_stress(&w, 2.0, 200.0, 0.0, p0, ds, t0, ts);
     for (int k = 0; k <= 40; k++) {
         double t = ts + 0.37 * k;
         double expect = p0 + 0.5 * ds * (1 - cos(2 * M_PI * (t - ts) / t0));
@@ -101,7 +101,7 @@ static void stress_wall_balances_pressure(void **state)
     lattice_2d(&s, nside, a, 3);
     test_ready(&s);
     const double sigma = 500.0; /* N/m */
-    dem_wall_set_stress(&s.wall[3], c.walls.mass, c.walls.gamma, sigma, 0, 0,
+    dem_wall_set_stress(&s.wall[3], c.walls.mass, c.walls.gamma, 0, sigma, 0, 0,
                         s.t);
     relax(&s, 20.0);
     double A = dem_sim_wall_area(&s, 3);
@@ -140,7 +140,7 @@ static void love_weber_equals_wall_stress(void **state)
     test_ready(&s);
     const double p = 1000.0;
     for (int w = 0; w < 6; w++)
-        dem_wall_set_stress(&s.wall[w], c.walls.mass, c.walls.gamma, p, 0, 0,
+        dem_wall_set_stress(&s.wall[w], c.walls.mass, c.walls.gamma, 0, p, 0, 0,
                             s.t);
     const double L0[3] = {1, 1, 1};
     struct dem_sample smp;

@@ -231,9 +231,14 @@ static double wall_acc(const struct dem_sim *s, int w)
 
 static void walls_kick(struct dem_sim *s, double h)
 {
-    for (int w = 0; w < s->nwall; w++)
-        if (s->wall[w].mode == DEM_WALL_STRESS)
-            s->wall[w].vel += h * wall_acc(s, w);
+    for (int w = 0; w < s->nwall; w++) {
+        struct dem_wall *W = &s->wall[w];
+        if (W->mode != DEM_WALL_STRESS)
+            continue;
+        W->vel += h * wall_acc(s, w);
+        if (W->vmax > 0.0 && fabs(W->vel) > W->vmax)
+            W->vel = W->vel > 0.0 ? W->vmax : -W->vmax;
+    }
 }
 
 static void walls_drift(struct dem_sim *s, double t_new)

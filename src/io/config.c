@@ -205,6 +205,10 @@ static const struct key keys[] = {
      GT(0), .unit = "kg", .doc = "mass of a stress-controlled wall"},
     {.name = "walls.gamma", .kind = K_DOUBLE, TOP(walls.gamma), .def = 200,
      GE(0), .unit = "kg/s", .doc = "viscosity of a stress-controlled wall"},
+    {.name = "walls.max_speed", .kind = K_DOUBLE, TOP(walls.max_speed),
+     .def = 0, GE(0), .unit = "m/s",
+     .doc = "speed limit of a stress-controlled wall (0 = none); lets a "
+            "light, weakly damped servo compress a gas gently"},
 
     {.name = "stages", .kind = K_STAGES, .scope = S_TOP, .unit = "-",
      .def_text = "isotropic at 1000 Pa",

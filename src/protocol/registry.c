@@ -23,5 +23,5 @@ void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                              double t0)
 {
     dem_wall_set_stress(&s->wall[w], s->cfg.walls.mass, s->cfg.walls.gamma,
-                        p0, amp, t0, s->t);
+                        s->cfg.walls.max_speed, p0, amp, t0, s->t);
 }

@@ -23,7 +23,8 @@ void dem_wall_set_strain(struct dem_wall *w, int profile, double delta,
 }
 
 void dem_wall_set_stress(struct dem_wall *w, double mass, double gamma,
-                         double p0, double amp, double t0, double t_now)
+                         double vmax, double p0, double amp, double t0,
+                         double t_now)
 {
     /* a wall that was already stress-controlled keeps its velocity, so a
      * stage change does not jolt the servo */
@@ -32,6 +33,7 @@ void dem_wall_set_stress(struct dem_wall *w, double mass, double gamma,
     w->mode = DEM_WALL_STRESS;
     w->mass = mass;
     w->gamma = gamma;
+    w->vmax = vmax;
     w->p0 = p0;
     w->amp = amp;
     w->t0 = t0;

@@ -12,7 +12,8 @@
  *          s_out = -1 (side 0) or +1 (side 1) is the outward direction,
  *          F_out >= 0 the force the particles push the wall outward with,
  *          A the current face area, and sigma(t) = p0 + (Dsigma/2)(1 - cos(2 pi t/t0))
- *          (Dsigma = 0: constant).
+ *          (Dsigma = 0: constant). An optional speed limit |xd| <= vmax
+ *          keeps a light servo from slamming into a loose gas.
  */
 #ifndef DEM_WALL_WALL_H
 #define DEM_WALL_WALL_H
@@ -40,6 +41,7 @@ struct dem_wall {
     /* stress control */
     double mass;     /* kg; m_w */
     double gamma;    /* kg/s; gamma_w */
+    double vmax;     /* m/s; speed limit, 0 = none */
     double p0;       /* Pa (2D: N/m); mean target stress */
     double amp;      /* Pa; Dsigma of the cyclic target, 0 = constant */
     double t0;       /* s; period of the cyclic target */
@@ -55,7 +57,8 @@ void dem_wall_set_fixed(struct dem_wall *w);
 void dem_wall_set_strain(struct dem_wall *w, int profile, double delta,
                          double period, double t_now);
 void dem_wall_set_stress(struct dem_wall *w, double mass, double gamma,
-                         double p0, double amp, double t0, double t_now);
+                         double vmax, double p0, double amp, double t0,
+                         double t_now);
 
 /* Target stress of a stress-controlled wall at time t, Pa. */
 double dem_wall_target_stress(const struct dem_wall *w, double t);
