@@ -243,6 +243,14 @@ static void missing_gnuplot_still_writes_scripts(void **state)
     char *dir = make_dir();
     write_timeseries(dir, 2, 1, 30);
     write_particles(dir, 2, 0);
+    /* a picture left by an earlier plotting no longer matches the data */
+    char p[1024];
+    path_of(p, sizeof p, dir, "plots");
+    assert_int_equal(mkdir(p, 0755), 0);
+    path_of(p, sizeof p, dir, "plots/stress_strain.png");
+    FILE *old = fopen(p, "w");
+    assert_non_null(old);
+    fclose(old);
     setenv("DEMBOX_GNUPLOT", "dembox-no-such-gnuplot", 1);
     struct dem_error err = {0, ""};
     int rc = dem_plot_run(dir, &err);

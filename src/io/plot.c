@@ -736,6 +736,14 @@ static int run_gnuplot_all(const char *plotdir, struct dem_error *err)
                 "dembox: warning: %s not found; plot scripts written to "
                 "%s\n",
                 cmd, plotdir);
+        /* a picture of an earlier plotting would no longer match its
+         * data */
+        for (size_t k = 0; k < NPLOTS; k++) {
+            char leaf[DEM_NAME_MAX], png[DEM_PATH_MAX];
+            snprintf(leaf, sizeof leaf, "%s.png", plots[k].name);
+            if (!dem_path_join(png, sizeof png, plotdir, leaf, NULL))
+                remove(png);
+        }
         return DEM_OK;
     }
     for (size_t k = 0; k < NPLOTS; k++) {
