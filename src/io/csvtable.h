@@ -1,0 +1,40 @@
+/* Reading numeric CSV files by column name.
+ *
+ * The outputs of a run (timeseries.csv, particles_final.csv,
+ * forces_final.csv) are read back by their header names, never by column
+ * position, so that columns may be added or reordered without breaking a
+ * reader. Lines starting with '#' and blank lines are skipped anywhere; the
+ * first other line is the header. Internal to the io module.
+ */
+#ifndef DEM_IO_CSVTABLE_H
+#define DEM_IO_CSVTABLE_H
+
+#include <stddef.h>
+
+#include "dembox.h"
+
+/* A column asked for by name. */
+struct dem__csv_want {
+    const char *name; /* header name */
+    int required;     /* 1: a missing column is an error naming it */
+};
+
+/* The columns asked for, in the order of the request. */
+struct dem__csv_table {
+    size_t nrow;   /* data rows */
+    int ncol;      /* columns asked for */
+    double **col;  /* col[k][row]; NULL for an optional column not present */
+};
+
+/* Read path keeping only the columns in want[0..nwant). A missing file,
+ * a missing required column, a row with the wrong number of fields or a
+ * field that is not a number give an error whose message starts with
+ * "PATH:" (and the line for row errors). A file with a header and no rows
+ * is not an error here (nrow = 0); callers decide. */
+int dem__csv_table_read(struct dem__csv_table *t, const char *path,
+                        const struct dem__csv_want *want, int nwant,
+                        struct dem_error *err);
+
+void dem__csv_table_free(struct dem__csv_table *t);
+
+#endif

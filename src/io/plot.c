@@ -1,0 +1,822 @@
+/* Pictures of a finished run: the driver, the data it reads and the table
+ * of curve plots.
+ *
+ * Every curve picture is one entry of the table `plots` below: the rows it
+ * uses (the loading stage or the whole run), the quantity on x, the
+ * quantities on y and a few flags. One generic writer turns an entry into
+ * NAME.dat and NAME.gp; only the Mohr circles, which are not curves of
+ * the timeseries, have their own writer.
+ *
+ * The loading stage is found from the data alone (so that old output
+ * folders can be plotted without their config): it is the stage in which
+ * one axis' strain departs most from the mean strain of the other axes,
+ * i.e. the most anisotropic deformation. An isotropic compression, however
+ * large, scores near zero; a biaxial or triaxial compression or a cyclic
+ * stage scores its axial strain. That axis is the loading axis.
+ */
+#include "io/plot.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/csvtable.h"
+#include "io/fsutil.h"
+#include "io/outfile.h"
+#include "io/plot_internal.h"
+
+/* At most this many rows per curve: gnuplot stays fast on long cyclic
+ * runs, and 1e5 points still resolve every loop of 100 cycles. */
+#define MAX_POINTS 100000
+
+/* ------------------------------------------------------------ the data */
+
+/* The timeseries columns used here, by their SPEC §7 names. */
+enum ts_col {
+    TS_T, TS_STAGE, TS_LZ, TS_EXX, TS_EYY, TS_EZZ, TS_EV,
+    TS_SXX, TS_SYY, TS_SZZ, TS_EKIN, TS_EROT, TS_EPOT,
+    TS_XMIN, TS_XMAX, TS_YMIN, TS_YMAX, TS_ZMIN, TS_ZMAX,
+    TS_NCOL
+};
+
+static const struct dem__csv_want ts_want[TS_NCOL] = {
+    [TS_T] = {"t", 1},           [TS_STAGE] = {"stage", 1},
+    [TS_LZ] = {"Lz", 1},         [TS_EXX] = {"eps_xx", 1},
+    [TS_EYY] = {"eps_yy", 1},    [TS_EZZ] = {"eps_zz", 1},
+    [TS_EV] = {"eps_v", 1},      [TS_SXX] = {"sigma_xx", 1},
+    [TS_SYY] = {"sigma_yy", 1},  [TS_SZZ] = {"sigma_zz", 1},
+    [TS_EKIN] = {"e_kin", 1},    [TS_EROT] = {"e_rot", 1},
+    [TS_EPOT] = {"e_pot", 1},
+    /* wall positions only frame the particle picture; without them the
+     * packing's extent does */
+    [TS_XMIN] = {"xmin_pos", 0}, [TS_XMAX] = {"xmax_pos", 0},
+    [TS_YMIN] = {"ymin_pos", 0}, [TS_YMAX] = {"ymax_pos", 0},
+    [TS_ZMIN] = {"zmin_pos", 0}, [TS_ZMAX] = {"zmax_pos", 0},
+};
+
+enum pk_col { PK_X, PK_Y, PK_Z, PK_VX, PK_VY, PK_VZ, PK_R, PK_NCOL };
+
+static const struct dem__csv_want pk_want[PK_NCOL] = {
+    [PK_X] = {"x", 1},   [PK_Y] = {"y", 1},   [PK_Z] = {"z", 0},
+    [PK_VX] = {"vx", 0}, [PK_VY] = {"vy", 0}, [PK_VZ] = {"vz", 0},
+    [PK_R] = {"radius", 1},
+};
+
+/* The timeseries with what the plots derive from it. */
+struct series {
+    size_t n;                 /* rows */
+    int dim;                  /* 2 or 3 */
+    const double *c[TS_NCOL]; /* columns (NULL: optional and absent) */
+    int axis;                 /* loading axis, 0..dim-1 */
+    int stage;                /* loading stage index */
+    size_t lo, hi;            /* its rows [lo, hi) */
+};
+
+static const char axis_name[3] = {'x', 'y', 'z'};
+
+static double sig(const struct series *s, int a, size_t i)
+{
+    return s->c[TS_SXX + a][i];
+}
+
+static double eps(const struct series *s, int a, size_t i)
+{
+    return s->c[TS_EXX + a][i];
+}
+
+/* Mean wall stress of the axes other than the loading axis. */
+static double sig_lateral(const struct series *s, size_t i)
+{
+    double sum = 0.0;
+    for (int a = 0; a < s->dim; a++)
+        if (a != s->axis)
+            sum += sig(s, a, i);
+    return sum / (s->dim - 1);
+}
+
+/* Score of rows [lo, hi): the largest range over the rows of
+ * eps_a - (mean eps of the other axes), and the axis a that has it. */
+static double anisotropy(const struct series *s, size_t lo, size_t hi,
+                         int *axis)
+{
+    double best = -1.0;
+    for (int a = 0; a < s->dim; a++) {
+        double mn = INFINITY, mx = -INFINITY;
+        for (size_t i = lo; i < hi; i++) {
+            double other = 0.0;
+            for (int b = 0; b < s->dim; b++)
+                if (b != a)
+                    other += eps(s, b, i);
+            double d = eps(s, a, i) - other / (s->dim - 1);
+            if (d < mn)
+                mn = d;
+            if (d > mx)
+                mx = d;
+        }
+        /* ">=" keeps the last axis on a tie: y in 2D, z in 3D, the
+         * papers' vertical */
+        if (mx - mn >= best) {
+            best = mx - mn;
+            *axis = a;
+        }
+    }
+    return best;
+}
+
+/* Choose the loading stage and axis (see the file comment). Later stages
+ * win ties, so a run without any anisotropic stage plots its last one. */
+static void find_loading(struct series *s)
+{
+    double best = -1.0;
+    const double *st = s->c[TS_STAGE];
+    for (size_t lo = 0; lo < s->n;) {
+        size_t hi = lo + 1;
+        while (hi < s->n && st[hi] == st[lo])
+            hi++;
+        int axis = s->dim - 1;
+        double score = anisotropy(s, lo, hi, &axis);
+        if (score >= best) {
+            best = score;
+            s->lo = lo;
+            s->hi = hi;
+            s->axis = axis;
+            s->stage = (int)st[lo];
+        }
+        lo = hi;
+    }
+}
+
+/* -------------------------------------------------------- quantities */
+
+enum qty {
+    Q_NONE, Q_T, Q_EPS_AX, Q_EPS_V, Q_SXX, Q_SYY, Q_SZZ, Q_SIG_AX,
+    Q_SIN_PSI, Q_EPS_D, Q_SIG_D, Q_EKIN, Q_EROT, Q_EPOT, Q_COUNT
+};
+
+static double q_t(const struct series *s, size_t i) { return s->c[TS_T][i]; }
+static double q_eps_ax(const struct series *s, size_t i)
+{
+    return eps(s, s->axis, i);
+}
+static double q_eps_v(const struct series *s, size_t i)
+{
+    return s->c[TS_EV][i];
+}
+static double q_sxx(const struct series *s, size_t i) { return sig(s, 0, i); }
+static double q_syy(const struct series *s, size_t i) { return sig(s, 1, i); }
+static double q_szz(const struct series *s, size_t i) { return sig(s, 2, i); }
+static double q_sig_ax(const struct series *s, size_t i)
+{
+    return sig(s, s->axis, i);
+}
+/* seed 001 Eq. 7 with the loading axis as 1 and the lateral walls as 3;
+ * signed, so an extension (cyclic unloading) shows as negative */
+static double q_sin_psi(const struct series *s, size_t i)
+{
+    double a = sig(s, s->axis, i), l = sig_lateral(s, i);
+    return a + l != 0.0 ? (a - l) / (a + l) : NAN;
+}
+/* seed 000: eps_D = eps_xx - eps_yy, sigma_D = 2 (sigma_xx - sigma_yy)/3 */
+static double q_eps_d(const struct series *s, size_t i)
+{
+    return eps(s, 0, i) - eps(s, 1, i);
+}
+static double q_sig_d(const struct series *s, size_t i)
+{
+    return 2.0 * (sig(s, 0, i) - sig(s, 1, i)) / 3.0;
+}
+static double q_ekin(const struct series *s, size_t i)
+{
+    return s->c[TS_EKIN][i];
+}
+static double q_erot(const struct series *s, size_t i)
+{
+    return s->c[TS_EROT][i];
+}
+static double q_epot(const struct series *s, size_t i)
+{
+    return s->c[TS_EPOT][i];
+}
+
+/* Labels are gnuplot enhanced text; "$a" stands for the loading axis
+ * pair ("yy"), "$l" for the lateral stress (2D: the other wall stress,
+ * 3D: the mean of the two lateral ones). */
+struct quantity {
+    const char *column; /* name in the .dat header */
+    const char *label;  /* legend and axis label */
+    int min_dim;        /* 3: only in 3D */
+    double (*eval)(const struct series *s, size_t i);
+};
+
+static const struct quantity qtab[Q_COUNT] = {
+    [Q_T] = {"t", "time t (s)", 2, q_t},
+    [Q_EPS_AX] = {"eps_axial", "axial strain ε_{$a}", 2, q_eps_ax},
+    [Q_EPS_V] = {"eps_v", "ε_v", 2, q_eps_v},
+    [Q_SXX] = {"sigma_xx", "σ_{xx}", 2, q_sxx},
+    [Q_SYY] = {"sigma_yy", "σ_{yy}", 2, q_syy},
+    [Q_SZZ] = {"sigma_zz", "σ_{zz}", 3, q_szz},
+    [Q_SIG_AX] = {"sigma_axial", "σ_{$a}", 2, q_sig_ax},
+    [Q_SIN_PSI] = {"sin_psi", "sin ψ", 2, q_sin_psi},
+    [Q_EPS_D] = {"eps_D", "deviatoric strain ε_D = ε_{xx} − ε_{yy}", 2,
+                 q_eps_d},
+    [Q_SIG_D] = {"sigma_D", "σ_D", 2, q_sig_d},
+    [Q_EKIN] = {"e_kin", "kinetic E_{kin}", 2, q_ekin},
+    [Q_EROT] = {"e_rot", "rotational E_{rot}", 2, q_erot},
+    [Q_EPOT] = {"e_pot", "elastic E_{pot}", 2, q_epot},
+};
+
+/* Expand the "$a", "$l" and "$u" (stress unit) placeholders. */
+static void expand(char *out, size_t n, const char *in,
+                   const struct series *s)
+{
+    size_t k = 0;
+    out[0] = '\0';
+    for (; *in && k + 1 < n; in++) {
+        char piece[32] = "";
+        if (in[0] == '$' && in[1] == 'a') {
+            snprintf(piece, sizeof piece, "%c%c", axis_name[s->axis],
+                     axis_name[s->axis]);
+        } else if (in[0] == '$' && in[1] == 'l') {
+            if (s->dim == 2)
+                snprintf(piece, sizeof piece, "σ_{%c%c}",
+                         axis_name[1 - s->axis], axis_name[1 - s->axis]);
+            else
+                snprintf(piece, sizeof piece, "σ_{lat}");
+        } else if (in[0] == '$' && in[1] == 'u') {
+            snprintf(piece, sizeof piece, "%s", s->dim == 2 ? "N/m" : "Pa");
+        } else {
+            out[k++] = *in;
+            out[k] = '\0';
+            continue;
+        }
+        in++;
+        size_t len = strlen(piece);
+        if (k + len + 1 > n)
+            break;
+        memcpy(out + k, piece, len + 1);
+        k += len;
+    }
+}
+
+/* ----------------------------------------------------------- the table */
+
+enum rows { ROWS_LOADING, ROWS_ALL };
+
+#define F_LOGY 1u   /* log y axis; non-positive values are left out */
+#define F_ZERO 2u   /* dashed line y = 0 */
+#define F_STAGES 4u /* dashed vertical line at each stage change */
+
+struct plot_spec;
+typedef int (*plot_writer)(const struct series *s, const struct plot_spec *p,
+                           FILE *dat, FILE *gp);
+
+struct plot_spec {
+    const char *name;   /* file stem in plots/ */
+    const char *title;  /* picture title */
+    const char *ylabel; /* y axis label with its unit */
+    int rows;           /* enum rows */
+    int x;              /* enum qty on x */
+    int y[4];           /* enum qty on y, Q_NONE-terminated */
+    int peak;           /* enum qty whose maximum is marked, or Q_NONE */
+    unsigned flags;     /* F_* */
+    plot_writer write;  /* NULL: the generic curve writer */
+};
+
+static int write_mohr(const struct series *s, const struct plot_spec *p,
+                      FILE *dat, FILE *gp);
+
+static const struct plot_spec plots[] = {
+    {"stress_strain", "Wall stresses during loading",
+     "wall stress σ ($u)", ROWS_LOADING, Q_EPS_AX,
+     {Q_SXX, Q_SYY, Q_SZZ, Q_NONE}, Q_SIG_AX, 0, NULL},
+    {"volumetric_strain",
+     "Volumetric strain during loading (ε_v > 0: dilation)",
+     "volumetric strain ε_v = V/V_0 − 1", ROWS_LOADING, Q_EPS_AX,
+     {Q_EPS_V, Q_NONE}, Q_NONE, F_ZERO, NULL},
+    {"stress_ratio", "Stress ratio during loading",
+     "sin ψ = (σ_{$a} − $l)/(σ_{$a} + $l)", ROWS_LOADING, Q_EPS_AX,
+     {Q_SIN_PSI, Q_NONE}, Q_SIN_PSI, F_ZERO, NULL},
+    {"deviatoric_stress_strain",
+     "Deviatoric stress versus deviatoric strain during loading",
+     "deviatoric stress σ_D = 2(σ_{xx} − σ_{yy})/3 ($u)", ROWS_LOADING,
+     Q_EPS_D, {Q_SIG_D, Q_NONE}, Q_NONE, F_ZERO, NULL},
+    {"energies", "Energies during the run", "energy (J)", ROWS_ALL, Q_T,
+     {Q_EKIN, Q_EROT, Q_EPOT, Q_NONE}, Q_NONE, F_LOGY | F_STAGES, NULL},
+    {"mohr_circles", "Mohr circles of the wall stresses during loading",
+     "shear stress τ ($u)", ROWS_LOADING, Q_NONE, {Q_NONE}, Q_NONE, 0,
+     write_mohr},
+};
+
+#define NPLOTS (sizeof plots / sizeof plots[0])
+
+/* ------------------------------------------------- the generic writer */
+
+static int has_qty(const struct series *s, int q)
+{
+    return q != Q_NONE && qtab[q].min_dim <= s->dim;
+}
+
+static void row_range(const struct series *s, int rows, size_t *lo,
+                      size_t *hi)
+{
+    *lo = rows == ROWS_ALL ? 0 : s->lo;
+    *hi = rows == ROWS_ALL ? s->n : s->hi;
+}
+
+/* Row stride that keeps a curve under MAX_POINTS points. */
+static size_t stride_of(size_t lo, size_t hi)
+{
+    size_t n = hi - lo;
+    return n > MAX_POINTS ? (n + MAX_POINTS - 1) / MAX_POINTS : 1;
+}
+
+/* The second title line: what the rows are. */
+static void subtitle(char *out, size_t n, const struct series *s, int rows)
+{
+    if (rows == ROWS_ALL)
+        snprintf(out, n, "%dD, whole run; dashed lines: stage changes",
+                 s->dim);
+    else
+        snprintf(out, n, "%dD, loading stage %d, loading axis %c", s->dim,
+                 s->stage, axis_name[s->axis]);
+}
+
+static void gp_head(FILE *gp, const struct series *s,
+                    const struct plot_spec *p, const char *xlabel)
+{
+    char title[512], sub[160], ylabel[256], x[256];
+    subtitle(sub, sizeof sub, s, p->rows);
+    expand(x, sizeof x, p->title, s);
+    snprintf(title, sizeof title, "%s\\n{/*0.8 %s}", x, sub);
+    expand(ylabel, sizeof ylabel, p->ylabel, s);
+    expand(x, sizeof x, xlabel, s);
+    dem__gp_head(gp, p->name, title, x, ylabel);
+}
+
+static void dat_head(FILE *dat, const struct series *s,
+                     const struct plot_spec *p, size_t stride)
+{
+    char sub[160];
+    subtitle(sub, sizeof sub, s, p->rows);
+    fprintf(dat,
+            "# %s.dat - data of %s.gp, from ../timeseries.csv\n"
+            "# rows: %s; sample stride %zu\n"
+            "# '?' marks a value that is undefined%s\n",
+            p->name, p->name, sub, stride,
+            p->flags & F_LOGY ? " or not positive (log axis)" : "");
+}
+
+/* A picture without any valid point still renders, saying so. */
+static void gp_no_data(FILE *gp, unsigned flags)
+{
+    fprintf(gp, "set label 1 \"no valid data\" at graph 0.5, graph 0.5 "
+                "center\n"
+                "set xrange [0:1]\nset yrange [%s]\nplot NaN notitle\n",
+            flags & F_LOGY ? "1:10" : "0:1");
+}
+
+static void gp_stage_lines(FILE *gp, const struct series *s)
+{
+    const double *st = s->c[TS_STAGE], *t = s->c[TS_T];
+    fprintf(gp, "set label \"stage %d\" at %.9g, graph 0.97 offset 0.5,0 "
+                "font \",9\"\n",
+            (int)st[0], t[0]);
+    for (size_t i = 1; i < s->n; i++) {
+        if (st[i] == st[i - 1])
+            continue;
+        fprintf(gp,
+                "set arrow from %.9g, graph 0 to %.9g, graph 1 nohead "
+                "dashtype 2 linecolor \"gray40\"\n"
+                "set label \"stage %d\" at %.9g, graph 0.97 offset 0.5,0 "
+                "font \",9\"\n",
+                t[i - 1], t[i - 1], (int)st[i], t[i - 1]);
+    }
+}
+
+static void gp_peak(FILE *gp, const struct series *s,
+                    const struct plot_spec *p, size_t lo, size_t hi)
+{
+    size_t best = hi;
+    double vmax = -INFINITY;
+    for (size_t i = lo; i < hi; i++) {
+        double v = qtab[p->peak].eval(s, i);
+        if (isfinite(v) && v > vmax) {
+            vmax = v;
+            best = i;
+        }
+    }
+    double x = best < hi ? qtab[p->x].eval(s, best) : NAN;
+    if (!isfinite(x))
+        return;
+    /* the text goes on the side of the point that has room */
+    double xmin = INFINITY, xmax = -INFINITY;
+    for (size_t i = lo; i < hi; i++) {
+        double v = qtab[p->x].eval(s, i);
+        if (isfinite(v)) {
+            xmin = fmin(xmin, v);
+            xmax = fmax(xmax, v);
+        }
+    }
+    const int right = x > 0.5 * (xmin + xmax);
+    char lab[64];
+    expand(lab, sizeof lab, qtab[p->peak].label, s);
+    fprintf(gp,
+            "set label 2 \"peak %s = %.4g\" at %.9g, %.9g %s point "
+            "pointtype 7 pointsize 1.5 offset %s,0.8\n"
+            "set offsets 0, 0, graph 0.08, 0\n",
+            lab, vmax, x, vmax, right ? "right" : "left",
+            right ? "-1" : "1");
+}
+
+/* gnuplot reads '?' as a missing value (set datafile missing "?"). */
+static void put_value(FILE *dat, const char *sep, double v, int ok)
+{
+    if (ok)
+        fprintf(dat, "%s%.9g", sep, v);
+    else
+        fprintf(dat, "%s?", sep);
+}
+
+static int write_curves(const struct series *s, const struct plot_spec *p,
+                        FILE *dat, FILE *gp)
+{
+    size_t lo, hi;
+    row_range(s, p->rows, &lo, &hi);
+    const size_t stride = stride_of(lo, hi);
+    int ny = 0, valid[4] = {0, 0, 0, 0};
+    const struct quantity *y[4];
+    for (int k = 0; k < 4 && p->y[k] != Q_NONE; k++)
+        if (has_qty(s, p->y[k]))
+            y[ny++] = &qtab[p->y[k]];
+
+    dat_head(dat, s, p, stride);
+    fprintf(dat, "# 1 %s", qtab[p->x].column);
+    for (int k = 0; k < ny; k++)
+        fprintf(dat, "  %d %s", k + 2, y[k]->column);
+    fputc('\n', dat);
+    for (size_t i = lo; i < hi; i += stride) {
+        /* the last row always goes in: it is the end of the test */
+        if (i + stride >= hi)
+            i = hi - 1;
+        double x = qtab[p->x].eval(s, i);
+        put_value(dat, "", x, isfinite(x));
+        for (int k = 0; k < ny; k++) {
+            double v = y[k]->eval(s, i);
+            int ok = isfinite(v) && (!(p->flags & F_LOGY) || v > 0.0);
+            valid[k] |= ok && isfinite(x);
+            put_value(dat, " ", v, ok);
+        }
+        fputc('\n', dat);
+    }
+
+    gp_head(gp, s, p, qtab[p->x].label);
+    if (p->flags & F_LOGY)
+        fprintf(gp, "set logscale y\nset format y \"10^{%%L}\"\n");
+    if (p->flags & F_STAGES)
+        gp_stage_lines(gp, s);
+    if (p->peak != Q_NONE)
+        gp_peak(gp, s, p, lo, hi);
+    const char *sep = "plot ";
+    for (int k = 0; k < ny; k++) {
+        if (!valid[k])
+            continue;
+        char lab[128];
+        expand(lab, sizeof lab, y[k]->label, s);
+        fprintf(gp, "%s\"%s.dat\" using 1:%d with lines linewidth 2 "
+                    "title \"%s\"",
+                sep, p->name, k + 2, lab);
+        sep = ", \\\n     ";
+    }
+    if (sep[0] == 'p') {
+        gp_no_data(gp, p->flags);
+        return DEM_OK;
+    }
+    if (p->flags & F_ZERO)
+        fprintf(gp, "%s0 with lines dashtype 2 linecolor \"gray40\" notitle",
+                sep);
+    fputc('\n', gp);
+    return DEM_OK;
+}
+
+/* ------------------------------------------------------- Mohr circles */
+
+/* Principal stresses of row i: the wall stresses are principal because
+ * the walls are frictionless and axis-aligned; sigma_1 the largest,
+ * sigma_3 the smallest. */
+static void principal(const struct series *s, size_t i, double *s1,
+                      double *s3)
+{
+    *s1 = -INFINITY;
+    *s3 = INFINITY;
+    for (int a = 0; a < s->dim; a++) {
+        *s1 = fmax(*s1, sig(s, a, i));
+        *s3 = fmin(*s3, sig(s, a, i));
+    }
+}
+
+static void mohr_block(FILE *dat, const char *what, double t, double s1,
+                       double s3)
+{
+    const double c = 0.5 * (s1 + s3), r = 0.5 * (s1 - s3);
+    fprintf(dat, "# %s: t = %.9g s, sigma_1 = %.9g, sigma_3 = %.9g\n", what,
+            t, s1, s3);
+    for (int k = 0; k <= 180; k++) {
+        double th = M_PI * k / 180.0;
+        fprintf(dat, "%.9g %.9g\n", c + r * cos(th), r * sin(th));
+    }
+    fprintf(dat, "\n\n");
+}
+
+/* The circle at the peak of sin psi (the largest stress ratio) and at the
+ * end of loading, with the line through the origin tangent to the peak
+ * circle, tau = sigma tan phi, sin phi = (s1 - s3)/(s1 + s3): the
+ * friction angle of a cohesionless material. Cohesion needs the circles
+ * of several confining pressures (dembox sweep). */
+static int write_mohr(const struct series *s, const struct plot_spec *p,
+                      FILE *dat, FILE *gp)
+{
+    size_t peak = s->hi;
+    double best = -INFINITY, s1, s3;
+    for (size_t i = s->lo; i < s->hi; i++) {
+        principal(s, i, &s1, &s3);
+        double v = (s1 - s3) / (s1 + s3);
+        if (s1 + s3 > 0.0 && isfinite(v) && v > best) {
+            best = v;
+            peak = i;
+        }
+    }
+    dat_head(dat, s, p, 1);
+    fprintf(dat, "# columns: 1 sigma (normal stress)  2 tau (shear "
+                 "stress); blocks: 0 peak, 1 end of loading, 2 tangent\n");
+    gp_head(gp, s, p, "normal stress σ ($u)");
+    if (peak == s->hi) {
+        gp_no_data(gp, 0);
+        return DEM_OK;
+    }
+    const double *t = s->c[TS_T];
+    principal(s, peak, &s1, &s3);
+    mohr_block(dat, "peak", t[peak], s1, s3);
+    double e1, e3;
+    principal(s, s->hi - 1, &e1, &e3);
+    mohr_block(dat, "end of loading", t[s->hi - 1], e1, e3);
+    const double phi = asin(best), xmax = 1.1 * fmax(s1, e1);
+    fprintf(dat, "# tangent tau = sigma tan(phi), phi = %.9g deg\n0 0\n"
+                 "%.9g %.9g\n",
+            phi * 180.0 / M_PI, xmax, xmax * tan(phi));
+    fprintf(gp,
+            /* equal scales so circles look round; the y range fills the
+             * 1000x700 picture */
+            "set size ratio -1\nset xrange [0:%.6g]\nset yrange [0:%.6g]\n"
+            "plot \"%s.dat\" index 0 with lines linewidth 2 "
+            "title \"peak (t = %.4g s)\", \\\n"
+            "     \"\" index 1 with lines linewidth 2 "
+            "title \"end of loading (t = %.4g s)\", \\\n"
+            "     \"\" index 2 with lines dashtype 2 linecolor \"gray40\" "
+            "title \"τ = σ tan φ, φ = %.1f°\"\n",
+            xmax, 0.55 * xmax, p->name, t[peak], t[s->hi - 1], phi * 180.0 / M_PI);
+    return DEM_OK;
+}
+
+/* ------------------------------------------------------------- driver */
+
+/* NAME.dat and NAME.gp, both written through temporaries. */
+static int write_plot(const struct series *s, const struct plot_spec *p,
+                      const char *plotdir, struct dem_error *err)
+{
+    char datpath[DEM_PATH_MAX], gppath[DEM_PATH_MAX], leaf[DEM_NAME_MAX];
+    snprintf(leaf, sizeof leaf, "%s.dat", p->name);
+    int rc = dem_path_join(datpath, sizeof datpath, plotdir, leaf, err);
+    snprintf(leaf, sizeof leaf, "%s.gp", p->name);
+    if (!rc)
+        rc = dem_path_join(gppath, sizeof gppath, plotdir, leaf, err);
+    struct dem__outfile dat, gp;
+    if (!rc)
+        rc = dem__outfile_open(&dat, datpath, err);
+    if (rc)
+        return rc;
+    rc = dem__outfile_open(&gp, gppath, err);
+    if (rc) {
+        dem__outfile_abort(&dat);
+        return rc;
+    }
+    rc = (p->write ? p->write : write_curves)(s, p, dat.f, gp.f);
+    if (rc) {
+        dem__outfile_abort(&dat);
+        dem__outfile_abort(&gp);
+        return rc;
+    }
+    rc = dem__outfile_commit(&dat, err);
+    if (rc) {
+        dem__outfile_abort(&gp);
+        return rc;
+    }
+    return dem__outfile_commit(&gp, err);
+}
+
+static int all_zero(const double *v, size_t n)
+{
+    for (size_t i = 0; v && i < n; i++)
+        if (v[i] != 0.0)
+            return 0;
+    return 1;
+}
+
+/* Extent of the packing, for a timeseries without wall positions. */
+static void packing_box(struct dem__plot_packing *w)
+{
+    const struct dem__plot_packing *pk = w;
+    for (int a = 0; a < 3; a++) {
+        w->lo[a] = INFINITY;
+        w->hi[a] = -INFINITY;
+    }
+    for (int i = 0; i < pk->n; i++) {
+        const double c[3] = {pk->x[i], pk->y[i], pk->z ? pk->z[i] : 0.0};
+        for (int a = 0; a < 3; a++) {
+            w->lo[a] = fmin(w->lo[a], c[a] - pk->r[i]);
+            w->hi[a] = fmax(w->hi[a], c[a] + pk->r[i]);
+        }
+    }
+}
+
+/* The box at the end of the run: the last wall positions, or else the
+ * extent of the packing. */
+static void final_box(const struct series *s, struct dem__plot_packing *pk)
+{
+    int have = 1;
+    for (int k = TS_XMIN; k < TS_XMIN + 2 * s->dim; k++)
+        have &= s->c[k] != NULL;
+    if (!have || pk->n == 0) {
+        packing_box(pk);
+        return;
+    }
+    for (int a = 0; a < 3; a++) {
+        pk->lo[a] = a < s->dim ? s->c[TS_XMIN + 2 * a][s->n - 1] : 0.0;
+        pk->hi[a] = a < s->dim ? s->c[TS_XMIN + 2 * a + 1][s->n - 1] : 0.0;
+    }
+}
+
+/* Read forces_final.csv (optional) into fsum (NULL if absent). */
+static int read_forces(const char *outdir, size_t n, double **fsum,
+                       struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    *fsum = NULL;
+    int rc = dem_path_join(path, sizeof path, outdir, "forces_final.csv", err);
+    if (rc)
+        return rc;
+    FILE *probe = fopen(path, "r");
+    if (!probe)
+        return errno == ENOENT ? DEM_OK
+                               : dem_error_set(err, DEM_EIO,
+                                               "%s: cannot open: %s", path,
+                                               strerror(errno));
+    fclose(probe);
+    static const struct dem__csv_want want[1] = {{"fsum", 1}};
+    struct dem__csv_table t;
+    rc = dem__csv_table_read(&t, path, want, 1, err);
+    if (rc)
+        return rc;
+    if (t.nrow != n) {
+        dem__csv_table_free(&t);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: %zu rows, but particles_final.csv has %zu "
+                             "particles",
+                             path, t.nrow, n);
+    }
+    *fsum = t.col[0];
+    t.col[0] = NULL;
+    dem__csv_table_free(&t);
+    return DEM_OK;
+}
+
+static int draw_particles(const struct series *s, const char *outdir,
+                          const char *plotdir,
+                          const struct dem__csv_table *pt,
+                          struct dem_error *err)
+{
+    double *fsum = NULL, *speed = NULL;
+    int rc = read_forces(outdir, pt->nrow, &fsum, err);
+    if (rc)
+        return rc;
+    struct dem__plot_packing pk = {
+        .n = (int)pt->nrow, .dim = s->dim, .x = pt->col[PK_X],
+        .y = pt->col[PK_Y], .z = pt->col[PK_Z], .r = pt->col[PK_R],
+        .value = fsum, .value_label = "contact force sum Σ|f| (N)"};
+    if (!fsum) {
+        speed = malloc((pt->nrow ? pt->nrow : 1) * sizeof *speed);
+        if (!speed)
+            return dem_error_set(err, DEM_ENOMEM, "out of memory");
+        for (size_t i = 0; i < pt->nrow; i++) {
+            double v2 = 0.0;
+            for (int k = PK_VX; k <= PK_VZ; k++)
+                if (pt->col[k])
+                    v2 += pt->col[k][i] * pt->col[k][i];
+            speed[i] = sqrt(v2);
+        }
+        pk.value = speed;
+        pk.value_label = "speed |v| (m/s), no forces_final.csv";
+    }
+    final_box(s, &pk);
+    char png[DEM_PATH_MAX];
+    rc = dem_path_join(png, sizeof png, plotdir, "particles.png", err);
+    if (!rc)
+        rc = dem__plot_particles(&pk, png, err);
+    free(fsum);
+    free(speed);
+    return rc;
+}
+
+static int run_gnuplot_all(const char *plotdir, struct dem_error *err)
+{
+    const char *cmd = dem__gp_command();
+    if (!dem__gp_available(cmd)) {
+        fprintf(stderr,
+                "dembox: warning: %s not found; plot scripts written to "
+                "%s\n",
+                cmd, plotdir);
+        /* a picture of an earlier plotting would no longer match its
+         * data */
+        for (size_t k = 0; k < NPLOTS; k++) {
+            char leaf[DEM_NAME_MAX], png[DEM_PATH_MAX];
+            snprintf(leaf, sizeof leaf, "%s.png", plots[k].name);
+            if (!dem_path_join(png, sizeof png, plotdir, leaf, NULL))
+                remove(png);
+        }
+        return DEM_OK;
+    }
+    for (size_t k = 0; k < NPLOTS; k++) {
+        int rc = dem__gp_run(cmd, plotdir, plots[k].name, err);
+        if (rc)
+            return rc;
+    }
+    return DEM_OK;
+}
+
+/* Read the timeseries; an empty one is an error here because there is
+ * nothing to plot. */
+static int read_series(const char *outdir, struct dem__csv_table *ts,
+                       struct series *s, struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    int rc = dem_path_join(path, sizeof path, outdir, "timeseries.csv", err);
+    if (!rc)
+        rc = dem__csv_table_read(ts, path, ts_want, TS_NCOL, err);
+    if (rc)
+        return rc;
+    if (ts->nrow == 0) {
+        dem__csv_table_free(ts);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: no data rows (header only); nothing to "
+                             "plot",
+                             path);
+    }
+    memset(s, 0, sizeof *s);
+    s->n = ts->nrow;
+    for (int k = 0; k < TS_NCOL; k++)
+        s->c[k] = ts->col[k];
+    return DEM_OK;
+}
+
+int dem_plot_run(const char *outdir, struct dem_error *err)
+{
+    struct dem__csv_table ts, pt;
+    struct series s;
+    char plotdir[DEM_PATH_MAX], path[DEM_PATH_MAX];
+    int rc = read_series(outdir, &ts, &s, err);
+    if (rc)
+        return rc;
+    /* the particle file is read now because it decides the dimension;
+     * when it is missing the curves are still drawn and the error is
+     * reported at the end */
+    struct dem_error perr = {0, ""};
+    rc = dem_path_join(path, sizeof path, outdir, "particles_final.csv",
+                       err);
+    int prc = rc ? rc : dem__csv_table_read(&pt, path, pk_want, PK_NCOL, &perr);
+    s.dim = all_zero(s.c[TS_LZ], s.n) &&
+                    (prc || all_zero(pt.col[PK_Z], pt.nrow))
+                ? 2
+                : 3;
+    find_loading(&s);
+
+    if (!rc)
+        rc = dem_path_join(plotdir, sizeof plotdir, outdir, "plots", err);
+    if (!rc)
+        rc = dem_mkdir_p(plotdir, err);
+    if (!rc && !dem_path_join(path, sizeof path, plotdir, "gnuplot.log",
+                              NULL))
+        remove(path); /* the messages of an earlier plotting */
+    for (size_t k = 0; !rc && k < NPLOTS; k++)
+        rc = write_plot(&s, &plots[k], plotdir, err);
+    if (!rc)
+        rc = run_gnuplot_all(plotdir, err);
+    if (!rc && prc)
+        rc = dem_error_set(err, perr.code, "%s", perr.msg);
+    if (!rc)
+        rc = draw_particles(&s, outdir, plotdir, &pt, err);
+    if (!prc)
+        dem__csv_table_free(&pt);
+    dem__csv_table_free(&ts);
+    return rc;
+}

@@ -1,0 +1,166 @@
+/* Writing and running gnuplot scripts.
+ *
+ * gnuplot runs as a separate program through the shell (system(3)), in
+ * the plots folder, so the scripts use relative paths and a user can
+ * re-run them there unchanged.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "io/fsutil.h"
+#include "io/plot_internal.h"
+
+void dem__gp_head(FILE *f, const char *name, const char *title,
+                  const char *xlabel, const char *ylabel)
+{
+    fprintf(f,
+            "# %s.gp - written by dembox; edit freely and re-run in this "
+            "folder:\n"
+            "#     gnuplot %s.gp\n"
+            "# The data are in %s.dat (columns described in its header).\n"
+            "set encoding utf8\n"
+            "if (!exists(\"outfile\")) outfile = \"%s.png\"\n"
+            "set terminal pngcairo size 1000,700 enhanced font \"Sans,12\"\n"
+            "set output outfile\n"
+            "set datafile missing \"?\"\n"
+            "set title \"%s\"\n"
+            "set xlabel \"%s\"\n"
+            "set ylabel \"%s\"\n"
+            "set grid\n"
+            "set key below box\n",
+            name, name, name, name, title, xlabel, ylabel);
+}
+
+const char *dem__gp_command(void)
+{
+    const char *c = getenv("DEMBOX_GNUPLOT");
+    return c && *c ? c : "gnuplot";
+}
+
+/* Append s to out in single quotes for the shell ('\'' for a quote). */
+static int shell_quote(char *out, size_t n, const char *s)
+{
+    size_t k = strlen(out);
+    if (k + 1 >= n)
+        return -1;
+    out[k++] = '\'';
+    for (; *s; s++) {
+        const char *piece = *s == '\'' ? "'\\''" : NULL;
+        size_t len = piece ? 4 : 1;
+        if (k + len + 2 >= n)
+            return -1;
+        if (piece)
+            memcpy(out + k, piece, len);
+        else
+            out[k] = *s;
+        k += len;
+    }
+    out[k++] = '\'';
+    out[k] = '\0';
+    return 0;
+}
+
+/* Append plain text. */
+static int append(char *out, size_t n, const char *s)
+{
+    size_t k = strlen(out), len = strlen(s);
+    if (k + len + 1 > n)
+        return -1;
+    memcpy(out + k, s, len + 1);
+    return 0;
+}
+
+static int exit_ok(int status)
+{
+    return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+int dem__gp_available(const char *cmd)
+{
+    char line[DEM_PATH_MAX + 64] = "";
+    if (append(line, sizeof line, "command -v ") ||
+        shell_quote(line, sizeof line, cmd) ||
+        append(line, sizeof line, " >/dev/null 2>&1"))
+        return 0;
+    return exit_ok(system(line));
+}
+
+/* Move gnuplot's messages of one script from errpath to the end of
+ * logpath under a heading, keeping the first line in first (empty if
+ * gnuplot said nothing). */
+static void collect_log(const char *errpath, const char *logpath,
+                        const char *name, char *first, size_t n)
+{
+    first[0] = '\0';
+    FILE *in = fopen(errpath, "r");
+    if (!in)
+        return;
+    char buf[1024];
+    FILE *out = NULL;
+    while (fgets(buf, sizeof buf, in)) {
+        if (!out) {
+            size_t len = strcspn(buf, "\r\n");
+            len = len < n ? len : n - 1;
+            memcpy(first, buf, len);
+            first[len] = '\0';
+            out = fopen(logpath, "a");
+            if (out)
+                fprintf(out, "== %s.gp\n", name);
+        }
+        if (out)
+            fputs(buf, out);
+    }
+    if (out)
+        fclose(out);
+    fclose(in);
+    remove(errpath);
+}
+
+int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
+                struct dem_error *err)
+{
+    char png[DEM_PATH_MAX], tmp[DEM_PATH_MAX], log[DEM_PATH_MAX];
+    char errpath[DEM_PATH_MAX];
+    char leaf[DEM_NAME_MAX + 16];
+    snprintf(leaf, sizeof leaf, "%s.png", name);
+    int rc = dem_path_join(png, sizeof png, plotdir, leaf, err);
+    snprintf(leaf, sizeof leaf, "%s.png.tmp", name);
+    if (!rc)
+        rc = dem_path_join(tmp, sizeof tmp, plotdir, leaf, err);
+    if (!rc)
+        rc = dem_path_join(log, sizeof log, plotdir, "gnuplot.log", err);
+    if (!rc)
+        rc = dem_path_join(errpath, sizeof errpath, plotdir, "gnuplot.err",
+                           err);
+    if (rc)
+        return rc;
+
+    /* cd PLOTDIR && CMD -e "outfile='NAME.png.tmp'" NAME.gp 2>gnuplot.err
+     * (names are ours: letters and underscores only) */
+    char line[4 * DEM_PATH_MAX] = "cd ";
+    char gp[DEM_NAME_MAX + 64];
+    snprintf(gp, sizeof gp, " -e \"outfile='%s.png.tmp'\" %s.gp", name, name);
+    if (shell_quote(line, sizeof line, plotdir) ||
+        append(line, sizeof line, " && ") ||
+        shell_quote(line, sizeof line, cmd) || append(line, sizeof line, gp) ||
+        append(line, sizeof line, " >/dev/null 2>gnuplot.err"))
+        return dem_error_set(err, DEM_EIO, "%s: path too long", plotdir);
+
+    int status = system(line);
+    char msg[256];
+    collect_log(errpath, log, name, msg, sizeof msg);
+    if (!exit_ok(status)) {
+        remove(tmp);
+        return dem_error_set(err, DEM_EIO,
+                             "%s/%s.gp: gnuplot failed%s%s (see %s)", plotdir,
+                             name, msg[0] ? ": " : "", msg, log);
+    }
+    if (rename(tmp, png) != 0) {
+        remove(tmp);
+        return dem_error_set(err, DEM_EIO, "%s: gnuplot wrote no picture",
+                             png);
+    }
+    return DEM_OK;
+}

@@ -1,0 +1,52 @@
+/* Pieces shared by the plot files (io/plot*.c). Internal. */
+#ifndef DEM_IO_PLOT_INTERNAL_H
+#define DEM_IO_PLOT_INTERNAL_H
+
+#include <stdio.h>
+
+#include "dembox.h"
+
+/* ------------------------------------------------------------ gnuplot */
+
+/* Write the common head of a gnuplot script: comments saying how to
+ * re-run it, a pngcairo terminal of 1000x700 whose output file the
+ * caller may override with -e "outfile='...'", title, axis labels, grid.
+ * Labels use gnuplot's enhanced text (σ_{xx}). */
+void dem__gp_head(FILE *f, const char *name, const char *title,
+                  const char *xlabel, const char *ylabel);
+
+/* 1 if the gnuplot command can be run. */
+int dem__gp_available(const char *cmd);
+
+/* The gnuplot command: $DEMBOX_GNUPLOT or "gnuplot". */
+const char *dem__gp_command(void);
+
+/* Run `cmd NAME.gp` inside plotdir, writing NAME.png through a temporary
+ * so a failed run leaves no half-written picture. gnuplot's messages go
+ * to plotdir/gnuplot.log, whose first line names a failure in err. */
+int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
+                struct dem_error *err);
+
+/* ---------------------------------------------------------- particles */
+
+/* What the particle picture needs: n discs or spheres, one colour value
+ * each, the box. */
+struct dem__plot_packing {
+    int n;                 /* particles */
+    int dim;               /* 2 or 3 */
+    const double *x, *y, *z; /* m; centres (z unused in 2D) */
+    const double *r;       /* m; radii */
+    const double *value;   /* colour value per particle (>= 0) */
+    const char *value_label; /* e.g. "contact force sum |f| (N)" */
+    double lo[3], hi[3];   /* m; box */
+};
+
+/* Draw the packing (3D: the cut by z = (lo+hi)/2) into png_path. */
+int dem__plot_particles(const struct dem__plot_packing *pk,
+                        const char *png_path, struct dem_error *err);
+
+/* The colour of t in [0, 1]: blue (0) -> green (0.5) -> red (1), as in
+ * seed 000 Fig. 1. Values outside are clamped. */
+void dem__plot_colormap(double t, double rgb[3]);
+
+#endif

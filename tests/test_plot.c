@@ -1,0 +1,398 @@
+/* Plots of a run folder (io/plot): every script, data file and picture
+ * appears, the loading stage is found from the data, and broken input
+ * gives errors that name the file or the column. The timeseries is
+ * written with the engine's own header and row writers, so the test
+ * follows the real columns. */
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "io/csvtable.h"
+#include "io/plot.h"
+#include "measure/measure.h"
+#include "testutil.h"
+
+static const char *const curve_plots[] = {
+    "stress_strain", "volumetric_strain", "stress_ratio",
+    "deviatoric_stress_strain", "energies", "mohr_circles",
+};
+#define NCURVES (sizeof curve_plots / sizeof curve_plots[0])
+
+static char *make_dir(void)
+{
+    char tmpl[] = "/tmp/dembox_test_plot_XXXXXX";
+    char *d = mkdtemp(tmpl);
+    assert_non_null(d);
+    return strdup(d);
+}
+
+static void remove_dir(char *dir)
+{
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+    free(dir);
+}
+
+static void path_of(char *out, size_t n, const char *dir, const char *leaf)
+{
+    int k = snprintf(out, n, "%s/%s", dir, leaf);
+    assert_true(k > 0 && (size_t)k < n);
+}
+
+static long file_size(const char *dir, const char *leaf)
+{
+    char p[1024];
+    path_of(p, sizeof p, dir, leaf);
+    struct stat st;
+    return stat(p, &st) == 0 ? (long)st.st_size : -1;
+}
+
+static int have_gnuplot(void)
+{
+    return system("command -v gnuplot >/dev/null 2>&1") == 0;
+}
+
+/* A biaxial-like history: stage 0 isotropic (all strains equal),
+ * stage 1 compression along `axis` with a stress peak and dilation. */
+static void write_timeseries(const char *dir, int dim, int axis, int rows)
+{
+    char p[1024];
+    path_of(p, sizeof p, dir, "timeseries.csv");
+    FILE *f = fopen(p, "w");
+    assert_non_null(f);
+    dem_sample_write_header(f, dim);
+    const double p0 = 500.0, L0 = 0.1;
+    for (int k = 0; k < 2 * rows; k++) {
+        struct dem_sample s;
+        memset(&s, 0, sizeof s);
+        const int stage = k < rows ? 0 : 1;
+        const double u = (double)(k % rows + 1) / rows; /* 0..1 in stage */
+        s.t = 1e-3 * (k + 1);
+        s.stage = stage;
+        for (int a = 0; a < dim; a++) {
+            s.eps[a] = stage == 0 ? 0.05 * u : 0.0;
+            s.sigma[a] = stage == 0 ? p0 * u : p0;
+        }
+        if (stage == 1) {
+            const double ea = 0.2 * u;
+            s.eps[axis] = ea;
+            for (int a = 0; a < dim; a++)
+                if (a != axis)
+                    s.eps[a] = -0.1 * ea + 0.5 * ea * ea;
+            s.sigma[axis] = p0 * (1.0 + 2.0 * ea / (0.02 + ea));
+            s.eps_v = -0.3 * ea + 2.0 * ea * ea;
+        }
+        for (int a = 0; a < dim; a++) {
+            s.L[a] = L0 * (1.0 - s.eps[a]);
+            s.wall_pos[2 * a] = 0.0;
+            s.wall_pos[2 * a + 1] = s.L[a];
+        }
+        s.e_kin = 1e-3 * exp(-10.0 * u);
+        s.e_rot = 1e-4 * exp(-10.0 * u);
+        s.e_pot = 1e-2 * u;
+        dem_sample_write_row(f, &s, dim);
+    }
+    assert_int_equal(fclose(f), 0);
+}
+
+/* A lattice of n x n (x n) particles filling the 0.1 m box. */
+static int write_particles(const char *dir, int dim, int with_forces)
+{
+    char p[1024], q[1024];
+    path_of(p, sizeof p, dir, "particles_final.csv");
+    path_of(q, sizeof q, dir, "forces_final.csv");
+    FILE *f = fopen(p, "w"), *g = with_forces ? fopen(q, "w") : NULL;
+    assert_non_null(f);
+    fprintf(f, "# written by test_plot\nx,y,z,vx,vy,vz,wx,wy,wz,radius,"
+               "mass\n");
+    if (g)
+        fprintf(g, "fsum\n");
+    const int n = 10, nz = dim == 3 ? n : 1;
+    const double a = 0.005;
+    int count = 0;
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                double x = a + 2 * a * i, y = a + 2 * a * j;
+                double z = dim == 3 ? a + 2 * a * k : 0.0;
+                fprintf(f, "%g,%g,%g,%g,%g,0,0,0,0,%g,0.001\n", x, y, z,
+                        0.01 * i, 0.01 * j, a * (0.8 + 0.02 * i));
+                if (g)
+                    fprintf(g, "%g\n", (double)(i + j) * (1 + k % 2));
+                count++;
+            }
+    assert_int_equal(fclose(f), 0);
+    if (g)
+        assert_int_equal(fclose(g), 0);
+    return count;
+}
+
+static void assert_png(const char *plotdir, const char *name)
+{
+    char leaf[256], p[1024];
+    snprintf(leaf, sizeof leaf, "%s.png", name);
+    path_of(p, sizeof p, plotdir, leaf);
+    FILE *f = fopen(p, "rb");
+    if (!f)
+        fail_msg("%s was not written", p);
+    unsigned char magic[8] = {0};
+    size_t got = fread(magic, 1, 8, f);
+    fclose(f);
+    static const unsigned char png[8] = {0x89, 'P', 'N', 'G',
+                                         '\r', '\n', 0x1a, '\n'};
+    if (got != 8 || memcmp(magic, png, 8) != 0)
+        fail_msg("%s is not a PNG file", p);
+    long size = file_size(plotdir, leaf);
+    if (size <= 1024)
+        fail_msg("%s has only %ld bytes", p, size);
+}
+
+static void assert_outputs(const char *dir)
+{
+    char plotdir[1024];
+    path_of(plotdir, sizeof plotdir, dir, "plots");
+    for (size_t k = 0; k < NCURVES; k++) {
+        char leaf[256];
+        snprintf(leaf, sizeof leaf, "%s.gp", curve_plots[k]);
+        if (file_size(plotdir, leaf) <= 0)
+            fail_msg("plots/%s missing or empty", leaf);
+        snprintf(leaf, sizeof leaf, "%s.dat", curve_plots[k]);
+        if (file_size(plotdir, leaf) <= 0)
+            fail_msg("plots/%s missing or empty", leaf);
+        if (have_gnuplot())
+            assert_png(plotdir, curve_plots[k]);
+    }
+    assert_png(plotdir, "particles");
+}
+
+/* 1 if the file dir/leaf contains s. */
+static int file_contains(const char *dir, const char *leaf, const char *s)
+{
+    char p[1024], line[4096];
+    path_of(p, sizeof p, dir, leaf);
+    FILE *f = fopen(p, "r");
+    if (!f)
+        return 0;
+    int found = 0;
+    while (!found && fgets(line, sizeof line, f))
+        found = strstr(line, s) != NULL;
+    fclose(f);
+    return found;
+}
+
+static void run_ok(const char *dir)
+{
+    struct dem_error err = {0, ""};
+    int rc = dem_plot_run(dir, &err);
+    if (rc)
+        fail_msg("dem_plot_run: %s", err.msg);
+}
+
+static void biaxial_2d_writes_every_script_and_picture(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 200);
+    write_particles(dir, 2, 0);
+    run_ok(dir);
+    assert_outputs(dir);
+    remove_dir(dir);
+}
+
+/* The compression stage, not the larger isotropic strain, is the loading
+ * stage, and its axis is the one that departs from the others. */
+static void loading_stage_is_the_anisotropic_one(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 3, 0, 50);
+    write_particles(dir, 3, 1);
+    run_ok(dir);
+    assert_true(file_contains(dir, "plots/stress_strain.dat",
+                              "3D, loading stage 1, loading axis x"));
+    assert_true(file_contains(dir, "plots/stress_strain.gp", "σ_{zz}"));
+    assert_outputs(dir);
+    remove_dir(dir);
+}
+
+static void scripts_rerun_from_the_plots_folder(void **state)
+{
+    (void)state;
+    if (!have_gnuplot())
+        skip();
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 30);
+    write_particles(dir, 2, 0);
+    run_ok(dir);
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "cd '%s/plots' && rm stress_strain.png && gnuplot "
+             "stress_strain.gp 2>/dev/null",
+             dir);
+    assert_int_equal(system(cmd), 0);
+    char plotdir[1024];
+    path_of(plotdir, sizeof plotdir, dir, "plots");
+    assert_png(plotdir, "stress_strain");
+    remove_dir(dir);
+}
+
+static void missing_gnuplot_still_writes_scripts(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 30);
+    write_particles(dir, 2, 0);
+    /* a picture left by an earlier plotting no longer matches the data */
+    char p[1024];
+    path_of(p, sizeof p, dir, "plots");
+    assert_int_equal(mkdir(p, 0755), 0);
+    path_of(p, sizeof p, dir, "plots/stress_strain.png");
+    FILE *old = fopen(p, "w");
+    assert_non_null(old);
+    fclose(old);
+    setenv("DEMBOX_GNUPLOT", "dembox-no-such-gnuplot", 1);
+    struct dem_error err = {0, ""};
+    int rc = dem_plot_run(dir, &err);
+    unsetenv("DEMBOX_GNUPLOT");
+    assert_int_equal(rc, 0);
+    assert_true(file_size(dir, "plots/stress_strain.gp") > 0);
+    assert_int_equal(file_size(dir, "plots/stress_strain.png"), -1);
+    assert_true(file_size(dir, "plots/particles.png") > 1024);
+    remove_dir(dir);
+}
+
+static void missing_timeseries_names_the_file(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_particles(dir, 2, 0);
+    struct dem_error err = {0, ""};
+    assert_int_not_equal(dem_plot_run(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "timeseries.csv"));
+    remove_dir(dir);
+}
+
+/* Drop column `name` from the header and every row of timeseries.csv. */
+static void drop_column(const char *dir, const char *name)
+{
+    char p[1024], line[8192];
+    path_of(p, sizeof p, dir, "timeseries.csv");
+    FILE *f = fopen(p, "r");
+    assert_non_null(f);
+    char *out = NULL;
+    size_t outlen = 0;
+    FILE *o = open_memstream(&out, &outlen);
+    int drop = -1;
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = '\0';
+        int col = 0;
+        const char *sep = "";
+        for (char *tok = strtok(line, ","); tok; tok = strtok(NULL, ","),
+                  col++) {
+            if (drop < 0 && !strcmp(tok, name))
+                drop = col;
+            if (col == drop)
+                continue;
+            fprintf(o, "%s%s", sep, tok);
+            sep = ",";
+        }
+        fputc('\n', o);
+    }
+    fclose(f);
+    fclose(o);
+    assert_true(drop >= 0);
+    f = fopen(p, "w");
+    fputs(out, f);
+    fclose(f);
+    free(out);
+}
+
+static void missing_column_names_the_column(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 10);
+    write_particles(dir, 2, 0);
+    drop_column(dir, "sigma_yy");
+    struct dem_error err = {0, ""};
+    assert_int_not_equal(dem_plot_run(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "'sigma_yy'"));
+    assert_non_null(strstr(err.msg, "timeseries.csv"));
+    remove_dir(dir);
+}
+
+static void header_only_timeseries_is_a_clear_error(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 0);
+    write_particles(dir, 2, 0);
+    struct dem_error err = {0, ""};
+    assert_int_not_equal(dem_plot_run(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "no data rows"));
+    remove_dir(dir);
+}
+
+static void forces_file_of_wrong_length_is_an_error(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 10);
+    write_particles(dir, 2, 0);
+    char p[1024];
+    path_of(p, sizeof p, dir, "forces_final.csv");
+    FILE *f = fopen(p, "w");
+    fprintf(f, "fsum\n1\n2\n");
+    fclose(f);
+    struct dem_error err = {0, ""};
+    assert_int_not_equal(dem_plot_run(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "forces_final.csv"));
+    remove_dir(dir);
+}
+
+/* Columns are found by name whatever their order; comments and blank
+ * lines are skipped; an optional column may be absent. */
+static void csv_columns_are_read_by_name(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    char p[1024];
+    path_of(p, sizeof p, dir, "t.csv");
+    FILE *f = fopen(p, "w");
+    fprintf(f, "# comment\n\nb , a,c\n1,2,3\n\n# more\n4, 5 ,6\n");
+    fclose(f);
+    const struct dem__csv_want want[3] = {{"a", 1}, {"c", 1}, {"zz", 0}};
+    struct dem__csv_table t;
+    struct dem_error err = {0, ""};
+    assert_int_equal(dem__csv_table_read(&t, p, want, 3, &err), 0);
+    assert_int_equal(t.nrow, 2);
+    assert_close(t.col[0][0], 2.0, 0.0);
+    assert_close(t.col[0][1], 5.0, 0.0);
+    assert_close(t.col[1][1], 6.0, 0.0);
+    assert_null(t.col[2]);
+    dem__csv_table_free(&t);
+
+    f = fopen(p, "w");
+    fprintf(f, "a,c\n1,x\n");
+    fclose(f);
+    assert_int_not_equal(dem__csv_table_read(&t, p, want, 3, &err), 0);
+    assert_non_null(strstr(err.msg, ":2: column 'c'"));
+    remove_dir(dir);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(biaxial_2d_writes_every_script_and_picture),
+        cmocka_unit_test(loading_stage_is_the_anisotropic_one),
+        cmocka_unit_test(scripts_rerun_from_the_plots_folder),
+        cmocka_unit_test(missing_gnuplot_still_writes_scripts),
+        cmocka_unit_test(missing_timeseries_names_the_file),
+        cmocka_unit_test(missing_column_names_the_column),
+        cmocka_unit_test(header_only_timeseries_is_a_clear_error),
+        cmocka_unit_test(forces_file_of_wrong_length_is_an_error),
+        cmocka_unit_test(csv_columns_are_read_by_name),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
