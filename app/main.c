@@ -8,6 +8,7 @@
 #include "dembox.h"
 #include "io/config.h"
 #include "io/examples.h"
+#include "io/plot.h"
 
 #define DEFAULT_EXAMPLE "biaxial2d"
 #define MAX_SETS 256
@@ -22,6 +23,7 @@ static const char *const usage_main =
     "[--quiet]\n"
     "                      run a scenario (default: the example " DEFAULT_EXAMPLE
     ")\n"
+    "  plot OUTDIR         redraw the pictures of a run in OUTDIR/plots\n"
     "  examples            list the built-in examples\n"
     "  example NAME        print a built-in example as a config file\n"
     "  help [COMMAND|config]  help on a command, or every config key\n"
@@ -45,6 +47,12 @@ static const char *const usage_run =
     "OUTDIR receives config.cfg (the resolved config), timeseries.csv,\n"
     "particles_final.csv and particles_NNNNN.vtu snapshots with\n"
     "particles.pvd. Files being written end in .part until the run is done.\n";
+
+static const char *const usage_plot =
+    "usage: dembox plot OUTDIR\n\nRedraw the pictures of the run in OUTDIR "
+    "into OUTDIR/plots from its\ntimeseries.csv, particles_final.csv and "
+    "forces_final.csv. Each picture has\nits gnuplot script (.gp) and data "
+    "(.dat) next to it, to restyle by hand.\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";
@@ -156,6 +164,16 @@ static int cmd_run(int argc, char **argv)
     return 0;
 }
 
+static int cmd_plot(int argc, char **argv)
+{
+    if (argc != 1)
+        return fail("plot: give one OUTDIR (see dembox help plot)");
+    struct dem_error err = {0, ""};
+    if (dem_plot_run(argv[0], &err))
+        return fail(err.msg);
+    return 0;
+}
+
 static int cmd_examples(void)
 {
     for (int k = 0; k < dem_n_examples; k++) {
@@ -196,6 +214,8 @@ static int cmd_help(int argc, char **argv)
         fputs(usage_run, stdout);
     else if (!strcmp(c, "examples"))
         fputs(usage_examples, stdout);
+    else if (!strcmp(c, "plot"))
+        fputs(usage_plot, stdout);
     else if (!strcmp(c, "example"))
         fputs(usage_example, stdout);
     else if (!strcmp(c, "config"))
@@ -220,6 +240,8 @@ int main(int argc, char **argv)
         return cmd_run(argc - 2, argv + 2);
     if (!strcmp(c, "examples"))
         return cmd_examples();
+    if (!strcmp(c, "plot"))
+        return cmd_plot(argc - 2, argv + 2);
     if (!strcmp(c, "example"))
         return cmd_example(argc - 2, argv + 2);
     if (!strcmp(c, "help"))

@@ -335,19 +335,35 @@ static int cmp_id(const void *a, const void *b)
     return (u->index > v->index) - (u->index < v->index);
 }
 
-int dem_particles_write_csv(const struct dem_particles *p, const char *path,
-                            struct dem_error *err)
+/* Particle indices sorted by original id (particles may be re-ordered in
+ * memory); NULL when out of memory. */
+static int *id_order(const struct dem_particles *p)
 {
     int n = p->n > 0 ? p->n : 0;
     struct id_index *order = malloc((size_t)(n > 0 ? n : 1) * sizeof *order);
-    if (!order)
-        return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+    int *idx = malloc((size_t)(n > 0 ? n : 1) * sizeof *idx);
+    if (!order || !idx) {
+        free(order);
+        free(idx);
+        return 0;
+    }
     for (int i = 0; i < n; i++) {
         order[i].id = p->id[i];
         order[i].index = i;
     }
     qsort(order, (size_t)n, sizeof *order, cmp_id);
+    for (int k = 0; k < n; k++)
+        idx[k] = order[k].index;
+    free(order);
+    return idx;
+}
 
+int dem_particles_write_csv(const struct dem_particles *p, const char *path,
+                            struct dem_error *err)
+{
+    int *order = id_order(p);
+    if (!order)
+        return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
     struct dem__outfile o;
     int rc = dem__outfile_open(&o, path, err);
     if (rc) {
@@ -355,14 +371,33 @@ int dem_particles_write_csv(const struct dem_particles *p, const char *path,
         return rc;
     }
     fputs(COL_LIST "\n", o.f);
-    for (int k = 0; k < n; k++) {
-        int i = order[k].index;
+    for (int k = 0; k < p->n; k++) {
+        int i = order[k];
         fprintf(o.f,
                 "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
                 "%.17g\n",
                 p->x[i], p->y[i], p->z[i], p->vx[i], p->vy[i], p->vz[i],
                 p->wx[i], p->wy[i], p->wz[i], p->r[i], p->m[i]);
     }
+    free(order);
+    return dem__outfile_commit(&o, err);
+}
+
+int dem_particles_write_forces_csv(const struct dem_particles *p,
+                                   const char *path, struct dem_error *err)
+{
+    int *order = id_order(p);
+    if (!order)
+        return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+    struct dem__outfile o;
+    int rc = dem__outfile_open(&o, path, err);
+    if (rc) {
+        free(order);
+        return rc;
+    }
+    fputs("fsum,coordination\n", o.f);
+    for (int k = 0; k < p->n; k++)
+        fprintf(o.f, "%.10g,%d\n", p->fsum[order[k]], p->ncontact[order[k]]);
     free(order);
     return dem__outfile_commit(&o, err);
 }

@@ -35,4 +35,10 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
 int dem_particles_write_csv(const struct dem_particles *p, const char *path,
                             struct dem_error *err);
 
+/* forces_final.csv: per particle, in the order of particles_final.csv,
+ * the sum of its contact normal force magnitudes (fsum, N) and its number
+ * of contacts, from the last measured force pass. */
+int dem_particles_write_forces_csv(const struct dem_particles *p,
+                                   const char *path, struct dem_error *err);
+
 #endif

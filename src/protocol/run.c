@@ -17,6 +17,7 @@
 #include "io/config.h"
 #include "io/fsutil.h"
 #include "io/particles_csv.h"
+#include "io/plot.h"
 #include "io/vtu.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"
@@ -274,6 +275,11 @@ static int finish_outputs(struct run_ctx *r, struct dem_error *err)
                            "particles_final.csv", err);
     if (!rc)
         rc = dem_particles_write_csv(&r->sim.p, path, err);
+    if (!rc)
+        rc = dem_path_join(path, sizeof path, r->opt->outdir,
+                           "forces_final.csv", err);
+    if (!rc)
+        rc = dem_particles_write_forces_csv(&r->sim.p, path, err);
     if (rc)
         return rc;
     rc = dem_path_join(path, sizeof path, r->opt->outdir, "timeseries.csv",
@@ -315,6 +321,8 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     }
     if (!rc)
         rc = finish_outputs(&r, err);
+    if (!rc)
+        rc = dem_plot_run(opt->outdir, err);
     if (rc == DEM_EUNSTABLE) {
         /* keep the state for inspection, named so it is not mistaken for
          * a finished run's */
