@@ -302,7 +302,9 @@ static void every_example_parses(void **state)
     struct dem_config c;
     parse_ok(&c, dem_example_find("biaxial2d")->text, 0, 0);
     assert_int_equal(c.dim, 2);
-    assert_int_equal(c.particles.count, 400);
+    assert_int_equal(c.particles.count, 500);
+    assert_int_equal(c.stages[0].type, DEM_STAGE_ISOTROPIC);
+    assert_int_equal(c.stages[1].type, DEM_STAGE_COMPRESS);
     assert_int_equal(c.contact.normal, DEM_NORMAL_LUDING);
     assert_int_equal(c.nstages, 2);
     parse_ok(&c, dem_example_find("hold3d")->text, 0, 0);

@@ -1,0 +1,165 @@
+/* Whole runs through dem_run: every built-in example for a few hundred
+ * steps, an isotropic preparation that reaches its target, and a small 2D
+ * biaxial test whose fixed walls stay put while the sample first compacts
+ * and then dilates. */
+#include "testutil.h"
+
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "io/config.h"
+#include "io/csvtable.h"
+#include "io/examples.h"
+
+static char tmpdir[256];
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/dembox-test-run-XXXXXX");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int exists(const char *dir, const char *name)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    struct stat st;
+    return stat(path, &st) == 0 && st.st_size > 0;
+}
+
+static void run_text(const char *text, const char *name, const char *const *sets,
+                     int nsets, long max_steps, char *outdir, size_t n)
+{
+    struct dem_config c;
+    struct dem_error err = {0, ""};
+    if (dem_config_parse(&c, text, name, sets, nsets, &err))
+        fail_msg("%s: %s", name, err.msg);
+    snprintf(outdir, n, "%s/%s", tmpdir, name);
+    struct dem_run_options o = {outdir, 1, 1, max_steps};
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s: %s", name, err.msg);
+}
+
+/* Read the named columns of OUTDIR/timeseries.csv. */
+static void read_ts(const char *outdir, const struct dem__csv_want *want,
+                    int n, struct dem__csv_table *t)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/timeseries.csv", outdir);
+    struct dem_error err;
+    if (dem__csv_table_read(t, path, want, n, &err))
+        fail_msg("%s", err.msg);
+    assert_true(t->nrow > 0);
+}
+
+static void every_example_runs_a_few_hundred_steps(void **state)
+{
+    (void)state;
+    for (int k = 0; k < dem_n_examples; k++) {
+        char out[1024];
+        run_text(dem_examples[k].text, dem_examples[k].name, 0, 0, 300, out,
+                 sizeof out);
+        assert_true(exists(out, "config.cfg"));
+        assert_true(exists(out, "timeseries.csv"));
+        assert_true(exists(out, "particles_final.csv"));
+        assert_true(exists(out, "plots/particles.png"));
+        assert_false(exists(out, "timeseries.csv.part"));
+    }
+}
+
+static const char *const small_2d =
+    "dimension = 2; seed = 3; time_step = \"auto\";\n"
+    "particles = { count = 150; radius = { distribution = \"uniform\";"
+    " min = 0.5e-3; max = 1.5e-3; }; placement = \"random\";"
+    " volume_fraction = 0.4; };\n"
+    "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; gamma_n = 0.1;"
+    " kt = 2.0e4; gamma_t = 0.02; mu = 0.5; };\n"
+    "damping = { gamma_b = 1.0e-5; gamma_br = 0.0; };\n"
+    "walls = { mass = 0.01; gamma = 2.0; max_speed = 0.5; };\n"
+    "stages = ( { type = \"isotropic\"; pressure = 500.0; tolerance = 1.0e-4;"
+    " max_time = 0.1; mu = 0.0; },\n"
+    " { type = \"compress\"; axis = \"y\"; strain = 0.12; duration = 0.06;"
+    " pressure = 500.0; } );\n"
+    "output = { interval = 2.0e-4; snapshot_interval = 0.0; };\n";
+
+/* The preparation ends relaxed: every wall at the target within 2%, the
+ * Love-Weber stress agreeing, E_kin/E_pot below the tolerance. */
+static void isotropic_stage_reaches_target_pressure(void **state)
+{
+    (void)state;
+    char out[1024];
+    const char *sets[] = {"stages=( { type = \"isotropic\"; pressure = 500.0;"
+                          " tolerance = 1.0e-4; max_time = 0.1; mu = 0.0; } )"};
+    run_text(small_2d, "isotropic2d", sets, 1, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {
+        {"xmin_force", 1}, {"xmax_force", 1}, {"ymin_force", 1},
+        {"ymax_force", 1}, {"Lx", 1},         {"Ly", 1},
+        {"sigma_lw_xx", 1}, {"sigma_lw_yy", 1}, {"e_kin", 1},
+        {"e_rot", 1},      {"e_pot", 1},      {"t", 1}};
+    struct dem__csv_table t;
+    read_ts(out, want, 12, &t);
+    size_t r = t.nrow - 1;
+    double Lx = t.col[4][r], Ly = t.col[5][r];
+    const double p = 500.0;
+    /* x walls carry sigma Ly, y walls sigma Lx (2D: stress = force/length) */
+    assert_rel(t.col[0][r] / Ly, p, 0.02);
+    assert_rel(t.col[1][r] / Ly, p, 0.02);
+    assert_rel(t.col[2][r] / Lx, p, 0.02);
+    assert_rel(t.col[3][r] / Lx, p, 0.02);
+    assert_rel(t.col[6][r], p, 0.02);
+    assert_rel(t.col[7][r], p, 0.02);
+    assert_true(t.col[8][r] + t.col[9][r] < 1e-4 * t.col[10][r]);
+    /* it ended on the criterion, not on max_time */
+    assert_true(t.col[11][r] < 0.1 - 1e-3);
+    dem__csv_table_free(&t);
+}
+
+/* Seed 001 Fig. 3: the left and bottom walls are fixed, the top wall closes
+ * on the cosine profile, the right wall keeps the side stress; a dense
+ * sample first compacts and then dilates. */
+static void biaxial_fixed_walls_and_dilatancy(void **state)
+{
+    (void)state;
+    char out[1024];
+    run_text(small_2d, "biaxial2d-small", 0, 0, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {
+        {"stage", 1}, {"xmin_pos", 1}, {"ymin_pos", 1}, {"eps_v", 1},
+        {"eps_yy", 1}, {"sigma_xx", 1}};
+    struct dem__csv_table t;
+    read_ts(out, want, 6, &t);
+    size_t first = 0;
+    while (first < t.nrow && t.col[0][first] < 1.0)
+        first++;
+    assert_true(first + 10 < t.nrow);
+    double x0 = t.col[1][first], y0 = t.col[2][first];
+    double vmin = 0.0, e_at_min = 0.0;
+    for (size_t r = first; r < t.nrow; r++) {
+        assert_true(t.col[1][r] == x0);
+        assert_true(t.col[2][r] == y0);
+        if (t.col[3][r] < vmin) {
+            vmin = t.col[3][r];
+            e_at_min = t.col[4][r];
+        }
+    }
+    double vend = t.col[3][t.nrow - 1];
+    /* compaction first ... */
+    assert_true(vmin < -1e-3);
+    assert_true(e_at_min > 0.0 && e_at_min < 0.1);
+    /* ... then dilatancy well above the minimum */
+    assert_true(vend > vmin + 5e-3);
+    /* the axial strain reached its target */
+    assert_close(t.col[4][t.nrow - 1], 0.12, 1e-3);
+    dem__csv_table_free(&t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(every_example_runs_a_few_hundred_steps),
+        cmocka_unit_test(isotropic_stage_reaches_target_pressure),
+        cmocka_unit_test(biaxial_fixed_walls_and_dilatancy),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
