@@ -7,12 +7,11 @@
  * NAME.dat and NAME.gp; only the Mohr circles, which are not curves of
  * the timeseries, have their own writer.
  *
- * The loading stage is found from the data alone (so that old output
- * folders can be plotted without their config): it is the stage in which
- * one axis' strain departs most from the mean strain of the other axes,
- * i.e. the most anisotropic deformation. An isotropic compression, however
- * large, scores near zero; a biaxial or triaxial compression or a cyclic
- * stage scores its axial strain. That axis is the loading axis.
+ * The loading stage is the last compress or cyclic stage of the run's
+ * config.cfg, with its axis. Without a config (or without such a stage)
+ * it is found from the data alone: the stage in which one axis' strain
+ * departs most from the mean strain of the other axes, i.e. the most
+ * anisotropic deformation; that axis is the loading axis.
  */
 #include "io/plot.h"
 
@@ -22,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/config.h"
 #include "io/csvtable.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"
@@ -146,6 +146,38 @@ static void find_loading(struct series *s)
         }
         lo = hi;
     }
+}
+
+/* The loading stage from OUTDIR/config.cfg: 1 when found (s->lo, s->hi,
+ * s->axis and s->stage set), 0 otherwise. */
+static int find_loading_from_config(struct series *s, const char *outdir)
+{
+    char path[DEM_PATH_MAX];
+    struct dem_config cfg;
+    struct dem_error e;
+    if (dem_path_join(path, sizeof path, outdir, "config.cfg", NULL) ||
+        dem_config_load_file(&cfg, path, 0, 0, &e))
+        return 0;
+    int k = cfg.nstages - 1;
+    while (k >= 0 && cfg.stages[k].type != DEM_STAGE_COMPRESS &&
+           cfg.stages[k].type != DEM_STAGE_CYCLIC)
+        k--;
+    if (k < 0)
+        return 0;
+    const double *st = s->c[TS_STAGE];
+    size_t lo = 0;
+    while (lo < s->n && st[lo] != k)
+        lo++;
+    size_t hi = lo;
+    while (hi < s->n && st[hi] == k)
+        hi++;
+    if (hi == lo)
+        return 0;
+    s->lo = lo;
+    s->hi = hi;
+    s->axis = cfg.stages[k].axis;
+    s->stage = k;
+    return 1;
 }
 
 /* -------------------------------------------------------- quantities */
@@ -798,7 +830,8 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
                     (prc || all_zero(pt.col[PK_Z], pt.nrow))
                 ? 2
                 : 3;
-    find_loading(&s);
+    if (!find_loading_from_config(&s, outdir))
+        find_loading(&s);
 
     if (!rc)
         rc = dem_path_join(plotdir, sizeof plotdir, outdir, "plots", err);
