@@ -113,11 +113,16 @@ static int check_run_folder(const char *outdir, char *cfg_path,
                          has_ts ? "" : "timeseries.csv");
 }
 
+static const char *const eps[3] = {"eps_xx", "eps_yy", "eps_zz"};
+static const char *const sig[3] = {"sigma_xx", "sigma_yy", "sigma_zz"};
+static const char *const wanted[] = {
+    "t",        "stage",    "eps_v",    "void_ratio", "inertial_number",
+    "eps_xx",   "eps_yy",   "eps_zz",   "sigma_xx",   "sigma_yy",
+    "sigma_zz"};
+
 static int get_columns(const struct dem_table *tb, const char *path,
                        struct columns *c, struct dem_error *err)
 {
-    static const char *const eps[3] = {"eps_xx", "eps_yy", "eps_zz"};
-    static const char *const sig[3] = {"sigma_xx", "sigma_yy", "sigma_zz"};
     if (!(c->t = dem_table_column(tb, "t", path, err)) ||
         !(c->stage = dem_table_column(tb, "stage", path, err)) ||
         !(c->eps_v = dem_table_column(tb, "eps_v", path, err)) ||
@@ -546,11 +551,13 @@ static void write_cyclic(struct dem__json *j, const struct result *R)
 static void write_criteria(struct dem__json *j, const struct result *R)
 {
     dem__json_object(j, "criteria", 0);
-    dem__json_int(j, "smoothing_half_window_samples", R->half);
+    dem__json_number(j, "smoothing_half_window_samples",
+                     R->mono ? (double)R->half : NAN);
     dem__json_number(j, "critical_strain_fraction", CRITICAL_FRACTION);
     dem__json_number(j, "plateau_tolerance", PLATEAU_TOLERANCE);
     dem__json_number(j, "initial_fraction", INITIAL_FRACTION);
-    dem__json_int(j, "dilatant_window_samples", R->mono ? R->sl.window : 0);
+    dem__json_number(j, "dilatant_window_samples",
+                     R->mono ? (double)R->sl.window : NAN);
     dem__json_number(j, "ratchet_fraction", DEM_RATCHET_FRACTION);
     dem__json_close(j);
 }
@@ -623,9 +630,10 @@ int dem_analyze(const char *outdir, struct dem_error *err)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
     rc = dem_config_load_file(cfg, cfg_path, NULL, 0, err);
     struct dem_table tb = {0, NULL, 0, NULL};
+    struct columns c = {0};
     if (!rc)
-        rc = dem_table_read(&tb, ts_path, err);
-    struct columns c;
+        rc = dem_table_read(&tb, ts_path, wanted,
+                            (int)(sizeof wanted / sizeof *wanted), err);
     if (!rc)
         rc = get_columns(&tb, ts_path, &c, err);
     struct result R;
