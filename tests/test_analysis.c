@@ -81,10 +81,8 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_non_null(strstr(f.reason, "at least 2"));
 }
 
-/* Stress ratio rising to a peak 0.6 at strain 0.02 and relaxing to a
- * plateau 0.4: y = 0.4 (1 - exp(-x)) + 0.2 x exp(1 - x)... built so that
- * the peak is exact: y = 0.4 + 0.2 x e^(1-x) - 0.4 e^(-4x) is close; use
- * the simpler y = 0.4 + 0.2 x e^(1-x) (peak 0.6 at x = 1, y(0) = 0.4). */
+/* Stress ratio y = 0.4 + 0.2 x e^(1-x), x = eps/0.02: a peak of exactly
+ * 0.6 at eps = 0.02 that relaxes towards the plateau 0.4. */
 static double ratio_curve(double eps)
 {
     const double x = eps / 0.02;
