@@ -23,6 +23,8 @@ static const char *const usage_main =
     "[--quiet]\n"
     "                      run a scenario (default: the example " DEFAULT_EXAMPLE
     ")\n"
+    "  analyze OUTDIR      material parameters of a finished run -> "
+    "OUTDIR/summary.json\n"
     "  plot OUTDIR         redraw the pictures of a run in OUTDIR/plots\n"
     "  examples            list the built-in examples\n"
     "  example NAME        print a built-in example as a config file\n"
@@ -53,6 +55,19 @@ static const char *const usage_plot =
     "into OUTDIR/plots from its\ntimeseries.csv, particles_final.csv and "
     "forces_final.csv. Each picture has\nits gnuplot script (.gp) and data "
     "(.dat) next to it, to restyle by hand.\n";
+
+static const char *const usage_analyze =
+    "usage: dembox analyze OUTDIR\n"
+    "\n"
+    "Analyse a finished run from what it wrote (OUTDIR/config.cfg and\n"
+    "OUTDIR/timeseries.csv) and write OUTDIR/summary.json: peak and\n"
+    "critical-state friction (sin phi, phi, the Mohr circle sigma_axial and\n"
+    "sigma_lateral), volumetric slopes, Poisson ratio, dilatancy angle,\n"
+    "initial modulus, void ratios, the largest inertial number, the fit\n"
+    "e = e0 - (p/hs)^n over the isotropic stages and, for a cyclic stage,\n"
+    "the strain accumulated per cycle with the verdict ratcheting or\n"
+    "shakedown. What cannot be computed is null with a reason. Formulas:\n"
+    "docs/analysis.md.\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";
@@ -166,10 +181,24 @@ static int cmd_run(int argc, char **argv)
 
 static int cmd_plot(int argc, char **argv)
 {
-    if (argc != 1)
+    if (argc != 1 || argv[0][0] == '-')
         return fail("plot: give one OUTDIR (see dembox help plot)");
     struct dem_error err = {0, ""};
     if (dem_plot_run(argv[0], &err))
+        return fail(err.msg);
+    return 0;
+}
+
+static int cmd_analyze(int argc, char **argv)
+{
+    if (argc == 1 && (!strcmp(argv[0], "-h") || !strcmp(argv[0], "--help"))) {
+        fputs(usage_analyze, stdout);
+        return 0;
+    }
+    if (argc != 1 || argv[0][0] == '-')
+        return fail("analyze: give one OUTDIR (see dembox help analyze)");
+    struct dem_error err = {0, ""};
+    if (dem_analyze(argv[0], &err))
         return fail(err.msg);
     return 0;
 }
@@ -212,6 +241,8 @@ static int cmd_help(int argc, char **argv)
     const char *c = argv[0];
     if (!strcmp(c, "run"))
         fputs(usage_run, stdout);
+    else if (!strcmp(c, "analyze"))
+        fputs(usage_analyze, stdout);
     else if (!strcmp(c, "examples"))
         fputs(usage_examples, stdout);
     else if (!strcmp(c, "plot"))
@@ -238,6 +269,8 @@ int main(int argc, char **argv)
     const char *c = argv[1];
     if (!strcmp(c, "run"))
         return cmd_run(argc - 2, argv + 2);
+    if (!strcmp(c, "analyze"))
+        return cmd_analyze(argc - 2, argv + 2);
     if (!strcmp(c, "examples"))
         return cmd_examples();
     if (!strcmp(c, "plot"))

@@ -192,4 +192,17 @@ struct dem_run_options {
 int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
             struct dem_error *err);
 
+/* -------------------------------------------------------------- analyze */
+
+/* Analyse a finished run (SPEC §6): read outdir/config.cfg and
+ * outdir/timeseries.csv and write outdir/summary.json (atomically). The
+ * loading stage is the last compress stage (else the last cyclic one);
+ * the last cyclic stage, if any, is split into cycles. A quantity that
+ * cannot be computed is null with a "<name>_reason" (or "reason" in a
+ * nested object) saying why; that is not an error. Errors: outdir is not
+ * a run folder (message names the missing file), an unreadable config or
+ * timeseries (message names file, line and column), a failed write.
+ * Formulas and criteria: docs/analysis.md. */
+int dem_analyze(const char *outdir, struct dem_error *err);
+
 #endif /* DEMBOX_H */

@@ -322,6 +322,8 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     if (!rc)
         rc = finish_outputs(&r, err);
     if (!rc)
+        rc = dem_analyze(opt->outdir, err);
+    if (!rc)
         rc = dem_plot_run(opt->outdir, err);
     if (rc == DEM_EUNSTABLE) {
         /* keep the state for inspection, named so it is not mistaken for

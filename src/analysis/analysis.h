@@ -1,0 +1,239 @@
+/* Analysis of a finished run (SPEC §6): pure functions on arrays.
+ *
+ * Analysis reads what a run wrote (config.cfg, timeseries.csv) and never
+ * reaches into the engine, so `dembox analyze OUTDIR` works on old runs.
+ * Every function here works on plain arrays so that a unit test can feed
+ * it a curve with a known answer. Formulas, criteria and their seed
+ * figures are in docs/analysis.md.
+ *
+ * Sign conventions (those of timeseries.csv, SPEC §5): stresses and axial
+ * strains are compression positive, the volumetric strain
+ * eps_v = V/V0 - 1 is dilation positive. Stresses are in Pa (2D: N/m).
+ *
+ * A quantity that cannot be computed is reported with ok = 0 and a
+ * one-line reason; the caller writes it as JSON null plus the reason.
+ */
+#ifndef DEM_ANALYSIS_ANALYSIS_H
+#define DEM_ANALYSIS_ANALYSIS_H
+
+#include "dembox.h"
+
+#define DEM_REASON_MAX 200
+
+/* ------------------------------------------------------- timeseries.c */
+
+/* A CSV table of numbers read by column names. Each kept column is its
+ * own array, so a long run costs only the columns the analysis uses. */
+struct dem_table {
+    int ncol;      /* number of kept columns */
+    char **names;  /* their names (owned) */
+    long nrow;     /* number of data rows */
+    double **col;  /* col[k][r]: column k, row r (owned) */
+};
+
+/* Read a CSV file with one header line of names and rows of numbers,
+ * keeping the columns listed in want[0..nwant-1] that the header has
+ * (want = NULL: every column). Every row must have as many fields as the
+ * header; the kept ones must be numbers. Errors name the file, the line
+ * and the column. */
+int dem_table_read(struct dem_table *t, const char *path,
+                   const char *const *want, int nwant,
+                   struct dem_error *err);
+void dem_table_free(struct dem_table *t);
+/* Index of the column called name, or -1. */
+int dem_table_find(const struct dem_table *t, const char *name);
+/* The column called name (nrow values); NULL and an error naming path
+ * and the column when the table lacks it. */
+const double *dem_table_column(const struct dem_table *t, const char *name,
+                               const char *path, struct dem_error *err);
+
+/* ---------------------------------------------------------------- fit.c */
+
+/* Least-squares line y = a + b x. */
+struct dem_linfit {
+    double a;   /* intercept */
+    double b;   /* slope */
+    double r2;  /* coefficient of determination (1 if y is constant) */
+    double rms; /* root mean square residual, units of y */
+    long n;     /* points used */
+};
+
+/* Fit n points; DEM_EUSAGE when n < 2 or all x are equal. */
+int dem_linfit(const double *x, const double *y, long n,
+               struct dem_linfit *out);
+
+/* Centred moving average over 2 half + 1 samples; near the ends the window
+ * is cut to the samples that exist, so the ends are averaged one-sidedly
+ * rather than left raw. out may not alias y. */
+void dem_smooth(const double *y, long n, long half, double *out);
+
+/* Arithmetic mean of y[0..n-1] (NaN for n = 0). */
+double dem_mean(const double *y, long n);
+
+/* ---------------------------------------------------------------- peak.c */
+
+/* Smoothing half-window for a loading of n samples: 1% of the samples,
+ * at least 1 (the "light" smoothing of docs/analysis.md). */
+long dem_peak_smoothing(long n);
+
+struct dem_peak {
+    int ok;        /* 1 if there is a peak */
+    long index;    /* sample of the maximum of the smoothed curve */
+    double value;  /* smoothed curve at index */
+    double strain; /* axial strain at index */
+    char reason[DEM_REASON_MAX]; /* why not, when ok = 0 */
+};
+
+/* Peak of a noisy curve y(strain): the maximum of y smoothed with a half
+ * window of `half` samples. There is no peak when the maximum lies within
+ * the last half + 1 samples: the curve still rises at the end. */
+int dem_peak_find(const double *strain, const double *y, long n, long half,
+                  struct dem_peak *out);
+
+struct dem_critical {
+    int ok;          /* 1 if the end of the loading is a plateau */
+    long first;      /* first sample of the averaging window */
+    long count;      /* samples in the window */
+    double value;    /* mean of y over the window */
+    double drift;    /* change of the fitted line across the window divided
+                        by |value|; NaN when it cannot be computed */
+    double strain_from; /* axial strain where the window starts */
+    char reason[DEM_REASON_MAX];
+};
+
+/* Critical state of y(strain): the mean of y over the last `fraction` of
+ * the axial strain range, provided that the line fitted there changes y by
+ * at most `tolerance` times its mean across the window (a plateau). */
+int dem_critical_find(const double *strain, const double *y, long n,
+                      double fraction, double tolerance,
+                      struct dem_critical *out);
+
+/* -------------------------------------------------------------- slopes.c */
+
+struct dem_slopes {
+    long min_index;     /* sample of the minimum of smoothed eps_v */
+    int initial_ok;
+    long initial_count; /* samples 0..initial_count-1 form the initial part */
+    double initial_strain; /* axial strain at the end of the initial part */
+    double initial;     /* d eps_v / d eps_axial over the initial part */
+    char initial_reason[DEM_REASON_MAX];
+    int dilatant_ok;
+    double dilatant;    /* largest windowed d eps_v / d eps_axial after the
+                           minimum of eps_v */
+    double dilatant_strain; /* axial strain at the centre of that window */
+    long window;        /* samples per moving window */
+    char dilatant_reason[DEM_REASON_MAX];
+};
+
+/* Initial and dilatant slopes of eps_v(strain). The initial part is the
+ * first `initial_fraction` of the axial strain up to the minimum of the
+ * smoothed eps_v (smoothing half-window `half`); the dilatant slope is the
+ * largest least-squares slope over windows of `window` samples that start
+ * at or after that minimum. */
+void dem_slopes_volumetric(const double *strain, const double *eps_v,
+                           long n, long half, double initial_fraction,
+                           long window, struct dem_slopes *out);
+
+/* Least-squares slope of y(strain) over samples 0..count-1 (NaN if the
+ * fit is impossible). */
+double dem_slope_initial(const double *strain, const double *y, long count);
+
+/* Poisson ratio of an isotropic linear-elastic solid loaded axially at
+ * constant lateral stress whose volumetric slope is s = d eps_v/d eps_a
+ * (our signs): 3D nu = (1 + s)/2, 2D (in-plane, disc packing)
+ * nu = 1 + s. NaN outside the elastic range (3D [-1, 1/2], 2D [-1, 1]). */
+double dem_poisson_from_slope(double s, int dim);
+/* 2D under the plane-strain reading (a 3D solid with eps_zz = 0):
+ * nu = (1 + s)/(2 + s); NaN outside [-1, 1/2]. */
+double dem_poisson_plane_strain(double s);
+/* Bulk modulus from the axial modulus E (slope of sigma_a - sigma_l) and
+ * Poisson ratio nu: 3D E/(3(1 - 2 nu)), 2D E/(2(1 - nu)); NaN if not
+ * positive and finite. */
+double dem_bulk_modulus(double E, double nu, int dim);
+/* Dilatancy angle (degrees) from the dilatant slope s:
+ * sin psi = s/(2 + s) (Vermeer & de Borst 1984, 2D and 3D); NaN if
+ * s <= -1. */
+double dem_dilatancy_angle_deg(double s);
+
+/* ---------------------------------------------------------------- mohr.c */
+
+/* sin phi = (s1 - s3)/(s1 + s3) of one Mohr circle (NaN if s1 + s3 <= 0). */
+double dem_mohr_sin_phi(double sigma1, double sigma3);
+
+struct dem_mohr_fit {
+    int ok;
+    long n;         /* circles used */
+    double sin_phi; /* slope of the tangent: sin phi */
+    double phi_deg; /* friction angle, degrees */
+    double c;       /* cohesion, Pa (2D: N/m); 0 when not fitted */
+    double r2;      /* R^2 of radius vs centre (NaN with one circle) */
+    double rms;     /* rms of radius residuals, Pa */
+    char reason[DEM_REASON_MAX];
+};
+
+/* Common tangent tau = c + sigma tan phi of n Mohr circles (sigma1 >=
+ * sigma3, compression positive): radius t = (s1 - s3)/2 and centre
+ * s = (s1 + s3)/2 satisfy t = c cos phi + s sin phi, which is linear in
+ * (c cos phi, sin phi). With cohesion = 0 (or a single circle) the line
+ * passes through the origin, t = s sin phi. */
+int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
+                 int cohesion, struct dem_mohr_fit *out);
+
+/* ------------------------------------------------------------- voidfit.c */
+
+struct dem_voidfit {
+    int ok;
+    double e0;   /* void ratio at vanishing pressure */
+    double n;    /* exponent */
+    double rms;  /* rms residual in e */
+    double r2;   /* R^2 in e */
+    char reason[DEM_REASON_MAX];
+};
+
+/* Fit e = e0 - (p/hs)^n (seed 001 Eq. 6) to m points by least squares in
+ * e: for a given n the best e0 is mean(e + (p/hs)^n), which leaves a 1D
+ * minimisation over n (log grid, then golden section). */
+int dem_voidfit(const double *p, const double *e, long m, double hs,
+                struct dem_voidfit *out);
+
+/* -------------------------------------------------------------- cyclic.c */
+
+struct dem_cycle {
+    int index;               /* 1-based cycle number */
+    double strain_end;       /* eps_D at the end of the cycle */
+    double strain_increment; /* eps_D accumulated during the cycle */
+    double loop_area;        /* closed integral of sigma_D d eps_D over the
+                                cycle, J/m^3 (2D J/m^2) */
+};
+
+enum dem_verdict {
+    DEM_VERDICT_NONE = -1,      /* too few cycles to tell */
+    DEM_VERDICT_SHAKEDOWN = 0,  /* accumulation dies out */
+    DEM_VERDICT_RATCHETING = 1  /* steady accumulation */
+};
+
+struct dem_cycles {
+    int n;            /* complete cycles found */
+    double first;     /* increment of cycle 1 */
+    double late_mean; /* mean increment over the last third of the cycles */
+    double ratio;     /* late_mean / first, signed along the first one */
+    int late_count;   /* cycles in the last third */
+    int verdict;      /* enum dem_verdict */
+    char reason[DEM_REASON_MAX];
+};
+
+/* Ratcheting unless the mean increment of the last third is at most this
+ * fraction of the first cycle's increment. */
+#define DEM_RATCHET_FRACTION 0.1
+
+/* Split samples (t, eps_D, sigma_D) of a cyclic stage that starts at t0
+ * into cycles of `period` s; eps_D and sigma_D are interpolated linearly at
+ * the cycle boundaries; a cycle counts when it ends before the last sample
+ * (within tol s). Fills cyc[0..max-1] and sum; returns the number of
+ * complete cycles. */
+int dem_cycles_analyze(const double *t, const double *eps_d,
+                       const double *sigma_d, long n, double t0,
+                       double period, double tol, int max,
+                       struct dem_cycle *cyc, struct dem_cycles *sum);
+
+#endif

@@ -1,0 +1,657 @@
+/* dem_analyze: a run folder -> summary.json (SPEC §6).
+ *
+ * Reads only what the run wrote: config.cfg (stage types, axis, pressure,
+ * period, dimension, stiffness) and timeseries.csv (by column names). The
+ * pure functions of this module do the numbers; this file picks the
+ * stages, builds the curves and writes the JSON. Formulas and criteria:
+ * docs/analysis.md.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "analysis/analysis.h"
+#include "io/config.h"
+#include "io/fsutil.h"
+#include "io/json.h"
+#include "io/outfile.h"
+
+#define DEG (180.0 / M_PI)
+
+/* Criteria (docs/analysis.md); written into summary.json as "criteria". */
+#define CRITICAL_FRACTION 0.25 /* last quarter of the axial strain */
+#define PLATEAU_TOLERANCE 0.10 /* fitted change across it <= 10% */
+#define INITIAL_FRACTION 0.25  /* first quarter of the way to min eps_v */
+#define DILATANT_WINDOW 0.10   /* moving window: 10% of the samples... */
+#define DILATANT_WINDOW_MIN 5  /* ...but at least 5 */
+
+/* Columns of timeseries.csv the analysis needs. */
+struct columns {
+    const double *t, *stage, *eps[3], *eps_v, *sigma[3], *void_ratio;
+    const double *inertial; /* NULL in runs older than the column */
+};
+
+/* The rows of one loading stage as axial/lateral curves. When the stage
+ * has a predecessor, its last row is prepended as the origin: the
+ * reference sizes of the strains are the box at that very sample, so its
+ * strains are 0 and its stresses are those at the start of the loading. */
+struct curves {
+    long n;
+    double t0;      /* s; start of the stage */
+    double *t;      /* s */
+    double *ea;     /* axial strain, compression positive */
+    double *el;     /* lateral strain (mean of the other axes) */
+    double *ev;     /* eps_v, dilation positive */
+    double *s1;     /* axial wall stress, Pa (2D N/m) */
+    double *s3;     /* lateral wall stress (mean of the other axes) */
+    double *e;      /* void ratio */
+    double *inertial; /* inertial number, NaN if not written */
+};
+
+struct result {
+    int dim;
+    int stage, type, axis;   /* loading stage; -1 if none */
+    double pressure;         /* confining pressure of the loading stage */
+    long samples;
+    char none_reason[DEM_REASON_MAX]; /* why there is no loading stage */
+    char mono_reason[DEM_REASON_MAX]; /* why no monotonic analysis */
+    int mono;                /* 1: peak, critical and slopes computed */
+    long half;               /* smoothing half-window, samples */
+    struct dem_peak peak;
+    double peak_s1, peak_s3;
+    struct dem_critical crit;
+    double crit_s1, crit_s3, crit_e;
+    struct dem_slopes sl;
+    double modulus, nu, nu_ps, bulk, psi_deg;
+    double e_init, inertial_max;
+    struct dem_voidfit vfit;
+    double hs;
+    long vfit_points;
+    /* cyclic */
+    int cyc_stage;
+    double cyc_pressure, cyc_amplitude, cyc_period;
+    struct dem_cycle *cycles;
+    struct dem_cycles csum;
+};
+
+static int file_exists(const char *dir, const char *name, char *path,
+                       size_t n, struct dem_error *err)
+{
+    if (dem_path_join(path, n, dir, name, err))
+        return -1;
+    return access(path, F_OK) == 0;
+}
+
+/* One clear line when outdir is not a finished dembox run. */
+static int check_run_folder(const char *outdir, char *cfg_path,
+                            char *ts_path, struct dem_error *err)
+{
+    char part[DEM_PATH_MAX];
+    const int has_cfg =
+        file_exists(outdir, "config.cfg", cfg_path, DEM_PATH_MAX, err);
+    const int has_ts =
+        file_exists(outdir, "timeseries.csv", ts_path, DEM_PATH_MAX, err);
+    const int has_part =
+        file_exists(outdir, "timeseries.csv.part", part, sizeof part, err);
+    if (has_cfg < 0 || has_ts < 0 || has_part < 0)
+        return err->code;
+    if (has_cfg && has_ts)
+        return DEM_OK;
+    if (has_cfg && has_part)
+        return dem_error_set(err, DEM_EIO,
+                             "%s: the run has not finished (only "
+                             "timeseries.csv.part, no timeseries.csv)",
+                             outdir);
+    if (access(outdir, F_OK) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: no such folder", outdir);
+    return dem_error_set(err, DEM_EIO,
+                         "%s: not a dembox run folder (no %s%s%s)", outdir,
+                         has_cfg ? "" : "config.cfg",
+                         !has_cfg && !has_ts ? ", no " : "",
+                         has_ts ? "" : "timeseries.csv");
+}
+
+static const char *const eps[3] = {"eps_xx", "eps_yy", "eps_zz"};
+static const char *const sig[3] = {"sigma_xx", "sigma_yy", "sigma_zz"};
+static const char *const wanted[] = {
+    "t",        "stage",    "eps_v",    "void_ratio", "inertial_number",
+    "eps_xx",   "eps_yy",   "eps_zz",   "sigma_xx",   "sigma_yy",
+    "sigma_zz"};
+
+static int get_columns(const struct dem_table *tb, const char *path,
+                       struct columns *c, struct dem_error *err)
+{
+    if (!(c->t = dem_table_column(tb, "t", path, err)) ||
+        !(c->stage = dem_table_column(tb, "stage", path, err)) ||
+        !(c->eps_v = dem_table_column(tb, "eps_v", path, err)) ||
+        !(c->void_ratio = dem_table_column(tb, "void_ratio", path, err)))
+        return err->code;
+    for (int a = 0; a < 3; a++)
+        if (!(c->eps[a] = dem_table_column(tb, eps[a], path, err)) ||
+            !(c->sigma[a] = dem_table_column(tb, sig[a], path, err)))
+            return err->code;
+    c->inertial = dem_table_find(tb, "inertial_number") >= 0
+                      ? dem_table_column(tb, "inertial_number", path, err)
+                      : NULL;
+    return DEM_OK;
+}
+
+static void curves_free(struct curves *cv)
+{
+    free(cv->t);
+    memset(cv, 0, sizeof *cv);
+}
+
+/* Mean of the axes other than `axis` among the first dim. */
+static double lateral(const double *const v[3], long r, int axis, int dim)
+{
+    double s = 0.0;
+    for (int a = 0; a < dim; a++)
+        if (a != axis)
+            s += v[a][r];
+    return s / (dim - 1);
+}
+
+static int build_curves(const struct columns *c, long nrow, int stage,
+                        int axis, int dim, double interval,
+                        struct curves *cv)
+{
+    memset(cv, 0, sizeof *cv);
+    long first = -1, last = -1;
+    for (long r = 0; r < nrow; r++)
+        if ((int)c->stage[r] == stage) {
+            if (first < 0)
+                first = r;
+            last = r;
+        }
+    if (first < 0)
+        return DEM_OK;
+    const int origin = first > 0 && (int)c->stage[first - 1] < stage;
+    const long n = last - first + 1 + origin;
+    double *blk = malloc(8 * (size_t)n * sizeof *blk);
+    if (!blk)
+        return DEM_ENOMEM;
+    double **arr[] = {&cv->t,  &cv->ea, &cv->el, &cv->ev, &cv->s1,
+                      &cv->s3, &cv->e,  &cv->inertial, NULL};
+    for (int k = 0; arr[k]; k++)
+        *arr[k] = blk + (size_t)k * (size_t)n;
+    cv->n = n;
+    for (long i = 0; i < n; i++) {
+        const long r = first - origin + i;
+        const int o = origin && i == 0;
+        cv->t[i] = c->t[r];
+        cv->ea[i] = o ? 0.0 : c->eps[axis][r];
+        cv->el[i] = o ? 0.0 : lateral(c->eps, r, axis, dim);
+        cv->ev[i] = o ? 0.0 : c->eps_v[r];
+        cv->s1[i] = c->sigma[axis][r];
+        cv->s3[i] = lateral(c->sigma, r, axis, dim);
+        cv->e[i] = c->void_ratio[r];
+        cv->inertial[i] = c->inertial && !o ? c->inertial[r] : NAN;
+    }
+    /* without a predecessor the stage started at t = 0 (first stage) or,
+     * failing that, one output interval before its first row */
+    cv->t0 = origin ? c->t[first - 1] : stage == 0 ? 0.0 : c->t[first] - interval;
+    return DEM_OK;
+}
+
+static int last_stage_of(const struct dem_config *cfg, int type)
+{
+    for (int k = cfg->nstages - 1; k >= 0; k--)
+        if (cfg->stages[k].type == type)
+            return k;
+    return -1;
+}
+
+/* Peak, critical state and the slopes of a compress stage. */
+static int analyze_monotonic(const struct curves *cv, int dim,
+                             struct result *R)
+{
+    const long n = cv->n;
+    double *ratio = malloc(2 * (size_t)n * sizeof *ratio);
+    if (!ratio)
+        return DEM_ENOMEM;
+    double *work = ratio + n;
+    for (long i = 0; i < n; i++)
+        ratio[i] = dem_mohr_sin_phi(cv->s1[i], cv->s3[i]);
+    R->half = dem_peak_smoothing(n);
+    int rc = dem_peak_find(cv->ea, ratio, n, R->half, &R->peak);
+    if (!rc && R->peak.ok) {
+        /* the circle at the peak, smoothed alike */
+        dem_smooth(cv->s1, n, R->half, work);
+        R->peak_s1 = work[R->peak.index];
+        dem_smooth(cv->s3, n, R->half, work);
+        R->peak_s3 = work[R->peak.index];
+    }
+    if (!rc)
+        rc = dem_critical_find(cv->ea, ratio, n, CRITICAL_FRACTION,
+                               PLATEAU_TOLERANCE, &R->crit);
+    free(ratio);
+    if (rc)
+        return rc;
+    if (R->crit.ok) {
+        R->crit_s1 = dem_mean(cv->s1 + R->crit.first, R->crit.count);
+        R->crit_s3 = dem_mean(cv->s3 + R->crit.first, R->crit.count);
+        R->crit_e = dem_mean(cv->e + R->crit.first, R->crit.count);
+    }
+
+    long w = (long)(DILATANT_WINDOW * (double)n);
+    w = w < DILATANT_WINDOW_MIN ? DILATANT_WINDOW_MIN : w;
+    dem_slopes_volumetric(cv->ea, cv->ev, n, R->half, INITIAL_FRACTION, w,
+                          &R->sl);
+    if (R->sl.initial_ok) {
+        double *dev = malloc((size_t)R->sl.initial_count * sizeof *dev);
+        if (!dev)
+            return DEM_ENOMEM;
+        for (long i = 0; i < R->sl.initial_count; i++)
+            dev[i] = cv->s1[i] - cv->s3[i];
+        R->modulus = dem_slope_initial(cv->ea, dev, R->sl.initial_count);
+        free(dev);
+        R->nu = dem_poisson_from_slope(R->sl.initial, dim);
+        R->nu_ps = dim == 2 ? dem_poisson_plane_strain(R->sl.initial) : NAN;
+        R->bulk = dem_bulk_modulus(R->modulus, R->nu, dim);
+    }
+    if (R->sl.dilatant_ok)
+        R->psi_deg = dem_dilatancy_angle_deg(R->sl.dilatant);
+    R->mono = 1;
+    return DEM_OK;
+}
+
+/* Granular hardness hs of e = e0 - (p/hs)^n: seed 001 sets hs = k2 (2D,
+ * where p and k2 are both N/m). In 3D p is in Pa, so k2 is divided by the
+ * mean diameter to keep p/hs dimensionless (our extension). */
+static double hardness(const struct dem_config *cfg)
+{
+    const double k = cfg->contact.normal == DEM_NORMAL_LUDING
+                         ? cfg->contact.k2
+                         : cfg->contact.k;
+    if (cfg->dim == 2)
+        return k;
+    const double d = cfg->particles.distribution == DEM_DIST_UNIFORM
+                         ? cfg->particles.min + cfg->particles.max
+                         : 2.0 * cfg->particles.mean;
+    return d > 0.0 ? k / d : NAN;
+}
+
+/* e(p) at the end of every isotropic stage: with three or more different
+ * pressures in one run, the fit of seed 001 Eq. 6. */
+static int analyze_void_fit(const struct dem_config *cfg,
+                            const struct columns *c, long nrow,
+                            struct result *R)
+{
+    double p[DEM_MAX_STAGES], e[DEM_MAX_STAGES];
+    long m = 0;
+    for (int k = 0; k < cfg->nstages; k++) {
+        if (cfg->stages[k].type != DEM_STAGE_ISOTROPIC)
+            continue;
+        long last = -1;
+        for (long r = 0; r < nrow; r++)
+            if ((int)c->stage[r] == k)
+                last = r;
+        if (last < 0)
+            continue;
+        double pm = 0.0;
+        for (int a = 0; a < cfg->dim; a++)
+            pm += c->sigma[a][last] / cfg->dim;
+        p[m] = pm;
+        e[m] = c->void_ratio[last];
+        m++;
+    }
+    R->hs = hardness(cfg);
+    R->vfit_points = m;
+    return dem_voidfit(p, e, m, R->hs, &R->vfit);
+}
+
+static int analyze_cyclic(const struct dem_config *cfg,
+                          const struct columns *c, long nrow,
+                          struct result *R)
+{
+    const struct dem_stage_config *sc = &cfg->stages[R->cyc_stage];
+    R->cyc_pressure = sc->pressure;
+    R->cyc_amplitude = sc->amplitude;
+    R->cyc_period = sc->period;
+    struct curves cv;
+    int rc = build_curves(c, nrow, R->cyc_stage, sc->axis, cfg->dim,
+                          cfg->output.interval, &cv);
+    if (rc)
+        return rc;
+    R->cycles = calloc((size_t)(sc->cycles > 0 ? sc->cycles : 1),
+                       sizeof *R->cycles);
+    if (!R->cycles) {
+        curves_free(&cv);
+        return DEM_ENOMEM;
+    }
+    /* eps_D and sigma_D of seed 000, the loaded axis against the mean
+     * of the others; the arrays of the curves are reused in place */
+    for (long i = 0; i < cv.n; i++) {
+        cv.ea[i] -= cv.el[i];
+        cv.s1[i] = 2.0 * (cv.s1[i] - cv.s3[i]) / 3.0;
+    }
+    dem_cycles_analyze(cv.t, cv.ea, cv.s1, cv.n, cv.t0, sc->period,
+                       0.5 * cfg->output.interval, sc->cycles, R->cycles,
+                       &R->csum);
+    curves_free(&cv);
+    return DEM_OK;
+}
+
+static void loading_scalars(const struct curves *cv, struct result *R)
+{
+    R->samples = cv->n;
+    R->e_init = cv->e[0];
+    R->inertial_max = NAN;
+    for (long i = 0; i < cv->n; i++)
+        if (isfinite(cv->inertial[i]) &&
+            !(cv->inertial[i] <= R->inertial_max))
+            R->inertial_max = cv->inertial[i];
+}
+
+static int analyze_loading(const struct dem_config *cfg,
+                           const struct columns *c, long nrow,
+                           struct result *R)
+{
+    const int comp = last_stage_of(cfg, DEM_STAGE_COMPRESS);
+    R->stage = comp >= 0 ? comp : R->cyc_stage;
+    if (R->stage < 0) {
+        snprintf(R->none_reason, sizeof R->none_reason,
+                 "the run has no compress or cyclic stage");
+        snprintf(R->mono_reason, sizeof R->mono_reason, "%s",
+                 R->none_reason);
+        return DEM_OK;
+    }
+    const struct dem_stage_config *sc = &cfg->stages[R->stage];
+    R->type = sc->type;
+    R->axis = sc->axis;
+    R->pressure = sc->pressure;
+    struct curves cv;
+    int rc = build_curves(c, nrow, R->stage, sc->axis, cfg->dim,
+                          cfg->output.interval, &cv);
+    if (rc)
+        return rc;
+    if (cv.n == 0) {
+        snprintf(R->none_reason, sizeof R->none_reason,
+                 "stage %d has no rows in timeseries.csv (the run stopped "
+                 "before it)",
+                 R->stage);
+        snprintf(R->mono_reason, sizeof R->mono_reason, "%s",
+                 R->none_reason);
+        return DEM_OK;
+    }
+    loading_scalars(&cv, R);
+    if (comp >= 0)
+        rc = analyze_monotonic(&cv, cfg->dim, R);
+    else
+        snprintf(R->mono_reason, sizeof R->mono_reason,
+                 "no compress stage: peak, critical state and slopes need "
+                 "a strain-controlled compression");
+    curves_free(&cv);
+    return rc;
+}
+
+static void result_init(struct result *R, int dim)
+{
+    memset(R, 0, sizeof *R);
+    R->dim = dim;
+    R->stage = R->type = R->axis = R->cyc_stage = -1;
+    double *nan[] = {&R->pressure,  &R->peak_s1,   &R->peak_s3,
+                     &R->crit_s1,   &R->crit_s3,   &R->crit_e,
+                     &R->modulus,   &R->nu,        &R->nu_ps,
+                     &R->bulk,      &R->psi_deg,   &R->e_init,
+                     &R->inertial_max, &R->hs};
+    for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
+        *nan[k] = NAN;
+    R->peak.value = R->crit.value = NAN;
+    R->sl.initial = R->sl.dilatant = NAN;
+}
+
+/* ------------------------------------------------------------ writing */
+
+/* key: v, and key_reason: why, when v is missing. */
+static void num(struct dem__json *j, const char *key, double v,
+                const char *why)
+{
+    dem__json_number(j, key, v);
+    if (!isfinite(v) && why && *why) {
+        char k[96];
+        snprintf(k, sizeof k, "%s_reason", key);
+        dem__json_string(j, k, why);
+    }
+}
+
+static const char *first_reason(const char *a, const char *b)
+{
+    return a && *a ? a : b;
+}
+
+static void write_peak(struct dem__json *j, const struct result *R)
+{
+    const char *why = first_reason(R->mono ? R->peak.reason : R->mono_reason,
+                                   "no peak");
+    dem__json_object(j, "peak", 0);
+    const int ok = R->mono && R->peak.ok;
+    dem__json_number(j, "sin_phi", ok ? R->peak.value : NAN);
+    dem__json_number(j, "phi_deg", ok ? asin(R->peak.value) * DEG : NAN);
+    dem__json_number(j, "strain", ok ? R->peak.strain : NAN);
+    dem__json_number(j, "sigma_axial", ok ? R->peak_s1 : NAN);
+    dem__json_number(j, "sigma_lateral", ok ? R->peak_s3 : NAN);
+    if (!ok)
+        dem__json_string(j, "reason", why);
+    dem__json_close(j);
+}
+
+static void write_critical(struct dem__json *j, const struct result *R)
+{
+    const int ok = R->mono && R->crit.ok;
+    const char *why = first_reason(R->mono ? R->crit.reason : R->mono_reason,
+                                   "no critical state");
+    dem__json_object(j, "critical", 0);
+    dem__json_number(j, "sin_phi", ok ? R->crit.value : NAN);
+    dem__json_number(j, "phi_deg", ok ? asin(R->crit.value) * DEG : NAN);
+    dem__json_number(j, "sigma_axial", ok ? R->crit_s1 : NAN);
+    dem__json_number(j, "sigma_lateral", ok ? R->crit_s3 : NAN);
+    dem__json_number(j, "strain_from", R->mono ? R->crit.strain_from : NAN);
+    dem__json_number(j, "drift", R->mono ? R->crit.drift : NAN);
+    dem__json_int(j, "samples", R->mono ? R->crit.count : 0);
+    if (!ok)
+        dem__json_string(j, "reason", why);
+    dem__json_close(j);
+}
+
+static void write_slopes(struct dem__json *j, const struct result *R)
+{
+    const char *wi = R->mono ? R->sl.initial_reason : R->mono_reason;
+    const char *wd = R->mono ? R->sl.dilatant_reason : R->mono_reason;
+    const double si = R->mono && R->sl.initial_ok ? R->sl.initial : NAN;
+    const double sd = R->mono && R->sl.dilatant_ok ? R->sl.dilatant : NAN;
+    num(j, "volumetric_slope_initial", si, wi);
+    num(j, "volumetric_slope_dilatant", sd, wd);
+    dem__json_number(j, "dilatant_strain",
+                     R->mono && R->sl.dilatant_ok ? R->sl.dilatant_strain
+                                                  : NAN);
+    char why[DEM_REASON_MAX + 64];
+    if (isfinite(si))
+        snprintf(why, sizeof why,
+                 "the initial volumetric slope %.4g gives a Poisson ratio "
+                 "outside the isotropic elastic range",
+                 si);
+    else
+        snprintf(why, sizeof why, "no initial volumetric slope: %s", wi);
+    num(j, "poisson_ratio", R->nu, why);
+    if (R->dim == 2)
+        num(j, "poisson_ratio_plane_strain", R->nu_ps, why);
+    num(j, "modulus_initial", R->modulus,
+        isfinite(si) ? "the initial stress slope cannot be fitted" : why);
+    num(j, "bulk_modulus", R->bulk,
+        isfinite(R->nu) ? "the modulus and Poisson ratio give no positive "
+                          "bulk modulus"
+                        : why);
+    char whyd[DEM_REASON_MAX + 64];
+    if (isfinite(sd))
+        snprintf(whyd, sizeof whyd,
+                 "the dilatant slope %.4g is not above -1", sd);
+    else
+        snprintf(whyd, sizeof whyd, "no dilatant slope: %s", wd);
+    num(j, "dilatancy_angle_deg", R->psi_deg, whyd);
+}
+
+static void write_void_fit(struct dem__json *j, const struct result *R)
+{
+    dem__json_object(j, "void_ratio_fit", 0);
+    const int ok = R->vfit.ok;
+    dem__json_number(j, "e0", ok ? R->vfit.e0 : NAN);
+    dem__json_number(j, "n", ok ? R->vfit.n : NAN);
+    dem__json_number(j, "hs", R->hs);
+    dem__json_number(j, "rms", ok ? R->vfit.rms : NAN);
+    dem__json_number(j, "r2", ok ? R->vfit.r2 : NAN);
+    dem__json_int(j, "points", R->vfit_points);
+    if (!ok)
+        dem__json_string(j, "reason", R->vfit.reason);
+    dem__json_close(j);
+}
+
+static const char *const verdict_criterion =
+    "eps_D = eps_axis - mean(eps_lateral) is read at the end of every "
+    "cycle (t0 + k period); its increment per cycle is compared between "
+    "the mean over the last third of the cycles (at least 1) and the first "
+    "cycle: ratcheting if that mean, taken along the sign of the first "
+    "increment, exceeds 0.1 times the first increment; shakedown "
+    "otherwise; no verdict with fewer than 3 complete cycles";
+
+static void write_cyclic(struct dem__json *j, const struct result *R)
+{
+    dem__json_int(j, "cyclic_stage", R->cyc_stage);
+    dem__json_number(j, "cyclic_pressure", R->cyc_pressure);
+    dem__json_number(j, "cyclic_amplitude", R->cyc_amplitude);
+    dem__json_number(j, "cyclic_period", R->cyc_period);
+    dem__json_array(j, "cycles", 0);
+    for (int k = 0; k < R->csum.n; k++) {
+        const struct dem_cycle *c = &R->cycles[k];
+        dem__json_object(j, NULL, 1);
+        dem__json_int(j, "index", c->index);
+        dem__json_number(j, "strain_end", c->strain_end);
+        dem__json_number(j, "strain_increment", c->strain_increment);
+        dem__json_number(j, "loop_area", c->loop_area);
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+    const int v = R->csum.verdict;
+    if (v == DEM_VERDICT_NONE)
+        dem__json_null(j, "verdict");
+    else
+        dem__json_string(j, "verdict", v == DEM_VERDICT_RATCHETING
+                                           ? "ratcheting"
+                                           : "shakedown");
+    dem__json_string(j, "verdict_reason", R->csum.reason);
+    dem__json_string(j, "verdict_criterion", verdict_criterion);
+    dem__json_number(j, "cycle_increment_first", R->csum.first);
+    dem__json_number(j, "cycle_increment_late", R->csum.late_mean);
+    dem__json_number(j, "cycle_increment_ratio", R->csum.ratio);
+}
+
+static void write_criteria(struct dem__json *j, const struct result *R)
+{
+    dem__json_object(j, "criteria", 0);
+    dem__json_number(j, "smoothing_half_window_samples",
+                     R->mono ? (double)R->half : NAN);
+    dem__json_number(j, "critical_strain_fraction", CRITICAL_FRACTION);
+    dem__json_number(j, "plateau_tolerance", PLATEAU_TOLERANCE);
+    dem__json_number(j, "initial_fraction", INITIAL_FRACTION);
+    dem__json_number(j, "dilatant_window_samples",
+                     R->mono ? (double)R->sl.window : NAN);
+    dem__json_number(j, "ratchet_fraction", DEM_RATCHET_FRACTION);
+    dem__json_close(j);
+}
+
+static const char *stage_name(int type)
+{
+    return type == DEM_STAGE_COMPRESS ? "compress"
+           : type == DEM_STAGE_CYCLIC ? "cyclic"
+                                      : "none";
+}
+
+static void write_summary(FILE *f, const struct result *R)
+{
+    static const char axes[] = "xyz";
+    struct dem__json j;
+    dem__json_begin(&j, f);
+    dem__json_string(&j, "dembox_version", DEM_VERSION);
+    dem__json_int(&j, "dimension", R->dim);
+    if (R->stage >= 0) {
+        dem__json_int(&j, "loading_stage", R->stage);
+        char ax[2] = {axes[R->axis], '\0'};
+        dem__json_string(&j, "loading_type", stage_name(R->type));
+        dem__json_string(&j, "axis", ax);
+    } else {
+        dem__json_null(&j, "loading_stage");
+    }
+    if (R->none_reason[0])
+        dem__json_string(&j, "loading_stage_reason", R->none_reason);
+    num(&j, "confining_pressure", R->pressure, R->none_reason);
+    dem__json_int(&j, "samples", R->samples);
+    write_peak(&j, R);
+    write_critical(&j, R);
+    num(&j, "void_ratio_initial", R->e_init, R->none_reason);
+    num(&j, "void_ratio_critical", R->mono && R->crit.ok ? R->crit_e : NAN,
+        R->mono ? R->crit.reason : R->mono_reason);
+    write_slopes(&j, R);
+    num(&j, "inertial_number_max", R->inertial_max,
+        R->none_reason[0] ? R->none_reason
+                          : "timeseries.csv has no inertial_number column");
+    write_void_fit(&j, R);
+    if (R->cyc_stage >= 0)
+        write_cyclic(&j, R);
+    write_criteria(&j, R);
+    dem__json_end(&j);
+}
+
+static int write_file(const char *outdir, const struct result *R,
+                      struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    int rc = dem_path_join(path, sizeof path, outdir, "summary.json", err);
+    if (rc)
+        return rc;
+    struct dem__outfile o;
+    rc = dem__outfile_open(&o, path, err);
+    if (rc)
+        return rc;
+    write_summary(o.f, R);
+    return dem__outfile_commit(&o, err);
+}
+
+int dem_analyze(const char *outdir, struct dem_error *err)
+{
+    char cfg_path[DEM_PATH_MAX], ts_path[DEM_PATH_MAX];
+    int rc = check_run_folder(outdir, cfg_path, ts_path, err);
+    if (rc)
+        return rc;
+    struct dem_config *cfg = malloc(sizeof *cfg);
+    if (!cfg)
+        return dem_error_set(err, DEM_ENOMEM, "out of memory");
+    rc = dem_config_load_file(cfg, cfg_path, NULL, 0, err);
+    struct dem_table tb = {0, NULL, 0, NULL};
+    struct columns c = {0};
+    if (!rc)
+        rc = dem_table_read(&tb, ts_path, wanted,
+                            (int)(sizeof wanted / sizeof *wanted), err);
+    if (!rc)
+        rc = get_columns(&tb, ts_path, &c, err);
+    struct result R;
+    result_init(&R, rc ? 0 : cfg->dim);
+    if (!rc) {
+        R.cyc_stage = last_stage_of(cfg, DEM_STAGE_CYCLIC);
+        rc = analyze_loading(cfg, &c, tb.nrow, &R);
+    }
+    if (!rc)
+        rc = analyze_void_fit(cfg, &c, tb.nrow, &R);
+    if (!rc && R.cyc_stage >= 0)
+        rc = analyze_cyclic(cfg, &c, tb.nrow, &R);
+    if (rc == DEM_ENOMEM)
+        dem_error_set(err, rc, "%s: out of memory", outdir);
+    if (!rc)
+        rc = write_file(outdir, &R, err);
+    free(R.cycles);
+    dem_table_free(&tb);
+    free(cfg);
+    return rc;
+}

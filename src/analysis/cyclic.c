@@ -1,0 +1,114 @@
+/* Cycles of a stress-controlled cyclic test (seed 000 Figs. 2 right and
+ * 3 right): deviatoric strain accumulated per cycle, the work of each
+ * hysteresis loop, and the verdict ratcheting (the accumulation goes on)
+ * or shakedown (it dies out).
+ *
+ * Cycle k covers [t0 + (k-1) T, t0 + k T]; values at the boundaries are
+ * interpolated linearly between samples so that the cycles do not depend
+ * on where the output interval happens to fall. The loop area is the
+ * trapezoid sum of sigma_D d eps_D over the cycle: the work per unit
+ * volume done in the deviatoric mode, which for a closed loop is the
+ * hysteresis area (energy dissipated per cycle).
+ */
+#include <math.h>
+#include <stdio.h>
+
+#include "analysis/analysis.h"
+
+/* Linear interpolation of y at tq; *k is a cursor (first sample with
+ * t >= tq is searched from it), kept across calls with growing tq. */
+static double interp(const double *t, const double *y, long n, double tq,
+                     long *k)
+{
+    if (tq <= t[0])
+        return y[0];
+    if (tq >= t[n - 1])
+        return y[n - 1];
+    while (*k < n - 1 && t[*k] < tq)
+        (*k)++;
+    const long j = *k; /* t[j-1] < tq <= t[j] */
+    const double w = (tq - t[j - 1]) / (t[j] - t[j - 1]);
+    return y[j - 1] + w * (y[j] - y[j - 1]);
+}
+
+/* Work of sigma_D d eps_D between ta and tb, samples strictly inside taken
+ * as they are, the ends interpolated. i is the first sample after ta. */
+static double loop_work(const double *t, const double *e, const double *s,
+                        long n, double ta, double tb, long i)
+{
+    long ka = 0, kb = 0;
+    double ep = interp(t, e, n, ta, &ka), sp = interp(t, s, n, ta, &kb);
+    double w = 0.0;
+    for (; i < n && t[i] < tb; i++) {
+        w += 0.5 * (sp + s[i]) * (e[i] - ep);
+        ep = e[i];
+        sp = s[i];
+    }
+    ka = kb = 0;
+    const double eb = interp(t, e, n, tb, &ka), sb = interp(t, s, n, tb, &kb);
+    return w + 0.5 * (sp + sb) * (eb - ep);
+}
+
+static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
+{
+    o->verdict = DEM_VERDICT_NONE;
+    if (nc < 3) {
+        snprintf(o->reason, sizeof o->reason,
+                 "%d complete cycle(s): the verdict needs at least 3", nc);
+        return;
+    }
+    o->first = c[0].strain_increment;
+    o->late_count = nc / 3;
+    double sum = 0.0;
+    for (int k = nc - o->late_count; k < nc; k++)
+        sum += c[k].strain_increment;
+    o->late_mean = sum / o->late_count;
+    o->ratio = o->first != 0.0 ? o->late_mean / o->first : NAN;
+    /* accumulation counts in the direction of the first cycle's */
+    const double along = o->first >= 0.0 ? o->late_mean : -o->late_mean;
+    const int ratchet = along > DEM_RATCHET_FRACTION * fabs(o->first);
+    o->verdict = ratchet ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
+    snprintf(o->reason, sizeof o->reason,
+             "mean increment of the last %d cycles %.4g is %s %.0f%% of the "
+             "first cycle's %.4g",
+             o->late_count, o->late_mean, ratchet ? "above" : "at most",
+             100.0 * DEM_RATCHET_FRACTION, o->first);
+}
+
+int dem_cycles_analyze(const double *t, const double *eps_d,
+                       const double *sigma_d, long n, double t0,
+                       double period, double tol, int max,
+                       struct dem_cycle *cyc, struct dem_cycles *o)
+{
+    o->n = 0;
+    o->first = o->late_mean = o->ratio = NAN;
+    o->late_count = 0;
+    o->verdict = DEM_VERDICT_NONE;
+    o->reason[0] = '\0';
+    if (n < 2 || !(period > 0.0)) {
+        snprintf(o->reason, sizeof o->reason,
+                 "%ld samples and period %g s: no cycles to split", n,
+                 period);
+        return 0;
+    }
+    long ks = 0, i = 0;
+    double prev = interp(t, eps_d, n, t0, &ks);
+    int nc = 0;
+    for (int k = 1; k <= max; k++) {
+        const double ta = t0 + (k - 1) * period, tb = t0 + k * period;
+        if (tb > t[n - 1] + tol)
+            break;
+        while (i < n && t[i] <= ta)
+            i++;
+        const double end = interp(t, eps_d, n, tb, &ks);
+        cyc[nc].index = k;
+        cyc[nc].strain_end = end;
+        cyc[nc].strain_increment = end - prev;
+        cyc[nc].loop_area = loop_work(t, eps_d, sigma_d, n, ta, tb, i);
+        prev = end;
+        nc++;
+    }
+    o->n = nc;
+    verdict(cyc, nc, o);
+    return nc;
+}

@@ -1,0 +1,108 @@
+/* Mohr circles and the flow function (seed 001 Figs. 5 and 7).
+ *
+ * A circle of principal stresses sigma1 >= sigma3 (compression positive)
+ * has centre s = (s1 + s3)/2 and radius t = (s1 - s3)/2. The straight
+ * line tau = c + sigma tan phi touches it when the distance from the
+ * centre to the line equals the radius, t = c cos phi + s sin phi. This
+ * is linear in A = c cos phi and B = sin phi, so the common tangent of
+ * several circles is a least-squares line of t against s:
+ * sin phi = B, c = A / cos phi.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "analysis/analysis.h"
+
+#define DEG (180.0 / M_PI)
+
+double dem_mohr_sin_phi(double sigma1, double sigma3)
+{
+    const double sum = sigma1 + sigma3;
+    return sum > 0.0 ? (sigma1 - sigma3) / sum : NAN;
+}
+
+static int through_origin(const double *s, const double *t, long n,
+                          struct dem_mohr_fit *o)
+{
+    double st = 0.0, ss = 0.0, tt = 0.0;
+    for (long i = 0; i < n; i++) {
+        st += s[i] * t[i];
+        ss += s[i] * s[i];
+        tt += t[i] * t[i];
+    }
+    if (!(ss > 0.0)) {
+        snprintf(o->reason, sizeof o->reason,
+                 "every circle is centred at zero stress");
+        return 0;
+    }
+    o->sin_phi = st / ss;
+    o->c = 0.0;
+    double sse = 0.0;
+    for (long i = 0; i < n; i++) {
+        const double r = t[i] - o->sin_phi * s[i];
+        sse += r * r;
+    }
+    o->rms = sqrt(sse / (double)n);
+    /* R^2 about zero, the model having no intercept; undefined for one
+     * circle, which the line always touches */
+    o->r2 = n > 1 && tt > 0.0 ? 1.0 - sse / tt : NAN;
+    return 1;
+}
+
+int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
+                 int cohesion, struct dem_mohr_fit *o)
+{
+    o->ok = 0;
+    o->n = n;
+    o->sin_phi = o->phi_deg = o->c = o->r2 = o->rms = NAN;
+    o->reason[0] = '\0';
+    if (n < 1 || (cohesion && n < 2)) {
+        snprintf(o->reason, sizeof o->reason,
+                 "%ld Mohr circle(s): a tangent with cohesion needs at "
+                 "least 2",
+                 n);
+        return DEM_OK;
+    }
+    double *s = malloc(2 * (size_t)n * sizeof *s);
+    if (!s)
+        return DEM_ENOMEM;
+    double *t = s + n;
+    for (long i = 0; i < n; i++) {
+        s[i] = 0.5 * (sigma1[i] + sigma3[i]);
+        t[i] = 0.5 * fabs(sigma1[i] - sigma3[i]);
+    }
+    int fitted = 0;
+    if (cohesion) {
+        struct dem_linfit f;
+        if (dem_linfit(s, t, n, &f) == DEM_OK) {
+            o->sin_phi = f.b;
+            o->c = f.a; /* A = c cos phi; divided below */
+            o->r2 = f.r2;
+            o->rms = f.rms;
+            fitted = 1;
+        } else {
+            snprintf(o->reason, sizeof o->reason,
+                     "all circles have the same centre: the tangent is "
+                     "undetermined");
+        }
+    } else {
+        fitted = through_origin(s, t, n, o);
+    }
+    free(s);
+    if (!fitted)
+        return DEM_OK;
+    if (!(fabs(o->sin_phi) < 1.0)) {
+        snprintf(o->reason, sizeof o->reason,
+                 "fitted sin phi = %.4g is not below 1: the circles have "
+                 "no common tangent of a Mohr-Coulomb material",
+                 o->sin_phi);
+        o->sin_phi = o->c = NAN;
+        return DEM_OK;
+    }
+    const double phi = asin(o->sin_phi);
+    o->c /= cos(phi);
+    o->phi_deg = phi * DEG;
+    o->ok = 1;
+    return DEM_OK;
+}

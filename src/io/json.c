@@ -1,0 +1,140 @@
+#include "io/json.h"
+
+#include <math.h>
+
+void dem__json_write_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        switch (*p) {
+        case '"':
+            fputs("\\\"", f);
+            break;
+        case '\\':
+            fputs("\\\\", f);
+            break;
+        case '\n':
+            fputs("\\n", f);
+            break;
+        case '\r':
+            fputs("\\r", f);
+            break;
+        case '\t':
+            fputs("\\t", f);
+            break;
+        default:
+            if (*p < 0x20)
+                fprintf(f, "\\u%04x", *p);
+            else
+                fputc(*p, f); /* UTF-8 passes through unchanged */
+        }
+    }
+    fputc('"', f);
+}
+
+/* Separator, line break and indentation before an item, then its key. */
+static void item(struct dem__json *j, const char *key)
+{
+    const int d = j->depth - 1;
+    if (j->count[d]++)
+        fputc(',', j->f);
+    if (j->compact[d]) {
+        if (j->count[d] > 1)
+            fputc(' ', j->f);
+    } else {
+        fputc('\n', j->f);
+        for (int k = 0; k <= d; k++)
+            fputs("  ", j->f);
+    }
+    if (key) {
+        dem__json_write_string(j->f, key);
+        fputs(": ", j->f);
+    }
+}
+
+static void open_container(struct dem__json *j, const char *key, int compact,
+                           char c)
+{
+    item(j, key);
+    fputc(c, j->f);
+    if (j->depth < DEM_JSON_DEPTH) {
+        /* inside a compact container everything stays on its line */
+        j->compact[j->depth] = compact || j->compact[j->depth - 1];
+        j->count[j->depth] = 0;
+        j->close[j->depth] = c == '[' ? ']' : '}';
+        j->depth++;
+    }
+}
+
+void dem__json_begin(struct dem__json *j, FILE *f)
+{
+    j->f = f;
+    j->depth = 1;
+    j->count[0] = 0;
+    j->compact[0] = 0;
+    j->close[0] = '}';
+    fputc('{', f);
+}
+
+void dem__json_end(struct dem__json *j)
+{
+    dem__json_close(j);
+    fputc('\n', j->f);
+}
+
+void dem__json_object(struct dem__json *j, const char *key, int compact)
+{
+    open_container(j, key, compact, '{');
+}
+
+void dem__json_array(struct dem__json *j, const char *key, int compact)
+{
+    open_container(j, key, compact, '[');
+}
+
+void dem__json_close(struct dem__json *j)
+{
+    if (j->depth <= 0)
+        return;
+    const int d = j->depth - 1;
+    if (j->count[d] && !j->compact[d]) {
+        fputc('\n', j->f);
+        for (int k = 0; k < d; k++)
+            fputs("  ", j->f);
+    }
+    fputc(j->close[d], j->f);
+    j->depth--;
+}
+
+void dem__json_number(struct dem__json *j, const char *key, double v)
+{
+    item(j, key);
+    if (isfinite(v))
+        fprintf(j->f, "%.10g", v);
+    else
+        fputs("null", j->f);
+}
+
+void dem__json_int(struct dem__json *j, const char *key, long v)
+{
+    item(j, key);
+    fprintf(j->f, "%ld", v);
+}
+
+void dem__json_string(struct dem__json *j, const char *key, const char *s)
+{
+    item(j, key);
+    dem__json_write_string(j->f, s);
+}
+
+void dem__json_null(struct dem__json *j, const char *key)
+{
+    item(j, key);
+    fputs("null", j->f);
+}
+
+void dem__json_bool(struct dem__json *j, const char *key, int v)
+{
+    item(j, key);
+    fputs(v ? "true" : "false", j->f);
+}

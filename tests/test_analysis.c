@@ -1,0 +1,721 @@
+/* Analysis (src/analysis): every function against a curve with a known
+ * answer, then dem_analyze end to end on run folders written here. */
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "testutil.h"
+
+#include "analysis/analysis.h"
+#include "io/json.h"
+#include "measure/measure.h"
+
+#define DEG (180.0 / M_PI)
+
+static char tmpdir[64];
+
+static int make_tmpdir(void **state)
+{
+    (void)state;
+    strcpy(tmpdir, "/tmp/dembox_analysis_XXXXXX");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int remove_tmpdir(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+/* Deterministic noise, uniform in [-1, 1]. */
+static double noise(uint64_t *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*s >> 11) / (double)(1ULL << 52) - 1.0;
+}
+
+/* sigma1 of a Mohr-Coulomb material at sigma3. */
+static double mc_sigma1(double s3, double phi, double c)
+{
+    const double sp = sin(phi);
+    return s3 * (1.0 + sp) / (1.0 - sp) + 2.0 * c * cos(phi) / (1.0 - sp);
+}
+
+static void mohr_fit_recovers_friction_and_cohesion(void **state)
+{
+    (void)state;
+    const double phi = 30.5 / DEG, c = 80.0;
+    const double s3[] = {100.0, 250.0, 500.0, 1000.0, 2000.0};
+    double s1[5];
+    for (int k = 0; k < 5; k++)
+        s1[k] = mc_sigma1(s3[k], phi, c);
+    struct dem_mohr_fit f;
+    assert_int_equal(dem_mohr_fit(s1, s3, 5, 1, &f), 0);
+    assert_true(f.ok);
+    assert_close(f.phi_deg, 30.5, 1e-6);
+    assert_close(f.c, c, 1e-6);
+    assert_close(f.r2, 1.0, 1e-12);
+    assert_close(f.rms, 0.0, 1e-9);
+}
+
+static void mohr_fit_without_cohesion_passes_origin(void **state)
+{
+    (void)state;
+    const double phi = 13.0 / DEG;
+    const double s3[] = {200.0, 500.0};
+    double s1[2] = {mc_sigma1(s3[0], phi, 0.0), mc_sigma1(s3[1], phi, 0.0)};
+    struct dem_mohr_fit f;
+    assert_int_equal(dem_mohr_fit(s1, s3, 2, 0, &f), 0);
+    assert_true(f.ok);
+    assert_close(f.phi_deg, 13.0, 1e-9);
+    assert_close(f.c, 0.0, 0.0);
+    /* one circle: its own sin phi */
+    assert_int_equal(dem_mohr_fit(s1, s3, 1, 0, &f), 0);
+    assert_true(f.ok);
+    assert_close(f.sin_phi, dem_mohr_sin_phi(s1[0], s3[0]), 1e-14);
+    /* one circle cannot fix a cohesion */
+    assert_int_equal(dem_mohr_fit(s1, s3, 1, 1, &f), 0);
+    assert_false(f.ok);
+    assert_non_null(strstr(f.reason, "at least 2"));
+}
+
+/* Stress ratio y = 0.4 + 0.2 x e^(1-x), x = eps/0.02: a peak of exactly
+ * 0.6 at eps = 0.02 that relaxes towards the plateau 0.4. */
+static double ratio_curve(double eps)
+{
+    const double x = eps / 0.02;
+    return 0.4 + 0.2 * x * exp(1.0 - x);
+}
+
+static void peak_and_plateau_of_noisy_ratio(void **state)
+{
+    (void)state;
+    enum { N = 2001 };
+    static double e[N], y[N];
+    uint64_t seed = 7;
+    for (int i = 0; i < N; i++) {
+        e[i] = 0.2 * i / (N - 1);
+        y[i] = ratio_curve(e[i]) + 0.005 * noise(&seed);
+    }
+    const long half = dem_peak_smoothing(N);
+    assert_int_equal(half, 20);
+    struct dem_peak pk;
+    assert_int_equal(dem_peak_find(e, y, N, half, &pk), 0);
+    assert_true(pk.ok);
+    assert_close(pk.value, 0.6, 2e-3);
+    assert_close(pk.strain, 0.02, 2e-3);
+    struct dem_critical cs;
+    assert_int_equal(dem_critical_find(e, y, N, 0.25, 0.1, &cs), 0);
+    assert_true(cs.ok);
+    assert_close(cs.strain_from, 0.15, 1e-3);
+    /* the tail of the bump adds ~1e-3 to the plateau 0.4 */
+    assert_close(cs.value, 0.4, 2e-3);
+    assert_true(fabs(cs.drift) < 0.1);
+}
+
+static void too_short_run_has_no_peak(void **state)
+{
+    (void)state;
+    enum { N = 300 };
+    double e[N], y[N];
+    uint64_t seed = 3;
+    for (int i = 0; i < N; i++) {
+        /* a ratio 0.6 x e^(1-x), x = eps/0.02, that stops halfway up */
+        e[i] = 0.01 * i / (N - 1);
+        const double x = e[i] / 0.02;
+        y[i] = 0.6 * x * exp(1.0 - x) + 1e-4 * noise(&seed);
+    }
+    struct dem_peak pk;
+    assert_int_equal(dem_peak_find(e, y, N, dem_peak_smoothing(N), &pk), 0);
+    assert_false(pk.ok);
+    assert_true(isnan(pk.value));
+    assert_non_null(strstr(pk.reason, "still rises"));
+    /* nor is its end a plateau */
+    struct dem_critical cs;
+    assert_int_equal(dem_critical_find(e, y, N, 0.25, 0.1, &cs), 0);
+    assert_false(cs.ok);
+    assert_non_null(strstr(cs.reason, "no plateau"));
+    /* and a handful of samples is too few for either */
+    assert_int_equal(dem_peak_find(e, y, 3, 1, &pk), 0);
+    assert_false(pk.ok);
+    assert_non_null(strstr(pk.reason, "too few"));
+}
+
+static void smoothing_keeps_a_line_and_its_ends(void **state)
+{
+    (void)state;
+    double y[7], s[7];
+    for (int i = 0; i < 7; i++)
+        y[i] = 2.0 * i;
+    dem_smooth(y, 7, 2, s);
+    for (int i = 2; i < 5; i++)
+        assert_close(s[i], y[i], 1e-14);
+    assert_close(s[0], 2.0, 1e-14); /* mean of 0, 2, 4 */
+    assert_close(s[6], 10.0, 1e-14);
+}
+
+/* eps_v(eps): slope -0.59 up to 0.02, turning linearly to +0.8 by 0.04,
+ * then +0.8: the seed 001 numbers with friction. */
+static double eps_v_curve(double x)
+{
+    const double s0 = -0.59, s1 = 0.8, a = 0.02, b = 0.04;
+    if (x <= a)
+        return s0 * x;
+    const double k = (s1 - s0) / (b - a); /* curvature of the turn */
+    if (x <= b)
+        return s0 * x + 0.5 * k * (x - a) * (x - a);
+    return s0 * b + 0.5 * k * (b - a) * (b - a) + s1 * (x - b);
+}
+
+static void volumetric_slopes_of_a_known_curve(void **state)
+{
+    (void)state;
+    enum { N = 1001 };
+    static double e[N], v[N];
+    for (int i = 0; i < N; i++) {
+        e[i] = 0.1 * i / (N - 1);
+        v[i] = eps_v_curve(e[i]);
+    }
+    struct dem_slopes sl;
+    dem_slopes_volumetric(e, v, N, dem_peak_smoothing(N), 0.25, 100, &sl);
+    assert_true(sl.initial_ok);
+    assert_true(sl.dilatant_ok);
+    assert_close(sl.initial, -0.59, 1e-9);
+    assert_close(sl.dilatant, 0.8, 1e-9);
+    /* the minimum: slope -0.59 + k (x - a) = 0 */
+    assert_close(e[sl.min_index], 0.02 + 0.59 / ((0.8 + 0.59) / 0.02), 2e-4);
+    assert_true(sl.dilatant_strain > 0.04);
+
+    /* compaction only: no dilatant part */
+    for (int i = 0; i < N; i++)
+        v[i] = -0.59 * e[i];
+    dem_slopes_volumetric(e, v, N, 10, 0.25, 100, &sl);
+    assert_true(sl.initial_ok);
+    assert_false(sl.dilatant_ok);
+    assert_non_null(strstr(sl.dilatant_reason, "no dilatant part"));
+}
+
+static void poisson_and_dilatancy_formulas(void **state)
+{
+    (void)state;
+    /* 3D triaxial, constant lateral stress: eps_v = -(1 - 2 nu) eps_a */
+    assert_close(dem_poisson_from_slope(-0.59, 3), 0.205, 1e-12);
+    assert_close(dem_poisson_from_slope(-(1.0 - 2.0 * 0.3), 3), 0.3, 1e-12);
+    /* 2D disc packing: eps_v = -(1 - nu) eps_a */
+    assert_close(dem_poisson_from_slope(-0.59, 2), 0.41, 1e-12);
+    /* plane strain: eps_v = -(1 - 2 nu)/(1 - nu) eps_a */
+    const double nu = 0.3, s = -(1.0 - 2.0 * nu) / (1.0 - nu);
+    assert_close(dem_poisson_plane_strain(s), nu, 1e-12);
+    /* beyond incompressibility there is no elastic Poisson ratio */
+    assert_true(isnan(dem_poisson_from_slope(0.1, 3)));
+    /* bulk moduli from E and nu */
+    assert_close(dem_bulk_modulus(3.0, 0.25, 3), 2.0, 1e-12);
+    assert_close(dem_bulk_modulus(3.0, 0.25, 2), 2.0, 1e-12);
+    /* Vermeer & de Borst: sin psi = s/(2 + s) */
+    assert_close(dem_dilatancy_angle_deg(0.8), asin(0.8 / 2.8) * DEG, 1e-12);
+    assert_close(dem_dilatancy_angle_deg(0.0), 0.0, 1e-14);
+    /* a Mohr-Coulomb flow with psi: s = 2 sin psi/(1 - sin psi) */
+    const double sp = sin(12.0 / DEG);
+    assert_close(dem_dilatancy_angle_deg(2.0 * sp / (1.0 - sp)), 12.0, 1e-10);
+}
+
+static void void_ratio_fit_recovers_e0_and_n(void **state)
+{
+    (void)state;
+    const double e0 = 0.27, n = 0.42, hs = 1e5;
+    const double p[] = {100.0, 250.0, 500.0, 1000.0, 2000.0, 5000.0};
+    double e[6];
+    for (int k = 0; k < 6; k++)
+        e[k] = e0 - pow(p[k] / hs, n);
+    struct dem_voidfit f;
+    assert_int_equal(dem_voidfit(p, e, 6, hs, &f), 0);
+    assert_true(f.ok);
+    assert_close(f.e0, e0, 1e-6);
+    assert_close(f.n, n, 1e-6);
+    assert_close(f.r2, 1.0, 1e-9);
+    /* two pressures cannot fix two parameters and a shape */
+    assert_int_equal(dem_voidfit(p, e, 2, hs, &f), 0);
+    assert_false(f.ok);
+    assert_non_null(strstr(f.reason, "3 or more"));
+}
+
+/* A cyclic stage starting at t0: eps_D grows by inc[k-1] during cycle k
+ * with a smooth (1 - cos)/2 shape, plus an elastic excursion that closes
+ * at the end of every cycle; sigma_D follows the seed's cosine. */
+static long make_cycles(double t0, const double *inc, int ncyc, int per,
+                        double *t, double *ed, double *sd)
+{
+    long n = 0;
+    double acc = 0.0;
+    for (int k = 0; k < ncyc; k++) {
+        for (int i = k == 0 ? 0 : 1; i <= per; i++) {
+            const double ph = (double)i / per;
+            t[n] = t0 + k + ph; /* period 1 s */
+            ed[n] = acc + inc[k] * 0.5 * (1.0 - cos(M_PI * ph)) +
+                    2e-3 * sin(M_PI * ph) * sin(M_PI * ph);
+            sd[n] = 2.0 / 3.0 * 100.0 * (1.0 - cos(2.0 * M_PI * ph));
+            n++;
+        }
+        acc += inc[k];
+    }
+    return n;
+}
+
+static void ratchet_increments_recovered(void **state)
+{
+    (void)state;
+    enum { C = 30, PER = 50 };
+    static double inc[C], t[C * PER + 1], ed[C * PER + 1], sd[C * PER + 1];
+    for (int k = 0; k < C; k++)
+        inc[k] = 1e-3 * (1.0 + 1.0 / (k + 1));
+    const long n = make_cycles(0.37, inc, C, PER, t, ed, sd);
+    struct dem_cycle cyc[C];
+    struct dem_cycles sum;
+    assert_int_equal(dem_cycles_analyze(t, ed, sd, n, 0.37, 1.0, 1e-6, C,
+                                        cyc, &sum),
+                     C);
+    double acc = 0.0;
+    for (int k = 0; k < C; k++) {
+        acc += inc[k];
+        assert_int_equal(cyc[k].index, k + 1);
+        assert_close(cyc[k].strain_increment, inc[k], 1e-12);
+        assert_close(cyc[k].strain_end, acc, 1e-12);
+    }
+    assert_int_equal(sum.verdict, DEM_VERDICT_RATCHETING);
+    assert_int_equal(sum.late_count, 10);
+    assert_true(sum.ratio > 0.5);
+    assert_non_null(strstr(sum.reason, "above"));
+}
+
+static void shakedown_recognised(void **state)
+{
+    (void)state;
+    enum { C = 30, PER = 50 };
+    static double inc[C], t[C * PER + 1], ed[C * PER + 1], sd[C * PER + 1];
+    for (int k = 0; k < C; k++)
+        inc[k] = 1e-3 * pow(0.5, k + 1);
+    const long n = make_cycles(0.0, inc, C, PER, t, ed, sd);
+    struct dem_cycle cyc[C];
+    struct dem_cycles sum;
+    assert_int_equal(
+        dem_cycles_analyze(t, ed, sd, n, 0.0, 1.0, 1e-6, C, cyc, &sum), C);
+    assert_close(cyc[0].strain_increment, 5e-4, 1e-12);
+    assert_close(cyc[4].strain_increment, 1e-3 / 32.0, 1e-12);
+    assert_int_equal(sum.verdict, DEM_VERDICT_SHAKEDOWN);
+
+    /* fewer than 3 cycles: no verdict; a cut last cycle does not count */
+    assert_int_equal(dem_cycles_analyze(t, ed, sd, 2 * PER + 10, 0.0, 1.0,
+                                        1e-6, C, cyc, &sum),
+                     2);
+    assert_int_equal(sum.verdict, DEM_VERDICT_NONE);
+    assert_non_null(strstr(sum.reason, "at least 3"));
+}
+
+static void loop_area_of_an_ellipse(void **state)
+{
+    (void)state;
+    /* eps_D = a sin(w t), sigma_D = b cos(w t): the closed integral of
+     * sigma_D d eps_D per cycle is pi a b */
+    enum { PER = 400, C = 3, N = C * PER + 1 };
+    static double t[N], ed[N], sd[N];
+    const double a = 2e-3, b = 50.0;
+    for (int i = 0; i < N; i++) {
+        t[i] = (double)i / PER;
+        ed[i] = a * sin(2.0 * M_PI * t[i]);
+        sd[i] = b * cos(2.0 * M_PI * t[i]);
+    }
+    struct dem_cycle cyc[C];
+    struct dem_cycles sum;
+    assert_int_equal(
+        dem_cycles_analyze(t, ed, sd, N, 0.0, 1.0, 1e-9, C, cyc, &sum), C);
+    for (int k = 0; k < C; k++) {
+        assert_rel(cyc[k].loop_area, M_PI * a * b, 1e-4);
+        assert_close(cyc[k].strain_increment, 0.0, 1e-15);
+    }
+    /* boundaries between samples are interpolated: a shifted start */
+    assert_int_equal(
+        dem_cycles_analyze(t, ed, sd, N, 0.1234, 1.0, 1e-9, C, cyc, &sum), 2);
+    assert_rel(cyc[0].loop_area, M_PI * a * b, 1e-3);
+}
+
+static void write_text(const char *dir, const char *name, const char *text)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+static void table_reads_columns_by_name(void **state)
+{
+    (void)state;
+    write_text(tmpdir, "t.csv", "t,a,b\n0,1,2\n0.5,3e-3,-4\n\n1,5,6\r\n");
+    char path[256];
+    snprintf(path, sizeof path, "%s/t.csv", tmpdir);
+    struct dem_table tb;
+    struct dem_error err = {0, ""};
+    assert_int_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
+    assert_int_equal(tb.nrow, 3);
+    assert_int_equal(tb.ncol, 3);
+    const double *b = dem_table_column(&tb, "b", path, &err);
+    assert_non_null(b);
+    assert_close(b[1], -4.0, 0.0);
+    assert_close(b[2], 6.0, 0.0);
+    assert_null(dem_table_column(&tb, "sigma_yy", path, &err));
+    assert_non_null(strstr(err.msg, "no column 'sigma_yy'"));
+    dem_table_free(&tb);
+
+    /* only the wanted columns are kept; a junk field elsewhere is skipped */
+    write_text(tmpdir, "w.csv", "t,a,b\n0,junk,2\n1,junk,3\n");
+    snprintf(path, sizeof path, "%s/w.csv", tmpdir);
+    const char *const want[] = {"b", "t", "zz"};
+    assert_int_equal(dem_table_read(&tb, path, want, 3, &err), 0);
+    assert_int_equal(tb.ncol, 2);
+    assert_int_equal(dem_table_find(&tb, "a"), -1);
+    assert_close(dem_table_column(&tb, "b", path, &err)[1], 3.0, 0.0);
+    dem_table_free(&tb);
+
+    write_text(tmpdir, "bad.csv", "t,a,b\n0,1,2\n0.5,x3,4\n");
+    snprintf(path, sizeof path, "%s/bad.csv", tmpdir);
+    assert_int_not_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
+    assert_non_null(strstr(err.msg, "bad.csv:3: column 2 (a)"));
+    write_text(tmpdir, "short.csv", "t,a,b\n0,1\n");
+    snprintf(path, sizeof path, "%s/short.csv", tmpdir);
+    assert_int_not_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
+    assert_non_null(strstr(err.msg, "short.csv:2:"));
+    assert_non_null(strstr(err.msg, "missing: b"));
+    write_text(tmpdir, "long.csv", "t,a\n0,1,2\n");
+    snprintf(path, sizeof path, "%s/long.csv", tmpdir);
+    assert_int_not_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
+    assert_non_null(strstr(err.msg, "long.csv:2: more values"));
+}
+
+static void json_writer_escapes_and_nulls(void **state)
+{
+    (void)state;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    struct dem__json j;
+    dem__json_begin(&j, f);
+    dem__json_number(&j, "a", NAN);
+    dem__json_number(&j, "b", INFINITY);
+    dem__json_string(&j, "s", "say \"hi\"\\\n\x01");
+    dem__json_array(&j, "v", 1);
+    dem__json_number(&j, NULL, 0.5);
+    dem__json_int(&j, NULL, 3);
+    dem__json_close(&j);
+    dem__json_end(&j);
+    fclose(f);
+    assert_non_null(strstr(buf, "\"a\": null"));
+    assert_non_null(strstr(buf, "\"b\": null"));
+    assert_non_null(strstr(buf, "\"s\": \"say \\\"hi\\\"\\\\\\n\\u0001\""));
+    assert_non_null(strstr(buf, "\"v\": [0.5, 3]"));
+    free(buf);
+}
+
+/* ------------------------------------------------ dem_analyze end to end */
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)n + 1);
+    assert_non_null(s);
+    assert_int_equal((long)fread(s, 1, (size_t)n, f), n);
+    s[n] = '\0';
+    fclose(f);
+    return s;
+}
+
+/* The number after "key": at its first occurrence (NaN if null). */
+static double json_get(const char *json, const char *key)
+{
+    char pat[96];
+    snprintf(pat, sizeof pat, "\"%s\": ", key);
+    const char *p = strstr(json, pat);
+    if (!p)
+        fail_msg("summary.json has no key %s", key);
+    p += strlen(pat);
+    return strncmp(p, "null", 4) ? strtod(p, NULL) : NAN;
+}
+
+static void run_dir(char *dir, size_t n, const char *name)
+{
+    snprintf(dir, n, "%s/%s", tmpdir, name);
+    assert_int_equal(mkdir(dir, 0755), 0);
+}
+
+static FILE *open_timeseries(const char *dir, int dim)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/timeseries.csv", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    dem_sample_write_header(f, dim);
+    return f;
+}
+
+/* 2D biaxial: isotropic at 500 N/m, then compression along y with the
+ * stress ratio and eps_v curves above. */
+static void write_biaxial_run(const char *dir)
+{
+    write_text(dir, "config.cfg",
+               "dimension = 2;\n"
+               "time_step = 1.0e-6;\n"
+               "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; "
+               "kc = 0.0; mu = 0.5; };\n"
+               "stages = (\n"
+               "  { type = \"isotropic\"; pressure = 500.0; },\n"
+               "  { type = \"compress\"; axis = \"y\"; strain = 0.1; "
+               "duration = 1.0; pressure = 500.0; }\n"
+               ");\n"
+               "output = { interval = 1.0e-3; };\n");
+    FILE *f = open_timeseries(dir, 2);
+    struct dem_sample s;
+    memset(&s, 0, sizeof s);
+    const double e0 = 0.2;
+    for (int i = 0; i < 20; i++) { /* isotropic: strains of its own */
+        s.t = 1e-3 * (i + 1);
+        s.stage = 0;
+        s.eps[0] = s.eps[1] = 1e-3 * i;
+        s.sigma[0] = s.sigma[1] = 500.0;
+        s.void_ratio = e0;
+        dem_sample_write_row(f, &s, 2);
+    }
+    for (int i = 1; i <= 1000; i++) {
+        const double ea = 0.1 * i / 1000.0;
+        const double r = ratio_curve(ea) - 0.4 * exp(-ea / 0.002);
+        s.t = 0.02 + 1e-3 * i;
+        s.stage = 1;
+        s.eps[1] = ea;
+        s.eps_v = eps_v_curve(ea);
+        s.eps[0] = 1.0 - (1.0 + s.eps_v) / (1.0 - ea);
+        s.sigma[0] = 500.0;
+        s.sigma[1] = 500.0 * (1.0 + r) / (1.0 - r);
+        s.void_ratio = (1.0 + e0) * (1.0 + s.eps_v) - 1.0;
+        s.inertial_number = 1e-4 * sin(M_PI * i / 1000.0);
+        dem_sample_write_row(f, &s, 2);
+    }
+    assert_int_equal(fclose(f), 0);
+}
+
+static void analyze_writes_summary_of_a_biaxial_run(void **state)
+{
+    (void)state;
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "biaxial");
+    write_biaxial_run(dir);
+    struct dem_error err = {0, ""};
+    int rc = dem_analyze(dir, &err);
+    if (rc)
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = slurp(path);
+    assert_non_null(js);
+    static const char *const keys[] = {
+        "\"peak\": {", "\"critical\": {", "\"sin_phi\"", "\"phi_deg\"",
+        "\"strain\"", "\"sigma_axial\"", "\"sigma_lateral\"",
+        "\"poisson_ratio\"", "\"dilatancy_angle_deg\"",
+        "\"volumetric_slope_initial\"", "\"volumetric_slope_dilatant\"",
+        "\"modulus_initial\"", "\"void_ratio_initial\"",
+        "\"void_ratio_critical\"", "\"inertial_number_max\"",
+        "\"dimension\": 2", "\"confining_pressure\": 500",
+        "\"void_ratio_fit\"", "\"criteria\""};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
+        if (!strstr(js, keys[k]))
+            fail_msg("summary.json lacks %s:\n%s", keys[k], js);
+    assert_null(strstr(js, "nan"));
+    assert_null(strstr(js, "inf"));
+    assert_null(strstr(js, "\"cycles\""));
+    /* the values follow from the synthetic curves */
+    assert_close(json_get(js, "volumetric_slope_initial"), -0.59, 1e-6);
+    assert_close(json_get(js, "poisson_ratio"), 0.41, 1e-6);
+    assert_close(json_get(js, "volumetric_slope_dilatant"), 0.8, 1e-6);
+    assert_close(json_get(js, "dilatancy_angle_deg"), asin(0.8 / 2.8) * DEG,
+                 1e-4);
+    assert_close(json_get(js, "void_ratio_initial"), 0.2, 1e-12);
+    assert_close(json_get(js, "inertial_number_max"), 1e-4, 1e-9);
+    const char *pk = strstr(js, "\"peak\": {");
+    assert_close(json_get(pk, "sin_phi"), 0.6, 2e-3);
+    assert_close(json_get(pk, "strain"), 0.02, 2e-3);
+    assert_close(json_get(pk, "sigma_lateral"), 500.0, 1e-9);
+    assert_true(json_get(js, "modulus_initial") > 0.0);
+    /* critical: the mean ratio over the last quarter of the strain */
+    const char *cs = strstr(js, "\"critical\": {");
+    const double from = json_get(cs, "strain_from");
+    assert_close(from, 0.075, 2e-4);
+    double sum = 0.0;
+    int cnt = 0;
+    for (int i = 1; i <= 1000; i++) {
+        const double ea = 0.1 * i / 1000.0;
+        if (ea >= from - 1e-12) {
+            sum += ratio_curve(ea) - 0.4 * exp(-ea / 0.002);
+            cnt++;
+        }
+    }
+    assert_close(json_get(cs, "sin_phi"), sum / cnt, 1e-6);
+    /* one isotropic stage: no e(p) fit, and the reason says so */
+    assert_non_null(strstr(js, "3 or more different pressures"));
+    free(js);
+}
+
+/* 3D triaxial box cycled along x with a known ratchet. */
+static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
+{
+    char cfg[1024];
+    snprintf(cfg, sizeof cfg,
+             "dimension = 3;\n"
+             "stages = (\n"
+             "  { type = \"isotropic\"; pressure = 1000.0; },\n"
+             "  { type = \"cyclic\"; axis = \"x\"; pressure = 1000.0; "
+             "amplitude = 200.0; period = 1.0; cycles = %d; }\n"
+             ");\n"
+             "output = { interval = 0.02; };\n",
+             ncyc);
+    write_text(dir, "config.cfg", cfg);
+    enum { PER = 50 };
+    const long cap = (long)ncyc * PER + 1;
+    double *t = malloc(3 * (size_t)cap * sizeof *t);
+    assert_non_null(t);
+    double *ed = t + cap, *sd = ed + cap;
+    const double t0 = 0.5;
+    const long n = make_cycles(t0, inc, ncyc, PER, t, ed, sd);
+    FILE *f = open_timeseries(dir, 3);
+    struct dem_sample s;
+    memset(&s, 0, sizeof s);
+    s.stage = 0; /* the isotropic stage ends at t0 */
+    s.t = t0;
+    s.sigma[0] = s.sigma[1] = s.sigma[2] = 1000.0;
+    s.void_ratio = 0.6;
+    dem_sample_write_row(f, &s, 3);
+    for (long i = 1; i < n; i++) {
+        s.t = t[i];
+        s.stage = 1;
+        /* split eps_D over the axes: eps_x - (eps_y + eps_z)/2 = eps_D */
+        s.eps[0] = 0.5 * ed[i];
+        s.eps[1] = s.eps[2] = -0.5 * ed[i];
+        s.sigma[0] = 1000.0 + 1.5 * sd[i];
+        dem_sample_write_row(f, &s, 3);
+    }
+    assert_int_equal(fclose(f), 0);
+    free(t);
+}
+
+static void analyze_counts_cycles_of_a_cyclic_run(void **state)
+{
+    (void)state;
+    enum { C = 12 };
+    double inc[C];
+    for (int k = 0; k < C; k++)
+        inc[k] = 1e-3 * (1.0 + 1.0 / (k + 1));
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "cyclic");
+    write_cyclic_run(dir, C, inc);
+    struct dem_error err = {0, ""};
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = slurp(path);
+    assert_non_null(js);
+    assert_non_null(strstr(js, "\"cycles\": ["));
+    assert_non_null(strstr(js, "\"verdict\": \"ratcheting\""));
+    assert_non_null(strstr(js, "\"verdict_criterion\""));
+    assert_non_null(strstr(js, "\"dimension\": 3"));
+    assert_non_null(strstr(js, "\"loading_type\": \"cyclic\""));
+    /* no compression: peak is null with a reason */
+    assert_non_null(strstr(js, "no compress stage"));
+    const char *c5 = strstr(js, "\"index\": 5,");
+    assert_non_null(c5);
+    assert_close(json_get(c5, "strain_increment"), 1.2e-3, 1e-9);
+    assert_close(json_get(js, "cycle_increment_first"), 2e-3, 1e-9);
+    assert_null(strstr(js, "nan"));
+    free(js);
+
+    /* the same run shaking down */
+    for (int k = 0; k < C; k++)
+        inc[k] = 1e-3 * pow(0.5, k + 1);
+    run_dir(dir, sizeof dir, "shakedown");
+    write_cyclic_run(dir, C, inc);
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    js = slurp(path);
+    assert_non_null(js);
+    assert_non_null(strstr(js, "\"verdict\": \"shakedown\""));
+    free(js);
+}
+
+static void analyze_rejects_a_folder_that_is_not_a_run(void **state)
+{
+    (void)state;
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "empty");
+    struct dem_error err = {0, ""};
+    assert_int_not_equal(dem_analyze(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "not a dembox run"));
+    assert_non_null(strstr(err.msg, "config.cfg"));
+    assert_non_null(strstr(err.msg, "timeseries.csv"));
+    write_text(dir, "config.cfg", "dimension = 2;\n");
+    assert_int_not_equal(dem_analyze(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "no timeseries.csv"));
+    assert_null(strstr(err.msg, "config.cfg"));
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    assert_int_equal(access(path, F_OK), -1);
+
+    /* a timeseries without a needed column names it */
+    write_text(dir, "timeseries.csv", "t,stage\n0,0\n");
+    assert_int_not_equal(dem_analyze(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "no column 'eps_v'"));
+
+    /* the command: exit 1 and one line on stderr */
+    const char *bin = getenv("DEMBOX_BIN");
+    if (!bin)
+        skip();
+    char cmd[512], out[160];
+    snprintf(out, sizeof out, "%s/stderr.txt", tmpdir);
+    snprintf(cmd, sizeof cmd, "'%s' analyze '%s/nothing' 2> '%s'", bin,
+             tmpdir, out);
+    const int st = system(cmd);
+    assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
+    char *msg = slurp(out);
+    assert_non_null(msg);
+    assert_non_null(strstr(msg, "no such folder"));
+    assert_non_null(strchr(msg, '\n'));
+    assert_null(strchr(msg, '\n') + 1 < msg + strlen(msg)
+                    ? strchr(strchr(msg, '\n') + 1, '\n')
+                    : NULL);
+    free(msg);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(mohr_fit_recovers_friction_and_cohesion),
+        cmocka_unit_test(mohr_fit_without_cohesion_passes_origin),
+        cmocka_unit_test(peak_and_plateau_of_noisy_ratio),
+        cmocka_unit_test(too_short_run_has_no_peak),
+        cmocka_unit_test(smoothing_keeps_a_line_and_its_ends),
+        cmocka_unit_test(volumetric_slopes_of_a_known_curve),
+        cmocka_unit_test(poisson_and_dilatancy_formulas),
+        cmocka_unit_test(void_ratio_fit_recovers_e0_and_n),
+        cmocka_unit_test(ratchet_increments_recovered),
+        cmocka_unit_test(shakedown_recognised),
+        cmocka_unit_test(loop_area_of_an_ellipse),
+        cmocka_unit_test(table_reads_columns_by_name),
+        cmocka_unit_test(json_writer_escapes_and_nulls),
+        cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
+        cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),
+        cmocka_unit_test(analyze_rejects_a_folder_that_is_not_a_run),
+    };
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
+}
