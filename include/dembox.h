@@ -174,6 +174,9 @@ struct dem_config {
     struct {
         double interval;          /* s; timeseries row interval */
         double snapshot_interval; /* s; VTU snapshot interval; 0 = none */
+        double dump_interval;     /* s; LAMMPS-style text dump interval
+                                     (dump.lammpstrj, read by OVITO);
+                                     0 = none */
     } output;
 };
 

@@ -219,6 +219,10 @@ static const struct key keys[] = {
     {.name = "output.snapshot_interval", .kind = K_DOUBLE,
      TOP(output.snapshot_interval), .def = 0.1, GE(0), .unit = "s",
      .doc = "time between VTU snapshots (0 = none)"},
+    {.name = "output.dump_interval", .kind = K_DOUBLE,
+     TOP(output.dump_interval), .def = 0, GE(0), .unit = "s",
+     .doc = "time between frames of dump.lammpstrj, a LAMMPS-style text "
+            "dump that OVITO reads (0 = none)"},
 
     /* Keys of each element of the stages list. */
     {.name = "type", .kind = K_ENUM, STG(type), .def = DEM_STAGE_ISOTROPIC,

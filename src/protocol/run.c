@@ -15,6 +15,7 @@
 
 #include "core/sim.h"
 #include "io/config.h"
+#include "io/dump.h"
 #include "io/fsutil.h"
 #include "io/particles_csv.h"
 #include "io/plot.h"
@@ -35,6 +36,10 @@ struct run_ctx {
     double *snap_t;
     char **snap_files;
     double next_snap;
+    /* LAMMPS-style dump */
+    FILE *dump;                  /* dump.lammpstrj.part, or NULL */
+    char dump_path[DEM_PATH_MAX];
+    double next_dump;
     /* progress */
     int show_progress;
     double wall_t0, last_show;
@@ -75,6 +80,18 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
     fflush(stderr);
 }
 
+/* The box as [lo, hi]; in 2D z spans the largest particle. */
+static void box_bounds(const struct dem_sim *s, double lo[3], double hi[3])
+{
+    double rmax = 0.0;
+    for (int i = 0; i < s->p.n; i++)
+        rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = a < s->dim ? s->wall[2 * a].pos : -rmax;
+        hi[a] = a < s->dim ? s->wall[2 * a + 1].pos : rmax;
+    }
+}
+
 static int write_snapshot(struct run_ctx *r, struct dem_error *err)
 {
     const struct dem_sim *s = &r->sim;
@@ -89,10 +106,7 @@ static int write_snapshot(struct run_ctx *r, struct dem_error *err)
     if (!rc)
         rc = dem_vtu_write_particles(path, &s->p, err);
     double lo[3], hi[3];
-    for (int a = 0; a < 3; a++) {
-        lo[a] = a < s->dim ? s->wall[2 * a].pos : 0.0;
-        hi[a] = a < s->dim ? s->wall[2 * a + 1].pos : 0.0;
-    }
+    box_bounds(s, lo, hi);
     if (!rc)
         rc = dem_vtu_write_box(boxpath, lo, hi, s->dim, err);
     if (rc)
@@ -205,6 +219,12 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
                 return rc;
             r->next_snap += snap;
         }
+        if (r->dump && s->t + 0.5 * dt >= r->next_dump) {
+            double lo[3], hi[3];
+            box_bounds(s, lo, hi);
+            dem_dump_frame(r->dump, s->step, lo, hi, &s->p);
+            r->next_dump += s->cfg.output.dump_interval;
+        }
         show_progress(r, &st, 0);
         if (last) {
             st.timed_out = by_time;
@@ -242,16 +262,17 @@ static int open_outputs(struct run_ctx *r, const struct dem_config *cfg,
     dem_config_write(cfg, f);
     if (fclose(f) != 0)
         return dem_error_set(err, DEM_EIO, "%s: write failed", path);
-    /* a previous, complete timeseries of this folder no longer belongs
-     * to what is being written now */
-    rc = dem_path_join(path, sizeof path, dir, "timeseries.csv", err);
-    if (rc)
-        return rc;
-    remove(path);
-    rc = dem_path_join(path, sizeof path, dir, "particles_final.csv", err);
-    if (rc)
-        return rc;
-    remove(path);
+    /* the results of an earlier run in this folder no longer belong to
+     * what is being written now */
+    static const char *const stale[] = {
+        "timeseries.csv", "particles_final.csv", "forces_final.csv",
+        "summary.json", "dump.lammpstrj", "particles_unstable.csv"};
+    for (size_t k = 0; k < sizeof stale / sizeof stale[0]; k++) {
+        rc = dem_path_join(path, sizeof path, dir, stale[k], err);
+        if (rc)
+            return rc;
+        remove(path);
+    }
     rc = dem_path_join(r->ts_path, sizeof r->ts_path, dir,
                        "timeseries.csv.part", err);
     if (rc)
@@ -260,18 +281,42 @@ static int open_outputs(struct run_ctx *r, const struct dem_config *cfg,
     if (!r->ts)
         return dem_error_set(err, DEM_EIO, "%s: cannot write", r->ts_path);
     dem_sample_write_header(r->ts, cfg->dim);
+    if (cfg->output.dump_interval > 0) {
+        rc = dem_path_join(r->dump_path, sizeof r->dump_path, dir,
+                           "dump.lammpstrj.part", err);
+        if (rc)
+            return rc;
+        r->dump = fopen(r->dump_path, "w");
+        if (!r->dump)
+            return dem_error_set(err, DEM_EIO, "%s: cannot write",
+                                 r->dump_path);
+    }
+    return DEM_OK;
+}
+
+/* Close a .part file and give it its final name (path without .part). */
+static int commit_part(FILE **f, const char *part, struct dem_error *err)
+{
+    int bad = ferror(*f);
+    bad |= fclose(*f) != 0;
+    *f = 0;
+    if (bad)
+        return dem_error_set(err, DEM_EIO, "%s: write failed", part);
+    char final[DEM_PATH_MAX];
+    size_t n = strlen(part) - strlen(".part");
+    memcpy(final, part, n);
+    final[n] = '\0';
+    if (rename(part, final) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: cannot rename", part);
     return DEM_OK;
 }
 
 static int finish_outputs(struct run_ctx *r, struct dem_error *err)
 {
     char path[DEM_PATH_MAX];
-    int bad = ferror(r->ts);
-    bad |= fclose(r->ts) != 0;
-    r->ts = 0;
-    if (bad)
-        return dem_error_set(err, DEM_EIO, "%s: write failed", r->ts_path);
-    int rc = dem_path_join(path, sizeof path, r->opt->outdir,
+    int rc = r->dump ? commit_part(&r->dump, r->dump_path, err) : DEM_OK;
+    if (!rc)
+        rc = dem_path_join(path, sizeof path, r->opt->outdir,
                            "particles_final.csv", err);
     if (!rc)
         rc = dem_particles_write_csv(&r->sim.p, path, err);
@@ -282,13 +327,8 @@ static int finish_outputs(struct run_ctx *r, struct dem_error *err)
         rc = dem_particles_write_forces_csv(&r->sim.p, path, err);
     if (rc)
         return rc;
-    rc = dem_path_join(path, sizeof path, r->opt->outdir, "timeseries.csv",
-                       err);
-    if (rc)
-        return rc;
-    if (rename(r->ts_path, path) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: cannot rename", r->ts_path);
-    return DEM_OK;
+    /* the timeseries gets its final name last: it marks a finished run */
+    return commit_part(&r->ts, r->ts_path, err);
 }
 
 int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
@@ -313,6 +353,7 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
         if (cfg->output.snapshot_interval > 0)
             rc = write_snapshot(&r, err);
         r.next_snap = cfg->output.snapshot_interval;
+        r.next_dump = 0.0;
     }
     for (int k = 0; !rc && k < cfg->nstages; k++) {
         if (opt->max_steps > 0 && r.sim.step >= opt->max_steps)
@@ -336,6 +377,8 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     }
     if (r.ts)
         fclose(r.ts);
+    if (r.dump)
+        fclose(r.dump);
     for (int k = 0; k < r.nsnap; k++)
         free(r.snap_files[k]);
     free(r.snap_files);
