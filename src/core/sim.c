@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "core/placement.h"
 
@@ -252,7 +253,15 @@ static void walls_drift(struct dem_sim *s, double t_new)
     }
 }
 
-int dem_sim_step(struct dem_sim *s, struct dem_error *err)
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The step without timers. */
+static int step(struct dem_sim *s, struct dem_error *err)
 {
     const double h = 0.5 * s->dt;
     kick(s, h);
@@ -270,4 +279,42 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     kick(s, h);
     walls_kick(s, h);
     return DEM_OK;
+}
+
+/* The same step with each phase timed. */
+static int step_timed(struct dem_sim *s, struct dem_error *err)
+{
+    const double h = 0.5 * s->dt;
+    struct dem_timers *T = &s->timers;
+    double t0 = now();
+    kick(s, h);
+    drift(s, s->dt);
+    double t1 = now();
+    walls_kick(s, h);
+    walls_drift(s, s->t + s->dt);
+    double t2 = now();
+    s->t += s->dt;
+    s->step++;
+    if (needs_rebuild(s)) {
+        int rc = dem_sim_rebuild(s, err);
+        if (rc)
+            return rc;
+    }
+    double t3 = now();
+    dem_sim_forces(s);
+    double t4 = now();
+    kick(s, h);
+    double t5 = now();
+    walls_kick(s, h);
+    double t6 = now();
+    T->integrate += (t1 - t0) + (t5 - t4);
+    T->walls += (t2 - t1) + (t6 - t5);
+    T->neighbor += t3 - t2;
+    T->force += t4 - t3;
+    return DEM_OK;
+}
+
+int dem_sim_step(struct dem_sim *s, struct dem_error *err)
+{
+    return s->timing ? step_timed(s, err) : step(s, err);
 }

@@ -50,6 +50,15 @@ struct dem_contact_sums {
     double max_overlap_ratio;   /* largest delta / radius */
 };
 
+/* Wall-clock seconds spent in each phase of the step (timed only when
+ * dem_sim.timing is set, e.g. by the benchmark). */
+struct dem_timers {
+    double neighbor;  /* rebuild checks and neighbour-list builds */
+    double force;     /* particle-particle and particle-wall forces */
+    double integrate; /* particle kicks and drifts */
+    double walls;     /* wall motion */
+};
+
 struct dem_sim {
     struct dem_config cfg;      /* the validated config this run started from */
     int dim;                    /* 2 or 3 */
@@ -70,6 +79,8 @@ struct dem_sim {
     long nbuild;                /* neighbour-list builds so far */
     int measure;                /* 1: the next force pass fills sums */
     struct dem_contact_sums sums;
+    int timing;                 /* 1: accumulate timers */
+    struct dem_timers timers;   /* s; time per phase */
 };
 
 /* Build the simulation from a validated config: particles placed, walls
