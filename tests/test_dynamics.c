@@ -2,6 +2,9 @@
  * contacts, and 2D runs that never leave the plane. */
 #include "testutil.h"
 
+#include <omp.h>
+#include <stdlib.h>
+
 #include "core/rng.h"
 #include "measure/measure.h"
 
@@ -37,10 +40,10 @@ static double total_energy(struct dem_sim *s)
 }
 
 /* Frictionless, undamped elastic spheres in a closed box: total energy
- * (kinetic + elastic) is conserved over thousands of collisions. */
-static void energy_conserved_without_damping(void **state)
+ * (kinetic + elastic) is conserved over thousands of collisions, also when
+ * the particles are re-ordered at every rebuild. */
+static void energy_conserved(int reorder)
 {
-    (void)state;
     struct dem_config c;
     test_config(&c, 3);
     c.contact.mu_s = c.contact.mu_d = 0.0;
@@ -49,6 +52,7 @@ static void energy_conserved_without_damping(void **state)
     struct dem_sim s;
     const int nside = 6;
     test_sim(&s, &c, nside * nside * nside, 0.0, 0.1);
+    s.reorder = reorder;
     gas(&s, 3, nside, 7e-3, 0.5, 5);
     test_ready(&s);
     double e0 = total_energy(&s);
@@ -63,6 +67,13 @@ static void energy_conserved_without_damping(void **state)
     assert_true(contacts > 500);
     assert_rel(e1, e0, 2e-3);
     dem_sim_destroy(&s);
+}
+
+static void energy_conserved_without_damping(void **state)
+{
+    (void)state;
+    energy_conserved(0);
+    energy_conserved(1);
 }
 
 /* 2D: z, v_z, w_x and w_y stay exactly zero, with friction, rotation,
@@ -97,11 +108,61 @@ static void two_d_stays_in_plane(void **state)
     dem_sim_destroy(&s);
 }
 
+/* Positions and velocities by particle id after a frictional, damped run
+ * with walls and re-ordering, on the given number of threads. */
+static void run_threads(int threads, double *out, int n_out)
+{
+    omp_set_num_threads(threads);
+    struct dem_config c;
+    test_config(&c, 3);
+    c.contact.gamma_n = 0.05;
+    c.contact.gamma_t = 0.01;
+    c.contact.wall_mu = 0.2;
+    c.damping.gamma_b = 0.01;
+    c.gravity[2] = -9.81;
+    c.time_step = 2e-5;
+    struct dem_sim s;
+    const int nside = 8;
+    test_sim(&s, &c, nside * nside * nside, 0.0, 0.1);
+    s.reorder = 1;
+    gas(&s, 3, nside, 6e-3, 0.3, 9);
+    test_ready(&s);
+    dem_wall_set_stress(&s.wall[5], 0.05, 5.0, 0.0, 200.0, 0.0, 0.0, 0.0);
+    test_step(&s, 3000);
+    assert_true(s.nbuild > 3);
+    for (int i = 0; i < s.p.n && 6 * s.p.id[i] + 5 < n_out; i++) {
+        double *o = out + 6 * s.p.id[i];
+        o[0] = s.p.x[i];
+        o[1] = s.p.y[i];
+        o[2] = s.p.z[i];
+        o[3] = s.p.wx[i];
+        o[4] = s.p.wy[i];
+        o[5] = s.p.wz[i];
+    }
+    dem_sim_destroy(&s);
+    omp_set_num_threads(1);
+}
+
+/* The force sums run in a fixed order (contact/forces.c), so one and two
+ * threads give the same run bit for bit. */
+static void threads_give_identical_results(void **state)
+{
+    (void)state;
+    const int n = 6 * 512;
+    double *a = calloc((size_t)n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
+    run_threads(1, a, n);
+    run_threads(2, b, n);
+    assert_memory_equal(a, b, (size_t)n * sizeof *a);
+    free(a);
+    free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(energy_conserved_without_damping),
         cmocka_unit_test(two_d_stays_in_plane),
+        cmocka_unit_test(threads_give_identical_results),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

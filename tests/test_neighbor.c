@@ -13,13 +13,14 @@ static int cmp_pair(const void *a, const void *b)
     return (*x > *y) - (*x < *y);
 }
 
-static void check_same_pairs(int dim)
+static void check_same_pairs(int dim, int reorder)
 {
     struct dem_config c;
     test_config(&c, dim);
     struct dem_sim s;
     const int n = 1500;
     test_sim(&s, &c, n, 0.0, 0.2);
+    s.reorder = reorder;
     struct dem_rng g;
     dem_rng_seed(&g, 99 + dim);
     for (int i = 0; i < n; i++) {
@@ -35,7 +36,7 @@ static void check_same_pairs(int dim)
         int *bi, *bj;
         int nb = dem_pairs_brute(&s.p, dim, s.skin, &bi, &bj);
         assert_true(nb > 100);
-        const struct dem_pair_list *L = &s.pairs.cur;
+        const struct dem_contact_list *L = &s.pairs.cur;
         assert_int_equal(L->n, nb);
         long *a = malloc((size_t)nb * sizeof *a), *b = malloc((size_t)nb * sizeof *b);
         for (int k = 0; k < nb; k++) {
@@ -67,13 +68,75 @@ static void check_same_pairs(int dim)
 static void cells_find_brute_force_pairs_3d(void **state)
 {
     (void)state;
-    check_same_pairs(3);
+    check_same_pairs(3, 0);
+    check_same_pairs(3, 1);
 }
 
 static void cells_find_brute_force_pairs_2d(void **state)
 {
     (void)state;
-    check_same_pairs(2);
+    check_same_pairs(2, 0);
+    check_same_pairs(2, 1);
+}
+
+/* Re-ordering the particles in cell order keeps every contact's history:
+ * the spring of each pair, found by the particles' ids, is unchanged by a
+ * rebuild that permutes the particles. */
+static void history_survives_reordering(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_sim s;
+    const int n = 400;
+    test_sim(&s, &c, n, 0.0, 0.1);
+    struct dem_rng g;
+    dem_rng_seed(&g, 5);
+    for (int i = 0; i < n; i++)
+        test_add(&s, 0.1 * dem_rng_uniform(&g), 0.1 * dem_rng_uniform(&g),
+                 0.1 * dem_rng_uniform(&g), 6e-3);
+    for (int i = 0; i < n; i++) {
+        s.p.vx[i] = 0.01 * (dem_rng_uniform(&g) - 0.5);
+        s.p.vy[i] = 0.01 * (dem_rng_uniform(&g) - 0.5);
+    }
+    test_ready(&s);
+    test_step(&s, 20);
+    /* springs by (id_i, id_j) before */
+    const struct dem_contact_list *L = &s.pairs.cur;
+    int np = L->n, active = 0;
+    long *key = malloc((size_t)np * sizeof *key);
+    double *spring = malloc((size_t)np * sizeof *spring);
+    for (int k = 0; k < np; k++) {
+        int a = s.p.id[L->i[k]], b = s.p.id[L->j[k]];
+        key[k] = a < b ? (long)a * n + b : (long)b * n + a;
+        spring[k] = L->xi_x[k];
+        active += L->state[k] != 0;
+    }
+    assert_true(active > 20);
+    s.reorder = 1;
+    struct dem_error err;
+    assert_int_equal(dem_sim_rebuild(&s, &err), 0);
+    /* the order changed ... */
+    int moved = 0;
+    for (int i = 0; i < n; i++)
+        moved += s.p.id[i] != i;
+    assert_true(moved > n / 2);
+    /* ... the springs did not */
+    assert_int_equal(L->n, np);
+    int found = 0;
+    for (int k = 0; k < L->n; k++) {
+        int a = s.p.id[L->i[k]], b = s.p.id[L->j[k]];
+        long kk = a < b ? (long)a * n + b : (long)b * n + a;
+        for (int q = 0; q < np; q++)
+            if (key[q] == kk) {
+                assert_true(L->xi_x[k] == spring[q]);
+                found++;
+            }
+    }
+    assert_int_equal(found, np);
+    free(key);
+    free(spring);
+    dem_sim_destroy(&s);
 }
 
 /* A contact's tangential spring and dmax are carried over a rebuild. */
@@ -91,7 +154,7 @@ static void history_survives_rebuild(void **state)
     s.p.vy[0] = 1e-3;
     test_ready(&s);
     test_step(&s, 10);
-    const struct dem_pair_list *L = &s.pairs.cur;
+    const struct dem_contact_list *L = &s.pairs.cur;
     assert_int_equal(L->n, 2);
     double xi = L->xi_y[0];
     assert_true(xi != 0.0);
@@ -109,6 +172,7 @@ int main(void)
         cmocka_unit_test(cells_find_brute_force_pairs_3d),
         cmocka_unit_test(cells_find_brute_force_pairs_2d),
         cmocka_unit_test(history_survives_rebuild),
+        cmocka_unit_test(history_survives_reordering),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

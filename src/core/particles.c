@@ -108,3 +108,30 @@ int dem_particles_add(struct dem_particles *p, double x, double y, double z,
     p->fsum[i] = 0.0;
     return i;
 }
+
+void dem_particles_permute(struct dem_particles *p, const int *old_of,
+                           double **scratch)
+{
+    const int n = p->n;
+    double *t = *scratch;
+#define DEM_PERMUTE_(f)                                                      \
+    for (int k = 0; k < n; k++)                                              \
+        t[k] = p->f[old_of[k]];                                              \
+    {                                                                        \
+        double *u = p->f;                                                    \
+        p->f = t;                                                            \
+        t = u;                                                               \
+    }
+    DEM_PARTICLE_DOUBLE_ARRAYS(DEM_PERMUTE_)
+#undef DEM_PERMUTE_
+    /* the int arrays go through the same scratch, viewed as ints */
+    int *ti = (int *)t;
+#define DEM_PERMUTE_INT_(f)                                                  \
+    for (int k = 0; k < n; k++)                                              \
+        ti[k] = p->f[old_of[k]];                                             \
+    for (int k = 0; k < n; k++)                                              \
+        p->f[k] = ti[k];
+    DEM_PARTICLE_INT_ARRAYS(DEM_PERMUTE_INT_)
+#undef DEM_PERMUTE_INT_
+    *scratch = t;
+}

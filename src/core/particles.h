@@ -38,6 +38,11 @@ void dem_particles_free(struct dem_particles *p);
  * mass model. Returns its index or a negative status when full. */
 int dem_particles_add(struct dem_particles *p, double x, double y, double z,
                       double radius, double density, int mass_model, int dim);
+/* Re-order: particle k takes the data of particle old_of[k], for every
+ * array. scratch points to a spare array of cap doubles; the permutation
+ * swaps it with the arrays, so it points to another spare one after. */
+void dem_particles_permute(struct dem_particles *p, const int *old_of,
+                           double **scratch);
 /* Mass and moment of inertia of a particle of radius a (see dem_mass_model). */
 void dem_particle_mass(double a, double density, int mass_model, int dim,
                        double *mass, double *inertia);

@@ -14,26 +14,6 @@
 
 #include "core/placement.h"
 
-static void wall_history_free(struct dem_wall_history *h)
-{
-    free(h->xi_x);
-    free(h->xi_y);
-    free(h->xi_z);
-    free(h->dmax);
-    free(h->state);
-    memset(h, 0, sizeof *h);
-}
-
-static int wall_history_init(struct dem_wall_history *h, size_t n)
-{
-    h->xi_x = calloc(n, sizeof *h->xi_x);
-    h->xi_y = calloc(n, sizeof *h->xi_y);
-    h->xi_z = calloc(n, sizeof *h->xi_z);
-    h->dmax = calloc(n, sizeof *h->dmax);
-    h->state = calloc(n, sizeof *h->state);
-    return (h->xi_x && h->xi_y && h->xi_z && h->dmax && h->state) ? 0 : -1;
-}
-
 void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d)
 {
     s->cp.mu_s = mu_s;
@@ -90,6 +70,7 @@ int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
     int rc = dem_place_particles(&s->p, cfg, &s->rng, lo, hi, err);
     if (!rc) {
         place_walls(s, lo, hi);
+        s->reorder = 1;
         rc = dem_sim_ready(s, err);
     }
     if (rc)
@@ -108,8 +89,6 @@ int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
 
 int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
 {
-    if (wall_history_init(&s->wh, (size_t)DEM_MAX_WALLS * (size_t)s->p.cap))
-        return dem_error_set(err, DEM_ENOMEM, "out of memory (wall history)");
     /* Verlet skin: a tenth of the mean diameter (the peers' benchmark
      * settings use 1 mm for 10 mm spheres) */
     double rsum = 0.0;
@@ -128,7 +107,6 @@ void dem_sim_destroy(struct dem_sim *s)
 {
     dem_particles_free(&s->p);
     dem_pairs_free(&s->pairs);
-    wall_history_free(&s->wh);
 }
 
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume)
@@ -170,7 +148,8 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
             hi[a] = rmax;
         }
     }
-    int rc = dem_pairs_build(&s->pairs, p, s->dim, s->skin, lo, hi, err);
+    int rc = dem_pairs_build(&s->pairs, p, s->dim, s->skin, lo, hi, s->wall,
+                             s->nwall, s->reorder, err);
     if (rc)
         return rc;
     memcpy(p->x0, p->x, (size_t)p->n * sizeof *p->x);
@@ -180,18 +159,25 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
     return DEM_OK;
 }
 
-/* 1 when some particle moved more than half the skin since the last build. */
+/* 1 when some particle or wall moved more than half the skin since the
+ * last build: until then no contact can form that is not listed. */
 static int needs_rebuild(const struct dem_sim *s)
 {
+    const double half = 0.5 * s->skin;
+    for (int w = 0; w < s->nwall; w++)
+        if (fabs(s->wall[w].pos - s->pairs.wall_pos0[w]) > half)
+            return 1;
     const struct dem_particles *p = &s->p;
-    const double lim = 0.25 * s->skin * s->skin;
-    for (int i = 0; i < p->n; i++) {
+    const double lim = half * half;
+    const int n = p->n;
+    int moved = 0;
+#pragma omp parallel for schedule(static) reduction(| : moved)
+    for (int i = 0; i < n; i++) {
         double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
                dz = p->z[i] - p->z0[i];
-        if (dx * dx + dy * dy + dz * dz > lim)
-            return 1;
+        moved |= dx * dx + dy * dy + dz * dz > lim;
     }
-    return 0;
+    return moved;
 }
 
 static void kick(struct dem_sim *s, double h)
@@ -199,7 +185,9 @@ static void kick(struct dem_sim *s, double h)
     struct dem_particles *p = &s->p;
     const double gx = s->cfg.gravity[0], gy = s->cfg.gravity[1],
                  gz = s->cfg.gravity[2];
-    for (int i = 0; i < p->n; i++) {
+    const int n = p->n;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
         double im = p->inv_m[i] * h, iI = p->inv_I[i] * h;
         p->vx[i] += im * p->fx[i] + h * gx;
         p->vy[i] += im * p->fy[i] + h * gy;
@@ -213,7 +201,9 @@ static void kick(struct dem_sim *s, double h)
 static void drift(struct dem_sim *s, double h)
 {
     struct dem_particles *p = &s->p;
-    for (int i = 0; i < p->n; i++) {
+    const int n = p->n;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
         p->x[i] += h * p->vx[i];
         p->y[i] += h * p->vy[i];
         p->z[i] += h * p->vz[i];

@@ -1,9 +1,9 @@
 /* The simulation: a small top-level struct of sub-objects.
  *
- * Particles are a structure of arrays (core/particles.h); pair contacts
- * live in a neighbour list whose entries carry their own history
- * (neighbor/pairs.h); each particle has one history slot per wall; the
- * box is bounded by one planar wall per face (wall/wall.h).
+ * Particles are a structure of arrays (core/particles.h); pair and
+ * particle-wall contacts live in Verlet lists whose entries carry their own
+ * history (neighbor/pairs.h); the box is bounded by one planar wall per
+ * face (wall/wall.h).
  */
 #ifndef DEM_CORE_SIM_H
 #define DEM_CORE_SIM_H
@@ -29,13 +29,6 @@ struct dem_contact_params {
     double mu_s, mu_d;  /* particle-particle friction */
     double wall_mu;     /* particle-wall friction */
     double wall_kc;     /* N/m; particle-wall adhesive stiffness */
-};
-
-/* Per particle-wall contact history: slot [w * cap + i]. */
-struct dem_wall_history {
-    double *xi_x, *xi_y, *xi_z; /* m; tangential spring */
-    double *dmax;               /* m; largest overlap (luding) */
-    unsigned char *state;       /* DEM_CONTACT_* bits */
 };
 
 /* Sums gathered by the force loop when measurement is requested. */
@@ -67,8 +60,8 @@ struct dem_sim {
     long step;                  /* steps done */
 
     struct dem_particles p;     /* particle data */
-    struct dem_pairs pairs;     /* Verlet pair list with contact history */
-    struct dem_wall_history wh; /* particle-wall contact history */
+    struct dem_pairs pairs;     /* Verlet lists of pair and wall contacts
+                                   with their history */
     struct dem_contact_params cp; /* contact law in force now */
     struct dem_rng rng;         /* seeded random numbers */
 
@@ -77,6 +70,8 @@ struct dem_sim {
 
     double skin;                /* m; Verlet skin */
     long nbuild;                /* neighbour-list builds so far */
+    int reorder;                /* 1: sort particles in cell order at each
+                                   rebuild (indices change; id does not) */
     int measure;                /* 1: the next force pass fills sums */
     struct dem_contact_sums sums;
     int timing;                 /* 1: accumulate timers */
@@ -90,8 +85,9 @@ int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
 void dem_sim_destroy(struct dem_sim *s);
 
 /* For tests and tools: a simulation with room for cap particles and no
- * particle yet, walls at lo/hi. Add particles with dem_particles_add, then
- * call dem_sim_ready. */
+ * particle yet, walls at lo/hi, no re-ordering (particle indices stay as
+ * added unless s->reorder is set). Add particles with dem_particles_add,
+ * then call dem_sim_ready. */
 int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
                          int cap, const double lo[3], const double hi[3],
                          struct dem_error *err);

@@ -101,7 +101,7 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
 static void count_contacts(const struct dem_sim *s, int *cnt)
 {
     const struct dem_particles *P = &s->p;
-    const struct dem_pair_list *L = &s->pairs.cur;
+    const struct dem_contact_list *L = &s->pairs.cur, *W = &s->pairs.wcur;
     for (int i = 0; i < P->n; i++)
         if (cnt[i] >= 0)
             cnt[i] = 0;
@@ -111,16 +111,15 @@ static void count_contacts(const struct dem_sim *s, int *cnt)
             cnt[L->i[k]]++;
             cnt[L->j[k]]++;
         }
-    for (int w = 0; w < s->nwall; w++)
-        for (int i = 0; i < P->n; i++)
-            if (cnt[i] >= 0 && (s->wh.state[w * P->cap + i] & DEM_CONTACT_ACTIVE))
-                cnt[i]++;
+    for (int k = 0; k < W->n; k++)
+        if ((W->state[k] & DEM_CONTACT_ACTIVE) && cnt[W->i[k]] >= 0)
+            cnt[W->i[k]]++;
 }
 
 long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
 {
     const struct dem_particles *P = &s->p;
-    const struct dem_pair_list *L = &s->pairs.cur;
+    const struct dem_contact_list *L = &s->pairs.cur;
     const int need = s->dim == 3 ? 4 : 2;
     memset(cnt, 0, (size_t)P->n * sizeof *cnt);
     count_contacts(s, cnt);

@@ -5,8 +5,9 @@
 #include <string.h>
 
 #include "core/particles.h"
+#include "wall/wall.h"
 
-static void list_free(struct dem_pair_list *l)
+static void list_free(struct dem_contact_list *l)
 {
     free(l->i);
     free(l->j);
@@ -15,47 +16,110 @@ static void list_free(struct dem_pair_list *l)
     free(l->xi_z);
     free(l->dmax);
     free(l->state);
+    free(l->start);
     memset(l, 0, sizeof *l);
+}
+
+static void forces_free(struct dem_contact_forces *f)
+{
+    free(f->fx);
+    free(f->fy);
+    free(f->fz);
+    free(f->cx);
+    free(f->cy);
+    free(f->cz);
+    memset(f, 0, sizeof *f);
 }
 
 void dem_pairs_free(struct dem_pairs *pl)
 {
     list_free(&pl->cur);
     list_free(&pl->old);
-    free(pl->cell_head);
-    free(pl->cell_next);
+    list_free(&pl->wcur);
+    list_free(&pl->wold);
+    forces_free(&pl->f);
+    forces_free(&pl->wf);
+    free(pl->rstart);
+    free(pl->rpair);
+    free(pl->cell_start);
+    free(pl->cell_list);
+    free(pl->cell_of);
+    free(pl->old_of);
+    free(pl->scratch);
     memset(pl, 0, sizeof *pl);
 }
 
-static int list_reserve(struct dem_pair_list *l, int cap)
+/* Grow an array to c elements; 0 on success. */
+#define GROW(ptr, c)                                                         \
+    (((ptr) = grow_((ptr), (size_t)(c) * sizeof *(ptr))) == NULL)
+
+static void *grow_(void *p, size_t bytes)
+{
+    void *q = realloc(p, bytes ? bytes : 1);
+    if (!q)
+        free(p);
+    return q;
+}
+
+static int list_reserve(struct dem_contact_list *l, int cap)
 {
     if (cap <= l->cap)
         return 0;
     int c = l->cap ? l->cap : 1024;
     while (c < cap)
-        c *= 2;
-    void *p;
-#define GROW_(field)                                                         \
-    p = realloc(l->field, (size_t)c * sizeof *l->field);                     \
-    if (!p)                                                                  \
-        return -1;                                                           \
-    l->field = p;
-    GROW_(i)
-    GROW_(j)
-    GROW_(xi_x)
-    GROW_(xi_y)
-    GROW_(xi_z)
-    GROW_(dmax)
-    GROW_(state)
-#undef GROW_
+        c += c / 2;
+    if (GROW(l->i, c) || GROW(l->j, c) || GROW(l->xi_x, c) ||
+        GROW(l->xi_y, c) || GROW(l->xi_z, c) || GROW(l->dmax, c) ||
+        GROW(l->state, c))
+        return -1;
     l->cap = c;
     return 0;
 }
 
+static int forces_reserve(struct dem_contact_forces *f, int cap)
+{
+    if (cap <= f->cap)
+        return 0;
+    if (GROW(f->fx, cap) || GROW(f->fy, cap) || GROW(f->fz, cap) ||
+        GROW(f->cx, cap) || GROW(f->cy, cap) || GROW(f->cz, cap))
+        return -1;
+    f->cap = cap;
+    return 0;
+}
+
+/* Per-particle arrays for n particles (row offsets need n + 1). */
+static int particles_reserve(struct dem_pairs *pl, int n, int cap)
+{
+    if (n + 1 <= pl->nalloc)
+        return 0;
+    int c = n + 1;
+    struct dem_contact_list *lists[4] = {&pl->cur, &pl->old, &pl->wcur,
+                                         &pl->wold};
+    for (int k = 0; k < 4; k++) {
+        if (GROW(lists[k]->start, c))
+            return -1;
+        /* an empty history: no rows yet */
+        if (lists[k]->start_cap == 0)
+            memset(lists[k]->start, 0, (size_t)c * sizeof(int));
+        lists[k]->start_cap = c;
+    }
+    if (GROW(pl->rstart, c) || GROW(pl->cell_of, c) ||
+        GROW(pl->cell_list, c) || GROW(pl->old_of, c))
+        return -1;
+    /* the permutation swaps this with the particles' arrays: same length */
+    free(pl->scratch);
+    pl->scratch = malloc((size_t)(cap > c ? cap : c) * sizeof *pl->scratch);
+    if (!pl->scratch)
+        return -1;
+    pl->nalloc = c;
+    return 0;
+}
+
 static int cell_index(const struct dem_pairs *pl, double x, double y,
-                      double z, int c[3])
+                      double z)
 {
     const double pos[3] = {x, y, z};
+    int c[3];
     for (int a = 0; a < 3; a++) {
         int k = (int)floor((pos[a] - pl->lo[a]) * pl->inv_h[a]);
         c[a] = k < 0 ? 0 : (k >= pl->nc[a] ? pl->nc[a] - 1 : k);
@@ -63,32 +127,19 @@ static int cell_index(const struct dem_pairs *pl, double x, double y,
     return (c[2] * pl->nc[1] + c[1]) * pl->nc[0] + c[0];
 }
 
-/* Sort the j of one particle's new entries (a handful) by insertion. */
-static void sort_tail(int *j, int from, int to)
+static int setup_grid(struct dem_pairs *pl, const struct dem_particles *p,
+                      int dim, double skin, const double lo[3],
+                      const double hi[3], struct dem_error *err)
 {
-    for (int a = from + 1; a < to; a++) {
-        int v = j[a], b = a - 1;
-        while (b >= from && j[b] > v) {
-            j[b + 1] = j[b];
-            b--;
-        }
-        j[b + 1] = v;
-    }
-}
-
-int dem_pairs_build(struct dem_pairs *pl, const struct dem_particles *p,
-                    int dim, double skin, const double lo[3],
-                    const double hi[3], struct dem_error *err)
-{
-    const int n = p->n;
     double rmax = 0.0;
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < p->n; i++)
         rmax = p->r[i] > rmax ? p->r[i] : rmax;
     const double h = 2.0 * rmax + skin;
     long ncell = 1;
     for (int a = 0; a < 3; a++) {
+        const int flat = a == 2 && dim == 2;
         double span = hi[a] - lo[a];
-        int k = (a == 2 && dim == 2) ? 1 : (int)(span / h);
+        int k = flat ? 1 : (int)(span / h);
         if (k < 1)
             k = 1;
         /* bound the grid's memory for very large, sparse boxes */
@@ -96,62 +147,100 @@ int dem_pairs_build(struct dem_pairs *pl, const struct dem_particles *p,
             k = 4096;
         pl->nc[a] = k;
         pl->lo[a] = lo[a];
-        pl->inv_h[a] = (a == 2 && dim == 2) ? 0.0 : k / (span > 0 ? span : h);
+        pl->inv_h[a] = flat ? 0.0 : k / (span > 0 ? span : h);
         ncell *= k;
     }
     if (ncell > 64L * 1024 * 1024)
         return dem_error_set(err, DEM_ENOMEM,
                              "neighbour grid of %ld cells is too large", ncell);
-    if (ncell > pl->ncell_cap) {
-        free(pl->cell_head);
-        pl->cell_head = malloc((size_t)ncell * sizeof *pl->cell_head);
-        if (!pl->cell_head)
+    if (ncell + 1 > pl->ncell_cap) {
+        if (GROW(pl->cell_start, ncell + 1))
             return dem_error_set(err, DEM_ENOMEM, "out of memory (cells)");
-        pl->ncell_cap = (int)ncell;
+        pl->ncell_cap = (int)ncell + 1;
     }
-    if (n > pl->next_cap) {
-        free(pl->cell_next);
-        pl->cell_next = malloc((size_t)n * sizeof *pl->cell_next);
-        if (!pl->cell_next)
-            return dem_error_set(err, DEM_ENOMEM, "out of memory (cells)");
-        pl->next_cap = n;
-    }
-    for (long c = 0; c < ncell; c++)
-        pl->cell_head[c] = -1;
-    /* insert in reverse order so that each cell lists particles ascending */
-    for (int i = n - 1; i >= 0; i--) {
-        int c3[3];
-        int c = cell_index(pl, p->x[i], p->y[i], p->z[i], c3);
-        pl->cell_next[i] = pl->cell_head[c];
-        pl->cell_head[c] = i;
-    }
+    return DEM_OK;
+}
 
-    /* the current list becomes the old one; build the new list */
-    struct dem_pair_list tmp = pl->old;
-    pl->old = pl->cur;
-    pl->cur = tmp;
-    struct dem_pair_list *L = &pl->cur;
-    L->n = 0;
+/* Counting sort of the particles by cell: cell_start and cell_list. */
+static void sort_by_cell(struct dem_pairs *pl, const struct dem_particles *p)
+{
+    const int ncell = pl->nc[0] * pl->nc[1] * pl->nc[2];
+    int *cs = pl->cell_start;
+    memset(cs, 0, (size_t)(ncell + 1) * sizeof *cs);
+    for (int i = 0; i < p->n; i++) {
+        pl->cell_of[i] = cell_index(pl, p->x[i], p->y[i], p->z[i]);
+        cs[pl->cell_of[i] + 1]++;
+    }
+    for (int c = 0; c < ncell; c++)
+        cs[c + 1] += cs[c];
+    /* stable: particles of a cell stay in index order */
+    for (int i = 0; i < p->n; i++)
+        pl->cell_list[cs[pl->cell_of[i]]++] = i;
+    for (int c = ncell; c > 0; c--)
+        cs[c] = cs[c - 1];
+    cs[0] = 0;
+}
+
+/* Index in the old list of the entry (a, b) of old row a, or -1. */
+static int old_find(const struct dem_contact_list *o, int a, int b)
+{
+    for (int k = o->start[a]; k < o->start[a + 1]; k++)
+        if (o->j[k] == b)
+            return k;
+    return -1;
+}
+
+static void carry_history(struct dem_contact_list *L, int k,
+                          const struct dem_contact_list *O, int o)
+{
+    if (o >= 0) {
+        L->xi_x[k] = O->xi_x[o];
+        L->xi_y[k] = O->xi_y[o];
+        L->xi_z[k] = O->xi_z[o];
+        L->dmax[k] = O->dmax[o];
+        L->state[k] = O->state[o];
+    } else {
+        L->xi_x[k] = L->xi_y[k] = L->xi_z[k] = 0.0;
+        L->dmax[k] = 0.0;
+        L->state[k] = 0;
+    }
+}
+
+static void swap_lists(struct dem_contact_list *a, struct dem_contact_list *b)
+{
+    struct dem_contact_list t = *a;
+    *a = *b;
+    *b = t;
+}
+
+static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
+                       int dim, double skin, struct dem_error *err)
+{
+    struct dem_contact_list *L = &pl->cur;
+    const struct dem_contact_list *O = &pl->old;
     const int zr = dim == 3 ? 1 : 0;
-    for (int i = 0; i < n; i++) {
-        int c3[3];
-        cell_index(pl, p->x[i], p->y[i], p->z[i], c3);
-        const int first = L->n;
+    L->n = 0;
+    for (int i = 0; i < p->n; i++) {
+        L->start[i] = L->n;
+        const int c = pl->cell_of[i];
+        const int cx = c % pl->nc[0], cy = (c / pl->nc[0]) % pl->nc[1],
+                  cz = c / (pl->nc[0] * pl->nc[1]);
         for (int dz = -zr; dz <= zr; dz++) {
-            int cz = c3[2] + dz;
-            if (cz < 0 || cz >= pl->nc[2])
+            int z = cz + dz;
+            if (z < 0 || z >= pl->nc[2])
                 continue;
             for (int dy = -1; dy <= 1; dy++) {
-                int cy = c3[1] + dy;
-                if (cy < 0 || cy >= pl->nc[1])
+                int y = cy + dy;
+                if (y < 0 || y >= pl->nc[1])
                     continue;
                 for (int dx = -1; dx <= 1; dx++) {
-                    int cx = c3[0] + dx;
-                    if (cx < 0 || cx >= pl->nc[0])
+                    int x = cx + dx;
+                    if (x < 0 || x >= pl->nc[0])
                         continue;
-                    int c = (cz * pl->nc[1] + cy) * pl->nc[0] + cx;
-                    for (int j = pl->cell_head[c]; j >= 0;
-                         j = pl->cell_next[j]) {
+                    int cc = (z * pl->nc[1] + y) * pl->nc[0] + x;
+                    for (int q = pl->cell_start[cc]; q < pl->cell_start[cc + 1];
+                         q++) {
+                        const int j = pl->cell_list[q];
                         if (j <= i)
                             continue;
                         double ddx = p->x[i] - p->x[j];
@@ -170,29 +259,117 @@ int dem_pairs_build(struct dem_pairs *pl, const struct dem_particles *p,
                 }
             }
         }
-        sort_tail(L->j, first, L->n);
-    }
-
-    /* carry the history of pairs listed before: both lists are sorted by
-     * (i, j), so one merge pass finds every surviving pair */
-    const struct dem_pair_list *O = &pl->old;
-    int o = 0;
-    for (int k = 0; k < L->n; k++) {
-        const int i = L->i[k], j = L->j[k];
-        while (o < O->n && (O->i[o] < i || (O->i[o] == i && O->j[o] < j)))
-            o++;
-        if (o < O->n && O->i[o] == i && O->j[o] == j) {
-            L->xi_x[k] = O->xi_x[o];
-            L->xi_y[k] = O->xi_y[o];
-            L->xi_z[k] = O->xi_z[o];
-            L->dmax[k] = O->dmax[o];
-            L->state[k] = O->state[o];
-        } else {
-            L->xi_x[k] = L->xi_y[k] = L->xi_z[k] = 0.0;
-            L->dmax[k] = 0.0;
-            L->state[k] = 0;
+        /* a row holds a handful of pairs: insertion sort by j */
+        for (int a = L->start[i] + 1; a < L->n; a++) {
+            int v = L->j[a], b = a - 1;
+            while (b >= L->start[i] && L->j[b] > v) {
+                L->j[b + 1] = L->j[b];
+                b--;
+            }
+            L->j[b + 1] = v;
         }
     }
+    L->start[p->n] = L->n;
+    for (int k = 0; k < L->n; k++) {
+        int a = pl->old_of[L->i[k]], b = pl->old_of[L->j[k]];
+        int o = O->n ? (a < b ? old_find(O, a, b) : old_find(O, b, a)) : -1;
+        carry_history(L, k, O, o);
+    }
+    return DEM_OK;
+}
+
+static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
+                       double skin, const struct dem_wall *w, int nwall,
+                       struct dem_error *err)
+{
+    struct dem_contact_list *L = &pl->wcur;
+    const struct dem_contact_list *O = &pl->wold;
+    L->n = 0;
+    for (int i = 0; i < p->n; i++) {
+        L->start[i] = L->n;
+        const double pos[3] = {p->x[i], p->y[i], p->z[i]};
+        for (int k = 0; k < nwall; k++) {
+            double sgn = w[k].side ? -1.0 : 1.0;
+            double gap = sgn * (pos[w[k].axis] - w[k].pos) - p->r[i];
+            if (gap >= skin)
+                continue;
+            if (L->n >= L->cap && list_reserve(L, L->n + 1))
+                return dem_error_set(err, DEM_ENOMEM,
+                                     "out of memory (wall contacts)");
+            L->i[L->n] = i;
+            L->j[L->n] = k;
+            int o = O->n ? old_find(O, pl->old_of[i], k) : -1;
+            carry_history(L, L->n, O, o);
+            L->n++;
+        }
+    }
+    L->start[p->n] = L->n;
+    return DEM_OK;
+}
+
+/* Rows of the pairs where each particle is the j partner. */
+static int build_reverse(struct dem_pairs *pl, int n)
+{
+    const struct dem_contact_list *L = &pl->cur;
+    if (L->n > pl->rpair_cap) {
+        if (GROW(pl->rpair, L->cap))
+            return -1;
+        pl->rpair_cap = L->cap;
+    }
+    int *rs = pl->rstart;
+    memset(rs, 0, (size_t)(n + 1) * sizeof *rs);
+    for (int k = 0; k < L->n; k++)
+        rs[L->j[k] + 1]++;
+    for (int i = 0; i < n; i++)
+        rs[i + 1] += rs[i];
+    for (int k = 0; k < L->n; k++)
+        pl->rpair[rs[L->j[k]]++] = k;
+    for (int i = n; i > 0; i--)
+        rs[i] = rs[i - 1];
+    rs[0] = 0;
+    return 0;
+}
+
+int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
+                    double skin, const double lo[3], const double hi[3],
+                    const struct dem_wall *w, int nwall, int reorder,
+                    struct dem_error *err)
+{
+    const int n = p->n;
+    if (particles_reserve(pl, n, p->cap))
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
+    int rc = setup_grid(pl, p, dim, skin, lo, hi, err);
+    if (rc)
+        return rc;
+    sort_by_cell(pl, p);
+    if (reorder) {
+        /* particles in cell order: neighbours are close in memory */
+        memcpy(pl->old_of, pl->cell_list, (size_t)n * sizeof *pl->old_of);
+        dem_particles_permute(p, pl->old_of, &pl->scratch);
+        for (int k = 0; k < n; k++)
+            pl->cell_list[k] = k;
+        const int ncell = pl->nc[0] * pl->nc[1] * pl->nc[2];
+        for (int c = 0; c < ncell; c++)
+            for (int q = pl->cell_start[c]; q < pl->cell_start[c + 1]; q++)
+                pl->cell_of[q] = c;
+    } else {
+        for (int k = 0; k < n; k++)
+            pl->old_of[k] = k;
+    }
+    /* the current lists become the old ones, whose rows are indexed by
+     * the particles' indices before the re-order */
+    swap_lists(&pl->cur, &pl->old);
+    swap_lists(&pl->wcur, &pl->wold);
+    rc = build_pairs(pl, p, dim, skin, err);
+    if (!rc)
+        rc = build_walls(pl, p, skin, w, nwall, err);
+    if (rc)
+        return rc;
+    if (build_reverse(pl, n) || forces_reserve(&pl->f, pl->cur.cap) ||
+        forces_reserve(&pl->wf, pl->wcur.cap))
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
+    for (int k = 0; k < nwall && k < 6; k++)
+        pl->wall_pos0[k] = w[k].pos;
     return DEM_OK;
 }
 

@@ -1,12 +1,22 @@
-/* Verlet pair list built from a linked-cell grid, with contact history
- * stored next to each pair.
+/* Verlet lists of particle pairs and particle-wall contacts, built from a
+ * cell grid, each entry carrying its contact history.
  *
- * A pair (i, j), i < j in the current particle order, is listed when the
- * gap |r_i - r_j| - a_i - a_j is below the skin. The list is sorted by
- * (i, j) so that history carries over a rebuild by one merge of the old and
- * the new list, without hashing. The list is rebuilt when some particle has moved more than half
- * the skin since the last build; a wall moving does not need a rebuild
- * because wall contacts are checked every step.
+ * A pair (i, j), i < j, is listed when the gap |r_i - r_j| - a_i - a_j is
+ * below the skin; a particle-wall contact (i, w) when the particle's gap to
+ * the wall plane is below the skin. Both lists are sorted by i (then j or
+ * w) and indexed by i (CSR), so that the history of a contact is found
+ * again after a rebuild by a short scan of its particle's old row, without
+ * hashing, also when the particles have been re-ordered in memory.
+ *
+ * The lists are rebuilt when some particle or some wall has moved more
+ * than half the skin since the last build, so no contact can be missed in
+ * between. At a rebuild the particles may be re-ordered in cell order (see
+ * dem_pairs_build) so that neighbours are close in memory.
+ *
+ * Each entry also has room for the force of the last pass (the force on
+ * i and n x f_t); the force loop writes it and the per-particle sums, the
+ * walls and the measurements read it, which keeps the sums in a fixed
+ * order whatever the number of threads.
  */
 #ifndef DEM_NEIGHBOR_PAIRS_H
 #define DEM_NEIGHBOR_PAIRS_H
@@ -15,37 +25,64 @@
 
 struct dem_particles;
 
-/* Pair entries and the history each carries. */
-struct dem_pair_list {
-    int n;              /* listed pairs */
+/* Contact entries and the history each carries. */
+struct dem_contact_list {
+    int n;              /* entries */
     int cap;            /* allocated entries */
-    int *i, *j;         /* particle indices, i < j, sorted by (i, j) */
-    double *xi_x, *xi_y, *xi_z; /* m; tangential spring of the contact */
+    int *i;             /* particle */
+    int *j;             /* partner: particle (> i) or wall index */
+    double *xi_x, *xi_y, *xi_z; /* m; tangential spring */
     double *dmax;       /* m; largest overlap reached (luding history) */
     unsigned char *state; /* DEM_CONTACT_* bits (contact/tangential.h) */
+    int *start;         /* n_particles + 1 row offsets by i */
+    int start_cap;
+};
+
+/* Force of each entry in the last force pass (same index as the list). */
+struct dem_contact_forces {
+    int cap;
+    double *fx, *fy, *fz; /* N; force on i (on j it is the opposite) */
+    double *cx, *cy, *cz; /* N; n x f_t: torque on i is -a_i c, on j -a_j c */
 };
 
 struct dem_pairs {
-    struct dem_pair_list cur; /* the list the force loop uses */
-    struct dem_pair_list old; /* the previous list, kept for the merge */
-    /* linked-cell grid */
+    struct dem_contact_list cur;   /* particle pairs the force loop uses */
+    struct dem_contact_list old;   /* the previous pairs, for the history */
+    struct dem_contact_list wcur;  /* particle-wall contacts (j = wall) */
+    struct dem_contact_list wold;  /* the previous ones */
+    struct dem_contact_forces f;   /* forces of cur */
+    struct dem_contact_forces wf;  /* forces of wcur */
+    int *rstart;        /* n_particles + 1: pairs where a particle is j */
+    int *rpair;         /* cur.n pair indices, by j */
+    int rpair_cap;
+    /* cell grid */
     int nc[3];          /* cells per axis */
-    double lo[3];       /* m; lower corner of the grid */
+    double lo[3];       /* m; lower corner */
     double inv_h[3];    /* 1/m; inverse cell edge */
-    int *cell_head;     /* first particle of each cell, -1 = empty */
-    int *cell_next;     /* next particle in the same cell */
-    int ncell_cap;      /* allocated cells */
-    int next_cap;       /* allocated length of cell_next */
+    int *cell_start;    /* ncell + 1 offsets into cell_list */
+    int *cell_list;     /* particles sorted by cell */
+    int *cell_of;       /* cell of each particle */
+    int ncell_cap;
+    /* re-ordering */
+    int *old_of;        /* old index of each particle after a re-order */
+    double *scratch;    /* one particle array of doubles */
+    int nalloc;         /* allocated length of the per-particle arrays */
+    double wall_pos0[6]; /* m; wall positions at the last build */
 };
+
+struct dem_wall;
 
 void dem_pairs_free(struct dem_pairs *pl);
 
-/* Build the list for particles p with the given skin (m) inside the
- * bounding box [lo, hi] (m), carrying the history of pairs that were
- * already listed. dim = 2 uses one layer of cells in z. */
-int dem_pairs_build(struct dem_pairs *pl, const struct dem_particles *p,
-                    int dim, double skin, const double lo[3],
-                    const double hi[3], struct dem_error *err);
+/* Build both lists for particles p with the given skin (m), grid over
+ * [lo, hi] (m), walls w[0..nwall), carrying the history of contacts that
+ * were listed before. With reorder set, the particles are first sorted in
+ * cell order (p's arrays are permuted; p->id keeps the original index).
+ * dim = 2 uses one layer of cells in z. */
+int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
+                    double skin, const double lo[3], const double hi[3],
+                    const struct dem_wall *w, int nwall, int reorder,
+                    struct dem_error *err);
 
 /* Reference: all pairs with gap below skin by brute force O(N^2); for tests.
  * Fills pi/pj (caller frees) and returns the count, or a negative status. */
