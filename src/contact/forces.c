@@ -52,15 +52,17 @@ DEM_INLINE double normal_force(const int law, const struct dem_contact_params *c
     return fn;
 }
 
+/* A listed pair that is not in contact: its history ends and its stored
+ * force is zero. A list build zeroes every stored force, so only a
+ * contact that has just opened needs writing. */
 static void forget(struct dem_contact_list *L, struct dem_contact_forces *F,
                    int k)
 {
-    if (L->state[k]) {
-        /* the contact opened: its history ends */
-        L->xi_x[k] = L->xi_y[k] = L->xi_z[k] = 0.0;
-        L->dmax[k] = 0.0;
-        L->state[k] = 0;
-    }
+    if (!L->state[k])
+        return;
+    L->xi_x[k] = L->xi_y[k] = L->xi_z[k] = 0.0;
+    L->dmax[k] = 0.0;
+    L->state[k] = 0;
     F->fx[k] = F->fy[k] = F->fz[k] = 0.0;
     F->cx[k] = F->cy[k] = F->cz[k] = 0.0;
 }

@@ -87,6 +87,19 @@ static int forces_reserve(struct dem_contact_forces *f, int cap)
     return 0;
 }
 
+/* Stored forces of n entries set to zero (the force loop writes only
+ * contacts that are closed or have just opened). */
+static void forces_zero(struct dem_contact_forces *f, int n)
+{
+    size_t b = (size_t)n * sizeof(double);
+    memset(f->fx, 0, b);
+    memset(f->fy, 0, b);
+    memset(f->fz, 0, b);
+    memset(f->cx, 0, b);
+    memset(f->cy, 0, b);
+    memset(f->cz, 0, b);
+}
+
 /* Per-particle arrays for n particles (row offsets need n + 1). */
 static int particles_reserve(struct dem_pairs *pl, int n, int cap)
 {
@@ -368,6 +381,8 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
     if (build_reverse(pl, n) || forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
+    forces_zero(&pl->f, pl->cur.n);
+    forces_zero(&pl->wf, pl->wcur.n);
     for (int k = 0; k < nwall && k < 6; k++)
         pl->wall_pos0[k] = w[k].pos;
     return DEM_OK;
