@@ -70,6 +70,8 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
     if (frac > 1.0)
         frac = 1.0;
     double steps_left = (st->t_end - s->t) / s->dt;
+    if (steps_left < 0.0)
+        steps_left = 0.0;
     double eta = speed > 0 ? steps_left * s->p.n / speed : 0.0;
     fprintf(stderr,
             "\r\033[Kstage %d/%d %-9s t = %.4g s  %5.1f%%  ETA %s%.0f s  "
