@@ -70,7 +70,7 @@ static int parse_number(const char *s, double *v)
 /* State of one read, so every error path can release everything at once. */
 struct reader {
     const char *path;
-    FILE *f;
+    FILE *f;           /* borrowed: the caller opens and closes it */
     char *line;        /* getline buffer */
     size_t line_cap;
     double *rows;      /* NCOL values per particle */
@@ -80,8 +80,6 @@ struct reader {
 
 static void reader_free(struct reader *r)
 {
-    if (r->f)
-        fclose(r->f);
     free(r->line);
     free(r->rows);
     free(r->lines);
@@ -262,19 +260,17 @@ static int read_rows(struct reader *r, int dim, int *has_mass,
     return DEM_OK;
 }
 
-int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
-                                 int dim, double density, int mass_model,
-                                 int **lines, struct dem_error *err)
+int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
+                                  const char *path, int dim, double density,
+                                  int mass_model, int **lines,
+                                  struct dem_error *err)
 {
     memset(p, 0, sizeof *p);
     if (lines)
         *lines = NULL;
     struct reader r = {0};
     r.path = path;
-    r.f = fopen(path, "r");
-    if (!r.f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
-                             strerror(errno));
+    r.f = f;
     int has_mass = 0;
     int rc = read_rows(&r, dim, &has_mass, err);
     if (rc == DEM_OK)
@@ -312,6 +308,23 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
     }
     reader_free(&r);
     return DEM_OK;
+}
+
+int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
+                                 int dim, double density, int mass_model,
+                                 int **lines, struct dem_error *err)
+{
+    memset(p, 0, sizeof *p);
+    if (lines)
+        *lines = NULL;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
+                             strerror(errno));
+    int rc = dem_particles_read_csv_stream(p, f, path, dim, density,
+                                           mass_model, lines, err);
+    fclose(f);
+    return rc;
 }
 
 int dem_particles_read_csv(struct dem_particles *p, const char *path, int dim,
