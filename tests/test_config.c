@@ -333,6 +333,11 @@ static const struct bad bad_inputs[] = {
     {"\x01\x02\xff\xfe garbage", 0, "syntax error", 1},
     {"dimension = 3;\nparticles = { placement = \"random;\n};\noutput = {};\n",
      0, "unterminated string", 2},
+    /* libconfig 1.5 accepts these and drops the rest of the text */
+    {"dimension = 3;\nseed = 2; \"abc\n", 0, "unterminated string", 2},
+    {"dimension = 3;\n/* seed = 2;\n", 0, "unterminated comment", 2},
+    {"dimension = 3; # \"not a string\n/* \" */ seed = 2; \"x\\\"y\";\n\"",
+     0, "unterminated string", 3},
     {"gravity = [0, 0, -9.81];", 0, "float", 1},
     /* wrong types */
     {"contact = {\n  k = \"stiff\";\n};", 0, "contact.k: must be a number", 2},
@@ -472,6 +477,21 @@ static void bad_inputs_fail_with_one_line_naming_key_and_line(void **state)
         check_bad(&bad_inputs[i]);
 }
 
+/* Quotes inside comments and escaped quotes inside strings do not open a
+ * string: the check for text left open at the end must not reject these. */
+static void quotes_in_comments_and_escapes_are_not_open_strings(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c,
+             "seed = 2; # a \"quote\n"
+             "/* \" */ dimension = 3; // \"x\n"
+             "particles = { placement = \"file\"; file = \"a\\\"b /* #\"; };\n",
+             0, 0);
+    assert_int_equal(c.seed, 2);
+    assert_string_equal(c.particles.file, "a\"b /* #");
+}
+
 static void too_many_stages_is_an_error(void **state)
 {
     (void)state;
@@ -572,6 +592,7 @@ int main(void)
         cmocka_unit_test(every_example_parses),
         cmocka_unit_test(bad_inputs_fail_with_one_line_naming_key_and_line),
         cmocka_unit_test(too_many_stages_is_an_error),
+        cmocka_unit_test(quotes_in_comments_and_escapes_are_not_open_strings),
         cmocka_unit_test(validate_checks_a_struct_without_lines),
         cmocka_unit_test(key_help_lists_every_key),
         cmocka_unit_test(docs_key_table_matches_descriptor_table),

@@ -1348,36 +1348,42 @@ out:
 
 /* --------------------------------------------------------------- parsing */
 
-/* Line where an unterminated string starts, or 0. libconfig reports such
- * an error at the end of the text, which is no help for finding it. */
-static int unterminated_string_line(const char *t)
+/* A string or block comment still open at the end of the text: returns
+ * "string" or "comment" and its first line, or NULL. libconfig 1.5 reports
+ * an open string at the end of the text, which is no help for finding it,
+ * and silently accepts one that follows a complete setting (`a = 1; "x`),
+ * as it does an open block comment, dropping the rest of the text. */
+static const char *unterminated(const char *t, int *at)
 {
-    int line = 1, start = 0;
+    int line = 1;
     for (; *t; t++) {
-        if (*t == '\n')
+        if (*t == '\n') {
             line++;
-        if (start) {
-            if (*t == '\\' && t[1])
-                t++;
-            else if (*t == '"')
-                start = 0;
-            else if (*t == '\n')
-                continue;
         } else if (*t == '"') {
-            start = line;
+            *at = line;
+            for (t++; *t != '"'; t++) {
+                if (!*t)
+                    return "string";
+                if (*t == '\n')
+                    line++;
+                else if (*t == '\\' && t[1] && t[1] != '\n')
+                    t++;
+            }
         } else if (*t == '#' || (*t == '/' && t[1] == '/')) {
             while (t[1] && t[1] != '\n')
                 t++;
         } else if (*t == '/' && t[1] == '*') {
-            for (t += 2; *t && !(*t == '*' && t[1] == '/'); t++)
+            *at = line;
+            for (t += 2; !(*t == '*' && t[1] == '/'); t++) {
+                if (!*t)
+                    return "comment";
                 if (*t == '\n')
                     line++;
-            if (!*t)
-                return 0;
+            }
             t++;
         }
     }
-    return start;
+    return 0;
 }
 
 /* The key assigned on line `line` of text that is a duplicate: the name
@@ -1442,12 +1448,6 @@ static int syntax_error(const struct ctx *x, const config_t *cfg,
                            "%s:%d: array mixes integers and floats; write "
                            "every element as a float, e.g. [0.0, 0.0, -9.81]",
                            x->source, line);
-    } else if (unterminated_string_line(text)) {
-        rc = dem_error_set(err, DEM_ECONFIG,
-                           "%s:%d: unterminated string (libconfig: %s at line "
-                           "%d)",
-                           x->source, unterminated_string_line(text), what,
-                           line);
     } else {
         rc = dem_error_set(err, DEM_ECONFIG, "%s:%d: %s%s", x->source, line,
                            strstr(what, "syntax") ? "" : "syntax error: ",
@@ -1497,6 +1497,15 @@ int dem_config_parse(struct dem_config *c, const char *text,
     int rc = DEM_OK;
     if (!text) {
         rc = dem_error_set(err, DEM_ECONFIG, "%s: no config text", x->source);
+        goto out;
+    }
+    int open_line = 0;
+    const char *open_kind = unterminated(text, &open_line);
+    if (open_kind) {
+        rc = dem_error_set(err, DEM_ECONFIG,
+                           "%s:%d: unterminated %s (it runs to the end of the "
+                           "text)",
+                           x->source, open_line, open_kind);
         goto out;
     }
     if (!config_read_string(&cfg, text)) {
