@@ -26,6 +26,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <libconfig.h>
 
@@ -1544,6 +1545,13 @@ int dem_config_load_file(struct dem_config *c, const char *path,
     if (!f)
         return dem_error_set(err, DEM_EIO, "%s: cannot open (%s)", path,
                              strerror(errno));
+    /* fopen succeeds on a folder; reading it would fail with EISDIR. */
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(f);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: is a folder, not a config file", path);
+    }
     size_t cap = 4096, len = 0, got;
     char *text = malloc(cap);
     while (text && (got = fread(text + len, 1, cap - len - 1, f)) > 0) {
@@ -1555,13 +1563,14 @@ int dem_config_load_file(struct dem_config *c, const char *path,
             text = t;
         }
     }
-    int bad = ferror(f);
+    int bad = ferror(f), e = errno;
     fclose(f);
     if (!text)
         return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
     if (bad) {
         free(text);
-        return dem_error_set(err, DEM_EIO, "%s: read error", path);
+        return dem_error_set(err, DEM_EIO, "%s: read error (%s)", path,
+                             strerror(e));
     }
     text[len] = '\0';
     int rc = dem_config_parse(c, text, path, sets, nsets, err);
