@@ -492,6 +492,19 @@ static void quotes_in_comments_and_escapes_are_not_open_strings(void **state)
     assert_string_equal(c.particles.file, "a\"b /* #");
 }
 
+/* With placement = "file", particles.count is not used (the file says how
+ * many there are), so its default must not fail the box fill check. */
+static void file_placement_ignores_count_for_box_fill(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c,
+             "dimension = 2;\nbox = { size = [0.01, 0.01, 0.0]; };\n"
+             "particles = { placement = \"file\"; file = \"p.csv\"; };\n",
+             0, 0);
+    assert_int_equal(c.particles.placement, DEM_PLACE_FILE);
+}
+
 static void too_many_stages_is_an_error(void **state)
 {
     (void)state;
@@ -592,6 +605,7 @@ int main(void)
         cmocka_unit_test(every_example_parses),
         cmocka_unit_test(bad_inputs_fail_with_one_line_naming_key_and_line),
         cmocka_unit_test(too_many_stages_is_an_error),
+        cmocka_unit_test(file_placement_ignores_count_for_box_fill),
         cmocka_unit_test(quotes_in_comments_and_escapes_are_not_open_strings),
         cmocka_unit_test(validate_checks_a_struct_without_lines),
         cmocka_unit_test(key_help_lists_every_key),

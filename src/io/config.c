@@ -923,6 +923,10 @@ static int check_box(const struct ctx *x, const struct dem_config *c,
                             "xyz"[d], L[d]);
         vol *= L[d];
     }
+    /* Particles from a file are counted and checked against the box when
+     * the file is read; particles.count and the radius keys do not apply. */
+    if (c->particles.placement == DEM_PLACE_FILE)
+        return 0;
     const double a = typical_radius(c);
     const double vp = c->dim == 2 ? M_PI * a * a : 4.0 / 3.0 * M_PI * a * a * a;
     const double solid = c->particles.count * vp;
