@@ -338,6 +338,9 @@ static const struct bad bad_inputs[] = {
     {"dimension = 3;\n/* seed = 2;\n", 0, "unterminated comment", 2},
     {"dimension = 3; # \"not a string\n/* \" */ seed = 2; \"x\\\"y\";\n\"",
      0, "unterminated string", 3},
+    {"particles = { count = 5; };\nparticles.density = 1.0;\n", 0,
+     "particles.density: dotted names are for --set only", 2},
+    {"dimension = 3;\ncontact.k = 1.0;\n", 0, "contact.k: dotted names", 2},
     {"gravity = [0, 0, -9.81];", 0, "float", 1},
     /* wrong types */
     {"contact = {\n  k = \"stiff\";\n};", 0, "contact.k: must be a number", 2},

@@ -1404,8 +1404,9 @@ static void duplicate_name(const char *text, int line, char *out, size_t n)
     while (*text && *text != '\n' && count < 16) {
         if (isalpha((unsigned char)*text) || *text == '_') {
             const char *b = text;
+            /* with dots: a dotted name is a mistake worth naming whole */
             while (isalnum((unsigned char)*text) || *text == '_' ||
-                   *text == '-')
+                   *text == '-' || *text == '.')
                 text++;
             const char *e = text;
             while (*e == ' ' || *e == '\t')
@@ -1441,9 +1442,16 @@ static int syntax_error(const struct ctx *x, const config_t *cfg,
                                               : "unknown error";
     const int line = config_error_line(cfg);
     int rc;
-    if (strstr(what, "duplicate")) {
-        char name[DEM_NAME_MAX];
-        duplicate_name(text, line, name, sizeof name);
+    char name[DEM_NAME_MAX];
+    duplicate_name(text, line, name, sizeof name);
+    if (strchr(name, '.')) {
+        /* libconfig reads "a.b = 1" as a second setting "a" (a duplicate
+         * when a group a exists) followed by a syntax error. */
+        rc = dem_error_set(err, DEM_ECONFIG,
+                           "%s:%d: %s: dotted names are for --set only; in "
+                           "a file, write the group, e.g. a = { b = ...; }",
+                           x->source, line, name);
+    } else if (strstr(what, "duplicate")) {
         rc = dem_error_set(err, DEM_ECONFIG,
                            "%s:%d: %s%sduplicate key: each key may be given "
                            "only once in its group",
