@@ -219,6 +219,12 @@ static int read_rows(struct reader *r, int dim, int *has_mass,
     while ((len = getline(&r->line, &r->line_cap, r->f)) != -1) {
         lineno++;
         bytes += len;
+        /* The line would silently end at a NUL byte. */
+        if (memchr(r->line, '\0', (size_t)len))
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "%s:%d: NUL byte: a particle file is text, "
+                                 "not binary",
+                                 r->path, lineno);
         char *s = trim(r->line);
         if (*s == '\0' || *s == '#')
             continue;
