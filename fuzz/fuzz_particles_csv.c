@@ -2,7 +2,8 @@
  * particle file, read from memory (fmemopen) in 2D and in 3D, with the
  * sphere and the disc mass model. Any crash, leak, sanitizer report,
  * message that is not one line, or particle that comes back with a
- * non-finite or non-positive radius or mass is a finding.
+ * non-finite or non-positive radius, mass or inverse mass or inertia is a
+ * finding.
  */
 #include <math.h>
 #include <stdint.h>
@@ -40,8 +41,11 @@ static void read_as(const uint8_t *data, size_t size, int dim, int model)
         return;
     }
     for (int i = 0; i < p.n; i++) {
-        if (!(p.r[i] > 0) || !isfinite(p.r[i]) || !(p.m[i] > 0) ||
-            !isfinite(p.m[i]) || lines[i] < 1)
+        const double v[] = {p.r[i], p.m[i], p.inv_m[i], p.inv_I[i]};
+        for (int k = 0; k < 4; k++)
+            if (!(v[k] > 0) || !isfinite(v[k]))
+                abort();
+        if (lines[i] < 1)
             abort();
         if (dim == 2 && p.z[i] != 0)
             abort();

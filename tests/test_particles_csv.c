@@ -221,6 +221,16 @@ static const struct bad_case bad_cases[] = {
      "column 'radius'"},
     {"zero mass", 3, "x,y,z,radius,mass\n0,0,0,1,0\n", DEM_ECONFIG, 2,
      "column 'mass'"},
+    /* found by fuzz_particles_csv: finite inputs, unusable mass */
+    {"mass overflows", 3, "x,y,z,radius\n0,0,0,1\n0,0,0,1e200\n",
+     DEM_ECONFIG, 3, "column 'radius': radius 1e+200 m gives a mass"},
+    {"mass underflows", 3, "x,y,z,radius\n0,0,0,1e-200\n", DEM_ECONFIG, 2,
+     "column 'radius'"},
+    {"inertia underflows", 3, "x,y,z,radius,mass\n0,0,0,1e-3,1e-320\n",
+     DEM_ECONFIG, 2, "column 'mass': radius 0.001 m with this mass gives a "
+     "moment of inertia"},
+    {"inertia overflows", 3, "x,y,z,radius,mass\n0,0,0,1e160,1e10\n",
+     DEM_ECONFIG, 2, "column 'mass'"},
     {"header only", 3, "x,y,z,radius\n\n", DEM_ECONFIG, 2, "no particles"},
     {"2D nonzero z", 2, "x,y,z,radius\n0,0,0,1\n0,0,1e-3,1\n", DEM_ECONFIG, 3,
      "column 'z'"},

@@ -288,6 +288,33 @@ int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
     for (int i = 0; i < r.n; i++) {
         const double *row = r.rows + (size_t)i * NCOL;
         double a = row[COL_RADIUS];
+        double m, I;
+        if (has_mass) {
+            /* Same expressions as dem_particle_mass so that a file written
+             * by dembox reloads to bit-identical inverse inertia. */
+            m = row[COL_MASS];
+            I = (mass_model == DEM_MASS_DISC && dim == 2) ? 0.5 * m * a * a
+                                                          : 0.4 * m * a * a;
+        } else {
+            dem_particle_mass(a, density, mass_model, dim, &m, &I);
+        }
+        /* A finite radius (and mass) can still give a mass or moment of
+         * inertia that overflows to inf or underflows to 0 (radius 1e200
+         * or 1e-200 m), which would make the particle immobile or NaN. */
+        if (!(m > 0.0 && isfinite(m) && I > 0.0 && isfinite(I))) {
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "%s:%d: column '%s': radius %g m%s gives %s "
+                               "%g, out of range",
+                               path, r.lines[i], has_mass ? "mass" : "radius",
+                               a, has_mass ? " with this mass" : "",
+                               m > 0.0 && isfinite(m)
+                                   ? "a moment of inertia (kg m^2) of"
+                                   : "a mass (kg) of",
+                               m > 0.0 && isfinite(m) ? I : m);
+            dem_particles_free(p);
+            reader_free(&r);
+            return rc;
+        }
         dem_particles_add(p, row[COL_X], row[COL_Y], row[COL_Z], a, density,
                           mass_model, dim);
         p->vx[i] = row[COL_VX];
@@ -296,17 +323,9 @@ int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
         p->wx[i] = row[COL_WX];
         p->wy[i] = row[COL_WY];
         p->wz[i] = row[COL_WZ];
-        if (has_mass) {
-            /* Same expressions as dem_particle_mass so that a file written
-             * by dembox reloads to bit-identical inverse inertia. */
-            double m = row[COL_MASS];
-            double I = (mass_model == DEM_MASS_DISC && dim == 2)
-                           ? 0.5 * m * a * a
-                           : 0.4 * m * a * a;
-            p->m[i] = m;
-            p->inv_m[i] = 1.0 / m;
-            p->inv_I[i] = 1.0 / I;
-        }
+        p->m[i] = m;
+        p->inv_m[i] = 1.0 / m;
+        p->inv_I[i] = 1.0 / I;
     }
     if (lines) {
         *lines = r.lines;
