@@ -6,18 +6,19 @@
 # is saved as build-fuzz/artifacts/NAME-* and makes the script fail.
 #
 # fuzz_config explores without leak checks: libconfig 1.5 leaks on most
-# syntax errors (fuzz/lsan.supp), which would make LeakSanitizer scan the
+# syntax errors (tests/lsan.supp), which would make LeakSanitizer scan the
 # heap after nearly every input and cut the speed by 7x. Instead, every
 # input of its corpus (seeds and all it found) is run once more with leak
 # checks at the end.
-# Usage: scripts/fuzz.sh [SECONDS]   (FUZZ_BUILD=DIR to build elsewhere)
+# Usage: scripts/fuzz.sh [SECONDS]
+#   FUZZ_BUILD=DIR builds elsewhere; FUZZ_HARNESSES="fuzz_config" runs one.
 set -eu
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-600}
 B=${FUZZ_BUILD:-build-fuzz}
 CC_FUZZ=${CC_FUZZ:-$(command -v clang-14 || command -v clang)}
-HARNESSES="fuzz_config fuzz_particles_csv"
-export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
+HARNESSES=${FUZZ_HARNESSES:-fuzz_config fuzz_particles_csv}
+export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 
 CC=$CC_FUZZ cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
