@@ -223,12 +223,14 @@ static const struct bad_case bad_cases[] = {
      "column 'mass'"},
     /* found by fuzz_particles_csv: finite inputs, unusable mass */
     {"mass overflows", 3, "x,y,z,radius\n0,0,0,1\n0,0,0,1e200\n",
-     DEM_ECONFIG, 3, "column 'radius': radius 1e+200 m gives a mass"},
+     DEM_ECONFIG, 3, "column 'radius': 1e+200 m gives a mass of inf kg"},
     {"mass underflows", 3, "x,y,z,radius\n0,0,0,1e-200\n", DEM_ECONFIG, 2,
      "column 'radius'"},
-    {"inertia underflows", 3, "x,y,z,radius,mass\n0,0,0,1e-3,1e-320\n",
-     DEM_ECONFIG, 2, "column 'mass': radius 0.001 m with this mass gives a "
-     "moment of inertia"},
+    {"inertia underflows", 3, "x,y,z,radius,mass\n0,0,0,1e-3,1e-303\n",
+     DEM_ECONFIG, 2, "column 'mass': radius 0.001 m and mass 1e-303 kg give "
+     "a moment of inertia of 4e-310 kg m^2"},
+    {"inverse mass overflows", 3, "x,y,z,radius,mass\n0,0,0,0.1,1e-320\n",
+     DEM_ECONFIG, 2, "column 'mass': 9.99989e-321 kg is out of range"},
     {"inertia overflows", 3, "x,y,z,radius,mass\n0,0,0,1e160,1e10\n",
      DEM_ECONFIG, 2, "column 'mass'"},
     {"header only", 3, "x,y,z,radius\n\n", DEM_ECONFIG, 2, "no particles"},

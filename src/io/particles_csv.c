@@ -300,17 +300,28 @@ int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
         }
         /* A finite radius (and mass) can still give a mass or moment of
          * inertia that overflows to inf or underflows to 0 (radius 1e200
-         * or 1e-200 m), which would make the particle immobile or NaN. */
-        if (!(m > 0.0 && isfinite(m) && I > 0.0 && isfinite(I))) {
-            rc = dem_error_set(err, DEM_ECONFIG,
-                               "%s:%d: column '%s': radius %g m%s gives %s "
-                               "%g, out of range",
-                               path, r.lines[i], has_mass ? "mass" : "radius",
-                               a, has_mass ? " with this mass" : "",
-                               m > 0.0 && isfinite(m)
-                                   ? "a moment of inertia (kg m^2) of"
-                                   : "a mass (kg) of",
-                               m > 0.0 && isfinite(m) ? I : m);
+         * or 1e-200 m), or one so small (1e-320 kg) that its inverse is
+         * inf, which would make the particle immobile or NaN. */
+        const int m_ok = m > 0.0 && isfinite(m) && isfinite(1.0 / m);
+        if (!(m_ok && I > 0.0 && isfinite(I) && isfinite(1.0 / I))) {
+            if (!m_ok && has_mass)
+                rc = dem_error_set(err, DEM_ECONFIG,
+                                   "%s:%d: column 'mass': %g kg is out of "
+                                   "range (1/mass is not finite)",
+                                   path, r.lines[i], m);
+            else if (!m_ok)
+                rc = dem_error_set(err, DEM_ECONFIG,
+                                   "%s:%d: column 'radius': %g m gives a "
+                                   "mass of %g kg (density %g kg/m^3), out "
+                                   "of range",
+                                   path, r.lines[i], a, m, density);
+            else
+                rc = dem_error_set(err, DEM_ECONFIG,
+                                   "%s:%d: column '%s': radius %g m and mass "
+                                   "%g kg give a moment of inertia of %g kg "
+                                   "m^2, out of range",
+                                   path, r.lines[i],
+                                   has_mass ? "mass" : "radius", a, m, I);
             dem_particles_free(p);
             reader_free(&r);
             return rc;
