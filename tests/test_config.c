@@ -480,6 +480,24 @@ static void bad_inputs_fail_with_one_line_naming_key_and_line(void **state)
         check_bad(&bad_inputs[i]);
 }
 
+/* A path of 1000 quotes and backslashes is 2000 characters once escaped
+ * for the resolved config; it used to be cut at ~1000, so that config.cfg
+ * named another file (found by fuzz_config's round-trip check). */
+static void resolved_config_keeps_a_long_escaped_path(void **state)
+{
+    (void)state;
+    static char text[4096];
+    size_t n = (size_t)snprintf(text, sizeof text,
+                                "particles = { placement = \"file\"; "
+                                "file = \"");
+    for (int i = 0; i < 1000; i++) {
+        text[n++] = '\\';
+        text[n++] = i % 2 ? '"' : '\\';
+    }
+    snprintf(text + n, sizeof text - n, "\"; };\n");
+    assert_round_trip(text);
+}
+
 /* Quotes inside comments and escaped quotes inside strings do not open a
  * string: the check for text left open at the end must not reject these. */
 static void quotes_in_comments_and_escapes_are_not_open_strings(void **state)
@@ -601,6 +619,7 @@ int main(void)
         cmocka_unit_test(defaults_are_seed_000_values),
         cmocka_unit_test(two_d_defaults_resolve_by_dimension),
         cmocka_unit_test(resolved_config_reads_back_identically),
+        cmocka_unit_test(resolved_config_keeps_a_long_escaped_path),
         cmocka_unit_test(resolved_config_documents_each_key),
         cmocka_unit_test(set_overrides_scalars_enums_arrays_and_stages),
         cmocka_unit_test(contact_time_matches_seed_000),

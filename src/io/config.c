@@ -1615,7 +1615,12 @@ static void format_double(char *buf, size_t n, double v)
         strncat(buf, ".0", n - strlen(buf) - 1);
 }
 
-/* The value of a scalar or vector key as config text. */
+/* Room for any value as text: a path with every character escaped, its
+ * quotes and the NUL. */
+#define VALUE_TEXT_MAX (2 * DEM_PATH_MAX + 8)
+
+/* The value of a scalar or vector key as config text (n >= VALUE_TEXT_MAX
+ * for a path, or it is cut short). */
 static void value_text(const struct key *k, const void *base, char *buf,
                        size_t n)
 {
@@ -1663,7 +1668,7 @@ static void value_text(const struct key *k, const void *base, char *buf,
 static void write_line(FILE *f, int depth, const char *lhs, const char *rhs,
                        const struct key *k, const char *note)
 {
-    char line[DEM_PATH_MAX + 256];
+    char line[VALUE_TEXT_MAX + 256];
     snprintf(line, sizeof line, "%*s%s = %s;", 2 * depth, "", lhs, rhs);
     fprintf(f, "%-44s # %s; %s%s\n", line, k->unit, k->doc, note ? note : "");
 }
@@ -1696,7 +1701,7 @@ static void write_stages(const struct dem_config *c, FILE *f)
         const unsigned bit = 1u << st->type;
         fprintf(f, "  {   # stage %d\n", i);
         for (size_t k = 0; k < NKEYS; k++) {
-            char v[DEM_PATH_MAX + 8];
+            char v[VALUE_TEXT_MAX];
             if (keys[k].scope != S_STAGE || !(keys[k].uses & bit) ||
                 ((keys[k].flags & F_UNSET_NEG) && key_value(st, &keys[k]) < 0))
                 continue;
@@ -1738,7 +1743,7 @@ int dem_config_write(const struct dem_config *c, FILE *f)
             depth++;
         }
         const char *why = omitted(&keys[k], c);
-        char v[DEM_PATH_MAX + 8], note[96];
+        char v[VALUE_TEXT_MAX], note[96];
         if (keys[k].kind == K_STAGES) {
             fprintf(f, "\n");
             write_stages(c, f);
