@@ -6,7 +6,9 @@
  *     or the file and its line);
  *   - no output folder (neither -o out nor the default dembox-out/), or at
  *     least nothing in it that looks like a finished run.
- * A row that dembox wrongly accepts runs only a few steps (--max-steps). */
+ * A row that dembox wrongly accepts runs only a few steps (--max-steps).
+ * The good side: the base configs of the rows and every built-in example
+ * run a few steps and write their outputs. */
 /* nftw() is an X/Open function. */
 #define _XOPEN_SOURCE 700
 
@@ -147,7 +149,7 @@ static const struct row rows[] = {
     {"empty particle file", BASEFILE, 0, "", {RUN_CFG}, "p.csv:1: empty file"},
     {"particle file that is a folder",
      "dimension = 2;\nparticles = { placement = \"file\"; file = \".\"; };\n",
-     0, 0, {RUN_CFG}, "."},
+     0, 0, {RUN_CFG}, ".:1: read error: Is a directory"},
     {"particle outside the box",
      BASEFILE "box = { size = [0.1, 0.1, 0.0]; };\n", 0,
      "x,y,radius\n0.5,0.5,0.01\n", {RUN_CFG}, "p.csv:2"},
@@ -382,10 +384,49 @@ static void base_configs_run(void **state)
     }
 }
 
+/* Every built-in example runs a few steps through the command line and
+ * writes its outputs: with DEM_SANITIZE this puts the whole engine under
+ * the sanitizers, not only the failing paths above. */
+static void every_example_runs_a_few_steps(void **state)
+{
+    (void)state;
+    const char *bin = getenv("DEMBOX_BIN");
+    assert_non_null(bin);
+    char dir[] = "/tmp/dembox-cli-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    static const char *const list[] = {"examples", 0};
+    assert_int_equal(run_in(bin, list, dir), 0);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/stdout.txt", dir);
+    char *names = read_file(path);
+    int n = 0;
+    for (char *line = strtok(names, "\n"); line; line = strtok(0, "\n")) {
+        line[strcspn(line, " ")] = '\0';
+        const char *args[] = {"run", line, "-o", "out", "--quiet",
+                              "--max-steps", "20", 0};
+        int status = run_in(bin, args, dir);
+        snprintf(path, sizeof path, "%s/stderr.txt", dir);
+        char *err = read_file(path);
+        if (status != 0)
+            fail_msg("example %s: status %d: %s", line, status, err);
+        free(err);
+        if (!exists(dir, "out/timeseries.csv") ||
+            !exists(dir, "out/particles_final.csv"))
+            fail_msg("example %s: outputs missing", line);
+        snprintf(path, sizeof path, "%s/out", dir);
+        remove_tree(path);
+        n++;
+    }
+    assert_true(n >= 2);
+    free(names);
+    remove_tree(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(base_configs_run),
+        cmocka_unit_test(every_example_runs_a_few_steps),
         cmocka_unit_test(every_bad_input_fails_with_one_line_and_no_output),
     };
     return cmocka_run_group_tests(tests, 0, 0);
