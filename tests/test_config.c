@@ -335,6 +335,14 @@ static const struct bad bad_inputs[] = {
     {"\x01\x02\xff\xfe garbage", 0, "syntax error", 1},
     {"dimension = 3;\nparticles = { placement = \"random;\n};\noutput = {};\n",
      0, "unterminated string", 2},
+    /* libconfig 1.5 accepts these and drops the rest of the text */
+    {"dimension = 3;\nseed = 2; \"abc\n", 0, "unterminated string", 2},
+    {"dimension = 3;\n/* seed = 2;\n", 0, "unterminated comment", 2},
+    {"dimension = 3; # \"not a string\n/* \" */ seed = 2; \"x\\\"y\";\n\"",
+     0, "unterminated string", 3},
+    {"particles = { count = 5; };\nparticles.density = 1.0;\n", 0,
+     "particles.density: dotted names are for --set only", 2},
+    {"dimension = 3;\ncontact.k = 1.0;\n", 0, "contact.k: dotted names", 2},
     {"gravity = [0, 0, -9.81];", 0, "float", 1},
     /* wrong types */
     {"contact = {\n  k = \"stiff\";\n};", 0, "contact.k: must be a number", 2},
@@ -474,6 +482,52 @@ static void bad_inputs_fail_with_one_line_naming_key_and_line(void **state)
         check_bad(&bad_inputs[i]);
 }
 
+/* A path of 1000 quotes and backslashes is 2000 characters once escaped
+ * for the resolved config; it used to be cut at ~1000, so that config.cfg
+ * named another file (found by fuzz_config's round-trip check). */
+static void resolved_config_keeps_a_long_escaped_path(void **state)
+{
+    (void)state;
+    static char text[4096];
+    size_t n = (size_t)snprintf(text, sizeof text,
+                                "particles = { placement = \"file\"; "
+                                "file = \"");
+    for (int i = 0; i < 1000; i++) {
+        text[n++] = '\\';
+        text[n++] = i % 2 ? '"' : '\\';
+    }
+    snprintf(text + n, sizeof text - n, "\"; };\n");
+    assert_round_trip(text);
+}
+
+/* Quotes inside comments and escaped quotes inside strings do not open a
+ * string: the check for text left open at the end must not reject these. */
+static void quotes_in_comments_and_escapes_are_not_open_strings(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c,
+             "seed = 2; # a \"quote\n"
+             "/* \" */ dimension = 3; // \"x\n"
+             "particles = { placement = \"file\"; file = \"a\\\"b /* #\"; };\n",
+             0, 0);
+    assert_int_equal(c.seed, 2);
+    assert_string_equal(c.particles.file, "a\"b /* #");
+}
+
+/* With placement = "file", particles.count is not used (the file says how
+ * many there are), so its default must not fail the box fill check. */
+static void file_placement_ignores_count_for_box_fill(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c,
+             "dimension = 2;\nbox = { size = [0.01, 0.01, 0.0]; };\n"
+             "particles = { placement = \"file\"; file = \"p.csv\"; };\n",
+             0, 0);
+    assert_int_equal(c.particles.placement, DEM_PLACE_FILE);
+}
+
 static void too_many_stages_is_an_error(void **state)
 {
     (void)state;
@@ -567,6 +621,7 @@ int main(void)
         cmocka_unit_test(defaults_are_seed_000_values),
         cmocka_unit_test(two_d_defaults_resolve_by_dimension),
         cmocka_unit_test(resolved_config_reads_back_identically),
+        cmocka_unit_test(resolved_config_keeps_a_long_escaped_path),
         cmocka_unit_test(resolved_config_documents_each_key),
         cmocka_unit_test(set_overrides_scalars_enums_arrays_and_stages),
         cmocka_unit_test(contact_time_matches_seed_000),
@@ -574,6 +629,8 @@ int main(void)
         cmocka_unit_test(every_example_parses),
         cmocka_unit_test(bad_inputs_fail_with_one_line_naming_key_and_line),
         cmocka_unit_test(too_many_stages_is_an_error),
+        cmocka_unit_test(file_placement_ignores_count_for_box_fill),
+        cmocka_unit_test(quotes_in_comments_and_escapes_are_not_open_strings),
         cmocka_unit_test(validate_checks_a_struct_without_lines),
         cmocka_unit_test(key_help_lists_every_key),
         cmocka_unit_test(docs_key_table_matches_descriptor_table),

@@ -221,6 +221,18 @@ static const struct bad_case bad_cases[] = {
      "column 'radius'"},
     {"zero mass", 3, "x,y,z,radius,mass\n0,0,0,1,0\n", DEM_ECONFIG, 2,
      "column 'mass'"},
+    /* found by fuzz_particles_csv: finite inputs, unusable mass */
+    {"mass overflows", 3, "x,y,z,radius\n0,0,0,1\n0,0,0,1e200\n",
+     DEM_ECONFIG, 3, "column 'radius': 1e+200 m gives a mass of inf kg"},
+    {"mass underflows", 3, "x,y,z,radius\n0,0,0,1e-200\n", DEM_ECONFIG, 2,
+     "column 'radius'"},
+    {"inertia underflows", 3, "x,y,z,radius,mass\n0,0,0,1e-3,1e-303\n",
+     DEM_ECONFIG, 2, "column 'mass': radius 0.001 m and mass 1e-303 kg give "
+     "a moment of inertia of 4e-310 kg m^2"},
+    {"inverse mass overflows", 3, "x,y,z,radius,mass\n0,0,0,0.1,1e-320\n",
+     DEM_ECONFIG, 2, "column 'mass': 9.99989e-321 kg is out of range"},
+    {"inertia overflows", 3, "x,y,z,radius,mass\n0,0,0,1e160,1e10\n",
+     DEM_ECONFIG, 2, "column 'mass'"},
     {"header only", 3, "x,y,z,radius\n\n", DEM_ECONFIG, 2, "no particles"},
     {"2D nonzero z", 2, "x,y,z,radius\n0,0,0,1\n0,0,1e-3,1\n", DEM_ECONFIG, 3,
      "column 'z'"},
@@ -252,6 +264,27 @@ static void malformed_files_name_file_line_and_column(void **state)
         assert_int_equal(p.n, 0);
         assert_null(p.x);
     }
+}
+
+/* Found by fuzz_particles_csv: the line used to end silently at a NUL. */
+static void nul_byte_is_an_error_with_its_line(void **state)
+{
+    (void)state;
+    static const char text[] = "x,y,radius\n0,0,1\n1,0,1\0,5\n";
+    FILE *f = fmemopen((void *)text, sizeof text - 1, "r");
+    assert_non_null(f);
+    struct dem_particles p;
+    struct dem_error err = {0};
+    int *lines = 0;
+    int rc = dem_particles_read_csv_stream(&p, f, "mem.csv", 2, 2000.0,
+                                           DEM_MASS_DISC, &lines, &err);
+    fclose(f);
+    assert_int_equal(rc, DEM_ECONFIG);
+    assert_string_equal(err.msg,
+                        "mem.csv:3: NUL byte: a particle file is text, not "
+                        "binary");
+    assert_int_equal(p.n, 0);
+    assert_null(lines);
 }
 
 static void missing_file_is_an_io_error(void **state)
@@ -288,6 +321,7 @@ int main(void)
         cmocka_unit_test(write_then_read_is_bit_identical_2d_disc),
         cmocka_unit_test(optional_columns_any_order_and_mass_from_density),
         cmocka_unit_test(malformed_files_name_file_line_and_column),
+        cmocka_unit_test(nul_byte_is_an_error_with_its_line),
         cmocka_unit_test(missing_file_is_an_io_error),
         cmocka_unit_test(unwritable_path_is_an_io_error),
     };

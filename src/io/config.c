@@ -26,6 +26,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <libconfig.h>
 
@@ -930,6 +931,10 @@ static int check_box(const struct ctx *x, const struct dem_config *c,
                             "xyz"[d], L[d]);
         vol *= L[d];
     }
+    /* Particles from a file are counted and checked against the box when
+     * the file is read; particles.count and the radius keys do not apply. */
+    if (c->particles.placement == DEM_PLACE_FILE)
+        return 0;
     const double a = typical_radius(c);
     const double vp = c->dim == 2 ? M_PI * a * a : 4.0 / 3.0 * M_PI * a * a * a;
     const double solid = c->particles.count * vp;
@@ -1356,36 +1361,42 @@ out:
 
 /* --------------------------------------------------------------- parsing */
 
-/* Line where an unterminated string starts, or 0. libconfig reports such
- * an error at the end of the text, which is no help for finding it. */
-static int unterminated_string_line(const char *t)
+/* A string or block comment still open at the end of the text: returns
+ * "string" or "comment" and its first line, or NULL. libconfig 1.5 reports
+ * an open string at the end of the text, which is no help for finding it,
+ * and silently accepts one that follows a complete setting (`a = 1; "x`),
+ * as it does an open block comment, dropping the rest of the text. */
+static const char *unterminated(const char *t, int *at)
 {
-    int line = 1, start = 0;
+    int line = 1;
     for (; *t; t++) {
-        if (*t == '\n')
+        if (*t == '\n') {
             line++;
-        if (start) {
-            if (*t == '\\' && t[1])
-                t++;
-            else if (*t == '"')
-                start = 0;
-            else if (*t == '\n')
-                continue;
         } else if (*t == '"') {
-            start = line;
+            *at = line;
+            for (t++; *t != '"'; t++) {
+                if (!*t)
+                    return "string";
+                if (*t == '\n')
+                    line++;
+                else if (*t == '\\' && t[1] && t[1] != '\n')
+                    t++;
+            }
         } else if (*t == '#' || (*t == '/' && t[1] == '/')) {
             while (t[1] && t[1] != '\n')
                 t++;
         } else if (*t == '/' && t[1] == '*') {
-            for (t += 2; *t && !(*t == '*' && t[1] == '/'); t++)
+            *at = line;
+            for (t += 2; !(*t == '*' && t[1] == '/'); t++) {
+                if (!*t)
+                    return "comment";
                 if (*t == '\n')
                     line++;
-            if (!*t)
-                return 0;
+            }
             t++;
         }
     }
-    return start;
+    return 0;
 }
 
 /* The key assigned on line `line` of text that is a duplicate: the name
@@ -1401,8 +1412,9 @@ static void duplicate_name(const char *text, int line, char *out, size_t n)
     while (*text && *text != '\n' && count < 16) {
         if (isalpha((unsigned char)*text) || *text == '_') {
             const char *b = text;
+            /* with dots: a dotted name is a mistake worth naming whole */
             while (isalnum((unsigned char)*text) || *text == '_' ||
-                   *text == '-')
+                   *text == '-' || *text == '.')
                 text++;
             const char *e = text;
             while (*e == ' ' || *e == '\t')
@@ -1438,9 +1450,16 @@ static int syntax_error(const struct ctx *x, const config_t *cfg,
                                               : "unknown error";
     const int line = config_error_line(cfg);
     int rc;
-    if (strstr(what, "duplicate")) {
-        char name[DEM_NAME_MAX];
-        duplicate_name(text, line, name, sizeof name);
+    char name[DEM_NAME_MAX];
+    duplicate_name(text, line, name, sizeof name);
+    if (strchr(name, '.')) {
+        /* libconfig reads "a.b = 1" as a second setting "a" (a duplicate
+         * when a group a exists) followed by a syntax error. */
+        rc = dem_error_set(err, DEM_ECONFIG,
+                           "%s:%d: %s: dotted names are for --set only; in "
+                           "a file, write the group, e.g. a = { b = ...; }",
+                           x->source, line, name);
+    } else if (strstr(what, "duplicate")) {
         rc = dem_error_set(err, DEM_ECONFIG,
                            "%s:%d: %s%sduplicate key: each key may be given "
                            "only once in its group",
@@ -1450,12 +1469,6 @@ static int syntax_error(const struct ctx *x, const config_t *cfg,
                            "%s:%d: array mixes integers and floats; write "
                            "every element as a float, e.g. [0.0, 0.0, -9.81]",
                            x->source, line);
-    } else if (unterminated_string_line(text)) {
-        rc = dem_error_set(err, DEM_ECONFIG,
-                           "%s:%d: unterminated string (libconfig: %s at line "
-                           "%d)",
-                           x->source, unterminated_string_line(text), what,
-                           line);
     } else {
         rc = dem_error_set(err, DEM_ECONFIG, "%s:%d: %s%s", x->source, line,
                            strstr(what, "syntax") ? "" : "syntax error: ",
@@ -1507,6 +1520,15 @@ int dem_config_parse(struct dem_config *c, const char *text,
         rc = dem_error_set(err, DEM_ECONFIG, "%s: no config text", x->source);
         goto out;
     }
+    int open_line = 0;
+    const char *open_kind = unterminated(text, &open_line);
+    if (open_kind) {
+        rc = dem_error_set(err, DEM_ECONFIG,
+                           "%s:%d: unterminated %s (it runs to the end of the "
+                           "text)",
+                           x->source, open_line, open_kind);
+        goto out;
+    }
     if (!config_read_string(&cfg, text)) {
         rc = syntax_error(x, &cfg, text, err);
         goto out;
@@ -1543,6 +1565,13 @@ int dem_config_load_file(struct dem_config *c, const char *path,
     if (!f)
         return dem_error_set(err, DEM_EIO, "%s: cannot open (%s)", path,
                              strerror(errno));
+    /* fopen succeeds on a folder; reading it would fail with EISDIR. */
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(f);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: is a folder, not a config file", path);
+    }
     size_t cap = 4096, len = 0, got;
     char *text = malloc(cap);
     while (text && (got = fread(text + len, 1, cap - len - 1, f)) > 0) {
@@ -1554,15 +1583,27 @@ int dem_config_load_file(struct dem_config *c, const char *path,
             text = t;
         }
     }
-    int bad = ferror(f);
+    int bad = ferror(f), e = errno;
     fclose(f);
     if (!text)
         return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
     if (bad) {
         free(text);
-        return dem_error_set(err, DEM_EIO, "%s: read error", path);
+        return dem_error_set(err, DEM_EIO, "%s: read error (%s)", path,
+                             strerror(e));
     }
     text[len] = '\0';
+    /* The text ends at a NUL byte: anything after it would be ignored. */
+    const char *nul = memchr(text, '\0', len);
+    if (nul) {
+        int line = 1;
+        for (const char *t = text; t < nul; t++)
+            line += *t == '\n';
+        free(text);
+        return dem_error_set(err, DEM_ECONFIG,
+                             "%s:%d: NUL byte: a config is text, not binary",
+                             path, line);
+    }
     int rc = dem_config_parse(c, text, path, sets, nsets, err);
     free(text);
     return rc;
@@ -1582,7 +1623,12 @@ static void format_double(char *buf, size_t n, double v)
         strncat(buf, ".0", n - strlen(buf) - 1);
 }
 
-/* The value of a scalar or vector key as config text. */
+/* Room for any value as text: a path with every character escaped, its
+ * quotes and the NUL. */
+#define VALUE_TEXT_MAX (2 * DEM_PATH_MAX + 8)
+
+/* The value of a scalar or vector key as config text (n >= VALUE_TEXT_MAX
+ * for a path, or it is cut short). */
 static void value_text(const struct key *k, const void *base, char *buf,
                        size_t n)
 {
@@ -1630,7 +1676,7 @@ static void value_text(const struct key *k, const void *base, char *buf,
 static void write_line(FILE *f, int depth, const char *lhs, const char *rhs,
                        const struct key *k, const char *note)
 {
-    char line[DEM_PATH_MAX + 256];
+    char line[VALUE_TEXT_MAX + 256];
     snprintf(line, sizeof line, "%*s%s = %s;", 2 * depth, "", lhs, rhs);
     fprintf(f, "%-44s # %s; %s%s\n", line, k->unit, k->doc, note ? note : "");
 }
@@ -1663,7 +1709,7 @@ static void write_stages(const struct dem_config *c, FILE *f)
         const unsigned bit = 1u << st->type;
         fprintf(f, "  {   # stage %d\n", i);
         for (size_t k = 0; k < NKEYS; k++) {
-            char v[DEM_PATH_MAX + 8];
+            char v[VALUE_TEXT_MAX];
             if (keys[k].scope != S_STAGE || !(keys[k].uses & bit) ||
                 ((keys[k].flags & F_UNSET_NEG) && key_value(st, &keys[k]) < 0))
                 continue;
@@ -1705,7 +1751,7 @@ int dem_config_write(const struct dem_config *c, FILE *f)
             depth++;
         }
         const char *why = omitted(&keys[k], c);
-        char v[DEM_PATH_MAX + 8], note[96];
+        char v[VALUE_TEXT_MAX], note[96];
         if (keys[k].kind == K_STAGES) {
             fprintf(f, "\n");
             write_stages(c, f);

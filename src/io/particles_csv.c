@@ -70,7 +70,7 @@ static int parse_number(const char *s, double *v)
 /* State of one read, so every error path can release everything at once. */
 struct reader {
     const char *path;
-    FILE *f;
+    FILE *f;           /* borrowed: the caller opens and closes it */
     char *line;        /* getline buffer */
     size_t line_cap;
     double *rows;      /* NCOL values per particle */
@@ -80,8 +80,6 @@ struct reader {
 
 static void reader_free(struct reader *r)
 {
-    if (r->f)
-        fclose(r->f);
     free(r->line);
     free(r->rows);
     free(r->lines);
@@ -221,6 +219,12 @@ static int read_rows(struct reader *r, int dim, int *has_mass,
     while ((len = getline(&r->line, &r->line_cap, r->f)) != -1) {
         lineno++;
         bytes += len;
+        /* The line would silently end at a NUL byte. */
+        if (memchr(r->line, '\0', (size_t)len))
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "%s:%d: NUL byte: a particle file is text, "
+                                 "not binary",
+                                 r->path, lineno);
         char *s = trim(r->line);
         if (*s == '\0' || *s == '#')
             continue;
@@ -262,19 +266,17 @@ static int read_rows(struct reader *r, int dim, int *has_mass,
     return DEM_OK;
 }
 
-int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
-                                 int dim, double density, int mass_model,
-                                 int **lines, struct dem_error *err)
+int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
+                                  const char *path, int dim, double density,
+                                  int mass_model, int **lines,
+                                  struct dem_error *err)
 {
     memset(p, 0, sizeof *p);
     if (lines)
         *lines = NULL;
     struct reader r = {0};
     r.path = path;
-    r.f = fopen(path, "r");
-    if (!r.f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
-                             strerror(errno));
+    r.f = f;
     int has_mass = 0;
     int rc = read_rows(&r, dim, &has_mass, err);
     if (rc == DEM_OK)
@@ -286,6 +288,44 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
     for (int i = 0; i < r.n; i++) {
         const double *row = r.rows + (size_t)i * NCOL;
         double a = row[COL_RADIUS];
+        double m, I;
+        if (has_mass) {
+            /* Same expressions as dem_particle_mass so that a file written
+             * by dembox reloads to bit-identical inverse inertia. */
+            m = row[COL_MASS];
+            I = (mass_model == DEM_MASS_DISC && dim == 2) ? 0.5 * m * a * a
+                                                          : 0.4 * m * a * a;
+        } else {
+            dem_particle_mass(a, density, mass_model, dim, &m, &I);
+        }
+        /* A finite radius (and mass) can still give a mass or moment of
+         * inertia that overflows to inf or underflows to 0 (radius 1e200
+         * or 1e-200 m), or one so small (1e-320 kg) that its inverse is
+         * inf, which would make the particle immobile or NaN. */
+        const int m_ok = m > 0.0 && isfinite(m) && isfinite(1.0 / m);
+        if (!(m_ok && I > 0.0 && isfinite(I) && isfinite(1.0 / I))) {
+            if (!m_ok && has_mass)
+                rc = dem_error_set(err, DEM_ECONFIG,
+                                   "%s:%d: column 'mass': %g kg is out of "
+                                   "range (1/mass is not finite)",
+                                   path, r.lines[i], m);
+            else if (!m_ok)
+                rc = dem_error_set(err, DEM_ECONFIG,
+                                   "%s:%d: column 'radius': %g m gives a "
+                                   "mass of %g kg (density %g kg/m^3), out "
+                                   "of range",
+                                   path, r.lines[i], a, m, density);
+            else
+                rc = dem_error_set(err, DEM_ECONFIG,
+                                   "%s:%d: column '%s': radius %g m and mass "
+                                   "%g kg give a moment of inertia of %g kg "
+                                   "m^2, out of range",
+                                   path, r.lines[i],
+                                   has_mass ? "mass" : "radius", a, m, I);
+            dem_particles_free(p);
+            reader_free(&r);
+            return rc;
+        }
         dem_particles_add(p, row[COL_X], row[COL_Y], row[COL_Z], a, density,
                           mass_model, dim);
         p->vx[i] = row[COL_VX];
@@ -294,17 +334,9 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
         p->wx[i] = row[COL_WX];
         p->wy[i] = row[COL_WY];
         p->wz[i] = row[COL_WZ];
-        if (has_mass) {
-            /* Same expressions as dem_particle_mass so that a file written
-             * by dembox reloads to bit-identical inverse inertia. */
-            double m = row[COL_MASS];
-            double I = (mass_model == DEM_MASS_DISC && dim == 2)
-                           ? 0.5 * m * a * a
-                           : 0.4 * m * a * a;
-            p->m[i] = m;
-            p->inv_m[i] = 1.0 / m;
-            p->inv_I[i] = 1.0 / I;
-        }
+        p->m[i] = m;
+        p->inv_m[i] = 1.0 / m;
+        p->inv_I[i] = 1.0 / I;
     }
     if (lines) {
         *lines = r.lines;
@@ -312,6 +344,23 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
     }
     reader_free(&r);
     return DEM_OK;
+}
+
+int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
+                                 int dim, double density, int mass_model,
+                                 int **lines, struct dem_error *err)
+{
+    memset(p, 0, sizeof *p);
+    if (lines)
+        *lines = NULL;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
+                             strerror(errno));
+    int rc = dem_particles_read_csv_stream(p, f, path, dim, density,
+                                           mass_model, lines, err);
+    fclose(f);
+    return rc;
 }
 
 int dem_particles_read_csv(struct dem_particles *p, const char *path, int dim,

@@ -12,6 +12,8 @@
 #ifndef DEM_IO_PARTICLES_CSV_H
 #define DEM_IO_PARTICLES_CSV_H
 
+#include <stdio.h>
+
 #include "core/particles.h"
 #include "dembox.h"
 
@@ -28,6 +30,14 @@ int dem_particles_read_csv(struct dem_particles *p, const char *path, int dim,
 int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
                                  int dim, double density, int mass_model,
                                  int **lines, struct dem_error *err);
+
+/* As dem_particles_read_csv_lines, from an open stream f (e.g. fmemopen
+ * for text in memory, as the fuzz harness does); path only names it in
+ * messages. f is read to its end and left open. */
+int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
+                                  const char *path, int dim, double density,
+                                  int mass_model, int **lines,
+                                  struct dem_error *err);
 
 /* Write the header x,y,z,vx,vy,vz,wx,wy,wz,radius,mass and one row per
  * particle in order of p->id, every number with 17 significant digits so

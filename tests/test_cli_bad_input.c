@@ -1,0 +1,438 @@
+/* The dembox command on bad input: every row runs the built binary
+ * (DEMBOX_BIN) in a fresh temporary folder holding the row's config and
+ * particle files, and expects
+ *   - a non-zero exit, not a signal (a crash) and within TIMEOUT_S (a hang);
+ *   - exactly one line on stderr, containing the row's substring (the key,
+ *     or the file and its line);
+ *   - no output folder (neither -o out nor the default dembox-out/), or at
+ *     least nothing in it that looks like a finished run.
+ * A row that dembox wrongly accepts runs only a few steps (--max-steps).
+ * The good side: the base configs of the rows and every built-in example
+ * run a few steps and write their outputs. */
+/* nftw() is an X/Open function. */
+#define _XOPEN_SOURCE 700
+
+#include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
+#include <setjmp.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#define TIMEOUT_S 20
+#define MAX_ARGS 16
+
+/* A 2D config that runs: the rows below change one thing in it. */
+#define BASE2D                                                               \
+    "dimension = 2; time_step = \"auto\";\n"                                 \
+    "particles = { count = 16; radius = { distribution = \"mono\"; "         \
+    "mean = 1.0e-3; }; };\n"                                                 \
+    "stages = ( { type = \"hold\"; duration = 1.0e-3; } );\n"
+
+/* The same reading its particles from p.csv. */
+#define BASEFILE                                                             \
+    "dimension = 2; time_step = \"auto\";\n"                                 \
+    "particles = { placement = \"file\"; file = \"p.csv\"; };\n"             \
+    "stages = ( { type = \"hold\"; duration = 1.0e-3; } );\n"
+
+/* A run of c.cfg into out/, with fewer steps in case it is accepted. */
+#define RUN_CFG "run", "c.cfg", "-o", "out", "--quiet", "--max-steps", "5"
+
+struct row {
+    const char *name;      /* what is wrong */
+    const char *config;    /* text of c.cfg, or NULL for none */
+    size_t config_len;     /* 0: strlen(config); else bytes (NULs allowed) */
+    const char *particles; /* text of p.csv, or NULL for none */
+    const char *args[MAX_ARGS]; /* argv after "dembox", NULL-terminated */
+    const char *want;      /* substring of the one stderr line */
+};
+
+static const struct row rows[] = {
+    /* ------------------------------------------------------ config keys */
+    {"unknown key", BASE2D "contact = { kk = 1.0; };\n", 0, 0, {RUN_CFG},
+     "c.cfg:4: contact.kk: unknown key"},
+    {"wrong type", BASE2D "contact = { k = \"stiff\"; };\n", 0, 0, {RUN_CFG},
+     "c.cfg:4: contact.k: must be a number"},
+    {"integer as float", BASE2D "seed = 1.5;\n", 0, 0, {RUN_CFG},
+     "c.cfg:4: seed: must be an integer"},
+    {"negative stiffness", BASE2D "contact = { k = -5000.0; };\n", 0, 0,
+     {RUN_CFG}, "c.cfg:4: contact.k: must be > 0"},
+    {"dotted key name", BASE2D "particles.density = 1.0;\n", 0, 0,
+     {RUN_CFG}, "c.cfg:4: particles.density: dotted names are for --set"},
+    {"negative density",
+     "dimension = 2;\n"
+     "particles = { count = 16; density = -2000.0; };\n",
+     0, 0, {RUN_CFG}, "c.cfg:2: particles.density: must be > 0"},
+    {"mu_d > mu_s", BASE2D "contact = { mu_s = 0.3; mu_d = 0.5; };\n", 0, 0,
+     {RUN_CFG}, "c.cfg:4: contact.mu_d: must be <= contact.mu_s"},
+    {"time step above t_c/5", BASE2D "time_step = 1.0e-3;\n", 0, 0,
+     {RUN_CFG}, "c.cfg:4: time_step"},
+    {"empty box", BASE2D "box = { size = [0.0, 0.1, 0.0]; };\n", 0, 0,
+     {RUN_CFG}, "c.cfg:4: box.size: empty box"},
+    {"more particles than fit",
+     "dimension = 2;\nbox = { size = [0.01, 0.01, 0.0]; };\n"
+     "particles = { count = 100000; };\n",
+     0, 0, {RUN_CFG}, "c.cfg:3: particles.count"},
+    {"k1 > k2",
+     BASE2D "contact = { normal = \"luding\"; k1 = 2.0e5; k2 = 1.0e5; };\n",
+     0, 0, {RUN_CFG}, "c.cfg:4: contact.k1: must be <= contact.k2"},
+    {"negative kc", BASE2D "contact = { normal = \"luding\"; kc = -1.0; };\n",
+     0, 0, {RUN_CFG}, "c.cfg:4: contact.kc"},
+    {"phi_f above 1",
+     BASE2D "contact = { normal = \"luding\"; phi_f = 1.5; };\n", 0, 0,
+     {RUN_CFG}, "c.cfg:4: contact.phi_f"},
+    {"phi_f 0", BASE2D "contact = { normal = \"luding\"; phi_f = 0.0; };\n",
+     0, 0, {RUN_CFG}, "c.cfg:4: contact.phi_f"},
+    {"Luding key with the linear law", BASE2D "contact = { k1 = 5.0e4; };\n",
+     0, 0, {RUN_CFG}, "c.cfg:4: contact.k1: Luding parameter"},
+    {"linear key with the Luding law",
+     BASE2D "contact = { normal = \"luding\"; k = 5000.0; };\n", 0, 0,
+     {RUN_CFG}, "c.cfg:4: contact.k: linear-law parameter"},
+    {"stage key of another stage type",
+     "dimension = 2;\nstages = ( { type = \"hold\"; duration = 1.0;\n"
+     "  strain = 0.1; } );\n",
+     0, 0, {RUN_CFG}, "c.cfg:3: stages.0.strain: not used by a hold stage"},
+    {"no stages", BASE2D "stages = ();\n", 0, 0, {RUN_CFG}, "c.cfg:4"},
+    /* ----------------------------------------------------- config syntax */
+    {"binary garbage", "\x01\x02\xff\xfe\x7f garbage \x80\x81", 0, 0,
+     {RUN_CFG}, "c.cfg:1: syntax error"},
+    {"binary with NUL bytes", "dimension = 2;\n\0\x01\x02\0zz", 21, 0,
+     {RUN_CFG}, "c.cfg:2: NUL byte"},
+    {"huge number", BASE2D "contact = { k = 1e400; };\n", 0, 0, {RUN_CFG},
+     "c.cfg:4: contact.k: must be finite"},
+    {"nan (not a libconfig number)", BASE2D "contact = { k = nan; };\n", 0,
+     0, {RUN_CFG}, "c.cfg:4: syntax error"},
+    {"duplicate key", BASE2D "contact = { k = 1.0;\n  k = 2.0; };\n", 0, 0,
+     {RUN_CFG}, "c.cfg:5: k: duplicate key"},
+    {"unterminated string",
+     "dimension = 2;\nparticles = { placement = \"file;\n};\n", 0, 0,
+     {RUN_CFG}, "c.cfg:2: unterminated string"},
+    {"unterminated string at the end", BASE2D "\"abc", 0, 0, {RUN_CFG},
+     "c.cfg:4: unterminated string"},
+    {"unterminated comment", BASE2D "/* seed = 2;\n", 0, 0, {RUN_CFG},
+     "c.cfg:4: unterminated comment"},
+    {"empty config file", "", 0, 0, {"run", "c.cfg", "-o", "out",
+     "--quiet", "--max-steps", "5", "--set", "time_step=1.0"},
+     "--set time_step=1.0: time_step"},
+    /* --------------------------------------------------- particle files */
+    {"missing particle file",
+     "dimension = 2;\n"
+     "particles = { placement = \"file\"; file = \"nosuch.csv\"; };\n",
+     0, 0, {RUN_CFG}, "nosuch.csv: cannot open"},
+    {"particle file without column y", BASEFILE, 0, "x,radius\n0.1,0.01\n",
+     {RUN_CFG}, "p.csv:1: missing required column 'y'"},
+    {"particle file with a short row", BASEFILE, 0,
+     "x,y,radius\n0.1,0.1,0.01\n0.2,0.1\n", {RUN_CFG}, "p.csv:3: 2 fields"},
+    {"particle file with a non-numeric field", BASEFILE, 0,
+     "x,y,radius\n0.1,0.1,0.01\n0.2,abc,0.01\n", {RUN_CFG},
+     "p.csv:3: column 'y'"},
+    {"particle file with a negative radius", BASEFILE, 0,
+     "# comment\nx,y,radius\n0.1,0.1,-0.01\n", {RUN_CFG},
+     "p.csv:3: column 'radius': must be > 0"},
+    {"particle file with nan", BASEFILE, 0, "x,y,radius\nnan,0.1,0.01\n",
+     {RUN_CFG}, "p.csv:2: column 'x'"},
+    {"particle file with a radius whose mass overflows", BASEFILE, 0,
+     "x,y,radius\n0.1,0.1,1e200\n", {RUN_CFG},
+     "p.csv:2: column 'radius': 1e+200 m gives a mass of inf kg"},
+    {"empty particle file", BASEFILE, 0, "", {RUN_CFG}, "p.csv:1: empty file"},
+    {"particle file that is a folder",
+     "dimension = 2;\nparticles = { placement = \"file\"; file = \".\"; };\n",
+     0, 0, {RUN_CFG}, ".:1: read error: Is a directory"},
+    {"particle outside the box",
+     BASEFILE "box = { size = [0.1, 0.1, 0.0]; };\n", 0,
+     "x,y,radius\n0.5,0.5,0.01\n", {RUN_CFG}, "p.csv:2"},
+    /* ---------------------------------------------------- command line */
+    {"unknown option", BASE2D, 0, 0,
+     {"run", "c.cfg", "-o", "out", "--bogus"}, "--bogus"},
+    {"--threads 0", BASE2D, 0, 0,
+     {"run", "c.cfg", "-o", "out", "--threads", "0"}, "--threads"},
+    {"--threads not a number", BASE2D, 0, 0,
+     {"run", "c.cfg", "-o", "out", "--threads", "two"}, "--threads"},
+    {"--max-steps without a number", BASE2D, 0, 0,
+     {"run", "c.cfg", "-o", "out", "--max-steps"}, "--max-steps"},
+    {"-o without a folder", BASE2D, 0, 0, {"run", "c.cfg", "-o"}, "-o"},
+    {"two configs", BASE2D, 0, 0, {"run", "c.cfg", "c.cfg", "-o", "out"},
+     "more than one config"},
+    {"--set without =", BASE2D, 0, 0,
+     {RUN_CFG, "--set", "contact.mu"}, "--set contact.mu: expected KEY=VALUE"},
+    {"--set without a value", BASE2D, 0, 0, {RUN_CFG, "--set"}, "--set"},
+    {"--set an unknown key", BASE2D, 0, 0,
+     {RUN_CFG, "--set", "unknown.key=1"}, "--set unknown.key: unknown key"},
+    {"--set beyond the stages list", BASE2D, 0, 0,
+     {RUN_CFG, "--set", "stages.9.pressure=1"},
+     "--set stages.9.pressure: index 9 beyond the list"},
+    {"--set a bad value", BASE2D, 0, 0,
+     {RUN_CFG, "--set", "contact.k=-1"}, "--set contact.k=-1: contact.k"},
+    {"--set nan", BASE2D, 0, 0, {RUN_CFG, "--set", "contact.k=nan"},
+     "--set contact.k=nan: contact.k"},
+    {"--set two values", BASE2D, 0, 0,
+     {RUN_CFG, "--set", "contact.mu=0.3; seed = 2"}, "--set contact.mu"},
+    {"--set with a newline", BASE2D, 0, 0,
+     {RUN_CFG, "--set", "contact.k=1\n2"}, "--set contact.k"},
+    {"nonexistent config", 0, 0, 0, {"run", "nosuch.cfg", "-o", "out"},
+     "nosuch.cfg: cannot open"},
+    {"a folder as config", 0, 0, 0, {"run", "./", "-o", "out"},
+     "./: is a folder"},
+    {"output folder is a file", BASE2D, 0, "not a folder\n",
+     {"run", "c.cfg", "-o", "p.csv/out", "--quiet", "--max-steps", "5"},
+     "p.csv"},
+    {"empty output folder name", BASE2D, 0, 0,
+     {"run", "c.cfg", "-o", "", "--quiet", "--max-steps", "5"},
+     "bad output folder name"},
+    {"--max-steps 0", BASE2D, 0, 0,
+     {"run", "c.cfg", "-o", "out", "--max-steps", "0"}, "--max-steps"},
+    {"unknown command", 0, 0, 0, {"nosuch"}, "unknown command 'nosuch'"},
+    {"example nosuch", 0, 0, 0, {"example", "nosuch"},
+     "no example called 'nosuch'"},
+    {"example without a name", 0, 0, 0, {"example"}, "example"},
+    {"help nosuch", 0, 0, 0, {"help", "nosuch"},
+     "no command called 'nosuch'"},
+};
+
+#define NROWS (sizeof rows / sizeof rows[0])
+
+/* ------------------------------------------------------------ helpers */
+
+static void write_file(const char *dir, const char *name, const char *data,
+                       size_t len)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(data, 1, len, f), len);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* The whole of a small file, NUL-terminated (caller frees). */
+static char *read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    char *buf = calloc(1, 65536);
+    assert_non_null(buf);
+    size_t n = fread(buf, 1, 65535, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static int exists(const char *dir, const char *name)
+{
+    char path[4096];
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return stat(path, &st) == 0;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag,
+                        struct FTW *ftw)
+{
+    (void)st;
+    (void)flag;
+    (void)ftw;
+    return remove(path);
+}
+
+static void remove_tree(const char *dir)
+{
+    if (nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS) != 0)
+        fprintf(stderr, "could not remove %s\n", dir);
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Run bin with args in dir, stdout and stderr to files there; returns the
+ * wait status, or -1 after killing a run that outlived TIMEOUT_S. */
+static int run_in(const char *bin, const char *const *args, const char *dir)
+{
+    char *argv[MAX_ARGS + 2];
+    int n = 0;
+    argv[n++] = (char *)"dembox";
+    for (; n <= MAX_ARGS && args[n - 1]; n++)
+        argv[n] = (char *)args[n - 1];
+    argv[n] = 0;
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        if (chdir(dir) != 0)
+            _exit(126);
+        int out = open("stdout.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int err = open("stderr.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int in = open("/dev/null", O_RDONLY);
+        if (out < 0 || err < 0 || in < 0 || dup2(in, 0) < 0 ||
+            dup2(out, 1) < 0 || dup2(err, 2) < 0)
+            _exit(126);
+        execv(bin, argv);
+        _exit(127);
+    }
+    const double t0 = now();
+    for (;;) {
+        int status;
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid)
+            return status;
+        assert_true(w == 0 || (w < 0 && errno == EINTR));
+        if (now() - t0 > TIMEOUT_S) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            return -1;
+        }
+        struct timespec nap = {0, 5000000};
+        nanosleep(&nap, 0);
+    }
+}
+
+/* Every problem with one row, as one line in fails (empty = fine). */
+static void check_row(const char *bin, const struct row *r, char *fails,
+                      size_t n)
+{
+    char dir[] = "/tmp/dembox-cli-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    if (r->config)
+        write_file(dir, "c.cfg", r->config,
+                   r->config_len ? r->config_len : strlen(r->config));
+    if (r->particles)
+        write_file(dir, "p.csv", r->particles, strlen(r->particles));
+
+    int status = run_in(bin, r->args, dir);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/stderr.txt", dir);
+    char *err = read_file(path);
+    int lines = 0;
+    for (const char *p = err; *p; p++)
+        lines += *p == '\n';
+    size_t used = strlen(fails);
+#define ADD(...)                                                             \
+    used += (size_t)snprintf(fails + used, used < n ? n - used : 0,          \
+                             __VA_ARGS__)
+    if (status == -1)
+        ADD("\n  %s: hang (killed after %d s)", r->name, TIMEOUT_S);
+    else if (WIFSIGNALED(status))
+        ADD("\n  %s: killed by signal %d", r->name, WTERMSIG(status));
+    else if (WEXITSTATUS(status) == 0)
+        ADD("\n  %s: exit status 0", r->name);
+    else if (WEXITSTATUS(status) >= 126)
+        ADD("\n  %s: could not run %s (exit %d)", r->name, bin,
+            WEXITSTATUS(status));
+    if (lines != 1 || err[strlen(err) - 1] != '\n')
+        ADD("\n  %s: %d lines on stderr: \"%s\"", r->name, lines, err);
+    else if (!strstr(err, r->want))
+        ADD("\n  %s: stderr \"%.*s\" does not contain \"%s\"", r->name,
+            (int)strlen(err) - 1, err, r->want);
+    static const char *const outputs[] = {"out", "dembox-out"};
+    for (size_t k = 0; k < 2; k++)
+        if (exists(dir, outputs[k]))
+            ADD("\n  %s: output folder %s created", r->name, outputs[k]);
+#undef ADD
+    free(err);
+    remove_tree(dir);
+}
+
+/* ------------------------------------------------------------- tests */
+
+static void every_bad_input_fails_with_one_line_and_no_output(void **state)
+{
+    (void)state;
+    const char *bin = getenv("DEMBOX_BIN");
+    if (!bin || access(bin, X_OK) != 0)
+        fail_msg("DEMBOX_BIN (%s) is not an executable", bin ? bin : "unset");
+    static char fails[65536];
+    fails[0] = '\0';
+    for (size_t i = 0; i < NROWS; i++)
+        check_row(bin, &rows[i], fails, sizeof fails);
+    if (fails[0])
+        fail_msg("rows that failed:%s", fails);
+}
+
+/* The base configs of the table are good: a row fails for its one fault,
+ * not for something in the base. */
+static void base_configs_run(void **state)
+{
+    (void)state;
+    const char *bin = getenv("DEMBOX_BIN");
+    assert_non_null(bin);
+    static const char *const args[] = {RUN_CFG, 0};
+    const char *cfgs[] = {BASE2D, BASEFILE};
+    for (int k = 0; k < 2; k++) {
+        char dir[] = "/tmp/dembox-cli-XXXXXX";
+        assert_non_null(mkdtemp(dir));
+        write_file(dir, "c.cfg", cfgs[k], strlen(cfgs[k]));
+        write_file(dir, "p.csv", "x,y,radius\n0.1,0.1,0.01\n", 24);
+        int status = run_in(bin, args, dir);
+        char path[4200];
+        snprintf(path, sizeof path, "%s/stderr.txt", dir);
+        char *err = read_file(path);
+        if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+            fail_msg("base config %d failed (status %d): %s", k, status, err);
+        assert_true(exists(dir, "out/timeseries.csv"));
+        assert_true(exists(dir, "out/particles_final.csv"));
+        free(err);
+        remove_tree(dir);
+    }
+}
+
+/* Every built-in example runs a few steps through the command line and
+ * writes its outputs: with DEM_SANITIZE this puts the whole engine under
+ * the sanitizers, not only the failing paths above. */
+static void every_example_runs_a_few_steps(void **state)
+{
+    (void)state;
+    const char *bin = getenv("DEMBOX_BIN");
+    assert_non_null(bin);
+    char dir[] = "/tmp/dembox-cli-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    static const char *const list[] = {"examples", 0};
+    assert_int_equal(run_in(bin, list, dir), 0);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/stdout.txt", dir);
+    char *names = read_file(path);
+    int n = 0;
+    for (char *line = strtok(names, "\n"); line; line = strtok(0, "\n")) {
+        line[strcspn(line, " ")] = '\0';
+        const char *args[] = {"run", line, "-o", "out", "--quiet",
+                              "--max-steps", "20", 0};
+        int status = run_in(bin, args, dir);
+        snprintf(path, sizeof path, "%s/stderr.txt", dir);
+        char *err = read_file(path);
+        if (status != 0)
+            fail_msg("example %s: status %d: %s", line, status, err);
+        free(err);
+        if (!exists(dir, "out/timeseries.csv") ||
+            !exists(dir, "out/particles_final.csv"))
+            fail_msg("example %s: outputs missing", line);
+        snprintf(path, sizeof path, "%s/out", dir);
+        remove_tree(path);
+        n++;
+    }
+    assert_true(n >= 2);
+    free(names);
+    remove_tree(dir);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(base_configs_run),
+        cmocka_unit_test(every_example_runs_a_few_steps),
+        cmocka_unit_test(every_bad_input_fails_with_one_line_and_no_output),
+    };
+    return cmocka_run_group_tests(tests, 0, 0);
+}
