@@ -21,6 +21,7 @@
  * there is no function pointer and no configuration branch per contact.
  */
 #include <math.h>
+#include <omp.h>
 #include <string.h>
 
 #include "contact/luding.h"
@@ -52,172 +53,236 @@ DEM_INLINE double normal_force(const int law, const struct dem_contact_params *c
     return fn;
 }
 
-/* A listed pair that is not in contact: its history ends and its stored
+/* The arrays one pass works on, read into locals once: a store to the
+ * state bytes (unsigned char may alias anything) would otherwise make the
+ * compiler reload every array pointer from its struct after each contact. */
+struct pass {
+    const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
+    const int *ci, *cj;
+    double *xi_x, *xi_y, *xi_z, *dmax;
+    unsigned char *state;
+    double *fx, *fy, *fz, *cx, *cy, *cz;
+};
+
+static struct pass pass_of(const struct dem_particles *P,
+                           struct dem_contact_list *L,
+                           struct dem_contact_forces *F)
+{
+    struct pass q = {P->x,    P->y,    P->z,    P->vx,   P->vy,   P->vz,
+                     P->wx,   P->wy,   P->wz,   P->r,    L->i,    L->j,
+                     L->xi_x, L->xi_y, L->xi_z, L->dmax, L->state, F->fx,
+                     F->fy,   F->fz,   F->cx,   F->cy,   F->cz};
+    return q;
+}
+
+/* A listed contact that is not closed: its history ends and its stored
  * force is zero. A list build zeroes every stored force, so only a
  * contact that has just opened needs writing. */
-static void forget(struct dem_contact_list *L, struct dem_contact_forces *F,
-                   int k)
+DEM_INLINE void forget(const struct pass *q, int k)
 {
-    if (!L->state[k])
+    if (!q->state[k])
         return;
-    L->xi_x[k] = L->xi_y[k] = L->xi_z[k] = 0.0;
-    L->dmax[k] = 0.0;
-    L->state[k] = 0;
-    F->fx[k] = F->fy[k] = F->fz[k] = 0.0;
-    F->cx[k] = F->cy[k] = F->cz[k] = 0.0;
+    q->xi_x[k] = q->xi_y[k] = q->xi_z[k] = 0.0;
+    q->dmax[k] = 0.0;
+    q->state[k] = 0;
+    q->fx[k] = q->fy[k] = q->fz[k] = 0.0;
+    q->cx[k] = q->cy[k] = q->cz[k] = 0.0;
 }
 
 /* Tangential force, history update and the stored force of contact k. */
-DEM_INLINE void finish_contact(struct dem_contact_list *L,
-                               struct dem_contact_forces *F, int k,
-                               const double n[3], const double vij[3],
-                               double fn, double fc, double dt,
-                               const struct dem_tangential *T)
+DEM_INLINE void finish_contact(const struct pass *q, int k, const double n[3],
+                               const double vij[3], double fn, double fc,
+                               double dt, const struct dem_tangential *T)
 {
-    double xi[3] = {L->xi_x[k], L->xi_y[k], L->xi_z[k]};
-    unsigned char st = L->state[k] | DEM_CONTACT_ACTIVE;
+    double xi[3] = {q->xi_x[k], q->xi_y[k], q->xi_z[k]};
+    unsigned char st = q->state[k] | DEM_CONTACT_ACTIVE;
     double ft[3];
     dem_tangential_force(n, vij, fc, dt, T, xi, &st, ft);
-    L->xi_x[k] = xi[0];
-    L->xi_y[k] = xi[1];
-    L->xi_z[k] = xi[2];
-    L->state[k] = st;
-    F->fx[k] = fn * n[0] + ft[0];
-    F->fy[k] = fn * n[1] + ft[1];
-    F->fz[k] = fn * n[2] + ft[2];
-    F->cx[k] = n[1] * ft[2] - n[2] * ft[1];
-    F->cy[k] = n[2] * ft[0] - n[0] * ft[2];
-    F->cz[k] = n[0] * ft[1] - n[1] * ft[0];
+    q->xi_x[k] = xi[0];
+    q->xi_y[k] = xi[1];
+    q->xi_z[k] = xi[2];
+    q->state[k] = st;
+    q->fx[k] = fn * n[0] + ft[0];
+    q->fy[k] = fn * n[1] + ft[1];
+    q->fz[k] = fn * n[2] + ft[2];
+    q->cx[k] = n[1] * ft[2] - n[2] * ft[1];
+    q->cy[k] = n[2] * ft[0] - n[0] * ft[2];
+    q->cz[k] = n[0] * ft[1] - n[1] * ft[0];
 }
 
-DEM_INLINE void pair_pass(struct dem_sim *s, const int law)
+/* Pair contacts k0 <= k < k1. */
+DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
+                           const struct dem_contact_params *cp, double dt)
 {
-    const struct dem_particles *P = &s->p;
-    struct dem_contact_list *L = &s->pairs.cur;
-    struct dem_contact_forces *F = &s->pairs.f;
-    const struct dem_contact_params *cp = &s->cp;
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
-    const double dt = s->dt;
-    const double *restrict x = P->x, *restrict y = P->y, *restrict z = P->z;
-    const double *restrict r = P->r;
-    const int npair = L->n;
-
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < npair; k++) {
-        const int i = L->i[k], j = L->j[k];
-        const double dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+    for (int k = k0; k < k1; k++) {
+        const int i = q.ci[k], j = q.cj[k];
+        const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
+                     dz = q.z[i] - q.z[j];
         const double d2 = dx * dx + dy * dy + dz * dz;
-        const double R = r[i] + r[j];
+        const double ai = q.r[i], aj = q.r[j];
+        const double R = ai + aj;
         if (d2 >= R * R) {
-            forget(L, F, k);
+            forget(&q, k);
             continue;
         }
         const double d = sqrt(d2);
         const double id = 1.0 / d;
         const double n[3] = {dx * id, dy * id, dz * id};
-        const double ai = r[i], aj = r[j];
         /* a_i n x w_i + a_j n x w_j */
-        const double cwx = ai * P->wx[i] + aj * P->wx[j];
-        const double cwy = ai * P->wy[i] + aj * P->wy[j];
-        const double cwz = ai * P->wz[i] + aj * P->wz[j];
-        const double vij[3] = {
-            P->vx[i] - P->vx[j] + n[1] * cwz - n[2] * cwy,
-            P->vy[i] - P->vy[j] + n[2] * cwx - n[0] * cwz,
-            P->vz[i] - P->vz[j] + n[0] * cwy - n[1] * cwx};
+        const double cwx = ai * q.wx[i] + aj * q.wx[j];
+        const double cwy = ai * q.wy[i] + aj * q.wy[j];
+        const double cwz = ai * q.wz[i] + aj * q.wz[j];
+        const double vij[3] = {q.vx[i] - q.vx[j] + n[1] * cwz - n[2] * cwy,
+                               q.vy[i] - q.vy[j] + n[2] * cwx - n[0] * cwz,
+                               q.vz[i] - q.vz[j] + n[0] * cwy - n[1] * cwx};
         const double ddot = -(vij[0] * n[0] + vij[1] * n[1] + vij[2] * n[2]);
         double fc;
         const double fn = normal_force(law, cp, cp->kc, R - d, ddot,
-                                       ai * aj / R, &L->dmax[k], &fc);
-        finish_contact(L, F, k, n, vij, fn, fc, dt, &T);
+                                       ai * aj / R, &q.dmax[k], &fc);
+        finish_contact(&q, k, n, vij, fn, fc, dt, &T);
+    }
+}
+
+DEM_INLINE void pair_pass(struct dem_sim *s, const int law)
+{
+    const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f);
+    const struct dem_contact_params cp = s->cp;
+    const double dt = s->dt;
+    const int npair = s->pairs.cur.n;
+#pragma omp parallel
+    {
+        /* equal static blocks: each contact is computed on its own, so the
+         * split does not change any result */
+        int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        int k0 = (int)((long)npair * t / nt), k1 = (int)((long)npair * (t + 1) / nt);
+        pair_range(law, q, k0, k1, &cp, dt);
+    }
+}
+
+/* Wall contacts k0 <= k < k1. */
+DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
+                           const struct dem_contact_params *cp, double dt,
+                           const struct dem_wall *walls)
+{
+    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->wall_mu,
+                                     cp->wall_mu};
+    for (int k = k0; k < k1; k++) {
+        const int i = q.ci[k];
+        const struct dem_wall *W = &walls[q.cj[k]];
+        const int a = W->axis;
+        const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
+        const double pos[3] = {q.x[i], q.y[i], q.z[i]};
+        const double ai = q.r[i];
+        const double delta = ai - sgn * (pos[a] - W->pos);
+        if (delta <= 0.0) {
+            forget(&q, k);
+            continue;
+        }
+        double n[3] = {0.0, 0.0, 0.0};
+        n[a] = sgn;
+        const double cw[3] = {ai * q.wx[i], ai * q.wy[i], ai * q.wz[i]};
+        double vij[3] = {q.vx[i] + n[1] * cw[2] - n[2] * cw[1],
+                         q.vy[i] + n[2] * cw[0] - n[0] * cw[2],
+                         q.vz[i] + n[0] * cw[1] - n[1] * cw[0]};
+        vij[a] -= W->vel;
+        const double ddot = -(vij[a] * sgn);
+        double fc;
+        const double fn = normal_force(law, cp, cp->wall_kc, delta, ddot, ai,
+                                       &q.dmax[k], &fc);
+        finish_contact(&q, k, n, vij, fn, fc, dt, &T);
     }
 }
 
 DEM_INLINE void wall_pass(struct dem_sim *s, const int law)
 {
-    const struct dem_particles *P = &s->p;
-    struct dem_contact_list *L = &s->pairs.wcur;
-    struct dem_contact_forces *F = &s->pairs.wf;
-    const struct dem_contact_params *cp = &s->cp;
-    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->wall_mu,
-                                     cp->wall_mu};
+    const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf);
+    const struct dem_contact_params cp = s->cp;
     const double dt = s->dt;
-    const int nw = L->n;
+    const int nw = s->pairs.wcur.n;
+    struct dem_wall walls[DEM_MAX_WALLS];
+    memcpy(walls, s->wall, sizeof walls);
+#pragma omp parallel
+    {
+        int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        int k0 = (int)((long)nw * t / nt), k1 = (int)((long)nw * (t + 1) / nt);
+        wall_range(law, q, k0, k1, &cp, dt, walls);
+    }
+}
 
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < nw; k++) {
-        const int i = L->i[k];
-        const struct dem_wall *W = &s->wall[L->j[k]];
-        const int a = W->axis;
-        const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
-        const double pos[3] = {P->x[i], P->y[i], P->z[i]};
-        const double delta = P->r[i] - sgn * (pos[a] - W->pos);
-        if (delta <= 0.0) {
-            forget(L, F, k);
-            continue;
+/* Particles i0 <= i < i1: background damping, then the stored contact
+ * forces in list order. */
+static void gather_range(int i0, int i1, const struct dem_particles *P,
+                         const struct dem_pairs *pl, double gb, double gr)
+{
+    const double *restrict vx = P->vx, *restrict vy = P->vy,
+                           *restrict vz = P->vz;
+    const double *restrict wx = P->wx, *restrict wy = P->wy,
+                           *restrict wz = P->wz, *restrict r = P->r;
+    double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
+    double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
+    const int *restrict start = pl->cur.start, *restrict rstart = pl->rstart,
+                        *restrict rpair = pl->rpair,
+                        *restrict wstart = pl->wcur.start;
+    const double *restrict Fx = pl->f.fx, *restrict Fy = pl->f.fy,
+                           *restrict Fz = pl->f.fz, *restrict Cx = pl->f.cx,
+                           *restrict Cy = pl->f.cy, *restrict Cz = pl->f.cz;
+    const double *restrict Wx = pl->wf.fx, *restrict Wy = pl->wf.fy,
+                           *restrict Wz = pl->wf.fz, *restrict Vx = pl->wf.cx,
+                           *restrict Vy = pl->wf.cy, *restrict Vz = pl->wf.cz;
+    for (int i = i0; i < i1; i++) {
+        const double a = r[i];
+        double fx = -gb * vx[i], fy = -gb * vy[i], fz = -gb * vz[i];
+        double cx = 0.0, cy = 0.0, cz = 0.0; /* sum of n x f_t */
+        for (int k = start[i]; k < start[i + 1]; k++) {
+            fx += Fx[k];
+            fy += Fy[k];
+            fz += Fz[k];
+            cx += Cx[k];
+            cy += Cy[k];
+            cz += Cz[k];
         }
-        double n[3] = {0.0, 0.0, 0.0};
-        n[a] = sgn;
-        const double ai = P->r[i];
-        const double cw[3] = {ai * P->wx[i], ai * P->wy[i], ai * P->wz[i]};
-        double vij[3] = {P->vx[i] + n[1] * cw[2] - n[2] * cw[1],
-                         P->vy[i] + n[2] * cw[0] - n[0] * cw[2],
-                         P->vz[i] + n[0] * cw[1] - n[1] * cw[0]};
-        vij[a] -= W->vel;
-        const double ddot = -(vij[a] * sgn);
-        double fc;
-        const double fn = normal_force(law, cp, cp->wall_kc, delta, ddot, ai,
-                                       &L->dmax[k], &fc);
-        finish_contact(L, F, k, n, vij, fn, fc, dt, &T);
+        for (int q = rstart[i]; q < rstart[i + 1]; q++) {
+            const int k = rpair[q];
+            fx -= Fx[k];
+            fy -= Fy[k];
+            fz -= Fz[k];
+            cx += Cx[k];
+            cy += Cy[k];
+            cz += Cz[k];
+        }
+        for (int k = wstart[i]; k < wstart[i + 1]; k++) {
+            fx += Wx[k];
+            fy += Wy[k];
+            fz += Wz[k];
+            cx += Vx[k];
+            cy += Vy[k];
+            cz += Vz[k];
+        }
+        const double g = gr * a * a;
+        ofx[i] = fx;
+        ofy[i] = fy;
+        ofz[i] = fz;
+        otx[i] = -g * wx[i] - a * cx;
+        oty[i] = -g * wy[i] - a * cy;
+        otz[i] = -g * wz[i] - a * cz;
     }
 }
 
 /* Sum every particle's forces and torques in a fixed order. */
 static void gather(struct dem_sim *s)
 {
-    struct dem_particles *P = &s->p;
+    const struct dem_particles *P = &s->p;
     const struct dem_pairs *pl = &s->pairs;
-    const struct dem_contact_list *L = &pl->cur, *WL = &pl->wcur;
-    const struct dem_contact_forces *F = &pl->f, *WF = &pl->wf;
+    const struct dem_contact_list *WL = &pl->wcur;
+    const struct dem_contact_forces *WF = &pl->wf;
     const double gb = s->cfg.damping.gamma_b, gr = s->cfg.damping.gamma_br;
     const int n = P->n;
-
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; i++) {
-        const double a = P->r[i];
-        double fx = -gb * P->vx[i], fy = -gb * P->vy[i], fz = -gb * P->vz[i];
-        const double g = gr * a * a;
-        double cx = 0.0, cy = 0.0, cz = 0.0; /* sum of n x f_t */
-        for (int k = L->start[i]; k < L->start[i + 1]; k++) {
-            fx += F->fx[k];
-            fy += F->fy[k];
-            fz += F->fz[k];
-            cx += F->cx[k];
-            cy += F->cy[k];
-            cz += F->cz[k];
-        }
-        for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++) {
-            const int k = pl->rpair[q];
-            fx -= F->fx[k];
-            fy -= F->fy[k];
-            fz -= F->fz[k];
-            cx += F->cx[k];
-            cy += F->cy[k];
-            cz += F->cz[k];
-        }
-        for (int k = WL->start[i]; k < WL->start[i + 1]; k++) {
-            fx += WF->fx[k];
-            fy += WF->fy[k];
-            fz += WF->fz[k];
-            cx += WF->cx[k];
-            cy += WF->cy[k];
-            cz += WF->cz[k];
-        }
-        P->fx[i] = fx;
-        P->fy[i] = fy;
-        P->fz[i] = fz;
-        P->tx[i] = -g * P->wx[i] - a * cx;
-        P->ty[i] = -g * P->wy[i] - a * cy;
-        P->tz[i] = -g * P->wz[i] - a * cz;
+#pragma omp parallel
+    {
+        int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        gather_range((int)((long)n * t / nt), (int)((long)n * (t + 1) / nt), P,
+                     pl, gb, gr);
     }
 
     /* the walls feel the opposite forces: their outward push, in list order */

@@ -183,18 +183,23 @@ static int needs_rebuild(const struct dem_sim *s)
 static void kick(struct dem_sim *s, double h)
 {
     struct dem_particles *p = &s->p;
-    const double gx = s->cfg.gravity[0], gy = s->cfg.gravity[1],
-                 gz = s->cfg.gravity[2];
+    const double gx = h * s->cfg.gravity[0], gy = h * s->cfg.gravity[1],
+                 gz = h * s->cfg.gravity[2];
     const int n = p->n;
+    double *restrict vx = p->vx, *restrict vy = p->vy, *restrict vz = p->vz;
+    double *restrict wx = p->wx, *restrict wy = p->wy, *restrict wz = p->wz;
+    const double *restrict fx = p->fx, *restrict fy = p->fy,
+                           *restrict fz = p->fz, *restrict tx = p->tx,
+                           *restrict ty = p->ty, *restrict tz = p->tz;
+    const double *restrict im = p->inv_m, *restrict iI = p->inv_I;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
-        double im = p->inv_m[i] * h, iI = p->inv_I[i] * h;
-        p->vx[i] += im * p->fx[i] + h * gx;
-        p->vy[i] += im * p->fy[i] + h * gy;
-        p->vz[i] += im * p->fz[i] + h * gz;
-        p->wx[i] += iI * p->tx[i];
-        p->wy[i] += iI * p->ty[i];
-        p->wz[i] += iI * p->tz[i];
+        vx[i] += h * im[i] * fx[i] + gx;
+        vy[i] += h * im[i] * fy[i] + gy;
+        vz[i] += h * im[i] * fz[i] + gz;
+        wx[i] += h * iI[i] * tx[i];
+        wy[i] += h * iI[i] * ty[i];
+        wz[i] += h * iI[i] * tz[i];
     }
 }
 
@@ -202,11 +207,14 @@ static void drift(struct dem_sim *s, double h)
 {
     struct dem_particles *p = &s->p;
     const int n = p->n;
+    double *restrict x = p->x, *restrict y = p->y, *restrict z = p->z;
+    const double *restrict vx = p->vx, *restrict vy = p->vy,
+                           *restrict vz = p->vz;
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < n; i++) {
-        p->x[i] += h * p->vx[i];
-        p->y[i] += h * p->vy[i];
-        p->z[i] += h * p->vz[i];
+        x[i] += h * vx[i];
+        y[i] += h * vy[i];
+        z[i] += h * vz[i];
     }
 }
 
