@@ -8,6 +8,7 @@
 #include "core/sim.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -180,20 +181,18 @@ static int needs_rebuild(const struct dem_sim *s)
     return moved;
 }
 
-static void kick(struct dem_sim *s, double h)
+/* Particles i0 <= i < i1: v += h (f/m + g), w += h t/I. */
+static void kick_range(int i0, int i1, double h, const double g[3],
+                       struct dem_particles *p)
 {
-    struct dem_particles *p = &s->p;
-    const double gx = h * s->cfg.gravity[0], gy = h * s->cfg.gravity[1],
-                 gz = h * s->cfg.gravity[2];
-    const int n = p->n;
     double *restrict vx = p->vx, *restrict vy = p->vy, *restrict vz = p->vz;
     double *restrict wx = p->wx, *restrict wy = p->wy, *restrict wz = p->wz;
     const double *restrict fx = p->fx, *restrict fy = p->fy,
                            *restrict fz = p->fz, *restrict tx = p->tx,
                            *restrict ty = p->ty, *restrict tz = p->tz;
     const double *restrict im = p->inv_m, *restrict iI = p->inv_I;
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; i++) {
+    const double gx = h * g[0], gy = h * g[1], gz = h * g[2];
+    for (int i = i0; i < i1; i++) {
         vx[i] += h * im[i] * fx[i] + gx;
         vy[i] += h * im[i] * fy[i] + gy;
         vz[i] += h * im[i] * fz[i] + gz;
@@ -203,18 +202,38 @@ static void kick(struct dem_sim *s, double h)
     }
 }
 
-static void drift(struct dem_sim *s, double h)
+/* Particles i0 <= i < i1: r += h v. */
+static void drift_range(int i0, int i1, double h, struct dem_particles *p)
 {
-    struct dem_particles *p = &s->p;
-    const int n = p->n;
     double *restrict x = p->x, *restrict y = p->y, *restrict z = p->z;
     const double *restrict vx = p->vx, *restrict vy = p->vy,
                            *restrict vz = p->vz;
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; i++) {
+    for (int i = i0; i < i1; i++) {
         x[i] += h * vx[i];
         y[i] += h * vy[i];
         z[i] += h * vz[i];
+    }
+}
+
+static void kick(struct dem_sim *s, double h)
+{
+    const int n = s->p.n;
+#pragma omp parallel
+    {
+        int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        kick_range((int)((long)n * t / nt), (int)((long)n * (t + 1) / nt), h,
+                   s->cfg.gravity, &s->p);
+    }
+}
+
+static void drift(struct dem_sim *s, double h)
+{
+    const int n = s->p.n;
+#pragma omp parallel
+    {
+        int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        drift_range((int)((long)n * t / nt), (int)((long)n * (t + 1) / nt), h,
+                    &s->p);
     }
 }
 
