@@ -17,8 +17,9 @@
  *     order, its pairs as j in list order, its wall contacts in order.
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop body is written
- * once as an always-inline function and instantiated per normal law, so
- * there is no function pointer and no configuration branch per contact.
+ * once as an always-inline function and instantiated per normal law (a
+ * literal in each parallel region), so there is no function pointer and
+ * no configuration branch per contact.
  */
 #include <math.h>
 #include <omp.h>
@@ -144,21 +145,26 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     }
 }
 
-DEM_INLINE void pair_pass(struct dem_sim *s, const int law)
-{
-    const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f);
-    const struct dem_contact_params cp = s->cp;
-    const double dt = s->dt;
-    const int npair = s->pairs.cur.n;
-#pragma omp parallel
-    {
-        /* equal static blocks: each contact is computed on its own, so the
-         * split does not change any result */
-        int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        int k0 = (int)((long)npair * t / nt), k1 = (int)((long)npair * (t + 1) / nt);
-        pair_range(law, q, k0, k1, &cp, dt);
+/* All pair contacts in equal blocks, one per thread: each contact is
+ * computed on its own, so the split does not change any result. The law
+ * is a literal in each instance, so that the outlined parallel region is
+ * compiled for that law alone. */
+#define PAIR_PASS(LAW)                                                       \
+    {                                                                        \
+        const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f);   \
+        const struct dem_contact_params cp = s->cp;                          \
+        const double dt = s->dt;                                             \
+        const int np = s->pairs.cur.n;                                       \
+        _Pragma("omp parallel")                                              \
+        {                                                                    \
+            int nt = omp_get_num_threads(), t = omp_get_thread_num();        \
+            pair_range(LAW, q, (int)((long)np * t / nt),                     \
+                       (int)((long)np * (t + 1) / nt), &cp, dt);             \
+        }                                                                    \
     }
-}
+
+static void pair_pass_linear(struct dem_sim *s) PAIR_PASS(DEM_NORMAL_LINEAR)
+static void pair_pass_luding(struct dem_sim *s) PAIR_PASS(DEM_NORMAL_LUDING)
 
 /* Wall contacts k0 <= k < k1. */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
@@ -194,21 +200,24 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     }
 }
 
-DEM_INLINE void wall_pass(struct dem_sim *s, const int law)
-{
-    const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf);
-    const struct dem_contact_params cp = s->cp;
-    const double dt = s->dt;
-    const int nw = s->pairs.wcur.n;
-    struct dem_wall walls[DEM_MAX_WALLS];
-    memcpy(walls, s->wall, sizeof walls);
-#pragma omp parallel
-    {
-        int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        int k0 = (int)((long)nw * t / nt), k1 = (int)((long)nw * (t + 1) / nt);
-        wall_range(law, q, k0, k1, &cp, dt, walls);
+#define WALL_PASS(LAW)                                                       \
+    {                                                                        \
+        const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf); \
+        const struct dem_contact_params cp = s->cp;                          \
+        const double dt = s->dt;                                             \
+        const int nw = s->pairs.wcur.n;                                      \
+        struct dem_wall walls[DEM_MAX_WALLS];                                \
+        memcpy(walls, s->wall, sizeof walls);                                \
+        _Pragma("omp parallel")                                              \
+        {                                                                    \
+            int nt = omp_get_num_threads(), t = omp_get_thread_num();        \
+            wall_range(LAW, q, (int)((long)nw * t / nt),                     \
+                       (int)((long)nw * (t + 1) / nt), &cp, dt, walls);      \
+        }                                                                    \
     }
-}
+
+static void wall_pass_linear(struct dem_sim *s) WALL_PASS(DEM_NORMAL_LINEAR)
+static void wall_pass_luding(struct dem_sim *s) WALL_PASS(DEM_NORMAL_LUDING)
 
 /* Particles i0 <= i < i1: background damping, then the stored contact
  * forces in list order. */
@@ -386,11 +395,11 @@ static void measure_contacts(struct dem_sim *s)
 void dem_sim_forces(struct dem_sim *s)
 {
     if (s->cp.normal == DEM_NORMAL_LUDING) {
-        pair_pass(s, DEM_NORMAL_LUDING);
-        wall_pass(s, DEM_NORMAL_LUDING);
+        pair_pass_luding(s);
+        wall_pass_luding(s);
     } else {
-        pair_pass(s, DEM_NORMAL_LINEAR);
-        wall_pass(s, DEM_NORMAL_LINEAR);
+        pair_pass_linear(s);
+        wall_pass_linear(s);
     }
     gather(s);
     if (s->measure)
