@@ -93,7 +93,7 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
     xmax *= 1.1;
     if (!(xmax > 0.0)) {
         fprintf(gp, "set label \"no run has a peak\" at graph 0.5, 0.5 center\n"
-                    "plot 1/0 notitle\n");
+                    "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 notitle\n");
         return DEM_OK;
     }
     int block = 0;
@@ -115,9 +115,9 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                         rad * sin(M_PI * k / 180.0));
             fprintf(dat, "\n\n");
             fprintf(gp, "  \"mohr_circles.dat\" index %d with lines "
-                        "linewidth 2 linecolor %d title \"p = %.4g%s\" "
+                        "linewidth 2 linecolor %ld title \"p = %.4g%s\" "
                         "noenhanced, \\\n",
-                    block++, q + 1, r->pressure, par);
+                    block++, c + 1, r->pressure, par);
         }
         if (f->fit.ok) {
             const double t = tan(f->fit.phi_deg / DEG);
@@ -126,13 +126,13 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                     par, f->fit.phi_deg, f->fit.c, f->fit.c, xmax,
                     f->fit.c + xmax * t);
             fprintf(gp, "  \"mohr_circles.dat\" index %d with lines "
-                        "dashtype 2 linewidth 2 linecolor %d title "
+                        "dashtype %d linewidth 2 linecolor \"black\" title "
                         "\"flow function φ = %.1f°, c = %.3g, R² = %.3f%s\" "
                         "noenhanced, \\\n",
-                    block++, q + 1, f->fit.phi_deg, f->fit.c, f->fit.r2, par);
+                    block++, q + 2, f->fit.phi_deg, f->fit.c, f->fit.r2, par);
         }
     }
-    fprintf(gp, "  1/0 notitle\n");
+    fprintf(gp, "  0 linetype -3 notitle\n");
     return DEM_OK;
 }
 
@@ -200,7 +200,7 @@ static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
                     "noenhanced, \\\n",
                 q, q + 1, par, q, q + 1, par);
     }
-    fprintf(gp, "  1/0 notitle\n");
+    fprintf(gp, "  0 linetype -3 notitle\n");
     free(idx);
     return DEM_OK;
 }
@@ -294,7 +294,7 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
             block++;
         }
     }
-    fprintf(gp, "  1/0 notitle\n");
+    fprintf(gp, "  0 linetype -3 notitle\n");
     return DEM_OK;
 }
 
@@ -324,7 +324,7 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
                     "pointtype 7 title \"μ = %.3g%s%s%s\" noenhanced, \\\n",
                 block++, r->mu, par, r->verdict[0] ? ": " : "", r->verdict);
     }
-    fprintf(gp, "  1/0 notitle\n");
+    fprintf(gp, "  0 linetype -3 notitle\n");
     return DEM_OK;
 }
 
@@ -350,6 +350,9 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         any |= !plots[k].reason[0];
     if (rc || !any)
         return rc;
+    char log[DEM_PATH_MAX];
+    if (!dem_path_join(log, sizeof log, plotdir, "gnuplot.log", NULL))
+        remove(log); /* a restarted sweep's messages only */
     rc = dem_mkdir_p(plotdir, err);
     for (int k = 0; !rc && k < np; k++)
         if (!plots[k].reason[0])

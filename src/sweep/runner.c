@@ -123,6 +123,9 @@ static char *config_text(struct dem_config *c)
     if (!f)
         return NULL;
     c->name[0] = c->source[0] = '\0';
+    /* a run's config.cfg holds the resolved time step, which is what
+     * counts, not whether it was given as "auto" */
+    c->time_step_auto = 0;
     dem_config_write(c, f);
     if (fclose(f) != 0) {
         free(buf);
