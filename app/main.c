@@ -9,6 +9,7 @@
 #include "io/config.h"
 #include "io/examples.h"
 #include "io/plot.h"
+#include "sweep/sweep.h"
 
 #define DEFAULT_EXAMPLE "biaxial2d"
 #define MAX_SETS 256
@@ -23,6 +24,9 @@ static const char *const usage_main =
     "[--quiet]\n"
     "                      run a scenario (default: the example " DEFAULT_EXAMPLE
     ")\n"
+    "  sweep CONFIG|EXAMPLE --param KEY[,KEY...]=V1,V2,... [--param ...]\n"
+    "        [--jobs N] -o DIR [--set KEY=VALUE]... [--quiet]\n"
+    "                      run a parameter grid and the cross-run analysis\n"
     "  analyze OUTDIR      material parameters of a finished run -> "
     "OUTDIR/summary.json\n"
     "  plot OUTDIR         redraw the pictures of a run in OUTDIR/plots\n"
@@ -68,6 +72,45 @@ static const char *const usage_analyze =
     "the strain accumulated per cycle with the verdict ratcheting or\n"
     "shakedown. What cannot be computed is null with a reason. Formulas:\n"
     "docs/analysis.md.\n";
+
+static const char *const usage_sweep =
+    "usage: dembox sweep CONFIG|EXAMPLE --param KEY[,KEY...]=V1,V2,... "
+    "[--param ...]\n"
+    "                    [--jobs N] -o DIR [--set KEY=VALUE]... [--threads N] "
+    "[--quiet]\n"
+    "\n"
+    "Run CONFIG (or a built-in example) for every point of a parameter grid\n"
+    "and analyse the runs together. The grid is the product of the --param\n"
+    "options; keys listed together in one --param take the same values, e.g.\n"
+    "  dembox sweep biaxial2d -o sw --jobs 2 \\\n"
+    "      --param stages.0.pressure,stages.1.pressure=250,500,1000 \\\n"
+    "      --param contact.mu=0.1,0.5\n"
+    "Values are split at commas outside quotes and brackets (a vector value\n"
+    "\"[0.1,0.2]\" stays whole). Every point's config is checked before\n"
+    "anything runs.\n"
+    "\n"
+    "  -o, --output DIR    sweep folder (default dembox-out/sweep-NAME)\n"
+    "  --param SPEC        a swept parameter (at least one)\n"
+    "  --jobs N            runs at once (default 1); each uses --threads\n"
+    "  --threads N         OpenMP threads per run (default 1)\n"
+    "  --set KEY=VALUE     override a key in every run\n"
+    "  --max-steps N       stop every run after N steps (smoke tests)\n"
+    "  --quiet             no progress lines\n"
+    "\n"
+    "Each point runs as `dembox run` into DIR/runs/NAME, NAME made of its\n"
+    "KEY=VALUE pairs (or run_NNNN; DIR/runs/index lists them), its output in\n"
+    "DIR/runs/NAME/run.log. Restart the same command to finish a sweep: runs\n"
+    "already finished with the same config are skipped, unfinished ones are\n"
+    "resumed from their checkpoint.bin when they have one, else rerun. A\n"
+    "failed run is reported and the others go on; the exit status is then 1.\n"
+    "\n"
+    "DIR/sweep.json holds the grid, every run's key numbers (from its\n"
+    "summary.json) and the cross-run analysis: the flow function\n"
+    "tau = c + sigma tan phi from the Mohr circles at peak of runs differing\n"
+    "in confining pressure, friction at peak and critical state versus mu,\n"
+    "cohesion versus kc/k2, void ratio versus pressure with e = e0 - (p/hs)^n,\n"
+    "and the strain accumulated per cycle of cyclic runs. DIR/plots/ has\n"
+    "the pictures of what the sweep varies. Details: docs/sweep.md.\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";
@@ -179,6 +222,86 @@ static int cmd_run(int argc, char **argv)
     return 0;
 }
 
+static int parse_count(const char *opt, const char *v, long max, long *out)
+{
+    char *end;
+    long n = strtol(v, &end, 10);
+    if (!*v || *end || n < 1 || n > max) {
+        fprintf(stderr, "dembox: sweep: %s must be a positive integer\n", opt);
+        return 1;
+    }
+    *out = n;
+    return 0;
+}
+
+static int cmd_sweep(int argc, char **argv)
+{
+    static struct dem_sweep_grid grid;
+    const char *sets[MAX_SETS];
+    struct dem_sweep_options o = {0, 0, sets, 0, 1, 1, 0, 0, 0};
+    struct dem_error err = {0, ""};
+    long v;
+    int rc = 0;
+    for (int k = 0; k < argc && !rc; k++) {
+        const char *a = argv[k];
+        const int more = k + 1 < argc;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(usage_sweep, stdout);
+            dem_sweep_grid_free(&grid);
+            return 0;
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            rc = more ? (o.outdir = argv[++k], 0) : fail("sweep: -o needs a folder");
+        } else if (!strcmp(a, "--param")) {
+            if (!more)
+                rc = fail("sweep: --param needs KEY[,KEY...]=V1,V2,...");
+            else if (dem_sweep_param_add(&grid, argv[++k], &err))
+                rc = fprintf(stderr, "dembox: sweep: %s\n", err.msg) > 0;
+        } else if (!strcmp(a, "--set")) {
+            if (!more || o.nsets >= MAX_SETS)
+                rc = fail("sweep: --set needs KEY=VALUE (at most 256)");
+            else
+                sets[o.nsets++] = argv[++k];
+        } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
+            rc = more ? parse_count(a, argv[++k], 1024, &v) : fail("sweep: --jobs needs a number");
+            o.jobs = (int)v;
+        } else if (!strcmp(a, "--threads")) {
+            rc = more ? parse_count(a, argv[++k], 4096, &v) : fail("sweep: --threads needs a number");
+            o.threads = (int)v;
+        } else if (!strcmp(a, "--max-steps")) {
+            rc = more ? parse_count(a, argv[++k], 1L << 60, &v) : fail("sweep: --max-steps needs a number");
+            o.max_steps = v;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o.quiet = 1;
+        } else if (a[0] == '-') {
+            fprintf(stderr, "dembox: sweep: unknown option %s (see dembox help sweep)\n", a);
+            rc = 1;
+        } else if (!o.target) {
+            o.target = a;
+        } else {
+            rc = fail("sweep: more than one config given");
+        }
+    }
+    if (!rc && !o.target)
+        rc = fail("sweep: give a CONFIG or EXAMPLE (see dembox help sweep)");
+    if (!rc && grid.nparams == 0)
+        rc = fail("sweep: give at least one --param KEY=V1,V2,...");
+    char name[DEM_NAME_MAX], outbuf[DEM_PATH_MAX];
+    if (!rc && !o.outdir) {
+        stem(o.target, name, sizeof name);
+        snprintf(outbuf, sizeof outbuf, "dembox-out/sweep-%s", name);
+        o.outdir = outbuf;
+    }
+    struct dem_sweep_report rep;
+    if (!rc && dem_sweep_run(&grid, &o, &rep, &err))
+        rc = fail(err.msg);
+    if (!rc && !o.quiet)
+        fprintf(stderr, "dembox: sweep: %ld runs (%ld run now, %ld skipped as "
+                        "finished); results in %s/sweep.json\n",
+                rep.points, rep.ran, rep.skipped, o.outdir);
+    dem_sweep_grid_free(&grid);
+    return rc;
+}
+
 static int cmd_plot(int argc, char **argv)
 {
     if (argc != 1 || argv[0][0] == '-')
@@ -243,6 +366,8 @@ static int cmd_help(int argc, char **argv)
         fputs(usage_run, stdout);
     else if (!strcmp(c, "analyze"))
         fputs(usage_analyze, stdout);
+    else if (!strcmp(c, "sweep"))
+        fputs(usage_sweep, stdout);
     else if (!strcmp(c, "examples"))
         fputs(usage_examples, stdout);
     else if (!strcmp(c, "plot"))
@@ -271,6 +396,8 @@ int main(int argc, char **argv)
         return cmd_run(argc - 2, argv + 2);
     if (!strcmp(c, "analyze"))
         return cmd_analyze(argc - 2, argv + 2);
+    if (!strcmp(c, "sweep"))
+        return cmd_sweep(argc - 2, argv + 2);
     if (!strcmp(c, "examples"))
         return cmd_examples();
     if (!strcmp(c, "plot"))

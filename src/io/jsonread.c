@@ -1,0 +1,308 @@
+/* Recursive-descent JSON parser (RFC 8259), depth limited. */
+#include "io/jsonread.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_DEPTH 64
+
+struct parser {
+    const char *s;      /* text */
+    size_t i;           /* position */
+    const char *source; /* for messages */
+    struct dem_error *err;
+};
+
+static int fail(struct parser *p, const char *what)
+{
+    return dem_error_set(p->err, DEM_EIO, "%s: invalid JSON at byte %zu: %s",
+                         p->source, p->i, what);
+}
+
+static void skip_ws(struct parser *p)
+{
+    while (p->s[p->i] == ' ' || p->s[p->i] == '\t' || p->s[p->i] == '\n' ||
+           p->s[p->i] == '\r')
+        p->i++;
+}
+
+static int parse_value(struct parser *p, struct dem__jval *v, int depth);
+
+static int hexval(char c)
+{
+    if (c >= '0' && c <= '9')
+        return c - '0';
+    if (c >= 'a' && c <= 'f')
+        return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F')
+        return c - 'A' + 10;
+    return -1;
+}
+
+/* A string starting at the opening quote; *out is malloc'd. */
+static int parse_string(struct parser *p, char **out)
+{
+    p->i++; /* the quote */
+    size_t start = p->i, len = 0;
+    while (p->s[p->i] && p->s[p->i] != '"') {
+        if (p->s[p->i] == '\\' && p->s[p->i + 1])
+            p->i++;
+        p->i++;
+        len++;
+    }
+    if (p->s[p->i] != '"')
+        return fail(p, "unterminated string");
+    char *r = malloc(len + 1);
+    if (!r)
+        return dem_error_set(p->err, DEM_ENOMEM, "out of memory");
+    size_t k = 0;
+    for (size_t j = start; j < p->i; j++) {
+        char c = p->s[j];
+        if (c == '\\') {
+            c = p->s[++j];
+            switch (c) {
+            case 'n': c = '\n'; break;
+            case 't': c = '\t'; break;
+            case 'r': c = '\r'; break;
+            case 'b': c = '\b'; break;
+            case 'f': c = '\f'; break;
+            case 'u': {
+                int code = 0;
+                for (int h = 1; h <= 4; h++) {
+                    int d = hexval(p->s[j + h]);
+                    if (d < 0) {
+                        free(r);
+                        return fail(p, "bad \\u escape");
+                    }
+                    code = 16 * code + d;
+                }
+                j += 4;
+                c = code < 0x80 ? (char)code : '?';
+                break;
+            }
+            default: break; /* \" \\ \/ */
+            }
+        }
+        r[k++] = c;
+    }
+    r[k] = '\0';
+    p->i++;
+    *out = r;
+    return DEM_OK;
+}
+
+static int push(struct parser *p, struct dem__jval *v, char *key)
+{
+    void *items = realloc(v->items, (size_t)(v->n + 1) * sizeof *v->items);
+    if (!items)
+        goto oom;
+    v->items = items;
+    memset(&v->items[v->n], 0, sizeof *v->items);
+    if (v->type == DEM__JSON_OBJECT) {
+        void *keys = realloc(v->keys, (size_t)(v->n + 1) * sizeof *v->keys);
+        if (!keys)
+            goto oom;
+        v->keys = keys;
+        v->keys[v->n] = key;
+    }
+    v->n++;
+    return DEM_OK;
+oom:
+    free(key);
+    return dem_error_set(p->err, DEM_ENOMEM, "out of memory");
+}
+
+static int parse_container(struct parser *p, struct dem__jval *v, int depth)
+{
+    const char close = v->type == DEM__JSON_OBJECT ? '}' : ']';
+    p->i++;
+    skip_ws(p);
+    if (p->s[p->i] == close) {
+        p->i++;
+        return DEM_OK;
+    }
+    for (;;) {
+        char *key = NULL;
+        skip_ws(p);
+        if (v->type == DEM__JSON_OBJECT) {
+            if (p->s[p->i] != '"')
+                return fail(p, "expected a member name");
+            int rc = parse_string(p, &key);
+            if (rc)
+                return rc;
+            skip_ws(p);
+            if (p->s[p->i] != ':') {
+                free(key);
+                return fail(p, "expected ':'");
+            }
+            p->i++;
+        }
+        int rc = push(p, v, key);
+        if (!rc)
+            rc = parse_value(p, &v->items[v->n - 1], depth + 1);
+        if (rc)
+            return rc;
+        skip_ws(p);
+        if (p->s[p->i] == ',') {
+            p->i++;
+            continue;
+        }
+        if (p->s[p->i] == close) {
+            p->i++;
+            return DEM_OK;
+        }
+        return fail(p, "expected ',' or a closing bracket");
+    }
+}
+
+static int literal(struct parser *p, const char *word)
+{
+    size_t n = strlen(word);
+    if (strncmp(p->s + p->i, word, n) != 0)
+        return 0;
+    p->i += n;
+    return 1;
+}
+
+static int parse_value(struct parser *p, struct dem__jval *v, int depth)
+{
+    if (depth > MAX_DEPTH)
+        return fail(p, "nested too deeply");
+    skip_ws(p);
+    const char c = p->s[p->i];
+    memset(v, 0, sizeof *v);
+    if (c == '{' || c == '[') {
+        v->type = c == '{' ? DEM__JSON_OBJECT : DEM__JSON_ARRAY;
+        return parse_container(p, v, depth);
+    }
+    if (c == '"') {
+        v->type = DEM__JSON_STRING;
+        return parse_string(p, &v->str);
+    }
+    if (literal(p, "null")) {
+        v->type = DEM__JSON_NULL;
+        return DEM_OK;
+    }
+    if (literal(p, "true") || literal(p, "false")) {
+        v->type = DEM__JSON_BOOL;
+        v->num = c == 't';
+        return DEM_OK;
+    }
+    if (c == '-' || (c >= '0' && c <= '9')) {
+        char *end;
+        v->type = DEM__JSON_NUMBER;
+        v->num = strtod(p->s + p->i, &end);
+        p->i = (size_t)(end - p->s);
+        return DEM_OK;
+    }
+    return fail(p, c ? "unexpected character" : "unexpected end");
+}
+
+int dem__jread_text(struct dem__jval *v, const char *text, const char *source,
+                    struct dem_error *err)
+{
+    struct parser p = {text, 0, source, err};
+    int rc = parse_value(&p, v, 0);
+    if (!rc) {
+        skip_ws(&p);
+        if (text[p.i])
+            rc = fail(&p, "text after the document");
+    }
+    if (rc) {
+        dem__jread_free(v);
+        memset(v, 0, sizeof *v);
+    }
+    return rc;
+}
+
+int dem__jread_file(struct dem__jval *v, const char *path,
+                    struct dem_error *err)
+{
+    memset(v, 0, sizeof *v);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot open", path);
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n - 1, f);
+        if (n < cap - 1)
+            break;
+        char *b = realloc(buf, 2 * cap);
+        if (!b) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = b;
+        cap *= 2;
+    }
+    const int bad = ferror(f);
+    fclose(f);
+    if (!buf)
+        return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+    if (bad) {
+        free(buf);
+        return dem_error_set(err, DEM_EIO, "%s: read failed", path);
+    }
+    buf[n] = '\0';
+    int rc = dem__jread_text(v, buf, path, err);
+    free(buf);
+    return rc;
+}
+
+void dem__jread_free(struct dem__jval *v)
+{
+    if (!v)
+        return;
+    for (int k = 0; k < v->n; k++) {
+        dem__jread_free(&v->items[k]);
+        if (v->keys)
+            free(v->keys[k]);
+    }
+    free(v->items);
+    free(v->keys);
+    free(v->str);
+    memset(v, 0, sizeof *v);
+}
+
+const struct dem__jval *dem__jread_get(const struct dem__jval *o,
+                                       const char *key)
+{
+    if (!o || o->type != DEM__JSON_OBJECT)
+        return NULL;
+    for (int k = 0; k < o->n; k++)
+        if (strcmp(o->keys[k], key) == 0)
+            return &o->items[k];
+    return NULL;
+}
+
+static const struct dem__jval *at_path(const struct dem__jval *o,
+                                       const char *path)
+{
+    char seg[128];
+    while (o && *path) {
+        size_t n = strcspn(path, ".");
+        if (n >= sizeof seg)
+            return NULL;
+        memcpy(seg, path, n);
+        seg[n] = '\0';
+        o = dem__jread_get(o, seg);
+        path += n + (path[n] == '.');
+    }
+    return o;
+}
+
+double dem__jread_number(const struct dem__jval *o, const char *path)
+{
+    const struct dem__jval *v = at_path(o, path);
+    return v && v->type == DEM__JSON_NUMBER ? v->num : NAN;
+}
+
+const char *dem__jread_string(const struct dem__jval *o, const char *path)
+{
+    const struct dem__jval *v = at_path(o, path);
+    return v && v->type == DEM__JSON_STRING ? v->str : NULL;
+}

@@ -1,0 +1,720 @@
+/* The cross-run analysis of a sweep -> DIR/sweep.json (docs/sweep.md).
+ *
+ * Reads what the runs wrote (runs/NAME/config.cfg and summary.json), never
+ * the engine, and reuses the pure functions of src/analysis: the flow
+ * function is dem_mohr_fit over the peak (and critical-state) circles of
+ * runs that differ only in confining pressure, the void-ratio envelopes
+ * are dem_voidfit over the same groups.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/config.h"
+#include "io/fsutil.h"
+#include "io/json.h"
+#include "io/jsonread.h"
+#include "io/outfile.h"
+#include "sweep/sweep_internal.h"
+
+#define DEG (180.0 / M_PI)
+
+double dem__sweep_fmin_norm(double kc, double k1, double k2)
+{
+    const double x = kc / k2;
+    return x * (1.0 - k1 / k2) / (1.0 + x);
+}
+
+/* ------------------------------------------------------------ reading */
+
+static void run_init(struct dem__sweep_run *r)
+{
+    double *nan[] = {&r->mu,       &r->k1,       &r->k2,       &r->kc,
+                     &r->pressure, &r->peak_sin, &r->peak_phi, &r->peak_s1,
+                     &r->peak_s3,  &r->crit_sin, &r->crit_phi, &r->crit_s1,
+                     &r->crit_s3,  &r->e_init,   &r->e_crit,   &r->hs,
+                     &r->cyc_ratio};
+    for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
+        *nan[k] = NAN;
+}
+
+static int read_cycles(struct dem__sweep_run *r, const struct dem__jval *cyc)
+{
+    r->cyclic = 1;
+    if (!cyc || cyc->type != DEM__JSON_ARRAY || cyc->n == 0)
+        return DEM_OK;
+    r->cyc_end = malloc(2 * (size_t)cyc->n * sizeof *r->cyc_end);
+    if (!r->cyc_end)
+        return DEM_ENOMEM;
+    r->cyc_inc = r->cyc_end + cyc->n;
+    r->ncyc = cyc->n;
+    for (int k = 0; k < cyc->n; k++) {
+        r->cyc_end[k] = dem__jread_number(&cyc->items[k], "strain_end");
+        r->cyc_inc[k] = dem__jread_number(&cyc->items[k], "strain_increment");
+    }
+    return DEM_OK;
+}
+
+/* Fill r from rundir; a run that is not there is ok = 0 with a reason. */
+static int read_run(struct dem__sweep_run *r, const char *rundir)
+{
+    run_init(r);
+    if (!dem_sweep_run_finished(rundir)) {
+        snprintf(r->reason, sizeof r->reason,
+                 "the run did not finish (no timeseries.csv or summary.json; "
+                 "see runs/%s/run.log)", r->name);
+        return DEM_OK;
+    }
+    char path[DEM_PATH_MAX];
+    struct dem_error e = {0, ""};
+    struct dem_config *c = malloc(sizeof *c);
+    if (!c)
+        return DEM_ENOMEM;
+    struct dem__jval js;
+    int rc = dem_path_join(path, sizeof path, rundir, "config.cfg", &e);
+    if (!rc)
+        rc = dem_config_load_file(c, path, NULL, 0, &e);
+    if (!rc)
+        rc = dem_path_join(path, sizeof path, rundir, "summary.json", &e);
+    if (!rc)
+        rc = dem__jread_file(&js, path, &e);
+    if (rc) {
+        free(c);
+        snprintf(r->reason, sizeof r->reason, "%s", e.msg);
+        return rc == DEM_ENOMEM ? rc : DEM_OK;
+    }
+    r->ok = 1;
+    r->dim = c->dim;
+    const double ls = dem__jread_number(&js, "loading_stage");
+    const int st = isfinite(ls) ? (int)ls : -1;
+    r->mu = st >= 0 && st < c->nstages && c->stages[st].mu >= 0.0
+                ? c->stages[st].mu
+                : c->contact.mu_s;
+    const int luding = c->contact.normal == DEM_NORMAL_LUDING;
+    r->k1 = luding ? c->contact.k1 : c->contact.k;
+    r->k2 = luding ? c->contact.k2 : c->contact.k;
+    r->kc = luding ? c->contact.kc : 0.0;
+    r->pressure = dem__jread_number(&js, "confining_pressure");
+    r->peak_sin = dem__jread_number(&js, "peak.sin_phi");
+    r->peak_phi = dem__jread_number(&js, "peak.phi_deg");
+    r->peak_s1 = dem__jread_number(&js, "peak.sigma_axial");
+    r->peak_s3 = dem__jread_number(&js, "peak.sigma_lateral");
+    r->crit_sin = dem__jread_number(&js, "critical.sin_phi");
+    r->crit_phi = dem__jread_number(&js, "critical.phi_deg");
+    r->crit_s1 = dem__jread_number(&js, "critical.sigma_axial");
+    r->crit_s3 = dem__jread_number(&js, "critical.sigma_lateral");
+    r->e_init = dem__jread_number(&js, "void_ratio_initial");
+    r->e_crit = dem__jread_number(&js, "void_ratio_critical");
+    r->hs = dem__jread_number(&js, "void_ratio_fit.hs");
+    r->cyc_ratio = dem__jread_number(&js, "cycle_increment_ratio");
+    const char *v = dem__jread_string(&js, "verdict");
+    snprintf(r->verdict, sizeof r->verdict, "%s", v ? v : "");
+    rc = DEM_OK;
+    if (dem__jread_get(&js, "cyclic_stage"))
+        rc = read_cycles(r, dem__jread_get(&js, "cycles"));
+    dem__jread_free(&js);
+    free(c);
+    return rc;
+}
+
+/* ----------------------------------------------------------- grouping */
+
+static int same_group(const struct dem__sweep *s, long a, long b, int role)
+{
+    for (int k = 0; k < s->g->nparams; k++)
+        if (!(s->g->params[k].roles & role) &&
+            s->runs[a].idx[k] != s->runs[b].idx[k])
+            return 0;
+    return 1;
+}
+
+/* Group the finished runs by every parameter without the role bits. */
+static int group(const struct dem__sweep *s, int role,
+                 struct dem__sweep_groups *G)
+{
+    G->n = 0;
+    G->gid = malloc((size_t)s->n * sizeof *G->gid);
+    G->rep = malloc((size_t)s->n * sizeof *G->rep);
+    if (!G->gid || !G->rep)
+        return DEM_ENOMEM;
+    for (long i = 0; i < s->n; i++) {
+        G->gid[i] = -1;
+        if (!s->runs[i].ok)
+            continue;
+        for (int q = 0; q < G->n && G->gid[i] < 0; q++)
+            if (same_group(s, i, G->rep[q], role))
+                G->gid[i] = q;
+        if (G->gid[i] < 0) {
+            G->rep[G->n] = i;
+            G->gid[i] = G->n++;
+        }
+    }
+    return DEM_OK;
+}
+
+static void groups_free(struct dem__sweep_groups *G)
+{
+    free(G->gid);
+    free(G->rep);
+}
+
+/* ------------------------------------------------------------ analysis */
+
+static int flow_functions(struct dem__sweep *s)
+{
+    if (!(s->roles & DEM_SWEEP_ROLE_PRESSURE)) {
+        snprintf(s->ff_reason, sizeof s->ff_reason,
+                 "the sweep does not vary a confining pressure (a --param "
+                 "with a key ending in .pressure)");
+        return DEM_OK;
+    }
+    const int G = s->ffg.n;
+    double *s1 = malloc(2 * (size_t)s->n * sizeof *s1 + 1);
+    if (!s1)
+        return DEM_ENOMEM;
+    double *s3 = s1 + s->n;
+    for (int state = 0; state < 2; state++) {
+        s->ff[state] = calloc((size_t)(G > 0 ? G : 1), sizeof **s->ff);
+        if (!s->ff[state]) {
+            free(s1);
+            return DEM_ENOMEM;
+        }
+        for (int q = 0; q < G; q++) {
+            struct dem__sweep_ff *f = &s->ff[state][q];
+            f->members = malloc((size_t)s->n * sizeof *f->members);
+            if (!f->members) {
+                free(s1);
+                return DEM_ENOMEM;
+            }
+            for (long i = 0; i < s->n; i++) {
+                const struct dem__sweep_run *r = &s->runs[i];
+                const double a = state ? r->crit_s1 : r->peak_s1;
+                const double b = state ? r->crit_s3 : r->peak_s3;
+                if (s->ffg.gid[i] != q || !isfinite(a) || !isfinite(b))
+                    continue;
+                s1[f->circles] = a;
+                s3[f->circles] = b;
+                f->members[f->circles++] = i;
+            }
+            if (f->circles < 2) {
+                f->fit.ok = 0;
+                snprintf(f->fit.reason, sizeof f->fit.reason,
+                         "%ld run(s) of this group have a %s circle; the "
+                         "flow function needs at least 2 confining "
+                         "pressures",
+                         f->circles, state ? "critical-state" : "peak");
+                continue;
+            }
+            dem_mohr_fit(s1, s3, f->circles, 1, &f->fit);
+        }
+    }
+    free(s1);
+    return DEM_OK;
+}
+
+static void cohesion_check(struct dem__sweep *s)
+{
+    if (!(s->roles & DEM_SWEEP_ROLE_KC)) {
+        snprintf(s->kc_reason, sizeof s->kc_reason,
+                 "the sweep does not vary contact.kc");
+        return;
+    }
+    if (s->ff_reason[0]) {
+        snprintf(s->kc_reason, sizeof s->kc_reason,
+                 "the cohesion comes from the flow function, which needs "
+                 "several confining pressures per kc: add a --param on the "
+                 "pressures");
+        return;
+    }
+    /* the f_min curve scaled to the cohesions by least squares through
+     * the origin: c = A |f_min|/(k2 delta_max) */
+    double num = 0.0, den = 0.0;
+    for (int q = 0; q < s->ffg.n; q++) {
+        const struct dem__sweep_ff *f = &s->ff[0][q];
+        const struct dem__sweep_run *r = &s->runs[s->ffg.rep[q]];
+        const double x = dem__sweep_fmin_norm(r->kc, r->k1, r->k2);
+        if (f->fit.ok && isfinite(x)) {
+            num += f->fit.c * x;
+            den += x * x;
+        }
+    }
+    s->kc_scale = den > 0.0 ? num / den : NAN;
+}
+
+static int void_ratios(struct dem__sweep *s)
+{
+    if (!(s->roles & DEM_SWEEP_ROLE_PRESSURE)) {
+        snprintf(s->void_reason, sizeof s->void_reason,
+                 "the sweep does not vary a confining pressure (a --param "
+                 "with a key ending in .pressure)");
+        return DEM_OK;
+    }
+    const int G = s->ffg.n;
+    s->vr = calloc((size_t)(G > 0 ? G : 1), sizeof *s->vr);
+    if (!s->vr)
+        return DEM_ENOMEM;
+    for (int q = 0; q < G; q++) {
+        struct dem__sweep_void *v = &s->vr[q];
+        v->hs = s->runs[s->ffg.rep[q]].hs;
+        for (int k = 0; k < 2; k++) {
+            v->members[k] = malloc((size_t)s->n * sizeof *v->members[k]);
+            v->p[k] = malloc(2 * (size_t)s->n * sizeof *v->p[k]);
+            if (!v->members[k] || !v->p[k])
+                return DEM_ENOMEM;
+            v->e[k] = v->p[k] + s->n;
+            for (long i = 0; i < s->n; i++) {
+                const struct dem__sweep_run *r = &s->runs[i];
+                if (s->ffg.gid[i] != q)
+                    continue;
+                /* initial state: the isotropic confining pressure;
+                 * critical state: the mean stress there */
+                const double p =
+                    k == 0 ? r->pressure
+                           : (r->crit_s1 + (r->dim - 1) * r->crit_s3) / r->dim;
+                const double e = k == 0 ? r->e_init : r->e_crit;
+                if (!isfinite(p) || !isfinite(e))
+                    continue;
+                v->p[k][v->m[k]] = p;
+                v->e[k][v->m[k]] = e;
+                v->members[k][v->m[k]++] = i;
+            }
+            dem_voidfit(v->p[k], v->e[k], v->m[k], v->hs, &v->fit[k]);
+        }
+    }
+    return DEM_OK;
+}
+
+/* ------------------------------------------------------------- writing */
+
+/* A value as given on the command line: a number when it is one, a
+ * string otherwise (quotes removed). */
+static void value(struct dem__json *j, const char *key, const char *v)
+{
+    char *end;
+    const double d = strtod(v, &end);
+    if (end != v && !*end && isfinite(d)) {
+        dem__json_number(j, key, d);
+        return;
+    }
+    const size_t n = strlen(v);
+    if (n >= 2 && v[0] == '"' && v[n - 1] == '"') {
+        char buf[DEM_SWEEP_VALUE_MAX];
+        snprintf(buf, sizeof buf, "%.*s", (int)(n - 2), v + 1);
+        dem__json_string(j, key, buf);
+        return;
+    }
+    dem__json_string(j, key, v);
+}
+
+/* The parameters of run i without the role bits, as one object. */
+static void params(struct dem__json *j, const char *key,
+                   const struct dem__sweep *s, long i, int role)
+{
+    dem__json_object(j, key, 1);
+    for (int k = 0; k < s->g->nparams; k++) {
+        const struct dem_sweep_param *p = &s->g->params[k];
+        if (p->roles & role)
+            continue;
+        for (int m = 0; m < p->nkeys; m++)
+            value(j, p->keys[m], p->values[s->runs[i].idx[k]]);
+    }
+    dem__json_close(j);
+}
+
+static void null_reason(struct dem__json *j, const char *key,
+                        const char *why)
+{
+    char k[96];
+    dem__json_null(j, key);
+    snprintf(k, sizeof k, "%s_reason", key);
+    dem__json_string(j, k, why);
+}
+
+static const char *role_names(int roles, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s%s%s", roles & DEM_SWEEP_ROLE_PRESSURE ? "pressure " : "",
+             roles & DEM_SWEEP_ROLE_MU ? "mu " : "",
+             roles & DEM_SWEEP_ROLE_KC ? "kc " : "");
+    size_t len = strlen(buf);
+    if (len)
+        buf[len - 1] = '\0';
+    return buf;
+}
+
+static void write_grid(struct dem__json *j, const struct dem__sweep *s,
+                       const struct dem_sweep_options *o)
+{
+    dem__json_object(j, "grid", 0);
+    dem__json_string(j, "config", o->target);
+    dem__json_array(j, "sets", 1);
+    for (int k = 0; k < o->nsets; k++)
+        dem__json_string(j, NULL, o->sets[k]);
+    dem__json_close(j);
+    dem__json_array(j, "params", 0);
+    for (int k = 0; k < s->g->nparams; k++) {
+        const struct dem_sweep_param *p = &s->g->params[k];
+        char buf[64];
+        dem__json_object(j, NULL, 1);
+        dem__json_array(j, "keys", 1);
+        for (int m = 0; m < p->nkeys; m++)
+            dem__json_string(j, NULL, p->keys[m]);
+        dem__json_close(j);
+        dem__json_array(j, "values", 1);
+        for (int v = 0; v < p->nvalues; v++)
+            value(j, NULL, p->values[v]);
+        dem__json_close(j);
+        dem__json_string(j, "role", role_names(p->roles, buf, sizeof buf));
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+    dem__json_int(j, "points", s->n);
+    dem__json_close(j);
+}
+
+static void write_run(struct dem__json *j, const struct dem__sweep *s, long i)
+{
+    const struct dem__sweep_run *r = &s->runs[i];
+    char folder[DEM_SWEEP_RUNNAME_MAX + 16];
+    snprintf(folder, sizeof folder, "runs/%s", r->name);
+    dem__json_object(j, NULL, 0);
+    dem__json_string(j, "name", r->name);
+    dem__json_string(j, "folder", folder);
+    dem__json_string(j, "status", r->ok ? "finished" : "failed");
+    if (!r->ok)
+        dem__json_string(j, "reason", r->reason);
+    params(j, "params", s, i, 0);
+    if (r->ok) {
+        dem__json_int(j, "dimension", r->dim);
+        dem__json_number(j, "confining_pressure", r->pressure);
+        dem__json_number(j, "mu", r->mu);
+        dem__json_number(j, "k1", r->k1);
+        dem__json_number(j, "k2", r->k2);
+        dem__json_number(j, "kc", r->kc);
+        dem__json_number(j, "kc_over_k2", r->kc / r->k2);
+        dem__json_object(j, "peak", 1);
+        dem__json_number(j, "sin_phi", r->peak_sin);
+        dem__json_number(j, "phi_deg", r->peak_phi);
+        dem__json_number(j, "sigma_axial", r->peak_s1);
+        dem__json_number(j, "sigma_lateral", r->peak_s3);
+        dem__json_close(j);
+        dem__json_object(j, "critical", 1);
+        dem__json_number(j, "sin_phi", r->crit_sin);
+        dem__json_number(j, "phi_deg", r->crit_phi);
+        dem__json_number(j, "sigma_axial", r->crit_s1);
+        dem__json_number(j, "sigma_lateral", r->crit_s3);
+        dem__json_close(j);
+        dem__json_number(j, "void_ratio_initial", r->e_init);
+        dem__json_number(j, "void_ratio_critical", r->e_crit);
+        if (r->cyclic) {
+            if (r->verdict[0])
+                dem__json_string(j, "verdict", r->verdict);
+            else
+                dem__json_null(j, "verdict");
+            dem__json_number(j, "cycle_increment_ratio", r->cyc_ratio);
+            dem__json_array(j, "cycle_strain_increment", 1);
+            for (int k = 0; k < r->ncyc; k++)
+                dem__json_number(j, NULL, r->cyc_inc[k]);
+            dem__json_close(j);
+        }
+    }
+    dem__json_close(j);
+}
+
+static void write_fit(struct dem__json *j, const struct dem_mohr_fit *f)
+{
+    dem__json_number(j, "phi_deg", f->ok ? f->phi_deg : NAN);
+    dem__json_number(j, "sin_phi", f->ok ? f->sin_phi : NAN);
+    dem__json_number(j, "tan_phi", f->ok ? tan(f->phi_deg / DEG) : NAN);
+    dem__json_number(j, "cohesion", f->ok ? f->c : NAN);
+    dem__json_number(j, "r2", f->ok ? f->r2 : NAN);
+    dem__json_number(j, "rms", f->ok ? f->rms : NAN);
+    if (!f->ok)
+        dem__json_string(j, "reason", f->reason);
+}
+
+static void write_flow(struct dem__json *j, const struct dem__sweep *s,
+                       int state)
+{
+    const char *key = state ? "flow_function_critical" : "flow_function";
+    if (s->ff_reason[0]) {
+        null_reason(j, key, s->ff_reason);
+        return;
+    }
+    dem__json_array(j, key, 0);
+    for (int q = 0; q < s->ffg.n; q++) {
+        const struct dem__sweep_ff *f = &s->ff[state][q];
+        dem__json_object(j, NULL, 0);
+        params(j, "group", s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE);
+        dem__json_int(j, "circles", f->circles);
+        write_fit(j, &f->fit);
+        dem__json_array(j, "runs", 0);
+        for (long c = 0; c < f->circles; c++) {
+            const struct dem__sweep_run *r = &s->runs[f->members[c]];
+            dem__json_object(j, NULL, 1);
+            dem__json_string(j, "run", r->name);
+            dem__json_number(j, "sigma_1", state ? r->crit_s1 : r->peak_s1);
+            dem__json_number(j, "sigma_3", state ? r->crit_s3 : r->peak_s3);
+            dem__json_close(j);
+        }
+        dem__json_close(j);
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+}
+
+static void write_friction(struct dem__json *j, const struct dem__sweep *s)
+{
+    if (s->mu_reason[0]) {
+        null_reason(j, "friction_vs_mu", s->mu_reason);
+        return;
+    }
+    dem__json_array(j, "friction_vs_mu", 0);
+    for (int q = 0; q < s->mug.n; q++) {
+        dem__json_object(j, NULL, 0);
+        params(j, "group", s, s->mug.rep[q], DEM_SWEEP_ROLE_MU);
+        dem__json_array(j, "points", 0);
+        for (long i = 0; i < s->n; i++) {
+            const struct dem__sweep_run *r = &s->runs[i];
+            if (s->mug.gid[i] != q)
+                continue;
+            dem__json_object(j, NULL, 1);
+            dem__json_string(j, "run", r->name);
+            dem__json_number(j, "mu", r->mu);
+            dem__json_number(j, "peak_sin_phi", r->peak_sin);
+            dem__json_number(j, "peak_phi_deg", r->peak_phi);
+            dem__json_number(j, "critical_sin_phi", r->crit_sin);
+            dem__json_number(j, "critical_phi_deg", r->crit_phi);
+            dem__json_close(j);
+        }
+        dem__json_close(j);
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+}
+
+static void write_cohesion(struct dem__json *j, const struct dem__sweep *s)
+{
+    if (s->kc_reason[0]) {
+        null_reason(j, "cohesion_vs_kc", s->kc_reason);
+        return;
+    }
+    dem__json_object(j, "cohesion_vs_kc", 0);
+    dem__json_string(j, "f_min",
+                     "f_min = -kc (k2 - k1) delta_max/(k2 + kc) (seed 001 "
+                     "Fig. 2); f_min_norm = |f_min|/(k2 delta_max) = "
+                     "(kc/k2)(1 - k1/k2)/(1 + kc/k2); the plotted curve is "
+                     "scale * f_min_norm, scale fitted to the cohesions by "
+                     "least squares through the origin");
+    dem__json_number(j, "scale", s->kc_scale);
+    dem__json_array(j, "points", 0);
+    for (int q = 0; q < s->ffg.n; q++) {
+        const struct dem__sweep_run *r = &s->runs[s->ffg.rep[q]];
+        const struct dem__sweep_ff *f = &s->ff[0][q];
+        dem__json_object(j, NULL, 1);
+        params(j, "group", s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE);
+        dem__json_number(j, "kc_over_k2", r->kc / r->k2);
+        dem__json_number(j, "cohesion", f->fit.ok ? f->fit.c : NAN);
+        dem__json_number(j, "phi_deg", f->fit.ok ? f->fit.phi_deg : NAN);
+        dem__json_number(j, "f_min_per_overlap",
+                         -r->kc * (r->k2 - r->k1) / (r->k2 + r->kc));
+        dem__json_number(j, "f_min_norm",
+                         dem__sweep_fmin_norm(r->kc, r->k1, r->k2));
+        if (!f->fit.ok)
+            dem__json_string(j, "reason", f->fit.reason);
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+    dem__json_close(j);
+}
+
+static void write_voids(struct dem__json *j, const struct dem__sweep *s)
+{
+    if (s->void_reason[0]) {
+        null_reason(j, "void_ratio_vs_pressure", s->void_reason);
+        return;
+    }
+    static const char *const state[2] = {"initial", "critical"};
+    dem__json_array(j, "void_ratio_vs_pressure", 0);
+    for (int q = 0; q < s->ffg.n; q++) {
+        const struct dem__sweep_void *v = &s->vr[q];
+        dem__json_object(j, NULL, 0);
+        params(j, "group", s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE);
+        dem__json_number(j, "hs", v->hs);
+        for (int k = 0; k < 2; k++) {
+            const struct dem_voidfit *f = &v->fit[k];
+            dem__json_object(j, state[k], 0);
+            dem__json_array(j, "points", 0);
+            for (long m = 0; m < v->m[k]; m++) {
+                dem__json_object(j, NULL, 1);
+                dem__json_string(j, "run", s->runs[v->members[k][m]].name);
+                dem__json_number(j, "p", v->p[k][m]);
+                dem__json_number(j, "e", v->e[k][m]);
+                dem__json_close(j);
+            }
+            dem__json_close(j);
+            dem__json_number(j, "e0", f->ok ? f->e0 : NAN);
+            dem__json_number(j, "n", f->ok ? f->n : NAN);
+            dem__json_number(j, "rms", f->ok ? f->rms : NAN);
+            dem__json_number(j, "r2", f->ok ? f->r2 : NAN);
+            if (!f->ok)
+                dem__json_string(j, "reason", f->reason);
+            dem__json_close(j);
+        }
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+}
+
+static void write_cyclic(struct dem__json *j, const struct dem__sweep *s)
+{
+    if (s->cyc_reason[0]) {
+        null_reason(j, "strain_accumulation", s->cyc_reason);
+        return;
+    }
+    dem__json_array(j, "strain_accumulation", 0);
+    for (long i = 0; i < s->n; i++) {
+        const struct dem__sweep_run *r = &s->runs[i];
+        if (!r->ok || !r->cyclic)
+            continue;
+        dem__json_object(j, NULL, 0);
+        dem__json_string(j, "run", r->name);
+        dem__json_number(j, "mu", r->mu);
+        params(j, "params", s, i, 0);
+        if (r->verdict[0])
+            dem__json_string(j, "verdict", r->verdict);
+        else
+            dem__json_null(j, "verdict");
+        dem__json_array(j, "cycles", 0);
+        for (int k = 0; k < r->ncyc; k++) {
+            dem__json_object(j, NULL, 1);
+            dem__json_int(j, "cycle", k + 1);
+            dem__json_number(j, "strain_end", r->cyc_end[k]);
+            dem__json_number(j, "strain_increment", r->cyc_inc[k]);
+            dem__json_close(j);
+        }
+        dem__json_close(j);
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+}
+
+static void write_sweep(FILE *f, const struct dem__sweep *s,
+                        const struct dem_sweep_options *o)
+{
+    struct dem__json j;
+    long finished = 0;
+    for (long i = 0; i < s->n; i++)
+        finished += s->runs[i].ok;
+    dem__json_begin(&j, f);
+    dem__json_string(&j, "dembox_version", DEM_VERSION);
+    write_grid(&j, s, o);
+    dem__json_int(&j, "runs_finished", finished);
+    dem__json_int(&j, "runs_failed", s->n - finished);
+    dem__json_array(&j, "runs", 0);
+    for (long i = 0; i < s->n; i++)
+        write_run(&j, s, i);
+    dem__json_close(&j);
+    write_flow(&j, s, 0);
+    write_flow(&j, s, 1);
+    write_friction(&j, s);
+    write_cohesion(&j, s);
+    write_voids(&j, s);
+    write_cyclic(&j, s);
+    dem__json_end(&j);
+}
+
+/* ------------------------------------------------------------- driver */
+
+static void sweep_free(struct dem__sweep *s)
+{
+    for (int state = 0; state < 2; state++)
+        for (int q = 0; s->ff[state] && q < s->ffg.n; q++)
+            free(s->ff[state][q].members);
+    free(s->ff[0]);
+    free(s->ff[1]);
+    for (int q = 0; s->vr && q < s->ffg.n; q++)
+        for (int k = 0; k < 2; k++) {
+            free(s->vr[q].members[k]);
+            free(s->vr[q].p[k]);
+        }
+    free(s->vr);
+    groups_free(&s->ffg);
+    groups_free(&s->mug);
+    for (long i = 0; s->runs && i < s->n; i++)
+        free(s->runs[i].cyc_end);
+    free(s->runs);
+}
+
+static int analyse(struct dem__sweep *s)
+{
+    int rc = group(s, DEM_SWEEP_ROLE_PRESSURE, &s->ffg);
+    if (!rc)
+        rc = group(s, DEM_SWEEP_ROLE_MU, &s->mug);
+    if (!rc)
+        rc = flow_functions(s);
+    if (!rc)
+        rc = void_ratios(s);
+    if (rc)
+        return rc;
+    if (!(s->roles & DEM_SWEEP_ROLE_MU))
+        snprintf(s->mu_reason, sizeof s->mu_reason,
+                 "the sweep does not vary the friction (contact.mu, mu_s, "
+                 "mu_d or stages.N.mu)");
+    cohesion_check(s);
+    int cyclic = 0;
+    for (long i = 0; i < s->n; i++)
+        cyclic += s->runs[i].ok && s->runs[i].cyclic;
+    if (!cyclic)
+        snprintf(s->cyc_reason, sizeof s->cyc_reason,
+                 "no finished run has a cyclic stage");
+    return DEM_OK;
+}
+
+int dem_sweep_collect(const struct dem_sweep_grid *g,
+                      const struct dem_sweep_options *o,
+                      struct dem_error *err)
+{
+    struct dem__sweep s;
+    memset(&s, 0, sizeof s);
+    s.g = g;
+    s.n = dem_sweep_grid_size(g);
+    for (int k = 0; k < g->nparams; k++)
+        s.roles |= g->params[k].roles;
+    s.runs = calloc((size_t)s.n, sizeof *s.runs);
+    typedef char name_t[DEM_SWEEP_RUNNAME_MAX + 8];
+    name_t *names = malloc((size_t)s.n * sizeof *names);
+    int rc = s.runs && names ? DEM_OK : DEM_ENOMEM;
+    if (!rc)
+        dem_sweep_point_names(g, names);
+    char runs[DEM_PATH_MAX], path[DEM_PATH_MAX];
+    if (!rc)
+        rc = dem_path_join(runs, sizeof runs, o->outdir, "runs", err);
+    for (long i = 0; !rc && i < s.n; i++) {
+        struct dem__sweep_run *r = &s.runs[i];
+        snprintf(r->name, sizeof r->name, "%s", names[i]);
+        dem_sweep_grid_point(g, i, r->idx);
+        rc = dem_path_join(path, sizeof path, runs, names[i], err);
+        if (!rc)
+            rc = read_run(r, path);
+    }
+    free(names);
+    if (!rc)
+        rc = analyse(&s);
+    if (rc == DEM_ENOMEM)
+        dem_error_set(err, rc, "sweep: out of memory");
+    if (!rc)
+        rc = dem_path_join(path, sizeof path, o->outdir, "sweep.json", err);
+    if (!rc) {
+        struct dem__outfile of;
+        rc = dem__outfile_open(&of, path, err);
+        if (!rc) {
+            write_sweep(of.f, &s, o);
+            rc = dem__outfile_commit(&of, err);
+        }
+    }
+    if (!rc)
+        rc = dem__sweep_plots(&s, o->outdir, err);
+    sweep_free(&s);
+    return rc;
+}

@@ -1,0 +1,373 @@
+/* The pictures of a sweep (DIR/plots/, docs/sweep.md): like the per-run
+ * plots, every picture is NAME.dat + NAME.gp written here and NAME.png
+ * drawn by gnuplot (io/plot_gnuplot.c), and a picture exists only when
+ * the sweep varies what it shows.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/fsutil.h"
+#include "io/outfile.h"
+#include "io/plot_internal.h"
+#include "sweep/sweep_internal.h"
+
+#define DEG (180.0 / M_PI)
+
+/* "key=value, ..." of the parameters of run i without the role bits,
+ * first key of each parameter only, quotes dropped. */
+static void label(const struct dem__sweep *s, long i, int role, char *out,
+                  size_t n)
+{
+    out[0] = '\0';
+    for (int k = 0; k < s->g->nparams; k++) {
+        const struct dem_sweep_param *p = &s->g->params[k];
+        if (p->roles & role)
+            continue;
+        size_t len = strlen(out);
+        snprintf(out + len, n - len, "%s%s=%s", len ? ", " : "", p->keys[0],
+                 p->values[s->runs[i].idx[k]]);
+    }
+    for (char *c = out; *c; c++)
+        if (*c == '"')
+            *c = '\'';
+}
+
+/* " (label)" or "" */
+static void paren(const char *lab, char *out, size_t n)
+{
+    snprintf(out, n, "%s%s%s", lab[0] ? " (" : "", lab, lab[0] ? ")" : "");
+}
+
+typedef int (*writer)(const struct dem__sweep *s, FILE *dat, FILE *gp);
+
+static int write_pair(const char *plotdir, const char *name, writer w,
+                      const struct dem__sweep *s, struct dem_error *err)
+{
+    char dp[DEM_PATH_MAX], gp[DEM_PATH_MAX], leaf[DEM_NAME_MAX];
+    snprintf(leaf, sizeof leaf, "%s.dat", name);
+    int rc = dem_path_join(dp, sizeof dp, plotdir, leaf, err);
+    snprintf(leaf, sizeof leaf, "%s.gp", name);
+    if (!rc)
+        rc = dem_path_join(gp, sizeof gp, plotdir, leaf, err);
+    struct dem__outfile d, g;
+    if (!rc)
+        rc = dem__outfile_open(&d, dp, err);
+    if (rc)
+        return rc;
+    rc = dem__outfile_open(&g, gp, err);
+    if (rc) {
+        dem__outfile_abort(&d);
+        return rc;
+    }
+    rc = w(s, d.f, g.f);
+    if (rc) {
+        dem__outfile_abort(&d);
+        dem__outfile_abort(&g);
+        return dem_error_set(err, rc, "%s: out of memory", gp);
+    }
+    rc = dem__outfile_commit(&d, err);
+    if (rc) {
+        dem__outfile_abort(&g);
+        return rc;
+    }
+    return dem__outfile_commit(&g, err);
+}
+
+/* -------------------------------------------------------- Mohr circles */
+
+static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    dem__gp_head(gp, "mohr_circles",
+                 "Mohr circles at peak and the flow function "
+                 "τ = c + σ tan φ",
+                 "normal stress σ", "shear stress τ");
+    fprintf(dat, "# Mohr circles at peak of the runs of the sweep, then per "
+                 "group the fitted flow function\n# tau = c + sigma tan(phi)."
+                 " columns: 1 sigma  2 tau; one block per curve\n");
+    double xmax = 0.0;
+    for (int q = 0; q < s->ffg.n; q++)
+        for (long c = 0; c < s->ff[0][q].circles; c++)
+            xmax = fmax(xmax, s->runs[s->ff[0][q].members[c]].peak_s1);
+    xmax *= 1.1;
+    if (!(xmax > 0.0)) {
+        fprintf(gp, "set label \"no run has a peak\" at graph 0.5, 0.5 center\n"
+                    "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 notitle\n");
+        return DEM_OK;
+    }
+    int block = 0;
+    fprintf(gp, "set size ratio -1\nset xrange [0:%.6g]\nset yrange [0:%.6g]\n"
+                "plot \\\n", xmax, 0.6 * xmax);
+    for (int q = 0; q < s->ffg.n; q++) {
+        const struct dem__sweep_ff *f = &s->ff[0][q];
+        char lab[512], par[520];
+        label(s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE, lab, sizeof lab);
+        paren(lab, par, sizeof par);
+        for (long c = 0; c < f->circles; c++) {
+            const struct dem__sweep_run *r = &s->runs[f->members[c]];
+            const double m = 0.5 * (r->peak_s1 + r->peak_s3);
+            const double rad = 0.5 * (r->peak_s1 - r->peak_s3);
+            fprintf(dat, "# %s: sigma_1 = %.9g, sigma_3 = %.9g\n", r->name,
+                    r->peak_s1, r->peak_s3);
+            for (int k = 0; k <= 180; k++)
+                fprintf(dat, "%.9g %.9g\n", m + rad * cos(M_PI * k / 180.0),
+                        rad * sin(M_PI * k / 180.0));
+            fprintf(dat, "\n\n");
+            fprintf(gp, "  \"mohr_circles.dat\" index %d with lines "
+                        "linewidth 2 linecolor %ld title \"p = %.4g%s\" "
+                        "noenhanced, \\\n",
+                    block++, c + 1, r->pressure, par);
+        }
+        if (f->fit.ok) {
+            const double t = tan(f->fit.phi_deg / DEG);
+            fprintf(dat, "# flow function%s: phi = %.6g deg, c = %.6g\n0 %.9g\n"
+                         "%.9g %.9g\n\n\n",
+                    par, f->fit.phi_deg, f->fit.c, f->fit.c, xmax,
+                    f->fit.c + xmax * t);
+            fprintf(gp, "  \"mohr_circles.dat\" index %d with lines "
+                        "dashtype %d linewidth 2 linecolor \"black\" title "
+                        "\"flow function φ = %.1f°, c = %.3g, R² = %.3f%s\" "
+                        "noenhanced, \\\n",
+                    block++, q + 2, f->fit.phi_deg, f->fit.c, f->fit.r2, par);
+        }
+    }
+    fprintf(gp, "  0 linetype -3 notitle\n");
+    return DEM_OK;
+}
+
+/* ---------------------------------------------------- friction vs mu */
+
+static int cmp_mu(const void *a, const void *b, const struct dem__sweep *s)
+{
+    const double x = s->runs[*(const long *)a].mu;
+    const double y = s->runs[*(const long *)b].mu;
+    return (x > y) - (x < y);
+}
+
+/* Runs of group q of G, sorted by mu (insertion sort: grids are small). */
+static long members_by_mu(const struct dem__sweep *s,
+                          const struct dem__sweep_groups *G, int q, long *out)
+{
+    long m = 0;
+    for (long i = 0; i < s->n; i++) {
+        if (G->gid[i] != q)
+            continue;
+        long k = m++;
+        while (k > 0 && cmp_mu(&out[k - 1], &i, s) > 0) {
+            out[k] = out[k - 1];
+            k--;
+        }
+        out[k] = i;
+    }
+    return m;
+}
+
+static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    long *idx = malloc((size_t)s->n * sizeof *idx);
+    if (!idx)
+        return DEM_ENOMEM;
+    dem__gp_head(gp, "friction_vs_mu",
+                 "Macroscopic friction at peak and in critical state",
+                 "microscopic friction μ", "sin φ = (σ_1 - σ_3)/(σ_1 + σ_3)");
+    fprintf(dat, "# columns: 1 mu  2 peak sin(phi)  3 critical sin(phi)  "
+                 "4 peak phi (deg)  5 critical phi (deg); one block per "
+                 "group of the other parameters; ? = none\n");
+    fprintf(gp, "set xrange [0:*]\nset yrange [0:*]\nplot \\\n");
+    for (int q = 0; q < s->mug.n; q++) {
+        char lab[512], par[520];
+        label(s, s->mug.rep[q], DEM_SWEEP_ROLE_MU, lab, sizeof lab);
+        paren(lab, par, sizeof par);
+        fprintf(dat, "# group%s\n", par);
+        const long m = members_by_mu(s, &s->mug, q, idx);
+        for (long k = 0; k < m; k++) {
+            const struct dem__sweep_run *r = &s->runs[idx[k]];
+            const double v[4] = {r->peak_sin, r->crit_sin, r->peak_phi,
+                                 r->crit_phi};
+            fprintf(dat, "%.9g", r->mu);
+            for (int c = 0; c < 4; c++)
+                isfinite(v[c]) ? fprintf(dat, " %.9g", v[c])
+                               : fprintf(dat, " ?");
+            fputc('\n', dat);
+        }
+        fprintf(dat, "\n\n");
+        fprintf(gp, "  \"friction_vs_mu.dat\" index %d using 1:2 with "
+                    "linespoints pointtype 6 pointsize 1.5 linecolor %d "
+                    "title \"peak%s\" noenhanced, \\\n"
+                    "  \"\" index %d using 1:3 with linespoints pointtype 7 "
+                    "pointsize 1.5 linecolor %d title \"critical state%s\" "
+                    "noenhanced, \\\n",
+                q, q + 1, par, q, q + 1, par);
+    }
+    fprintf(gp, "  0 linetype -3 notitle\n");
+    free(idx);
+    return DEM_OK;
+}
+
+/* ---------------------------------------------------- cohesion vs kc */
+
+static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    dem__gp_head(gp, "cohesion_vs_kc",
+                 "Macroscopic cohesion versus k_c/k_2 (flow functions at peak)",
+                 "k_c/k_2", "cohesion c");
+    fprintf(dat, "# block 0: columns 1 kc/k2  2 cohesion c (from the flow "
+                 "function)\n");
+    double xmax = 0.0, k1k2 = NAN;
+    for (int q = 0; q < s->ffg.n; q++) {
+        const struct dem__sweep_run *r = &s->runs[s->ffg.rep[q]];
+        const struct dem_mohr_fit *f = &s->ff[0][q].fit;
+        fprintf(dat, "%.9g ", r->kc / r->k2);
+        f->ok ? fprintf(dat, "%.9g\n", f->c) : fprintf(dat, "?\n");
+        xmax = fmax(xmax, r->kc / r->k2);
+        if (!isfinite(k1k2))
+            k1k2 = r->k1 / r->k2;
+    }
+    fprintf(dat, "\n\n# block 1: the analytic curve, columns 1 kc/k2  "
+                 "2 scale * |f_min|/(k2 delta_max), |f_min|/(k2 delta_max) = "
+                 "x (1 - k1/k2)/(1 + x), k1/k2 = %.6g, scale = %.9g (least "
+                 "squares)\n",
+                 k1k2, s->kc_scale);
+    xmax = xmax > 0.0 ? 1.1 * xmax : 1.0;
+    for (int k = 0; k <= 100 && isfinite(s->kc_scale); k++) {
+        const double x = xmax * k / 100.0;
+        fprintf(dat, "%.9g %.9g\n", x, s->kc_scale * dem__sweep_fmin_norm(x, k1k2, 1.0));
+    }
+    fprintf(gp, "set xrange [0:%.6g]\nplot \"cohesion_vs_kc.dat\" index 0 "
+                "with points pointtype 7 pointsize 1.5 title \"flow "
+                "functions\"%s\n",
+            xmax,
+            isfinite(s->kc_scale)
+                ? ", \\\n  \"\" index 1 with lines linewidth 2 title "
+                  "\"A |f_{min}|/(k_2 δ_{max}) (A fitted)\""
+                : "");
+    return DEM_OK;
+}
+
+/* ---------------------------------------------- void ratio vs pressure */
+
+static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    static const char *const state[2] = {"initial", "critical"};
+    dem__gp_head(gp, "void_ratio_vs_pressure",
+                 "Void ratio versus pressure, fits e = e_0 - (p/h_s)^n",
+                 "pressure p", "void ratio e");
+    fprintf(dat, "# columns 1 p  2 e; per group: block initial points, "
+                 "block critical points, block initial fit, block critical "
+                 "fit (empty when not fitted)\n");
+    fprintf(gp, "plot \\\n");
+    int block = 0;
+    for (int q = 0; q < s->ffg.n; q++) {
+        const struct dem__sweep_void *v = &s->vr[q];
+        char lab[512], par[520];
+        label(s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE, lab, sizeof lab);
+        paren(lab, par, sizeof par);
+        double pmax = 0.0;
+        for (int k = 0; k < 2; k++) {
+            fprintf(dat, "# %s state%s\n", state[k], par);
+            for (long m = 0; m < v->m[k]; m++) {
+                fprintf(dat, "%.9g %.9g\n", v->p[k][m], v->e[k][m]);
+                pmax = fmax(pmax, v->p[k][m]);
+            }
+            fprintf(dat, "\n\n");
+            fprintf(gp, "  \"void_ratio_vs_pressure.dat\" index %d with "
+                        "points pointtype %d pointsize 1.5 linecolor %d "
+                        "title \"%s%s\" noenhanced, \\\n",
+                    block++, k ? 7 : 6, 2 * q + k + 1, state[k], par);
+        }
+        for (int k = 0; k < 2; k++) {
+            const struct dem_voidfit *f = &v->fit[k];
+            fprintf(dat, "# fit %s%s\n", state[k], par);
+            for (int i = 0; f->ok && i <= 100; i++) {
+                const double p = 1.1 * pmax * i / 100.0;
+                fprintf(dat, "%.9g %.9g\n", p, f->e0 - pow(p / v->hs, f->n));
+            }
+            fprintf(dat, "\n\n");
+            if (f->ok)
+                fprintf(gp, "  \"void_ratio_vs_pressure.dat\" index %d with "
+                            "lines linewidth 2 linecolor %d title \"fit %s: "
+                            "e0 = %.4f, n = %.3f, h_s = %.4g, R² = %.3f%s\" "
+                            "noenhanced, \\\n",
+                        block, 2 * q + k + 1, state[k], f->e0, f->n, v->hs,
+                        f->r2, par);
+            block++;
+        }
+    }
+    fprintf(gp, "  0 linetype -3 notitle\n");
+    return DEM_OK;
+}
+
+/* ------------------------------------------------ strain accumulation */
+
+static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    dem__gp_head(gp, "strain_accumulation",
+                 "Strain accumulated per cycle",
+                 "cycle c", "Δε_D per cycle");
+    fprintf(dat, "# columns 1 cycle  2 eps_D gained in the cycle  3 eps_D "
+                 "at its end; one block per cyclic run\n");
+    fprintf(gp, "plot \\\n");
+    int block = 0;
+    for (long i = 0; i < s->n; i++) {
+        const struct dem__sweep_run *r = &s->runs[i];
+        if (!r->ok || !r->cyclic)
+            continue;
+        char lab[512], par[520];
+        label(s, i, DEM_SWEEP_ROLE_MU, lab, sizeof lab);
+        paren(lab, par, sizeof par);
+        fprintf(dat, "# %s: mu = %.6g\n", r->name, r->mu);
+        for (int k = 0; k < r->ncyc; k++)
+            fprintf(dat, "%d %.9g %.9g\n", k + 1, r->cyc_inc[k], r->cyc_end[k]);
+        fprintf(dat, "\n\n");
+        fprintf(gp, "  \"strain_accumulation.dat\" index %d with linespoints "
+                    "pointtype 7 title \"μ = %.3g%s%s%s\" noenhanced, \\\n",
+                block++, r->mu, par, r->verdict[0] ? ": " : "", r->verdict);
+    }
+    fprintf(gp, "  0 linetype -3 notitle\n");
+    return DEM_OK;
+}
+
+int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
+                     struct dem_error *err)
+{
+    const struct {
+        const char *name;
+        const char *reason; /* non-empty: the sweep does not show it */
+        writer w;
+    } plots[] = {
+        {"mohr_circles", s->ff_reason, w_mohr},
+        {"friction_vs_mu", s->mu_reason, w_friction},
+        {"cohesion_vs_kc", s->kc_reason, w_cohesion},
+        {"void_ratio_vs_pressure", s->void_reason, w_voids},
+        {"strain_accumulation", s->cyc_reason, w_cyclic},
+    };
+    const int np = (int)(sizeof plots / sizeof *plots);
+    char plotdir[DEM_PATH_MAX];
+    int rc = dem_path_join(plotdir, sizeof plotdir, outdir, "plots", err);
+    int any = 0;
+    for (int k = 0; k < np; k++)
+        any |= !plots[k].reason[0];
+    if (rc || !any)
+        return rc;
+    char log[DEM_PATH_MAX];
+    if (!dem_path_join(log, sizeof log, plotdir, "gnuplot.log", NULL))
+        remove(log); /* a restarted sweep's messages only */
+    rc = dem_mkdir_p(plotdir, err);
+    for (int k = 0; !rc && k < np; k++)
+        if (!plots[k].reason[0])
+            rc = write_pair(plotdir, plots[k].name, plots[k].w, s, err);
+    if (rc)
+        return rc;
+    const char *cmd = dem__gp_command();
+    if (!dem__gp_available(cmd)) {
+        fprintf(stderr, "dembox: sweep: warning: %s not found; the plot "
+                        "scripts are in %s, run them with gnuplot\n",
+                cmd, plotdir);
+        return DEM_OK;
+    }
+    for (int k = 0; !rc && k < np; k++)
+        if (!plots[k].reason[0])
+            rc = dem__gp_run(cmd, plotdir, plots[k].name, err);
+    return rc;
+}

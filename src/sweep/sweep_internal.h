@@ -1,0 +1,80 @@
+/* What collect.c reads and computes and plots.c draws. Internal. */
+#ifndef DEM_SWEEP_INTERNAL_H
+#define DEM_SWEEP_INTERNAL_H
+
+#include "analysis/analysis.h"
+#include "sweep/sweep.h"
+
+/* One grid point's run: its parameters, config and summary numbers.
+ * Numbers that the summary does not have are NaN. */
+struct dem__sweep_run {
+    char name[DEM_SWEEP_RUNNAME_MAX + 8];
+    int idx[DEM_SWEEP_MAX_PARAMS]; /* value index of every parameter */
+    int ok;                        /* 1: finished and read */
+    char reason[DEM_ERRMSG_MAX];   /* why not, when ok = 0 */
+    int dim;
+    double mu;          /* friction of the loading stage */
+    double k1, k2, kc;  /* N/m; luding stiffnesses (linear: k1 = k2 = k) */
+    double pressure;    /* confining pressure of the loading stage */
+    double peak_sin, peak_phi, peak_s1, peak_s3;
+    double crit_sin, crit_phi, crit_s1, crit_s3;
+    double e_init, e_crit;
+    double hs;          /* hardness of the void-ratio fit (summary.json) */
+    char verdict[32];   /* "ratcheting", "shakedown", "" */
+    double cyc_ratio;
+    int ncyc;           /* complete cycles (0: no cyclic stage) */
+    int cyclic;         /* 1: the run has a cyclic stage */
+    double *cyc_end, *cyc_inc; /* eps_D at the end of / gained in a cycle */
+};
+
+/* Runs that differ only in the parameters of some role form a group. */
+struct dem__sweep_groups {
+    int n;        /* groups */
+    int *gid;     /* per run: its group, -1 when the run is not ok */
+    long *rep;    /* per group: its first run */
+};
+
+struct dem__sweep_ff {
+    long circles;            /* runs with a circle in this state */
+    long *members;           /* those runs */
+    struct dem_mohr_fit fit; /* ok = 0 with reason when not fitted */
+};
+
+struct dem__sweep_void {
+    double hs;
+    long m[2];               /* initial, critical: points */
+    long *members[2];
+    double *p[2], *e[2];     /* the points */
+    struct dem_voidfit fit[2];
+};
+
+struct dem__sweep {
+    const struct dem_sweep_grid *g;
+    long n;
+    struct dem__sweep_run *runs;
+    int roles;                      /* roles of all parameters */
+    /* flow function, [0] at peak, [1] in critical state */
+    char ff_reason[DEM_REASON_MAX]; /* non-empty: not computed */
+    struct dem__sweep_groups ffg;   /* runs grouped except pressure */
+    struct dem__sweep_ff *ff[2];    /* per group */
+    /* friction versus mu */
+    char mu_reason[DEM_REASON_MAX];
+    struct dem__sweep_groups mug;   /* grouped except mu */
+    /* cohesion versus kc/k2 */
+    char kc_reason[DEM_REASON_MAX];
+    double kc_scale; /* least-squares factor of the f_min curve */
+    /* void ratio versus pressure, per group of ffg */
+    char void_reason[DEM_REASON_MAX];
+    struct dem__sweep_void *vr;
+    /* cyclic runs */
+    char cyc_reason[DEM_REASON_MAX];
+};
+
+/* |f_min|/(k2 delta_max) = (kc/k2)(1 - k1/k2)/(1 + kc/k2) (SPEC 2.2). */
+double dem__sweep_fmin_norm(double kc, double k1, double k2);
+
+/* Write the sweep's pictures into outdir/plots (plots.c). */
+int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
+                     struct dem_error *err);
+
+#endif

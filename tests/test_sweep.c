@@ -1,0 +1,329 @@
+/* Parameter sweeps: grid expansion and --param errors, the refusal of a
+ * bad grid point before anything runs, the cross-run fits on synthetic
+ * summaries with known answers (flow function, void-ratio envelope), and
+ * a real sweep of three tiny runs in two jobs that a restart skips. */
+#include "testutil.h"
+
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "io/config.h"
+#include "io/fsutil.h"
+#include "io/jsonread.h"
+#include "sweep/sweep.h"
+
+#define DEG (180.0 / M_PI)
+
+static char tmpdir[256];
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/dembox-test-sweep-XXXXXX");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+/* A 2D biaxial test of 60 discs; with --max-steps 1000 a run takes about
+ * a second. */
+static const char *const tiny_2d =
+    "dimension = 2; seed = 3; time_step = \"auto\";\n"
+    "particles = { count = 60; radius = { distribution = \"uniform\";"
+    " min = 0.5e-3; max = 1.5e-3; }; placement = \"random\";"
+    " volume_fraction = 0.4; };\n"
+    "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; gamma_n = 0.1;"
+    " kt = 2.0e4; gamma_t = 0.02; mu = 0.5; };\n"
+    "damping = { gamma_b = 1.0e-5; gamma_br = 0.0; };\n"
+    "walls = { mass = 0.01; gamma = 2.0; max_speed = 0.5; };\n"
+    "stages = ( { type = \"isotropic\"; pressure = 500.0; tolerance = 1.0e-3;"
+    " max_time = 0.03; mu = 0.0; },\n"
+    " { type = \"compress\"; axis = \"y\"; strain = 0.1; duration = 0.03;"
+    " pressure = 500.0; } );\n"
+    "output = { interval = 5.0e-4; snapshot_interval = 0.0; };\n";
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+static void tiny_config(char *path, size_t n)
+{
+    snprintf(path, n, "%s/tiny.cfg", tmpdir);
+    write_file(path, tiny_2d);
+}
+
+static void add(struct dem_sweep_grid *g, const char *arg)
+{
+    struct dem_error err = {0, ""};
+    if (dem_sweep_param_add(g, arg, &err))
+        fail_msg("%s", err.msg);
+}
+
+static void grid_is_product_with_linked_keys(void **state)
+{
+    (void)state;
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.0.pressure,stages.1.pressure=250,500,1000");
+    add(&g, "contact.mu=0.1,0.5");
+    add(&g, "gravity=[0,0,0],[0,-9.81,0]");
+    assert_int_equal(dem_sweep_grid_size(&g), 12);
+    assert_int_equal(g.params[2].nvalues, 2);
+    assert_string_equal(g.params[2].values[1], "[0,-9.81,0]");
+    assert_true(g.params[0].roles & DEM_SWEEP_ROLE_PRESSURE);
+    assert_true(g.params[1].roles & DEM_SWEEP_ROLE_MU);
+
+    /* the last parameter varies fastest; linked keys share the value */
+    char sets[16][DEM_NAME_MAX + DEM_SWEEP_VALUE_MAX];
+    assert_int_equal(dem_sweep_point_sets(&g, 7, sets, 16), 4);
+    assert_string_equal(sets[0], "stages.0.pressure=500");
+    assert_string_equal(sets[1], "stages.1.pressure=500");
+    assert_string_equal(sets[2], "contact.mu=0.5");
+    assert_string_equal(sets[3], "gravity=[0,-9.81,0]");
+
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(12 * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    assert_string_equal(names[7], "stages.0.pressure=500_stages.1.pressure="
+                                  "500_contact.mu=0.5_gravity=-0--9.81-0-");
+    for (int i = 0; i < 12; i++)
+        for (int j = 0; j < i; j++)
+            assert_true(strcmp(names[i], names[j]) != 0);
+    free(names);
+    dem_sweep_grid_free(&g);
+}
+
+static void bad_param_is_an_error_naming_it(void **state)
+{
+    (void)state;
+    static const char *const bad[] = {
+        "contact.mu",          /* no '=' */
+        "contact.mu=",         /* no values */
+        "contact.mu=0.1,,0.3", /* empty value */
+        "contact.mu=0.1,0.1",  /* duplicate value */
+        "=0.1,0.2",            /* no key */
+        "contact..mu=0.1",     /* malformed key */
+        "contact.mu,contact.mu=1,2", /* key twice */
+        "gravity=[0,0",        /* unbalanced bracket */
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        struct dem_sweep_grid g;
+        memset(&g, 0, sizeof g);
+        struct dem_error err = {0, ""};
+        assert_int_equal(dem_sweep_param_add(&g, bad[k], &err), DEM_EUSAGE);
+        assert_non_null(strstr(err.msg, bad[k]));
+        assert_int_equal(g.nparams, 0);
+    }
+    /* the same key in two --param options */
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    struct dem_error err = {0, ""};
+    add(&g, "contact.mu=0.1,0.2");
+    assert_int_equal(dem_sweep_param_add(&g, "contact.mu=0.3", &err),
+                     DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "swept twice"));
+    dem_sweep_grid_free(&g);
+}
+
+static int count_entries(const char *dir)
+{
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "ls -A '%s' 2>/dev/null | wc -l", dir);
+    FILE *p = popen(cmd, "r");
+    int n = -1;
+    if (p) {
+        if (fscanf(p, "%d", &n) != 1)
+            n = -1;
+        pclose(p);
+    }
+    return n;
+}
+
+static void bad_grid_point_is_refused_before_running(void **state)
+{
+    (void)state;
+    char cfg[512], out[512];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/refused", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.1.pressure=250,500");
+    add(&g, "contact.mu=0.3,-1");
+    struct dem_sweep_options o = {cfg, out, NULL, 0, 2, 1, 1,
+                                  getenv("DEMBOX_BIN"), 200};
+    struct dem_sweep_report rep;
+    struct dem_error err = {0, ""};
+    assert_int_equal(dem_sweep_run(&g, &o, &rep, &err), DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "--param 'contact.mu=0.3,-1'"));
+    assert_non_null(strstr(err.msg, "contact.mu"));
+    assert_int_equal(rep.ran, 0);
+    assert_true(access(out, F_OK) != 0); /* nothing was even created */
+    dem_sweep_grid_free(&g);
+}
+
+/* A run folder as dem_run leaves it, with a made-up summary. */
+static void fake_run(const char *dir, const char *cfgpath, const char *set,
+                     const char *summary)
+{
+    struct dem_config c;
+    struct dem_error err = {0, ""};
+    const char *sets[] = {set};
+    if (dem_config_load_file(&c, cfgpath, sets, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(dem_mkdir_p(dir, &err), 0);
+    char path[1200];
+    snprintf(path, sizeof path, "%s/config.cfg", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    dem_config_write(&c, f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/timeseries.csv", dir);
+    write_file(path, "t\n0\n");
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    write_file(path, summary);
+}
+
+/* Circles touching tau = c + sigma tan(phi) at confining pressures p:
+ * sigma_1 = p (1 + s)/(1 - s) + 2 c cos(phi)/(1 - s), s = sin(phi). The
+ * initial void ratios follow e = e0 - (p/hs)^n with hs = k2. */
+static void flow_function_and_void_fit_recover_known_values(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/synthetic", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.1.pressure=100,200,400,800");
+    const double phi = 30.0 / DEG, c = 50.0, e0 = 0.25, n = 0.6, hs = 1e5;
+    const double p[4] = {100, 200, 400, 800};
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(4 * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    for (int k = 0; k < 4; k++) {
+        const double s = sin(phi);
+        const double s1 = p[k] * (1 + s) / (1 - s) + 2 * c * cos(phi) / (1 - s);
+        char summary[1024], set[64];
+        snprintf(summary, sizeof summary,
+                 "{\"dimension\": 2, \"loading_stage\": 1, "
+                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": 0.5,"
+                 " \"phi_deg\": 30, \"sigma_axial\": %.17g, \"sigma_lateral\":"
+                 " %.17g}, \"critical\": {\"sin_phi\": null, \"reason\": "
+                 "\"no plateau\"}, \"void_ratio_initial\": %.17g, "
+                 "\"void_ratio_critical\": null, \"void_ratio_fit\": {\"hs\": "
+                 "%.17g}}\n",
+                 p[k], s1, p[k], e0 - pow(p[k] / hs, n), hs);
+        snprintf(set, sizeof set, "stages.1.pressure=%g", p[k]);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[k]);
+        fake_run(dir, cfg, set, summary);
+    }
+    free(names);
+    struct dem_sweep_options o = {cfg, out, NULL, 0, 1, 1, 1, NULL, 0};
+    struct dem_error err = {0, ""};
+    if (dem_sweep_collect(&g, &o, &err))
+        fail_msg("%s", err.msg);
+
+    struct dem__jval js;
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(&js, dir, &err))
+        fail_msg("%s", err.msg);
+    assert_close(dem__jread_number(&js, "runs_finished"), 4, 0);
+    const struct dem__jval *ff = dem__jread_get(&js, "flow_function");
+    assert_non_null(ff);
+    assert_int_equal(ff->type, DEM__JSON_ARRAY);
+    assert_int_equal(ff->n, 1);
+    assert_close(dem__jread_number(&ff->items[0], "phi_deg"), 30.0, 1e-6);
+    assert_close(dem__jread_number(&ff->items[0], "cohesion"), c, 1e-6);
+    assert_close(dem__jread_number(&ff->items[0], "circles"), 4, 0);
+    assert_close(dem__jread_number(&ff->items[0], "r2"), 1.0, 1e-9);
+    /* no critical circles: null with a reason */
+    const struct dem__jval *fc = dem__jread_get(&js, "flow_function_critical");
+    assert_non_null(dem__jread_string(&fc->items[0], "reason"));
+    const struct dem__jval *vr = dem__jread_get(&js, "void_ratio_vs_pressure");
+    assert_non_null(vr);
+    assert_close(dem__jread_number(&vr->items[0], "initial.e0"), e0, 1e-4);
+    assert_close(dem__jread_number(&vr->items[0], "initial.n"), n, 1e-3);
+    /* what the sweep does not vary is null with a reason */
+    assert_int_equal(dem__jread_get(&js, "friction_vs_mu")->type,
+                     DEM__JSON_NULL);
+    assert_non_null(dem__jread_string(&js, "friction_vs_mu_reason"));
+    assert_non_null(dem__jread_string(&js, "cohesion_vs_kc_reason"));
+    assert_non_null(dem__jread_string(&js, "strain_accumulation_reason"));
+    dem__jread_free(&js);
+    snprintf(dir, sizeof dir, "%s/plots/mohr_circles.gp", out);
+    assert_int_equal(access(dir, F_OK), 0);
+    snprintf(dir, sizeof dir, "%s/plots/friction_vs_mu.gp", out);
+    assert_true(access(dir, F_OK) != 0);
+    dem_sweep_grid_free(&g);
+}
+
+static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
+{
+    (void)state;
+    const char *exe = getenv("DEMBOX_BIN");
+    if (!exe) {
+        print_message("DEMBOX_BIN not set (run through ctest); skipped\n");
+        skip();
+    }
+    char cfg[512], out[512], path[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/real", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.0.pressure,stages.1.pressure=250,500,1000");
+    struct dem_sweep_options o = {cfg, out, NULL, 0, 2, 1, 1, exe, 1000};
+    struct dem_sweep_report rep;
+    struct dem_error err = {0, ""};
+    if (dem_sweep_run(&g, &o, &rep, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(rep.points, 3);
+    assert_int_equal(rep.ran, 3);
+    assert_int_equal(rep.skipped, 0);
+    assert_int_equal(rep.failed, 0);
+    snprintf(path, sizeof path, "%s/runs", out);
+    assert_int_equal(count_entries(path), 4); /* 3 runs + index */
+
+    struct dem__jval js;
+    snprintf(path, sizeof path, "%s/sweep.json", out);
+    if (dem__jread_file(&js, path, &err))
+        fail_msg("%s", err.msg);
+    const struct dem__jval *runs = dem__jread_get(&js, "runs");
+    assert_non_null(runs);
+    assert_int_equal(runs->n, 3);
+    for (int k = 0; k < 3; k++)
+        assert_string_equal(dem__jread_string(&runs->items[k], "status"),
+                            "finished");
+    assert_close(dem__jread_number(&runs->items[2], "confining_pressure"),
+                 1000.0, 0.0);
+    dem__jread_free(&js);
+
+    /* the restart finds every run finished */
+    if (dem_sweep_run(&g, &o, &rep, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(rep.ran, 0);
+    assert_int_equal(rep.skipped, 3);
+
+    /* a run without its summary is unfinished and runs again */
+    snprintf(path, sizeof path,
+             "%s/runs/stages.0.pressure=500_stages.1.pressure=500/summary.json",
+             out);
+    assert_int_equal(remove(path), 0);
+    if (dem_sweep_run(&g, &o, &rep, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(rep.ran, 1);
+    assert_int_equal(rep.skipped, 2);
+    dem_sweep_grid_free(&g);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(grid_is_product_with_linked_keys),
+        cmocka_unit_test(bad_param_is_an_error_naming_it),
+        cmocka_unit_test(bad_grid_point_is_refused_before_running),
+        cmocka_unit_test(flow_function_and_void_fit_recover_known_values),
+        cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
