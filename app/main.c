@@ -97,7 +97,7 @@ static int cmd_run(int argc, char **argv)
     const char *target = 0, *outdir = 0;
     const char *sets[MAX_SETS];
     int nsets = 0;
-    struct dem_run_options opt = {0, 0, 0, 0};
+    struct dem_run_options opt = {0};
     for (int k = 0; k < argc; k++) {
         const char *a = argv[k];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
