@@ -222,8 +222,8 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     if (io->reading && !io->why &&
         (strcmp(rversion, DEM_VERSION) != 0 || strcmp(rbuild, BUILD_ID) != 0)) {
         snprintf(io->detail, sizeof io->detail,
-                 "written by dembox %.40s (%.100s), this is dembox %s (%s): "
-                 "exact resume needs the same build",
+                 "written by another build (dembox %.40s, %.100s; this is "
+                 "dembox %s, %s): exact resume needs the same build",
                  rversion, rbuild, DEM_VERSION, BUILD_ID);
         io->why = io->detail;
     }
