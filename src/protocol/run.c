@@ -478,7 +478,9 @@ static int reopen_part(FILE **f, const char *path, int64_t bytes,
         return dem_error_set(err, DEM_EIO, "%s: cannot truncate: %s", path,
                              strerror(errno));
     *f = fopen(path, "a");
-    if (!*f)
+    /* positioned at the end, so that ftello gives the length even before
+     * the first append (C leaves it to the implementation) */
+    if (!*f || fseeko(*f, 0, SEEK_END) != 0)
         return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", path,
                              strerror(errno));
     return DEM_OK;
