@@ -1,6 +1,7 @@
 /* The dembox command: argument parsing only. Everything else is in
  * libdembox; this file turns its status codes into exit statuses and
  * one-line messages on stderr. */
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +25,8 @@ static const char *const usage_main =
     "[--quiet]\n"
     "                      run a scenario (default: the example " DEFAULT_EXAMPLE
     ")\n"
+    "  run --resume OUTDIR [--threads N] [--quiet]\n"
+    "                      continue an interrupted run from its checkpoint\n"
     "  sweep CONFIG|EXAMPLE --param KEY[,KEY...]=V1,V2,... [--param ...]\n"
     "        [--jobs N] -o DIR [--set KEY=VALUE]... [--quiet]\n"
     "                      run a parameter grid and the cross-run analysis\n"
@@ -38,6 +41,7 @@ static const char *const usage_main =
 static const char *const usage_run =
     "usage: dembox run [CONFIG|EXAMPLE] [-o OUTDIR] [--set KEY=VALUE]... "
     "[--threads N] [--quiet]\n"
+    "       dembox run --resume OUTDIR [--threads N] [--quiet]\n"
     "\n"
     "Run the stages of a config file or a built-in example (default: "
     DEFAULT_EXAMPLE ").\n"
@@ -49,10 +53,19 @@ static const char *const usage_run =
     "  --quiet              no progress display\n"
     "  --max-steps N        stop after N steps in all (smoke tests); the\n"
     "                       outputs are written as for a finished run\n"
+    "  --resume OUTDIR      continue the interrupted run in OUTDIR from\n"
+    "                       OUTDIR/checkpoint.bin; its outputs are byte for\n"
+    "                       byte those of an uninterrupted run\n"
     "\n"
     "OUTDIR receives config.cfg (the resolved config), timeseries.csv,\n"
     "particles_final.csv and particles_NNNNN.vtu snapshots with\n"
-    "particles.pvd. Files being written end in .part until the run is done.\n";
+    "particles.pvd. Files being written end in .part until the run is done.\n"
+    "\n"
+    "Every output.checkpoint_interval seconds (default 600) and on Ctrl-C\n"
+    "(SIGINT) or SIGTERM the run saves OUTDIR/checkpoint.bin; after a signal\n"
+    "it stops (exit status 130 or 143) and says how to resume. A second\n"
+    "Ctrl-C stops at once, without a checkpoint. A finished run removes its\n"
+    "checkpoint; resuming it is refused (exit status 1).\n";
 
 static const char *const usage_plot =
     "usage: dembox plot OUTDIR\n\nRedraw the pictures of the run in OUTDIR "
@@ -135,12 +148,59 @@ static void stem(const char *path, char *out, size_t n)
         *dot = '\0';
 }
 
+/* The signal that asked the run to stop, 0 = none. The handler only sets
+ * it; the run checks it at its next sample. A second signal while the
+ * first is being handled falls back to the default action. */
+static volatile sig_atomic_t stop_signal;
+
+static void on_signal(int sig)
+{
+    if (stop_signal) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    stop_signal = sig;
+}
+
+/* dem_run or dem_run_resume with SIGINT and SIGTERM turned into a
+ * checkpoint and a clean stop; the previous handlers are restored after.
+ * Returns the exit status. */
+static int run_with_signals(const struct dem_config *cfg, const char *resume,
+                            struct dem_run_options *opt)
+{
+    struct sigaction sa, old_int, old_term;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    stop_signal = 0;
+    opt->stop = &stop_signal;
+    struct dem_error err = {0, ""};
+    int rc = resume ? dem_run_resume(resume, opt, &err)
+                    : dem_run(cfg, opt, &err);
+    sigaction(SIGINT, &old_int, 0);
+    sigaction(SIGTERM, &old_term, 0);
+    const char *dir = resume ? resume : opt->outdir;
+    if (rc == DEM_EINTERRUPTED) {
+        fprintf(stderr, "dembox: %s\n", err.msg);
+        return 128 + (stop_signal ? (int)stop_signal : SIGINT);
+    }
+    if (rc)
+        return fail(err.msg);
+    if (!opt->quiet)
+        fprintf(stderr, "dembox: results in %s\n", dir);
+    return 0;
+}
+
 static int cmd_run(int argc, char **argv)
 {
-    const char *target = 0, *outdir = 0;
+    const char *target = 0, *outdir = 0, *resume = 0;
     const char *sets[MAX_SETS];
     int nsets = 0;
-    struct dem_run_options opt = {0, 0, 0, 0};
+    struct dem_run_options opt = {0};
     for (int k = 0; k < argc; k++) {
         const char *a = argv[k];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -176,6 +236,10 @@ static int cmd_run(int argc, char **argv)
             if (*end || m < 1)
                 return fail("run: --max-steps must be a positive integer");
             opt.max_steps = m;
+        } else if (!strcmp(a, "--resume")) {
+            if (++k >= argc)
+                return fail("run: --resume needs an output folder");
+            resume = argv[k];
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             opt.quiet = 1;
         } else if (a[0] == '-') {
@@ -186,6 +250,12 @@ static int cmd_run(int argc, char **argv)
         } else {
             return fail("run: more than one config given");
         }
+    }
+    if (resume) {
+        if (target || outdir || nsets || opt.max_steps)
+            return fail("run: --resume takes only OUTDIR, --threads and "
+                        "--quiet (the run keeps its config)");
+        return run_with_signals(0, resume, &opt);
     }
     if (!target)
         target = DEFAULT_EXAMPLE;
@@ -214,12 +284,7 @@ static int cmd_run(int argc, char **argv)
         outdir = outbuf;
     }
     opt.outdir = outdir;
-    rc = dem_run(&cfg, &opt, &err);
-    if (rc)
-        return fail(err.msg);
-    if (!opt.quiet)
-        fprintf(stderr, "dembox: results in %s\n", outdir);
-    return 0;
+    return run_with_signals(&cfg, 0, &opt);
 }
 
 static int parse_count(const char *opt, const char *v, long max, long *out)

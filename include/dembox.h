@@ -13,6 +13,7 @@
 #ifndef DEMBOX_H
 #define DEMBOX_H
 
+#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -177,6 +178,9 @@ struct dem_config {
         double dump_interval;     /* s; LAMMPS-style text dump interval
                                      (dump.lammpstrj, read by OVITO);
                                      0 = none */
+        double checkpoint_interval; /* s of wall-clock time between
+                                       checkpoints (checkpoint.bin);
+                                       0 = only on SIGINT/SIGTERM */
     } output;
 };
 
@@ -188,12 +192,37 @@ struct dem_run_options {
     int threads;        /* OpenMP threads; 0 = all cores */
     long max_steps;     /* > 0: end the run after this many steps (smoke
                            tests); outputs are written as for a full run */
+    volatile sig_atomic_t *stop; /* may be NULL; when *stop becomes
+                           non-zero (e.g. from a SIGINT handler) the run
+                           writes a checkpoint at its next sample and
+                           returns DEM_EINTERRUPTED */
+    long stop_after_steps; /* > 0 (tests): behave as if *stop were set
+                           once this many steps are done */
 };
 
 /* Run every stage of cfg (validated) and write the outputs of SPEC §7 to
- * opt->outdir. On failure no output is left looking complete. */
+ * opt->outdir. On failure no output is left looking complete.
+ *
+ * Checkpoints: every output.checkpoint_interval seconds of wall-clock time
+ * (checked at timeseries samples) the complete state is written to
+ * OUTDIR/checkpoint.bin (temporary file, fsync, rename), after the .part
+ * outputs have been flushed to disk. When *opt->stop is set the run writes
+ * a checkpoint at its next sample and returns DEM_EINTERRUPTED with a
+ * message saying how to resume. A write error (disk full, no permission)
+ * ends the run with DEM_EIO naming the file; the last good checkpoint is
+ * kept. A finished run removes its checkpoint. */
 int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
             struct dem_error *err);
+
+/* Continue the interrupted run in outdir from outdir/checkpoint.bin (its
+ * config must equal outdir/config.cfg). opt->outdir is ignored and
+ * opt->max_steps too (the limit the run started with holds). The outputs
+ * are byte for byte those of a run that was never interrupted, for any
+ * thread count. A checkpoint that is corrupt, truncated, foreign or from
+ * another build is refused (DEM_EIO, one line naming the file and what is
+ * wrong); a finished run is refused with DEM_EUSAGE. */
+int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
+                   struct dem_error *err);
 
 /* -------------------------------------------------------------- analyze */
 

@@ -37,7 +37,8 @@ static void run_text(const char *text, const char *name, const char *const *sets
     if (dem_config_parse(&c, text, name, sets, nsets, &err))
         fail_msg("%s: %s", name, err.msg);
     snprintf(outdir, n, "%s/%s", tmpdir, name);
-    struct dem_run_options o = {outdir, 1, 1, max_steps};
+    struct dem_run_options o = {
+        .outdir = outdir, .quiet = 1, .threads = 1, .max_steps = max_steps};
     if (dem_run(&c, &o, &err))
         fail_msg("%s: %s", name, err.msg);
 }

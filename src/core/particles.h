@@ -31,6 +31,14 @@ struct dem_particles {
                                "force felt" used to colour pictures) */
 };
 
+/* Every double and int array of struct dem_particles, so that init, free,
+ * permutation and checkpoints cannot forget one. */
+#define DEM_PARTICLE_DOUBLE_ARRAYS(X)                                        \
+    X(x) X(y) X(z) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy) X(fz)     \
+    X(tx) X(ty) X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(fsum)
+
+#define DEM_PARTICLE_INT_ARRAYS(X) X(id) X(ncontact)
+
 /* Allocate arrays for cap particles, all zero; n = 0. */
 int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err);
 void dem_particles_free(struct dem_particles *p);

@@ -224,6 +224,10 @@ static const struct key keys[] = {
      TOP(output.dump_interval), .def = 0, GE(0), .unit = "s",
      .doc = "time between frames of dump.lammpstrj, a LAMMPS-style text "
             "dump that OVITO reads (0 = none)"},
+    {.name = "output.checkpoint_interval", .kind = K_DOUBLE,
+     TOP(output.checkpoint_interval), .def = 600, GE(0), .unit = "s",
+     .doc = "wall-clock time between checkpoints (checkpoint.bin, for "
+            "dembox run --resume); 0 = only on SIGINT/SIGTERM"},
 
     /* Keys of each element of the stages list. */
     {.name = "type", .kind = K_ENUM, STG(type), .def = DEM_STAGE_ISOTROPIC,

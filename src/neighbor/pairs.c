@@ -388,6 +388,24 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
     return DEM_OK;
 }
 
+int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair,
+                      int nwc)
+{
+    npair = npair > 0 ? npair : 1;
+    nwc = nwc > 0 ? nwc : 1;
+    if (particles_reserve(pl, n, cap) || list_reserve(&pl->cur, npair) ||
+        list_reserve(&pl->wcur, nwc) ||
+        forces_reserve(&pl->f, pl->cur.cap) ||
+        forces_reserve(&pl->wf, pl->wcur.cap))
+        return DEM_ENOMEM;
+    if (pl->cur.cap > pl->rpair_cap) {
+        if (GROW(pl->rpair, pl->cur.cap))
+            return DEM_ENOMEM;
+        pl->rpair_cap = pl->cur.cap;
+    }
+    return DEM_OK;
+}
+
 int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,
                     int **pi, int **pj)
 {

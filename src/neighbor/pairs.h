@@ -84,6 +84,13 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     const struct dem_wall *w, int nwall, int reorder,
                     struct dem_error *err);
 
+/* Allocate room for n particles (arrays of at least cap doubles for the
+ * re-ordering), npair pairs and nwc wall contacts, as a build would, so
+ * that a checkpoint can fill cur, wcur, f, wf, rstart and rpair directly.
+ * The lists keep their counts; a later build works as usual. */
+int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair,
+                      int nwc);
+
 /* Reference: all pairs with gap below skin by brute force O(N^2); for tests.
  * Fills pi/pj (caller frees) and returns the count, or a negative status. */
 int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,

@@ -4,19 +4,31 @@
  * Files that are written during the run carry a ".part" suffix until the
  * run has finished, so an interrupted or failed run never leaves output
  * that looks complete.
+ *
+ * Checkpoints and resume: the loop's state is plain data (struct
+ * dem_ckpt_run) next to the simulation. A checkpoint is taken after a
+ * sample that does not end its stage, once the .part files are flushed to
+ * disk; it records their lengths. Resuming restores the simulation
+ * exactly (no neighbour-list rebuild, no force pass), cuts the .part files
+ * back to the recorded lengths and re-enters the stage loop at its top,
+ * so the run continues as if it had never stopped.
  */
+#include <errno.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "core/sim.h"
+#include "io/checkpoint.h"
 #include "io/config.h"
 #include "io/dump.h"
 #include "io/fsutil.h"
+#include "io/outfile.h"
 #include "io/particles_csv.h"
 #include "io/plot.h"
 #include "io/vtu.h"
@@ -28,18 +40,19 @@
 struct run_ctx {
     struct dem_sim sim;
     const struct dem_run_options *opt;
+    const char *outdir;
+    char *config_text;           /* the resolved config, as in config.cfg */
+    struct dem_ckpt_run st;      /* loop state, saved in checkpoints;
+                                    st.snap_t is the snapshot list */
+    struct dem_stage_state stage; /* the stage under way */
     FILE *ts;                    /* timeseries.csv.part */
     char ts_path[DEM_PATH_MAX];
-    double L0[3], V0;            /* reference sizes for strains */
-    /* snapshots */
-    int nsnap;
-    double *snap_t;
-    char **snap_files;
-    double next_snap;
-    /* LAMMPS-style dump */
+    char **snap_files;           /* names of the snapshots */
+    int nnames;                  /* entries of snap_files */
     FILE *dump;                  /* dump.lammpstrj.part, or NULL */
     char dump_path[DEM_PATH_MAX];
-    double next_dump;
+    char ckpt_path[DEM_PATH_MAX]; /* checkpoint.bin */
+    double last_ckpt;            /* wall clock of the last checkpoint */
     /* progress */
     int show_progress;
     double wall_t0, last_show;
@@ -94,17 +107,39 @@ static void box_bounds(const struct dem_sim *s, double lo[3], double hi[3])
     }
 }
 
+static void snapshot_name(char *buf, size_t n, int k)
+{
+    snprintf(buf, n, "particles_%05d.vtu", k);
+}
+
+/* Append one name to the snapshot list (st.snap_t grows separately). */
+static int add_snapshot_name(struct run_ctx *r, int k, struct dem_error *err)
+{
+    char name[64];
+    snapshot_name(name, sizeof name, k);
+    char **f = realloc(r->snap_files, (size_t)(k + 1) * sizeof *f);
+    if (!f)
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
+    r->snap_files = f;
+    r->snap_files[k] = strdup(name);
+    if (!r->snap_files[k])
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
+    r->nnames = k + 1;
+    return DEM_OK;
+}
+
 static int write_snapshot(struct run_ctx *r, struct dem_error *err)
 {
     const struct dem_sim *s = &r->sim;
-    if (r->nsnap >= MAX_SNAPSHOTS)
+    const int k = r->st.nsnap;
+    if (k >= MAX_SNAPSHOTS)
         return DEM_OK;
     char name[64], path[DEM_PATH_MAX], box[64], boxpath[DEM_PATH_MAX];
-    snprintf(name, sizeof name, "particles_%05d.vtu", r->nsnap);
-    snprintf(box, sizeof box, "box_%05d.vtu", r->nsnap);
-    int rc = dem_path_join(path, sizeof path, r->opt->outdir, name, err);
+    snapshot_name(name, sizeof name, k);
+    snprintf(box, sizeof box, "box_%05d.vtu", k);
+    int rc = dem_path_join(path, sizeof path, r->outdir, name, err);
     if (!rc)
-        rc = dem_path_join(boxpath, sizeof boxpath, r->opt->outdir, box, err);
+        rc = dem_path_join(boxpath, sizeof boxpath, r->outdir, box, err);
     if (!rc)
         rc = dem_vtu_write_particles(path, &s->p, err);
     double lo[3], hi[3];
@@ -113,22 +148,18 @@ static int write_snapshot(struct run_ctx *r, struct dem_error *err)
         rc = dem_vtu_write_box(boxpath, lo, hi, s->dim, err);
     if (rc)
         return rc;
-    double *t = realloc(r->snap_t, (size_t)(r->nsnap + 1) * sizeof *t);
+    double *t = realloc(r->st.snap_t, (size_t)(k + 1) * sizeof *t);
     if (!t)
         return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
-    r->snap_t = t;
-    char **f = realloc(r->snap_files, (size_t)(r->nsnap + 1) * sizeof *f);
-    if (!f)
-        return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
-    r->snap_files = f;
-    r->snap_t[r->nsnap] = s->t;
-    r->snap_files[r->nsnap] = strdup(name);
-    if (!r->snap_files[r->nsnap])
-        return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
-    r->nsnap++;
-    rc = dem_path_join(path, sizeof path, r->opt->outdir, "particles.pvd", err);
+    r->st.snap_t = t;
+    rc = add_snapshot_name(r, k, err);
+    if (rc)
+        return rc;
+    r->st.snap_t[k] = s->t;
+    r->st.nsnap++;
+    rc = dem_path_join(path, sizeof path, r->outdir, "particles.pvd", err);
     if (!rc)
-        rc = dem_pvd_write(path, r->nsnap, r->snap_t,
+        rc = dem_pvd_write(path, r->st.nsnap, r->st.snap_t,
                            (const char *const *)r->snap_files, err);
     return rc;
 }
@@ -157,10 +188,54 @@ static int check_stable(const struct dem_sim *s, const struct dem_sample *smp,
 
 static void set_reference(struct run_ctx *r)
 {
-    dem_sim_box(&r->sim, r->L0, &r->V0);
+    dem_sim_box(&r->sim, r->st.L0, &r->st.V0);
 }
 
-static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
+/* Flush a .part file to disk and return its length; a failure names it. */
+static int sync_part(FILE *f, const char *path, int64_t *bytes,
+                     struct dem_error *err)
+{
+    errno = 0;
+    if (ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", path,
+                             errno ? strerror(errno) : "I/O error");
+    off_t pos = ftello(f);
+    if (pos < 0)
+        return dem_error_set(err, DEM_EIO, "%s: %s", path, strerror(errno));
+    *bytes = (int64_t)pos;
+    return DEM_OK;
+}
+
+/* Save the state at this step boundary: the .part files first, so that
+ * the lengths the checkpoint records are on disk before it is. */
+static int write_checkpoint(struct run_ctx *r, struct dem_error *err)
+{
+    int rc = sync_part(r->ts, r->ts_path, &r->st.ts_bytes, err);
+    r->st.dump_bytes = 0;
+    if (!rc && r->dump)
+        rc = sync_part(r->dump, r->dump_path, &r->st.dump_bytes, err);
+    if (rc)
+        return rc;
+    r->st.stage = r->stage.index;
+    r->st.stage_t_start = r->stage.t_start;
+    r->st.stage_t_end = r->stage.t_end;
+    r->st.sets_reference = r->stage.sets_reference;
+    rc = dem_checkpoint_write(r->ckpt_path, r->config_text, &r->sim, &r->st,
+                              err);
+    r->last_ckpt = wall_clock();
+    return rc;
+}
+
+/* 1 when the caller asked the run to stop (signal or test hook). */
+static int stop_requested(const struct run_ctx *r)
+{
+    const struct dem_run_options *o = r->opt;
+    return (o->stop && *o->stop) ||
+           (o->stop_after_steps > 0 && r->sim.step >= o->stop_after_steps);
+}
+
+/* Start stage index: wall modes, friction, reference sizes, next row. */
+static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
 {
     struct dem_sim *s = &r->sim;
     const struct dem_stage_config *c = &s->cfg.stages[index];
@@ -169,44 +244,67 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
         return dem_error_set(err, DEM_EINTERNAL, "stage %d: unknown type",
                              index);
     struct dem_stage_state st = {c, index, s->t, s->t, 0, 0};
+    r->stage = st;
     double mu_s = c->mu >= 0 ? c->mu : s->cfg.contact.mu_s;
     double mu_d = c->mu >= 0 ? c->mu : s->cfg.contact.mu_d;
     dem_sim_set_friction(s, mu_s, mu_d);
-    int rc = ops->begin(s, &st, err);
+    int rc = ops->begin(s, &r->stage, err);
     if (rc)
         return rc;
-    if (st.sets_reference)
+    if (r->stage.sets_reference)
         set_reference(r);
+    r->st.stage = index;
+    r->st.next_out = s->t + s->cfg.output.interval;
+    r->st.warned_inertia = 0;
+    return DEM_OK;
+}
 
+/* The steps of the stage under way, from wherever it stands, to its end.
+ * A checkpoint is taken only after a sample that does not end the stage,
+ * so that resuming re-enters this loop at its top. */
+static int stage_loop(struct run_ctx *r, struct dem_error *err)
+{
+    struct dem_sim *s = &r->sim;
+    struct dem_stage_state *st = &r->stage;
+    const struct dem_stage_config *c = st->cfg;
+    const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
+    const int index = st->index;
     const double dt = s->dt, out = s->cfg.output.interval;
     const double snap = s->cfg.output.snapshot_interval;
-    double next_out = s->t + out;
+    const double ckpt = s->cfg.output.checkpoint_interval;
+    const long max_steps = r->st.max_steps;
     const int loading =
         c->type == DEM_STAGE_COMPRESS || c->type == DEM_STAGE_CYCLIC;
-    int warned_inertia = 0;
+    int rc;
     for (;;) {
-        const int by_time = s->t + 1.5 * dt > st.t_end;
-        const int last = by_time || (r->opt->max_steps > 0 &&
-                                     s->step + 1 >= r->opt->max_steps);
-        int sample = last || s->t + 1.5 * dt >= next_out;
+        const int by_time = s->t + 1.5 * dt > st->t_end;
+        const int last =
+            by_time || (max_steps > 0 && s->step + 1 >= max_steps);
+        int sample = last || s->t + 1.5 * dt >= r->st.next_out;
         if (sample)
             s->measure = 1;
         rc = dem_sim_step(s, err);
         if (rc)
             return rc;
         if (!sample) {
-            show_progress(r, &st, 0);
+            show_progress(r, st, 0);
             continue;
         }
-        next_out += out;
+        r->st.next_out += out;
         struct dem_sample smp;
-        dem_measure(s, r->L0, r->V0, index, &smp);
+        dem_measure(s, r->st.L0, r->st.V0, index, &smp);
+        errno = 0;
         dem_sample_write_row(r->ts, &smp, s->dim);
+        if (ferror(r->ts))
+            return dem_error_set(err, DEM_EIO, "%s: write failed: %s",
+                                 r->ts_path,
+                                 errno ? strerror(errno) : "I/O error");
         rc = check_stable(s, &smp, err);
         if (rc)
             return rc;
-        if (loading && !warned_inertia && smp.inertial_number > 1e-3) {
-            warned_inertia = 1;
+        if (loading && !r->st.warned_inertia &&
+            smp.inertial_number > 1e-3) {
+            r->st.warned_inertia = 1;
             if (r->show_progress)
                 fputc('\n', stderr);
             fprintf(stderr,
@@ -215,30 +313,50 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
                     "more slowly (longer duration or period)\n",
                     index, smp.inertial_number, s->t);
         }
-        if (snap > 0 && s->t + 0.5 * dt >= r->next_snap) {
+        if (snap > 0 && s->t + 0.5 * dt >= r->st.next_snap) {
             rc = write_snapshot(r, err);
             if (rc)
                 return rc;
-            r->next_snap += snap;
+            r->st.next_snap += snap;
         }
-        if (r->dump && s->t + 0.5 * dt >= r->next_dump) {
+        if (r->dump && s->t + 0.5 * dt >= r->st.next_dump) {
             double lo[3], hi[3];
             box_bounds(s, lo, hi);
             dem_dump_frame(r->dump, s->step, lo, hi, &s->p);
-            r->next_dump += s->cfg.output.dump_interval;
+            if (ferror(r->dump))
+                return dem_error_set(err, DEM_EIO, "%s: write failed: %s",
+                                     r->dump_path,
+                                     errno ? strerror(errno) : "I/O error");
+            r->st.next_dump += s->cfg.output.dump_interval;
         }
-        show_progress(r, &st, 0);
+        show_progress(r, st, 0);
         if (last) {
-            st.timed_out = by_time;
+            st->timed_out = by_time;
             break;
         }
-        if (ops->done && ops->done(s, &st, &smp))
+        if (ops->done && ops->done(s, st, &smp))
             break;
+        if (stop_requested(r)) {
+            rc = write_checkpoint(r, err);
+            if (r->show_progress)
+                fputc('\n', stderr);
+            if (rc)
+                return rc;
+            return dem_error_set(err, DEM_EINTERRUPTED,
+                                 "interrupted at t = %.6g s (step %ld); "
+                                 "resume with: dembox run --resume %s",
+                                 s->t, s->step, r->outdir);
+        }
+        if (ckpt > 0 && wall_clock() - r->last_ckpt >= ckpt) {
+            rc = write_checkpoint(r, err);
+            if (rc)
+                return rc;
+        }
     }
-    show_progress(r, &st, 1);
+    show_progress(r, st, 1);
     if (r->show_progress)
         fputc('\n', stderr);
-    if (st.timed_out && c->type == DEM_STAGE_ISOTROPIC)
+    if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
         fprintf(stderr,
                 "dembox: warning: stage %d (isotropic) reached max_time "
                 "%.4g s before relaxing (E_kin/E_pot >= %.3g or wall stress "
@@ -247,69 +365,148 @@ static int run_stage(struct run_ctx *r, int index, struct dem_error *err)
     return DEM_OK;
 }
 
-static int open_outputs(struct run_ctx *r, const struct dem_config *cfg,
-                        struct dem_error *err)
+/* The stages from first on; resumed: stage first is already under way. */
+static int run_stages(struct run_ctx *r, int first, int resumed,
+                      struct dem_error *err)
 {
-    const char *dir = r->opt->outdir;
+    int rc = DEM_OK;
+    for (int k = first; !rc && k < r->sim.cfg.nstages; k++) {
+        if (r->st.max_steps > 0 && r->sim.step >= r->st.max_steps)
+            break;
+        if (!(resumed && k == first))
+            rc = begin_stage(r, k, err);
+        if (!rc)
+            rc = stage_loop(r, err);
+    }
+    return rc;
+}
+
+/* The resolved config as text (what config.cfg holds). */
+static int config_text(const struct dem_config *cfg, char **text,
+                       struct dem_error *err)
+{
+    size_t len = 0;
+    *text = 0;
+    FILE *f = open_memstream(text, &len);
+    if (!f)
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (config)");
+    int bad = dem_config_write(cfg, f) != DEM_OK;
+    bad |= fclose(f) != 0;
+    if (bad) {
+        free(*text);
+        *text = 0;
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (config)");
+    }
+    return DEM_OK;
+}
+
+static int part_paths(struct run_ctx *r, struct dem_error *err)
+{
+    const char *dir = r->outdir;
+    int rc = dem_path_join(r->ts_path, sizeof r->ts_path, dir,
+                           "timeseries.csv.part", err);
+    if (!rc)
+        rc = dem_path_join(r->dump_path, sizeof r->dump_path, dir,
+                           "dump.lammpstrj.part", err);
+    if (!rc)
+        rc = dem_path_join(r->ckpt_path, sizeof r->ckpt_path, dir,
+                           "checkpoint.bin", err);
+    return rc;
+}
+
+static int open_outputs(struct run_ctx *r, struct dem_error *err)
+{
+    const struct dem_config *cfg = &r->sim.cfg;
+    const char *dir = r->outdir;
     char path[DEM_PATH_MAX];
     int rc = dem_mkdir_p(dir, err);
+    if (!rc)
+        rc = part_paths(r, err);
+    if (!rc)
+        rc = dem_path_join(path, sizeof path, dir, "config.cfg", err);
     if (rc)
         return rc;
-    rc = dem_path_join(path, sizeof path, dir, "config.cfg", err);
+    struct dem__outfile o;
+    rc = dem__outfile_open(&o, path, err);
     if (rc)
         return rc;
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot write", path);
-    dem_config_write(cfg, f);
-    if (fclose(f) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: write failed", path);
-    /* the results of an earlier run in this folder no longer belong to
-     * what is being written now */
+    fputs(r->config_text, o.f);
+    rc = dem__outfile_commit(&o, err);
+    if (rc)
+        return rc;
+    /* the results and checkpoint of an earlier run in this folder no
+     * longer belong to what is being written now */
     static const char *const stale[] = {
         "timeseries.csv", "particles_final.csv", "forces_final.csv",
-        "summary.json", "dump.lammpstrj", "particles_unstable.csv"};
+        "summary.json", "dump.lammpstrj", "particles_unstable.csv",
+        "checkpoint.bin", "checkpoint.bin.tmp", "dump.lammpstrj.part"};
     for (size_t k = 0; k < sizeof stale / sizeof stale[0]; k++) {
         rc = dem_path_join(path, sizeof path, dir, stale[k], err);
         if (rc)
             return rc;
         remove(path);
     }
-    rc = dem_path_join(r->ts_path, sizeof r->ts_path, dir,
-                       "timeseries.csv.part", err);
-    if (rc)
-        return rc;
     r->ts = fopen(r->ts_path, "w");
     if (!r->ts)
-        return dem_error_set(err, DEM_EIO, "%s: cannot write", r->ts_path);
+        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s",
+                             r->ts_path, strerror(errno));
     dem_sample_write_header(r->ts, cfg->dim);
     if (cfg->output.dump_interval > 0) {
-        rc = dem_path_join(r->dump_path, sizeof r->dump_path, dir,
-                           "dump.lammpstrj.part", err);
-        if (rc)
-            return rc;
         r->dump = fopen(r->dump_path, "w");
         if (!r->dump)
-            return dem_error_set(err, DEM_EIO, "%s: cannot write",
-                                 r->dump_path);
+            return dem_error_set(err, DEM_EIO, "%s: cannot write: %s",
+                                 r->dump_path, strerror(errno));
     }
+    return DEM_OK;
+}
+
+/* Cut a .part file back to its length at the checkpoint and open it for
+ * appending. */
+static int reopen_part(FILE **f, const char *path, int64_t bytes,
+                       struct dem_error *err)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: %s; cannot resume", path,
+                             strerror(errno));
+    if ((int64_t)sb.st_size < bytes)
+        return dem_error_set(err, DEM_EIO,
+                             "%s: %lld bytes, shorter than the %lld at the "
+                             "checkpoint; cannot resume",
+                             path, (long long)sb.st_size, (long long)bytes);
+    if (truncate(path, (off_t)bytes) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: cannot truncate: %s", path,
+                             strerror(errno));
+    *f = fopen(path, "a");
+    /* positioned at the end, so that ftello gives the length even before
+     * the first append (C leaves it to the implementation) */
+    if (!*f || fseeko(*f, 0, SEEK_END) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", path,
+                             strerror(errno));
     return DEM_OK;
 }
 
 /* Close a .part file and give it its final name (path without .part). */
 static int commit_part(FILE **f, const char *part, struct dem_error *err)
 {
-    int bad = ferror(*f);
-    bad |= fclose(*f) != 0;
+    errno = 0;
+    int bad = ferror(*f) || fflush(*f) != 0;
+    int e = errno;
+    if (fclose(*f) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
     *f = 0;
     if (bad)
-        return dem_error_set(err, DEM_EIO, "%s: write failed", part);
+        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", part,
+                             e ? strerror(e) : "I/O error");
     char final[DEM_PATH_MAX];
     size_t n = strlen(part) - strlen(".part");
     memcpy(final, part, n);
     final[n] = '\0';
     if (rename(part, final) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: cannot rename", part);
+        return dem_error_set(err, DEM_EIO, "%s: cannot rename: %s", part,
+                             strerror(errno));
     return DEM_OK;
 }
 
@@ -318,12 +515,12 @@ static int finish_outputs(struct run_ctx *r, struct dem_error *err)
     char path[DEM_PATH_MAX];
     int rc = r->dump ? commit_part(&r->dump, r->dump_path, err) : DEM_OK;
     if (!rc)
-        rc = dem_path_join(path, sizeof path, r->opt->outdir,
+        rc = dem_path_join(path, sizeof path, r->outdir,
                            "particles_final.csv", err);
     if (!rc)
         rc = dem_particles_write_csv(&r->sim.p, path, err);
     if (!rc)
-        rc = dem_path_join(path, sizeof path, r->opt->outdir,
+        rc = dem_path_join(path, sizeof path, r->outdir,
                            "forces_final.csv", err);
     if (!rc)
         rc = dem_particles_write_forces_csv(&r->sim.p, path, err);
@@ -333,12 +530,63 @@ static int finish_outputs(struct run_ctx *r, struct dem_error *err)
     return commit_part(&r->ts, r->ts_path, err);
 }
 
+static void start_progress(struct run_ctx *r)
+{
+    r->show_progress = !r->opt->quiet && isatty(STDERR_FILENO);
+    r->wall_t0 = wall_clock();
+    r->last_ckpt = r->wall_t0;
+    r->step0 = r->sim.step;
+}
+
+/* The stages from first on, then the final outputs, the analysis and the
+ * pictures; releases everything r holds. */
+static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
+                          struct dem_error *err)
+{
+    if (!rc)
+        rc = run_stages(r, first, resumed, err);
+    if (!rc)
+        rc = finish_outputs(r, err);
+    if (!rc)
+        rc = dem_analyze(r->outdir, err);
+    if (!rc)
+        rc = dem_plot_run(r->outdir, err);
+    if (!rc) {
+        /* finished: the outputs are complete, nothing to resume */
+        char tmp[DEM_PATH_MAX + 8];
+        remove(r->ckpt_path);
+        snprintf(tmp, sizeof tmp, "%s.tmp", r->ckpt_path);
+        remove(tmp);
+    }
+    if (rc == DEM_EUNSTABLE) {
+        /* keep the state for inspection, named so it is not mistaken for
+         * a finished run's */
+        char path[DEM_PATH_MAX];
+        struct dem_error e2;
+        if (!dem_path_join(path, sizeof path, r->outdir,
+                           "particles_unstable.csv", &e2))
+            dem_particles_write_csv(&r->sim.p, path, &e2);
+    }
+    if (r->ts)
+        fclose(r->ts);
+    if (r->dump)
+        fclose(r->dump);
+    for (int k = 0; k < r->nnames; k++)
+        free(r->snap_files[k]);
+    free(r->snap_files);
+    free(r->st.snap_t);
+    free(r->config_text);
+    dem_sim_destroy(&r->sim);
+    return rc;
+}
+
 int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
             struct dem_error *err)
 {
     struct run_ctx r;
     memset(&r, 0, sizeof r);
     r.opt = opt;
+    r.outdir = opt->outdir;
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
     /* build the simulation first: a bad particle file must fail before
@@ -346,45 +594,112 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     int rc = dem_sim_create(&r.sim, cfg, err);
     if (rc)
         return rc;
-    rc = open_outputs(&r, cfg, err);
+    rc = config_text(cfg, &r.config_text, err);
+    if (!rc)
+        rc = open_outputs(&r, err);
     if (!rc) {
-        r.show_progress = !opt->quiet && isatty(STDERR_FILENO);
-        r.wall_t0 = wall_clock();
-        r.step0 = r.sim.step;
+        start_progress(&r);
+        r.st.max_steps = opt->max_steps;
         set_reference(&r);
         if (cfg->output.snapshot_interval > 0)
             rc = write_snapshot(&r, err);
-        r.next_snap = cfg->output.snapshot_interval;
-        r.next_dump = 0.0;
+        r.st.next_snap = cfg->output.snapshot_interval;
+        r.st.next_dump = 0.0;
     }
-    for (int k = 0; !rc && k < cfg->nstages; k++) {
-        if (opt->max_steps > 0 && r.sim.step >= opt->max_steps)
+    return run_and_finish(&r, rc, 0, 0, err);
+}
+
+/* The whole of a small text file, or NULL. */
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n - 1, f);
+        if (n < cap - 1)
             break;
-        rc = run_stage(&r, k, err);
+        char *b = realloc(buf, cap *= 2);
+        if (!b)
+            free(buf);
+        buf = b;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (!buf || bad) {
+        free(buf);
+        return 0;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
+static int file_exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
+                   struct dem_error *err)
+{
+    struct run_ctx r;
+    memset(&r, 0, sizeof r);
+    r.opt = opt;
+    r.outdir = outdir;
+    if (opt->threads > 0)
+        omp_set_num_threads(opt->threads);
+    char path[DEM_PATH_MAX];
+    int rc = part_paths(&r, err);
+    if (!rc)
+        rc = dem_path_join(path, sizeof path, outdir, "timeseries.csv", err);
+    if (rc)
+        return rc;
+    if (file_exists(path) && !file_exists(r.ts_path))
+        return dem_error_set(err, DEM_EUSAGE,
+                             "%s: the run has already finished (%s exists); "
+                             "nothing to resume",
+                             outdir, path);
+    if (!file_exists(r.ckpt_path))
+        return dem_error_set(err, DEM_EIO,
+                             "%s: no checkpoint (%s is missing); nothing to "
+                             "resume",
+                             outdir, r.ckpt_path);
+    rc = dem_checkpoint_read(r.ckpt_path, &r.sim, &r.config_text, &r.st, err);
+    if (rc)
+        return rc;
+    /* the outputs and the analysis follow config.cfg: it must be the
+     * config the checkpoint continues */
+    if (!rc)
+        rc = dem_path_join(path, sizeof path, outdir, "config.cfg", err);
+    if (!rc) {
+        char *text = read_text(path);
+        if (!text || strcmp(text, r.config_text) != 0)
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "%s: %s; a resumed run keeps the config of "
+                               "its checkpoint (restore config.cfg or start "
+                               "a new run)",
+                               path,
+                               text ? "differs from the config in "
+                                      "checkpoint.bin"
+                                    : "cannot be read");
+        free(text);
     }
     if (!rc)
-        rc = finish_outputs(&r, err);
-    if (!rc)
-        rc = dem_analyze(opt->outdir, err);
-    if (!rc)
-        rc = dem_plot_run(opt->outdir, err);
-    if (rc == DEM_EUNSTABLE) {
-        /* keep the state for inspection, named so it is not mistaken for
-         * a finished run's */
-        char path[DEM_PATH_MAX];
-        struct dem_error e2;
-        if (!dem_path_join(path, sizeof path, opt->outdir,
-                           "particles_unstable.csv", &e2))
-            dem_particles_write_csv(&r.sim.p, path, &e2);
+        rc = reopen_part(&r.ts, r.ts_path, r.st.ts_bytes, err);
+    if (!rc && r.sim.cfg.output.dump_interval > 0)
+        rc = reopen_part(&r.dump, r.dump_path, r.st.dump_bytes, err);
+    for (int k = 0; !rc && k < r.st.nsnap; k++)
+        rc = add_snapshot_name(&r, k, err);
+    int first = r.st.stage;
+    if (!rc) {
+        struct dem_stage_state st = {&r.sim.cfg.stages[first], first,
+                                     r.st.stage_t_start, r.st.stage_t_end,
+                                     r.st.sets_reference, 0};
+        r.stage = st;
+        start_progress(&r);
     }
-    if (r.ts)
-        fclose(r.ts);
-    if (r.dump)
-        fclose(r.dump);
-    for (int k = 0; k < r.nsnap; k++)
-        free(r.snap_files[k]);
-    free(r.snap_files);
-    free(r.snap_t);
-    dem_sim_destroy(&r.sim);
-    return rc;
+    return run_and_finish(&r, rc, first, 1, err);
 }

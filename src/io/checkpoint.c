@@ -1,0 +1,623 @@
+/* Checkpoints (layout in checkpoint.h).
+ *
+ * One codec function walks every saved field in a fixed order, for both
+ * directions: writing streams the fields out (after a first pass that only
+ * counts bytes, so the header can carry the file length) and reading fills
+ * a zeroed simulation from a buffer holding the whole file. Keeping one
+ * list makes it impossible for the reader and the writer to disagree.
+ *
+ * Reading trusts nothing: the magic, byte order, format version and length
+ * are checked before anything else is read, the CRC before any count is
+ * used, and the counts are bounded by the file's size before any
+ * allocation; indices are checked after, so that even a file with a valid
+ * checksum but nonsense content cannot make the engine read out of bounds.
+ */
+#include "io/checkpoint.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "io/config.h"
+
+_Static_assert(sizeof(int) == 4, "checkpoints store int arrays as int32");
+_Static_assert(sizeof(double) == 8, "checkpoints store IEEE binary64");
+
+static const char magic[8] = {'D', 'E', 'M', 'B', 'O', 'X', 'C', 'K'};
+#define BOM 0x01020304u
+/* magic, version, byte-order mark, sizeof(double), file length */
+#define FIXED_HEADER (8 + 4 + 4 + 4 + 8)
+
+#ifdef __VERSION__
+#define BUILD_ID "cc " __VERSION__
+#else
+#define BUILD_ID "cc unknown"
+#endif
+
+uint32_t dem_crc32(uint32_t crc, const void *data, size_t n)
+{
+    uint32_t table[256];
+    for (uint32_t k = 0; k < 256; k++) {
+        uint32_t c = k;
+        for (int b = 0; b < 8; b++)
+            c = c & 1u ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+        table[k] = c;
+    }
+    const unsigned char *p = data;
+    crc = ~crc;
+    for (size_t k = 0; k < n; k++)
+        crc = table[(crc ^ p[k]) & 0xFFu] ^ (crc >> 8);
+    return ~crc;
+}
+
+/* ------------------------------------------------------------------ codec */
+
+struct ck_io {
+    int reading;
+    /* writing: f == NULL only counts */
+    FILE *f;
+    uint64_t len;       /* bytes so far */
+    uint32_t crc;       /* CRC of the bytes so far */
+    int werr;           /* errno of the first failed write, 0 = none */
+    /* reading */
+    const unsigned char *p;
+    size_t left;
+    const char *why;    /* first problem found, NULL = none */
+    char detail[400];   /* room for a why that names values */
+};
+
+static void io_bytes(struct ck_io *io, void *p, size_t n)
+{
+    if (n == 0)
+        return;
+    if (io->reading) {
+        if (!io->why && n > io->left)
+            io->why = "truncated";
+        if (io->why) {
+            memset(p, 0, n);
+            return;
+        }
+        memcpy(p, io->p, n);
+        io->p += n;
+        io->left -= n;
+        return;
+    }
+    if (io->f && !io->werr && fwrite(p, 1, n, io->f) != n)
+        io->werr = errno ? errno : EIO;
+    io->crc = dem_crc32(io->crc, p, n);
+    io->len += n;
+}
+
+static void io_i32(struct ck_io *io, int *v)
+{
+    int32_t t = (int32_t)*v;
+    io_bytes(io, &t, sizeof t);
+    *v = (int)t;
+}
+
+static void io_i64(struct ck_io *io, long *v)
+{
+    int64_t t = (int64_t)*v;
+    io_bytes(io, &t, sizeof t);
+    *v = (long)t;
+}
+
+static void io_f64(struct ck_io *io, double *v) { io_bytes(io, v, sizeof *v); }
+
+static void io_f64s(struct ck_io *io, double *a, int n)
+{
+    io_bytes(io, a, (size_t)n * sizeof *a);
+}
+
+static void io_i32s(struct ck_io *io, int *a, int n)
+{
+    io_bytes(io, a, (size_t)n * sizeof *a);
+}
+
+static void io_tag(struct ck_io *io, const char *tag)
+{
+    char t[4];
+    memcpy(t, tag, 4);
+    io_bytes(io, t, 4);
+    if (io->reading && !io->why && memcmp(t, tag, 4) != 0)
+        io->why = "corrupt (a section is not where it belongs)";
+}
+
+/* A string into a fixed buffer of cap bytes. */
+static void io_chars(struct ck_io *io, char *buf, size_t cap)
+{
+    uint32_t n = (uint32_t)strnlen(buf, cap);
+    io_bytes(io, &n, sizeof n);
+    if (io->reading && !io->why && n >= cap)
+        io->why = "corrupt (a name is too long)";
+    if (io->why)
+        return;
+    io_bytes(io, buf, n);
+    if (io->reading)
+        buf[n] = '\0';
+}
+
+/* A string of any length; reading allocates *s. */
+static void io_string(struct ck_io *io, char **s)
+{
+    uint32_t n = io->reading ? 0 : (uint32_t)strlen(*s);
+    io_bytes(io, &n, sizeof n);
+    if (!io->reading) {
+        io_bytes(io, *s, n);
+        return;
+    }
+    if (io->why)
+        return;
+    if (n > io->left) {
+        io->why = "truncated";
+        return;
+    }
+    *s = malloc((size_t)n + 1);
+    if (!*s) {
+        io->why = "out of memory";
+        return;
+    }
+    io_bytes(io, *s, n);
+    (*s)[n] = '\0';
+}
+
+static void io_wall(struct ck_io *io, struct dem_wall *w)
+{
+    io_i32(io, &w->axis);
+    io_i32(io, &w->side);
+    io_i32(io, &w->mode);
+    io_f64(io, &w->pos);
+    io_f64(io, &w->vel);
+    io_f64(io, &w->force);
+    io_i32(io, &w->profile);
+    double *d[] = {&w->x0,   &w->delta, &w->period, &w->t_start, &w->mass,
+                   &w->gamma, &w->vmax, &w->p0,     &w->amp,     &w->t0};
+    for (size_t k = 0; k < sizeof d / sizeof d[0]; k++)
+        io_f64(io, d[k]);
+}
+
+static void io_list(struct ck_io *io, struct dem_contact_list *L,
+                    struct dem_contact_forces *F, int np, int n)
+{
+    int m = L->n;
+    io_i32(io, &m);
+    if (io->reading && !io->why && m != n)
+        io->why = "corrupt (contact count differs from the header)";
+    if (io->why)
+        return;
+    io_i32s(io, L->i, n);
+    io_i32s(io, L->j, n);
+    io_f64s(io, L->xi_x, n);
+    io_f64s(io, L->xi_y, n);
+    io_f64s(io, L->xi_z, n);
+    io_f64s(io, L->dmax, n);
+    io_bytes(io, L->state, (size_t)n);
+    io_i32s(io, L->start, np + 1);
+    io_f64s(io, F->fx, n);
+    io_f64s(io, F->fy, n);
+    io_f64s(io, F->fz, n);
+    io_f64s(io, F->cx, n);
+    io_f64s(io, F->cy, n);
+    io_f64s(io, F->cz, n);
+}
+
+/* Bytes per particle, pair and wall contact in the file. */
+#define BYTES_PER_PARTICLE (23 * 8 + 2 * 4 + 3 * 4)
+#define BYTES_PER_PAIR (2 * 4 + 4 * 8 + 1 + 6 * 8 + 4)
+#define BYTES_PER_WALL_CONTACT (2 * 4 + 4 * 8 + 1 + 6 * 8)
+
+/* Every saved field after the fixed header. When reading, s is zeroed on
+ * entry and the arrays are allocated once the counts are known. */
+static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
+                  struct dem_ckpt_run *run)
+{
+    char *version = DEM_VERSION, *build = BUILD_ID;
+    char *rversion = 0, *rbuild = 0;
+    io_string(io, io->reading ? &rversion : &version);
+    io_string(io, io->reading ? &rbuild : &build);
+    if (io->reading && !io->why &&
+        (strcmp(rversion, DEM_VERSION) != 0 || strcmp(rbuild, BUILD_ID) != 0)) {
+        snprintf(io->detail, sizeof io->detail,
+                 "written by another build (dembox %.40s, %.100s; this is "
+                 "dembox %s, %s): exact resume needs the same build",
+                 rversion, rbuild, DEM_VERSION, BUILD_ID);
+        io->why = io->detail;
+    }
+    free(rversion);
+    free(rbuild);
+
+    /* sizes first, so that the reader can bound and allocate */
+    struct dem_pairs *pl = &s->pairs;
+    int N = s->p.n, npair = pl->cur.n, nwc = pl->wcur.n, dim = s->dim;
+    io_i32(io, &N);
+    io_i32(io, &npair);
+    io_i32(io, &nwc);
+    io_i32(io, &dim);
+    if (io->reading && !io->why) {
+        if (N < 0 || npair < 0 || nwc < 0 || (dim != 2 && dim != 3))
+            io->why = "corrupt (negative sizes)";
+        else if ((double)N * BYTES_PER_PARTICLE +
+                     (double)npair * BYTES_PER_PAIR +
+                     (double)nwc * BYTES_PER_WALL_CONTACT >
+                 (double)io->left)
+            io->why = "corrupt (sizes larger than the file)";
+        else if (dem_particles_init(&s->p, N, 0) ||
+                 dem_pairs_reserve(pl, N, N, npair, nwc))
+            io->why = "out of memory";
+        else {
+            s->p.n = N;
+            pl->cur.n = npair;
+            pl->wcur.n = nwc;
+        }
+    }
+    if (io->why)
+        return;
+
+    io_tag(io, "CONF");
+    io_chars(io, s->cfg.name, sizeof s->cfg.name);
+    io_chars(io, s->cfg.source, sizeof s->cfg.source);
+    io_i32(io, &s->cfg.time_step_auto);
+    io_string(io, config_text);
+
+    io_tag(io, "RUN ");
+    io_i32(io, &run->stage);
+    io_f64(io, &run->stage_t_start);
+    io_f64(io, &run->stage_t_end);
+    io_i32(io, &run->sets_reference);
+    io_f64(io, &run->next_out);
+    io_i32(io, &run->warned_inertia);
+    for (int a = 0; a < 3; a++)
+        io_f64(io, &run->L0[a]);
+    io_f64(io, &run->V0);
+    io_f64(io, &run->next_snap);
+    io_f64(io, &run->next_dump);
+    io_i64(io, &run->max_steps);
+    io_bytes(io, &run->ts_bytes, sizeof run->ts_bytes);
+    io_bytes(io, &run->dump_bytes, sizeof run->dump_bytes);
+    io_i32(io, &run->nsnap);
+    if (io->reading && !io->why) {
+        if (run->nsnap < 0 || (size_t)run->nsnap > io->left / 8)
+            io->why = "corrupt (snapshot count)";
+        else if (!(run->snap_t = malloc((size_t)run->nsnap * 8 + 8)))
+            io->why = "out of memory";
+    }
+    if (io->why)
+        return;
+    io_f64s(io, run->snap_t, run->nsnap);
+
+    io_tag(io, "SIM ");
+    io_i32(io, &s->dim);
+    io_i32(io, &s->nwall);
+    io_f64(io, &s->dt);
+    io_f64(io, &s->t);
+    io_i64(io, &s->step);
+    io_f64(io, &s->skin);
+    io_i64(io, &s->nbuild);
+    io_i32(io, &s->reorder);
+    io_i32(io, &s->measure);
+    struct dem_contact_params *cp = &s->cp;
+    io_i32(io, &cp->normal);
+    double *c[] = {&cp->k,       &cp->k1, &cp->k2,   &cp->kc,
+                   &cp->phi_f,   &cp->gamma_n, &cp->kt, &cp->gamma_t,
+                   &cp->mu_s,    &cp->mu_d, &cp->wall_mu, &cp->wall_kc};
+    for (size_t k = 0; k < sizeof c / sizeof c[0]; k++)
+        io_f64(io, c[k]);
+    io_bytes(io, s->rng.s, sizeof s->rng.s);
+    struct dem_contact_sums *S = &s->sums;
+    io_f64s(io, &S->fabric_stress[0][0], 9);
+    io_f64s(io, &S->fabric[0][0], 9);
+    io_f64(io, &S->e_pot);
+    io_i64(io, &S->n_pp);
+    io_i64(io, &S->n_pw);
+    io_i64(io, &S->n_sliding);
+    io_f64(io, &S->max_overlap_ratio);
+    for (int w = 0; w < DEM_MAX_WALLS; w++)
+        io_wall(io, &s->wall[w]);
+
+    io_tag(io, "PART");
+    int n = s->p.n;
+    io_i32(io, &n);
+    if (io->reading && !io->why && n != N)
+        io->why = "corrupt (particle count differs from the header)";
+    if (io->why)
+        return;
+#define DEM_IO_DOUBLES_(f) io_f64s(io, s->p.f, N);
+#define DEM_IO_INTS_(f) io_i32s(io, s->p.f, N);
+    DEM_PARTICLE_DOUBLE_ARRAYS(DEM_IO_DOUBLES_)
+    DEM_PARTICLE_INT_ARRAYS(DEM_IO_INTS_)
+#undef DEM_IO_DOUBLES_
+#undef DEM_IO_INTS_
+
+    io_tag(io, "PAIR");
+    io_list(io, &pl->cur, &pl->f, N, npair);
+    if (io->why)
+        return;
+    io_i32s(io, pl->rstart, N + 1);
+    io_i32s(io, pl->rpair, npair);
+
+    io_tag(io, "WALC");
+    io_list(io, &pl->wcur, &pl->wf, N, nwc);
+
+    io_tag(io, "NBR ");
+    io_f64s(io, pl->wall_pos0, 6);
+    io_tag(io, "END ");
+}
+
+/* Row offsets: start[0] = 0, non-decreasing, start[N] = n. */
+static int rows_ok(const int *start, int N, int n)
+{
+    if (start[0] != 0 || start[N] != n)
+        return 0;
+    for (int i = 0; i < N; i++)
+        if (start[i + 1] < start[i])
+            return 0;
+    return 1;
+}
+
+/* Indices that the engine follows without checks must be in range. */
+static const char *check_restored(const struct dem_sim *s,
+                                  const struct dem_ckpt_run *run)
+{
+    const struct dem_particles *p = &s->p;
+    const struct dem_pairs *pl = &s->pairs;
+    const int N = p->n;
+    if (s->nwall != 2 * s->dim || s->dim != s->cfg.dim)
+        return "corrupt (wall count or dimension)";
+    if (!(s->dt > 0.0) || run->stage < 0 || run->stage >= s->cfg.nstages)
+        return "corrupt (time step or stage index)";
+    for (int i = 0; i < N; i++)
+        if (p->id[i] < 0 || p->id[i] >= N)
+            return "corrupt (particle ids)";
+    const struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
+    if (!rows_ok(L->start, N, L->n) || !rows_ok(W->start, N, W->n) ||
+        !rows_ok(pl->rstart, N, L->n))
+        return "corrupt (contact rows)";
+    for (int i = 0; i < N; i++) {
+        for (int k = L->start[i]; k < L->start[i + 1]; k++)
+            if (L->i[k] != i || L->j[k] <= i || L->j[k] >= N)
+                return "corrupt (pair list)";
+        for (int k = W->start[i]; k < W->start[i + 1]; k++)
+            if (W->i[k] != i || W->j[k] < 0 || W->j[k] >= s->nwall)
+                return "corrupt (wall contact list)";
+        for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
+            if (pl->rpair[q] < 0 || pl->rpair[q] >= L->n ||
+                L->j[pl->rpair[q]] != i)
+                return "corrupt (reverse pair rows)";
+    }
+    for (int w = 0; w < DEM_MAX_WALLS; w++)
+        if (s->wall[w].axis != w / 2 || s->wall[w].side != w % 2)
+            return "corrupt (walls)";
+    return 0;
+}
+
+/* ------------------------------------------------------------------ write */
+
+static void header(struct ck_io *io, uint64_t length)
+{
+    char m[8];
+    memcpy(m, magic, 8);
+    uint32_t v = DEM_CKPT_VERSION, bom = BOM, ds = sizeof(double);
+    io_bytes(io, m, 8);
+    io_bytes(io, &v, 4);
+    io_bytes(io, &bom, 4);
+    io_bytes(io, &ds, 4);
+    io_bytes(io, &length, 8);
+}
+
+/* Make the rename durable; failure only weakens the guarantee after a
+ * power cut, so it is not an error. */
+static void sync_folder(const char *path)
+{
+    char dir[DEM_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    int fd = open(dir, O_RDONLY);
+    if (fd >= 0) {
+        fsync(fd);
+        close(fd);
+    }
+}
+
+int dem_checkpoint_write(const char *path, const char *config_text,
+                         const struct dem_sim *s,
+                         const struct dem_ckpt_run *run,
+                         struct dem_error *err)
+{
+    /* the codec takes mutable pointers for both directions; writing only
+     * reads through them */
+    struct dem_sim *ms = (struct dem_sim *)s;
+    struct dem_ckpt_run *mr = (struct dem_ckpt_run *)run;
+    char *text = (char *)config_text;
+
+    struct ck_io count = {0};
+    header(&count, 0);
+    codec(&count, ms, &text, mr);
+    const uint64_t length = count.len + 4;
+
+    char tmp[DEM_PATH_MAX + 8];
+    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp)
+        return dem_error_set(err, DEM_EIO, "%s: path too long", path);
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        return dem_error_set(err, DEM_EIO,
+                             "%s: cannot write checkpoint: %s (the last "
+                             "checkpoint is kept)",
+                             tmp, strerror(errno));
+    struct ck_io io = {0};
+    io.f = f;
+    header(&io, length);
+    codec(&io, ms, &text, mr);
+    uint32_t crc = io.crc;
+    if (!io.werr && fwrite(&crc, 1, 4, f) != 4)
+        io.werr = errno ? errno : EIO;
+    if (!io.werr && io.len + 4 != length)
+        io.werr = EIO;
+    if (!io.werr && fflush(f) != 0)
+        io.werr = errno;
+    if (!io.werr && fsync(fileno(f)) != 0)
+        io.werr = errno;
+    if (fclose(f) != 0 && !io.werr)
+        io.werr = errno;
+    if (!io.werr && rename(tmp, path) != 0)
+        io.werr = errno;
+    if (io.werr) {
+        remove(tmp);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: cannot write checkpoint: %s (the last "
+                             "checkpoint is kept)",
+                             tmp, strerror(io.werr));
+    }
+    sync_folder(path);
+    return DEM_OK;
+}
+
+/* ------------------------------------------------------------------- read */
+
+static int refuse(struct dem_error *err, const char *path, const char *fmt,
+                  const char *what)
+{
+    char msg[512];
+    snprintf(msg, sizeof msg, fmt, what);
+    return dem_error_set(err, DEM_EIO, "%s: %s; cannot resume from it", path,
+                         msg);
+}
+
+/* The whole file after its fixed header has been checked; *buf owned by
+ * the caller. */
+static int slurp(const char *path, unsigned char **buf, size_t *size,
+                 struct dem_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot open checkpoint: %s",
+                             path, strerror(errno));
+    unsigned char h[FIXED_HEADER];
+    size_t got = fread(h, 1, sizeof h, f);
+    struct stat st;
+    int rc = DEM_OK;
+    uint32_t v = 0, bom = 0, ds = 0;
+    uint64_t length = 0;
+    if (got >= 4 + 8) {
+        memcpy(&v, h + 8, 4);
+    }
+    if (got < 8 || memcmp(h, magic, 8) != 0) {
+        rc = refuse(err, path, "not a dembox checkpoint%s",
+                    " (no DEMBOXCK signature)");
+    } else if (got < sizeof h) {
+        rc = refuse(err, path, "truncated%s", " (shorter than its header)");
+    } else {
+        memcpy(&bom, h + 12, 4);
+        memcpy(&ds, h + 16, 4);
+        memcpy(&length, h + 20, 8);
+        char what[160];
+        if (bom != BOM) {
+            rc = refuse(err, path, "%s",
+                        "written on a machine of another byte order");
+        } else if (v != DEM_CKPT_VERSION) {
+            snprintf(what, sizeof what,
+                     "checkpoint format version %u, this dembox %s reads "
+                     "version %u; resume with the dembox that wrote it",
+                     (unsigned)v, DEM_VERSION, DEM_CKPT_VERSION);
+            rc = refuse(err, path, "%s", what);
+        } else if (ds != 8) {
+            rc = refuse(err, path, "%s", "foreign floating-point format");
+        } else if (fstat(fileno(f), &st) != 0) {
+            rc = dem_error_set(err, DEM_EIO, "%s: %s", path, strerror(errno));
+        } else if ((uint64_t)st.st_size != length) {
+            snprintf(what, sizeof what, "%s (%lld bytes, %llu expected)",
+                     (uint64_t)st.st_size < length ? "truncated"
+                                                   : "corrupt",
+                     (long long)st.st_size, (unsigned long long)length);
+            rc = refuse(err, path, "%s", what);
+        } else if (length < sizeof h + 4 || length > (uint64_t)SIZE_MAX) {
+            rc = refuse(err, path, "%s", "corrupt (length)");
+        }
+    }
+    if (rc) {
+        fclose(f);
+        return rc;
+    }
+    *size = (size_t)length;
+    *buf = malloc(*size);
+    if (!*buf) {
+        fclose(f);
+        return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+    }
+    memcpy(*buf, h, sizeof h);
+    got = fread(*buf + sizeof h, 1, *size - sizeof h, f);
+    int e = ferror(f) ? errno : 0;
+    fclose(f);
+    if (got != *size - sizeof h) {
+        free(*buf);
+        *buf = 0;
+        if (e)
+            return dem_error_set(err, DEM_EIO, "%s: read failed: %s", path,
+                                 strerror(e));
+        return refuse(err, path, "%s", "truncated while reading");
+    }
+    return DEM_OK;
+}
+
+int dem_checkpoint_read(const char *path, struct dem_sim *s,
+                        char **config_text, struct dem_ckpt_run *run,
+                        struct dem_error *err)
+{
+    memset(s, 0, sizeof *s);
+    memset(run, 0, sizeof *run);
+    *config_text = 0;
+    unsigned char *buf = 0;
+    size_t size = 0;
+    int rc = slurp(path, &buf, &size, err);
+    if (rc)
+        return rc;
+    uint32_t stored;
+    memcpy(&stored, buf + size - 4, 4);
+    if (dem_crc32(0, buf, size - 4) != stored) {
+        free(buf);
+        return refuse(err, path, "%s", "corrupt (checksum mismatch)");
+    }
+    struct ck_io io = {0};
+    io.reading = 1;
+    io.p = buf + FIXED_HEADER;
+    io.left = size - 4 - FIXED_HEADER;
+    char *text = 0;
+    codec(&io, s, &text, run);
+    if (!io.why && io.left != 0)
+        io.why = "corrupt (data after the end)";
+    free(buf);
+    if (!io.why) {
+        /* the config first: the checks below compare with it */
+        struct dem_config c;
+        struct dem_error e2 = {0, ""};
+        if (dem_config_parse(&c, text, path, 0, 0, &e2)) {
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "%s: its config is invalid: %s", path, e2.msg);
+        } else {
+            snprintf(c.name, sizeof c.name, "%s", s->cfg.name);
+            snprintf(c.source, sizeof c.source, "%s", s->cfg.source);
+            c.time_step_auto = s->cfg.time_step_auto;
+            s->cfg = c;
+            io.why = check_restored(s, run);
+        }
+    }
+    if (io.why && !rc)
+        rc = refuse(err, path, "%s", io.why);
+    if (rc) {
+        dem_sim_destroy(s);
+        memset(s, 0, sizeof *s);
+        free(run->snap_t);
+        memset(run, 0, sizeof *run);
+        free(text);
+        return rc;
+    }
+    *config_text = text;
+    return DEM_OK;
+}

@@ -1,0 +1,81 @@
+/* Checkpoints: the complete state of a run at a step boundary, so that a
+ * resumed run continues bit for bit as if it had never stopped.
+ *
+ * File layout (native byte order, checked on reading):
+ *
+ *   "DEMBOXCK"                 8-byte magic
+ *   u32 format version         DEM_CKPT_VERSION
+ *   u32 0x01020304             byte-order mark
+ *   u32 sizeof(double) = 8
+ *   u64 file length            in bytes, checksum included
+ *   str dembox version, str compiler: exact resume needs the same build
+ *   i32 N, i32 pairs, i32 wall contacts, i32 dim   (allocation sizes)
+ *   sections, each a u32 tag followed by its fields in a fixed order:
+ *     CONF  run name, config source, time_step_auto, resolved config text
+ *     RUN   the run loop's state (struct dem_ckpt_run)
+ *     SIM   time, step, time step, skin, builds, contact law in force,
+ *           RNG state, last measured sums, walls
+ *     PART  every particle array (DEM_PARTICLE_*_ARRAYS)
+ *     PAIR  the pair list with its history, row starts, stored forces and
+ *           the reverse rows
+ *     WALC  the particle-wall list with its history and stored forces
+ *     NBR   wall positions at the last neighbour-list build
+ *     END
+ *   u32 CRC-32 (IEEE 802.3) of every byte before it
+ *
+ * str = u32 length + bytes; arrays are raw native ints (int32), longs as
+ * int64, doubles as IEEE 754 binary64.
+ */
+#ifndef DEM_IO_CHECKPOINT_H
+#define DEM_IO_CHECKPOINT_H
+
+#include <stdint.h>
+
+#include "core/sim.h"
+
+#define DEM_CKPT_VERSION 1u
+
+/* The run loop's state at a checkpoint, saved as plain data. */
+struct dem_ckpt_run {
+    int stage;             /* index of the stage under way (begun) */
+    double stage_t_start;  /* s; simulated time the stage began */
+    double stage_t_end;    /* s; the stage ends at this time at the latest */
+    int sets_reference;    /* 1: strains refer to this stage's start */
+    double next_out;       /* s; time of the next timeseries row */
+    int warned_inertia;    /* 1: the inertial-number warning was given */
+    double L0[3];          /* m; reference box lengths for strains */
+    double V0;             /* m^3 (2D: m^2); reference volume */
+    double next_snap;      /* s; time of the next VTU snapshot */
+    double next_dump;      /* s; time of the next dump frame */
+    long max_steps;        /* step limit the run started with (0 = none) */
+    int64_t ts_bytes;      /* bytes of timeseries.csv.part at the checkpoint */
+    int64_t dump_bytes;    /* bytes of dump.lammpstrj.part (0 = none) */
+    int nsnap;             /* snapshots written */
+    double *snap_t;        /* s; their times (nsnap; owned by the reader) */
+};
+
+/* Write the checkpoint of s and run to path, atomically: path.tmp is
+ * written, flushed to disk and renamed over path, so path always holds
+ * the last complete checkpoint. config_text is the resolved config as in
+ * config.cfg. On failure err names the file and the system's reason and
+ * path is untouched. */
+int dem_checkpoint_write(const char *path, const char *config_text,
+                         const struct dem_sim *s,
+                         const struct dem_ckpt_run *run,
+                         struct dem_error *err);
+
+/* Read and check a checkpoint. On success s is a complete simulation
+ * (free with dem_sim_destroy; s->cfg parsed from the stored config),
+ * *config_text the stored config text and run->snap_t are malloc'ed.
+ * On failure (not found, truncated, corrupt, foreign, other build)
+ * nothing is allocated, s is zeroed and err is one line naming path and
+ * what is wrong (DEM_EIO; DEM_ECONFIG when the stored config is invalid). */
+int dem_checkpoint_read(const char *path, struct dem_sim *s,
+                        char **config_text, struct dem_ckpt_run *run,
+                        struct dem_error *err);
+
+/* CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) of n bytes,
+ * continuing from crc (start with 0). */
+uint32_t dem_crc32(uint32_t crc, const void *data, size_t n);
+
+#endif

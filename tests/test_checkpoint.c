@@ -1,0 +1,838 @@
+/* Checkpoints and resume: a saved simulation comes back bit for bit and
+ * evolves exactly as the original; a run stopped at a checkpoint (test
+ * hook, SIGINT, kill -9 between checkpoints) and resumed writes the same
+ * bytes as an uninterrupted run; corrupt, truncated, foreign and
+ * other-build checkpoints are refused with one line naming the file; a
+ * write error stops the run and keeps the last good checkpoint. */
+#include "testutil.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "io/checkpoint.h"
+#include "io/config.h"
+
+static char tmpdir[256];
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/dembox-test-ckpt-XXXXXX");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+/* A 2D biaxial test in miniature: an isotropic stage cut short by its
+ * max_time, then compression; rows, snapshots and dump frames often. */
+static const char *const small_2d =
+    "dimension = 2; seed = 3; time_step = \"auto\";\n"
+    "particles = { count = 150; radius = { distribution = \"uniform\";"
+    " min = 0.5e-3; max = 1.5e-3; }; placement = \"random\";"
+    " volume_fraction = 0.4; };\n"
+    "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; gamma_n = 0.1;"
+    " kt = 2.0e4; gamma_t = 0.02; mu = 0.5; };\n"
+    "damping = { gamma_b = 1.0e-5; gamma_br = 0.0; };\n"
+    "walls = { mass = 0.01; gamma = 2.0; max_speed = 0.5; };\n"
+    "stages = ( { type = \"isotropic\"; pressure = 500.0; tolerance = 1.0e-4;"
+    " max_time = 3.0e-4; mu = 0.0; },\n"
+    " { type = \"compress\"; axis = \"y\"; strain = 0.12; duration = 0.06;"
+    " pressure = 500.0; } );\n"
+    "output = { interval = 2.0e-5; snapshot_interval = 2.0e-4;"
+    " dump_interval = 1.0e-4; };\n";
+
+/* A 3D cyclic test in miniature: lattice, linear law, stress-controlled
+ * walls with a cyclic target. */
+static const char *const small_3d =
+    "dimension = 3; seed = 7; time_step = 2.0e-5;\n"
+    "particles = { count = 125; radius = { distribution = \"gaussian\";"
+    " mean = 5.0e-3; std = 0.7e-3; min = 3.0e-3; }; placement = \"lattice\"; };\n"
+    "contact = { normal = \"linear\"; k = 5000.0; gamma_n = 0.05; kt = 1000.0;"
+    " gamma_t = 0.01; mu = 0.5; wall_mu = 0.0; };\n"
+    "damping = { gamma_b = 0.2; gamma_br = 0.05; };\n"
+    "walls = { mass = 2.0; gamma = 200.0; };\n"
+    "stages = ( { type = \"isotropic\"; pressure = 1000.0; tolerance = 1.0e-4;"
+    " max_time = 0.02; },\n"
+    " { type = \"cyclic\"; axis = \"x\"; pressure = 1000.0; amplitude = 200.0;"
+    " period = 0.02; cycles = 2; },\n"
+    " { type = \"hold\"; duration = 0.01; } );\n"
+    "output = { interval = 1.0e-3; snapshot_interval = 0.01;"
+    " checkpoint_interval = 0; };\n";
+
+/* ---------------------------------------------------------------- helpers */
+
+static void parse(struct dem_config *c, const char *text)
+{
+    struct dem_error err = {0, ""};
+    if (dem_config_parse(c, text, "test", 0, 0, &err))
+        fail_msg("config: %s", err.msg);
+    snprintf(c->name, sizeof c->name, "test");
+}
+
+static void file_path(char *out, size_t n, const char *dir, const char *name)
+{
+    if (snprintf(out, n, "%s/%s", dir, name) >= (int)n)
+        fail_msg("path too long: %s/%s", dir, name);
+}
+
+static void dir_path(char *out, size_t n, const char *name)
+{
+    file_path(out, n, tmpdir, name);
+}
+
+static int exists(const char *dir, const char *name)
+{
+    char p[1024];
+    file_path(p, sizeof p, dir, name);
+    struct stat st;
+    return stat(p, &st) == 0;
+}
+
+static unsigned char *read_all(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    size_t cap = 1 << 16, n = 0;
+    unsigned char *b = malloc(cap);
+    size_t got;
+    while (b && (got = fread(b + n, 1, cap - n, f)) > 0) {
+        n += got;
+        if (n == cap) {
+            unsigned char *c = realloc(b, cap *= 2);
+            if (!c)
+                free(b);
+            b = c;
+        }
+    }
+    fclose(f);
+    *len = n;
+    return b;
+}
+
+static void write_all(const char *path, const void *buf, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(buf, 1, len, f), len);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* The named file is the same, byte for byte, in both folders. */
+static void assert_same_file(const char *a, const char *b, const char *name)
+{
+    char pa[1024], pb[1024];
+    file_path(pa, sizeof pa, a, name);
+    file_path(pb, sizeof pb, b, name);
+    size_t na = 0, nb = 0;
+    unsigned char *ba = read_all(pa, &na), *bb = read_all(pb, &nb);
+    if (!ba || !bb)
+        fail_msg("%s: missing in %s", name, ba ? b : a);
+    size_t k = 0;
+    while (k < na && k < nb && ba[k] == bb[k])
+        k++;
+    free(ba);
+    free(bb);
+    if (k != na || k != nb)
+        fail_msg("%s differs between %s and %s at byte %zu (%zu vs %zu "
+                 "bytes)",
+                 name, a, b, k, na, nb);
+}
+
+static void assert_same_outputs(const char *a, const char *b, int dump)
+{
+    assert_same_file(a, b, "timeseries.csv");
+    assert_same_file(a, b, "particles_final.csv");
+    assert_same_file(a, b, "forces_final.csv");
+    assert_same_file(a, b, "particles.pvd");
+    assert_same_file(a, b, "particles_00001.vtu");
+    if (dump)
+        assert_same_file(a, b, "dump.lammpstrj");
+}
+
+static int run(const struct dem_config *c, const char *outdir, long max_steps,
+               long stop_after, int threads, struct dem_error *err)
+{
+    struct dem_run_options o = {.outdir = outdir,
+                                .quiet = 1,
+                                .threads = threads,
+                                .max_steps = max_steps,
+                                .stop_after_steps = stop_after};
+    return dem_run(c, &o, err);
+}
+
+static int resume(const char *outdir, long stop_after, int threads,
+                  struct dem_error *err)
+{
+    struct dem_run_options o = {
+        .quiet = 1, .threads = threads, .stop_after_steps = stop_after};
+    return dem_run_resume(outdir, &o, err);
+}
+
+/* A message is one line that names the file. */
+static void assert_one_line_naming(const struct dem_error *err,
+                                   const char *path, const char *what)
+{
+    if (strchr(err->msg, '\n') || !strstr(err->msg, path) ||
+        (what && !strstr(err->msg, what)))
+        fail_msg("message \"%s\" should name %s and say \"%s\"", err->msg,
+                 path, what ? what : "");
+}
+
+/* --------------------------------------------------------------- round trip */
+
+#define SAME_BITS(a, b)                                                      \
+    do {                                                                     \
+        if (memcmp(&(a), &(b), sizeof(a)) != 0)                              \
+            fail_msg("%s differs after the round trip", #a);                 \
+    } while (0)
+
+#define SAME_ARRAY(a, b, n)                                                  \
+    do {                                                                     \
+        if ((n) > 0 && memcmp((a), (b), (size_t)(n) * sizeof *(a)) != 0)     \
+            fail_msg("%s differs after the round trip", #a);                 \
+    } while (0)
+
+static char *config_as_text(const struct dem_config *c)
+{
+    char *t = 0;
+    size_t n = 0;
+    FILE *f = open_memstream(&t, &n);
+    assert_non_null(f);
+    dem_config_write(c, f);
+    fclose(f);
+    return t;
+}
+
+static void assert_same_particles(const struct dem_sim *a,
+                                  const struct dem_sim *b)
+{
+    assert_int_equal(a->p.n, b->p.n);
+#define DEM_CMP_(f) SAME_ARRAY(a->p.f, b->p.f, a->p.n);
+    DEM_PARTICLE_DOUBLE_ARRAYS(DEM_CMP_)
+    DEM_PARTICLE_INT_ARRAYS(DEM_CMP_)
+#undef DEM_CMP_
+}
+
+static void assert_same_list(const struct dem_contact_list *a,
+                             const struct dem_contact_forces *fa,
+                             const struct dem_contact_list *b,
+                             const struct dem_contact_forces *fb, int np)
+{
+    assert_int_equal(a->n, b->n);
+    SAME_ARRAY(a->i, b->i, a->n);
+    SAME_ARRAY(a->j, b->j, a->n);
+    SAME_ARRAY(a->xi_x, b->xi_x, a->n);
+    SAME_ARRAY(a->xi_y, b->xi_y, a->n);
+    SAME_ARRAY(a->xi_z, b->xi_z, a->n);
+    SAME_ARRAY(a->dmax, b->dmax, a->n);
+    SAME_ARRAY(a->state, b->state, a->n);
+    SAME_ARRAY(a->start, b->start, np + 1);
+    SAME_ARRAY(fa->fx, fb->fx, a->n);
+    SAME_ARRAY(fa->fy, fb->fy, a->n);
+    SAME_ARRAY(fa->fz, fb->fz, a->n);
+    SAME_ARRAY(fa->cx, fb->cx, a->n);
+    SAME_ARRAY(fa->cy, fb->cy, a->n);
+    SAME_ARRAY(fa->cz, fb->cz, a->n);
+}
+
+static void assert_same_walls(const struct dem_sim *a, const struct dem_sim *b)
+{
+    for (int w = 0; w < DEM_MAX_WALLS; w++) {
+        const struct dem_wall *x = &a->wall[w], *y = &b->wall[w];
+        SAME_BITS(x->axis, y->axis);
+        SAME_BITS(x->side, y->side);
+        SAME_BITS(x->mode, y->mode);
+        SAME_BITS(x->pos, y->pos);
+        SAME_BITS(x->vel, y->vel);
+        SAME_BITS(x->force, y->force);
+        SAME_BITS(x->profile, y->profile);
+        SAME_BITS(x->x0, y->x0);
+        SAME_BITS(x->delta, y->delta);
+        SAME_BITS(x->period, y->period);
+        SAME_BITS(x->t_start, y->t_start);
+        SAME_BITS(x->mass, y->mass);
+        SAME_BITS(x->gamma, y->gamma);
+        SAME_BITS(x->vmax, y->vmax);
+        SAME_BITS(x->p0, y->p0);
+        SAME_BITS(x->amp, y->amp);
+        SAME_BITS(x->t0, y->t0);
+    }
+}
+
+/* Save a simulation mid-run (walls servo-controlled, contacts with
+ * history, particles re-ordered), load it into a fresh struct: every field
+ * and array is identical, and both continue identically through further
+ * neighbour-list rebuilds. */
+static void round_trip_restores_every_field_bit_for_bit(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse(&c, small_2d);
+    struct dem_sim a, b;
+    struct dem_error err = {0, ""};
+    assert_int_equal(dem_sim_create(&a, &c, &err), 0);
+    for (int w = 0; w < a.nwall; w++)
+        dem_wall_set_stress(&a.wall[w], 0.01, 2.0, 0.5, 500.0, 100.0, 1e-3,
+                            a.t);
+    dem_sim_set_friction(&a, 0.3, 0.2);
+    test_step(&a, 3000);
+    a.measure = 1;
+    test_step(&a, 1);
+    assert_true(a.nbuild > 1);
+    assert_true(a.pairs.cur.n > 0 && a.pairs.wcur.n > 0);
+
+    double snaps[3] = {0.0, 1e-4, 2e-4};
+    struct dem_ckpt_run ra = {.stage = 1, .stage_t_start = 1e-4,
+                              .stage_t_end = 5e-3, .sets_reference = 1,
+                              .next_out = 6e-4, .warned_inertia = 1,
+                              .L0 = {0.01, 0.02, 0.0}, .V0 = 2e-4,
+                              .next_snap = 3e-4, .next_dump = 7e-4,
+                              .max_steps = 123456, .ts_bytes = 98765,
+                              .dump_bytes = 4321, .nsnap = 3,
+                              .snap_t = snaps};
+    char path[1024], *text = config_as_text(&a.cfg), *text_b = 0;
+    dir_path(path, sizeof path, "roundtrip.bin");
+    assert_int_equal(dem_checkpoint_write(path, text, &a, &ra, &err), 0);
+    struct dem_ckpt_run rb;
+    if (dem_checkpoint_read(path, &b, &text_b, &rb, &err))
+        fail_msg("%s", err.msg);
+
+    assert_string_equal(text, text_b);
+    char *cfg_b = config_as_text(&b.cfg);
+    assert_string_equal(text, cfg_b);
+    free(cfg_b);
+    assert_string_equal(a.cfg.name, b.cfg.name);
+    assert_string_equal(a.cfg.source, b.cfg.source);
+    SAME_BITS(a.cfg.time_step_auto, b.cfg.time_step_auto);
+    SAME_BITS(a.cfg.time_step, b.cfg.time_step);
+
+    SAME_BITS(ra.stage, rb.stage);
+    SAME_BITS(ra.stage_t_start, rb.stage_t_start);
+    SAME_BITS(ra.stage_t_end, rb.stage_t_end);
+    SAME_BITS(ra.sets_reference, rb.sets_reference);
+    SAME_BITS(ra.next_out, rb.next_out);
+    SAME_BITS(ra.warned_inertia, rb.warned_inertia);
+    SAME_BITS(ra.L0, rb.L0);
+    SAME_BITS(ra.V0, rb.V0);
+    SAME_BITS(ra.next_snap, rb.next_snap);
+    SAME_BITS(ra.next_dump, rb.next_dump);
+    SAME_BITS(ra.max_steps, rb.max_steps);
+    SAME_BITS(ra.ts_bytes, rb.ts_bytes);
+    SAME_BITS(ra.dump_bytes, rb.dump_bytes);
+    SAME_BITS(ra.nsnap, rb.nsnap);
+    SAME_ARRAY(ra.snap_t, rb.snap_t, 3);
+
+    SAME_BITS(a.dim, b.dim);
+    SAME_BITS(a.dt, b.dt);
+    SAME_BITS(a.t, b.t);
+    SAME_BITS(a.step, b.step);
+    SAME_BITS(a.nwall, b.nwall);
+    SAME_BITS(a.skin, b.skin);
+    SAME_BITS(a.nbuild, b.nbuild);
+    SAME_BITS(a.reorder, b.reorder);
+    SAME_BITS(a.measure, b.measure);
+    SAME_BITS(a.cp.normal, b.cp.normal);
+    SAME_BITS(a.cp.k, b.cp.k);
+    SAME_BITS(a.cp.k1, b.cp.k1);
+    SAME_BITS(a.cp.k2, b.cp.k2);
+    SAME_BITS(a.cp.kc, b.cp.kc);
+    SAME_BITS(a.cp.phi_f, b.cp.phi_f);
+    SAME_BITS(a.cp.gamma_n, b.cp.gamma_n);
+    SAME_BITS(a.cp.kt, b.cp.kt);
+    SAME_BITS(a.cp.gamma_t, b.cp.gamma_t);
+    SAME_BITS(a.cp.mu_s, b.cp.mu_s);
+    SAME_BITS(a.cp.mu_d, b.cp.mu_d);
+    SAME_BITS(a.cp.wall_mu, b.cp.wall_mu);
+    SAME_BITS(a.cp.wall_kc, b.cp.wall_kc);
+    SAME_BITS(a.rng, b.rng);
+    SAME_BITS(a.sums.fabric_stress, b.sums.fabric_stress);
+    SAME_BITS(a.sums.fabric, b.sums.fabric);
+    SAME_BITS(a.sums.e_pot, b.sums.e_pot);
+    SAME_BITS(a.sums.n_pp, b.sums.n_pp);
+    SAME_BITS(a.sums.n_pw, b.sums.n_pw);
+    SAME_BITS(a.sums.n_sliding, b.sums.n_sliding);
+    SAME_BITS(a.sums.max_overlap_ratio, b.sums.max_overlap_ratio);
+    assert_same_walls(&a, &b);
+    assert_same_particles(&a, &b);
+    assert_same_list(&a.pairs.cur, &a.pairs.f, &b.pairs.cur, &b.pairs.f,
+                     a.p.n);
+    assert_same_list(&a.pairs.wcur, &a.pairs.wf, &b.pairs.wcur, &b.pairs.wf,
+                     a.p.n);
+    SAME_ARRAY(a.pairs.rstart, b.pairs.rstart, a.p.n + 1);
+    SAME_ARRAY(a.pairs.rpair, b.pairs.rpair, a.pairs.cur.n);
+    SAME_BITS(a.pairs.wall_pos0, b.pairs.wall_pos0);
+
+    /* the restored state evolves exactly as the original */
+    long nb = a.nbuild;
+    test_step(&a, 3000);
+    test_step(&b, 3000);
+    assert_true(a.nbuild > nb);
+    SAME_BITS(a.t, b.t);
+    SAME_BITS(a.nbuild, b.nbuild);
+    assert_same_walls(&a, &b);
+    assert_same_particles(&a, &b);
+    assert_same_list(&a.pairs.cur, &a.pairs.f, &b.pairs.cur, &b.pairs.f,
+                     a.p.n);
+
+    free(text);
+    free(text_b);
+    free(rb.snap_t);
+    dem_sim_destroy(&a);
+    dem_sim_destroy(&b);
+}
+
+/* ------------------------------------------------------------ whole runs */
+
+/* Interrupted by the test hook at `stops` steps (each resume stopping at
+ * the next), then resumed to the end: the same bytes as the reference. */
+static void stop_and_resume(const char *text, const char *name, long max_steps,
+                            const long *stops, int nstops, int dump)
+{
+    struct dem_config c;
+    parse(&c, text);
+    char ref[1024], out[1024], n2[256];
+    struct dem_error err = {0, ""};
+    snprintf(n2, sizeof n2, "%s-ref", name);
+    dir_path(ref, sizeof ref, n2);
+    dir_path(out, sizeof out, name);
+    if (run(&c, ref, max_steps, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_false(exists(ref, "checkpoint.bin"));
+
+    int rc = run(&c, out, max_steps, stops[0], 1, &err);
+    if (rc != DEM_EINTERRUPTED)
+        fail_msg("expected an interruption, got %d: %s", rc, err.msg);
+    assert_one_line_naming(&err, out, "resume with: dembox run --resume");
+    /* threads alternate: the result does not depend on them */
+    for (int k = 1; k <= nstops; k++) {
+        assert_true(exists(out, "checkpoint.bin"));
+        assert_true(exists(out, "timeseries.csv.part"));
+        assert_false(exists(out, "timeseries.csv"));
+        rc = resume(out, k < nstops ? stops[k] : 0, 1 + k % 2, &err);
+        if (k < nstops && rc != DEM_EINTERRUPTED)
+            fail_msg("expected an interruption, got %d: %s", rc, err.msg);
+        if (k == nstops && rc)
+            fail_msg("resume: %s", err.msg);
+    }
+    assert_false(exists(out, "checkpoint.bin"));
+    assert_false(exists(out, "timeseries.csv.part"));
+    assert_same_outputs(ref, out, dump);
+    assert_same_file(ref, out, "summary.json");
+
+    /* a finished run is not resumed */
+    rc = resume(out, 0, 1, &err);
+    assert_int_equal(rc, DEM_EUSAGE);
+    assert_one_line_naming(&err, out, "already finished");
+}
+
+static void resumed_2d_run_is_bit_identical(void **state)
+{
+    (void)state;
+    /* in the isotropic stage (twice: the second at the first row after
+     * resuming, before anything is appended to the dump), then twice in
+     * the compression */
+    const long stops[] = {1000, 1001, 2600, 4100};
+    stop_and_resume(small_2d, "resume2d", 6000, stops, 4, 1);
+}
+
+static void resumed_3d_cyclic_run_is_bit_identical(void **state)
+{
+    (void)state;
+    /* during the cyclic stage and during the final hold */
+    const long stops[] = {1700, 2700};
+    stop_and_resume(small_3d, "resume3d", 0, stops, 2, 0);
+}
+
+/* ------------------------------------------------------- refused checkpoints */
+
+static void expect_refused(const char *out, const char *ckpt, const void *buf,
+                           size_t len, const char *what)
+{
+    write_all(ckpt, buf, len);
+    struct dem_error err = {0, ""};
+    int rc = resume(out, 0, 1, &err);
+    if (rc != DEM_EIO)
+        fail_msg("%s: expected refusal, got %d: %s", what, rc, err.msg);
+    assert_one_line_naming(&err, ckpt, what);
+    /* nothing is left half-restored */
+    struct dem_sim s;
+    struct dem_ckpt_run r;
+    char *text = (char *)1;
+    assert_int_equal(dem_checkpoint_read(ckpt, &s, &text, &r, &err), DEM_EIO);
+    assert_null(s.p.x);
+    assert_null(s.pairs.cur.i);
+    assert_null(text);
+    assert_null(r.snap_t);
+}
+
+/* Put a valid CRC on an edited checkpoint. */
+static void fix_crc(unsigned char *b, size_t len)
+{
+    uint32_t crc = dem_crc32(0, b, len - 4);
+    memcpy(b + len - 4, &crc, 4);
+}
+
+static void bad_checkpoints_are_refused_with_a_clear_message(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse(&c, small_2d);
+    char ref[1024], out[1024], ckpt[1100];
+    struct dem_error err = {0, ""};
+    dir_path(ref, sizeof ref, "refused-ref");
+    dir_path(out, sizeof out, "refused");
+    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
+    if (run(&c, ref, 4000, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(run(&c, out, 4000, 2000, 1, &err), DEM_EINTERRUPTED);
+    size_t len = 0;
+    unsigned char *good = read_all(ckpt, &len);
+    assert_non_null(good);
+    unsigned char *b = malloc(len);
+    assert_non_null(b);
+
+    memcpy(b, good, len);
+    b[len / 2] ^= 0x10;
+    expect_refused(out, ckpt, b, len, "checksum mismatch");
+    expect_refused(out, ckpt, good, len / 2, "truncated");
+    expect_refused(out, ckpt, good, 20, "truncated");
+    expect_refused(out, ckpt, "", 0, "not a dembox checkpoint");
+    const char *txt = "dimension = 2;\nseed = 3;\n";
+    expect_refused(out, ckpt, txt, strlen(txt), "not a dembox checkpoint");
+    memcpy(b, good, len);
+    memcpy(b, "DEMBOXCX", 8);
+    expect_refused(out, ckpt, b, len, "not a dembox checkpoint");
+    /* another format version */
+    memcpy(b, good, len);
+    uint32_t v = DEM_CKPT_VERSION + 1;
+    memcpy(b + 8, &v, 4);
+    fix_crc(b, len);
+    expect_refused(out, ckpt, b, len, "format version");
+    /* another byte order */
+    memcpy(b, good, len);
+    uint32_t bom = 0x04030201u;
+    memcpy(b + 12, &bom, 4);
+    expect_refused(out, ckpt, b, len, "byte order");
+    /* another build: the version string after the fixed header */
+    memcpy(b, good, len);
+    uint32_t vlen;
+    memcpy(&vlen, b + 28, 4);
+    assert_int_equal(vlen, strlen(DEM_VERSION));
+    b[32 + vlen - 1] ^= 0x01;
+    fix_crc(b, len);
+    expect_refused(out, ckpt, b, len, "another build");
+    /* a valid checksum over nonsense sizes: bounded before allocating */
+    memcpy(b, good, len);
+    uint32_t blen;
+    memcpy(&blen, b + 32 + vlen, 4);
+    size_t counts = 32 + vlen + 4 + blen;
+    int32_t huge = 0x7fffffff;
+    memcpy(b + counts, &huge, 4);
+    fix_crc(b, len);
+    expect_refused(out, ckpt, b, len, "larger than the file");
+    /* a valid checksum over a pair index out of range */
+    memcpy(b, good, len);
+    int32_t n, npair;
+    memcpy(&n, b + counts, 4);
+    memcpy(&npair, b + counts + 4, 4);
+    const unsigned char *tag = 0;
+    for (size_t k = counts; k + 4 < len && !tag; k++)
+        if (!memcmp(b + k, "PAIR", 4))
+            tag = b + k;
+    assert_non_null(tag);
+    size_t first_j = (size_t)(tag - b) + 4 + 4 + 4 * (size_t)npair;
+    int32_t bad_j = n + 5;
+    memcpy(b + first_j, &bad_j, 4);
+    fix_crc(b, len);
+    expect_refused(out, ckpt, b, len, "pair list");
+
+    /* a config.cfg that does not match the checkpoint */
+    write_all(ckpt, good, len);
+    char cfgp[1100];
+    file_path(cfgp, sizeof cfgp, out, "config.cfg");
+    size_t clen = 0;
+    unsigned char *cfgtext = read_all(cfgp, &clen);
+    FILE *f = fopen(cfgp, "a");
+    assert_non_null(f);
+    fputs("# edited\n", f);
+    fclose(f);
+    assert_int_equal(resume(out, 0, 1, &err), DEM_ECONFIG);
+    assert_one_line_naming(&err, cfgp, "differs");
+    write_all(cfgp, cfgtext, clen);
+    free(cfgtext);
+
+    /* a missing checkpoint */
+    remove(ckpt);
+    assert_int_equal(resume(out, 0, 1, &err), DEM_EIO);
+    assert_one_line_naming(&err, ckpt, "nothing to resume");
+
+    /* the refusals damaged nothing: the good checkpoint still resumes */
+    write_all(ckpt, good, len);
+    if (resume(out, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_same_outputs(ref, out, 1);
+    free(b);
+    free(good);
+}
+
+/* A checkpoint that cannot be written (the disk is full) stops the run with
+ * a message naming the file and the reason; the last good checkpoint is
+ * kept and resumes to the uninterrupted result. */
+static void write_error_keeps_the_last_checkpoint(void **state)
+{
+    (void)state;
+    struct stat st;
+    if (stat("/dev/full", &st) != 0)
+        skip();
+    struct dem_config c;
+    parse(&c, small_2d);
+    char ref[1024], out[1024], ckpt[1100], tmp[1200];
+    struct dem_error err = {0, ""};
+    dir_path(ref, sizeof ref, "diskfull-ref");
+    dir_path(out, sizeof out, "diskfull");
+    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
+    snprintf(tmp, sizeof tmp, "%s.tmp", ckpt);
+    if (run(&c, ref, 4000, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(run(&c, out, 4000, 1500, 1, &err), DEM_EINTERRUPTED);
+    size_t len = 0, len2 = 0;
+    unsigned char *good = read_all(ckpt, &len);
+    assert_non_null(good);
+
+    assert_int_equal(symlink("/dev/full", tmp), 0);
+    int rc = resume(out, 2500, 1, &err);
+    assert_int_equal(rc, DEM_EIO);
+    assert_one_line_naming(&err, tmp, "No space left on device");
+    assert_non_null(strstr(err.msg, "last checkpoint is kept"));
+    unsigned char *after = read_all(ckpt, &len2);
+    assert_int_equal(len, len2);
+    assert_memory_equal(good, after, len);
+    free(after);
+    assert_false(exists(out, "timeseries.csv"));
+    remove(tmp);
+
+    if (resume(out, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_same_outputs(ref, out, 1);
+    free(good);
+}
+
+/* --------------------------------------------------- the dembox command */
+
+static const char *dembox_bin(void)
+{
+    const char *b = getenv("DEMBOX_BIN");
+    return b && *b ? b : 0;
+}
+
+/* Start `dembox args...` with stdout and stderr to log; fsize > 0 limits
+ * the size of the files it writes (bytes). */
+static pid_t spawn(const char *const *args, const char *log, long fsize)
+{
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd < 0)
+            _exit(126);
+        dup2(fd, 1);
+        dup2(fd, 2);
+        close(fd);
+        if (fsize > 0) {
+            struct rlimit rl = {(rlim_t)fsize, (rlim_t)fsize};
+            signal(SIGXFSZ, SIG_IGN);
+            setrlimit(RLIMIT_FSIZE, &rl);
+        }
+        execv(args[0], (char *const *)args);
+        _exit(127);
+    }
+    return pid;
+}
+
+static int wait_exit(pid_t pid)
+{
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        ;
+    if (WIFSIGNALED(status))
+        return 1000 + WTERMSIG(status);
+    return WEXITSTATUS(status);
+}
+
+static long file_size(const char *dir, const char *name)
+{
+    char p[1024];
+    file_path(p, sizeof p, dir, name);
+    struct stat st;
+    return stat(p, &st) == 0 ? (long)st.st_size : -1;
+}
+
+static void sleep_ms(long ms)
+{
+    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
+    nanosleep(&ts, 0);
+}
+
+static void log_contains(const char *log, const char *what)
+{
+    size_t n = 0;
+    char *t = (char *)read_all(log, &n);
+    assert_non_null(t);
+    char *z = realloc(t, n + 1);
+    assert_non_null(z);
+    z[n] = '\0';
+    if (!strstr(z, what))
+        fail_msg("%s should say \"%s\"; it says:\n%s", log, what, z);
+    free(z);
+}
+
+#define LONG_STEPS "200000"
+
+/* The config file for the command and the reference run of the same
+ * config (what an uninterrupted `dembox run` writes). */
+static void command_setup(const char *name, char *cfgfile, size_t ncf,
+                          char *ref, size_t nref)
+{
+    snprintf(cfgfile, ncf, "%s/%s.cfg", tmpdir, name);
+    write_all(cfgfile, small_2d, strlen(small_2d));
+    char n2[256];
+    snprintf(n2, sizeof n2, "%s-ref", name);
+    dir_path(ref, nref, n2);
+    struct dem_config c;
+    parse(&c, small_2d);
+    struct dem_error err = {0, ""};
+    if (run(&c, ref, atol(LONG_STEPS), 0, 1, &err))
+        fail_msg("%s", err.msg);
+}
+
+static void resume_command(const char *out, const char *ref)
+{
+    char log[1100];
+    snprintf(log, sizeof log, "%s.resume.log", out);
+    const char *args[] = {dembox_bin(), "run", "--resume", out, "--quiet", 0};
+    int code = wait_exit(spawn(args, log, 0));
+    if (code != 0)
+        log_contains(log, "(resume failed)");
+    assert_same_outputs(ref, out, 1);
+    assert_false(exists(out, "checkpoint.bin"));
+}
+
+/* Ctrl-C: the command writes a checkpoint, says how to resume and exits
+ * with 130; resuming gives the uninterrupted result. */
+static void sigint_checkpoints_and_resumes_identically(void **state)
+{
+    (void)state;
+    if (!dembox_bin())
+        skip();
+    char cfgfile[1024], ref[1024], out[1024], log[1100];
+    command_setup("sigint", cfgfile, sizeof cfgfile, ref, sizeof ref);
+    dir_path(out, sizeof out, "sigint");
+    snprintf(log, sizeof log, "%s.log", out);
+    const char *args[] = {dembox_bin(), "run",         cfgfile, "-o",
+                          out,          "--max-steps", LONG_STEPS, "--quiet",
+                          0};
+    pid_t pid = spawn(args, log, 0);
+    /* wait for some rows, then interrupt */
+    for (int k = 0; k < 6000 && file_size(out, "timeseries.csv.part") < 20000;
+         k++)
+        sleep_ms(5);
+    assert_false(exists(out, "checkpoint.bin"));
+    kill(pid, SIGINT);
+    int code = wait_exit(pid);
+    if (code != 130)
+        log_contains(log, "(expected exit status 130)");
+    log_contains(log, "resume with: dembox run --resume");
+    assert_true(exists(out, "checkpoint.bin"));
+    assert_false(exists(out, "timeseries.csv"));
+    resume_command(out, ref);
+}
+
+/* kill -9 at an arbitrary moment between (or during) checkpoints taken at
+ * every row: the resumed run writes the uninterrupted run's bytes. */
+static void kill_9_between_checkpoints_resumes_identically(void **state)
+{
+    (void)state;
+    if (!dembox_bin())
+        skip();
+    char cfgfile[1024], ref[1024], out[1024], log[1100];
+    command_setup("kill9", cfgfile, sizeof cfgfile, ref, sizeof ref);
+    dir_path(out, sizeof out, "kill9");
+    snprintf(log, sizeof log, "%s.log", out);
+    const char *args[] = {dembox_bin(),
+                          "run",
+                          cfgfile,
+                          "-o",
+                          out,
+                          "--max-steps",
+                          LONG_STEPS,
+                          "--set",
+                          "output.checkpoint_interval=1e-9",
+                          "--quiet",
+                          0};
+    pid_t pid = spawn(args, log, 0);
+    for (int k = 0; k < 6000 && !exists(out, "checkpoint.bin"); k++)
+        sleep_ms(5);
+    sleep_ms(150);
+    kill(pid, SIGKILL);
+    int code = wait_exit(pid);
+    if (code != 1000 + SIGKILL)
+        log_contains(log, "(the run ended before kill -9)");
+    assert_true(exists(out, "checkpoint.bin"));
+    assert_false(exists(out, "timeseries.csv"));
+    resume_command(out, ref);
+}
+
+/* A write error while writing the timeseries (file size limit): a clear
+ * message, exit status 1, the checkpoint intact and still resumable. */
+static void write_error_in_outputs_stops_the_command(void **state)
+{
+    (void)state;
+    if (!dembox_bin())
+        skip();
+    char cfgfile[1024], ref[1024], out[1024], log[1100], ckpt[1100];
+    command_setup("fsize", cfgfile, sizeof cfgfile, ref, sizeof ref);
+    dir_path(out, sizeof out, "fsize");
+    snprintf(log, sizeof log, "%s.log", out);
+    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
+    struct dem_config c;
+    parse(&c, small_2d);
+    struct dem_error err = {0, ""};
+    assert_int_equal(run(&c, out, atol(LONG_STEPS), 3000, 1, &err),
+                     DEM_EINTERRUPTED);
+    size_t len = 0, len2 = 0;
+    unsigned char *good = read_all(ckpt, &len);
+    long limit = file_size(out, "timeseries.csv.part") + 20000;
+    const char *args[] = {dembox_bin(), "run", "--resume", out, "--quiet", 0};
+    int code = wait_exit(spawn(args, log, limit));
+    if (code != 1)
+        log_contains(log, "(expected exit status 1)");
+    log_contains(log, "write failed: File too large");
+    unsigned char *after = read_all(ckpt, &len2);
+    assert_int_equal(len, len2);
+    assert_memory_equal(good, after, len);
+    free(good);
+    free(after);
+    assert_false(exists(out, "timeseries.csv"));
+    resume_command(out, ref);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(round_trip_restores_every_field_bit_for_bit),
+        cmocka_unit_test(resumed_2d_run_is_bit_identical),
+        cmocka_unit_test(resumed_3d_cyclic_run_is_bit_identical),
+        cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
+        cmocka_unit_test(write_error_keeps_the_last_checkpoint),
+        cmocka_unit_test(sigint_checkpoints_and_resumes_identically),
+        cmocka_unit_test(kill_9_between_checkpoints_resumes_identically),
+        cmocka_unit_test(write_error_in_outputs_stops_the_command),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
