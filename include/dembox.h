@@ -173,6 +173,15 @@ struct dem_config {
     struct dem_stage_config stages[DEM_MAX_STAGES];
 
     struct {
+        double max_overlap;   /* largest overlap / radius before the run
+                                 stops as unstable; default 0.5 */
+        double energy_growth; /* with every wall fixed and no gravity, the
+                                 run stops when the total energy exceeds
+                                 this factor times its value when that
+                                 drive-free stretch began; default 1.1 */
+    } checks;
+
+    struct {
         double interval;          /* s; timeseries row interval */
         double snapshot_interval; /* s; VTU snapshot interval; 0 = none */
         double dump_interval;     /* s; LAMMPS-style text dump interval

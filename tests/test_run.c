@@ -155,6 +155,75 @@ static void biaxial_fixed_walls_and_dilatancy(void **state)
     dem__csv_table_free(&t);
 }
 
+/* A pressure far beyond what the contacts can carry: the run stops with a
+ * diagnosis naming the particle, leaves the state for inspection and no
+ * output that looks complete. */
+static void overlap_blow_up_is_diagnosed(void **state)
+{
+    (void)state;
+    const char *text =
+        "dimension = 3; seed = 1; time_step = 2.0e-5;\n"
+        "particles = { count = 27; radius = { distribution = \"mono\";"
+        " mean = 5.0e-3; }; placement = \"lattice\"; };\n"
+        "walls = { mass = 0.01; gamma = 1.0; };\n"
+        "stages = ( { type = \"isotropic\"; pressure = 1.0e6; max_time = 0.5; } );\n"
+        "output = { interval = 1.0e-3; snapshot_interval = 0.0; };\n";
+    struct dem_config c;
+    struct dem_error err = {0, ""};
+    assert_int_equal(dem_config_parse(&c, text, "blowup", 0, 0, &err), 0);
+    char out[1024];
+    snprintf(out, sizeof out, "%s/blowup", tmpdir);
+    struct dem_run_options o = {.outdir = out, .quiet = 1, .threads = 1};
+    assert_int_equal(dem_run(&c, &o, &err), DEM_EUNSTABLE);
+    assert_non_null(strstr(err.msg, "particle"));
+    assert_non_null(strstr(err.msg, "overlaps"));
+    assert_null(strchr(err.msg, '\n'));
+    assert_true(exists(out, "particles_unstable.csv"));
+    assert_false(exists(out, "timeseries.csv"));
+    assert_false(exists(out, "particles_final.csv"));
+    assert_true(exists(out, "timeseries.csv.part"));
+}
+
+/* A time step near the contact duration (bypassing the config check, as a
+ * test of the safety net) makes the integration unstable: with every wall
+ * fixed and no gravity nothing may raise the energy, and the run stops. */
+static void energy_growth_is_diagnosed(void **state)
+{
+    (void)state;
+    char dir[1024], file[2048];
+    snprintf(dir, sizeof dir, "%s/egrowth-in", tmpdir);
+    mkdir(dir, 0755);
+    snprintf(file, sizeof file, "%s/gas.csv", dir);
+    FILE *f = fopen(file, "w");
+    assert_non_null(f);
+    fprintf(f, "x,y,z,vx,vy,vz,radius\n");
+    for (int k = 0; k < 8; k++)
+        fprintf(f, "%g,%g,%g,%g,%g,%g,5e-3\n", 0.01 + 0.02 * (k % 2),
+                0.01 + 0.02 * ((k / 2) % 2), 0.01 + 0.02 * (k / 4),
+                0.3 * (k % 3 - 1), 0.3 * ((k + 1) % 3 - 1), 0.2 * (k % 2 ? 1 : -1));
+    fclose(f);
+    char text[4096];
+    snprintf(text, sizeof text,
+             "dimension = 3; seed = 1; time_step = 2.0e-5;\n"
+             "particles = { placement = \"file\"; file = \"%s\"; };\n"
+             "box = { size = [0.04, 0.04, 0.04]; };\n"
+             "contact = { gamma_n = 0.0; gamma_t = 0.0; mu = 0.0; };\n"
+             "damping = { gamma_b = 0.0; gamma_br = 0.0; };\n"
+             "stages = ( { type = \"hold\"; duration = 2.0; } );\n"
+             "output = { interval = 2.0e-3; snapshot_interval = 0.0; };\n",
+             file);
+    struct dem_config c;
+    struct dem_error err = {0, ""};
+    assert_int_equal(dem_config_parse(&c, text, "egrowth", 0, 0, &err), 0);
+    c.time_step = 0.8 * dem_config_contact_time(&c);
+    char out[1024];
+    snprintf(out, sizeof out, "%s/egrowth", tmpdir);
+    struct dem_run_options o = {.outdir = out, .quiet = 1, .threads = 1};
+    assert_int_equal(dem_run(&c, &o, &err), DEM_EUNSTABLE);
+    assert_non_null(strstr(err.msg, "energy grew"));
+    assert_non_null(strstr(err.msg, "time step"));
+}
+
 static int same_file(const char *a, const char *b)
 {
     FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
@@ -199,6 +268,8 @@ int main(void)
         cmocka_unit_test(isotropic_stage_reaches_target_pressure),
         cmocka_unit_test(biaxial_fixed_walls_and_dilatancy),
         cmocka_unit_test(same_seed_same_output),
+        cmocka_unit_test(overlap_blow_up_is_diagnosed),
+        cmocka_unit_test(energy_growth_is_diagnosed),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

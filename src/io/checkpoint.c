@@ -270,6 +270,7 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_i32(io, &run->sets_reference);
     io_f64(io, &run->next_out);
     io_i32(io, &run->warned_inertia);
+    io_f64(io, &run->e_free);
     for (int a = 0; a < 3; a++)
         io_f64(io, &run->L0[a]);
     io_f64(io, &run->V0);

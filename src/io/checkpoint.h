@@ -33,7 +33,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 1u
+#define DEM_CKPT_VERSION 2u
 
 /* The run loop's state at a checkpoint, saved as plain data. */
 struct dem_ckpt_run {
@@ -43,6 +43,8 @@ struct dem_ckpt_run {
     int sets_reference;    /* 1: strains refer to this stage's start */
     double next_out;       /* s; time of the next timeseries row */
     int warned_inertia;    /* 1: the inertial-number warning was given */
+    double e_free;         /* J; total energy when the current drive-free
+                              stretch began (< 0: driven now) */
     double L0[3];          /* m; reference box lengths for strains */
     double V0;             /* m^3 (2D: m^2); reference volume */
     double next_snap;      /* s; time of the next VTU snapshot */

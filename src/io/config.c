@@ -215,6 +215,16 @@ static const struct key keys[] = {
      .def_text = "isotropic at 1000 Pa",
      .doc = "list of stage groups ( { type = ...; ... }, ... ), run in order"},
 
+    {.name = "checks.max_overlap", .kind = K_DOUBLE, TOP(checks.max_overlap),
+     .def = 0.5, GT(0), LE(1), .unit = "-",
+     .doc = "the run stops as unstable when a contact overlaps by more than "
+            "this fraction of the smaller radius"},
+    {.name = "checks.energy_growth", .kind = K_DOUBLE,
+     TOP(checks.energy_growth), .def = 1.1, GT(1), .unit = "-",
+     .doc = "with every wall fixed and no gravity nothing drives the "
+            "packing: the run stops when its total energy grows beyond this "
+            "factor"},
+
     {.name = "output.interval", .kind = K_DOUBLE, TOP(output.interval),
      .def = 1e-3, GT(0), .unit = "s", .doc = "time between timeseries rows"},
     {.name = "output.snapshot_interval", .kind = K_DOUBLE,

@@ -165,24 +165,108 @@ static int write_snapshot(struct run_ctx *r, struct dem_error *err)
 }
 
 /* Stop with a diagnosis when the state is no longer physical. */
-static int check_stable(const struct dem_sim *s, const struct dem_sample *smp,
+/* 1 when nothing drives the packing: every wall fixed and no gravity. */
+static int drive_free(const struct dem_sim *s)
+{
+    for (int w = 0; w < s->nwall; w++)
+        if (s->wall[w].mode != DEM_WALL_FIXED)
+            return 0;
+    return s->cfg.gravity[0] == 0.0 && s->cfg.gravity[1] == 0.0 &&
+           s->cfg.gravity[2] == 0.0;
+}
+
+/* The contact with the largest overlap / smaller radius: the ids of its
+ * particles (-1 for a wall) and the ratio. */
+static double worst_overlap(const struct dem_sim *s, int *a, int *b)
+{
+    const struct dem_particles *P = &s->p;
+    const struct dem_contact_list *L = &s->pairs.cur, *W = &s->pairs.wcur;
+    double worst = -1.0;
+    *a = *b = -1;
+    for (int k = 0; k < L->n; k++) {
+        int i = L->i[k], j = L->j[k];
+        double dx = P->x[i] - P->x[j], dy = P->y[i] - P->y[j],
+               dz = P->z[i] - P->z[j];
+        double amin = P->r[i] < P->r[j] ? P->r[i] : P->r[j];
+        double ratio = (P->r[i] + P->r[j] - sqrt(dx * dx + dy * dy + dz * dz)) / amin;
+        if (ratio > worst) {
+            worst = ratio;
+            *a = P->id[i];
+            *b = P->id[j];
+        }
+    }
+    for (int k = 0; k < W->n; k++) {
+        int i = W->i[k];
+        const struct dem_wall *w = &s->wall[W->j[k]];
+        double pos[3] = {P->x[i], P->y[i], P->z[i]};
+        double ratio = (P->r[i] - (w->side ? -1.0 : 1.0) * (pos[w->axis] - w->pos)) / P->r[i];
+        if (ratio > worst) {
+            worst = ratio;
+            *a = P->id[i];
+            *b = -1;
+        }
+    }
+    return worst;
+}
+
+/* Stop with a diagnosis (step, time, particle, quantity, likely cause)
+ * when the state is no longer physical. */
+static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
                         struct dem_error *err)
 {
-    const double lim = 0.5; /* overlap / radius */
-    if (!isfinite(smp->e_kin) || !isfinite(smp->e_pot) ||
-        !isfinite(smp->p) || !isfinite(smp->L[0]))
+    const struct dem_sim *s = &r->sim;
+    const struct dem_particles *P = &s->p;
+    for (int i = 0; i < P->n; i++) {
+        const double q[6] = {P->x[i], P->y[i], P->z[i], P->vx[i], P->vy[i], P->vz[i]};
+        for (int c = 0; c < 6; c++)
+            if (!isfinite(q[c]))
+                return dem_error_set(
+                    err, DEM_EUNSTABLE,
+                    "t = %.6g s (step %ld): particle %d has a non-finite %s; "
+                    "the time step %.3g s is probably too large for the "
+                    "contact stiffness (try time_step = \"auto\")",
+                    s->t, s->step, P->id[i], c < 3 ? "position" : "velocity",
+                    s->dt);
+    }
+    if (!isfinite(smp->e_kin) || !isfinite(smp->e_pot) || !isfinite(smp->p))
         return dem_error_set(
             err, DEM_EUNSTABLE,
             "t = %.6g s (step %ld): non-finite energy or stress; the time "
             "step %.3g s is probably too large for the contact stiffness",
             s->t, s->step, s->dt);
-    if (smp->max_overlap > lim)
+    const double lim = s->cfg.checks.max_overlap;
+    if (smp->max_overlap > lim) {
+        int a, b;
+        double worst = worst_overlap(s, &a, &b);
+        char partner[32];
+        if (b >= 0)
+            snprintf(partner, sizeof partner, "particle %d", b);
+        else
+            snprintf(partner, sizeof partner, "a wall");
         return dem_error_set(
             err, DEM_EUNSTABLE,
-            "t = %.6g s (step %ld): a contact overlaps by %.2f of a radius "
-            "(limit %.2f); the pressure is too high for the stiffness or the "
-            "time step %.3g s too large",
-            s->t, s->step, smp->max_overlap, lim, s->dt);
+            "t = %.6g s (step %ld): particle %d overlaps %s by %.2f of a "
+            "radius (checks.max_overlap = %.2f); the pressure is too high "
+            "for the stiffness, a wall moves too fast, or the time step "
+            "%.3g s is too large",
+            s->t, s->step, a, partner, worst, lim, s->dt);
+    }
+    /* without drive, dissipation can only lower the energy */
+    const double e = smp->e_kin + smp->e_rot + smp->e_pot;
+    if (!drive_free(s)) {
+        r->st.e_free = -1.0;
+    } else if (r->st.e_free < 0.0) {
+        r->st.e_free = e;
+    } else if (e > s->cfg.checks.energy_growth * r->st.e_free && e > 1e-300) {
+        return dem_error_set(
+            err, DEM_EUNSTABLE,
+            "t = %.6g s (step %ld): the total energy grew from %.3g J to "
+            "%.3g J with every wall fixed and no gravity (checks."
+            "energy_growth = %.2f); the time step %.3g s is probably too "
+            "large",
+            s->t, s->step, r->st.e_free, e, s->cfg.checks.energy_growth,
+            s->dt);
+    }
     return DEM_OK;
 }
 
@@ -299,7 +383,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             return dem_error_set(err, DEM_EIO, "%s: write failed: %s",
                                  r->ts_path,
                                  errno ? strerror(errno) : "I/O error");
-        rc = check_stable(s, &smp, err);
+        rc = check_stable(r, &smp, err);
         if (rc)
             return rc;
         if (loading && !r->st.warned_inertia &&
@@ -605,6 +689,7 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
             rc = write_snapshot(&r, err);
         r.st.next_snap = cfg->output.snapshot_interval;
         r.st.next_dump = 0.0;
+        r.st.e_free = -1.0;
     }
     return run_and_finish(&r, rc, 0, 0, err);
 }
