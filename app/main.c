@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench/bench.h"
 #include "dembox.h"
 #include "io/config.h"
 #include "io/examples.h"
@@ -26,6 +27,8 @@ static const char *const usage_main =
     "  analyze OUTDIR      material parameters of a finished run -> "
     "OUTDIR/summary.json\n"
     "  plot OUTDIR         redraw the pictures of a run in OUTDIR/plots\n"
+    "  bench [--dim 2|3] [--n N] [--steps S] [--threads T]\n"
+    "                      time the engine on the peers' workload\n"
     "  examples            list the built-in examples\n"
     "  example NAME        print a built-in example as a config file\n"
     "  help [COMMAND|config]  help on a command, or every config key\n"
@@ -68,6 +71,38 @@ static const char *const usage_analyze =
     "the strain accumulated per cycle with the verdict ratcheting or\n"
     "shakedown. What cannot be computed is null with a reason. Formulas:\n"
     "docs/analysis.md.\n";
+
+static const char *const usage_bench =
+    "usage: dembox bench [--dim 2|3] [--n N] [--steps S] [--threads T]\n"
+    "                    [--data FILE] [--cache-dir DIR] [--no-cache] "
+    "[--quiet]\n"
+    "\n"
+    "Time S steps of a dense, relaxed packing of N particles in a box of\n"
+    "walls, compressed slowly along z (2D: y) by one strain-controlled wall\n"
+    "while the lateral walls hold the initial stress: the workload of the\n"
+    "LAMMPS and LIGGGHTS comparison (bench/peers.sh, docs/performance.md).\n"
+    "3D: seed 000 material (k = 5000 N/m, radii 5 +- 0.7 mm), dt = 2e-5 s;\n"
+    "2D: radii U[0.5, 1.5] mm, k = 1e5 N/m, dt = 2e-7 s.\n"
+    "\n"
+    "  --dim 2|3         dimension (default 3)\n"
+    "  --n N             particles (default 3375 in 3D, 1950 in 2D)\n"
+    "  --steps S         timed steps (default 20000)\n"
+    "  --threads T       OpenMP threads (default: OMP_NUM_THREADS or all "
+    "cores)\n"
+    "  --data FILE       start from this LAMMPS data file (atom_style "
+    "sphere,\n"
+    "                    N atoms); default: $DEMBOX_BENCH_DATA/packDd_N.data "
+    "if it\n"
+    "                    exists, else a random packing\n"
+    "  --cache-dir DIR   where prepared packings are kept (default\n"
+    "                    $XDG_CACHE_HOME/dembox or ~/.cache/dembox)\n"
+    "  --no-cache        prepare the packing again (and overwrite the cache)\n"
+    "  --quiet           no progress display\n"
+    "\n"
+    "The packing is relaxed once (not timed) and cached; only the loop is\n"
+    "timed. The summary gives the time per phase (neighbours, forces,\n"
+    "integration, walls), the coordination and the memory per particle;\n"
+    "the last line is particle_steps_per_second=<number>.\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";
@@ -203,6 +238,76 @@ static int cmd_analyze(int argc, char **argv)
     return 0;
 }
 
+/* A whole-string integer; *ok = 0 unless it lies in [lo, hi]. */
+static long parse_count(const char *s, long lo, long hi, int *ok)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    *ok = *s && !*end && v >= lo && v <= hi;
+    return v;
+}
+
+static int cmd_bench(int argc, char **argv)
+{
+    struct dem_bench_options o;
+    memset(&o, 0, sizeof o);
+    o.dim = 3;
+    for (int k = 0; k < argc; k++) {
+        const char *a = argv[k];
+        int ok = 1;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(usage_bench, stdout);
+            return 0;
+        } else if (!strcmp(a, "--no-cache")) {
+            o.no_cache = 1;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o.quiet = 1;
+        } else if (!strcmp(a, "--dim") || !strcmp(a, "--n") ||
+                   !strcmp(a, "--steps") || !strcmp(a, "--threads") ||
+                   !strcmp(a, "--data") || !strcmp(a, "--cache-dir")) {
+            if (++k >= argc) {
+                fprintf(stderr, "dembox: bench: %s needs a value\n", a);
+                return 1;
+            }
+            const char *v = argv[k];
+            if (!strcmp(a, "--dim")) {
+                o.dim = (int)parse_count(v, 2, 3, &ok);
+                if (!ok)
+                    return fail("bench: --dim must be 2 or 3");
+            } else if (!strcmp(a, "--n")) {
+                o.n = (int)parse_count(v, 2, 100000000L, &ok);
+                if (!ok)
+                    return fail("bench: --n must be an integer >= 2");
+            } else if (!strcmp(a, "--steps")) {
+                o.steps = parse_count(v, 1, 1000000000L, &ok);
+                if (!ok)
+                    return fail("bench: --steps must be a positive integer");
+            } else if (!strcmp(a, "--threads")) {
+                o.threads = (int)parse_count(v, 1, 4096, &ok);
+                if (!ok)
+                    return fail("bench: --threads must be a positive "
+                                "integer");
+            } else if (!strcmp(a, "--data")) {
+                o.data = v;
+            } else {
+                o.cache_dir = v;
+            }
+        } else {
+            fprintf(stderr,
+                    "dembox: bench: unknown argument %s (see dembox help "
+                    "bench)\n",
+                    a);
+            return 1;
+        }
+    }
+    struct dem_bench_result r;
+    struct dem_error err = {0, ""};
+    if (dem_bench_run(&o, &r, &err))
+        return fail(err.msg);
+    dem_bench_print(stdout, &r);
+    return 0;
+}
+
 static int cmd_examples(void)
 {
     for (int k = 0; k < dem_n_examples; k++) {
@@ -243,6 +348,8 @@ static int cmd_help(int argc, char **argv)
         fputs(usage_run, stdout);
     else if (!strcmp(c, "analyze"))
         fputs(usage_analyze, stdout);
+    else if (!strcmp(c, "bench"))
+        fputs(usage_bench, stdout);
     else if (!strcmp(c, "examples"))
         fputs(usage_examples, stdout);
     else if (!strcmp(c, "plot"))
@@ -271,6 +378,8 @@ int main(int argc, char **argv)
         return cmd_run(argc - 2, argv + 2);
     if (!strcmp(c, "analyze"))
         return cmd_analyze(argc - 2, argv + 2);
+    if (!strcmp(c, "bench"))
+        return cmd_bench(argc - 2, argv + 2);
     if (!strcmp(c, "examples"))
         return cmd_examples();
     if (!strcmp(c, "plot"))
