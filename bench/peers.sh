@@ -70,6 +70,7 @@ PACK=$(cd "$(dirname "$PACK")" && pwd)/$(basename "$PACK")
 mkdir -p "$WORK"
 WORK=$(cd "$WORK" && pwd)
 TAG=${DIM}d_${N}_s${STEPS}_np${NP}
+LOAD0=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")
 
 # ---------------------------------------------------------------- workload
 # One place for the numbers; docs/performance.md has the mapping table.
@@ -173,6 +174,11 @@ run             $STEPS
 EOF
 }
 
+# CPU use of the loop in % per rank/thread: LAMMPS prints it for the loop,
+# dembox for its timed loop; LIGGGHTS does not, so its figure is
+# /usr/bin/time's for the whole process. Below ~100 % the machine was busy.
+cpu_lammps() { awk '/% CPU use/ {sub("%", "", $1); print $1}' "$1" | tail -1; }
+cpu_time_v() { awk -F': ' '/Percent of CPU/ {sub("%", "", $2); printf "%.0f (process)", $2 / np}' np="$NP" "$1" 2>/dev/null; }
 # Peak RSS in MB from a /usr/bin/time -v file ("-" if none).
 peak_mb() { awk -F': ' '/Maximum resident/ {printf "%.0f", $2/1024; f=1} END {if (!f) print "-"}' "$1" 2>/dev/null || echo -; }
 TIMEV=()
@@ -194,7 +200,7 @@ run_lammps() { # $1 = hh | gr
   secs=$(awk '/^Loop time of/ {print $4}' "$base.log" | tail -1)
   local model=gran/hooke/history
   [ "$1" = gr ] && model="granular (damping velocity)"
-  add_row "lammps|$model|$NP ranks|$secs|$(peak_mb "$base.time")"
+  add_row "lammps|$model|$NP ranks|$secs|$(peak_mb "$base.time")|$(cpu_lammps "$base.log")"
 }
 
 run_liggghts() {
@@ -207,7 +213,7 @@ run_liggghts() {
     || { echo "peers.sh: liggghts failed, see $base.log" >&2; return; }
   local secs
   secs=$(awk '/^Loop time of/ {print $4}' "$base.log" | tail -1)
-  add_row "liggghts|hooke/stiffness (absolute damping)|$NP ranks|$secs|$(peak_mb "$base.time")"
+  add_row "liggghts|hooke/stiffness (absolute damping)|$NP ranks|$secs|$(peak_mb "$base.time")|$(cpu_time_v "$base.time")"
 }
 
 run_dembox() {
@@ -221,7 +227,7 @@ run_dembox() {
     || { echo "peers.sh: dembox failed, see $base.log" >&2; cat "$base.log" >&2; return; }
   local secs
   secs=$(awk '/^loop:/ {print $2}' "$base.log")
-  add_row "dembox|linear + tangential history (walls)|$NP threads|$secs|$(peak_mb "$base.time")"
+  add_row "dembox|linear + tangential history (walls)|$NP threads|$secs|$(peak_mb "$base.time")|$(awk '/^cpu:/ {print $4}' "$base.log")"
 }
 
 for c in $CODES; do
@@ -236,21 +242,22 @@ done
 
 # ------------------------------------------------------------------ table
 echo "# $(date -u +%Y-%m-%dT%H:%MZ)  $(nproc) cores  $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')"
+echo "# load average before: $LOAD0, after: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")"
 echo "# packing $PACK, logs and inputs in $WORK"
 echo
-echo "| code | model | dim | N | steps | ranks/threads | loop s | particle-steps/s | dembox/code | peak RSS MB |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| code | model | dim | N | steps | ranks/threads | loop s | particle-steps/s | dembox/code | peak RSS MB | CPU use % |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 dembox_pss=
 for r in "${rows[@]}"; do
   IFS='|' read -r code _ _ secs _ <<<"$r"
   [ "$code" = dembox ] && dembox_pss=$(awk -v n="$N" -v s="$STEPS" -v t="$secs" 'BEGIN {print n*s/t}')
 done
 for r in "${rows[@]}"; do
-  IFS='|' read -r code model par secs rss <<<"$r"
+  IFS='|' read -r code model par secs rss cpu <<<"$r"
   awk -v code="$code" -v model="$model" -v dim="$DIM" -v n="$N" -v s="$STEPS" \
-      -v par="$par" -v t="$secs" -v d="$dembox_pss" -v rss="$rss" 'BEGIN {
+      -v par="$par" -v t="$secs" -v d="$dembox_pss" -v rss="$rss" -v cpu="${cpu:--}" 'BEGIN {
     pss = n * s / t
     ratio = d != "" ? sprintf("%.2f", d / pss) : "-"
-    printf "| %s | %s | %dD | %d | %d | %s | %.2f | %.3g | %s | %s |\n",
-           code, model, dim, n, s, par, t, pss, ratio, rss }'
+    printf "| %s | %s | %dD | %d | %d | %s | %.2f | %.3g | %s | %s | %s |\n",
+           code, model, dim, n, s, par, t, pss, ratio, rss, cpu }'
 done

@@ -65,6 +65,8 @@ struct dem_bench_result {
     int cache_hit;             /* 1 if the cache was used as it was */
     double prep_seconds;       /* s; wall time of preparation (0 on a hit) */
     double seconds;            /* s; wall time of the timed loop */
+    double cpu_seconds;        /* s; CPU time of the process (all threads)
+                                  during the timed loop */
     struct dem_timers timers;  /* s; per phase of the timed loop */
     long nbuild;               /* neighbour-list builds in the timed loop */
     double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N */
