@@ -245,19 +245,29 @@ echo "# $(date -u +%Y-%m-%dT%H:%MZ)  $(nproc) cores  $(grep -m1 'model name' /pr
 echo "# load average before: $LOAD0, after: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")"
 echo "# packing $PACK, logs and inputs in $WORK"
 echo
-echo "| code | model | dim | N | steps | ranks/threads | loop s | particle-steps/s | dembox/code | peak RSS MB | CPU use % |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
-dembox_pss=
+# On a busy machine the wall-clock ratio depends on who got the cores; the
+# rate per CPU-second (particle-steps/s divided by the CPU use) is the
+# steadier comparison there.
+echo "| code | model | dim | N | steps | ranks/threads | loop s | particle-steps/s | dembox/code | CPU use % | particle-steps per CPU-s | dembox/code per CPU-s | peak RSS MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+dembox_pss= dembox_cpu=
 for r in "${rows[@]}"; do
-  IFS='|' read -r code _ _ secs _ <<<"$r"
-  [ "$code" = dembox ] && dembox_pss=$(awk -v n="$N" -v s="$STEPS" -v t="$secs" 'BEGIN {print n*s/t}')
+  IFS='|' read -r code _ _ secs _ cpu <<<"$r"
+  if [ "$code" = dembox ]; then
+    dembox_pss=$(awk -v n="$N" -v s="$STEPS" -v t="$secs" 'BEGIN {print n*s/t}')
+    dembox_cpu=$(awk -v p="$dembox_pss" -v c="${cpu%% *}" 'BEGIN {if (c > 0) print p/(c/100)}')
+  fi
 done
 for r in "${rows[@]}"; do
   IFS='|' read -r code model par secs rss cpu <<<"$r"
   awk -v code="$code" -v model="$model" -v dim="$DIM" -v n="$N" -v s="$STEPS" \
-      -v par="$par" -v t="$secs" -v d="$dembox_pss" -v rss="$rss" -v cpu="${cpu:--}" 'BEGIN {
+      -v par="$par" -v t="$secs" -v d="$dembox_pss" -v dc="$dembox_cpu" \
+      -v rss="$rss" -v cpu="${cpu:--}" 'BEGIN {
     pss = n * s / t
     ratio = d != "" ? sprintf("%.2f", d / pss) : "-"
-    printf "| %s | %s | %dD | %d | %d | %s | %.2f | %.3g | %s | %s | %s |\n",
-           code, model, dim, n, s, par, t, pss, ratio, rss, cpu }'
+    split(cpu, c, " ")
+    pcpu = c[1] > 0 ? sprintf("%.3g", pss / (c[1] / 100)) : "-"
+    rcpu = (c[1] > 0 && dc != "") ? sprintf("%.2f", dc / (pss / (c[1] / 100))) : "-"
+    printf "| %s | %s | %dD | %d | %d | %s | %.2f | %.3g | %s | %s | %s | %s | %s |\n",
+           code, model, dim, n, s, par, t, pss, ratio, cpu, pcpu, rcpu, rss }'
 done
