@@ -246,8 +246,8 @@ echo "# load average before: $LOAD0, after: $(cut -d' ' -f1-3 /proc/loadavg 2>/d
 echo "# packing $PACK, logs and inputs in $WORK"
 echo
 # On a busy machine the wall-clock ratio depends on who got the cores; the
-# rate per CPU-second (particle-steps/s divided by the CPU use) is the
-# steadier comparison there.
+# rate per CPU-second (N * steps / CPU seconds of all ranks or threads) is
+# the steadier comparison there. CPU use % is per rank/thread.
 echo "| code | model | dim | N | steps | ranks/threads | loop s | particle-steps/s | dembox/code | CPU use % | particle-steps per CPU-s | dembox/code per CPU-s | peak RSS MB |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 dembox_pss= dembox_cpu=
@@ -255,19 +255,20 @@ for r in "${rows[@]}"; do
   IFS='|' read -r code _ _ secs _ cpu <<<"$r"
   if [ "$code" = dembox ]; then
     dembox_pss=$(awk -v n="$N" -v s="$STEPS" -v t="$secs" 'BEGIN {print n*s/t}')
-    dembox_cpu=$(awk -v p="$dembox_pss" -v c="${cpu%% *}" 'BEGIN {if (c > 0) print p/(c/100)}')
+    dembox_cpu=$(awk -v p="$dembox_pss" -v c="${cpu%% *}" -v np="$NP" 'BEGIN {if (c > 0) print p/(c/100*np)}')
   fi
 done
 for r in "${rows[@]}"; do
   IFS='|' read -r code model par secs rss cpu <<<"$r"
   awk -v code="$code" -v model="$model" -v dim="$DIM" -v n="$N" -v s="$STEPS" \
       -v par="$par" -v t="$secs" -v d="$dembox_pss" -v dc="$dembox_cpu" \
-      -v rss="$rss" -v cpu="${cpu:--}" 'BEGIN {
+      -v rss="$rss" -v cpu="${cpu:--}" -v np="$NP" 'BEGIN {
     pss = n * s / t
     ratio = d != "" ? sprintf("%.2f", d / pss) : "-"
     split(cpu, c, " ")
-    pcpu = c[1] > 0 ? sprintf("%.3g", pss / (c[1] / 100)) : "-"
-    rcpu = (c[1] > 0 && dc != "") ? sprintf("%.2f", dc / (pss / (c[1] / 100))) : "-"
+    cpus = c[1] / 100 * np   # CPU-seconds per second of the loop, all ranks/threads
+    pcpu = c[1] > 0 ? sprintf("%.3g", pss / cpus) : "-"
+    rcpu = (c[1] > 0 && dc != "") ? sprintf("%.2f", dc / (pss / cpus)) : "-"
     printf "| %s | %s | %dD | %d | %d | %s | %.2f | %.3g | %s | %s | %s | %s | %s |\n",
            code, model, dim, n, s, par, t, pss, ratio, cpu, pcpu, rcpu, rss }'
 done

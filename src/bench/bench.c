@@ -484,6 +484,7 @@ int dem_bench_run(const struct dem_bench_options *o,
     r->cpu_seconds = cpu_seconds() - c0;
     r->timers = s.timers;
     r->nbuild = s.nbuild - nbuild0;
+    r->pairs_per_particle = (double)s.pairs.cur.n / (double)s.p.n;
     if (!rc) {
         sample_now(&s, &smp);
         r->z_end = smp.coordination;
@@ -537,6 +538,9 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++)
         fprintf(f, "  %-12s %9.3f s %6.1f %%\n", rows[k].name, rows[k].t,
                 r->seconds > 0 ? 100.0 * rows[k].t / r->seconds : 0.0);
+    fprintf(f, "neighbour list: %.2f pairs per particle at the end, %.2f "
+               "of them in contact (Z/2)\n",
+            r->pairs_per_particle, 0.5 * r->z_end);
     fprintf(f, "coordination Z: %.2f -> %.2f; mean wall stress: %.4g -> "
                "%.4g %s\n",
             r->z_start, r->z_end, r->p_start, r->p_end, unit);

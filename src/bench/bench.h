@@ -69,6 +69,7 @@ struct dem_bench_result {
                                   during the timed loop */
     struct dem_timers timers;  /* s; per phase of the timed loop */
     long nbuild;               /* neighbour-list builds in the timed loop */
+    double pairs_per_particle; /* listed pairs / N at the end */
     double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N */
     double p_start, p_end;     /* Pa (2D: N/m); mean wall stress */
     double strain;             /* axial strain applied over the run */
