@@ -212,6 +212,21 @@ static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
                              "%d (--n)",
                              path, n, cfg->particles.count);
     }
+    /* a 2D packing has every z = 0; a 3D box is thicker than a particle */
+    double dmax = 0.0, zdev = 0.0, zmin = d.z[0], zmax = d.z[0];
+    for (int k = 0; k < d.n; k++) {
+        dmax = d.diameter[k] > dmax ? d.diameter[k] : dmax;
+        zdev = fabs(d.z[k]) > zdev ? fabs(d.z[k]) : zdev;
+        zmin = d.z[k] < zmin ? d.z[k] : zmin;
+        zmax = d.z[k] > zmax ? d.z[k] : zmax;
+    }
+    if ((cfg->dim == 2 && zdev > 1e-9 * dmax) ||
+        (cfg->dim == 3 && zmax - zmin < dmax)) {
+        dem_lammps_data_free(&d);
+        return dem_error_set(err, DEM_ECONFIG,
+                             "%s: not a %dD packing (see --dim)", path,
+                             cfg->dim);
+    }
     double lo[3], hi[3];
     for (int a = 0; a < 3; a++) {
         lo[a] = d.lo[a];
@@ -407,9 +422,17 @@ int dem_bench_run(const struct dem_bench_options *o,
     const int dim = o->dim ? o->dim : 3;
     if (dim != 2 && dim != 3)
         return dem_error_set(err, DEM_EUSAGE, "bench: --dim must be 2 or 3");
-    const int n = o->n > 0 ? o->n
-                           : (dim == 3 ? DEM_BENCH_DEFAULT_N3
-                                       : DEM_BENCH_DEFAULT_N2);
+    int n = o->n > 0 ? o->n
+                     : (dim == 3 ? DEM_BENCH_DEFAULT_N3 : DEM_BENCH_DEFAULT_N2);
+    if (o->data && o->n <= 0) {
+        /* --data without --n: the file says how many */
+        struct dem_lammps_data d;
+        int rc = dem_lammps_data_read(&d, o->data, err);
+        if (rc)
+            return rc;
+        n = d.n;
+        dem_lammps_data_free(&d);
+    }
     const long steps = o->steps > 0 ? o->steps : DEM_BENCH_DEFAULT_STEPS;
     if (o->threads > 0)
         omp_set_num_threads(o->threads);
