@@ -2,10 +2,12 @@
  * libdembox; this file turns its status codes into exit statuses and
  * one-line messages on stderr. */
 #include <signal.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench/bench.h"
 #include "dembox.h"
 #include "io/config.h"
 #include "io/examples.h"
@@ -33,6 +35,8 @@ static const char *const usage_main =
     "  analyze OUTDIR      material parameters of a finished run -> "
     "OUTDIR/summary.json\n"
     "  plot OUTDIR         redraw the pictures of a run in OUTDIR/plots\n"
+    "  bench [--dim 2|3] [--n N] [--steps S] [--threads T]\n"
+    "                      time the engine on the peers' workload\n"
     "  examples            list the built-in examples\n"
     "  example NAME        print a built-in example as a config file\n"
     "  help [COMMAND|config]  help on a command, or every config key\n"
@@ -125,6 +129,39 @@ static const char *const usage_sweep =
     "and the strain accumulated per cycle of cyclic runs. DIR/plots/ has\n"
     "the pictures of what the sweep varies. Details: docs/sweep.md.\n";
 
+static const char *const usage_bench =
+    "usage: dembox bench [--dim 2|3] [--n N] [--steps S] [--threads T]\n"
+    "                    [--data FILE] [--cache-dir DIR] [--no-cache] "
+    "[--quiet]\n"
+    "\n"
+    "Time S steps of a dense, relaxed packing of N particles in a box of\n"
+    "walls, compressed slowly along z (2D: y) by one strain-controlled wall\n"
+    "while the lateral walls hold the initial stress: the workload of the\n"
+    "LAMMPS and LIGGGHTS comparison (bench/peers.sh, docs/performance.md).\n"
+    "3D: seed 000 material (k = 5000 N/m, radii 5 +- 0.7 mm), dt = 2e-5 s;\n"
+    "2D: radii U[0.5, 1.5] mm, k = 1e5 N/m, dt = 2e-7 s.\n"
+    "\n"
+    "  --dim 2|3         dimension (default 3)\n"
+    "  --n N             particles (default 3375 in 3D, 1950 in 2D)\n"
+    "  --steps S         timed steps (default 20000)\n"
+    "  --threads T       OpenMP threads (default: OMP_NUM_THREADS or all "
+    "cores)\n"
+    "  --data FILE       start from this LAMMPS data file (atom_style "
+    "sphere;\n"
+    "                    N defaults to its atom count); default:\n"
+    "                    $DEMBOX_BENCH_DATA/packDd_N.data if it exists, else "
+    "a\n"
+    "                    random packing\n"
+    "  --cache-dir DIR   where prepared packings are kept (default\n"
+    "                    $XDG_CACHE_HOME/dembox or ~/.cache/dembox)\n"
+    "  --no-cache        prepare the packing again (and overwrite the cache)\n"
+    "  --quiet           no progress display\n"
+    "\n"
+    "The packing is relaxed once (not timed) and cached; only the loop is\n"
+    "timed. The summary gives the time per phase (neighbours, forces,\n"
+    "integration, walls), the coordination and the memory per particle;\n"
+    "the last line is particle_steps_per_second=<number>.\n";
+
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";
 static const char *const usage_example =
@@ -135,6 +172,22 @@ static int fail(const char *msg)
 {
     fprintf(stderr, "dembox: %s\n", msg);
     return 1;
+}
+
+/* Option opt of command cmd: the whole string v as an integer in
+ * [lo, hi] into *out (0), or one line on stderr and 1. */
+static int parse_int(const char *cmd, const char *opt, const char *v, long lo,
+                     long hi, long *out)
+{
+    char *end;
+    long n = v ? strtol(v, &end, 10) : 0;
+    if (!v || !*v || *end || n < lo || n > hi) {
+        fprintf(stderr, "dembox: %s: %s needs an integer in [%ld, %ld]\n",
+                cmd, opt, lo, hi);
+        return 1;
+    }
+    *out = n;
+    return 0;
 }
 
 /* The file name without folders and extension. */
@@ -221,21 +274,14 @@ static int cmd_run(int argc, char **argv)
                 return fail("run: too many --set options");
             sets[nsets++] = a + 6;
         } else if (!strcmp(a, "--threads")) {
-            char *end;
-            if (++k >= argc)
-                return fail("run: --threads needs a number");
-            long t = strtol(argv[k], &end, 10);
-            if (*end || t < 1 || t > 4096)
-                return fail("run: --threads must be a positive integer");
+            long t;
+            if (parse_int("run", a, k + 1 < argc ? argv[++k] : 0, 1, 4096, &t))
+                return 1;
             opt.threads = (int)t;
         } else if (!strcmp(a, "--max-steps")) {
-            char *end;
-            if (++k >= argc)
-                return fail("run: --max-steps needs a number");
-            long m = strtol(argv[k], &end, 10);
-            if (*end || m < 1)
-                return fail("run: --max-steps must be a positive integer");
-            opt.max_steps = m;
+            if (parse_int("run", a, k + 1 < argc ? argv[++k] : 0, 1, LONG_MAX,
+                          &opt.max_steps))
+                return 1;
         } else if (!strcmp(a, "--resume")) {
             if (++k >= argc)
                 return fail("run: --resume needs an output folder");
@@ -287,18 +333,6 @@ static int cmd_run(int argc, char **argv)
     return run_with_signals(&cfg, 0, &opt);
 }
 
-static int parse_count(const char *opt, const char *v, long max, long *out)
-{
-    char *end;
-    long n = strtol(v, &end, 10);
-    if (!*v || *end || n < 1 || n > max) {
-        fprintf(stderr, "dembox: sweep: %s must be a positive integer\n", opt);
-        return 1;
-    }
-    *out = n;
-    return 0;
-}
-
 static int cmd_sweep(int argc, char **argv)
 {
     static struct dem_sweep_grid grid;
@@ -327,13 +361,13 @@ static int cmd_sweep(int argc, char **argv)
             else
                 sets[o.nsets++] = argv[++k];
         } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
-            rc = more ? parse_count(a, argv[++k], 1024, &v) : fail("sweep: --jobs needs a number");
+            rc = parse_int("sweep", a, more ? argv[++k] : 0, 1, 1024, &v);
             o.jobs = (int)v;
         } else if (!strcmp(a, "--threads")) {
-            rc = more ? parse_count(a, argv[++k], 4096, &v) : fail("sweep: --threads needs a number");
+            rc = parse_int("sweep", a, more ? argv[++k] : 0, 1, 4096, &v);
             o.threads = (int)v;
         } else if (!strcmp(a, "--max-steps")) {
-            rc = more ? parse_count(a, argv[++k], 1L << 60, &v) : fail("sweep: --max-steps needs a number");
+            rc = parse_int("sweep", a, more ? argv[++k] : 0, 1, LONG_MAX, &v);
             o.max_steps = v;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             o.quiet = 1;
@@ -391,6 +425,65 @@ static int cmd_analyze(int argc, char **argv)
     return 0;
 }
 
+static int cmd_bench(int argc, char **argv)
+{
+    struct dem_bench_options o;
+    memset(&o, 0, sizeof o);
+    o.dim = 3;
+    for (int k = 0; k < argc; k++) {
+        const char *a = argv[k];
+        long v = 0;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fputs(usage_bench, stdout);
+            return 0;
+        } else if (!strcmp(a, "--no-cache")) {
+            o.no_cache = 1;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o.quiet = 1;
+        } else if (!strcmp(a, "--dim") || !strcmp(a, "--n") ||
+                   !strcmp(a, "--steps") || !strcmp(a, "--threads") ||
+                   !strcmp(a, "--data") || !strcmp(a, "--cache-dir")) {
+            if (++k >= argc) {
+                fprintf(stderr, "dembox: bench: %s needs a value\n", a);
+                return 1;
+            }
+            const char *val = argv[k];
+            if (!strcmp(a, "--dim")) {
+                if (parse_int("bench", a, val, 2, 3, &v))
+                    return 1;
+                o.dim = (int)v;
+            } else if (!strcmp(a, "--n")) {
+                if (parse_int("bench", a, val, 2, 100000000L, &v))
+                    return 1;
+                o.n = (int)v;
+            } else if (!strcmp(a, "--steps")) {
+                if (parse_int("bench", a, val, 1, 1000000000L, &o.steps))
+                    return 1;
+            } else if (!strcmp(a, "--threads")) {
+                if (parse_int("bench", a, val, 1, 4096, &v))
+                    return 1;
+                o.threads = (int)v;
+            } else if (!strcmp(a, "--data")) {
+                o.data = val;
+            } else {
+                o.cache_dir = val;
+            }
+        } else {
+            fprintf(stderr,
+                    "dembox: bench: unknown argument %s (see dembox help "
+                    "bench)\n",
+                    a);
+            return 1;
+        }
+    }
+    struct dem_bench_result r;
+    struct dem_error err = {0, ""};
+    if (dem_bench_run(&o, &r, &err))
+        return fail(err.msg);
+    dem_bench_print(stdout, &r);
+    return 0;
+}
+
 static int cmd_examples(void)
 {
     for (int k = 0; k < dem_n_examples; k++) {
@@ -433,6 +526,8 @@ static int cmd_help(int argc, char **argv)
         fputs(usage_analyze, stdout);
     else if (!strcmp(c, "sweep"))
         fputs(usage_sweep, stdout);
+    else if (!strcmp(c, "bench"))
+        fputs(usage_bench, stdout);
     else if (!strcmp(c, "examples"))
         fputs(usage_examples, stdout);
     else if (!strcmp(c, "plot"))
@@ -463,6 +558,8 @@ int main(int argc, char **argv)
         return cmd_analyze(argc - 2, argv + 2);
     if (!strcmp(c, "sweep"))
         return cmd_sweep(argc - 2, argv + 2);
+    if (!strcmp(c, "bench"))
+        return cmd_bench(argc - 2, argv + 2);
     if (!strcmp(c, "examples"))
         return cmd_examples();
     if (!strcmp(c, "plot"))

@@ -1,0 +1,575 @@
+/* The benchmark: packing preparation and cache, the timed run, the
+ * summary (see bench.h for the workload). */
+#include "bench/bench.h"
+
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "io/config.h"
+#include "io/fsutil.h"
+#include "io/lammps_data.h"
+#include "measure/measure.h"
+#include "protocol/stage.h"
+
+/* Bump when the preparation changes, so old caches are not reused. */
+#define CACHE_VERSION 1
+
+/* Workload constants of the two dimensions (the peers' values). */
+struct workload {
+    const char *config;  /* config text with %d for the particle count */
+    double p0;           /* Pa (2D: N/m); preparation pressure */
+    double gamma_b_prep; /* kg/s; background damping while preparing */
+    double gamma_w_prep; /* kg/s; wall viscosity while preparing */
+    double prep_tol;     /* preparation ends at E_kin/E_pot below this */
+    double prep_time;    /* s; preparation gives up after this */
+    double rate;         /* 1/s; axial strain rate of the timed run */
+};
+
+static const struct workload work3 = {
+    "dimension = 3; seed = 1; time_step = 2.0e-5;\n"
+    "particles = { count = %d; density = 2000.0;\n"
+    "  radius = { distribution = \"gaussian\"; mean = 5.0e-3; std = 0.7e-3;\n"
+    "             min = 3.0e-3; };\n"
+    "  placement = \"random\"; volume_fraction = 0.3; };\n"
+    "contact = { normal = \"linear\"; k = 5000.0; gamma_n = 0.05;\n"
+    "  kt = 1000.0; gamma_t = 0.005; mu = 0.5; wall_mu = 0.0; };\n"
+    "damping = { gamma_b = 0.001; gamma_br = 0.0; };\n"
+    "walls = { mass = 2.0; gamma = 200.0; };\n"
+    "stages = ( { type = \"hold\"; duration = 1.0; } );\n",
+    800.0, 0.2, 200.0, 1e-2, 0.6, 0.05};
+
+static const struct workload work2 = {
+    "dimension = 2; seed = 1; time_step = 2.0e-7;\n"
+    "particles = { count = %d; density = 2000.0; mass_model = \"sphere\";\n"
+    "  radius = { distribution = \"uniform\"; min = 0.5e-3; max = 1.5e-3; };\n"
+    "  placement = \"random\"; volume_fraction = 0.4; };\n"
+    "contact = { normal = \"linear\"; k = 1.0e5; gamma_n = 0.0211;\n"
+    "  kt = 2.0e4; gamma_t = 0.00211; mu = 0.5; wall_mu = 0.0; };\n"
+    "damping = { gamma_b = 0.0004; gamma_br = 0.0; };\n"
+    "walls = { mass = 0.01; gamma = 2.0; max_speed = 0.5; };\n"
+    "stages = ( { type = \"hold\"; duration = 1.0; } );\n",
+    160.0, 0.02, 20.0, 1e-2, 0.02, 2.5};
+
+static double wall_clock(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Resident set now, bytes (Linux /proc/self/statm; 0 if unknown). */
+static double rss_now(void)
+{
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (!f)
+        return 0.0;
+    long size = 0, res = 0;
+    int ok = fscanf(f, "%ld %ld", &size, &res) == 2;
+    fclose(f);
+    return ok ? (double)res * (double)sysconf(_SC_PAGESIZE) : 0.0;
+}
+
+/* CPU seconds of the process so far, all threads, user and system. */
+static double cpu_seconds(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0)
+        return 0.0;
+    return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
+           (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
+}
+
+static double rss_peak(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0)
+        return 0.0;
+    return 1024.0 * (double)ru.ru_maxrss; /* Linux: kilobytes */
+}
+
+static int file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+static int make_config(struct dem_config *c, const struct workload *w, int n,
+                       struct dem_error *err)
+{
+    char text[2048];
+    snprintf(text, sizeof text, w->config, n);
+    return dem_config_parse(c, text, "bench workload", 0, 0, err);
+}
+
+/* The cache folder (created). */
+static int cache_folder(const struct dem_bench_options *o, char *out,
+                        size_t len, struct dem_error *err)
+{
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    int k;
+    if (o->cache_dir)
+        k = snprintf(out, len, "%s", o->cache_dir);
+    else if (xdg && *xdg)
+        k = snprintf(out, len, "%s/dembox", xdg);
+    else if (home && *home)
+        k = snprintf(out, len, "%s/.cache/dembox", home);
+    else
+        return dem_error_set(err, DEM_EIO,
+                             "bench: no cache folder: set XDG_CACHE_HOME or "
+                             "HOME");
+    if (k < 0 || (size_t)k >= len)
+        return dem_error_set(err, DEM_EIO, "bench: cache folder name too long");
+    return dem_mkdir_p(out, err);
+}
+
+/* The cache key: dimension, N, and the source (data file name and size,
+ * or the seed of a random packing). */
+static int cache_path(const struct dem_bench_options *o, int dim, int n,
+                      const char *data, char *out, size_t len,
+                      struct dem_error *err)
+{
+    char dir[DEM_PATH_MAX], tag[256];
+    int rc = cache_folder(o, dir, sizeof dir, err);
+    if (rc)
+        return rc;
+    if (data) {
+        struct stat st;
+        if (stat(data, &st) != 0)
+            return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", data,
+                                 strerror(errno));
+        const char *base = strrchr(data, '/');
+        base = base ? base + 1 : data;
+        char stem[128];
+        snprintf(stem, sizeof stem, "%.100s", base);
+        char *dot = strrchr(stem, '.');
+        if (dot && dot != stem)
+            *dot = '\0';
+        snprintf(tag, sizeof tag, "from-%s-%lld", stem,
+                 (long long)st.st_size);
+    } else {
+        snprintf(tag, sizeof tag, "seed1");
+    }
+    int k = snprintf(out, len, "%s/bench-%dd-n%d-%s-v%d.data", dir, dim, n,
+                     tag, CACHE_VERSION);
+    if (k < 0 || (size_t)k >= len)
+        return dem_error_set(err, DEM_EIO, "bench: cache path too long");
+    return DEM_OK;
+}
+
+/* A simulation of the particles of a data file with walls at lo/hi. */
+static int sim_from_data(struct dem_sim *s, const struct dem_config *cfg,
+                         const struct dem_lammps_data *d, const double lo[3],
+                         const double hi[3], struct dem_error *err)
+{
+    int rc = dem_sim_create_empty(s, cfg, d->n, lo, hi, err);
+    if (rc)
+        return rc;
+    for (int k = 0; k < d->n; k++) {
+        int i = dem_particles_add(&s->p, d->x[k], d->y[k], d->z[k],
+                                  0.5 * d->diameter[k], d->density[k],
+                                  DEM_MASS_SPHERE, cfg->dim);
+        if (i < 0) {
+            dem_sim_destroy(s);
+            return dem_error_set(err, DEM_EINTERNAL, "bench: particle %d", k);
+        }
+        s->p.vx[i] = d->vx[k];
+        s->p.vy[i] = d->vy[k];
+        s->p.vz[i] = cfg->dim == 2 ? 0.0 : d->vz[k];
+        s->p.wz[i] = d->wz[k];
+        if (cfg->dim == 3) {
+            s->p.wx[i] = d->wx[k];
+            s->p.wy[i] = d->wy[k];
+        }
+    }
+    rc = dem_sim_ready(s, err);
+    if (rc)
+        dem_sim_destroy(s);
+    return rc;
+}
+
+/* The peers' periodic packing in walls: the box faces, each moved outward
+ * until no particle overlaps it (positions are not changed). */
+static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
+                              const char *path, struct dem_error *err)
+{
+    struct dem_lammps_data d;
+    int rc = dem_lammps_data_read(&d, path, err);
+    if (rc)
+        return rc;
+    if (d.n != cfg->particles.count) {
+        int n = d.n;
+        dem_lammps_data_free(&d);
+        return dem_error_set(err, DEM_ECONFIG,
+                             "%s: holds %d particles, the benchmark asks for "
+                             "%d (--n)",
+                             path, n, cfg->particles.count);
+    }
+    /* a 2D packing has every z = 0; a 3D box is thicker than a particle */
+    double dmax = 0.0, zdev = 0.0, zmin = d.z[0], zmax = d.z[0];
+    for (int k = 0; k < d.n; k++) {
+        dmax = d.diameter[k] > dmax ? d.diameter[k] : dmax;
+        zdev = fabs(d.z[k]) > zdev ? fabs(d.z[k]) : zdev;
+        zmin = d.z[k] < zmin ? d.z[k] : zmin;
+        zmax = d.z[k] > zmax ? d.z[k] : zmax;
+    }
+    if ((cfg->dim == 2 && zdev > 1e-9 * dmax) ||
+        (cfg->dim == 3 && zmax - zmin < dmax)) {
+        dem_lammps_data_free(&d);
+        return dem_error_set(err, DEM_ECONFIG,
+                             "%s: not a %dD packing (see --dim)", path,
+                             cfg->dim);
+    }
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        lo[a] = d.lo[a];
+        hi[a] = d.hi[a];
+    }
+    for (int k = 0; k < d.n; k++) {
+        const double r = 0.5 * d.diameter[k], c[3] = {d.x[k], d.y[k], d.z[k]};
+        for (int a = 0; a < cfg->dim; a++) {
+            if (c[a] - r < lo[a])
+                lo[a] = c[a] - r;
+            if (c[a] + r > hi[a])
+                hi[a] = c[a] + r;
+        }
+    }
+    rc = sim_from_data(s, cfg, &d, lo, hi, err);
+    dem_lammps_data_free(&d);
+    return rc;
+}
+
+/* Progress of the preparation on stderr: one refreshed line on a
+ * terminal, else a line every 10 s of wall time. */
+static void progress(const struct dem_bench_options *o, const char *what,
+                     const struct dem_sample *smp, double p0, int done,
+                     double *last)
+{
+    if (o->quiet)
+        return;
+    const int tty = isatty(STDERR_FILENO);
+    const double now = wall_clock();
+    if (!done && !tty && now - *last < 10.0)
+        return;
+    *last = now;
+    double smin = smp->sigma_wall[0], smax = smp->sigma_wall[0];
+    for (int w = 1; w < 2 * (smp->L[2] > 0 ? 3 : 2); w++) {
+        smin = smp->sigma_wall[w] < smin ? smp->sigma_wall[w] : smin;
+        smax = smp->sigma_wall[w] > smax ? smp->sigma_wall[w] : smax;
+    }
+    fprintf(stderr,
+            "%sbench: %s: t = %.4g s  wall stress/p0 in [%.3f, %.3f]  "
+            "E_kin/E_pot = %.2g  Z = %.2f%s",
+            tty ? "\r\033[K" : "", what, smp->t, smin / p0, smax / p0,
+            smp->e_pot > 0 ? (smp->e_kin + smp->e_rot) / smp->e_pot : 0.0,
+            smp->coordination, done || !tty ? "\n" : "");
+}
+
+/* Frictionless isotropic relaxation at w->p0 with strong background
+ * damping: the isotropic stage's begin and done, run here without the
+ * outputs of a run. */
+static int relax(struct dem_sim *s, const struct workload *w,
+                 const struct dem_bench_options *o, struct dem_error *err)
+{
+    const double gamma_b = s->cfg.damping.gamma_b;
+    const double mu_s = s->cp.mu_s, mu_d = s->cp.mu_d;
+    const double gamma_w = s->cfg.walls.gamma;
+    s->cfg.damping.gamma_b = w->gamma_b_prep;
+    s->cfg.walls.gamma = w->gamma_w_prep;
+    dem_sim_set_friction(s, 0.0, 0.0);
+    struct dem_stage_config c;
+    memset(&c, 0, sizeof c);
+    c.type = DEM_STAGE_ISOTROPIC;
+    c.pressure = w->p0;
+    c.tolerance = w->prep_tol;
+    c.max_time = w->prep_time;
+    c.mu = 0.0;
+    const struct dem_stage_ops *ops = dem_stage_lookup(DEM_STAGE_ISOTROPIC);
+    struct dem_stage_state st = {&c, 0, s->t, s->t, 0, 0};
+    int rc = ops->begin(s, &st, err);
+    if (rc)
+        return rc;
+    double L0[3], V0;
+    dem_sim_box(s, L0, &V0);
+    const int every = 200;
+    double last = wall_clock();
+    struct dem_sample smp;
+    memset(&smp, 0, sizeof smp);
+    for (long k = 1;; k++) {
+        const int sample = k % every == 0;
+        if (sample)
+            s->measure = 1;
+        rc = dem_sim_step(s, err);
+        if (rc)
+            return rc;
+        if (!sample)
+            continue;
+        dem_measure(s, L0, V0, 0, &smp);
+        if (!isfinite(smp.e_kin) || !isfinite(smp.p) ||
+            smp.max_overlap > 0.5)
+            return dem_error_set(err, DEM_EUNSTABLE,
+                                 "bench: preparation unstable at t = %.4g s",
+                                 s->t);
+        progress(o, "preparing", &smp, w->p0, 0, &last);
+        if (ops->done(s, &st, &smp))
+            break;
+        if (s->t > st.t_end) {
+            if (!o->quiet)
+                fprintf(stderr,
+                        "bench: warning: preparation stopped at max time "
+                        "%.3g s before relaxing\n",
+                        w->prep_time);
+            break;
+        }
+    }
+    progress(o, "prepared", &smp, w->p0, 1, &last);
+    s->cfg.damping.gamma_b = gamma_b;
+    s->cfg.walls.gamma = gamma_w;
+    dem_sim_set_friction(s, mu_s, mu_d);
+    /* the walls stop; the timed run sets its own modes */
+    for (int k = 0; k < s->nwall; k++) {
+        dem_wall_set_fixed(&s->wall[k]);
+        s->wall[k].vel = 0.0;
+    }
+    return DEM_OK;
+}
+
+static int write_cache(const struct dem_sim *s, const char *path,
+                       const char *source, struct dem_error *err)
+{
+    double lo[3], hi[3], rmax = 0.0;
+    for (int i = 0; i < s->p.n; i++)
+        rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = a < s->dim ? s->wall[2 * a].pos : -rmax;
+        hi[a] = a < s->dim ? s->wall[2 * a + 1].pos : rmax;
+    }
+    char comment[DEM_PATH_MAX + 128];
+    snprintf(comment, sizeof comment,
+             "dembox bench packing (walls = box), %dD, from %s, cache v%d",
+             s->dim, source, CACHE_VERSION);
+    return dem_lammps_data_write(path, &s->p, lo, hi, comment, err);
+}
+
+/* Build the packing and write it to the cache. */
+static int prepare(const struct dem_config *cfg, const struct workload *w,
+                   const char *data, const char *cache,
+                   const struct dem_bench_options *o, struct dem_error *err)
+{
+    struct dem_sim s;
+    int rc = data ? sim_from_peer_file(&s, cfg, data, err)
+                  : dem_sim_create(&s, cfg, err);
+    if (rc)
+        return rc;
+    rc = relax(&s, w, o, err);
+    if (!rc)
+        rc = write_cache(&s, cache, data ? data : "random placement, seed 1",
+                         err);
+    dem_sim_destroy(&s);
+    return rc;
+}
+
+static int load_cache(struct dem_sim *s, const struct dem_config *cfg,
+                      const char *path, struct dem_error *err)
+{
+    struct dem_lammps_data d;
+    int rc = dem_lammps_data_read(&d, path, err);
+    if (rc)
+        return rc;
+    if (d.n != cfg->particles.count) {
+        dem_lammps_data_free(&d);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: holds %d particles, expected %d; remove it",
+                             path, d.n, cfg->particles.count);
+    }
+    rc = sim_from_data(s, cfg, &d, d.lo, d.hi, err);
+    dem_lammps_data_free(&d);
+    return rc;
+}
+
+/* The data file to start from, or NULL. */
+static const char *find_data(const struct dem_bench_options *o, int dim, int n,
+                             char *buf, size_t len)
+{
+    if (o->data)
+        return o->data;
+    const char *dir = getenv("DEMBOX_BENCH_DATA");
+    if (!dir || !*dir)
+        return 0;
+    snprintf(buf, len, "%s/pack%dd_%d.data", dir, dim, n);
+    return file_exists(buf) ? buf : 0;
+}
+
+static void sample_now(const struct dem_sim *s, struct dem_sample *smp)
+{
+    double L0[3], V0;
+    dem_sim_box(s, L0, &V0);
+    dem_measure(s, L0, V0, 0, smp);
+}
+
+int dem_bench_run(const struct dem_bench_options *o,
+                  struct dem_bench_result *r, struct dem_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->rss_start = rss_now();
+    const int dim = o->dim ? o->dim : 3;
+    if (dim != 2 && dim != 3)
+        return dem_error_set(err, DEM_EUSAGE, "bench: --dim must be 2 or 3");
+    int n = o->n > 0 ? o->n
+                     : (dim == 3 ? DEM_BENCH_DEFAULT_N3 : DEM_BENCH_DEFAULT_N2);
+    if (o->data && o->n <= 0) {
+        /* --data without --n: the file says how many */
+        struct dem_lammps_data d;
+        int rc = dem_lammps_data_read(&d, o->data, err);
+        if (rc)
+            return rc;
+        n = d.n;
+        dem_lammps_data_free(&d);
+    }
+    const long steps = o->steps > 0 ? o->steps : DEM_BENCH_DEFAULT_STEPS;
+    if (o->threads > 0)
+        omp_set_num_threads(o->threads);
+    const struct workload *w = dim == 3 ? &work3 : &work2;
+    struct dem_config cfg;
+    int rc = make_config(&cfg, w, n, err);
+    if (rc)
+        return rc;
+
+    char databuf[DEM_PATH_MAX];
+    const char *data = find_data(o, dim, n, databuf, sizeof databuf);
+    if (data && !file_exists(data))
+        return dem_error_set(err, DEM_EIO, "%s: no such file", data);
+    rc = cache_path(o, dim, n, data, r->cache, sizeof r->cache, err);
+    if (rc)
+        return rc;
+    snprintf(r->source, sizeof r->source, "%s",
+             data ? data : "random placement, seed 1");
+    r->cache_hit = !o->no_cache && file_exists(r->cache);
+    if (!r->cache_hit) {
+        double t0 = wall_clock();
+        rc = prepare(&cfg, w, data, r->cache, o, err);
+        if (rc)
+            return rc;
+        r->prep_seconds = wall_clock() - t0;
+    }
+
+    struct dem_sim s;
+    rc = load_cache(&s, &cfg, r->cache, err);
+    if (rc)
+        return rc;
+    struct dem_sample smp;
+    sample_now(&s, &smp); /* dem_sim_ready measured its force pass */
+    r->z_start = smp.coordination;
+    r->p_start = smp.p;
+
+    /* the timed stage: the max-side wall of the last axis closes at the
+     * peers' strain rate, the lateral walls hold the initial stress */
+    struct dem_stage_config c;
+    memset(&c, 0, sizeof c);
+    c.type = DEM_STAGE_COMPRESS;
+    c.axis = dim - 1;
+    c.duration = (double)steps * s.dt;
+    c.strain = w->rate * c.duration;
+    c.profile = DEM_PROFILE_LINEAR;
+    c.pressure = smp.p > 0 ? smp.p : w->p0;
+    c.mu = -1.0;
+    const struct dem_stage_ops *ops = dem_stage_lookup(DEM_STAGE_COMPRESS);
+    struct dem_stage_state st = {&c, 0, s.t, s.t, 0, 0};
+    rc = ops->begin(&s, &st, err);
+    if (rc) {
+        dem_sim_destroy(&s);
+        return rc;
+    }
+    r->strain = c.strain;
+    r->dim = dim;
+    r->n = s.p.n;
+    r->steps = steps;
+    r->threads = omp_get_max_threads();
+
+    memset(&s.timers, 0, sizeof s.timers);
+    s.timing = 1;
+    const long nbuild0 = s.nbuild;
+    const double c0 = cpu_seconds();
+    const double t0 = wall_clock();
+    for (long k = 0; k < steps && !rc; k++) {
+        if (k == steps - 1)
+            s.measure = 1;
+        rc = dem_sim_step(&s, err);
+    }
+    r->seconds = wall_clock() - t0;
+    r->cpu_seconds = cpu_seconds() - c0;
+    r->timers = s.timers;
+    r->nbuild = s.nbuild - nbuild0;
+    r->pairs_per_particle = (double)s.pairs.cur.n / (double)s.p.n;
+    if (!rc) {
+        sample_now(&s, &smp);
+        r->z_end = smp.coordination;
+        r->p_end = smp.p;
+        if (!isfinite(smp.e_kin) || !isfinite(smp.p))
+            rc = dem_error_set(err, DEM_EUNSTABLE,
+                               "bench: the timed run became unstable");
+    }
+    r->rss_end = rss_now();
+    r->rss_peak = rss_peak();
+    dem_sim_destroy(&s);
+    if (rc)
+        return rc;
+    r->bytes_per_particle = (r->rss_end - r->rss_start) / (double)r->n;
+    r->particle_steps_per_second =
+        r->seconds > 0 ? (double)r->n * (double)steps / r->seconds : 0.0;
+    return DEM_OK;
+}
+
+void dem_bench_print(FILE *f, const struct dem_bench_result *r)
+{
+    const double ps = (double)r->n * (double)r->steps;
+    const struct dem_timers *T = &r->timers;
+    const double phases = T->neighbor + T->force + T->integrate + T->walls;
+    const double other = r->seconds > phases ? r->seconds - phases : 0.0;
+    const char *unit = r->dim == 2 ? "N/m" : "Pa";
+    fprintf(f, "dembox bench: %dD, N = %d, %ld steps, %d thread%s\n", r->dim,
+            r->n, r->steps, r->threads, r->threads == 1 ? "" : "s");
+    fprintf(f, "packing: %s\n", r->source);
+    fprintf(f, "cache:   %s (%s)\n", r->cache,
+            r->cache_hit ? "reused"
+                         : "prepared now");
+    if (!r->cache_hit)
+        fprintf(f, "preparation: %.2f s (not timed)\n", r->prep_seconds);
+    fprintf(f, "loop: %.3f s, %.2f ns per particle-step, %ld neighbour "
+               "builds, axial strain %.3g\n",
+            r->seconds, ps > 0 ? 1e9 * r->seconds / ps : 0.0, r->nbuild,
+            r->strain);
+    /* below 100 % the machine was busy with something else (or threads
+     * waited): the time is not the engine's alone */
+    fprintf(f, "cpu: %.3f s, %.1f %% CPU use per thread\n", r->cpu_seconds,
+            r->seconds > 0 && r->threads > 0
+                ? 100.0 * r->cpu_seconds / (r->seconds * r->threads)
+                : 0.0);
+    struct {
+        const char *name;
+        double t;
+    } rows[] = {{"neighbours", T->neighbor}, {"forces", T->force},
+                {"integration", T->integrate}, {"walls", T->walls},
+                {"other", other}};
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++)
+        fprintf(f, "  %-12s %9.3f s %6.1f %%\n", rows[k].name, rows[k].t,
+                r->seconds > 0 ? 100.0 * rows[k].t / r->seconds : 0.0);
+    fprintf(f, "neighbour list: %.2f pairs per particle at the end, %.2f "
+               "of them in contact (Z/2)\n",
+            r->pairs_per_particle, 0.5 * r->z_end);
+    fprintf(f, "coordination Z: %.2f -> %.2f; mean wall stress: %.4g -> "
+               "%.4g %s\n",
+            r->z_start, r->z_end, r->p_start, r->p_end, unit);
+    fprintf(f, "memory: peak RSS %.1f MB; %.0f bytes per particle (RSS "
+               "after the run minus RSS before the benchmark)\n",
+            r->rss_peak / 1048576.0, r->bytes_per_particle);
+    fprintf(f, "particle_steps_per_second=%.6g\n",
+            r->particle_steps_per_second);
+}

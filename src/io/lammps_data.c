@@ -1,0 +1,372 @@
+/* LAMMPS data files, atom_style sphere (see lammps_data.h for the format). */
+#include "io/lammps_data.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/outfile.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define MAX_FIELDS 16
+
+/* State of one read, so every error path releases everything at once. */
+struct reader {
+    const char *path;
+    FILE *f;
+    char *line;        /* getline buffer */
+    size_t cap;
+    int lineno;        /* line number of line */
+    struct dem_lammps_data *d;
+    struct dem_error *err;
+};
+
+/* Cut the '#' comment, split at blanks; returns the number of fields
+ * (at most max are stored). */
+static int split(char *s, char **fields, int max)
+{
+    char *hash = strchr(s, '#');
+    if (hash)
+        *hash = '\0';
+    int n = 0;
+    for (char *tok = strtok(s, " \t\r\n"); tok; tok = strtok(0, " \t\r\n")) {
+        if (n < max)
+            fields[n] = tok;
+        n++;
+    }
+    return n;
+}
+
+static int number(const char *s, double *v)
+{
+    char *end;
+    errno = 0;
+    double d = strtod(s, &end);
+    if (end == s || *end != '\0' || !isfinite(d))
+        return 0;
+    *v = d;
+    return 1;
+}
+
+static int integer(const char *s, long *v)
+{
+    char *end;
+    errno = 0;
+    long k = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno)
+        return 0;
+    *v = k;
+    return 1;
+}
+
+static int fail(struct reader *r, int code, const char *what, const char *s)
+{
+    return dem_error_set(r->err, code, "%s:%d: %s%s%s", r->path, r->lineno,
+                         what, s ? " " : "", s ? s : "");
+}
+
+/* Next line split into fields; 0 fields for a blank or comment line;
+ * -1 at the end of the file. */
+static int next_fields(struct reader *r, char **fields, int *nf)
+{
+    if (getline(&r->line, &r->cap, r->f) < 0)
+        return -1;
+    r->lineno++;
+    *nf = split(r->line, fields, MAX_FIELDS);
+    return 0;
+}
+
+static int alloc_arrays(struct dem_lammps_data *d)
+{
+    size_t n = (size_t)d->n;
+    d->id = calloc(n, sizeof *d->id);
+    double **a[] = {&d->diameter, &d->density, &d->x,  &d->y,  &d->z,
+                    &d->vx,       &d->vy,      &d->vz, &d->wx, &d->wy,
+                    &d->wz};
+    int ok = d->id != 0;
+    for (size_t k = 0; k < sizeof a / sizeof a[0]; k++) {
+        *a[k] = calloc(n, sizeof(double));
+        ok = ok && *a[k];
+    }
+    return ok ? 0 : -1;
+}
+
+void dem_lammps_data_free(struct dem_lammps_data *d)
+{
+    free(d->id);
+    free(d->diameter);
+    free(d->density);
+    free(d->x);
+    free(d->y);
+    free(d->z);
+    free(d->vx);
+    free(d->vy);
+    free(d->vz);
+    free(d->wx);
+    free(d->wy);
+    free(d->wz);
+    memset(d, 0, sizeof *d);
+}
+
+/* Index of atom id in the sorted (id, index) table, or -1. */
+struct id_index {
+    int id, index;
+};
+
+static int cmp_id(const void *a, const void *b)
+{
+    int x = ((const struct id_index *)a)->id;
+    int y = ((const struct id_index *)b)->id;
+    return (x > y) - (x < y);
+}
+
+static int read_atoms(struct reader *r, int *seen)
+{
+    struct dem_lammps_data *d = r->d;
+    char *f[MAX_FIELDS];
+    int nf, k = 0;
+    while (k < d->n) {
+        if (next_fields(r, f, &nf) < 0)
+            return dem_error_set(r->err, DEM_EIO,
+                                 "%s:%d: Atoms: file ends after %d of %d atoms",
+                                 r->path, r->lineno, k, d->n);
+        if (nf == 0)
+            continue;
+        if (nf != 7 && nf != 10)
+            return dem_error_set(r->err, DEM_EIO,
+                                 "%s:%d: Atoms: %d columns, expected 7 or 10 "
+                                 "(atom_style sphere: id type diameter "
+                                 "density x y z [ix iy iz])",
+                                 r->path, r->lineno, nf);
+        long id, type;
+        double v[5];
+        if (!integer(f[0], &id) || id < 1 || id > 2147483647L)
+            return fail(r, DEM_EIO, "Atoms: bad atom id", f[0]);
+        if (!integer(f[1], &type))
+            return fail(r, DEM_EIO, "Atoms: bad atom type", f[1]);
+        for (int c = 0; c < 5; c++)
+            if (!number(f[2 + c], &v[c]))
+                return fail(r, DEM_EIO, "Atoms: bad number", f[2 + c]);
+        if (!(v[0] > 0.0))
+            return fail(r, DEM_EIO, "Atoms: diameter must be > 0, got", f[2]);
+        if (!(v[1] > 0.0))
+            return fail(r, DEM_EIO, "Atoms: density must be > 0, got", f[3]);
+        d->id[k] = (int)id;
+        d->diameter[k] = v[0];
+        d->density[k] = v[1];
+        d->x[k] = v[2];
+        d->y[k] = v[3];
+        d->z[k] = v[4];
+        k++;
+    }
+    *seen = 1;
+    return DEM_OK;
+}
+
+static int read_velocities(struct reader *r, const struct id_index *map)
+{
+    struct dem_lammps_data *d = r->d;
+    char *f[MAX_FIELDS];
+    int nf, k = 0;
+    while (k < d->n) {
+        if (next_fields(r, f, &nf) < 0)
+            return dem_error_set(
+                r->err, DEM_EIO,
+                "%s:%d: Velocities: file ends after %d of %d atoms", r->path,
+                r->lineno, k, d->n);
+        if (nf == 0)
+            continue;
+        if (nf != 7)
+            return dem_error_set(r->err, DEM_EIO,
+                                 "%s:%d: Velocities: %d columns, expected 7 "
+                                 "(id vx vy vz wx wy wz)",
+                                 r->path, r->lineno, nf);
+        long id;
+        double v[6];
+        if (!integer(f[0], &id))
+            return fail(r, DEM_EIO, "Velocities: bad atom id", f[0]);
+        struct id_index key = {(int)id, 0};
+        const struct id_index *hit =
+            bsearch(&key, map, (size_t)d->n, sizeof *map, cmp_id);
+        if (!hit)
+            return fail(r, DEM_EIO, "Velocities: no atom with id", f[0]);
+        for (int c = 0; c < 6; c++)
+            if (!number(f[1 + c], &v[c]))
+                return fail(r, DEM_EIO, "Velocities: bad number", f[1 + c]);
+        int i = hit->index;
+        d->vx[i] = v[0];
+        d->vy[i] = v[1];
+        d->vz[i] = v[2];
+        d->wx[i] = v[3];
+        d->wy[i] = v[4];
+        d->wz[i] = v[5];
+        k++;
+    }
+    d->has_velocities = 1;
+    return DEM_OK;
+}
+
+/* Sorted id table; error on a repeated id. */
+static int build_map(struct reader *r, struct id_index **out)
+{
+    struct dem_lammps_data *d = r->d;
+    struct id_index *map = malloc((size_t)d->n * sizeof *map);
+    if (!map)
+        return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory", r->path);
+    for (int i = 0; i < d->n; i++) {
+        map[i].id = d->id[i];
+        map[i].index = i;
+    }
+    qsort(map, (size_t)d->n, sizeof *map, cmp_id);
+    for (int i = 1; i < d->n; i++)
+        if (map[i].id == map[i - 1].id) {
+            int id = map[i].id;
+            free(map);
+            return dem_error_set(r->err, DEM_EIO,
+                                 "%s: Atoms: atom id %d appears twice",
+                                 r->path, id);
+        }
+    *out = map;
+    return DEM_OK;
+}
+
+static int read_body(struct reader *r)
+{
+    struct dem_lammps_data *d = r->d;
+    char *f[MAX_FIELDS];
+    int nf, have_box[3] = {0, 0, 0}, atoms = 0;
+    long natoms = -1;
+    struct id_index *map = 0;
+    int rc = DEM_OK;
+    /* the first line is a title, whatever it says */
+    if (next_fields(r, f, &nf) < 0)
+        return dem_error_set(r->err, DEM_EIO, "%s: empty file", r->path);
+    /* header */
+    static const char *const bounds[3][2] = {
+        {"xlo", "xhi"}, {"ylo", "yhi"}, {"zlo", "zhi"}};
+    for (;;) {
+        if (next_fields(r, f, &nf) < 0)
+            return dem_error_set(r->err, DEM_EIO,
+                                 "%s: no Atoms section", r->path);
+        if (nf == 0)
+            continue;
+        if (nf == 2 && !strcmp(f[1], "atoms")) {
+            if (!integer(f[0], &natoms) || natoms < 1 || natoms > 1000000000L)
+                return fail(r, DEM_EIO, "bad atom count", f[0]);
+            continue;
+        }
+        if (nf == 3 && !strcmp(f[1], "atom") && !strcmp(f[2], "types"))
+            continue;
+        if (nf == 6 && !strcmp(f[3], "xy"))
+            return fail(r, DEM_EIO, "triclinic boxes (xy xz yz) are not "
+                                    "supported", 0);
+        int axis = -1;
+        for (int a = 0; a < 3; a++)
+            if (nf == 4 && !strcmp(f[2], bounds[a][0]) &&
+                !strcmp(f[3], bounds[a][1]))
+                axis = a;
+        if (axis >= 0) {
+            if (!number(f[0], &d->lo[axis]) || !number(f[1], &d->hi[axis]) ||
+                !(d->hi[axis] > d->lo[axis]))
+                return fail(r, DEM_EIO, "bad box bounds for", bounds[axis][0]);
+            have_box[axis] = 1;
+            continue;
+        }
+        break; /* the first section name */
+    }
+    if (natoms < 0)
+        return fail(r, DEM_EIO, "section before the \"N atoms\" line:", f[0]);
+    for (int a = 0; a < 3; a++)
+        if (!have_box[a])
+            return dem_error_set(r->err, DEM_EIO, "%s: no \"%s %s\" line",
+                                 r->path, bounds[a][0], bounds[a][1]);
+    d->n = (int)natoms;
+    if (alloc_arrays(d))
+        return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory",
+                             r->path);
+    /* sections: f holds the name of the current one (comment cut) */
+    for (;;) {
+        if (nf == 0) {
+            /* blank */
+        } else if (nf == 1 && !strcmp(f[0], "Atoms")) {
+            if (atoms)
+                return fail(r, DEM_EIO, "second Atoms section", 0);
+            rc = read_atoms(r, &atoms);
+            if (!rc)
+                rc = build_map(r, &map);
+            if (rc)
+                return rc;
+        } else if (nf == 1 && !strcmp(f[0], "Velocities")) {
+            if (!atoms) {
+                rc = fail(r, DEM_EIO, "Velocities before Atoms", 0);
+                break;
+            }
+            rc = read_velocities(r, map);
+            if (rc)
+                break;
+        } else {
+            rc = fail(r, DEM_EIO, "unsupported section or line:", f[0]);
+            break;
+        }
+        /* the comment of "Atoms # sphere" was cut by split; refuse other
+         * atom styles by their column count in read_atoms instead */
+        if (next_fields(r, f, &nf) < 0)
+            break;
+    }
+    free(map);
+    if (!rc && !atoms)
+        rc = dem_error_set(r->err, DEM_EIO, "%s: no Atoms section", r->path);
+    return rc;
+}
+
+int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
+                         struct dem_error *err)
+{
+    memset(d, 0, sizeof *d);
+    struct reader r = {path, 0, 0, 0, 0, d, err};
+    r.f = fopen(path, "r");
+    if (!r.f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
+                             strerror(errno));
+    int rc = read_body(&r);
+    if (!rc && ferror(r.f))
+        rc = dem_error_set(err, DEM_EIO, "%s: read error", path);
+    fclose(r.f);
+    free(r.line);
+    if (rc)
+        dem_lammps_data_free(d);
+    return rc;
+}
+
+int dem_lammps_data_write(const char *path, const struct dem_particles *p,
+                          const double lo[3], const double hi[3],
+                          const char *comment, struct dem_error *err)
+{
+    struct dem__outfile o;
+    int rc = dem__outfile_open(&o, path, err);
+    if (rc)
+        return rc;
+    fprintf(o.f, "%s\n\n%d atoms\n1 atom types\n\n",
+            comment ? comment : "LAMMPS data file written by dembox", p->n);
+    static const char *const ax[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; a++)
+        fprintf(o.f, "%.17g %.17g %slo %shi\n", lo[a], hi[a], ax[a], ax[a]);
+    fputs("\nAtoms # sphere\n\n", o.f);
+    for (int i = 0; i < p->n; i++) {
+        double a = p->r[i];
+        double rho = p->m[i] / (4.0 / 3.0 * M_PI * a * a * a);
+        fprintf(o.f, "%d 1 %.17g %.17g %.17g %.17g %.17g\n", p->id[i] + 1,
+                2.0 * a, rho, p->x[i], p->y[i], p->z[i]);
+    }
+    fputs("\nVelocities\n\n", o.f);
+    for (int i = 0; i < p->n; i++)
+        fprintf(o.f, "%d %.17g %.17g %.17g %.17g %.17g %.17g\n", p->id[i] + 1,
+                p->vx[i], p->vy[i], p->vz[i], p->wx[i], p->wy[i], p->wz[i]);
+    return dem__outfile_commit(&o, err);
+}
