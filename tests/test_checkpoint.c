@@ -233,12 +233,7 @@ static void assert_same_list(const struct dem_contact_list *a,
     SAME_ARRAY(a->dmax, b->dmax, a->n);
     SAME_ARRAY(a->state, b->state, a->n);
     SAME_ARRAY(a->start, b->start, np + 1);
-    SAME_ARRAY(fa->fx, fb->fx, a->n);
-    SAME_ARRAY(fa->fy, fb->fy, a->n);
-    SAME_ARRAY(fa->fz, fb->fz, a->n);
-    SAME_ARRAY(fa->cx, fb->cx, a->n);
-    SAME_ARRAY(fa->cy, fb->cy, a->n);
-    SAME_ARRAY(fa->cz, fb->cz, a->n);
+    SAME_ARRAY(fa->v, fb->v, a->n);
 }
 
 static void assert_same_walls(const struct dem_sim *a, const struct dem_sim *b)

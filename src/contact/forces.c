@@ -62,7 +62,7 @@ struct pass {
     const int *ci, *cj;
     double *xi_x, *xi_y, *xi_z, *dmax;
     unsigned char *state;
-    double *fx, *fy, *fz, *cx, *cy, *cz;
+    struct dem_contact_force *F;
 };
 
 static struct pass pass_of(const struct dem_particles *P,
@@ -71,8 +71,7 @@ static struct pass pass_of(const struct dem_particles *P,
 {
     struct pass q = {P->x,    P->y,    P->z,    P->vx,   P->vy,   P->vz,
                      P->wx,   P->wy,   P->wz,   P->r,    L->i,    L->j,
-                     L->xi_x, L->xi_y, L->xi_z, L->dmax, L->state, F->fx,
-                     F->fy,   F->fz,   F->cx,   F->cy,   F->cz};
+                     L->xi_x, L->xi_y, L->xi_z, L->dmax, L->state, F->v};
     return q;
 }
 
@@ -86,8 +85,9 @@ DEM_INLINE void forget(const struct pass *q, int k)
     q->xi_x[k] = q->xi_y[k] = q->xi_z[k] = 0.0;
     q->dmax[k] = 0.0;
     q->state[k] = 0;
-    q->fx[k] = q->fy[k] = q->fz[k] = 0.0;
-    q->cx[k] = q->cy[k] = q->cz[k] = 0.0;
+    struct dem_contact_force *o = &q->F[k];
+    o->f[0] = o->f[1] = o->f[2] = 0.0;
+    o->c[0] = o->c[1] = o->c[2] = 0.0;
 }
 
 /* Tangential force, history update and the stored force of contact k. */
@@ -103,12 +103,13 @@ DEM_INLINE void finish_contact(const struct pass *q, int k, const double n[3],
     q->xi_y[k] = xi[1];
     q->xi_z[k] = xi[2];
     q->state[k] = st;
-    q->fx[k] = fn * n[0] + ft[0];
-    q->fy[k] = fn * n[1] + ft[1];
-    q->fz[k] = fn * n[2] + ft[2];
-    q->cx[k] = n[1] * ft[2] - n[2] * ft[1];
-    q->cy[k] = n[2] * ft[0] - n[0] * ft[2];
-    q->cz[k] = n[0] * ft[1] - n[1] * ft[0];
+    struct dem_contact_force *o = &q->F[k];
+    o->f[0] = fn * n[0] + ft[0];
+    o->f[1] = fn * n[1] + ft[1];
+    o->f[2] = fn * n[2] + ft[2];
+    o->c[0] = n[1] * ft[2] - n[2] * ft[1];
+    o->c[1] = n[2] * ft[0] - n[0] * ft[2];
+    o->c[2] = n[0] * ft[1] - n[1] * ft[0];
 }
 
 /* Pair contacts k0 <= k < k1. */
@@ -233,40 +234,35 @@ static void gather_range(int i0, int i1, const struct dem_particles *P,
     const int *restrict start = pl->cur.start, *restrict rstart = pl->rstart,
                         *restrict rpair = pl->rpair,
                         *restrict wstart = pl->wcur.start;
-    const double *restrict Fx = pl->f.fx, *restrict Fy = pl->f.fy,
-                           *restrict Fz = pl->f.fz, *restrict Cx = pl->f.cx,
-                           *restrict Cy = pl->f.cy, *restrict Cz = pl->f.cz;
-    const double *restrict Wx = pl->wf.fx, *restrict Wy = pl->wf.fy,
-                           *restrict Wz = pl->wf.fz, *restrict Vx = pl->wf.cx,
-                           *restrict Vy = pl->wf.cy, *restrict Vz = pl->wf.cz;
+    const struct dem_contact_force *restrict F = pl->f.v, *restrict WF = pl->wf.v;
     for (int i = i0; i < i1; i++) {
         const double a = r[i];
         double fx = -gb * vx[i], fy = -gb * vy[i], fz = -gb * vz[i];
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sum of n x f_t */
         for (int k = start[i]; k < start[i + 1]; k++) {
-            fx += Fx[k];
-            fy += Fy[k];
-            fz += Fz[k];
-            cx += Cx[k];
-            cy += Cy[k];
-            cz += Cz[k];
+            fx += F[k].f[0];
+            fy += F[k].f[1];
+            fz += F[k].f[2];
+            cx += F[k].c[0];
+            cy += F[k].c[1];
+            cz += F[k].c[2];
         }
         for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-            const int k = rpair[q];
-            fx -= Fx[k];
-            fy -= Fy[k];
-            fz -= Fz[k];
-            cx += Cx[k];
-            cy += Cy[k];
-            cz += Cz[k];
+            const struct dem_contact_force *o = &F[rpair[q]];
+            fx -= o->f[0];
+            fy -= o->f[1];
+            fz -= o->f[2];
+            cx += o->c[0];
+            cy += o->c[1];
+            cz += o->c[2];
         }
         for (int k = wstart[i]; k < wstart[i + 1]; k++) {
-            fx += Wx[k];
-            fy += Wy[k];
-            fz += Wz[k];
-            cx += Vx[k];
-            cy += Vy[k];
-            cz += Vz[k];
+            fx += WF[k].f[0];
+            fy += WF[k].f[1];
+            fz += WF[k].f[2];
+            cx += WF[k].c[0];
+            cy += WF[k].c[1];
+            cz += WF[k].c[2];
         }
         const double g = gr * a * a;
         ofx[i] = fx;
@@ -298,8 +294,7 @@ static void gather(struct dem_sim *s)
     double fout[DEM_MAX_WALLS] = {0};
     for (int k = 0; k < WL->n; k++) {
         const struct dem_wall *W = &s->wall[WL->j[k]];
-        const double f = W->axis == 0 ? WF->fx[k]
-                         : W->axis == 1 ? WF->fy[k] : WF->fz[k];
+        const double f = WF->v[k].f[W->axis];
         fout[WL->j[k]] += f * (W->side ? -1.0 : 1.0);
     }
     for (int w = 0; w < s->nwall; w++)
@@ -326,7 +321,7 @@ static void measure_contacts(struct dem_sim *s)
         const int i = L->i[k], j = L->j[k];
         const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
                              P->z[i] - P->z[j]};
-        const double f[3] = {F->fx[k], F->fy[k], F->fz[k]};
+        const double *f = F->v[k].f;
         const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
         const double n[3] = {b[0] / d, b[1] / d, b[2] / d};
         const double R = P->r[i] + P->r[j], delta = R - d;
@@ -367,7 +362,7 @@ static void measure_contacts(struct dem_sim *s)
         const double pos[3] = {P->x[i], P->y[i], P->z[i]};
         const double dist = sgn * (pos[a] - W->pos);
         const double delta = P->r[i] - dist;
-        const double f[3] = {WF->fx[k], WF->fy[k], WF->fz[k]};
+        const double *f = WF->v[k].f;
         /* branch vector from the centre to the contact point on the
          * plane: -dist n, so -l (x) f = dist n (x) f */
         for (int c = 0; c < 3; c++)

@@ -197,12 +197,7 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
     io_f64s(io, L->dmax, n);
     io_bytes(io, L->state, (size_t)n);
     io_i32s(io, L->start, np + 1);
-    io_f64s(io, F->fx, n);
-    io_f64s(io, F->fy, n);
-    io_f64s(io, F->fz, n);
-    io_f64s(io, F->cx, n);
-    io_f64s(io, F->cy, n);
-    io_f64s(io, F->cz, n);
+    io_f64s(io, (double *)F->v, 6 * n);
 }
 
 /* Bytes per particle, pair and wall contact in the file. */

@@ -22,12 +22,7 @@ static void list_free(struct dem_contact_list *l)
 
 static void forces_free(struct dem_contact_forces *f)
 {
-    free(f->fx);
-    free(f->fy);
-    free(f->fz);
-    free(f->cx);
-    free(f->cy);
-    free(f->cz);
+    free(f->v);
     memset(f, 0, sizeof *f);
 }
 
@@ -80,8 +75,7 @@ static int forces_reserve(struct dem_contact_forces *f, int cap)
 {
     if (cap <= f->cap)
         return 0;
-    if (GROW(f->fx, cap) || GROW(f->fy, cap) || GROW(f->fz, cap) ||
-        GROW(f->cx, cap) || GROW(f->cy, cap) || GROW(f->cz, cap))
+    if (GROW(f->v, cap))
         return -1;
     f->cap = cap;
     return 0;
@@ -91,13 +85,7 @@ static int forces_reserve(struct dem_contact_forces *f, int cap)
  * contacts that are closed or have just opened). */
 static void forces_zero(struct dem_contact_forces *f, int n)
 {
-    size_t b = (size_t)n * sizeof(double);
-    memset(f->fx, 0, b);
-    memset(f->fy, 0, b);
-    memset(f->fz, 0, b);
-    memset(f->cx, 0, b);
-    memset(f->cy, 0, b);
-    memset(f->cz, 0, b);
+    memset(f->v, 0, (size_t)n * sizeof *f->v);
 }
 
 /* Per-particle arrays for n particles (row offsets need n + 1). */

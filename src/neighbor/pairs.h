@@ -38,11 +38,18 @@ struct dem_contact_list {
     int start_cap;
 };
 
-/* Force of each entry in the last force pass (same index as the list). */
+/* Force of one entry in the last force pass. The six numbers of a
+ * contact sit together: the sum over a particle's contacts as j reads
+ * them through an index, one cache line per contact. */
+struct dem_contact_force {
+    double f[3]; /* N; force on i (on j it is the opposite) */
+    double c[3]; /* N; n x f_t: torque on i is -a_i c, on j -a_j c */
+};
+
+/* Forces of a list's entries (same index as the list). */
 struct dem_contact_forces {
     int cap;
-    double *fx, *fy, *fz; /* N; force on i (on j it is the opposite) */
-    double *cx, *cy, *cz; /* N; n x f_t: torque on i is -a_i c, on j -a_j c */
+    struct dem_contact_force *v;
 };
 
 struct dem_pairs {
