@@ -62,38 +62,46 @@ struct pass {
     const int *ci, *cj;
     double *xi_x, *xi_y, *xi_z, *dmax;
     unsigned char *state;
-    struct dem_contact_force *F;
+    struct dem_contact_force *F; /* stored forces, at each contact's slot */
+    const int *start, *slot;     /* pairs: rows by i, slot of each pair */
+    double *fx, *fy, *fz;        /* pairs: N; damping + sum over pairs as i */
+    double *cx, *cy, *cz;        /* pairs: N; sum of n x f_t over them */
 };
 
 static struct pass pass_of(const struct dem_particles *P,
                            struct dem_contact_list *L,
-                           struct dem_contact_forces *F)
+                           struct dem_contact_forces *F, const int *slot)
 {
-    struct pass q = {P->x,    P->y,    P->z,    P->vx,   P->vy,   P->vz,
-                     P->wx,   P->wy,   P->wz,   P->r,    L->i,    L->j,
-                     L->xi_x, L->xi_y, L->xi_z, L->dmax, L->state, F->v};
+    struct pass q = {P->x,     P->y,     P->z,     P->vx,    P->vy,
+                     P->vz,    P->wx,    P->wy,    P->wz,    P->r,
+                     L->i,     L->j,     L->xi_x,  L->xi_y,  L->xi_z,
+                     L->dmax,  L->state, F->v,     L->start, slot,
+                     P->fx,    P->fy,    P->fz,    P->tx,    P->ty,
+                     P->tz};
     return q;
 }
 
 /* A listed contact that is not closed: its history ends and its stored
  * force is zero. A list build zeroes every stored force, so only a
  * contact that has just opened needs writing. */
-DEM_INLINE void forget(const struct pass *q, int k)
+DEM_INLINE void forget(const struct pass *q, int k, int slot)
 {
     if (!q->state[k])
         return;
     q->xi_x[k] = q->xi_y[k] = q->xi_z[k] = 0.0;
     q->dmax[k] = 0.0;
     q->state[k] = 0;
-    struct dem_contact_force *o = &q->F[k];
+    struct dem_contact_force *o = &q->F[slot];
     o->f[0] = o->f[1] = o->f[2] = 0.0;
     o->c[0] = o->c[1] = o->c[2] = 0.0;
 }
 
-/* Tangential force, history update and the stored force of contact k. */
-DEM_INLINE void finish_contact(const struct pass *q, int k, const double n[3],
-                               const double vij[3], double fn, double fc,
-                               double dt, const struct dem_tangential *T)
+/* Tangential force and history update of contact k; its force is stored
+ * at slot and returned. */
+DEM_INLINE const struct dem_contact_force *
+finish_contact(const struct pass *q, int k, int slot, const double n[3],
+               const double vij[3], double fn, double fc, double dt,
+               const struct dem_tangential *T)
 {
     double xi[3] = {q->xi_x[k], q->xi_y[k], q->xi_z[k]};
     unsigned char st = q->state[k] | DEM_CONTACT_ACTIVE;
@@ -103,64 +111,88 @@ DEM_INLINE void finish_contact(const struct pass *q, int k, const double n[3],
     q->xi_y[k] = xi[1];
     q->xi_z[k] = xi[2];
     q->state[k] = st;
-    struct dem_contact_force *o = &q->F[k];
+    struct dem_contact_force *o = &q->F[slot];
     o->f[0] = fn * n[0] + ft[0];
     o->f[1] = fn * n[1] + ft[1];
     o->f[2] = fn * n[2] + ft[2];
     o->c[0] = n[1] * ft[2] - n[2] * ft[1];
     o->c[1] = n[2] * ft[0] - n[0] * ft[2];
     o->c[2] = n[0] * ft[1] - n[1] * ft[0];
+    return o;
 }
 
-/* Pair contacts k0 <= k < k1. */
-DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
-                           const struct dem_contact_params *cp, double dt)
+/* The pairs of particles i0 <= i < i1 as i: each particle's background
+ * damping plus the forces of its pairs in list order go straight to its
+ * force and torque accumulators (the pairs as j are added by gather). */
+DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
+                           const struct dem_contact_params *cp, double dt,
+                           double gb)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
-    for (int k = k0; k < k1; k++) {
-        const int i = q.ci[k], j = q.cj[k];
-        const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
-                     dz = q.z[i] - q.z[j];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        const double ai = q.r[i], aj = q.r[j];
-        const double R = ai + aj;
-        if (d2 >= R * R) {
-            forget(&q, k);
-            continue;
+    for (int i = i0; i < i1; i++) {
+        const double xi_ = q.x[i], yi = q.y[i], zi = q.z[i], ai = q.r[i];
+        double fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
+        double cx = 0.0, cy = 0.0, cz = 0.0;
+        for (int k = q.start[i]; k < q.start[i + 1]; k++) {
+            const int j = q.cj[k];
+            const double dx = xi_ - q.x[j], dy = yi - q.y[j], dz = zi - q.z[j];
+            const double d2 = dx * dx + dy * dy + dz * dz;
+            const double aj = q.r[j];
+            const double R = ai + aj;
+            if (d2 >= R * R) {
+                forget(&q, k, q.slot[k]);
+                continue;
+            }
+            const double d = sqrt(d2);
+            const double id = 1.0 / d;
+            const double n[3] = {dx * id, dy * id, dz * id};
+            /* a_i n x w_i + a_j n x w_j */
+            const double cwx = ai * q.wx[i] + aj * q.wx[j];
+            const double cwy = ai * q.wy[i] + aj * q.wy[j];
+            const double cwz = ai * q.wz[i] + aj * q.wz[j];
+            const double vij[3] = {
+                q.vx[i] - q.vx[j] + n[1] * cwz - n[2] * cwy,
+                q.vy[i] - q.vy[j] + n[2] * cwx - n[0] * cwz,
+                q.vz[i] - q.vz[j] + n[0] * cwy - n[1] * cwx};
+            const double ddot =
+                -(vij[0] * n[0] + vij[1] * n[1] + vij[2] * n[2]);
+            double fc;
+            const double fn = normal_force(law, cp, cp->kc, R - d, ddot,
+                                           ai * aj / R, &q.dmax[k], &fc);
+            const struct dem_contact_force *o =
+                finish_contact(&q, k, q.slot[k], n, vij, fn, fc, dt, &T);
+            fx += o->f[0];
+            fy += o->f[1];
+            fz += o->f[2];
+            cx += o->c[0];
+            cy += o->c[1];
+            cz += o->c[2];
         }
-        const double d = sqrt(d2);
-        const double id = 1.0 / d;
-        const double n[3] = {dx * id, dy * id, dz * id};
-        /* a_i n x w_i + a_j n x w_j */
-        const double cwx = ai * q.wx[i] + aj * q.wx[j];
-        const double cwy = ai * q.wy[i] + aj * q.wy[j];
-        const double cwz = ai * q.wz[i] + aj * q.wz[j];
-        const double vij[3] = {q.vx[i] - q.vx[j] + n[1] * cwz - n[2] * cwy,
-                               q.vy[i] - q.vy[j] + n[2] * cwx - n[0] * cwz,
-                               q.vz[i] - q.vz[j] + n[0] * cwy - n[1] * cwx};
-        const double ddot = -(vij[0] * n[0] + vij[1] * n[1] + vij[2] * n[2]);
-        double fc;
-        const double fn = normal_force(law, cp, cp->kc, R - d, ddot,
-                                       ai * aj / R, &q.dmax[k], &fc);
-        finish_contact(&q, k, n, vij, fn, fc, dt, &T);
+        q.fx[i] = fx;
+        q.fy[i] = fy;
+        q.fz[i] = fz;
+        q.cx[i] = cx;
+        q.cy[i] = cy;
+        q.cz[i] = cz;
     }
 }
 
-/* All pair contacts in equal blocks, one per thread: each contact is
- * computed on its own, so the split does not change any result. The law
- * is a literal in each instance, so that the outlined parallel region is
- * compiled for that law alone. */
+/* All particles in equal blocks, one per thread: each particle's rows
+ * are summed on their own, so the split does not change any result. The
+ * law is a literal in each instance, so that the outlined parallel region
+ * is compiled for that law alone. */
 #define PAIR_PASS(LAW)                                                       \
     {                                                                        \
-        const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f);   \
+        const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f,    \
+                                      s->pairs.rpos);                        \
         const struct dem_contact_params cp = s->cp;                          \
-        const double dt = s->dt;                                             \
-        const int np = s->pairs.cur.n;                                       \
+        const double dt = s->dt, gb = s->cfg.damping.gamma_b;                \
+        const int n = s->p.n;                                                \
         _Pragma("omp parallel")                                              \
         {                                                                    \
             int nt = omp_get_num_threads(), t = omp_get_thread_num();        \
-            pair_range(LAW, q, (int)((long)np * t / nt),                     \
-                       (int)((long)np * (t + 1) / nt), &cp, dt);             \
+            pair_range(LAW, q, (int)((long)n * t / nt),                      \
+                       (int)((long)n * (t + 1) / nt), &cp, dt, gb);          \
         }                                                                    \
     }
 
@@ -183,7 +215,7 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
         const double ai = q.r[i];
         const double delta = ai - sgn * (pos[a] - W->pos);
         if (delta <= 0.0) {
-            forget(&q, k);
+            forget(&q, k, k);
             continue;
         }
         double n[3] = {0.0, 0.0, 0.0};
@@ -197,13 +229,14 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
         double fc;
         const double fn = normal_force(law, cp, cp->wall_kc, delta, ddot, ai,
                                        &q.dmax[k], &fc);
-        finish_contact(&q, k, n, vij, fn, fc, dt, &T);
+        finish_contact(&q, k, k, n, vij, fn, fc, dt, &T);
     }
 }
 
 #define WALL_PASS(LAW)                                                       \
     {                                                                        \
-        const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf); \
+        const struct pass q =                                                \
+            pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf, 0);                 \
         const struct dem_contact_params cp = s->cp;                          \
         const double dt = s->dt;                                             \
         const int nw = s->pairs.wcur.n;                                      \
@@ -220,41 +253,29 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
 static void wall_pass_linear(struct dem_sim *s) WALL_PASS(DEM_NORMAL_LINEAR)
 static void wall_pass_luding(struct dem_sim *s) WALL_PASS(DEM_NORMAL_LUDING)
 
-/* Particles i0 <= i < i1: background damping, then the stored contact
- * forces in list order. */
+/* Particles i0 <= i < i1: to the damping and pairs as i (summed by the
+ * pair pass), add the pairs as j, whose forces lie in one stream, and
+ * the wall contacts; then the torques. */
 static void gather_range(int i0, int i1, const struct dem_particles *P,
-                         const struct dem_pairs *pl, double gb, double gr)
+                         const struct dem_pairs *pl, double gr)
 {
-    const double *restrict vx = P->vx, *restrict vy = P->vy,
-                           *restrict vz = P->vz;
     const double *restrict wx = P->wx, *restrict wy = P->wy,
                            *restrict wz = P->wz, *restrict r = P->r;
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
-    const int *restrict start = pl->cur.start, *restrict rstart = pl->rstart,
-                        *restrict rpair = pl->rpair,
-                        *restrict wstart = pl->wcur.start;
+    const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
     const struct dem_contact_force *restrict F = pl->f.v, *restrict WF = pl->wf.v;
     for (int i = i0; i < i1; i++) {
         const double a = r[i];
-        double fx = -gb * vx[i], fy = -gb * vy[i], fz = -gb * vz[i];
-        double cx = 0.0, cy = 0.0, cz = 0.0; /* sum of n x f_t */
-        for (int k = start[i]; k < start[i + 1]; k++) {
-            fx += F[k].f[0];
-            fy += F[k].f[1];
-            fz += F[k].f[2];
-            cx += F[k].c[0];
-            cy += F[k].c[1];
-            cz += F[k].c[2];
-        }
+        double fx = ofx[i], fy = ofy[i], fz = ofz[i];
+        double cx = otx[i], cy = oty[i], cz = otz[i]; /* sums of n x f_t */
         for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-            const struct dem_contact_force *o = &F[rpair[q]];
-            fx -= o->f[0];
-            fy -= o->f[1];
-            fz -= o->f[2];
-            cx += o->c[0];
-            cy += o->c[1];
-            cz += o->c[2];
+            fx -= F[q].f[0];
+            fy -= F[q].f[1];
+            fz -= F[q].f[2];
+            cx += F[q].c[0];
+            cy += F[q].c[1];
+            cz += F[q].c[2];
         }
         for (int k = wstart[i]; k < wstart[i + 1]; k++) {
             fx += WF[k].f[0];
@@ -281,13 +302,13 @@ static void gather(struct dem_sim *s)
     const struct dem_pairs *pl = &s->pairs;
     const struct dem_contact_list *WL = &pl->wcur;
     const struct dem_contact_forces *WF = &pl->wf;
-    const double gb = s->cfg.damping.gamma_b, gr = s->cfg.damping.gamma_br;
+    const double gr = s->cfg.damping.gamma_br;
     const int n = P->n;
 #pragma omp parallel
     {
         int nt = omp_get_num_threads(), t = omp_get_thread_num();
         gather_range((int)((long)n * t / nt), (int)((long)n * (t + 1) / nt), P,
-                     pl, gb, gr);
+                     pl, gr);
     }
 
     /* the walls feel the opposite forces: their outward push, in list order */
@@ -321,7 +342,7 @@ static void measure_contacts(struct dem_sim *s)
         const int i = L->i[k], j = L->j[k];
         const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
                              P->z[i] - P->z[j]};
-        const double *f = F->v[k].f;
+        const double *f = F->v[pl->rpos[k]].f;
         const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
         const double n[3] = {b[0] / d, b[1] / d, b[2] / d};
         const double R = P->r[i] + P->r[j], delta = R - d;
