@@ -107,6 +107,7 @@ void dem_particles_permute(struct dem_particles *p, const int *old_of,
     const int n = p->n;
     double *t = *scratch;
 #define DEM_PERMUTE_(f)                                                      \
+    _Pragma("omp parallel for schedule(static)")                             \
     for (int k = 0; k < n; k++)                                              \
         t[k] = p->f[old_of[k]];                                              \
     {                                                                        \

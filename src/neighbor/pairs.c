@@ -1,6 +1,7 @@
 #include "neighbor/pairs.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -168,10 +169,13 @@ static void sort_by_cell(struct dem_pairs *pl, const struct dem_particles *p)
     const int ncell = pl->nc[0] * pl->nc[1] * pl->nc[2];
     int *cs = pl->cell_start;
     memset(cs, 0, (size_t)(ncell + 1) * sizeof *cs);
-    for (int i = 0; i < p->n; i++) {
-        pl->cell_of[i] = cell_index(pl, p->x[i], p->y[i], p->z[i]);
-        cs[pl->cell_of[i] + 1]++;
-    }
+    const int n = p->n;
+    int *cell_of = pl->cell_of;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++)
+        cell_of[i] = cell_index(pl, p->x[i], p->y[i], p->z[i]);
+    for (int i = 0; i < n; i++)
+        cs[cell_of[i] + 1]++;
     for (int c = 0; c < ncell; c++)
         cs[c + 1] += cs[c];
     /* stable: particles of a cell stay in index order */
@@ -214,64 +218,127 @@ static void swap_lists(struct dem_contact_list *a, struct dem_contact_list *b)
     *b = t;
 }
 
+/* The neighbours j > i of particle i closer than the skin, written to
+ * out (when not NULL) sorted by j; returns how many there are. */
+static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
+                  int zr, double skin, int i, int *out)
+{
+    const int c = pl->cell_of[i];
+    const int cx = c % pl->nc[0], cy = (c / pl->nc[0]) % pl->nc[1],
+              cz = c / (pl->nc[0] * pl->nc[1]);
+    int m = 0;
+    for (int dz = -zr; dz <= zr; dz++) {
+        int z = cz + dz;
+        if (z < 0 || z >= pl->nc[2])
+            continue;
+        for (int dy = -1; dy <= 1; dy++) {
+            int y = cy + dy;
+            if (y < 0 || y >= pl->nc[1])
+                continue;
+            for (int dx = -1; dx <= 1; dx++) {
+                int x = cx + dx;
+                if (x < 0 || x >= pl->nc[0])
+                    continue;
+                int cc = (z * pl->nc[1] + y) * pl->nc[0] + x;
+                for (int q = pl->cell_start[cc]; q < pl->cell_start[cc + 1];
+                     q++) {
+                    const int j = pl->cell_list[q];
+                    if (j <= i)
+                        continue;
+                    double ddx = p->x[i] - p->x[j];
+                    double ddy = p->y[i] - p->y[j];
+                    double ddz = p->z[i] - p->z[j];
+                    double cut = p->r[i] + p->r[j] + skin;
+                    if (ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut)
+                        continue;
+                    if (out) {
+                        /* a row holds a handful of pairs: insertion sort */
+                        int b = m - 1;
+                        while (b >= 0 && out[b] > j) {
+                            out[b + 1] = out[b];
+                            b--;
+                        }
+                        out[b + 1] = j;
+                    }
+                    m++;
+                }
+            }
+        }
+    }
+    return m;
+}
+
+/* One pass over the particles in equal blocks, one per thread: each
+ * thread writes its rows to its own buffer, then, once the offsets are
+ * known, copies them into the list. The history of every pair is then
+ * found in the old list. The list is the same for any number of threads. */
 static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
                        int dim, double skin, struct dem_error *err)
 {
     struct dem_contact_list *L = &pl->cur;
     const struct dem_contact_list *O = &pl->old;
     const int zr = dim == 3 ? 1 : 0;
-    L->n = 0;
-    for (int i = 0; i < p->n; i++) {
-        L->start[i] = L->n;
-        const int c = pl->cell_of[i];
-        const int cx = c % pl->nc[0], cy = (c / pl->nc[0]) % pl->nc[1],
-                  cz = c / (pl->nc[0] * pl->nc[1]);
-        for (int dz = -zr; dz <= zr; dz++) {
-            int z = cz + dz;
-            if (z < 0 || z >= pl->nc[2])
-                continue;
-            for (int dy = -1; dy <= 1; dy++) {
-                int y = cy + dy;
-                if (y < 0 || y >= pl->nc[1])
-                    continue;
-                for (int dx = -1; dx <= 1; dx++) {
-                    int x = cx + dx;
-                    if (x < 0 || x >= pl->nc[0])
-                        continue;
-                    int cc = (z * pl->nc[1] + y) * pl->nc[0] + x;
-                    for (int q = pl->cell_start[cc]; q < pl->cell_start[cc + 1];
-                         q++) {
-                        const int j = pl->cell_list[q];
-                        if (j <= i)
-                            continue;
-                        double ddx = p->x[i] - p->x[j];
-                        double ddy = p->y[i] - p->y[j];
-                        double ddz = p->z[i] - p->z[j];
-                        double cut = p->r[i] + p->r[j] + skin;
-                        if (ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut)
-                            continue;
-                        if (L->n >= L->cap && list_reserve(L, L->n + 1))
-                            return dem_error_set(err, DEM_ENOMEM,
-                                                 "out of memory (pair list)");
-                        L->i[L->n] = i;
-                        L->j[L->n] = j;
-                        L->n++;
-                    }
+    const int n = p->n;
+    /* no row is longer than the particles of the cells around it */
+    const int ncell = pl->nc[0] * pl->nc[1] * pl->nc[2];
+    int occ = 1;
+    for (int c = 0; c < ncell; c++)
+        if (pl->cell_start[c + 1] - pl->cell_start[c] > occ)
+            occ = pl->cell_start[c + 1] - pl->cell_start[c];
+    const int longest = (zr ? 27 : 9) * occ;
+    int *start = L->start;
+    int failed = 0;
+#pragma omp parallel
+    {
+        const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        const int i0 = (int)((long)n * t / nt), i1 = (int)((long)n * (t + 1) / nt);
+        size_t cap = (size_t)longest + 4096, m = 0;
+        int *buf = malloc(cap * sizeof *buf);
+        for (int i = i0; buf && i < i1; i++) {
+            if (m + (size_t)longest > cap) {
+                cap = 2 * cap + (size_t)longest;
+                int *b2 = realloc(buf, cap * sizeof *buf);
+                if (!b2) {
+                    free(buf);
+                    buf = NULL;
+                    break;
                 }
+                buf = b2;
+            }
+            int cnt = row_of(pl, p, zr, skin, i, buf + m);
+            start[i + 1] = cnt;
+            m += (size_t)cnt;
+        }
+        if (!buf) {
+#pragma omp atomic write
+            failed = 1;
+        }
+#pragma omp barrier
+#pragma omp single
+        {
+            start[0] = 0;
+            if (!failed) {
+                for (int i = 0; i < n; i++)
+                    start[i + 1] += start[i];
+                if (list_reserve(L, start[n]))
+                    failed = 1;
+                else
+                    L->n = start[n];
             }
         }
-        /* a row holds a handful of pairs: insertion sort by j */
-        for (int a = L->start[i] + 1; a < L->n; a++) {
-            int v = L->j[a], b = a - 1;
-            while (b >= L->start[i] && L->j[b] > v) {
-                L->j[b + 1] = L->j[b];
-                b--;
-            }
-            L->j[b + 1] = v;
+        if (!failed) {
+            memcpy(L->j + start[i0], buf, m * sizeof *buf);
+            for (int i = i0; i < i1; i++)
+                for (int k = start[i]; k < start[i + 1]; k++)
+                    L->i[k] = i;
         }
+        free(buf);
     }
-    L->start[p->n] = L->n;
-    for (int k = 0; k < L->n; k++) {
+    if (failed)
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (pair list)");
+    const int np = L->n;
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < np; k++) {
         int a = pl->old_of[L->i[k]], b = pl->old_of[L->j[k]];
         int o = O->n ? (a < b ? old_find(O, a, b) : old_find(O, b, a)) : -1;
         carry_history(L, k, O, o);
