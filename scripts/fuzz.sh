@@ -17,7 +17,7 @@ cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-600}
 B=${FUZZ_BUILD:-build-fuzz}
 CC_FUZZ=${CC_FUZZ:-$(command -v clang-14 || command -v clang)}
-HARNESSES=${FUZZ_HARNESSES:-fuzz_config fuzz_particles_csv}
+HARNESSES=${FUZZ_HARNESSES:-fuzz_config fuzz_particles_csv fuzz_checkpoint}
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 

@@ -103,7 +103,8 @@ struct dem_critical {
 
 /* Critical state of y(strain): the mean of y over the last `fraction` of
  * the axial strain range, provided that the line fitted there changes y by
- * at most `tolerance` times its mean across the window (a plateau). */
+ * at most `tolerance` times its mean, or by at most twice the scatter of y
+ * about the line, across the window (a plateau). */
 int dem_critical_find(const double *strain, const double *y, long n,
                       double fraction, double tolerance,
                       struct dem_critical *out);
