@@ -205,6 +205,15 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
 #define BYTES_PER_PAIR (2 * 4 + 4 * 8 + 1 + 6 * 8 + 4)
 #define BYTES_PER_WALL_CONTACT (2 * 4 + 4 * 8 + 1 + 6 * 8)
 
+/* Text read from a file, made fit for a one-line message: every byte that
+ * is not printable ASCII becomes '?'. */
+static void printable(char *t)
+{
+    for (; t && *t; t++)
+        if ((unsigned char)*t < 32 || (unsigned char)*t > 126)
+            *t = '?';
+}
+
 /* Every saved field after the fixed header. When reading, s is zeroed on
  * entry and the arrays are allocated once the counts are known. */
 static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
@@ -216,6 +225,8 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_string(io, io->reading ? &rbuild : &build);
     if (io->reading && !io->why &&
         (strcmp(rversion, DEM_VERSION) != 0 || strcmp(rbuild, BUILD_ID) != 0)) {
+        printable(rversion);
+        printable(rbuild);
         snprintf(io->detail, sizeof io->detail,
                  "written by another build (dembox %.40s, %.100s; this is "
                  "dembox %s, %s): exact resume needs the same build",
@@ -255,6 +266,11 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_tag(io, "CONF");
     io_chars(io, s->cfg.name, sizeof s->cfg.name);
     io_chars(io, s->cfg.source, sizeof s->cfg.source);
+    if (io->reading) {
+        /* they may appear in messages */
+        printable(s->cfg.name);
+        printable(s->cfg.source);
+    }
     io_i32(io, &s->cfg.time_step_auto);
     io_string(io, config_text);
 
@@ -361,7 +377,8 @@ static const char *check_restored(const struct dem_sim *s,
     const struct dem_particles *p = &s->p;
     const struct dem_pairs *pl = &s->pairs;
     const int N = p->n;
-    if (s->nwall != 2 * s->dim || s->dim != s->cfg.dim)
+    if ((s->dim != 2 && s->dim != 3) || s->nwall != 2 * s->dim ||
+        s->dim != s->cfg.dim)
         return "corrupt (wall count or dimension)";
     if (!(s->dt > 0.0) || run->stage < 0 || run->stage >= s->cfg.nstages)
         return "corrupt (time step or stage index)";
