@@ -11,10 +11,13 @@
  * infinite mass and radius whose surface moves only along its normal.
  *
  * A pass has three parts, each parallel over independent items:
- *  1. every pair contact: force and history, written next to the pair;
- *  2. every wall contact: the same;
- *  3. every particle: background damping, then its pairs as i in list
- *     order, its pairs as j in list order, its wall contacts in order.
+ *  1. every particle's row of pairs (it is i): each pair's force and
+ *     history; the particle's background damping plus these forces in
+ *     list order; each pair's force also stored at its slot in the order
+ *     of the particles as j;
+ *  2. every wall contact: force and history, stored with the contact;
+ *  3. every particle: add its pairs as j (one stream of slots) and its
+ *     wall contacts in list order; then the torques.
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop body is written
  * once as an always-inline function and instantiated per normal law (a
