@@ -86,7 +86,8 @@ static int forces_reserve(struct dem_contact_forces *f, int cap)
  * contacts that are closed or have just opened). */
 static void forces_zero(struct dem_contact_forces *f, int n)
 {
-    memset(f->v, 0, (size_t)n * sizeof *f->v);
+    if (n > 0)
+        memset(f->v, 0, (size_t)n * sizeof *f->v);
 }
 
 /* Per-particle arrays for n particles (row offsets need n + 1). */
@@ -326,7 +327,7 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
                     L->n = start[n];
             }
         }
-        if (!failed) {
+        if (!failed && m > 0) {
             memcpy(L->j + start[i0], buf, m * sizeof *buf);
             for (int i = i0; i < i1; i++)
                 for (int k = start[i]; k < start[i + 1]; k++)
