@@ -1,8 +1,8 @@
 /* The dembox command: argument parsing only. Everything else is in
  * libdembox; this file turns its status codes into exit statuses and
  * one-line messages on stderr. */
-#include <signal.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,8 +25,8 @@ static const char *const usage_main =
     "commands:\n"
     "  run [CONFIG|EXAMPLE] [-o OUTDIR] [--set KEY=VALUE]... [--threads N] "
     "[--quiet]\n"
-    "                      run a scenario (default: the example " DEFAULT_EXAMPLE
-    ")\n"
+    "                      run a scenario (default: the "
+    "example " DEFAULT_EXAMPLE ")\n"
     "  run --resume OUTDIR [--threads N] [--quiet]\n"
     "                      continue an interrupted run from its checkpoint\n"
     "  sweep CONFIG|EXAMPLE --param KEY[,KEY...]=V1,V2,... [--param ...]\n"
@@ -47,8 +47,8 @@ static const char *const usage_run =
     "[--threads N] [--quiet]\n"
     "       dembox run --resume OUTDIR [--threads N] [--quiet]\n"
     "\n"
-    "Run the stages of a config file or a built-in example (default: "
-    DEFAULT_EXAMPLE ").\n"
+    "Run the stages of a config file or a built-in example "
+    "(default: " DEFAULT_EXAMPLE ").\n"
     "\n"
     "  -o, --output OUTDIR  output folder (default dembox-out/NAME)\n"
     "  --set KEY=VALUE      override a config key by its dotted path, e.g.\n"
@@ -125,7 +125,8 @@ static const char *const usage_sweep =
     "summary.json) and the cross-run analysis: the flow function\n"
     "tau = c + sigma tan phi from the Mohr circles at peak of runs differing\n"
     "in confining pressure, friction at peak and critical state versus mu,\n"
-    "cohesion versus kc/k2, void ratio versus pressure with e = e0 - (p/hs)^n,\n"
+    "cohesion versus kc/k2, void ratio versus pressure with e = e0 - "
+    "(p/hs)^n,\n"
     "and the strain accumulated per cycle of cyclic runs. DIR/plots/ has\n"
     "the pictures of what the sweep varies. Details: docs/sweep.md.\n";
 
@@ -182,8 +183,8 @@ static int parse_int(const char *cmd, const char *opt, const char *v, long lo,
     char *end;
     long n = v ? strtol(v, &end, 10) : 0;
     if (!v || !*v || *end || n < lo || n > hi) {
-        fprintf(stderr, "dembox: %s: %s needs an integer in [%ld, %ld]\n",
-                cmd, opt, lo, hi);
+        fprintf(stderr, "dembox: %s: %s needs an integer in [%ld, %ld]\n", cmd,
+                opt, lo, hi);
         return 1;
     }
     *out = n;
@@ -232,8 +233,8 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
     stop_signal = 0;
     opt->stop = &stop_signal;
     struct dem_error err = {0, ""};
-    int rc = resume ? dem_run_resume(resume, opt, &err)
-                    : dem_run(cfg, opt, &err);
+    int rc =
+        resume ? dem_run_resume(resume, opt, &err) : dem_run(cfg, opt, &err);
     sigaction(SIGINT, &old_int, 0);
     sigaction(SIGTERM, &old_term, 0);
     const char *dir = resume ? resume : opt->outdir;
@@ -289,7 +290,9 @@ static int cmd_run(int argc, char **argv)
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             opt.quiet = 1;
         } else if (a[0] == '-') {
-            fprintf(stderr, "dembox: run: unknown option %s (see dembox help run)\n", a);
+            fprintf(stderr,
+                    "dembox: run: unknown option %s (see dembox help run)\n",
+                    a);
             return 1;
         } else if (!target) {
             target = a;
@@ -349,7 +352,8 @@ static int cmd_sweep(int argc, char **argv)
             dem_sweep_grid_free(&grid);
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            rc = more ? (o.outdir = argv[++k], 0) : fail("sweep: -o needs a folder");
+            rc = more ? (o.outdir = argv[++k], 0)
+                      : fail("sweep: -o needs a folder");
         } else if (!strcmp(a, "--param")) {
             if (!more)
                 rc = fail("sweep: --param needs KEY[,KEY...]=V1,V2,...");
@@ -372,7 +376,10 @@ static int cmd_sweep(int argc, char **argv)
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             o.quiet = 1;
         } else if (a[0] == '-') {
-            fprintf(stderr, "dembox: sweep: unknown option %s (see dembox help sweep)\n", a);
+            fprintf(
+                stderr,
+                "dembox: sweep: unknown option %s (see dembox help sweep)\n",
+                a);
             rc = 1;
         } else if (!o.target) {
             o.target = a;
@@ -394,8 +401,9 @@ static int cmd_sweep(int argc, char **argv)
     if (!rc && dem_sweep_run(&grid, &o, &rep, &err))
         rc = fail(err.msg);
     if (!rc && !o.quiet)
-        fprintf(stderr, "dembox: sweep: %ld runs (%ld run now, %ld skipped as "
-                        "finished); results in %s/sweep.json\n",
+        fprintf(stderr,
+                "dembox: sweep: %ld runs (%ld run now, %ld skipped as "
+                "finished); results in %s/sweep.json\n",
                 rep.points, rep.ran, rep.skipped, o.outdir);
     dem_sweep_grid_free(&grid);
     return rc;
@@ -506,7 +514,10 @@ static int cmd_example(int argc, char **argv)
         return fail("example: give one NAME (see dembox examples)");
     const struct dem_example *ex = dem_example_find(argv[0]);
     if (!ex) {
-        fprintf(stderr, "dembox: example: no example called '%s' (see dembox examples)\n", argv[0]);
+        fprintf(
+            stderr,
+            "dembox: example: no example called '%s' (see dembox examples)\n",
+            argv[0]);
         return 1;
     }
     fputs(ex->text, stdout);

@@ -36,7 +36,8 @@ static const char *const tiny =
     "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; kc = 1.0e4;"
     " gamma_n = 0.1; kt = 2.0e4; gamma_t = 0.02; mu = 0.5; wall_mu = 0.2; };\n"
     "walls = { mass = 0.01; gamma = 2.0; max_speed = 0.5; };\n"
-    "stages = ( { type = \"isotropic\"; pressure = 500.0; max_time = 1.0; } );\n"
+    "stages = ( { type = \"isotropic\"; pressure = 500.0; max_time = 1.0; } "
+    ");\n"
     "output = { interval = 1.0e-5; snapshot_interval = 0.0;"
     " checkpoint_interval = 0.0; };\n";
 
@@ -103,7 +104,8 @@ static void read_file(const char *path, const uint8_t *data, size_t size)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char path[64];
-    snprintf(path, sizeof path, "/tmp/dembox_fuzz_ckpt_%ld.bin", (long)getpid());
+    snprintf(path, sizeof path, "/tmp/dembox_fuzz_ckpt_%ld.bin",
+             (long)getpid());
     if (size == 0 || !(data[0] & 1)) {
         read_file(path, data, size);
     } else {

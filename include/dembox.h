@@ -22,14 +22,14 @@
 /* ---------------------------------------------------------------- errors */
 
 /* X-macro list: symbol, value, short description. */
-#define DEM_STATUS_LIST(X)                                                   \
-    X(DEM_OK, 0, "success")                                                  \
-    X(DEM_ECONFIG, -1, "invalid configuration")                              \
-    X(DEM_EIO, -2, "input/output error")                                     \
-    X(DEM_ENOMEM, -3, "out of memory")                                       \
-    X(DEM_EUNSTABLE, -4, "simulation unstable")                              \
-    X(DEM_EINTERRUPTED, -5, "interrupted")                                   \
-    X(DEM_EUSAGE, -6, "bad usage")                                           \
+#define DEM_STATUS_LIST(X)                                                     \
+    X(DEM_OK, 0, "success")                                                    \
+    X(DEM_ECONFIG, -1, "invalid configuration")                                \
+    X(DEM_EIO, -2, "input/output error")                                       \
+    X(DEM_ENOMEM, -3, "out of memory")                                         \
+    X(DEM_EUNSTABLE, -4, "simulation unstable")                                \
+    X(DEM_EINTERRUPTED, -5, "interrupted")                                     \
+    X(DEM_EUSAGE, -6, "bad usage")                                             \
     X(DEM_EINTERNAL, -7, "internal error")
 
 enum dem_status {
@@ -41,8 +41,8 @@ enum dem_status {
 #define DEM_ERRMSG_MAX 1024
 
 struct dem_error {
-    int code;                  /* enum dem_status of the last failure */
-    char msg[DEM_ERRMSG_MAX];  /* one line, no trailing newline */
+    int code;                 /* enum dem_status of the last failure */
+    char msg[DEM_ERRMSG_MAX]; /* one line, no trailing newline */
 };
 
 /* Short description of a status code. */
@@ -57,20 +57,22 @@ int dem_error_set(struct dem_error *err, int code, const char *fmt, ...)
 /* ---------------------------------------------------------------- config */
 
 enum dem_radius_dist {
-    DEM_DIST_MONO = 0,     /* all radii = mean */
-    DEM_DIST_UNIFORM = 1,  /* uniform in [min, max] */
-    DEM_DIST_GAUSSIAN = 2  /* N(mean, std), redrawn outside [min, max] */
+    DEM_DIST_MONO = 0,    /* all radii = mean */
+    DEM_DIST_UNIFORM = 1, /* uniform in [min, max] */
+    DEM_DIST_GAUSSIAN = 2 /* N(mean, std), redrawn outside [min, max] */
 };
 
 enum dem_placement {
-    DEM_PLACE_LATTICE = 0, /* square/cubic lattice, spacing 2 r_max (seed 000) */
-    DEM_PLACE_RANDOM = 1,  /* random, no overlap, in a large box (seed 001) */
-    DEM_PLACE_FILE = 2     /* from a CSV file with particles_final.csv columns */
+    DEM_PLACE_LATTICE =
+        0,                /* square/cubic lattice, spacing 2 r_max (seed 000) */
+    DEM_PLACE_RANDOM = 1, /* random, no overlap, in a large box (seed 001) */
+    DEM_PLACE_FILE = 2    /* from a CSV file with particles_final.csv columns */
 };
 
 enum dem_mass_model {
     DEM_MASS_SPHERE = 0, /* m = 4/3 pi rho a^3, I = 2/5 m a^2 (both seeds) */
-    DEM_MASS_DISC = 1    /* 2D only: m = pi rho a^2 (per unit thickness), I = m a^2/2 */
+    DEM_MASS_DISC =
+        1 /* 2D only: m = pi rho a^2 (per unit thickness), I = m a^2/2 */
 };
 
 enum dem_normal_law {
@@ -97,18 +99,18 @@ enum dem_profile {
 #define DEM_NAME_MAX 128
 
 struct dem_stage_config {
-    int type;          /* enum dem_stage_type */
-    double pressure;   /* Pa (2D: N/m); isotropic target, confining or p0 */
-    double tolerance;  /* isotropic: stop when E_kin/E_pot < tolerance */
-    double max_time;   /* s; isotropic: give up relaxing after this time */
-    int axis;          /* 0 = x, 1 = y, 2 = z; compress and cyclic */
-    double strain;     /* compress: total axial strain (compression > 0) */
-    double duration;   /* s; compress and hold */
-    int profile;       /* enum dem_profile; compress */
-    double amplitude;  /* Pa; cyclic: delta sigma */
-    double period;     /* s; cyclic: t0 */
-    int cycles;        /* cyclic: number of periods */
-    double mu;         /* contact friction during this stage; < 0 = contact.mu */
+    int type;         /* enum dem_stage_type */
+    double pressure;  /* Pa (2D: N/m); isotropic target, confining or p0 */
+    double tolerance; /* isotropic: stop when E_kin/E_pot < tolerance */
+    double max_time;  /* s; isotropic: give up relaxing after this time */
+    int axis;         /* 0 = x, 1 = y, 2 = z; compress and cyclic */
+    double strain;    /* compress: total axial strain (compression > 0) */
+    double duration;  /* s; compress and hold */
+    int profile;      /* enum dem_profile; compress */
+    double amplitude; /* Pa; cyclic: delta sigma */
+    double period;    /* s; cyclic: t0 */
+    int cycles;       /* cyclic: number of periods */
+    double mu;        /* contact friction during this stage; < 0 = contact.mu */
 };
 
 struct dem_config {
@@ -122,44 +124,44 @@ struct dem_config {
     double gravity[3];  /* m/s^2; default 0 */
 
     struct {
-        int count;          /* number of particles (file: taken from file) */
-        double density;     /* kg/m^3; default 2000 */
-        int distribution;   /* enum dem_radius_dist */
-        double mean;        /* m */
-        double std;         /* m; gaussian only */
-        double min;         /* m; uniform, gaussian lower cut */
-        double max;         /* m; uniform, gaussian upper cut */
-        int placement;      /* enum dem_placement */
+        int count;        /* number of particles (file: taken from file) */
+        double density;   /* kg/m^3; default 2000 */
+        int distribution; /* enum dem_radius_dist */
+        double mean;      /* m */
+        double std;       /* m; gaussian only */
+        double min;       /* m; uniform, gaussian lower cut */
+        double max;       /* m; uniform, gaussian upper cut */
+        int placement;    /* enum dem_placement */
         char file[DEM_PATH_MAX]; /* placement = "file": CSV path */
-        int mass_model;     /* enum dem_mass_model; default sphere */
-        double volume_fraction; /* random placement: solid fraction of the
-                                   initial gas box (default 0.1 3D, 0.2 2D) */
+        int mass_model;          /* enum dem_mass_model; default sphere */
+        double volume_fraction;  /* random placement: solid fraction of the
+                                    initial gas box (default 0.1 3D, 0.2 2D) */
     } particles;
 
     struct {
-        int normal;       /* enum dem_normal_law */
-        double k;         /* N/m; linear stiffness */
-        double k1;        /* N/m; luding loading stiffness */
-        double k2;        /* N/m; luding un-/re-loading stiffness */
-        double kc;        /* N/m; luding adhesive stiffness (>= 0) */
-        double phi_f;     /* luding 2008 plasticity depth; 0 = constant k2 */
-        double gamma_n;   /* kg/s; normal viscosity */
-        double kt;        /* N/m; tangential stiffness */
-        double gamma_t;   /* kg/s; tangential viscosity */
-        double mu_s;      /* static friction coefficient */
-        double mu_d;      /* dynamic friction coefficient (<= mu_s) */
-        double wall_mu;   /* particle-wall friction (static = dynamic) */
-        double wall_kc;   /* N/m; particle-wall adhesive stiffness; default 0 */
+        int normal;     /* enum dem_normal_law */
+        double k;       /* N/m; linear stiffness */
+        double k1;      /* N/m; luding loading stiffness */
+        double k2;      /* N/m; luding un-/re-loading stiffness */
+        double kc;      /* N/m; luding adhesive stiffness (>= 0) */
+        double phi_f;   /* luding 2008 plasticity depth; 0 = constant k2 */
+        double gamma_n; /* kg/s; normal viscosity */
+        double kt;      /* N/m; tangential stiffness */
+        double gamma_t; /* kg/s; tangential viscosity */
+        double mu_s;    /* static friction coefficient */
+        double mu_d;    /* dynamic friction coefficient (<= mu_s) */
+        double wall_mu; /* particle-wall friction (static = dynamic) */
+        double wall_kc; /* N/m; particle-wall adhesive stiffness; default 0 */
     } contact;
 
     struct {
-        double gamma_b;   /* kg/s; background translational damping */
-        double gamma_br;  /* kg/s; background rotational damping, torque
-                             -gamma_br a^2 omega */
+        double gamma_b;  /* kg/s; background translational damping */
+        double gamma_br; /* kg/s; background rotational damping, torque
+                            -gamma_br a^2 omega */
     } damping;
 
     struct {
-        double size[3];   /* m; initial box; all 0 = derive from placement */
+        double size[3]; /* m; initial box; all 0 = derive from placement */
     } box;
 
     struct {
@@ -182,11 +184,11 @@ struct dem_config {
     } checks;
 
     struct {
-        double interval;          /* s; timeseries row interval */
-        double snapshot_interval; /* s; VTU snapshot interval; 0 = none */
-        double dump_interval;     /* s; LAMMPS-style text dump interval
-                                     (dump.lammpstrj, read by OVITO);
-                                     0 = none */
+        double interval;            /* s; timeseries row interval */
+        double snapshot_interval;   /* s; VTU snapshot interval; 0 = none */
+        double dump_interval;       /* s; LAMMPS-style text dump interval
+                                       (dump.lammpstrj, read by OVITO);
+                                       0 = none */
         double checkpoint_interval; /* s of wall-clock time between
                                        checkpoints (checkpoint.bin);
                                        0 = only on SIGINT/SIGTERM */
@@ -205,8 +207,8 @@ struct dem_run_options {
                            non-zero (e.g. from a SIGINT handler) the run
                            writes a checkpoint at its next sample and
                            returns DEM_EINTERRUPTED */
-    long stop_after_steps; /* > 0 (tests): behave as if *stop were set
-                           once this many steps are done */
+    long stop_after_steps;       /* > 0 (tests): behave as if *stop were set
+                                 once this many steps are done */
 };
 
 /* Run every stage of cfg (validated) and write the outputs of SPEC §7 to

@@ -258,9 +258,8 @@ static void ratchet_increments_recovered(void **state)
     const long n = make_cycles(0.37, inc, C, PER, t, ed, sd);
     struct dem_cycle cyc[C];
     struct dem_cycles sum;
-    assert_int_equal(dem_cycles_analyze(t, ed, sd, n, 0.37, 1.0, 1e-6, C,
-                                        cyc, &sum),
-                     C);
+    assert_int_equal(
+        dem_cycles_analyze(t, ed, sd, n, 0.37, 1.0, 1e-6, C, cyc, &sum), C);
     double acc = 0.0;
     for (int k = 0; k < C; k++) {
         acc += inc[k];
@@ -291,8 +290,8 @@ static void shakedown_recognised(void **state)
     assert_int_equal(sum.verdict, DEM_VERDICT_SHAKEDOWN);
 
     /* fewer than 3 cycles: no verdict; a cut last cycle does not count */
-    assert_int_equal(dem_cycles_analyze(t, ed, sd, 2 * PER + 10, 0.0, 1.0,
-                                        1e-6, C, cyc, &sum),
+    assert_int_equal(dem_cycles_analyze(t, ed, sd, 2 * PER + 10, 0.0, 1.0, 1e-6,
+                                        C, cyc, &sum),
                      2);
     assert_int_equal(sum.verdict, DEM_VERDICT_NONE);
     assert_non_null(strstr(sum.reason, "at least 3"));
@@ -507,15 +506,25 @@ static void analyze_writes_summary_of_a_biaxial_run(void **state)
     snprintf(path, sizeof path, "%s/summary.json", dir);
     char *js = slurp(path);
     assert_non_null(js);
-    static const char *const keys[] = {
-        "\"peak\": {", "\"critical\": {", "\"sin_phi\"", "\"phi_deg\"",
-        "\"strain\"", "\"sigma_axial\"", "\"sigma_lateral\"",
-        "\"poisson_ratio\"", "\"dilatancy_angle_deg\"",
-        "\"volumetric_slope_initial\"", "\"volumetric_slope_dilatant\"",
-        "\"modulus_initial\"", "\"void_ratio_initial\"",
-        "\"void_ratio_critical\"", "\"inertial_number_max\"",
-        "\"dimension\": 2", "\"confining_pressure\": 500",
-        "\"void_ratio_fit\"", "\"criteria\""};
+    static const char *const keys[] = {"\"peak\": {",
+                                       "\"critical\": {",
+                                       "\"sin_phi\"",
+                                       "\"phi_deg\"",
+                                       "\"strain\"",
+                                       "\"sigma_axial\"",
+                                       "\"sigma_lateral\"",
+                                       "\"poisson_ratio\"",
+                                       "\"dilatancy_angle_deg\"",
+                                       "\"volumetric_slope_initial\"",
+                                       "\"volumetric_slope_dilatant\"",
+                                       "\"modulus_initial\"",
+                                       "\"void_ratio_initial\"",
+                                       "\"void_ratio_critical\"",
+                                       "\"inertial_number_max\"",
+                                       "\"dimension\": 2",
+                                       "\"confining_pressure\": 500",
+                                       "\"void_ratio_fit\"",
+                                       "\"criteria\""};
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
         if (!strstr(js, keys[k]))
             fail_msg("summary.json lacks %s:\n%s", keys[k], js);
@@ -668,8 +677,8 @@ static void analyze_rejects_a_folder_that_is_not_a_run(void **state)
         skip();
     char cmd[512], out[160];
     snprintf(out, sizeof out, "%s/stderr.txt", tmpdir);
-    snprintf(cmd, sizeof cmd, "'%s' analyze '%s/nothing' 2> '%s'", bin,
-             tmpdir, out);
+    snprintf(cmd, sizeof cmd, "'%s' analyze '%s/nothing' 2> '%s'", bin, tmpdir,
+             out);
     const int st = system(cmd);
     assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
     char *msg = slurp(out);

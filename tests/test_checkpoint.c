@@ -51,7 +51,8 @@ static const char *const small_2d =
 static const char *const small_3d =
     "dimension = 3; seed = 7; time_step = 2.0e-5;\n"
     "particles = { count = 125; radius = { distribution = \"gaussian\";"
-    " mean = 5.0e-3; std = 0.7e-3; min = 3.0e-3; }; placement = \"lattice\"; };\n"
+    " mean = 5.0e-3; std = 0.7e-3; min = 3.0e-3; }; placement = \"lattice\"; "
+    "};\n"
     "contact = { normal = \"linear\"; k = 5000.0; gamma_n = 0.05; kt = 1000.0;"
     " gamma_t = 0.01; mu = 0.5; wall_mu = 0.0; };\n"
     "damping = { gamma_b = 0.2; gamma_br = 0.05; };\n"
@@ -180,22 +181,22 @@ static void assert_one_line_naming(const struct dem_error *err,
 {
     if (strchr(err->msg, '\n') || !strstr(err->msg, path) ||
         (what && !strstr(err->msg, what)))
-        fail_msg("message \"%s\" should name %s and say \"%s\"", err->msg,
-                 path, what ? what : "");
+        fail_msg("message \"%s\" should name %s and say \"%s\"", err->msg, path,
+                 what ? what : "");
 }
 
 /* --------------------------------------------------------------- round trip */
 
-#define SAME_BITS(a, b)                                                      \
-    do {                                                                     \
-        if (memcmp(&(a), &(b), sizeof(a)) != 0)                              \
-            fail_msg("%s differs after the round trip", #a);                 \
+#define SAME_BITS(a, b)                                                        \
+    do {                                                                       \
+        if (memcmp(&(a), &(b), sizeof(a)) != 0)                                \
+            fail_msg("%s differs after the round trip", #a);                   \
     } while (0)
 
-#define SAME_ARRAY(a, b, n)                                                  \
-    do {                                                                     \
-        if ((n) > 0 && memcmp((a), (b), (size_t)(n) * sizeof *(a)) != 0)     \
-            fail_msg("%s differs after the round trip", #a);                 \
+#define SAME_ARRAY(a, b, n)                                                    \
+    do {                                                                       \
+        if ((n) > 0 && memcmp((a), (b), (size_t)(n) * sizeof *(a)) != 0)       \
+            fail_msg("%s differs after the round trip", #a);                   \
     } while (0)
 
 static char *config_as_text(const struct dem_config *c)
@@ -283,13 +284,20 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     assert_true(a.pairs.cur.n > 0 && a.pairs.wcur.n > 0);
 
     double snaps[3] = {0.0, 1e-4, 2e-4};
-    struct dem_ckpt_run ra = {.stage = 1, .stage_t_start = 1e-4,
-                              .stage_t_end = 5e-3, .sets_reference = 1,
-                              .next_out = 6e-4, .warned_inertia = 1,
-                              .L0 = {0.01, 0.02, 0.0}, .V0 = 2e-4,
-                              .next_snap = 3e-4, .next_dump = 7e-4,
-                              .max_steps = 123456, .ts_bytes = 98765,
-                              .dump_bytes = 4321, .nsnap = 3,
+    struct dem_ckpt_run ra = {.stage = 1,
+                              .stage_t_start = 1e-4,
+                              .stage_t_end = 5e-3,
+                              .sets_reference = 1,
+                              .next_out = 6e-4,
+                              .warned_inertia = 1,
+                              .L0 = {0.01, 0.02, 0.0},
+                              .V0 = 2e-4,
+                              .next_snap = 3e-4,
+                              .next_dump = 7e-4,
+                              .max_steps = 123456,
+                              .ts_bytes = 98765,
+                              .dump_bytes = 4321,
+                              .nsnap = 3,
                               .snap_t = snaps};
     char path[1024], *text = config_as_text(&a.cfg), *text_b = 0;
     dir_path(path, sizeof path, "roundtrip.bin");
@@ -355,8 +363,7 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     SAME_BITS(a.sums.max_overlap_ratio, b.sums.max_overlap_ratio);
     assert_same_walls(&a, &b);
     assert_same_particles(&a, &b);
-    assert_same_list(&a.pairs.cur, &a.pairs.f, &b.pairs.cur, &b.pairs.f,
-                     a.p.n);
+    assert_same_list(&a.pairs.cur, &a.pairs.f, &b.pairs.cur, &b.pairs.f, a.p.n);
     assert_same_list(&a.pairs.wcur, &a.pairs.wf, &b.pairs.wcur, &b.pairs.wf,
                      a.p.n);
     SAME_ARRAY(a.pairs.rstart, b.pairs.rstart, a.p.n + 1);
@@ -372,8 +379,7 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     SAME_BITS(a.nbuild, b.nbuild);
     assert_same_walls(&a, &b);
     assert_same_particles(&a, &b);
-    assert_same_list(&a.pairs.cur, &a.pairs.f, &b.pairs.cur, &b.pairs.f,
-                     a.p.n);
+    assert_same_list(&a.pairs.cur, &a.pairs.f, &b.pairs.cur, &b.pairs.f, a.p.n);
 
     free(text);
     free(text_b);
@@ -444,7 +450,8 @@ static void resumed_3d_cyclic_run_is_bit_identical(void **state)
     stop_and_resume(small_3d, "resume3d", 0, stops, 2, 0);
 }
 
-/* ------------------------------------------------------- refused checkpoints */
+/* ------------------------------------------------------- refused checkpoints
+ */
 
 static void expect_refused(const char *out, const char *ckpt, const void *buf,
                            size_t len, const char *what)
@@ -729,9 +736,8 @@ static void sigint_checkpoints_and_resumes_identically(void **state)
     command_setup("sigint", cfgfile, sizeof cfgfile, ref, sizeof ref);
     dir_path(out, sizeof out, "sigint");
     snprintf(log, sizeof log, "%s.log", out);
-    const char *args[] = {dembox_bin(), "run",         cfgfile, "-o",
-                          out,          "--max-steps", LONG_STEPS, "--quiet",
-                          0};
+    const char *args[] = {dembox_bin(),  "run",      cfgfile,   "-o", out,
+                          "--max-steps", LONG_STEPS, "--quiet", 0};
     pid_t pid = spawn(args, log, 0);
     /* wait for some rows, then interrupt */
     for (int k = 0; k < 6000 && file_size(out, "timeseries.csv.part") < 20000;
@@ -759,17 +765,11 @@ static void kill_9_between_checkpoints_resumes_identically(void **state)
     command_setup("kill9", cfgfile, sizeof cfgfile, ref, sizeof ref);
     dir_path(out, sizeof out, "kill9");
     snprintf(log, sizeof log, "%s.log", out);
-    const char *args[] = {dembox_bin(),
-                          "run",
-                          cfgfile,
-                          "-o",
-                          out,
-                          "--max-steps",
-                          LONG_STEPS,
-                          "--set",
-                          "output.checkpoint_interval=1e-9",
-                          "--quiet",
-                          0};
+    const char *args[] = {
+        dembox_bin(), "run",   cfgfile,
+        "-o",         out,     "--max-steps",
+        LONG_STEPS,   "--set", "output.checkpoint_interval=1e-9",
+        "--quiet",    0};
     pid_t pid = spawn(args, log, 0);
     for (int k = 0; k < 6000 && !exists(out, "checkpoint.bin"); k++)
         sleep_ms(5);

@@ -170,15 +170,15 @@ static void set_overrides_scalars_enums_arrays_and_stages(void **state)
         "           { type = \"compress\"; strain = 0.1; duration = 0.1;\n"
         "             pressure = 500.0; } );\n";
     const char *sets[] = {
-        "contact.mu=0.3",              /* scalar in the text */
-        "damping.gamma_b=0.1",         /* scalar absent from the text */
-        "contact.normal=luding",       /* enum as a bare word */
+        "contact.mu=0.3",        /* scalar in the text */
+        "damping.gamma_b=0.1",   /* scalar absent from the text */
+        "contact.normal=luding", /* enum as a bare word */
         "particles.radius.distribution=\"mono\"", /* enum as a string */
-        "gravity=[0.0, 0.0, -9.81]",   /* array */
-        "box.size.1=0.5",              /* array element, array absent */
+        "gravity=[0.0, 0.0, -9.81]",              /* array */
+        "box.size.1=0.5", /* array element, array absent */
         "box.size.0=0.5",
         "box.size.2=0.5",
-        "stages.1.pressure=250",       /* list element, integer for a float */
+        "stages.1.pressure=250", /* list element, integer for a float */
         "stages.1.axis=x",
         "time_step=auto",
         "seed=7",
@@ -241,8 +241,8 @@ static void contact_time_matches_seed_000(void **state)
              "max = 8e-3; }; };",
              0, 0);
     assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
-    parse_ok(&c, "particles = { radius = { min = 5e-3; mean = 6e-3; }; };",
-             0, 0);
+    parse_ok(&c, "particles = { radius = { min = 5e-3; mean = 6e-3; }; };", 0,
+             0);
     assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
 
     /* luding: the stiffest spring k2; undamped here */
@@ -327,8 +327,8 @@ static const struct bad bad_inputs[] = {
     {"contact = {\n  k = 5000.0;\n  kk = 1.0;\n};\n", 0, "contact.kk", 3},
     {"particles = { radius = {\n  sdev = 1.0; }; };", 0,
      "particles.radius.sdev", 2},
-    {"stages = (\n { type = \"hold\"; duration = 0.1;\n   bogus = 1; }\n);",
-     0, "stages.0.bogus", 3},
+    {"stages = (\n { type = \"hold\"; duration = 0.1;\n   bogus = 1; }\n);", 0,
+     "stages.0.bogus", 3},
     /* duplicates and syntax */
     {"contact = {\n  k = 1.0;\n  k = 2.0;\n};\n", 0, "k: duplicate key", 3},
     {"dimension = 3;\ncontact = { k = ; };\n", 0, "syntax error", 2},
@@ -338,8 +338,8 @@ static const struct bad bad_inputs[] = {
     /* libconfig 1.5 accepts these and drops the rest of the text */
     {"dimension = 3;\nseed = 2; \"abc\n", 0, "unterminated string", 2},
     {"dimension = 3;\n/* seed = 2;\n", 0, "unterminated comment", 2},
-    {"dimension = 3; # \"not a string\n/* \" */ seed = 2; \"x\\\"y\";\n\"",
-     0, "unterminated string", 3},
+    {"dimension = 3; # \"not a string\n/* \" */ seed = 2; \"x\\\"y\";\n\"", 0,
+     "unterminated string", 3},
     {"particles = { count = 5; };\nparticles.density = 1.0;\n", 0,
      "particles.density: dotted names are for --set only", 2},
     {"dimension = 3;\ncontact.k = 1.0;\n", 0, "contact.k: dotted names", 2},
@@ -383,8 +383,7 @@ static const struct bad bad_inputs[] = {
     {"time_step = 1e-3;", 0, "time_step", 1},
     {"contact = { k = 1e9; };", 0, "time_step", -1},
     {"dimension = 4;", 0, "dimension: must be in [2, 3]", 1},
-    {"particles = {\n  placement = \"file\";\n};", 0, "particles.placement",
-     2},
+    {"particles = {\n  placement = \"file\";\n};", 0, "particles.placement", 2},
     {"particles = {\n  mass_model = \"disc\";\n};", 0, "particles.mass_model",
      2},
     {"particles = {\n  volume_fraction = 0.0;\n};", 0,
@@ -443,8 +442,9 @@ static const struct bad bad_inputs[] = {
     {"contact = 5;", "contact.k=1.0", "--set contact.k: the config has a value",
      0},
     {"box = { size = 5; };", "box.size.1=1.0", "--set box.size.1", 0},
-    {"dimension = 2;\n", "stages.0={ type = \"compress\"; axis = \"z\"; "
-                         "strain = 0.1; duration = 0.1; pressure = 1.0; }",
+    {"dimension = 2;\n",
+     "stages.0={ type = \"compress\"; axis = \"z\"; "
+     "strain = 0.1; duration = 0.1; pressure = 1.0; }",
      "stages.0.axis", 0},
 };
 
@@ -574,10 +574,10 @@ static void key_help_lists_every_key(void **state)
 {
     (void)state;
     char *t = printed(dem_config_print_keys);
-    const char *names[] = {"dimension", "time_step", "particles.radius.std",
-                           "contact.phi_f", "contact.wall_kc",
-                           "output.snapshot_interval", "stages.N.cycles",
-                           "stages.N.mu"};
+    const char *names[] = {
+        "dimension",       "time_step",       "particles.radius.std",
+        "contact.phi_f",   "contact.wall_kc", "output.snapshot_interval",
+        "stages.N.cycles", "stages.N.mu"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         assert_non_null(strstr(t, names[i]));
     free(t);

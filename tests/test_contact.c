@@ -6,7 +6,8 @@
 
 #include "contact/tangential.h"
 
-/* omega = sqrt(k/m - eta^2), eta = gamma/(2m), t_c = pi/omega, r = exp(-eta t_c) */
+/* omega = sqrt(k/m - eta^2), eta = gamma/(2m), t_c = pi/omega, r = exp(-eta
+ * t_c) */
 static void analytic(double k, double gamma, double m, double *tc, double *r)
 {
     double eta = gamma / (2.0 * m);
@@ -15,7 +16,10 @@ static void analytic(double k, double gamma, double m, double *tc, double *r)
     *r = exp(-eta * *tc);
 }
 
-static double mass(double a) { return 4.0 / 3.0 * M_PI * 2000.0 * a * a * a; }
+static double mass(double a)
+{
+    return 4.0 / 3.0 * M_PI * 2000.0 * a * a * a;
+}
 
 /* Two spheres of radii 5 mm and 3.5 mm (mass ratio 2.9) approach head-on. */
 static void pair_collision_matches_analytic_tc_and_r(void **state)

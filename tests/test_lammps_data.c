@@ -125,7 +125,8 @@ static void write_then_read_is_bit_exact(void **state)
         assert_true(same_bits(d.wz[i], p.wz[i]));
         assert_true(same_bits(0.5 * d.diameter[i], p.r[i]));
         /* the density recovered from the mass gives the mass back */
-        double m = 4.0 / 3.0 * M_PI * d.density[i] * pow(0.5 * d.diameter[i], 3);
+        double m =
+            4.0 / 3.0 * M_PI * d.density[i] * pow(0.5 * d.diameter[i], 3);
         assert_true(fabs(m / p.m[i] - 1.0) < 1e-14);
     }
     dem_lammps_data_free(&d);

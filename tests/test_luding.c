@@ -13,18 +13,18 @@
 #include "core/rng.h"
 
 /* Relative comparison with a floor; prints both values on failure. */
-#define assert_close(got, want, rtol, atol)                                   \
-    do {                                                                      \
-        double g_ = (got), w_ = (want);                                       \
-        if (!(fabs(g_ - w_) <= (atol) + (rtol) * fabs(w_))) {                 \
-            print_error("%s = %.17g, expected %.17g\n", #got, g_, w_);        \
-            fail();                                                           \
-        }                                                                     \
+#define assert_close(got, want, rtol, atol)                                    \
+    do {                                                                       \
+        double g_ = (got), w_ = (want);                                        \
+        if (!(fabs(g_ - w_) <= (atol) + (rtol)*fabs(w_))) {                    \
+            print_error("%s = %.17g, expected %.17g\n", #got, g_, w_);         \
+            fail();                                                            \
+        }                                                                      \
     } while (0)
 
 /* Seed 001 values: k2 = 1e5 N/m, k1/k2 = 1/2; kc/k2 = 0.2; two 1 mm discs. */
 static const double K2 = 1e5, K1 = 0.5e5, KC = 0.2e5; /* N/m */
-static const double A12 = 0.5e-3;                      /* m */
+static const double A12 = 0.5e-3;                     /* m */
 
 /* ---- independent reference formulas ---------------------------------- */
 
@@ -71,7 +71,10 @@ static double ref_remap(double delta, double k1, double k2, double kc,
     return 0.5 * (lo + hi);
 }
 
-static double maxd(double a, double b) { return a > b ? a : b; }
+static double maxd(double a, double b)
+{
+    return a > b ? a : b;
+}
 
 /* Drive the kernel along delta from a to b in n equal steps; at each sample
  * compare with want(delta). */
@@ -90,7 +93,10 @@ static void drive(double a, double b, int n, double *dmax,
 
 /* The reference branches of a path segment: p = {k1, k2, kc, k2^, delta_0,
  * x, dstar, delta_0*} as needed. */
-static double seg_virgin(double d, const double *p) { return p[0] * d; }
+static double seg_virgin(double d, const double *p)
+{
+    return p[0] * d;
+}
 
 static double seg_unload(double d, const double *p)
 {
@@ -163,8 +169,14 @@ static void refined_law_follows_piecewise_path(void **state)
     assert_close(dmax, x, 1e-12, 0.0);
 
     /* reload past delta* onto the elastic limit branch */
-    double p3[8] = {K1, K2, KC, ref_k2hat(x, K1, K2, phi, A12),
-                    ref_delta0(x, K1, K2, phi, A12), x, ds, d0s};
+    double p3[8] = {K1,
+                    K2,
+                    KC,
+                    ref_k2hat(x, K1, K2, phi, A12),
+                    ref_delta0(x, K1, K2, phi, A12),
+                    x,
+                    ds,
+                    d0s};
     drive(da, d2, 2000, &dmax, &L, A12, seg_reload, p3, fs);
     assert_close(dmax, d2, 1e-15, 0.0);
 
@@ -255,12 +267,11 @@ static double work(double a, double b, int n, double *dmax,
 static void loop_dissipation_equals_enclosed_area(void **state)
 {
     (void)state;
-    const double cases[4][3] = {
-        /* kc, phi_f, d1 */
-        {0.0, 0.0, 1e-5},
-        {KC, 0.0, 1e-5},
-        {KC, 0.01, 1e-5},
-        {2 * K2, 0.0, 1e-5}};
+    const double cases[4][3] = {/* kc, phi_f, d1 */
+                                {0.0, 0.0, 1e-5},
+                                {KC, 0.0, 1e-5},
+                                {KC, 0.01, 1e-5},
+                                {2 * K2, 0.0, 1e-5}};
     for (int c = 0; c < 4; c++) {
         const double kc = cases[c][0], phi = cases[c][1], d1 = cases[c][2];
         const struct dem_luding L = {K1, K2, kc, phi};
@@ -270,8 +281,7 @@ static void loop_dissipation_equals_enclosed_area(void **state)
         double diss = 0.5 * K1 * d1 * d1 -
                       (0.5 * f1 * f1 / k - 0.5 * kc * k * d0 * d0 / (k + kc));
         if (kc == 0.0)
-            assert_close(diss, 0.5 * K1 * d1 * d1 * (1.0 - K1 / k), 1e-14,
-                         0.0);
+            assert_close(diss, 0.5 * K1 * d1 * d1 * (1.0 - K1 / k), 1e-14, 0.0);
         double dmax = 0.0;
         const int n = 100000;
         double w = work(1e-30, d1, n, &dmax, &L, A12);
@@ -429,15 +439,15 @@ static void restitution_with_adhesion_matches_analytic(void **state)
         for (double kc = 0.05 * K2; kc < 5.0 * K2; kc *= 3.0) {
             const double k1 = k1s[a];
             const struct dem_luding L = {k1, K2, kc, 0.0};
-            double r2 = k1 / K2 - kc * (K2 - k1) * (K2 - k1) /
-                                      (k1 * K2 * (K2 + kc));
+            double r2 =
+                k1 / K2 - kc * (K2 - k1) * (K2 - k1) / (k1 * K2 * (K2 + kc));
             if (a == 0)
                 assert_close(r2, 1.0 / (2.0 * (1.0 + kc / K2)), 1e-13, 0.0);
             if (r2 <= 0.0)
                 continue; /* captured: see the capture test */
             double v0 = 0.1;
-            assert_close(dem_luding_restitution_sq(v0, MIJ, &L, A12), r2,
-                         1e-12, 0.0);
+            assert_close(dem_luding_restitution_sq(v0, MIJ, &L, A12), r2, 1e-12,
+                         0.0);
             assert_close(impact(&L, A12, MIJ, v0) / v0, sqrt(r2), 1e-6, 0.0);
         }
     }
@@ -451,8 +461,7 @@ static void capture_threshold_separates_rebound_and_sticking(void **state)
     const double kcs = k1 * k1 / (K2 - 2.0 * k1);
     const struct dem_luding T = {k1, K2, kcs, 0.0};
     assert_close(dem_luding_capture_kc(&T), kcs, 1e-14, 0.0);
-    assert_close(dem_luding_restitution_sq(0.1, MIJ, &T, A12), 0.0, 0.0,
-                 1e-12);
+    assert_close(dem_luding_restitution_sq(0.1, MIJ, &T, A12), 0.0, 0.0, 1e-12);
 
     const struct dem_luding below = {k1, K2, 0.8 * kcs, 0.0};
     double r = dem_luding_restitution(0.1, MIJ, &below, A12);
@@ -494,8 +503,8 @@ static void refined_restitution_depends_on_impact_speed(void **state)
         } else {
             double d0s = phi * 2.0 * A12;
             double w0 = (ds - d0s) * (ds - d0s);
-            ein = 0.5 * k1 * ds * ds +
-                  0.5 * K2 * ((dm - d0s) * (dm - d0s) - w0);
+            ein =
+                0.5 * k1 * ds * ds + 0.5 * K2 * ((dm - d0s) * (dm - d0s) - w0);
             eout = 0.5 * K2 * (dm - d0s) * (dm - d0s);
         }
         assert_close(ein, 0.5 * MIJ * v0 * v0, 1e-12, 0.0);

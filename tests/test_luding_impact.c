@@ -21,7 +21,10 @@ static const double RHO = 2000.0; /* kg/m^3 (test_config) */
  * r = 0.14 near capture); 1e-4 still leaves a wide margin. */
 static const double R_TOL = 1e-4;
 
-static double mass(double a) { return 4.0 / 3.0 * M_PI * RHO * a * a * a; }
+static double mass(double a)
+{
+    return 4.0 / 3.0 * M_PI * RHO * a * a * a;
+}
 
 /* Closed form of docs/physics.md for constant k2 (may be negative). */
 static double closed_r2(double k1, double k2, double kc)
@@ -31,8 +34,8 @@ static double closed_r2(double k1, double k2, double kc)
 
 /* Luding config without viscosity and friction; time step t_c/2000 with
  * t_c = pi sqrt(m/k2) of reduced mass m. */
-static void luding_config(struct dem_config *c, double k1, double k2,
-                          double kc, double wall_kc, double phi, double m)
+static void luding_config(struct dem_config *c, double k1, double k2, double kc,
+                          double wall_kc, double phi, double m)
 {
     test_config(c, 3);
     c->contact.normal = DEM_NORMAL_LUDING;
@@ -49,21 +52,23 @@ static void luding_config(struct dem_config *c, double k1, double k2,
 }
 
 struct impact {
-    double vrel;     /* m/s; relative normal velocity after the contact,
-                        > 0 separating (0 if captured) */
-    int separated;   /* 1 if the contact ended within the time limit */
-    double tc;       /* s; contact duration (if separated) */
-    double pmax;     /* kg m/s; largest |total momentum| along the run */
-    double min_gap;  /* m; smallest gap after the first contact */
-    double max_gap;  /* m; largest gap after the first contact, until the
-                        contact ends (< 0: stayed in contact) */
+    double vrel;    /* m/s; relative normal velocity after the contact,
+                       > 0 separating (0 if captured) */
+    int separated;  /* 1 if the contact ended within the time limit */
+    double tc;      /* s; contact duration (if separated) */
+    double pmax;    /* kg m/s; largest |total momentum| along the run */
+    double min_gap; /* m; smallest gap after the first contact */
+    double max_gap; /* m; largest gap after the first contact, until the
+                       contact ends (< 0: stayed in contact) */
     /* over the second half of a run that reached tmax (captured):
      * smallest and largest overlap and largest |relative velocity| */
     double late_dlo, late_dhi, late_vmax;
 };
 
-#define IMPACT_INIT {0.0, 0, 0.0, 0.0, INFINITY, -INFINITY, INFINITY, \
-                     -INFINITY, 0.0}
+#define IMPACT_INIT                                                            \
+    {                                                                          \
+        0.0, 0, 0.0, 0.0, INFINITY, -INFINITY, INFINITY, -INFINITY, 0.0        \
+    }
 
 static void late_sample(struct impact *I, double gap, double v)
 {
@@ -198,8 +203,7 @@ static void check_captured(const struct impact *I, double k1, double k2,
     assert_true(vamp < 0.05 * v0);
     printf("  captured: overlap oscillates in [%.6g, %.6g] m (analytic "
            "[%.6g, %.6g]), |v_rel| <= %.4g m/s (analytic %.4g, v0 %.2g)\n",
-           I->late_dlo, I->late_dhi, ds, 2.0 * d0 - ds, I->late_vmax, vamp,
-           v0);
+           I->late_dlo, I->late_dhi, ds, 2.0 * d0 - ds, I->late_vmax, vamp, v0);
 }
 
 /* ---- pair -------------------------------------------------------------- */
@@ -263,8 +267,8 @@ static void pair_adhesion_rebound_matches_closed_form(void **state)
     assert_rel(I.vrel / v0, r_kernel, R_TOL);
     assert_rel(I.vrel / v0, r_closed, R_TOL);
     assert_true(I.pmax <= 1e-14 * mass(A1) * v0);
-    printf("  pair kc=%.0f: r = %.10f (closed form %.10f, rel err %.2e)\n",
-           kc, I.vrel / v0, r_closed, I.vrel / v0 / r_closed - 1.0);
+    printf("  pair kc=%.0f: r = %.10f (closed form %.10f, rel err %.2e)\n", kc,
+           I.vrel / v0, r_closed, I.vrel / v0 / r_closed - 1.0);
 }
 
 /* 3. small k1/k2: captured above the threshold, rebound below it. */
@@ -331,8 +335,8 @@ static void wall_impacts_match_analytic(void **state)
     assert_true(I.separated);
     assert_rel(I.vrel / v0, r_kernel, R_TOL);
     assert_rel(I.vrel / v0, r_closed, R_TOL);
-    printf("  wall kc=%.0f: r = %.10f (closed form %.10f, rel err %.2e)\n",
-           kc, I.vrel / v0, r_closed, I.vrel / v0 / r_closed - 1.0);
+    printf("  wall kc=%.0f: r = %.10f (closed form %.10f, rel err %.2e)\n", kc,
+           I.vrel / v0, r_closed, I.vrel / v0 / r_closed - 1.0);
 
     /* capture threshold */
     k1 = 1e4;
@@ -356,8 +360,7 @@ static void wall_impacts_match_analytic(void **state)
 
 /* Independent reference of the constant-k2 law along a path: state dmax,
  * force at overlap d (> 0). */
-static double ref_force(double d, double *dmax, double k1, double k2,
-                        double kc)
+static double ref_force(double d, double *dmax, double k1, double k2, double kc)
 {
     if (d >= *dmax) {
         *dmax = d;
@@ -416,8 +419,8 @@ static void wall_prescribed_path_follows_law(void **state)
     for (int k = 1; k <= 4 * N; k++) {
         const double target = a - path_delta(k, N, nodes);
         /* v after the first half kick is (target - x)/dt */
-        s.p.vx[0] = (target - s.p.x[0]) / dt -
-                    0.5 * dt * s.p.inv_m[0] * s.p.fx[0];
+        s.p.vx[0] =
+            (target - s.p.x[0]) / dt - 0.5 * dt * s.p.inv_m[0] * s.p.fx[0];
         test_step(&s, 1);
         const double d = a - s.p.x[0]; /* the overlap the engine saw */
         assert_close(d, a - target, 1e-17);
@@ -471,18 +474,18 @@ static void wall_prescribed_path_follows_law(void **state)
     /* dissipated energy of the closed path, segment by segment */
     const double W1 = 0.5 * k1 * d1 * d1; /* virgin loading */
     /* unloading d1 -> du: line to delta_min, then -kc delta */
-    const double W2 = 0.5 * k2 * ((dmin1 - d01) * (dmin1 - d01) -
-                                  (d1 - d01) * (d1 - d01)) -
-                      0.5 * kc * (du * du - dmin1 * dmin1);
+    const double W2 =
+        0.5 * k2 * ((dmin1 - d01) * (dmin1 - d01) - (d1 - d01) * (d1 - d01)) -
+        0.5 * kc * (du * du - dmin1 * dmin1);
     /* reloading du -> d2: re-mapped line up to x, then k1 */
     const double x = (k2 + kc) / (k2 - k1) * du, d0x = (1.0 - k1 / k2) * x;
-    const double W3 = 0.5 * k2 * ((x - d0x) * (x - d0x) -
-                                  (du - d0x) * (du - d0x)) +
-                      0.5 * k1 * (d2 * d2 - x * x);
+    const double W3 =
+        0.5 * k2 * ((x - d0x) * (x - d0x) - (du - d0x) * (du - d0x)) +
+        0.5 * k1 * (d2 * d2 - x * x);
     /* unloading d2 -> 0: E_out = f1^2/(2 k2) - kc k2 d0^2/(2 (k2 + kc)) */
     const double d02 = (1.0 - k1 / k2) * d2;
-    const double W4 = -(0.5 * k1 * k1 * d2 * d2 / k2 -
-                        0.5 * kc * k2 * d02 * d02 / (k2 + kc));
+    const double W4 =
+        -(0.5 * k1 * k1 * d2 * d2 / k2 - 0.5 * kc * k2 * d02 * d02 / (k2 + kc));
     const double diss = W1 + W2 + W3 + W4;
     /* cross-check W1 + W4: the first cycle of an impact to d2 */
     assert_rel(0.5 * k1 * d2 * d2 + W4,
@@ -539,8 +542,7 @@ static void pair_refined_law_rebound(void **state)
         struct impact I = pair_impact(&c, A1, A2, v0, 1.0);
         assert_true(I.separated);
         assert_rel(I.vrel / v0, r, R_TOL);
-        assert_rel(-I.min_gap, dem_luding_impact_overlap(v0, m, &L, a12),
-                   2e-3);
+        assert_rel(-I.min_gap, dem_luding_impact_overlap(v0, m, &L, a12), 2e-3);
         assert_true(I.pmax <= 1e-14 * mass(A1) * v0);
         printf("  pair phi_f=%.2f v0=%.1f (dmax/d* = %.3f): r = %.10f "
                "(kernel %.10f, rel err %.2e), seed-law r = %.4f\n",

@@ -38,7 +38,8 @@ static void check_same_pairs(int dim, int reorder)
         assert_true(nb > 100);
         const struct dem_contact_list *L = &s.pairs.cur;
         assert_int_equal(L->n, nb);
-        long *a = malloc((size_t)nb * sizeof *a), *b = malloc((size_t)nb * sizeof *b);
+        long *a = malloc((size_t)nb * sizeof *a),
+             *b = malloc((size_t)nb * sizeof *b);
         for (int k = 0; k < nb; k++) {
             a[k] = (long)bi[k] * n + bj[k];
             b[k] = (long)L->i[k] * n + L->j[k];

@@ -34,8 +34,8 @@ static int same_bits(double a, double b)
 /* Swap particles i and j in memory, as a spatial re-ordering would. */
 static void swap_particles(struct dem_particles *p, int i, int j)
 {
-    double *arrays[] = {p->x, p->y, p->z, p->vx, p->vy, p->vz, p->wx,
-                        p->wy, p->wz, p->r, p->m, p->inv_m, p->inv_I};
+    double *arrays[] = {p->x,  p->y,  p->z, p->vx, p->vy,    p->vz,   p->wx,
+                        p->wy, p->wz, p->r, p->m,  p->inv_m, p->inv_I};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) {
         double t = arrays[k][i];
         arrays[k][i] = arrays[k][j];
@@ -60,9 +60,8 @@ static void check_round_trip(int dim, int mass_model)
         double r = 1e-4 * (1.0 + dem_rng_uniform(&g)) * pow(10.0, i % 5);
         double x = dem_rng_normal(&g) * 0.1, y = dem_rng_normal(&g) / 3.0;
         double z = dim == 3 ? dem_rng_normal(&g) * 1e-7 : 0.0;
-        assert_int_equal(dem_particles_add(&a, x, y, z, r, rho, mass_model,
-                                           dim),
-                         i);
+        assert_int_equal(
+            dem_particles_add(&a, x, y, z, r, rho, mass_model, dim), i);
         a.vx[i] = dem_rng_normal(&g);
         a.vy[i] = -dem_rng_uniform(&g) * 1e-300; /* subnormal range too */
         a.wz[i] = dem_rng_normal(&g) * 1e5;
@@ -86,9 +85,8 @@ static void check_round_trip(int dim, int mass_model)
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     assert_int_equal(access(tmp, F_OK), -1); /* renamed away */
 
-    assert_int_equal(dem_particles_read_csv(&b, path, dim, rho, mass_model,
-                                            &err),
-                     DEM_OK);
+    assert_int_equal(
+        dem_particles_read_csv(&b, path, dim, rho, mass_model, &err), DEM_OK);
     assert_int_equal(b.n, n);
     for (int i = 0; i < n; i++) {
         int j = b.id[i];
@@ -141,9 +139,9 @@ static void optional_columns_any_order_and_mass_from_density(void **state)
     struct dem_particles p;
     struct dem_error err = {0};
     const double rho = 1000.0;
-    assert_int_equal(dem_particles_read_csv(&p, path, 2, rho, DEM_MASS_SPHERE,
-                                            &err),
-                     DEM_OK);
+    assert_int_equal(
+        dem_particles_read_csv(&p, path, 2, rho, DEM_MASS_SPHERE, &err),
+        DEM_OK);
     assert_int_equal(p.n, 2);
     assert_true(p.x[0] == 1.0 && p.y[0] == 2.0 && p.z[0] == 0.0);
     assert_true(p.wz[0] == 3.0 && p.vx[0] == 0.0);
@@ -178,9 +176,8 @@ static const struct bad_case bad_cases[] = {
      "unknown column 'foo'"},
     {"duplicate column", 3, "#h\nx,y,z,radius,x\n", DEM_ECONFIG, 2,
      "duplicate column 'x'"},
-    {"too many header fields", 3,
-     "x,y,z,vx,vy,vz,wx,wy,wz,radius,mass,x,y\n", DEM_ECONFIG, 1,
-     "duplicate column 'x'"},
+    {"too many header fields", 3, "x,y,z,vx,vy,vz,wx,wy,wz,radius,mass,x,y\n",
+     DEM_ECONFIG, 1, "duplicate column 'x'"},
     {"missing z in 3D", 3, "x,y,radius\n0,0,1\n", DEM_ECONFIG, 1,
      "missing required column 'z'"},
     {"missing radius", 2, "x,y\n0,0\n", DEM_ECONFIG, 1,
@@ -190,16 +187,14 @@ static const struct bad_case bad_cases[] = {
     {"short row", 3, "x,y,z,radius\n0,0,0,1\n0,0,0\n", DEM_ECONFIG, 3,
      "3 fields"},
     {"long row", 3, "x,y,z,radius\n0,0,0,1,5\n", DEM_ECONFIG, 2, "5 fields"},
-    {"text", 3, "x,y,z,radius\n# c\n0,abc,0,1\n", DEM_ECONFIG, 3,
-     "column 'y'"},
+    {"text", 3, "x,y,z,radius\n# c\n0,abc,0,1\n", DEM_ECONFIG, 3, "column 'y'"},
     {"nan", 3, "x,y,z,radius\n0,0,nan,1\n", DEM_ECONFIG, 2, "column 'z'"},
     {"inf", 3, "x,y,z,radius\n-inf,0,0,1\n", DEM_ECONFIG, 2, "column 'x'"},
     {"overflow", 3, "x,y,z,radius\n0,0,0,1e999\n", DEM_ECONFIG, 2,
      "column 'radius'"},
     {"trailing junk", 3, "x,y,z,radius\n0,0,0,0.5x\n", DEM_ECONFIG, 2,
      "column 'radius'"},
-    {"empty field", 3, "x,y,z,radius\n0,,0,1\n", DEM_ECONFIG, 2,
-     "column 'y'"},
+    {"empty field", 3, "x,y,z,radius\n0,,0,1\n", DEM_ECONFIG, 2, "column 'y'"},
     {"zero radius", 3, "x,y,z,radius\n0,0,0,1\n1,1,1,0\n", DEM_ECONFIG, 3,
      "column 'radius'"},
     {"negative radius", 3, "x,y,z,radius\n0,0,0,-1\n", DEM_ECONFIG, 2,
@@ -207,12 +202,13 @@ static const struct bad_case bad_cases[] = {
     {"zero mass", 3, "x,y,z,radius,mass\n0,0,0,1,0\n", DEM_ECONFIG, 2,
      "column 'mass'"},
     /* found by fuzz_particles_csv: finite inputs, unusable mass */
-    {"mass overflows", 3, "x,y,z,radius\n0,0,0,1\n0,0,0,1e200\n",
-     DEM_ECONFIG, 3, "column 'radius': 1e+200 m gives a mass of inf kg"},
+    {"mass overflows", 3, "x,y,z,radius\n0,0,0,1\n0,0,0,1e200\n", DEM_ECONFIG,
+     3, "column 'radius': 1e+200 m gives a mass of inf kg"},
     {"mass underflows", 3, "x,y,z,radius\n0,0,0,1e-200\n", DEM_ECONFIG, 2,
      "column 'radius'"},
     {"inertia underflows", 3, "x,y,z,radius,mass\n0,0,0,1e-3,1e-303\n",
-     DEM_ECONFIG, 2, "column 'mass': radius 0.001 m and mass 1e-303 kg give "
+     DEM_ECONFIG, 2,
+     "column 'mass': radius 0.001 m and mass 1e-303 kg give "
      "a moment of inertia of 4e-310 kg m^2"},
     {"inverse mass overflows", 3, "x,y,z,radius,mass\n0,0,0,0.1,1e-320\n",
      DEM_ECONFIG, 2, "column 'mass': 9.99989e-321 kg is out of range"},
@@ -279,9 +275,9 @@ static void missing_file_is_an_io_error(void **state)
     snprintf(path, sizeof path, "%s/does-not-exist.csv", tmpdir);
     struct dem_particles p;
     struct dem_error err = {0};
-    assert_int_equal(dem_particles_read_csv(&p, path, 3, 2000.0,
-                                            DEM_MASS_SPHERE, &err),
-                     DEM_EIO);
+    assert_int_equal(
+        dem_particles_read_csv(&p, path, 3, 2000.0, DEM_MASS_SPHERE, &err),
+        DEM_EIO);
     assert_non_null(strstr(err.msg, path));
 }
 

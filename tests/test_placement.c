@@ -25,12 +25,12 @@ static void config_defaults(struct dem_config *c, int dim, int placement,
     c->dim = dim;
     c->seed = 1;
     c->particles.count = count;
-    c->particles.density = 2000.0;                   /* kg/m^3 */
+    c->particles.density = 2000.0; /* kg/m^3 */
     c->particles.distribution = DEM_DIST_GAUSSIAN;
-    c->particles.mean = 5.0e-3;                      /* m */
-    c->particles.std = 0.7e-3;                       /* m */
-    c->particles.min = 3.0e-3;                       /* m */
-    c->particles.max = 1.0;                          /* m; no upper cut */
+    c->particles.mean = 5.0e-3; /* m */
+    c->particles.std = 0.7e-3;  /* m */
+    c->particles.min = 3.0e-3;  /* m */
+    c->particles.max = 1.0;     /* m; no upper cut */
     c->particles.placement = placement;
     c->particles.mass_model = DEM_MASS_SPHERE;
 }
@@ -143,8 +143,14 @@ static void uniform_radii_have_the_midpoint_mean(void **state)
 }
 
 /* Standard normal density and distribution function. */
-static double npdf(double x) { return exp(-0.5 * x * x) / sqrt(2.0 * M_PI); }
-static double ncdf(double x) { return 0.5 * erfc(-x / sqrt(2.0)); }
+static double npdf(double x)
+{
+    return exp(-0.5 * x * x) / sqrt(2.0 * M_PI);
+}
+static double ncdf(double x)
+{
+    return 0.5 * erfc(-x / sqrt(2.0));
+}
 
 static void gaussian_radii_follow_the_truncated_normal(void **state)
 {

@@ -13,8 +13,9 @@
 #include "testutil.h"
 
 static const char *const curve_plots[] = {
-    "stress_strain", "volumetric_strain", "stress_ratio",
-    "deviatoric_stress_strain", "energies", "mohr_circles",
+    "stress_strain", "volumetric_strain",
+    "stress_ratio",  "deviatoric_stress_strain",
+    "energies",      "mohr_circles",
 };
 #define NCURVES (sizeof curve_plots / sizeof curve_plots[0])
 
@@ -139,7 +140,7 @@ static void assert_png(const char *plotdir, const char *name)
     unsigned char magic[8] = {0};
     size_t got = fread(magic, 1, 8, f);
     fclose(f);
-    static const unsigned char png[8] = {0x89, 'P', 'N', 'G',
+    static const unsigned char png[8] = {0x89, 'P',  'N',  'G',
                                          '\r', '\n', 0x1a, '\n'};
     if (got != 8 || memcmp(magic, png, 8) != 0)
         fail_msg("%s is not a PNG file", p);
@@ -288,8 +289,8 @@ static void drop_column(const char *dir, const char *name)
         line[strcspn(line, "\n")] = '\0';
         int col = 0;
         const char *sep = "";
-        for (char *tok = strtok(line, ","); tok; tok = strtok(NULL, ","),
-                  col++) {
+        for (char *tok = strtok(line, ","); tok;
+             tok = strtok(NULL, ","), col++) {
             if (drop < 0 && !strcmp(tok, name))
                 drop = col;
             if (col == drop)

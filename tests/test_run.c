@@ -29,8 +29,9 @@ static int exists(const char *dir, const char *name)
     return stat(path, &st) == 0 && st.st_size > 0;
 }
 
-static void run_text(const char *text, const char *name, const char *const *sets,
-                     int nsets, long max_steps, char *outdir, size_t n)
+static void run_text(const char *text, const char *name,
+                     const char *const *sets, int nsets, long max_steps,
+                     char *outdir, size_t n)
 {
     struct dem_config c;
     struct dem_error err = {0, ""};
@@ -44,8 +45,8 @@ static void run_text(const char *text, const char *name, const char *const *sets
 }
 
 /* Read the named columns of OUTDIR/timeseries.csv. */
-static void read_ts(const char *outdir, const struct dem__csv_want *want,
-                    int n, struct dem__csv_table *t)
+static void read_ts(const char *outdir, const struct dem__csv_want *want, int n,
+                    struct dem__csv_table *t)
 {
     char path[2048];
     snprintf(path, sizeof path, "%s/timeseries.csv", outdir);
@@ -95,10 +96,10 @@ static void isotropic_stage_reaches_target_pressure(void **state)
                           " tolerance = 1.0e-4; max_time = 0.1; mu = 0.0; } )"};
     run_text(small_2d, "isotropic2d", sets, 1, 0, out, sizeof out);
     static const struct dem__csv_want want[] = {
-        {"xmin_force", 1}, {"xmax_force", 1}, {"ymin_force", 1},
-        {"ymax_force", 1}, {"Lx", 1},         {"Ly", 1},
+        {"xmin_force", 1},  {"xmax_force", 1},  {"ymin_force", 1},
+        {"ymax_force", 1},  {"Lx", 1},          {"Ly", 1},
         {"sigma_lw_xx", 1}, {"sigma_lw_yy", 1}, {"e_kin", 1},
-        {"e_rot", 1},      {"e_pot", 1},      {"t", 1}};
+        {"e_rot", 1},       {"e_pot", 1},       {"t", 1}};
     struct dem__csv_table t;
     read_ts(out, want, 12, &t);
     size_t r = t.nrow - 1;
@@ -126,8 +127,8 @@ static void biaxial_fixed_walls_and_dilatancy(void **state)
     char out[1024];
     run_text(small_2d, "biaxial2d-small", 0, 0, 0, out, sizeof out);
     static const struct dem__csv_want want[] = {
-        {"stage", 1}, {"xmin_pos", 1}, {"ymin_pos", 1}, {"eps_v", 1},
-        {"eps_yy", 1}, {"sigma_xx", 1}};
+        {"stage", 1}, {"xmin_pos", 1}, {"ymin_pos", 1},
+        {"eps_v", 1}, {"eps_yy", 1},   {"sigma_xx", 1}};
     struct dem__csv_table t;
     read_ts(out, want, 6, &t);
     size_t first = 0;
@@ -166,7 +167,8 @@ static void overlap_blow_up_is_diagnosed(void **state)
         "particles = { count = 27; radius = { distribution = \"mono\";"
         " mean = 5.0e-3; }; placement = \"lattice\"; };\n"
         "walls = { mass = 0.01; gamma = 1.0; };\n"
-        "stages = ( { type = \"isotropic\"; pressure = 1.0e6; max_time = 0.5; } );\n"
+        "stages = ( { type = \"isotropic\"; pressure = 1.0e6; max_time = 0.5; "
+        "} );\n"
         "output = { interval = 1.0e-3; snapshot_interval = 0.0; };\n";
     struct dem_config c;
     struct dem_error err = {0, ""};
@@ -200,7 +202,8 @@ static void energy_growth_is_diagnosed(void **state)
     for (int k = 0; k < 8; k++)
         fprintf(f, "%g,%g,%g,%g,%g,%g,5e-3\n", 0.01 + 0.02 * (k % 2),
                 0.01 + 0.02 * ((k / 2) % 2), 0.01 + 0.02 * (k / 4),
-                0.3 * (k % 3 - 1), 0.3 * ((k + 1) % 3 - 1), 0.2 * (k % 2 ? 1 : -1));
+                0.3 * (k % 3 - 1), 0.3 * ((k + 1) % 3 - 1),
+                0.2 * (k % 2 ? 1 : -1));
     fclose(f);
     char text[4096];
     snprintf(text, sizeof text,

@@ -99,14 +99,14 @@ static void bad_param_is_an_error_naming_it(void **state)
 {
     (void)state;
     static const char *const bad[] = {
-        "contact.mu",          /* no '=' */
-        "contact.mu=",         /* no values */
-        "contact.mu=0.1,,0.3", /* empty value */
-        "contact.mu=0.1,0.1",  /* duplicate value */
-        "=0.1,0.2",            /* no key */
-        "contact..mu=0.1",     /* malformed key */
+        "contact.mu",                /* no '=' */
+        "contact.mu=",               /* no values */
+        "contact.mu=0.1,,0.3",       /* empty value */
+        "contact.mu=0.1,0.1",        /* duplicate value */
+        "=0.1,0.2",                  /* no key */
+        "contact..mu=0.1",           /* malformed key */
         "contact.mu,contact.mu=1,2", /* key twice */
-        "gravity=[0,0",        /* unbalanced bracket */
+        "gravity=[0,0",              /* unbalanced bracket */
     };
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         struct dem_sweep_grid g;
@@ -151,8 +151,8 @@ static void bad_grid_point_is_refused_before_running(void **state)
     memset(&g, 0, sizeof g);
     add(&g, "stages.1.pressure=250,500");
     add(&g, "contact.mu=0.3,-1");
-    struct dem_sweep_options o = {cfg, out, NULL, 0, 2, 1, 1,
-                                  getenv("DEMBOX_BIN"), 200};
+    struct dem_sweep_options o = {
+        cfg, out, NULL, 0, 2, 1, 1, getenv("DEMBOX_BIN"), 200};
     struct dem_sweep_report rep;
     struct dem_error err = {0, ""};
     assert_int_equal(dem_sweep_run(&g, &o, &rep, &err), DEM_ECONFIG);

@@ -135,8 +135,8 @@ static void love_weber_equals_wall_stress(void **state)
     for (int k = 0; k < nside; k++)
         for (int j = 0; j < nside; j++)
             for (int i = 0; i < nside; i++)
-                test_add(&s, (2 * i + 1) * a, (2 * j + 1) * a,
-                         (2 * k + 1) * a, a * (0.75 + 0.25 * dem_rng_uniform(&g)));
+                test_add(&s, (2 * i + 1) * a, (2 * j + 1) * a, (2 * k + 1) * a,
+                         a * (0.75 + 0.25 * dem_rng_uniform(&g)));
     test_ready(&s);
     const double p = 1000.0;
     for (int w = 0; w < 6; w++)

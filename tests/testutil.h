@@ -17,21 +17,21 @@
 #include "core/sim.h"
 
 /* |a - b| <= tol, printing both values on failure. */
-#define assert_close(a, b, tol)                                              \
-    do {                                                                     \
-        double a_ = (a), b_ = (b), t_ = (tol);                               \
-        if (!(fabs(a_ - b_) <= t_))                                          \
-            fail_msg("%s = %.12g, %s = %.12g, |diff| %.3g > %.3g", #a, a_,   \
-                     #b, b_, fabs(a_ - b_), t_);                             \
+#define assert_close(a, b, tol)                                                \
+    do {                                                                       \
+        double a_ = (a), b_ = (b), t_ = (tol);                                 \
+        if (!(fabs(a_ - b_) <= t_))                                            \
+            fail_msg("%s = %.12g, %s = %.12g, |diff| %.3g > %.3g", #a, a_, #b, \
+                     b_, fabs(a_ - b_), t_);                                   \
     } while (0)
 
 /* |a/b - 1| <= rel. */
-#define assert_rel(a, b, rel)                                                \
-    do {                                                                     \
-        double a_ = (a), b_ = (b), r_ = (rel);                               \
-        if (!(fabs(a_ - b_) <= r_ * fabs(b_)))                               \
-            fail_msg("%s = %.12g, %s = %.12g, rel diff %.3g > %.3g", #a, a_, \
-                     #b, b_, fabs(a_ - b_) / fabs(b_), r_);                  \
+#define assert_rel(a, b, rel)                                                  \
+    do {                                                                       \
+        double a_ = (a), b_ = (b), r_ = (rel);                                 \
+        if (!(fabs(a_ - b_) <= r_ * fabs(b_)))                                 \
+            fail_msg("%s = %.12g, %s = %.12g, rel diff %.3g > %.3g", #a, a_,   \
+                     #b, b_, fabs(a_ - b_) / fabs(b_), r_);                    \
     } while (0)
 
 /* Seed 000's material, no damping, no gravity, one hold stage. */

@@ -25,10 +25,10 @@
 /* A CSV table of numbers read by column names. Each kept column is its
  * own array, so a long run costs only the columns the analysis uses. */
 struct dem_table {
-    int ncol;      /* number of kept columns */
-    char **names;  /* their names (owned) */
-    long nrow;     /* number of data rows */
-    double **col;  /* col[k][r]: column k, row r (owned) */
+    int ncol;     /* number of kept columns */
+    char **names; /* their names (owned) */
+    long nrow;    /* number of data rows */
+    double **col; /* col[k][r]: column k, row r (owned) */
 };
 
 /* Read a CSV file with one header line of names and rows of numbers,
@@ -37,8 +37,7 @@ struct dem_table {
  * header; the kept ones must be numbers. Errors name the file, the line
  * and the column. */
 int dem_table_read(struct dem_table *t, const char *path,
-                   const char *const *want, int nwant,
-                   struct dem_error *err);
+                   const char *const *want, int nwant, struct dem_error *err);
 void dem_table_free(struct dem_table *t);
 /* Index of the column called name, or -1. */
 int dem_table_find(const struct dem_table *t, const char *name);
@@ -91,12 +90,12 @@ int dem_peak_find(const double *strain, const double *y, long n, long half,
                   struct dem_peak *out);
 
 struct dem_critical {
-    int ok;          /* 1 if the end of the loading is a plateau */
-    long first;      /* first sample of the averaging window */
-    long count;      /* samples in the window */
-    double value;    /* mean of y over the window */
-    double drift;    /* change of the fitted line across the window divided
-                        by |value|; NaN when it cannot be computed */
+    int ok;             /* 1 if the end of the loading is a plateau */
+    long first;         /* first sample of the averaging window */
+    long count;         /* samples in the window */
+    double value;       /* mean of y over the window */
+    double drift;       /* change of the fitted line across the window divided
+                           by |value|; NaN when it cannot be computed */
     double strain_from; /* axial strain where the window starts */
     char reason[DEM_REASON_MAX];
 };
@@ -112,17 +111,17 @@ int dem_critical_find(const double *strain, const double *y, long n,
 /* -------------------------------------------------------------- slopes.c */
 
 struct dem_slopes {
-    long min_index;     /* sample of the minimum of smoothed eps_v */
+    long min_index; /* sample of the minimum of smoothed eps_v */
     int initial_ok;
     long initial_count; /* samples 0..initial_count-1 form the initial part */
     double initial_strain; /* axial strain at the end of the initial part */
-    double initial;     /* d eps_v / d eps_axial over the initial part */
+    double initial;        /* d eps_v / d eps_axial over the initial part */
     char initial_reason[DEM_REASON_MAX];
     int dilatant_ok;
-    double dilatant;    /* largest windowed d eps_v / d eps_axial after the
-                           minimum of eps_v */
+    double dilatant;        /* largest windowed d eps_v / d eps_axial after the
+                               minimum of eps_v */
     double dilatant_strain; /* axial strain at the centre of that window */
-    long window;        /* samples per moving window */
+    long window;            /* samples per moving window */
     char dilatant_reason[DEM_REASON_MAX];
 };
 
@@ -131,9 +130,9 @@ struct dem_slopes {
  * smoothed eps_v (smoothing half-window `half`); the dilatant slope is the
  * largest least-squares slope over windows of `window` samples that start
  * at or after that minimum. */
-void dem_slopes_volumetric(const double *strain, const double *eps_v,
-                           long n, long half, double initial_fraction,
-                           long window, struct dem_slopes *out);
+void dem_slopes_volumetric(const double *strain, const double *eps_v, long n,
+                           long half, double initial_fraction, long window,
+                           struct dem_slopes *out);
 
 /* Least-squares slope of y(strain) over samples 0..count-1 (NaN if the
  * fit is impossible). */
@@ -184,10 +183,10 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
 
 struct dem_voidfit {
     int ok;
-    double e0;   /* void ratio at vanishing pressure */
-    double n;    /* exponent */
-    double rms;  /* rms residual in e */
-    double r2;   /* R^2 in e */
+    double e0;  /* void ratio at vanishing pressure */
+    double n;   /* exponent */
+    double rms; /* rms residual in e */
+    double r2;  /* R^2 in e */
     char reason[DEM_REASON_MAX];
 };
 
@@ -208,9 +207,9 @@ struct dem_cycle {
 };
 
 enum dem_verdict {
-    DEM_VERDICT_NONE = -1,      /* too few cycles to tell */
-    DEM_VERDICT_SHAKEDOWN = 0,  /* accumulation dies out */
-    DEM_VERDICT_RATCHETING = 1  /* steady accumulation */
+    DEM_VERDICT_NONE = -1,     /* too few cycles to tell */
+    DEM_VERDICT_SHAKEDOWN = 0, /* accumulation dies out */
+    DEM_VERDICT_RATCHETING = 1 /* steady accumulation */
 };
 
 struct dem_cycles {
@@ -233,8 +232,8 @@ struct dem_cycles {
  * (within tol s). Fills cyc[0..max-1] and sum; returns the number of
  * complete cycles. */
 int dem_cycles_analyze(const double *t, const double *eps_d,
-                       const double *sigma_d, long n, double t0,
-                       double period, double tol, int max,
-                       struct dem_cycle *cyc, struct dem_cycles *sum);
+                       const double *sigma_d, long n, double t0, double period,
+                       double tol, int max, struct dem_cycle *cyc,
+                       struct dem_cycles *sum);
 
 #endif

@@ -39,26 +39,26 @@ struct columns {
  * strains are 0 and its stresses are those at the start of the loading. */
 struct curves {
     long n;
-    double t0;      /* s; start of the stage */
-    double *t;      /* s */
-    double *ea;     /* axial strain, compression positive */
-    double *el;     /* lateral strain (mean of the other axes) */
-    double *ev;     /* eps_v, dilation positive */
-    double *s1;     /* axial wall stress, Pa (2D N/m) */
-    double *s3;     /* lateral wall stress (mean of the other axes) */
-    double *e;      /* void ratio */
+    double t0;        /* s; start of the stage */
+    double *t;        /* s */
+    double *ea;       /* axial strain, compression positive */
+    double *el;       /* lateral strain (mean of the other axes) */
+    double *ev;       /* eps_v, dilation positive */
+    double *s1;       /* axial wall stress, Pa (2D N/m) */
+    double *s3;       /* lateral wall stress (mean of the other axes) */
+    double *e;        /* void ratio */
     double *inertial; /* inertial number, NaN if not written */
 };
 
 struct result {
     int dim;
-    int stage, type, axis;   /* loading stage; -1 if none */
-    double pressure;         /* confining pressure of the loading stage */
+    int stage, type, axis; /* loading stage; -1 if none */
+    double pressure;       /* confining pressure of the loading stage */
     long samples;
     char none_reason[DEM_REASON_MAX]; /* why there is no loading stage */
     char mono_reason[DEM_REASON_MAX]; /* why no monotonic analysis */
-    int mono;                /* 1: peak, critical and slopes computed */
-    long half;               /* smoothing half-window, samples */
+    int mono;  /* 1: peak, critical and slopes computed */
+    long half; /* smoothing half-window, samples */
     struct dem_peak peak;
     double peak_s1, peak_s3;
     struct dem_critical crit;
@@ -76,8 +76,8 @@ struct result {
     struct dem_cycles csum;
 };
 
-static int file_exists(const char *dir, const char *name, char *path,
-                       size_t n, struct dem_error *err)
+static int file_exists(const char *dir, const char *name, char *path, size_t n,
+                       struct dem_error *err)
 {
     if (dem_path_join(path, n, dir, name, err))
         return -1;
@@ -85,8 +85,8 @@ static int file_exists(const char *dir, const char *name, char *path,
 }
 
 /* One clear line when outdir is not a finished dembox run. */
-static int check_run_folder(const char *outdir, char *cfg_path,
-                            char *ts_path, struct dem_error *err)
+static int check_run_folder(const char *outdir, char *cfg_path, char *ts_path,
+                            struct dem_error *err)
 {
     char part[DEM_PATH_MAX];
     const int has_cfg =
@@ -106,19 +106,17 @@ static int check_run_folder(const char *outdir, char *cfg_path,
                              outdir);
     if (access(outdir, F_OK) != 0)
         return dem_error_set(err, DEM_EIO, "%s: no such folder", outdir);
-    return dem_error_set(err, DEM_EIO,
-                         "%s: not a dembox run folder (no %s%s%s)", outdir,
-                         has_cfg ? "" : "config.cfg",
-                         !has_cfg && !has_ts ? ", no " : "",
-                         has_ts ? "" : "timeseries.csv");
+    return dem_error_set(
+        err, DEM_EIO, "%s: not a dembox run folder (no %s%s%s)", outdir,
+        has_cfg ? "" : "config.cfg", !has_cfg && !has_ts ? ", no " : "",
+        has_ts ? "" : "timeseries.csv");
 }
 
 static const char *const eps[3] = {"eps_xx", "eps_yy", "eps_zz"};
 static const char *const sig[3] = {"sigma_xx", "sigma_yy", "sigma_zz"};
 static const char *const wanted[] = {
-    "t",        "stage",    "eps_v",    "void_ratio", "inertial_number",
-    "eps_xx",   "eps_yy",   "eps_zz",   "sigma_xx",   "sigma_yy",
-    "sigma_zz"};
+    "t",      "stage",  "eps_v",    "void_ratio", "inertial_number", "eps_xx",
+    "eps_yy", "eps_zz", "sigma_xx", "sigma_yy",   "sigma_zz"};
 
 static int get_columns(const struct dem_table *tb, const char *path,
                        struct columns *c, struct dem_error *err)
@@ -154,9 +152,8 @@ static double lateral(const double *const v[3], long r, int axis, int dim)
     return s / (dim - 1);
 }
 
-static int build_curves(const struct columns *c, long nrow, int stage,
-                        int axis, int dim, double interval,
-                        struct curves *cv)
+static int build_curves(const struct columns *c, long nrow, int stage, int axis,
+                        int dim, double interval, struct curves *cv)
 {
     memset(cv, 0, sizeof *cv);
     long first = -1, last = -1;
@@ -173,7 +170,7 @@ static int build_curves(const struct columns *c, long nrow, int stage,
     double *blk = malloc(8 * (size_t)n * sizeof *blk);
     if (!blk)
         return DEM_ENOMEM;
-    double **arr[] = {&cv->t,  &cv->ea, &cv->el, &cv->ev, &cv->s1,
+    double **arr[] = {&cv->t,  &cv->ea, &cv->el,       &cv->ev, &cv->s1,
                       &cv->s3, &cv->e,  &cv->inertial, NULL};
     for (int k = 0; arr[k]; k++)
         *arr[k] = blk + (size_t)k * (size_t)n;
@@ -192,7 +189,9 @@ static int build_curves(const struct columns *c, long nrow, int stage,
     }
     /* without a predecessor the stage started at t = 0 (first stage) or,
      * failing that, one output interval before its first row */
-    cv->t0 = origin ? c->t[first - 1] : stage == 0 ? 0.0 : c->t[first] - interval;
+    cv->t0 = origin       ? c->t[first - 1]
+             : stage == 0 ? 0.0
+                          : c->t[first] - interval;
     return DEM_OK;
 }
 
@@ -205,8 +204,7 @@ static int last_stage_of(const struct dem_config *cfg, int type)
 }
 
 /* Peak, critical state and the slopes of a compress stage. */
-static int analyze_monotonic(const struct curves *cv, int dim,
-                             struct result *R)
+static int analyze_monotonic(const struct curves *cv, int dim, struct result *R)
 {
     const long n = cv->n;
     double *ratio = malloc(2 * (size_t)n * sizeof *ratio);
@@ -263,9 +261,8 @@ static int analyze_monotonic(const struct curves *cv, int dim,
  * mean diameter to keep p/hs dimensionless (our extension). */
 static double hardness(const struct dem_config *cfg)
 {
-    const double k = cfg->contact.normal == DEM_NORMAL_LUDING
-                         ? cfg->contact.k2
-                         : cfg->contact.k;
+    const double k = cfg->contact.normal == DEM_NORMAL_LUDING ? cfg->contact.k2
+                                                              : cfg->contact.k;
     if (cfg->dim == 2)
         return k;
     const double d = cfg->particles.distribution == DEM_DIST_UNIFORM
@@ -303,9 +300,8 @@ static int analyze_void_fit(const struct dem_config *cfg,
     return dem_voidfit(p, e, m, R->hs, &R->vfit);
 }
 
-static int analyze_cyclic(const struct dem_config *cfg,
-                          const struct columns *c, long nrow,
-                          struct result *R)
+static int analyze_cyclic(const struct dem_config *cfg, const struct columns *c,
+                          long nrow, struct result *R)
 {
     const struct dem_stage_config *sc = &cfg->stages[R->cyc_stage];
     R->cyc_pressure = sc->pressure;
@@ -316,8 +312,8 @@ static int analyze_cyclic(const struct dem_config *cfg,
                           cfg->output.interval, &cv);
     if (rc)
         return rc;
-    R->cycles = calloc((size_t)(sc->cycles > 0 ? sc->cycles : 1),
-                       sizeof *R->cycles);
+    R->cycles =
+        calloc((size_t)(sc->cycles > 0 ? sc->cycles : 1), sizeof *R->cycles);
     if (!R->cycles) {
         curves_free(&cv);
         return DEM_ENOMEM;
@@ -341,22 +337,19 @@ static void loading_scalars(const struct curves *cv, struct result *R)
     R->e_init = cv->e[0];
     R->inertial_max = NAN;
     for (long i = 0; i < cv->n; i++)
-        if (isfinite(cv->inertial[i]) &&
-            !(cv->inertial[i] <= R->inertial_max))
+        if (isfinite(cv->inertial[i]) && !(cv->inertial[i] <= R->inertial_max))
             R->inertial_max = cv->inertial[i];
 }
 
 static int analyze_loading(const struct dem_config *cfg,
-                           const struct columns *c, long nrow,
-                           struct result *R)
+                           const struct columns *c, long nrow, struct result *R)
 {
     const int comp = last_stage_of(cfg, DEM_STAGE_COMPRESS);
     R->stage = comp >= 0 ? comp : R->cyc_stage;
     if (R->stage < 0) {
         snprintf(R->none_reason, sizeof R->none_reason,
                  "the run has no compress or cyclic stage");
-        snprintf(R->mono_reason, sizeof R->mono_reason, "%s",
-                 R->none_reason);
+        snprintf(R->mono_reason, sizeof R->mono_reason, "%s", R->none_reason);
         return DEM_OK;
     }
     const struct dem_stage_config *sc = &cfg->stages[R->stage];
@@ -373,8 +366,7 @@ static int analyze_loading(const struct dem_config *cfg,
                  "stage %d has no rows in timeseries.csv (the run stopped "
                  "before it)",
                  R->stage);
-        snprintf(R->mono_reason, sizeof R->mono_reason, "%s",
-                 R->none_reason);
+        snprintf(R->mono_reason, sizeof R->mono_reason, "%s", R->none_reason);
         return DEM_OK;
     }
     loading_scalars(&cv, R);
@@ -393,10 +385,9 @@ static void result_init(struct result *R, int dim)
     memset(R, 0, sizeof *R);
     R->dim = dim;
     R->stage = R->type = R->axis = R->cyc_stage = -1;
-    double *nan[] = {&R->pressure,  &R->peak_s1,   &R->peak_s3,
-                     &R->crit_s1,   &R->crit_s3,   &R->crit_e,
-                     &R->modulus,   &R->nu,        &R->nu_ps,
-                     &R->bulk,      &R->psi_deg,   &R->e_init,
+    double *nan[] = {&R->pressure,     &R->peak_s1, &R->peak_s3, &R->crit_s1,
+                     &R->crit_s3,      &R->crit_e,  &R->modulus, &R->nu,
+                     &R->nu_ps,        &R->bulk,    &R->psi_deg, &R->e_init,
                      &R->inertial_max, &R->hs};
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
@@ -407,8 +398,7 @@ static void result_init(struct result *R, int dim)
 /* ------------------------------------------------------------ writing */
 
 /* key: v, and key_reason: why, when v is missing. */
-static void num(struct dem__json *j, const char *key, double v,
-                const char *why)
+static void num(struct dem__json *j, const char *key, double v, const char *why)
 {
     dem__json_number(j, key, v);
     if (!isfinite(v) && why && *why) {
@@ -425,8 +415,8 @@ static const char *first_reason(const char *a, const char *b)
 
 static void write_peak(struct dem__json *j, const struct result *R)
 {
-    const char *why = first_reason(R->mono ? R->peak.reason : R->mono_reason,
-                                   "no peak");
+    const char *why =
+        first_reason(R->mono ? R->peak.reason : R->mono_reason, "no peak");
     dem__json_object(j, "peak", 0);
     const int ok = R->mono && R->peak.ok;
     dem__json_number(j, "sin_phi", ok ? R->peak.value : NAN);
@@ -487,8 +477,8 @@ static void write_slopes(struct dem__json *j, const struct result *R)
                         : why);
     char whyd[DEM_REASON_MAX + 64];
     if (isfinite(sd))
-        snprintf(whyd, sizeof whyd,
-                 "the dilatant slope %.4g is not above -1", sd);
+        snprintf(whyd, sizeof whyd, "the dilatant slope %.4g is not above -1",
+                 sd);
     else
         snprintf(whyd, sizeof whyd, "no dilatant slope: %s", wd);
     num(j, "dilatancy_angle_deg", R->psi_deg, whyd);
@@ -538,9 +528,9 @@ static void write_cyclic(struct dem__json *j, const struct result *R)
     if (v == DEM_VERDICT_NONE)
         dem__json_null(j, "verdict");
     else
-        dem__json_string(j, "verdict", v == DEM_VERDICT_RATCHETING
-                                           ? "ratcheting"
-                                           : "shakedown");
+        dem__json_string(j, "verdict",
+                         v == DEM_VERDICT_RATCHETING ? "ratcheting"
+                                                     : "shakedown");
     dem__json_string(j, "verdict_reason", R->csum.reason);
     dem__json_string(j, "verdict_criterion", verdict_criterion);
     dem__json_number(j, "cycle_increment_first", R->csum.first);

@@ -76,9 +76,9 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
 }
 
 int dem_cycles_analyze(const double *t, const double *eps_d,
-                       const double *sigma_d, long n, double t0,
-                       double period, double tol, int max,
-                       struct dem_cycle *cyc, struct dem_cycles *o)
+                       const double *sigma_d, long n, double t0, double period,
+                       double tol, int max, struct dem_cycle *cyc,
+                       struct dem_cycles *o)
 {
     o->n = 0;
     o->first = o->late_mean = o->ratio = NAN;
@@ -87,8 +87,7 @@ int dem_cycles_analyze(const double *t, const double *eps_d,
     o->reason[0] = '\0';
     if (n < 2 || !(period > 0.0)) {
         snprintf(o->reason, sizeof o->reason,
-                 "%ld samples and period %g s: no cycles to split", n,
-                 period);
+                 "%ld samples and period %g s: no cycles to split", n, period);
         return 0;
     }
     long ks = 0, i = 0;

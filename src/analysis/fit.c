@@ -4,8 +4,7 @@
 
 #include "analysis/analysis.h"
 
-int dem_linfit(const double *x, const double *y, long n,
-               struct dem_linfit *out)
+int dem_linfit(const double *x, const double *y, long n, struct dem_linfit *out)
 {
     out->a = out->b = out->r2 = out->rms = NAN;
     out->n = n;

@@ -83,9 +83,9 @@ static void dilatant_part(const double *strain, const double *eps_v, long n,
     o->dilatant_ok = 1;
 }
 
-void dem_slopes_volumetric(const double *strain, const double *eps_v,
-                           long n, long half, double initial_fraction,
-                           long window, struct dem_slopes *o)
+void dem_slopes_volumetric(const double *strain, const double *eps_v, long n,
+                           long half, double initial_fraction, long window,
+                           struct dem_slopes *o)
 {
     o->min_index = -1;
     o->initial_ok = o->dilatant_ok = 0;
@@ -136,8 +136,8 @@ double dem_poisson_plane_strain(double s)
 
 double dem_bulk_modulus(double E, double nu, int dim)
 {
-    const double K = dim == 3 ? E / (3.0 * (1.0 - 2.0 * nu))
-                              : E / (2.0 * (1.0 - nu));
+    const double K =
+        dim == 3 ? E / (3.0 * (1.0 - 2.0 * nu)) : E / (2.0 * (1.0 - nu));
     return isfinite(K) && K > 0.0 ? K : NAN;
 }
 

@@ -13,10 +13,10 @@
 /* Reading state: which file field goes to which kept column. */
 struct reader {
     const char *path;
-    int nfield;       /* fields per line (header) */
-    char **field;     /* header names (owned until handed to the table) */
-    int *slot;        /* field -> kept column, -1 if skipped */
-    long cap;         /* allocated rows per column */
+    int nfield;   /* fields per line (header) */
+    char **field; /* header names (owned until handed to the table) */
+    int *slot;    /* field -> kept column, -1 if skipped */
+    long cap;     /* allocated rows per column */
 };
 
 static void strip_eol(char *s)
@@ -57,8 +57,8 @@ static int parse_header(struct reader *rd, struct dem_table *t, char *line,
             *comma = '\0';
         if (!*p)
             return dem_error_set(err, DEM_EIO,
-                                 "%s:1: column %d has an empty name",
-                                 rd->path, k + 1);
+                                 "%s:1: column %d has an empty name", rd->path,
+                                 k + 1);
         rd->field[k] = p;
         rd->slot[k] = -1;
         if (wanted(p, want, nwant) && dem_table_find(t, p) < 0) {
@@ -158,8 +158,7 @@ static int read_rows(struct reader *rd, struct dem_table *t, FILE *f,
 }
 
 int dem_table_read(struct dem_table *t, const char *path,
-                   const char *const *want, int nwant,
-                   struct dem_error *err)
+                   const char *const *want, int nwant, struct dem_error *err)
 {
     memset(t, 0, sizeof *t);
     struct reader rd = {path, 0, NULL, NULL, 0};

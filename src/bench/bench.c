@@ -44,7 +44,12 @@ static const struct workload work3 = {
     "damping = { gamma_b = 0.001; gamma_br = 0.0; };\n"
     "walls = { mass = 2.0; gamma = 200.0; };\n"
     "stages = ( { type = \"hold\"; duration = 1.0; } );\n",
-    800.0, 0.2, 200.0, 1e-2, 0.6, 0.05};
+    800.0,
+    0.2,
+    200.0,
+    1e-2,
+    0.6,
+    0.05};
 
 static const struct workload work2 = {
     "dimension = 2; seed = 1; time_step = 2.0e-7;\n"
@@ -56,7 +61,12 @@ static const struct workload work2 = {
     "damping = { gamma_b = 0.0004; gamma_br = 0.0; };\n"
     "walls = { mass = 0.01; gamma = 2.0; max_speed = 0.5; };\n"
     "stages = ( { type = \"hold\"; duration = 1.0; } );\n",
-    160.0, 0.02, 20.0, 1e-2, 0.02, 2.5};
+    160.0,
+    0.02,
+    20.0,
+    1e-2,
+    0.02,
+    2.5};
 
 static double wall_clock(void)
 {
@@ -152,13 +162,12 @@ static int cache_path(const struct dem_bench_options *o, int dim, int n,
         char *dot = strrchr(stem, '.');
         if (dot && dot != stem)
             *dot = '\0';
-        snprintf(tag, sizeof tag, "from-%s-%lld", stem,
-                 (long long)st.st_size);
+        snprintf(tag, sizeof tag, "from-%s-%lld", stem, (long long)st.st_size);
     } else {
         snprintf(tag, sizeof tag, "seed1");
     }
-    int k = snprintf(out, len, "%s/bench-%dd-n%d-%s-v%d.data", dir, dim, n,
-                     tag, CACHE_VERSION);
+    int k = snprintf(out, len, "%s/bench-%dd-n%d-%s-v%d.data", dir, dim, n, tag,
+                     CACHE_VERSION);
     if (k < 0 || (size_t)k >= len)
         return dem_error_set(err, DEM_EIO, "bench: cache path too long");
     return DEM_OK;
@@ -312,8 +321,7 @@ static int relax(struct dem_sim *s, const struct workload *w,
         if (!sample)
             continue;
         dem_measure(s, L0, V0, 0, &smp);
-        if (!isfinite(smp.e_kin) || !isfinite(smp.p) ||
-            smp.max_overlap > 0.5)
+        if (!isfinite(smp.e_kin) || !isfinite(smp.p) || smp.max_overlap > 0.5)
             return dem_error_set(err, DEM_EUNSTABLE,
                                  "bench: preparation unstable at t = %.4g s",
                                  s->t);
@@ -414,8 +422,8 @@ static void sample_now(const struct dem_sim *s, struct dem_sample *smp)
     dem_measure(s, L0, V0, 0, smp);
 }
 
-int dem_bench_run(const struct dem_bench_options *o,
-                  struct dem_bench_result *r, struct dem_error *err)
+int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
+                  struct dem_error *err)
 {
     memset(r, 0, sizeof *r);
     r->rss_start = rss_now();
@@ -538,12 +546,12 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
             r->n, r->steps, r->threads, r->threads == 1 ? "" : "s");
     fprintf(f, "packing: %s\n", r->source);
     fprintf(f, "cache:   %s (%s)\n", r->cache,
-            r->cache_hit ? "reused"
-                         : "prepared now");
+            r->cache_hit ? "reused" : "prepared now");
     if (!r->cache_hit)
         fprintf(f, "preparation: %.2f s (not timed)\n", r->prep_seconds);
-    fprintf(f, "loop: %.3f s, %.2f ns per particle-step, %ld neighbour "
-               "builds, axial strain %.3g\n",
+    fprintf(f,
+            "loop: %.3f s, %.2f ns per particle-step, %ld neighbour "
+            "builds, axial strain %.3g\n",
             r->seconds, ps > 0 ? 1e9 * r->seconds / ps : 0.0, r->nbuild,
             r->strain);
     /* below 100 % the machine was busy with something else (or threads
@@ -555,20 +563,25 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     struct {
         const char *name;
         double t;
-    } rows[] = {{"neighbours", T->neighbor}, {"forces", T->force},
-                {"integration", T->integrate}, {"walls", T->walls},
+    } rows[] = {{"neighbours", T->neighbor},
+                {"forces", T->force},
+                {"integration", T->integrate},
+                {"walls", T->walls},
                 {"other", other}};
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++)
         fprintf(f, "  %-12s %9.3f s %6.1f %%\n", rows[k].name, rows[k].t,
                 r->seconds > 0 ? 100.0 * rows[k].t / r->seconds : 0.0);
-    fprintf(f, "neighbour list: %.2f pairs per particle at the end, %.2f "
-               "of them in contact (Z/2)\n",
+    fprintf(f,
+            "neighbour list: %.2f pairs per particle at the end, %.2f "
+            "of them in contact (Z/2)\n",
             r->pairs_per_particle, 0.5 * r->z_end);
-    fprintf(f, "coordination Z: %.2f -> %.2f; mean wall stress: %.4g -> "
-               "%.4g %s\n",
+    fprintf(f,
+            "coordination Z: %.2f -> %.2f; mean wall stress: %.4g -> "
+            "%.4g %s\n",
             r->z_start, r->z_end, r->p_start, r->p_end, unit);
-    fprintf(f, "memory: peak RSS %.1f MB; %.0f bytes per particle (RSS "
-               "after the run minus RSS before the benchmark)\n",
+    fprintf(f,
+            "memory: peak RSS %.1f MB; %.0f bytes per particle (RSS "
+            "after the run minus RSS before the benchmark)\n",
             r->rss_peak / 1048576.0, r->bytes_per_particle);
     fprintf(f, "particle_steps_per_second=%.6g\n",
             r->particle_steps_per_second);

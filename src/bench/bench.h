@@ -82,8 +82,8 @@ struct dem_bench_result {
 
 /* Prepare or load the packing, run the timed steps, fill r. Errors name
  * the file or the option at fault. */
-int dem_bench_run(const struct dem_bench_options *o,
-                  struct dem_bench_result *r, struct dem_error *err);
+int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
+                  struct dem_error *err);
 
 /* The human summary; its last line is particle_steps_per_second=<number>. */
 void dem_bench_print(FILE *f, const struct dem_bench_result *r);

@@ -41,9 +41,10 @@
 
 /* Normal force of one contact (spring and dashpot) and the normal force fc
  * for its Coulomb limit; the luding law updates the history dmax. */
-DEM_INLINE double normal_force(const int law, const struct dem_contact_params *cp,
-                               double kc, double delta, double ddot,
-                               double a12, double *dmax, double *fc)
+DEM_INLINE double normal_force(const int law,
+                               const struct dem_contact_params *cp, double kc,
+                               double delta, double ddot, double a12,
+                               double *dmax, double *fc)
 {
     double fn;
     if (law == DEM_NORMAL_LUDING) {
@@ -75,12 +76,11 @@ static struct pass pass_of(const struct dem_particles *P,
                            struct dem_contact_list *L,
                            struct dem_contact_forces *F, const int *slot)
 {
-    struct pass q = {P->x,     P->y,     P->z,     P->vx,    P->vy,
-                     P->vz,    P->wx,    P->wy,    P->wz,    P->r,
-                     L->i,     L->j,     L->xi_x,  L->xi_y,  L->xi_z,
-                     L->dmax,  L->state, F->v,     L->start, slot,
-                     P->fx,    P->fy,    P->fz,    P->tx,    P->ty,
-                     P->tz};
+    struct pass q = {P->x,     P->y,    P->z,    P->vx,   P->vy,    P->vz,
+                     P->wx,    P->wy,   P->wz,   P->r,    L->i,     L->j,
+                     L->xi_x,  L->xi_y, L->xi_z, L->dmax, L->state, F->v,
+                     L->start, slot,    P->fx,   P->fy,   P->fz,    P->tx,
+                     P->ty,    P->tz};
     return q;
 }
 
@@ -153,10 +153,9 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
             const double cwx = ai * q.wx[i] + aj * q.wx[j];
             const double cwy = ai * q.wy[i] + aj * q.wy[j];
             const double cwz = ai * q.wz[i] + aj * q.wz[j];
-            const double vij[3] = {
-                q.vx[i] - q.vx[j] + n[1] * cwz - n[2] * cwy,
-                q.vy[i] - q.vy[j] + n[2] * cwx - n[0] * cwz,
-                q.vz[i] - q.vz[j] + n[0] * cwy - n[1] * cwx};
+            const double vij[3] = {q.vx[i] - q.vx[j] + n[1] * cwz - n[2] * cwy,
+                                   q.vy[i] - q.vy[j] + n[2] * cwx - n[0] * cwz,
+                                   q.vz[i] - q.vz[j] + n[0] * cwy - n[1] * cwx};
             const double ddot =
                 -(vij[0] * n[0] + vij[1] * n[1] + vij[2] * n[2]);
             double fc;
@@ -184,28 +183,29 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
  * are summed on their own, so the split does not change any result. The
  * law is a literal in each instance, so that the outlined parallel region
  * is compiled for that law alone. */
-#define PAIR_PASS(LAW)                                                       \
-    {                                                                        \
-        const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f,    \
-                                      s->pairs.rpos);                        \
-        const struct dem_contact_params cp = s->cp;                          \
-        const double dt = s->dt, gb = s->cfg.damping.gamma_b;                \
-        const int n = s->p.n;                                                \
-        _Pragma("omp parallel")                                              \
-        {                                                                    \
-            int nt = omp_get_num_threads(), t = omp_get_thread_num();        \
-            pair_range(LAW, q, (int)((long)n * t / nt),                      \
-                       (int)((long)n * (t + 1) / nt), &cp, dt, gb);          \
-        }                                                                    \
+#define PAIR_PASS(LAW)                                                         \
+    {                                                                          \
+        const struct pass q =                                                  \
+            pass_of(&s->p, &s->pairs.cur, &s->pairs.f, s->pairs.rpos);         \
+        const struct dem_contact_params cp = s->cp;                            \
+        const double dt = s->dt, gb = s->cfg.damping.gamma_b;                  \
+        const int n = s->p.n;                                                  \
+        _Pragma("omp parallel")                                                \
+        {                                                                      \
+            int nt = omp_get_num_threads(), t = omp_get_thread_num();          \
+            pair_range(LAW, q, (int)((long)n * t / nt),                        \
+                       (int)((long)n * (t + 1) / nt), &cp, dt, gb);            \
+        }                                                                      \
     }
 
-static void pair_pass_linear(struct dem_sim *s) PAIR_PASS(DEM_NORMAL_LINEAR)
-static void pair_pass_luding(struct dem_sim *s) PAIR_PASS(DEM_NORMAL_LUDING)
+static void pair_pass_linear(struct dem_sim *s)
+    PAIR_PASS(DEM_NORMAL_LINEAR) static void pair_pass_luding(struct dem_sim *s)
+        PAIR_PASS(DEM_NORMAL_LUDING)
 
-/* Wall contacts k0 <= k < k1. */
-DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
-                           const struct dem_contact_params *cp, double dt,
-                           const struct dem_wall *walls)
+    /* Wall contacts k0 <= k < k1. */
+    DEM_INLINE void wall_range(const int law, const struct pass q, int k0,
+                               int k1, const struct dem_contact_params *cp,
+                               double dt, const struct dem_wall *walls)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->wall_mu,
                                      cp->wall_mu};
@@ -236,38 +236,39 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     }
 }
 
-#define WALL_PASS(LAW)                                                       \
-    {                                                                        \
-        const struct pass q =                                                \
-            pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf, 0);                 \
-        const struct dem_contact_params cp = s->cp;                          \
-        const double dt = s->dt;                                             \
-        const int nw = s->pairs.wcur.n;                                      \
-        struct dem_wall walls[DEM_MAX_WALLS];                                \
-        memcpy(walls, s->wall, sizeof walls);                                \
-        _Pragma("omp parallel")                                              \
-        {                                                                    \
-            int nt = omp_get_num_threads(), t = omp_get_thread_num();        \
-            wall_range(LAW, q, (int)((long)nw * t / nt),                     \
-                       (int)((long)nw * (t + 1) / nt), &cp, dt, walls);      \
-        }                                                                    \
+#define WALL_PASS(LAW)                                                         \
+    {                                                                          \
+        const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf, 0); \
+        const struct dem_contact_params cp = s->cp;                            \
+        const double dt = s->dt;                                               \
+        const int nw = s->pairs.wcur.n;                                        \
+        struct dem_wall walls[DEM_MAX_WALLS];                                  \
+        memcpy(walls, s->wall, sizeof walls);                                  \
+        _Pragma("omp parallel")                                                \
+        {                                                                      \
+            int nt = omp_get_num_threads(), t = omp_get_thread_num();          \
+            wall_range(LAW, q, (int)((long)nw * t / nt),                       \
+                       (int)((long)nw * (t + 1) / nt), &cp, dt, walls);        \
+        }                                                                      \
     }
 
-static void wall_pass_linear(struct dem_sim *s) WALL_PASS(DEM_NORMAL_LINEAR)
-static void wall_pass_luding(struct dem_sim *s) WALL_PASS(DEM_NORMAL_LUDING)
+static void wall_pass_linear(struct dem_sim *s)
+    WALL_PASS(DEM_NORMAL_LINEAR) static void wall_pass_luding(struct dem_sim *s)
+        WALL_PASS(DEM_NORMAL_LUDING)
 
-/* Particles i0 <= i < i1: to the damping and pairs as i (summed by the
- * pair pass), add the pairs as j, whose forces lie in one stream, and
- * the wall contacts; then the torques. */
-static void gather_range(int i0, int i1, const struct dem_particles *P,
-                         const struct dem_pairs *pl, double gr)
+    /* Particles i0 <= i < i1: to the damping and pairs as i (summed by the
+     * pair pass), add the pairs as j, whose forces lie in one stream, and
+     * the wall contacts; then the torques. */
+    static void gather_range(int i0, int i1, const struct dem_particles *P,
+                             const struct dem_pairs *pl, double gr)
 {
     const double *restrict wx = P->wx, *restrict wy = P->wy,
                            *restrict wz = P->wz, *restrict r = P->r;
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
-    const struct dem_contact_force *restrict F = pl->f.v, *restrict WF = pl->wf.v;
+    const struct dem_contact_force *restrict F = pl->f.v, *restrict WF =
+                                                              pl->wf.v;
     for (int i = i0; i < i1; i++) {
         const double a = r[i];
         double fx = ofx[i], fy = ofy[i], fz = ofz[i];
@@ -359,7 +360,8 @@ static void measure_contacts(struct dem_sim *s)
         double e = dem_tangential_energy(xi, cp->kt);
         if (cp->normal == DEM_NORMAL_LUDING) {
             const struct dem_luding Lu = {cp->k1, cp->k2, cp->kc, cp->phi_f};
-            e += dem_luding_energy(delta, L->dmax[k], &Lu, P->r[i] * P->r[j] / R);
+            e += dem_luding_energy(delta, L->dmax[k], &Lu,
+                                   P->r[i] * P->r[j] / R);
         } else {
             e += dem_normal_linear_energy(delta, cp->k);
         }

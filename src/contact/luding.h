@@ -112,8 +112,7 @@ static inline void dem_luding_line(double dmax, const struct dem_luding *L,
 /* Virgin-loading envelope, N: k1 delta, continued by the elastic limit
  * branch k2 (delta - phi_f 2 a12) beyond delta*_max. */
 static inline double dem_luding_envelope(double delta,
-                                         const struct dem_luding *L,
-                                         double a12)
+                                         const struct dem_luding *L, double a12)
 {
     double f = L->k1 * delta;
     double ds = dem_luding_dstar(L, a12);
@@ -205,9 +204,8 @@ static inline double dem_luding_coulomb_force(double fn, double delta,
  * (re-mapping does not change a monotone unloading path). */
 
 /* Work done on the contact loading it from 0 to dmax along the envelope, J. */
-static inline double dem_luding_loading_work(double dmax,
-                                             const struct dem_luding *L,
-                                             double a12)
+static inline double
+dem_luding_loading_work(double dmax, const struct dem_luding *L, double a12)
 {
     double ds = dem_luding_dstar(L, a12);
     if (dmax <= ds)
@@ -221,9 +219,8 @@ static inline double dem_luding_loading_work(double dmax,
  * delta = 0, J: f1^2/(2 k2^) - kc k2^ delta_0^2/(2 (k2^ + kc)); the second
  * term is the work against the attraction (k2^ line below zero force, then
  * -kc delta from delta_min to 0). Negative values mean capture. */
-static inline double dem_luding_unloading_work(double dmax,
-                                               const struct dem_luding *L,
-                                               double a12)
+static inline double
+dem_luding_unloading_work(double dmax, const struct dem_luding *L, double a12)
 {
     double k2h, d0;
     dem_luding_line(dmax, L, a12, &k2h, &d0);

@@ -26,8 +26,8 @@
 
 /* Bits of a contact's state byte (per pair and per particle-wall contact). */
 enum {
-    DEM_CONTACT_ACTIVE = 1,  /* the contact was closed in the last step */
-    DEM_CONTACT_SLIDING = 2  /* the contact slides (dynamic friction) */
+    DEM_CONTACT_ACTIVE = 1, /* the contact was closed in the last step */
+    DEM_CONTACT_SLIDING = 2 /* the contact slides (dynamic friction) */
 };
 
 struct dem_tangential {

@@ -6,8 +6,8 @@
 const char *dem_status_str(int code)
 {
     switch (code) {
-#define DEM_STATUS_CASE_(sym, val, text)                                     \
-    case val:                                                                \
+#define DEM_STATUS_CASE_(sym, val, text)                                       \
+    case val:                                                                  \
         return text;
         DEM_STATUS_LIST(DEM_STATUS_CASE_)
 #undef DEM_STATUS_CASE_

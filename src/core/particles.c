@@ -23,8 +23,8 @@ int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err)
     /* calloc(0) may return NULL; keep every array a valid pointer. */
     size_t n = cap > 0 ? (size_t)cap : 1;
     int ok = 1;
-#define DEM_ALLOC_(f)                                                        \
-    p->f = calloc(n, sizeof *p->f);                                          \
+#define DEM_ALLOC_(f)                                                          \
+    p->f = calloc(n, sizeof *p->f);                                            \
     ok = ok && p->f != NULL;
     DEM_PARTICLE_DOUBLE_ARRAYS(DEM_ALLOC_)
     DEM_PARTICLE_INT_ARRAYS(DEM_ALLOC_)
@@ -43,8 +43,8 @@ void dem_particles_free(struct dem_particles *p)
 {
     if (!p)
         return;
-#define DEM_FREE_(f)                                                         \
-    free(p->f);                                                              \
+#define DEM_FREE_(f)                                                           \
+    free(p->f);                                                                \
     p->f = NULL;
     DEM_PARTICLE_DOUBLE_ARRAYS(DEM_FREE_)
     DEM_PARTICLE_INT_ARRAYS(DEM_FREE_)
@@ -106,23 +106,22 @@ void dem_particles_permute(struct dem_particles *p, const int *old_of,
 {
     const int n = p->n;
     double *t = *scratch;
-#define DEM_PERMUTE_(f)                                                      \
-    _Pragma("omp parallel for schedule(static)")                             \
-    for (int k = 0; k < n; k++)                                              \
-        t[k] = p->f[old_of[k]];                                              \
-    {                                                                        \
-        double *u = p->f;                                                    \
-        p->f = t;                                                            \
-        t = u;                                                               \
+#define DEM_PERMUTE_(f)                                                        \
+    _Pragma("omp parallel for schedule(static)") for (int k = 0; k < n; k++)   \
+        t[k] = p->f[old_of[k]];                                                \
+    {                                                                          \
+        double *u = p->f;                                                      \
+        p->f = t;                                                              \
+        t = u;                                                                 \
     }
     DEM_PARTICLE_DOUBLE_ARRAYS(DEM_PERMUTE_)
 #undef DEM_PERMUTE_
     /* the int arrays go through the same scratch, viewed as ints */
     int *ti = (int *)t;
-#define DEM_PERMUTE_INT_(f)                                                  \
-    for (int k = 0; k < n; k++)                                              \
-        ti[k] = p->f[old_of[k]];                                             \
-    for (int k = 0; k < n; k++)                                              \
+#define DEM_PERMUTE_INT_(f)                                                    \
+    for (int k = 0; k < n; k++)                                                \
+        ti[k] = p->f[old_of[k]];                                               \
+    for (int k = 0; k < n; k++)                                                \
         p->f[k] = ti[k];
     DEM_PARTICLE_INT_ARRAYS(DEM_PERMUTE_INT_)
 #undef DEM_PERMUTE_INT_

@@ -11,31 +11,32 @@
 #include "dembox.h"
 
 struct dem_particles {
-    int n;          /* number of particles */
-    int cap;        /* allocated length of every array */
-    double *x, *y, *z;      /* m; centre position */
-    double *vx, *vy, *vz;   /* m/s; velocity */
-    double *wx, *wy, *wz;   /* rad/s; angular velocity */
-    double *fx, *fy, *fz;   /* N; total force of the current step */
-    double *tx, *ty, *tz;   /* N m; total torque of the current step */
-    double *r;              /* m; radius */
-    double *m;              /* kg; mass */
-    double *inv_m;          /* 1/kg */
-    double *inv_I;          /* 1/(kg m^2); moment of inertia inverse */
-    double *x0, *y0, *z0;   /* m; position at the last neighbour-list build */
-    int *id;                /* original index (stable across re-ordering) */
-    int *ncontact;          /* contacts (particles and walls) of the last
-                               measured force pass */
-    double *fsum;           /* N; sum of |normal force| over the particle's
-                               contacts in the last measured force pass (the
-                               "force felt" used to colour pictures) */
+    int n;                /* number of particles */
+    int cap;              /* allocated length of every array */
+    double *x, *y, *z;    /* m; centre position */
+    double *vx, *vy, *vz; /* m/s; velocity */
+    double *wx, *wy, *wz; /* rad/s; angular velocity */
+    double *fx, *fy, *fz; /* N; total force of the current step */
+    double *tx, *ty, *tz; /* N m; total torque of the current step */
+    double *r;            /* m; radius */
+    double *m;            /* kg; mass */
+    double *inv_m;        /* 1/kg */
+    double *inv_I;        /* 1/(kg m^2); moment of inertia inverse */
+    double *x0, *y0, *z0; /* m; position at the last neighbour-list build */
+    int *id;              /* original index (stable across re-ordering) */
+    int *ncontact;        /* contacts (particles and walls) of the last
+                             measured force pass */
+    double *fsum;         /* N; sum of |normal force| over the particle's
+                             contacts in the last measured force pass (the
+                             "force felt" used to colour pictures) */
 };
 
 /* Every double and int array of struct dem_particles, so that init, free,
  * permutation and checkpoints cannot forget one. */
-#define DEM_PARTICLE_DOUBLE_ARRAYS(X)                                        \
-    X(x) X(y) X(z) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy) X(fz)     \
-    X(tx) X(ty) X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(fsum)
+#define DEM_PARTICLE_DOUBLE_ARRAYS(X)                                          \
+    X(x)                                                                       \
+    X(y) X(z) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy) X(fz) X(tx)      \
+        X(ty) X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(fsum)
 
 #define DEM_PARTICLE_INT_ARRAYS(X) X(id) X(ncontact)
 

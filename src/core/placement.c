@@ -209,8 +209,8 @@ struct grid {
     int nc[3];   /* cells per axis */
     double edge; /* m; cell edge, >= 2 r_max */
     double lo[3];
-    int *head;   /* first particle in each cell, -1 = empty */
-    int *next;   /* next particle in the same cell */
+    int *head; /* first particle in each cell, -1 = empty */
+    int *next; /* next particle in the same cell */
 };
 
 static int grid_cell(const struct grid *g, int a, double x)
@@ -238,8 +238,8 @@ static int overlaps(const struct grid *g, const struct dem_particles *p,
             for (int i = c0[0]; i <= c1[0]; i++) {
                 int cell = (k * g->nc[1] + j) * g->nc[0] + i;
                 for (int q = g->head[cell]; q >= 0; q = g->next[q]) {
-                    double dx = p->x[q] - x, dy = p->y[q] - y,
-                           dz = p->z[q] - z, s = p->r[q] + r;
+                    double dx = p->x[q] - x, dy = p->y[q] - y, dz = p->z[q] - z,
+                           s = p->r[q] + r;
                     if (dx * dx + dy * dy + dz * dz <= s * s)
                         return 1;
                 }
@@ -248,8 +248,8 @@ static int overlaps(const struct grid *g, const struct dem_particles *p,
 }
 
 static int place_random(struct dem_particles *p, const struct dem_config *cfg,
-                        int dim, struct dem_rng *rng, double rmax,
-                        double lo[3], double hi[3], struct dem_error *err)
+                        int dim, struct dem_rng *rng, double rmax, double lo[3],
+                        double hi[3], struct dem_error *err)
 {
     int n = p->n;
     double L[3] = {0.0, 0.0, 0.0}; /* m; box edges */
@@ -333,9 +333,8 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
         if (!placed) {
             double vs = 0.0;
             for (int q = 0; q < n; q++)
-                vs += dim == 3
-                          ? 4.0 / 3.0 * M_PI * p->r[q] * p->r[q] * p->r[q]
-                          : M_PI * p->r[q] * p->r[q];
+                vs += dim == 3 ? 4.0 / 3.0 * M_PI * p->r[q] * p->r[q] * p->r[q]
+                               : M_PI * p->r[q] * p->r[q];
             rc = dem_error_set(
                 err, DEM_ECONFIG,
                 "particles.count: could not place particle %d of %d "
@@ -347,9 +346,10 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
         p->x[i] = pos[0];
         p->y[i] = pos[1];
         p->z[i] = pos[2];
-        int cell = (grid_cell(&g, 2, pos[2]) * g.nc[1] +
-                    grid_cell(&g, 1, pos[1])) * g.nc[0] +
-                   grid_cell(&g, 0, pos[0]);
+        int cell =
+            (grid_cell(&g, 2, pos[2]) * g.nc[1] + grid_cell(&g, 1, pos[1])) *
+                g.nc[0] +
+            grid_cell(&g, 0, pos[0]);
         g.next[i] = g.head[cell];
         g.head[cell] = i;
     }
@@ -371,9 +371,9 @@ static int place_file(struct dem_particles *p, const struct dem_config *cfg,
 {
     const char *path = cfg->particles.file;
     int *lines = NULL;
-    int rc = dem_particles_read_csv_lines(p, path, dim, cfg->particles.density,
-                                          cfg->particles.mass_model, &lines,
-                                          err);
+    int rc =
+        dem_particles_read_csv_lines(p, path, dim, cfg->particles.density,
+                                     cfg->particles.mass_model, &lines, err);
     if (rc)
         return rc;
     *rmax = 0.0;
@@ -390,8 +390,8 @@ static int place_file(struct dem_particles *p, const struct dem_config *cfg,
                         err, DEM_ECONFIG,
                         "%s:%d: particle at %c = %g m with radius %g m is not "
                         "inside box.size (0 to %g m)",
-                        path, lines[i], "xyz"[a], c[a], p->r[i],
-                        cfg->box.size[a]);
+                        path, lines[i], "xyz"[a], c[a], p -> r[i],
+                        cfg -> box.size[a]);
                     break;
                 }
         }

@@ -18,17 +18,17 @@
 
 /* Contact parameters as the force loop uses them (resolved from config). */
 struct dem_contact_params {
-    int normal;      /* enum dem_normal_law */
-    double k;        /* N/m; linear stiffness */
-    double k1, k2;   /* N/m; luding loading, un-/re-loading stiffness */
-    double kc;       /* N/m; luding adhesive stiffness */
-    double phi_f;    /* luding 2008 plasticity depth (0 = constant k2) */
-    double gamma_n;  /* kg/s */
-    double kt;       /* N/m */
-    double gamma_t;  /* kg/s */
-    double mu_s, mu_d;  /* particle-particle friction */
-    double wall_mu;     /* particle-wall friction */
-    double wall_kc;     /* N/m; particle-wall adhesive stiffness */
+    int normal;        /* enum dem_normal_law */
+    double k;          /* N/m; linear stiffness */
+    double k1, k2;     /* N/m; luding loading, un-/re-loading stiffness */
+    double kc;         /* N/m; luding adhesive stiffness */
+    double phi_f;      /* luding 2008 plasticity depth (0 = constant k2) */
+    double gamma_n;    /* kg/s */
+    double kt;         /* N/m */
+    double gamma_t;    /* kg/s */
+    double mu_s, mu_d; /* particle-particle friction */
+    double wall_mu;    /* particle-wall friction */
+    double wall_kc;    /* N/m; particle-wall adhesive stiffness */
 };
 
 /* Sums gathered by the force loop when measurement is requested. */
@@ -53,29 +53,29 @@ struct dem_timers {
 };
 
 struct dem_sim {
-    struct dem_config cfg;      /* the validated config this run started from */
-    int dim;                    /* 2 or 3 */
-    double dt;                  /* s; time step */
-    double t;                   /* s; simulated time */
-    long step;                  /* steps done */
+    struct dem_config cfg; /* the validated config this run started from */
+    int dim;               /* 2 or 3 */
+    double dt;             /* s; time step */
+    double t;              /* s; simulated time */
+    long step;             /* steps done */
 
-    struct dem_particles p;     /* particle data */
-    struct dem_pairs pairs;     /* Verlet lists of pair and wall contacts
-                                   with their history */
+    struct dem_particles p;       /* particle data */
+    struct dem_pairs pairs;       /* Verlet lists of pair and wall contacts
+                                     with their history */
     struct dem_contact_params cp; /* contact law in force now */
-    struct dem_rng rng;         /* seeded random numbers */
+    struct dem_rng rng;           /* seeded random numbers */
 
-    int nwall;                  /* 2 * dim */
+    int nwall;                           /* 2 * dim */
     struct dem_wall wall[DEM_MAX_WALLS]; /* index 2*axis + side */
 
-    double skin;                /* m; Verlet skin */
-    long nbuild;                /* neighbour-list builds so far */
-    int reorder;                /* 1: sort particles in cell order at each
-                                   rebuild (indices change; id does not) */
-    int measure;                /* 1: the next force pass fills sums */
+    double skin; /* m; Verlet skin */
+    long nbuild; /* neighbour-list builds so far */
+    int reorder; /* 1: sort particles in cell order at each
+                    rebuild (indices change; id does not) */
+    int measure; /* 1: the next force pass fills sums */
     struct dem_contact_sums sums;
-    int timing;                 /* 1: accumulate timers */
-    struct dem_timers timers;   /* s; time per phase */
+    int timing;               /* 1: accumulate timers */
+    struct dem_timers timers; /* s; time per phase */
 };
 
 /* Build the simulation from a validated config: particles placed, walls

@@ -60,14 +60,14 @@ struct ck_io {
     int reading;
     /* writing: f == NULL only counts */
     FILE *f;
-    uint64_t len;       /* bytes so far */
-    uint32_t crc;       /* CRC of the bytes so far */
-    int werr;           /* errno of the first failed write, 0 = none */
+    uint64_t len; /* bytes so far */
+    uint32_t crc; /* CRC of the bytes so far */
+    int werr;     /* errno of the first failed write, 0 = none */
     /* reading */
     const unsigned char *p;
     size_t left;
-    const char *why;    /* first problem found, NULL = none */
-    char detail[400];   /* room for a why that names values */
+    const char *why;  /* first problem found, NULL = none */
+    char detail[400]; /* room for a why that names values */
 };
 
 static void io_bytes(struct ck_io *io, void *p, size_t n)
@@ -106,7 +106,10 @@ static void io_i64(struct ck_io *io, long *v)
     *v = (long)t;
 }
 
-static void io_f64(struct ck_io *io, double *v) { io_bytes(io, v, sizeof *v); }
+static void io_f64(struct ck_io *io, double *v)
+{
+    io_bytes(io, v, sizeof *v);
+}
 
 static void io_f64s(struct ck_io *io, double *a, int n)
 {
@@ -174,8 +177,8 @@ static void io_wall(struct ck_io *io, struct dem_wall *w)
     io_f64(io, &w->vel);
     io_f64(io, &w->force);
     io_i32(io, &w->profile);
-    double *d[] = {&w->x0,   &w->delta, &w->period, &w->t_start, &w->mass,
-                   &w->gamma, &w->vmax, &w->p0,     &w->amp,     &w->t0};
+    double *d[] = {&w->x0,    &w->delta, &w->period, &w->t_start, &w->mass,
+                   &w->gamma, &w->vmax,  &w->p0,     &w->amp,     &w->t0};
     for (size_t k = 0; k < sizeof d / sizeof d[0]; k++)
         io_f64(io, d[k]);
 }
@@ -313,9 +316,9 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_i32(io, &s->measure);
     struct dem_contact_params *cp = &s->cp;
     io_i32(io, &cp->normal);
-    double *c[] = {&cp->k,       &cp->k1, &cp->k2,   &cp->kc,
-                   &cp->phi_f,   &cp->gamma_n, &cp->kt, &cp->gamma_t,
-                   &cp->mu_s,    &cp->mu_d, &cp->wall_mu, &cp->wall_kc};
+    double *c[] = {&cp->k,     &cp->k1,      &cp->k2,      &cp->kc,
+                   &cp->phi_f, &cp->gamma_n, &cp->kt,      &cp->gamma_t,
+                   &cp->mu_s,  &cp->mu_d,    &cp->wall_mu, &cp->wall_kc};
     for (size_t k = 0; k < sizeof c / sizeof c[0]; k++)
         io_f64(io, c[k]);
     io_bytes(io, s->rng.s, sizeof s->rng.s);
@@ -441,8 +444,7 @@ static void sync_folder(const char *path)
 
 int dem_checkpoint_write(const char *path, const char *config_text,
                          const struct dem_sim *s,
-                         const struct dem_ckpt_run *run,
-                         struct dem_error *err)
+                         const struct dem_ckpt_run *run, struct dem_error *err)
 {
     /* the codec takes mutable pointers for both directions; writing only
      * reads through them */
@@ -546,8 +548,7 @@ static int slurp(const char *path, unsigned char **buf, size_t *size,
             rc = dem_error_set(err, DEM_EIO, "%s: %s", path, strerror(errno));
         } else if ((uint64_t)st.st_size != length) {
             snprintf(what, sizeof what, "%s (%lld bytes, %llu expected)",
-                     (uint64_t)st.st_size < length ? "truncated"
-                                                   : "corrupt",
+                     (uint64_t)st.st_size < length ? "truncated" : "corrupt",
                      (long long)st.st_size, (unsigned long long)length);
             rc = refuse(err, path, "%s", what);
         } else if (length < sizeof h + 4 || length > (uint64_t)SIZE_MAX) {
@@ -579,9 +580,8 @@ static int slurp(const char *path, unsigned char **buf, size_t *size,
     return DEM_OK;
 }
 
-int dem_checkpoint_read(const char *path, struct dem_sim *s,
-                        char **config_text, struct dem_ckpt_run *run,
-                        struct dem_error *err)
+int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
+                        struct dem_ckpt_run *run, struct dem_error *err)
 {
     memset(s, 0, sizeof *s);
     memset(run, 0, sizeof *run);

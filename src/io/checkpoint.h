@@ -37,23 +37,23 @@
 
 /* The run loop's state at a checkpoint, saved as plain data. */
 struct dem_ckpt_run {
-    int stage;             /* index of the stage under way (begun) */
-    double stage_t_start;  /* s; simulated time the stage began */
-    double stage_t_end;    /* s; the stage ends at this time at the latest */
-    int sets_reference;    /* 1: strains refer to this stage's start */
-    double next_out;       /* s; time of the next timeseries row */
-    int warned_inertia;    /* 1: the inertial-number warning was given */
-    double e_free;         /* J; total energy when the current drive-free
-                              stretch began (< 0: driven now) */
-    double L0[3];          /* m; reference box lengths for strains */
-    double V0;             /* m^3 (2D: m^2); reference volume */
-    double next_snap;      /* s; time of the next VTU snapshot */
-    double next_dump;      /* s; time of the next dump frame */
-    long max_steps;        /* step limit the run started with (0 = none) */
-    int64_t ts_bytes;      /* bytes of timeseries.csv.part at the checkpoint */
-    int64_t dump_bytes;    /* bytes of dump.lammpstrj.part (0 = none) */
-    int nsnap;             /* snapshots written */
-    double *snap_t;        /* s; their times (nsnap; owned by the reader) */
+    int stage;            /* index of the stage under way (begun) */
+    double stage_t_start; /* s; simulated time the stage began */
+    double stage_t_end;   /* s; the stage ends at this time at the latest */
+    int sets_reference;   /* 1: strains refer to this stage's start */
+    double next_out;      /* s; time of the next timeseries row */
+    int warned_inertia;   /* 1: the inertial-number warning was given */
+    double e_free;        /* J; total energy when the current drive-free
+                             stretch began (< 0: driven now) */
+    double L0[3];         /* m; reference box lengths for strains */
+    double V0;            /* m^3 (2D: m^2); reference volume */
+    double next_snap;     /* s; time of the next VTU snapshot */
+    double next_dump;     /* s; time of the next dump frame */
+    long max_steps;       /* step limit the run started with (0 = none) */
+    int64_t ts_bytes;     /* bytes of timeseries.csv.part at the checkpoint */
+    int64_t dump_bytes;   /* bytes of dump.lammpstrj.part (0 = none) */
+    int nsnap;            /* snapshots written */
+    double *snap_t;       /* s; their times (nsnap; owned by the reader) */
 };
 
 /* Write the checkpoint of s and run to path, atomically: path.tmp is
@@ -63,8 +63,7 @@ struct dem_ckpt_run {
  * path is untouched. */
 int dem_checkpoint_write(const char *path, const char *config_text,
                          const struct dem_sim *s,
-                         const struct dem_ckpt_run *run,
-                         struct dem_error *err);
+                         const struct dem_ckpt_run *run, struct dem_error *err);
 
 /* Read and check a checkpoint. On success s is a complete simulation
  * (free with dem_sim_destroy; s->cfg parsed from the stored config),
@@ -72,9 +71,8 @@ int dem_checkpoint_write(const char *path, const char *config_text,
  * On failure (not found, truncated, corrupt, foreign, other build)
  * nothing is allocated, s is zeroed and err is one line naming path and
  * what is wrong (DEM_EIO; DEM_ECONFIG when the stored config is invalid). */
-int dem_checkpoint_read(const char *path, struct dem_sim *s,
-                        char **config_text, struct dem_ckpt_run *run,
-                        struct dem_error *err);
+int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
+                        struct dem_ckpt_run *run, struct dem_error *err);
 
 /* CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) of n bytes,
  * continuing from crc (start with 0). */

@@ -68,20 +68,20 @@ enum key_scope {
 #define T_ALL (T_ISO | T_COMP | T_CYC | T_HOLD)
 
 struct key {
-    const char *name;  /* dotted path; stage keys without "stages.N." */
-    int kind;          /* enum key_kind */
-    int scope;         /* enum key_scope */
-    size_t off;        /* offset of the field in its struct */
-    double def;        /* default (enums: index into names) */
+    const char *name;         /* dotted path; stage keys without "stages.N." */
+    int kind;                 /* enum key_kind */
+    int scope;                /* enum key_scope */
+    size_t off;               /* offset of the field in its struct */
+    double def;               /* default (enums: index into names) */
     const char *const *names; /* K_ENUM: allowed values, index = stored */
-    double lo, hi;     /* valid range, where has_lo / has_hi */
+    double lo, hi;            /* valid range, where has_lo / has_hi */
     unsigned char has_lo, lo_open, has_hi, hi_open;
-    unsigned flags;    /* F_* */
-    unsigned uses;     /* stage keys: stage types (T_*) that use the key */
-    unsigned needs;    /* stage keys: stage types that require it */
-    const char *unit;  /* SI unit, "-" for dimensionless */
+    unsigned flags;       /* F_* */
+    unsigned uses;        /* stage keys: stage types (T_*) that use the key */
+    unsigned needs;       /* stage keys: stage types that require it */
+    const char *unit;     /* SI unit, "-" for dimensionless */
     const char *def_text; /* default as documented, when not plain def */
-    const char *doc;   /* one line */
+    const char *doc;      /* one line */
 };
 
 static const char *const dist_names[] = {"mono", "uniform", "gaussian", 0};
@@ -104,178 +104,433 @@ static const char *const profile_names[] = {"cosine", "linear", "cyclic", 0};
 /* The order is the order of the resolved config; keys of a group must be
  * contiguous so that the writer opens each group once. */
 static const struct key keys[] = {
-    {.name = "dimension", .kind = K_INT, TOP(dim), .def = 3, GE(2), LE(3),
-     .unit = "-", .doc = "2 (discs in the x-y plane) or 3 (spheres)"},
-    {.name = "seed", .kind = K_SEED, TOP(seed), .def = 1, .unit = "-",
+    {.name = "dimension",
+     .kind = K_INT,
+     TOP(dim),
+     .def = 3,
+     GE(2),
+     LE(3),
+     .unit = "-",
+     .doc = "2 (discs in the x-y plane) or 3 (spheres)"},
+    {.name = "seed",
+     .kind = K_SEED,
+     TOP(seed),
+     .def = 1,
+     .unit = "-",
      .doc = "random seed; same config, seed and threads give the same run"},
-    {.name = "time_step", .kind = K_TIME_STEP, TOP(time_step), .def = 2e-5,
-     GT(0), .unit = "s",
+    {.name = "time_step",
+     .kind = K_TIME_STEP,
+     TOP(time_step),
+     .def = 2e-5,
+     GT(0),
+     .unit = "s",
      .doc = "integration time step, or \"auto\" = t_c/50 (must be <= t_c/5)"},
-    {.name = "gravity", .kind = K_VEC3, TOP(gravity), .def = 0,
-     .unit = "m/s^2", .doc = "gravitational acceleration [x, y, z]; 2D: z = 0"},
+    {.name = "gravity",
+     .kind = K_VEC3,
+     TOP(gravity),
+     .def = 0,
+     .unit = "m/s^2",
+     .doc = "gravitational acceleration [x, y, z]; 2D: z = 0"},
 
-    {.name = "particles.count", .kind = K_INT, TOP(particles.count),
-     .def = 3375, GE(1), .unit = "-", .doc = "number of particles"},
-    {.name = "particles.density", .kind = K_DOUBLE, TOP(particles.density),
-     .def = 2000, GT(0), .unit = "kg/m^3", .doc = "material density"},
-    {.name = "particles.radius.distribution", .kind = K_ENUM,
-     TOP(particles.distribution), .def = DEM_DIST_GAUSSIAN,
-     .names = dist_names, .unit = "-",
+    {.name = "particles.count",
+     .kind = K_INT,
+     TOP(particles.count),
+     .def = 3375,
+     GE(1),
+     .unit = "-",
+     .doc = "number of particles"},
+    {.name = "particles.density",
+     .kind = K_DOUBLE,
+     TOP(particles.density),
+     .def = 2000,
+     GT(0),
+     .unit = "kg/m^3",
+     .doc = "material density"},
+    {.name = "particles.radius.distribution",
+     .kind = K_ENUM,
+     TOP(particles.distribution),
+     .def = DEM_DIST_GAUSSIAN,
+     .names = dist_names,
+     .unit = "-",
      .doc = "mono: mean; uniform: [min, max]; gaussian: mean, std, cut to "
             "[min, max]"},
-    {.name = "particles.radius.mean", .kind = K_DOUBLE, TOP(particles.mean),
-     .def = 5e-3, GT(0), .unit = "m", .doc = "mean radius (mono, gaussian)"},
-    {.name = "particles.radius.std", .kind = K_DOUBLE, TOP(particles.std),
-     .def = 0.7e-3, GE(0), .unit = "m",
+    {.name = "particles.radius.mean",
+     .kind = K_DOUBLE,
+     TOP(particles.mean),
+     .def = 5e-3,
+     GT(0),
+     .unit = "m",
+     .doc = "mean radius (mono, gaussian)"},
+    {.name = "particles.radius.std",
+     .kind = K_DOUBLE,
+     TOP(particles.std),
+     .def = 0.7e-3,
+     GE(0),
+     .unit = "m",
      .doc = "standard deviation of the radius (gaussian)"},
-    {.name = "particles.radius.min", .kind = K_DOUBLE, TOP(particles.min),
-     .def = 3e-3, GT(0), .unit = "m",
+    {.name = "particles.radius.min",
+     .kind = K_DOUBLE,
+     TOP(particles.min),
+     .def = 3e-3,
+     GT(0),
+     .unit = "m",
      .doc = "smallest radius (uniform; gaussian lower cut)"},
-    {.name = "particles.radius.max", .kind = K_DOUBLE, TOP(particles.max),
-     .def = 1.0, GT(0), .unit = "m",
+    {.name = "particles.radius.max",
+     .kind = K_DOUBLE,
+     TOP(particles.max),
+     .def = 1.0,
+     GT(0),
+     .unit = "m",
      .doc = "largest radius (uniform; gaussian upper cut, 1.0 = none)"},
-    {.name = "particles.placement", .kind = K_ENUM, TOP(particles.placement),
-     .def = DEM_PLACE_LATTICE, .names = place_names, .unit = "-",
+    {.name = "particles.placement",
+     .kind = K_ENUM,
+     TOP(particles.placement),
+     .def = DEM_PLACE_LATTICE,
+     .names = place_names,
+     .unit = "-",
      .doc = "lattice (spacing 2 r_max), random (gas), or file"},
-    {.name = "particles.file", .kind = K_PATH, TOP(particles.file),
-     .def_text = "none", .unit = "-",
+    {.name = "particles.file",
+     .kind = K_PATH,
+     TOP(particles.file),
+     .def_text = "none",
+     .unit = "-",
      .doc = "placement = \"file\": CSV with the columns of "
             "particles_final.csv"},
-    {.name = "particles.mass_model", .kind = K_ENUM,
-     TOP(particles.mass_model), .def = DEM_MASS_SPHERE, .names = mass_names,
+    {.name = "particles.mass_model",
+     .kind = K_ENUM,
+     TOP(particles.mass_model),
+     .def = DEM_MASS_SPHERE,
+     .names = mass_names,
      .unit = "-",
      .doc = "sphere: m = 4/3 pi rho a^3; disc (2D only): m = pi rho a^2"},
-    {.name = "particles.volume_fraction", .kind = K_DOUBLE,
-     TOP(particles.volume_fraction), .def = 0.1, GT(0), LE(0.5),
-     .unit = "-", .def_text = "0.1 (3D), 0.2 (2D)",
+    {.name = "particles.volume_fraction",
+     .kind = K_DOUBLE,
+     TOP(particles.volume_fraction),
+     .def = 0.1,
+     GT(0),
+     LE(0.5),
+     .unit = "-",
+     .def_text = "0.1 (3D), 0.2 (2D)",
      .doc = "random placement: solid fraction of the initial gas"},
 
-    {.name = "contact.normal", .kind = K_ENUM, TOP(contact.normal),
-     .def = DEM_NORMAL_LINEAR, .names = law_names, .unit = "-",
+    {.name = "contact.normal",
+     .kind = K_ENUM,
+     TOP(contact.normal),
+     .def = DEM_NORMAL_LINEAR,
+     .names = law_names,
+     .unit = "-",
      .doc = "normal law: linear spring-dashpot or luding hysteretic"},
-    {.name = "contact.k", .kind = K_DOUBLE, TOP(contact.k), .def = 5000,
-     GT(0), .flags = F_LINEAR, .unit = "N/m",
+    {.name = "contact.k",
+     .kind = K_DOUBLE,
+     TOP(contact.k),
+     .def = 5000,
+     GT(0),
+     .flags = F_LINEAR,
+     .unit = "N/m",
      .doc = "linear normal stiffness"},
-    {.name = "contact.k1", .kind = K_DOUBLE, TOP(contact.k1), .def = 5e4,
-     GT(0), .flags = F_LUDING, .unit = "N/m",
+    {.name = "contact.k1",
+     .kind = K_DOUBLE,
+     TOP(contact.k1),
+     .def = 5e4,
+     GT(0),
+     .flags = F_LUDING,
+     .unit = "N/m",
      .doc = "luding loading stiffness (<= k2)"},
-    {.name = "contact.k2", .kind = K_DOUBLE, TOP(contact.k2), .def = 1e5,
-     GT(0), .flags = F_LUDING, .unit = "N/m",
+    {.name = "contact.k2",
+     .kind = K_DOUBLE,
+     TOP(contact.k2),
+     .def = 1e5,
+     GT(0),
+     .flags = F_LUDING,
+     .unit = "N/m",
      .doc = "luding un-/re-loading stiffness"},
-    {.name = "contact.kc", .kind = K_DOUBLE, TOP(contact.kc), .def = 0,
-     GE(0), .flags = F_LUDING, .unit = "N/m",
+    {.name = "contact.kc",
+     .kind = K_DOUBLE,
+     TOP(contact.kc),
+     .def = 0,
+     GE(0),
+     .flags = F_LUDING,
+     .unit = "N/m",
      .doc = "luding adhesive stiffness (0 = no adhesion)"},
-    {.name = "contact.phi_f", .kind = K_DOUBLE, TOP(contact.phi_f), .def = 0,
-     GT(0), LE(1), .flags = F_LUDING | F_UNSET_ZERO, .unit = "-",
+    {.name = "contact.phi_f",
+     .kind = K_DOUBLE,
+     TOP(contact.phi_f),
+     .def = 0,
+     GT(0),
+     LE(1),
+     .flags = F_LUDING | F_UNSET_ZERO,
+     .unit = "-",
      .def_text = "not given",
      .doc = "luding 2008 plasticity depth in (0, 1]; not given = constant k2"},
-    {.name = "contact.gamma_n", .kind = K_DOUBLE, TOP(contact.gamma_n),
-     .def = 0.05, GE(0), .unit = "kg/s", .doc = "normal viscosity"},
-    {.name = "contact.kt", .kind = K_DOUBLE, TOP(contact.kt), .def = 1000,
-     GT(0), .unit = "N/m", .doc = "tangential stiffness"},
-    {.name = "contact.gamma_t", .kind = K_DOUBLE, TOP(contact.gamma_t),
-     .def = 0.01, GE(0), .unit = "kg/s", .doc = "tangential viscosity"},
-    {.name = "contact.mu", .kind = K_DOUBLE, TOP(contact.mu_s), .def = 0.5,
-     GE(0), .flags = F_MU, .unit = "-",
+    {.name = "contact.gamma_n",
+     .kind = K_DOUBLE,
+     TOP(contact.gamma_n),
+     .def = 0.05,
+     GE(0),
+     .unit = "kg/s",
+     .doc = "normal viscosity"},
+    {.name = "contact.kt",
+     .kind = K_DOUBLE,
+     TOP(contact.kt),
+     .def = 1000,
+     GT(0),
+     .unit = "N/m",
+     .doc = "tangential stiffness"},
+    {.name = "contact.gamma_t",
+     .kind = K_DOUBLE,
+     TOP(contact.gamma_t),
+     .def = 0.01,
+     GE(0),
+     .unit = "kg/s",
+     .doc = "tangential viscosity"},
+    {.name = "contact.mu",
+     .kind = K_DOUBLE,
+     TOP(contact.mu_s),
+     .def = 0.5,
+     GE(0),
+     .flags = F_MU,
+     .unit = "-",
      .doc = "friction coefficient: sets mu_s = mu_d"},
-    {.name = "contact.mu_s", .kind = K_DOUBLE, TOP(contact.mu_s), .def = 0.5,
-     GE(0), .flags = F_MU_PAIR, .unit = "-", .def_text = "= mu",
+    {.name = "contact.mu_s",
+     .kind = K_DOUBLE,
+     TOP(contact.mu_s),
+     .def = 0.5,
+     GE(0),
+     .flags = F_MU_PAIR,
+     .unit = "-",
+     .def_text = "= mu",
      .doc = "static friction (give with mu_d instead of mu)"},
-    {.name = "contact.mu_d", .kind = K_DOUBLE, TOP(contact.mu_d), .def = 0.5,
-     GE(0), .flags = F_MU_PAIR, .unit = "-", .def_text = "= mu",
+    {.name = "contact.mu_d",
+     .kind = K_DOUBLE,
+     TOP(contact.mu_d),
+     .def = 0.5,
+     GE(0),
+     .flags = F_MU_PAIR,
+     .unit = "-",
+     .def_text = "= mu",
      .doc = "dynamic friction, <= mu_s (give with mu_s instead of mu)"},
-    {.name = "contact.wall_mu", .kind = K_DOUBLE, TOP(contact.wall_mu),
-     .def = 0, GE(0), .unit = "-",
+    {.name = "contact.wall_mu",
+     .kind = K_DOUBLE,
+     TOP(contact.wall_mu),
+     .def = 0,
+     GE(0),
+     .unit = "-",
      .doc = "particle-wall friction (static = dynamic)"},
-    {.name = "contact.wall_kc", .kind = K_DOUBLE, TOP(contact.wall_kc),
-     .def = 0, GE(0), .unit = "N/m",
+    {.name = "contact.wall_kc",
+     .kind = K_DOUBLE,
+     TOP(contact.wall_kc),
+     .def = 0,
+     GE(0),
+     .unit = "N/m",
      .doc = "particle-wall adhesive stiffness"},
 
-    {.name = "damping.gamma_b", .kind = K_DOUBLE, TOP(damping.gamma_b),
-     .def = 0.2, GE(0), .unit = "kg/s",
+    {.name = "damping.gamma_b",
+     .kind = K_DOUBLE,
+     TOP(damping.gamma_b),
+     .def = 0.2,
+     GE(0),
+     .unit = "kg/s",
      .doc = "background damping force -gamma_b v"},
-    {.name = "damping.gamma_br", .kind = K_DOUBLE, TOP(damping.gamma_br),
-     .def = 0.05, GE(0), .unit = "kg/s",
+    {.name = "damping.gamma_br",
+     .kind = K_DOUBLE,
+     TOP(damping.gamma_br),
+     .def = 0.05,
+     GE(0),
+     .unit = "kg/s",
      .doc = "background damping torque -gamma_br a^2 omega"},
 
-    {.name = "box.size", .kind = K_VEC3, TOP(box.size), .def = 0,
+    {.name = "box.size",
+     .kind = K_VEC3,
+     TOP(box.size),
+     .def = 0,
      .unit = "m",
      .doc = "initial box [Lx, Ly, Lz]; all 0 = derived from the placement"},
 
-    {.name = "walls.mass", .kind = K_DOUBLE, TOP(walls.mass), .def = 2,
-     GT(0), .unit = "kg", .doc = "mass of a stress-controlled wall"},
-    {.name = "walls.gamma", .kind = K_DOUBLE, TOP(walls.gamma), .def = 200,
-     GE(0), .unit = "kg/s", .doc = "viscosity of a stress-controlled wall"},
-    {.name = "walls.max_speed", .kind = K_DOUBLE, TOP(walls.max_speed),
-     .def = 0, GE(0), .unit = "m/s",
+    {.name = "walls.mass",
+     .kind = K_DOUBLE,
+     TOP(walls.mass),
+     .def = 2,
+     GT(0),
+     .unit = "kg",
+     .doc = "mass of a stress-controlled wall"},
+    {.name = "walls.gamma",
+     .kind = K_DOUBLE,
+     TOP(walls.gamma),
+     .def = 200,
+     GE(0),
+     .unit = "kg/s",
+     .doc = "viscosity of a stress-controlled wall"},
+    {.name = "walls.max_speed",
+     .kind = K_DOUBLE,
+     TOP(walls.max_speed),
+     .def = 0,
+     GE(0),
+     .unit = "m/s",
      .doc = "speed limit of a stress-controlled wall (0 = none); lets a "
             "light, weakly damped servo compress a gas gently"},
 
-    {.name = "stages", .kind = K_STAGES, .scope = S_TOP, .unit = "-",
+    {.name = "stages",
+     .kind = K_STAGES,
+     .scope = S_TOP,
+     .unit = "-",
      .def_text = "isotropic at 1000 Pa",
      .doc = "list of stage groups ( { type = ...; ... }, ... ), run in order"},
 
-    {.name = "checks.max_overlap", .kind = K_DOUBLE, TOP(checks.max_overlap),
-     .def = 0.5, GT(0), LE(1), .unit = "-",
+    {.name = "checks.max_overlap",
+     .kind = K_DOUBLE,
+     TOP(checks.max_overlap),
+     .def = 0.5,
+     GT(0),
+     LE(1),
+     .unit = "-",
      .doc = "the run stops as unstable when a contact overlaps by more than "
             "this fraction of the smaller radius"},
-    {.name = "checks.energy_growth", .kind = K_DOUBLE,
-     TOP(checks.energy_growth), .def = 1.1, GT(1), .unit = "-",
+    {.name = "checks.energy_growth",
+     .kind = K_DOUBLE,
+     TOP(checks.energy_growth),
+     .def = 1.1,
+     GT(1),
+     .unit = "-",
      .doc = "with every wall fixed and no gravity nothing drives the "
             "packing: the run stops when its total energy grows beyond this "
             "factor"},
 
-    {.name = "output.interval", .kind = K_DOUBLE, TOP(output.interval),
-     .def = 1e-3, GT(0), .unit = "s", .doc = "time between timeseries rows"},
-    {.name = "output.snapshot_interval", .kind = K_DOUBLE,
-     TOP(output.snapshot_interval), .def = 0.1, GE(0), .unit = "s",
+    {.name = "output.interval",
+     .kind = K_DOUBLE,
+     TOP(output.interval),
+     .def = 1e-3,
+     GT(0),
+     .unit = "s",
+     .doc = "time between timeseries rows"},
+    {.name = "output.snapshot_interval",
+     .kind = K_DOUBLE,
+     TOP(output.snapshot_interval),
+     .def = 0.1,
+     GE(0),
+     .unit = "s",
      .doc = "time between VTU snapshots (0 = none)"},
-    {.name = "output.dump_interval", .kind = K_DOUBLE,
-     TOP(output.dump_interval), .def = 0, GE(0), .unit = "s",
+    {.name = "output.dump_interval",
+     .kind = K_DOUBLE,
+     TOP(output.dump_interval),
+     .def = 0,
+     GE(0),
+     .unit = "s",
      .doc = "time between frames of dump.lammpstrj, a LAMMPS-style text "
             "dump that OVITO reads (0 = none)"},
-    {.name = "output.checkpoint_interval", .kind = K_DOUBLE,
-     TOP(output.checkpoint_interval), .def = 600, GE(0), .unit = "s",
+    {.name = "output.checkpoint_interval",
+     .kind = K_DOUBLE,
+     TOP(output.checkpoint_interval),
+     .def = 600,
+     GE(0),
+     .unit = "s",
      .doc = "wall-clock time between checkpoints (checkpoint.bin, for "
             "dembox run --resume); 0 = only on SIGINT/SIGTERM"},
 
     /* Keys of each element of the stages list. */
-    {.name = "type", .kind = K_ENUM, STG(type), .def = DEM_STAGE_ISOTROPIC,
-     .names = stage_names, .uses = T_ALL, .needs = T_ALL, .unit = "-",
+    {.name = "type",
+     .kind = K_ENUM,
+     STG(type),
+     .def = DEM_STAGE_ISOTROPIC,
+     .names = stage_names,
+     .uses = T_ALL,
+     .needs = T_ALL,
+     .unit = "-",
      .doc = "what the stage does (see the stage semantics)"},
-    {.name = "pressure", .kind = K_DOUBLE, STG(pressure), .def = 0, GT(0),
-     .uses = T_ISO | T_COMP | T_CYC, .needs = T_ISO | T_COMP | T_CYC,
+    {.name = "pressure",
+     .kind = K_DOUBLE,
+     STG(pressure),
+     .def = 0,
+     GT(0),
+     .uses = T_ISO | T_COMP | T_CYC,
+     .needs = T_ISO | T_COMP | T_CYC,
      .unit = PRESSURE_UNIT,
      .doc = "wall stress: isotropic target, confining, or cyclic p0"},
-    {.name = "tolerance", .kind = K_DOUBLE, STG(tolerance), .def = 1e-4,
-     GT(0), .uses = T_ISO, .unit = "-",
+    {.name = "tolerance",
+     .kind = K_DOUBLE,
+     STG(tolerance),
+     .def = 1e-4,
+     GT(0),
+     .uses = T_ISO,
+     .unit = "-",
      .doc = "isotropic: done when E_kin/E_pot < tolerance"},
-    {.name = "max_time", .kind = K_DOUBLE, STG(max_time), .def = 5.0, GT(0),
-     .uses = T_ISO, .unit = "s",
+    {.name = "max_time",
+     .kind = K_DOUBLE,
+     STG(max_time),
+     .def = 5.0,
+     GT(0),
+     .uses = T_ISO,
+     .unit = "s",
      .doc = "isotropic: stop relaxing after this time"},
-    {.name = "axis", .kind = K_ENUM, STG(axis), .def = 1, .names = axis_names,
-     .uses = T_COMP | T_CYC, .unit = "-",
+    {.name = "axis",
+     .kind = K_ENUM,
+     STG(axis),
+     .def = 1,
+     .names = axis_names,
+     .uses = T_COMP | T_CYC,
+     .unit = "-",
      .doc = "loading axis (2D: x or y)"},
-    {.name = "strain", .kind = K_DOUBLE, STG(strain), .def = 0, GT(-1), LT(1),
-     .uses = T_COMP, .needs = T_COMP, .unit = "-",
+    {.name = "strain",
+     .kind = K_DOUBLE,
+     STG(strain),
+     .def = 0,
+     GT(-1),
+     LT(1),
+     .uses = T_COMP,
+     .needs = T_COMP,
+     .unit = "-",
      .doc = "total axial strain, compression > 0"},
-    {.name = "duration", .kind = K_DOUBLE, STG(duration), .def = 0, GT(0),
-     .uses = T_COMP | T_HOLD, .needs = T_COMP | T_HOLD, .unit = "s",
+    {.name = "duration",
+     .kind = K_DOUBLE,
+     STG(duration),
+     .def = 0,
+     GT(0),
+     .uses = T_COMP | T_HOLD,
+     .needs = T_COMP | T_HOLD,
+     .unit = "s",
      .doc = "compress: time to reach strain; hold: time to run"},
-    {.name = "profile", .kind = K_ENUM, STG(profile),
-     .def = DEM_PROFILE_COSINE, .names = profile_names, .uses = T_COMP,
-     .unit = "-", .doc = "wall motion in time: cosine, linear or cyclic"},
-    {.name = "amplitude", .kind = K_DOUBLE, STG(amplitude), .def = 0, GT(0),
-     .uses = T_CYC, .needs = T_CYC, .unit = PRESSURE_UNIT,
+    {.name = "profile",
+     .kind = K_ENUM,
+     STG(profile),
+     .def = DEM_PROFILE_COSINE,
+     .names = profile_names,
+     .uses = T_COMP,
+     .unit = "-",
+     .doc = "wall motion in time: cosine, linear or cyclic"},
+    {.name = "amplitude",
+     .kind = K_DOUBLE,
+     STG(amplitude),
+     .def = 0,
+     GT(0),
+     .uses = T_CYC,
+     .needs = T_CYC,
+     .unit = PRESSURE_UNIT,
      .doc = "cyclic: stress amplitude delta sigma"},
-    {.name = "period", .kind = K_DOUBLE, STG(period), .def = 0, GT(0),
-     .uses = T_CYC, .needs = T_CYC, .unit = "s",
+    {.name = "period",
+     .kind = K_DOUBLE,
+     STG(period),
+     .def = 0,
+     GT(0),
+     .uses = T_CYC,
+     .needs = T_CYC,
+     .unit = "s",
      .doc = "cyclic: period t0 of one cycle"},
-    {.name = "cycles", .kind = K_INT, STG(cycles), .def = 1, GE(1),
-     .uses = T_CYC, .needs = T_CYC, .unit = "-",
+    {.name = "cycles",
+     .kind = K_INT,
+     STG(cycles),
+     .def = 1,
+     GE(1),
+     .uses = T_CYC,
+     .needs = T_CYC,
+     .unit = "-",
      .doc = "cyclic: number of periods"},
-    {.name = "mu", .kind = K_DOUBLE, STG(mu), .def = -1, GE(0),
-     .flags = F_UNSET_NEG, .uses = T_ALL, .unit = "-",
+    {.name = "mu",
+     .kind = K_DOUBLE,
+     STG(mu),
+     .def = -1,
+     GE(0),
+     .flags = F_UNSET_NEG,
+     .uses = T_ALL,
+     .unit = "-",
      .def_text = "contact friction",
      .doc = "friction (mu_s = mu_d) during this stage"},
 };
@@ -434,11 +689,10 @@ static int vfail(const struct ctx *x, const config_setting_t *s,
 
 /* Error at setting s (may be NULL) about key. */
 static int fail_at(const struct ctx *x, const config_setting_t *s,
-                   const char *key, struct dem_error *err, const char *fmt,
-                   ...) DEM_PRINTF_(5, 6);
+                   const char *key, struct dem_error *err, const char *fmt, ...)
+    DEM_PRINTF_(5, 6);
 static int fail_at(const struct ctx *x, const config_setting_t *s,
-                   const char *key, struct dem_error *err, const char *fmt,
-                   ...)
+                   const char *key, struct dem_error *err, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -603,8 +857,7 @@ static int convert(const struct ctx *x, const struct key *k,
                 *(int *)field(base, k) = i;
                 return 0;
             }
-        return fail_at(x, s, kname, err, "must be %s (got \"%s\")", list,
-                       str);
+        return fail_at(x, s, kname, err, "must be %s (got \"%s\")", list, str);
     }
     case K_VEC3: {
         int agg = config_setting_type(s) == CONFIG_TYPE_ARRAY ||
@@ -699,8 +952,8 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
     for (size_t k = 0; k < NKEYS; k++)
         if (keys[k].scope == S_STAGE && (keys[k].needs & bit) &&
             !x->stage_at[i][k])
-            return fail_key(x, i, keys[k].name, err,
-                            "required by a %s stage", stage_names[st->type]);
+            return fail_key(x, i, keys[k].name, err, "required by a %s stage",
+                            stage_names[st->type]);
     return 0;
 }
 
@@ -786,12 +1039,14 @@ static int check_given(const struct ctx *x, struct dem_config *c,
     const config_setting_t *mus = x->at[find_key("contact.mu_s", S_TOP)];
     const config_setting_t *mud = x->at[find_key("contact.mu_d", S_TOP)];
     if (mu && (mus || mud))
-        return fail_at(x, mus ? mus : mud, mus ? "contact.mu_s" : "contact.mu_d",
-                       err, "give either contact.mu or both mu_s and mu_d, "
-                            "not both");
+        return fail_at(x, mus ? mus : mud,
+                       mus ? "contact.mu_s" : "contact.mu_d", err,
+                       "give either contact.mu or both mu_s and mu_d, "
+                       "not both");
     if (!mus != !mud)
-        return fail_at(x, mus ? mus : mud, mus ? "contact.mu_s" : "contact.mu_d",
-                       err, "given without contact.%s (give both, or mu)",
+        return fail_at(x, mus ? mus : mud,
+                       mus ? "contact.mu_s" : "contact.mu_d", err,
+                       "given without contact.%s (give both, or mu)",
                        mus ? "mu_d" : "mu_s");
     if (mu)
         c->contact.mu_d = c->contact.mu_s;
@@ -831,8 +1086,8 @@ static double particle_mass(const struct dem_config *c, double a)
 double dem_config_contact_time(const struct dem_config *c)
 {
     const double m_ij = 0.5 * particle_mass(c, smallest_radius(c));
-    const double k = c->contact.normal == DEM_NORMAL_LUDING ? c->contact.k2
-                                                           : c->contact.k;
+    const double k =
+        c->contact.normal == DEM_NORMAL_LUDING ? c->contact.k2 : c->contact.k;
     const double eta = c->contact.gamma_n / (2.0 * m_ij);
     const double w0sq = k / m_ij;
     /* An overdamped pair has no oscillation; its undamped half period is
@@ -847,8 +1102,8 @@ double dem_config_contact_time(const struct dem_config *c)
 static void range_text(const struct key *k, char *buf, size_t n)
 {
     if (k->has_lo && k->has_hi)
-        snprintf(buf, n, "in %c%g, %g%c", k->lo_open ? '(' : '[', k->lo,
-                 k->hi, k->hi_open ? ')' : ']');
+        snprintf(buf, n, "in %c%g, %g%c", k->lo_open ? '(' : '[', k->lo, k->hi,
+                 k->hi_open ? ')' : ']');
     else if (k->has_lo)
         snprintf(buf, n, "%s %g", k->lo_open ? ">" : ">=", k->lo);
     else if (k->has_hi)
@@ -868,16 +1123,16 @@ static int in_range(const struct key *k, double v)
 
 /* Finite values and the range of one key; time_step is left to
  * check_time_step because "auto" is resolved after the other checks. */
-static int check_key(const struct ctx *x, const struct key *k,
-                     const void *base, int stage, struct dem_error *err)
+static int check_key(const struct ctx *x, const struct key *k, const void *base,
+                     int stage, struct dem_error *err)
 {
     if (k->kind == K_VEC3) {
         const double *v = cfield(base, k);
         for (int d = 0; d < 3; d++)
             if (!isfinite(v[d]))
                 return fail_key(x, stage, k->name, err,
-                                "must be finite (got %g in component %d)",
-                                v[d], d);
+                                "must be finite (got %g in component %d)", v[d],
+                                d);
         return 0;
     }
     if (k->kind == K_PATH || k->kind == K_STAGES || k->kind == K_TIME_STEP)
@@ -898,8 +1153,7 @@ static int check_key(const struct ctx *x, const struct key *k,
         while (k->names[n])
             n++;
         if (v < 0 || v >= n)
-            return fail_key(x, stage, k->name, err,
-                            "invalid enum value %g", v);
+            return fail_key(x, stage, k->name, err, "invalid enum value %g", v);
         return 0;
     }
     if (!in_range(k, v)) {
@@ -996,8 +1250,7 @@ static int validate_body(const struct ctx *x, const struct dem_config *c,
         return fail_key(x, -1, "contact.mu_d", err,
                         "must be <= contact.mu_s (got %g > %g)",
                         c->contact.mu_d, c->contact.mu_s);
-    if (c->contact.normal == DEM_NORMAL_LUDING &&
-        c->contact.k1 > c->contact.k2)
+    if (c->contact.normal == DEM_NORMAL_LUDING && c->contact.k1 > c->contact.k2)
         return fail_key(x, -1, "contact.k1", err,
                         "must be <= contact.k2 (got %g > %g)", c->contact.k1,
                         c->contact.k2);
@@ -1006,8 +1259,7 @@ static int validate_body(const struct ctx *x, const struct dem_config *c,
                         "\"disc\" is only valid with dimension = 2");
     if (c->dim == 2 && c->gravity[2] != 0)
         return fail_key(x, -1, "gravity", err,
-                        "z component must be 0 in 2D (got %g)",
-                        c->gravity[2]);
+                        "z component must be 0 in 2D (got %g)", c->gravity[2]);
     if (c->particles.placement == DEM_PLACE_FILE && !c->particles.file[0])
         return fail_key(x, -1, "particles.placement", err,
                         "\"file\" needs particles.file");
@@ -1082,8 +1334,7 @@ static int settable(char *const *seg, int n)
             return k >= 0 && keys[k].kind == K_VEC3;
         }
         size_t used = strlen(name);
-        snprintf(name + used, sizeof name - used, "%s%s", i ? "." : "",
-                 seg[i]);
+        snprintf(name + used, sizeof name - used, "%s%s", i ? "." : "", seg[i]);
     }
     return find_key(name, S_TOP) >= 0 || is_group_path(name);
 }
@@ -1092,8 +1343,8 @@ static config_setting_t *copy_setting(config_setting_t *parent,
                                       const char *name,
                                       const config_setting_t *src)
 {
-    config_setting_t *d = config_setting_add(parent, name,
-                                             config_setting_type(src));
+    config_setting_t *d =
+        config_setting_add(parent, name, config_setting_type(src));
     if (!d)
         return 0;
     switch (config_setting_type(src)) {
@@ -1131,8 +1382,8 @@ static config_setting_t *add_default_stages(config_setting_t *root)
     dem_config_defaults(&d);
     config_setting_t *l = config_setting_add(root, "stages", CONFIG_TYPE_LIST);
     config_setting_t *g = l ? config_setting_add(l, 0, CONFIG_TYPE_GROUP) : 0;
-    config_setting_t *t = g ? config_setting_add(g, "type", CONFIG_TYPE_STRING)
-                            : 0;
+    config_setting_t *t =
+        g ? config_setting_add(g, "type", CONFIG_TYPE_STRING) : 0;
     config_setting_t *p =
         t ? config_setting_add(g, "pressure", CONFIG_TYPE_FLOAT) : 0;
     if (!p)
@@ -1364,8 +1615,8 @@ static int apply_set(config_t *cfg, const char *set, struct dem_error *err)
             goto out;
         cur = next;
     }
-    config_setting_t *val = config_setting_get_elem(config_root_setting(&tmp),
-                                                    0);
+    config_setting_t *val =
+        config_setting_get_elem(config_root_setting(&tmp), 0);
     config_setting_set_hook(val, hook);
     rc = assign(cur, seg[n - 1], val, hook, key, err);
 out:
@@ -1460,8 +1711,8 @@ static void duplicate_name(const char *text, int line, char *out, size_t n)
 static int syntax_error(const struct ctx *x, const config_t *cfg,
                         const char *text, struct dem_error *err)
 {
-    const char *what = config_error_text(cfg) ? config_error_text(cfg)
-                                              : "unknown error";
+    const char *what =
+        config_error_text(cfg) ? config_error_text(cfg) : "unknown error";
     const int line = config_error_line(cfg);
     int rc;
     char name[DEM_NAME_MAX];
@@ -1484,9 +1735,9 @@ static int syntax_error(const struct ctx *x, const config_t *cfg,
                            "every element as a float, e.g. [0.0, 0.0, -9.81]",
                            x->source, line);
     } else {
-        rc = dem_error_set(err, DEM_ECONFIG, "%s:%d: %s%s", x->source, line,
-                           strstr(what, "syntax") ? "" : "syntax error: ",
-                           what);
+        rc =
+            dem_error_set(err, DEM_ECONFIG, "%s:%d: %s%s", x->source, line,
+                          strstr(what, "syntax") ? "" : "syntax error: ", what);
     }
     if (err)
         one_line(err->msg);
@@ -1515,9 +1766,8 @@ static void warn_time_step(const struct ctx *x, const struct dem_config *c)
                 x->source, c->time_step, tc / 10);
 }
 
-int dem_config_parse(struct dem_config *c, const char *text,
-                     const char *source, const char *const *sets, int nsets,
-                     struct dem_error *err)
+int dem_config_parse(struct dem_config *c, const char *text, const char *source,
+                     const char *const *sets, int nsets, struct dem_error *err)
 {
     struct ctx *x = calloc(1, sizeof *x);
     if (!x)
@@ -1583,8 +1833,8 @@ int dem_config_load_file(struct dem_config *c, const char *path,
     struct stat st;
     if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
         fclose(f);
-        return dem_error_set(err, DEM_EIO,
-                             "%s: is a folder, not a config file", path);
+        return dem_error_set(err, DEM_EIO, "%s: is a folder, not a config file",
+                             path);
     }
     size_t cap = 4096, len = 0, got;
     char *text = malloc(cap);
@@ -1739,8 +1989,9 @@ int dem_config_write(const struct dem_config *c, FILE *f)
 {
     char open[4][DEM_NAME_MAX]; /* currently open groups, outermost first */
     int depth = 0;
-    fprintf(f, "# dembox %s resolved configuration%s%s: every key, defaults "
-               "filled in.\n",
+    fprintf(f,
+            "# dembox %s resolved configuration%s%s: every key, defaults "
+            "filled in.\n",
             DEM_VERSION, c->source[0] ? " of " : "", c->source);
     for (size_t k = 0; k < NKEYS; k++) {
         if (keys[k].scope != S_TOP)
@@ -1855,10 +2106,8 @@ static void key_doc(const struct key *k, struct key_doc *d)
     if (k->has_lo || k->has_hi) {
         char t[80];
         range_text(k, t, sizeof t);
-        snprintf(r, sizeof r, " Valid: %s%s.", k->flags & (F_UNSET_ZERO |
-                                                          F_UNSET_NEG)
-                                                  ? "when given, "
-                                                  : "",
+        snprintf(r, sizeof r, " Valid: %s%s.",
+                 k->flags & (F_UNSET_ZERO | F_UNSET_NEG) ? "when given, " : "",
                  t);
     }
     size_t used = (size_t)snprintf(d->doc, sizeof d->doc, "%s.%s", k->doc, r);
@@ -1866,10 +2115,9 @@ static void key_doc(const struct key *k, struct key_doc *d)
         const char *sep = " Used by: ";
         for (int t = 0; t < DEM_STAGE_NTYPES && used < sizeof d->doc; t++)
             if (k->uses & (1u << t)) {
-                used += (size_t)snprintf(d->doc + used, sizeof d->doc - used,
-                                         "%s%s%s", sep, stage_names[t],
-                                         k->needs & (1u << t) ? " (required)"
-                                                              : "");
+                used += (size_t)snprintf(
+                    d->doc + used, sizeof d->doc - used, "%s%s%s", sep,
+                    stage_names[t], k->needs & (1u << t) ? " (required)" : "");
                 sep = ", ";
             }
         if (used < sizeof d->doc)

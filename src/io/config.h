@@ -19,9 +19,8 @@ void dem_config_defaults(struct dem_config *c);
  * elements by 0-based index) applied on top of the text, nsets of them.
  * On success c is complete and validated. On failure err->msg is one line
  * naming the key, the source and its line, and c is unspecified. */
-int dem_config_parse(struct dem_config *c, const char *text,
-                     const char *source, const char *const *sets, int nsets,
-                     struct dem_error *err);
+int dem_config_parse(struct dem_config *c, const char *text, const char *source,
+                     const char *const *sets, int nsets, struct dem_error *err);
 
 /* Read and parse a config file (see dem_config_parse). */
 int dem_config_load_file(struct dem_config *c, const char *path,

@@ -11,8 +11,8 @@ static char *trim(char *s)
     while (*s == ' ' || *s == '\t')
         s++;
     size_t n = strlen(s);
-    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t' ||
-                     s[n - 1] == '\r' || s[n - 1] == '\n'))
+    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t' || s[n - 1] == '\r' ||
+                     s[n - 1] == '\n'))
         s[--n] = '\0';
     return s;
 }
@@ -88,8 +88,8 @@ static int grow(struct dem__csv_table *t, size_t *cap)
 
 /* Map header fields to the wanted columns: slot[i] = wanted index of
  * header field i, or -1. Allocates the wanted columns that exist. */
-static int map_header(struct dem__csv_table *t, char **field, int nf,
-                      int *slot, const struct dem__csv_want *want, int nwant,
+static int map_header(struct dem__csv_table *t, char **field, int nf, int *slot,
+                      const struct dem__csv_want *want, int nwant,
                       const struct reader *r, struct dem_error *err)
 {
     for (int i = 0; i < nf; i++) {
@@ -98,8 +98,8 @@ static int map_header(struct dem__csv_table *t, char **field, int nf,
             if (!strcmp(field[i], want[k].name) && !t->col[k]) {
                 t->col[k] = malloc(sizeof(double));
                 if (!t->col[k])
-                    return dem_error_set(err, DEM_ENOMEM,
-                                         "%s: out of memory", r->path);
+                    return dem_error_set(err, DEM_ENOMEM, "%s: out of memory",
+                                         r->path);
                 slot[i] = k;
                 break;
             }
@@ -121,13 +121,11 @@ static int read_rows(struct dem__csv_table *t, struct reader *r, char **field,
     while ((s = next_line(r)) != NULL) {
         int n = split(s, field, nf);
         if (n != nf)
-            return dem_error_set(err, DEM_EIO,
-                                 "%s:%ld: %s fields, the header has %d",
-                                 r->path, r->lineno, n > nf ? "more" : "fewer",
-                                 nf);
+            return dem_error_set(
+                err, DEM_EIO, "%s:%ld: %s fields, the header has %d", r->path,
+                r->lineno, n > nf ? "more" : "fewer", nf);
         if (t->nrow == cap && grow(t, &cap))
-            return dem_error_set(err, DEM_ENOMEM, "%s: out of memory",
-                                 r->path);
+            return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", r->path);
         for (int i = 0; i < nf; i++) {
             if (slot[i] < 0)
                 continue;
@@ -183,14 +181,12 @@ int dem__csv_table_read(struct dem__csv_table *t, const char *path,
         split(head, field, nf);
         for (int i = 0; i < nf && !rc; i++)
             if (!(names[i] = strdup(field[i])))
-                rc = dem_error_set(err, DEM_ENOMEM, "%s: out of memory",
-                                   path);
+                rc = dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
     }
     if (!rc)
         rc = map_header(t, names, nf, slot, want, nwant, &r, err);
     if (!rc)
-        rc = read_rows(t, &r, field, nf, slot, (const char *const *)names,
-                       err);
+        rc = read_rows(t, &r, field, nf, slot, (const char *const *)names, err);
     for (int i = 0; names && i < nf; i++)
         free(names[i]);
     free(names);

@@ -21,9 +21,9 @@ struct dem__csv_want {
 
 /* The columns asked for, in the order of the request. */
 struct dem__csv_table {
-    size_t nrow;   /* data rows */
-    int ncol;      /* columns asked for */
-    double **col;  /* col[k][row]; NULL for an optional column not present */
+    size_t nrow;  /* data rows */
+    int ncol;     /* columns asked for */
+    double **col; /* col[k][row]; NULL for an optional column not present */
 };
 
 /* Read path keeping only the columns in want[0..nwant). A missing file,

@@ -14,10 +14,10 @@
 
 struct dem__json {
     FILE *f;
-    int depth;                    /* open containers */
-    int count[DEM_JSON_DEPTH];    /* items written in each open container */
-    int compact[DEM_JSON_DEPTH];  /* 1: this container stays on one line */
-    char close[DEM_JSON_DEPTH];   /* its closing bracket */
+    int depth;                   /* open containers */
+    int count[DEM_JSON_DEPTH];   /* items written in each open container */
+    int compact[DEM_JSON_DEPTH]; /* 1: this container stays on one line */
+    char close[DEM_JSON_DEPTH];  /* its closing bracket */
 };
 
 /* Start the top-level object. */

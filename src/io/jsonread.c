@@ -63,11 +63,21 @@ static int parse_string(struct parser *p, char **out)
         if (c == '\\') {
             c = p->s[++j];
             switch (c) {
-            case 'n': c = '\n'; break;
-            case 't': c = '\t'; break;
-            case 'r': c = '\r'; break;
-            case 'b': c = '\b'; break;
-            case 'f': c = '\f'; break;
+            case 'n':
+                c = '\n';
+                break;
+            case 't':
+                c = '\t';
+                break;
+            case 'r':
+                c = '\r';
+                break;
+            case 'b':
+                c = '\b';
+                break;
+            case 'f':
+                c = '\f';
+                break;
             case 'u': {
                 int code = 0;
                 for (int h = 1; h <= 4; h++) {
@@ -82,7 +92,8 @@ static int parse_string(struct parser *p, char **out)
                 c = code < 0x80 ? (char)code : '?';
                 break;
             }
-            default: break; /* \" \\ \/ */
+            default:
+                break; /* \" \\ \/ */
             }
         }
         r[k++] = c;

@@ -21,12 +21,12 @@ enum dem__json_type {
 };
 
 struct dem__jval {
-    int type;                 /* enum dem__json_type */
-    double num;               /* number; bool: 0 or 1 */
-    char *str;                /* string (owned) */
-    int n;                    /* array or object: members */
-    char **keys;              /* object: member names (owned) */
-    struct dem__jval *items;  /* array or object: members (owned) */
+    int type;                /* enum dem__json_type */
+    double num;              /* number; bool: 0 or 1 */
+    char *str;               /* string (owned) */
+    int n;                   /* array or object: members */
+    char **keys;             /* object: member names (owned) */
+    struct dem__jval *items; /* array or object: members (owned) */
 };
 
 /* Parse the file at path into v; errors name the file and the byte
@@ -34,8 +34,8 @@ struct dem__jval {
 int dem__jread_file(struct dem__jval *v, const char *path,
                     struct dem_error *err);
 /* Parse text (NUL-terminated); source names it in messages. */
-int dem__jread_text(struct dem__jval *v, const char *text,
-                    const char *source, struct dem_error *err);
+int dem__jread_text(struct dem__jval *v, const char *text, const char *source,
+                    struct dem_error *err);
 void dem__jread_free(struct dem__jval *v);
 
 /* Member key of object o, or NULL (also when o is NULL or no object). */

@@ -20,9 +20,9 @@
 struct reader {
     const char *path;
     FILE *f;
-    char *line;        /* getline buffer */
+    char *line; /* getline buffer */
     size_t cap;
-    int lineno;        /* line number of line */
+    int lineno; /* line number of line */
     struct dem_lammps_data *d;
     struct dem_error *err;
 };
@@ -86,9 +86,8 @@ static int alloc_arrays(struct dem_lammps_data *d)
 {
     size_t n = (size_t)d->n;
     d->id = calloc(n, sizeof *d->id);
-    double **a[] = {&d->diameter, &d->density, &d->x,  &d->y,  &d->z,
-                    &d->vx,       &d->vy,      &d->vz, &d->wx, &d->wy,
-                    &d->wz};
+    double **a[] = {&d->diameter, &d->density, &d->x,  &d->y,  &d->z, &d->vx,
+                    &d->vy,       &d->vz,      &d->wx, &d->wy, &d->wz};
     int ok = d->id != 0;
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++) {
         *a[k] = calloc(n, sizeof(double));
@@ -229,8 +228,8 @@ static int build_map(struct reader *r, struct id_index **out)
             int id = map[i].id;
             free(map);
             return dem_error_set(r->err, DEM_EIO,
-                                 "%s: Atoms: atom id %d appears twice",
-                                 r->path, id);
+                                 "%s: Atoms: atom id %d appears twice", r->path,
+                                 id);
         }
     *out = map;
     return DEM_OK;
@@ -252,8 +251,8 @@ static int read_body(struct reader *r)
         {"xlo", "xhi"}, {"ylo", "yhi"}, {"zlo", "zhi"}};
     for (;;) {
         if (next_fields(r, f, &nf) < 0)
-            return dem_error_set(r->err, DEM_EIO,
-                                 "%s: no Atoms section", r->path);
+            return dem_error_set(r->err, DEM_EIO, "%s: no Atoms section",
+                                 r->path);
         if (nf == 0)
             continue;
         if (nf == 2 && !strcmp(f[1], "atoms")) {
@@ -264,8 +263,10 @@ static int read_body(struct reader *r)
         if (nf == 3 && !strcmp(f[1], "atom") && !strcmp(f[2], "types"))
             continue;
         if (nf == 6 && !strcmp(f[3], "xy"))
-            return fail(r, DEM_EIO, "triclinic boxes (xy xz yz) are not "
-                                    "supported", 0);
+            return fail(r, DEM_EIO,
+                        "triclinic boxes (xy xz yz) are not "
+                        "supported",
+                        0);
         int axis = -1;
         for (int a = 0; a < 3; a++)
             if (nf == 4 && !strcmp(f[2], bounds[a][0]) &&
@@ -288,8 +289,7 @@ static int read_body(struct reader *r)
                                  r->path, bounds[a][0], bounds[a][1]);
     d->n = (int)natoms;
     if (alloc_arrays(d))
-        return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory",
-                             r->path);
+        return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory", r->path);
     /* sections: f holds the name of the current one (comment cut) */
     for (;;) {
         if (nf == 0) {

@@ -19,15 +19,15 @@
 #include "dembox.h"
 
 struct dem_lammps_data {
-    int n;                  /* number of atoms */
-    double lo[3], hi[3];    /* m; box bounds */
-    int *id;                /* atom ids as in the file, file order */
-    double *diameter;       /* m */
-    double *density;        /* kg/m^3 */
-    double *x, *y, *z;      /* m */
-    double *vx, *vy, *vz;   /* m/s; 0 without a Velocities section */
-    double *wx, *wy, *wz;   /* rad/s; 0 without a Velocities section */
-    int has_velocities;     /* 1 if the file had a Velocities section */
+    int n;                /* number of atoms */
+    double lo[3], hi[3];  /* m; box bounds */
+    int *id;              /* atom ids as in the file, file order */
+    double *diameter;     /* m */
+    double *density;      /* kg/m^3 */
+    double *x, *y, *z;    /* m */
+    double *vx, *vy, *vz; /* m/s; 0 without a Velocities section */
+    double *wx, *wy, *wz; /* rad/s; 0 without a Velocities section */
+    int has_velocities;   /* 1 if the file had a Velocities section */
 };
 
 /* Read path into d (arrays allocated; free with dem_lammps_data_free).

@@ -12,8 +12,18 @@
 #include "io/outfile.h"
 
 enum {
-    COL_X, COL_Y, COL_Z, COL_VX, COL_VY, COL_VZ, COL_WX, COL_WY, COL_WZ,
-    COL_RADIUS, COL_MASS, NCOL
+    COL_X,
+    COL_Y,
+    COL_Z,
+    COL_VX,
+    COL_VY,
+    COL_VZ,
+    COL_WX,
+    COL_WY,
+    COL_WZ,
+    COL_RADIUS,
+    COL_MASS,
+    NCOL
 };
 
 /* Column names in the order particles_final.csv writes them. */
@@ -70,12 +80,12 @@ static int parse_number(const char *s, double *v)
 /* State of one read, so every error path can release everything at once. */
 struct reader {
     const char *path;
-    FILE *f;           /* borrowed: the caller opens and closes it */
-    char *line;        /* getline buffer */
+    FILE *f;    /* borrowed: the caller opens and closes it */
+    char *line; /* getline buffer */
     size_t line_cap;
-    double *rows;      /* NCOL values per particle */
-    int *lines;        /* file line of each particle */
-    int n, cap;        /* particles read, rows allocated */
+    double *rows; /* NCOL values per particle */
+    int *lines;   /* file line of each particle */
+    int n, cap;   /* particles read, rows allocated */
 };
 
 static void reader_free(struct reader *r)
@@ -156,10 +166,9 @@ static int parse_header(char *line, const char *path, int lineno, int dim,
         if (c == COL_Z && dim == 2)
             continue;
         if (!present[c])
-            return dem_error_set(err, DEM_ECONFIG,
-                                 "%s:%d: missing required column '%s'%s", path,
-                                 lineno, col_name[c],
-                                 c == COL_Z ? " (3D run)" : "");
+            return dem_error_set(
+                err, DEM_ECONFIG, "%s:%d: missing required column '%s'%s", path,
+                lineno, col_name[c], c == COL_Z ? " (3D run)" : "");
     }
     *nfield = nf;
     return DEM_OK;
@@ -192,8 +201,8 @@ static int parse_row(char *line, const char *path, int lineno, int dim,
                              path, lineno, row[COL_RADIUS]);
     if (present[COL_MASS] && !(row[COL_MASS] > 0.0))
         return dem_error_set(err, DEM_ECONFIG,
-                             "%s:%d: column 'mass': must be > 0, got %g",
-                             path, lineno, row[COL_MASS]);
+                             "%s:%d: column 'mass': must be > 0, got %g", path,
+                             lineno, row[COL_MASS]);
     if (dim == 2) {
         /* Discs move in the x-y plane and spin about z only. */
         static const int planar[] = {COL_Z, COL_VZ, COL_WX, COL_WY};
@@ -357,8 +366,8 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
     if (!f)
         return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
                              strerror(errno));
-    int rc = dem_particles_read_csv_stream(p, f, path, dim, density,
-                                           mass_model, lines, err);
+    int rc = dem_particles_read_csv_stream(p, f, path, dim, density, mass_model,
+                                           lines, err);
     fclose(f);
     return rc;
 }
@@ -367,8 +376,8 @@ int dem_particles_read_csv(struct dem_particles *p, const char *path, int dim,
                            double density, int mass_model,
                            struct dem_error *err)
 {
-    return dem_particles_read_csv_lines(p, path, dim, density, mass_model,
-                                        NULL, err);
+    return dem_particles_read_csv_lines(p, path, dim, density, mass_model, NULL,
+                                        err);
 }
 
 /* Sort key for writing rows in original order. */

@@ -35,32 +35,57 @@
 
 /* The timeseries columns used here, by their SPEC §7 names. */
 enum ts_col {
-    TS_T, TS_STAGE, TS_LZ, TS_EXX, TS_EYY, TS_EZZ, TS_EV,
-    TS_SXX, TS_SYY, TS_SZZ, TS_EKIN, TS_EROT, TS_EPOT,
-    TS_XMIN, TS_XMAX, TS_YMIN, TS_YMAX, TS_ZMIN, TS_ZMAX,
+    TS_T,
+    TS_STAGE,
+    TS_LZ,
+    TS_EXX,
+    TS_EYY,
+    TS_EZZ,
+    TS_EV,
+    TS_SXX,
+    TS_SYY,
+    TS_SZZ,
+    TS_EKIN,
+    TS_EROT,
+    TS_EPOT,
+    TS_XMIN,
+    TS_XMAX,
+    TS_YMIN,
+    TS_YMAX,
+    TS_ZMIN,
+    TS_ZMAX,
     TS_NCOL
 };
 
 static const struct dem__csv_want ts_want[TS_NCOL] = {
-    [TS_T] = {"t", 1},           [TS_STAGE] = {"stage", 1},
-    [TS_LZ] = {"Lz", 1},         [TS_EXX] = {"eps_xx", 1},
-    [TS_EYY] = {"eps_yy", 1},    [TS_EZZ] = {"eps_zz", 1},
-    [TS_EV] = {"eps_v", 1},      [TS_SXX] = {"sigma_xx", 1},
-    [TS_SYY] = {"sigma_yy", 1},  [TS_SZZ] = {"sigma_zz", 1},
-    [TS_EKIN] = {"e_kin", 1},    [TS_EROT] = {"e_rot", 1},
+    [TS_T] = {"t", 1},
+    [TS_STAGE] = {"stage", 1},
+    [TS_LZ] = {"Lz", 1},
+    [TS_EXX] = {"eps_xx", 1},
+    [TS_EYY] = {"eps_yy", 1},
+    [TS_EZZ] = {"eps_zz", 1},
+    [TS_EV] = {"eps_v", 1},
+    [TS_SXX] = {"sigma_xx", 1},
+    [TS_SYY] = {"sigma_yy", 1},
+    [TS_SZZ] = {"sigma_zz", 1},
+    [TS_EKIN] = {"e_kin", 1},
+    [TS_EROT] = {"e_rot", 1},
     [TS_EPOT] = {"e_pot", 1},
     /* wall positions only frame the particle picture; without them the
      * packing's extent does */
-    [TS_XMIN] = {"xmin_pos", 0}, [TS_XMAX] = {"xmax_pos", 0},
-    [TS_YMIN] = {"ymin_pos", 0}, [TS_YMAX] = {"ymax_pos", 0},
-    [TS_ZMIN] = {"zmin_pos", 0}, [TS_ZMAX] = {"zmax_pos", 0},
+    [TS_XMIN] = {"xmin_pos", 0},
+    [TS_XMAX] = {"xmax_pos", 0},
+    [TS_YMIN] = {"ymin_pos", 0},
+    [TS_YMAX] = {"ymax_pos", 0},
+    [TS_ZMIN] = {"zmin_pos", 0},
+    [TS_ZMAX] = {"zmax_pos", 0},
 };
 
 enum pk_col { PK_X, PK_Y, PK_Z, PK_VX, PK_VY, PK_VZ, PK_R, PK_NCOL };
 
 static const struct dem__csv_want pk_want[PK_NCOL] = {
-    [PK_X] = {"x", 1},   [PK_Y] = {"y", 1},   [PK_Z] = {"z", 0},
-    [PK_VX] = {"vx", 0}, [PK_VY] = {"vy", 0}, [PK_VZ] = {"vz", 0},
+    [PK_X] = {"x", 1},      [PK_Y] = {"y", 1},   [PK_Z] = {"z", 0},
+    [PK_VX] = {"vx", 0},    [PK_VY] = {"vy", 0}, [PK_VZ] = {"vz", 0},
     [PK_R] = {"radius", 1},
 };
 
@@ -183,11 +208,27 @@ static int find_loading_from_config(struct series *s, const char *outdir)
 /* -------------------------------------------------------- quantities */
 
 enum qty {
-    Q_NONE, Q_T, Q_EPS_AX, Q_EPS_V, Q_SXX, Q_SYY, Q_SZZ, Q_SIG_AX,
-    Q_SIN_PSI, Q_EPS_D, Q_SIG_D, Q_EKIN, Q_EROT, Q_EPOT, Q_COUNT
+    Q_NONE,
+    Q_T,
+    Q_EPS_AX,
+    Q_EPS_V,
+    Q_SXX,
+    Q_SYY,
+    Q_SZZ,
+    Q_SIG_AX,
+    Q_SIN_PSI,
+    Q_EPS_D,
+    Q_SIG_D,
+    Q_EKIN,
+    Q_EROT,
+    Q_EPOT,
+    Q_COUNT
 };
 
-static double q_t(const struct series *s, size_t i) { return s->c[TS_T][i]; }
+static double q_t(const struct series *s, size_t i)
+{
+    return s->c[TS_T][i];
+}
 static double q_eps_ax(const struct series *s, size_t i)
 {
     return eps(s, s->axis, i);
@@ -196,9 +237,18 @@ static double q_eps_v(const struct series *s, size_t i)
 {
     return s->c[TS_EV][i];
 }
-static double q_sxx(const struct series *s, size_t i) { return sig(s, 0, i); }
-static double q_syy(const struct series *s, size_t i) { return sig(s, 1, i); }
-static double q_szz(const struct series *s, size_t i) { return sig(s, 2, i); }
+static double q_sxx(const struct series *s, size_t i)
+{
+    return sig(s, 0, i);
+}
+static double q_syy(const struct series *s, size_t i)
+{
+    return sig(s, 1, i);
+}
+static double q_szz(const struct series *s, size_t i)
+{
+    return sig(s, 2, i);
+}
 static double q_sig_ax(const struct series *s, size_t i)
 {
     return sig(s, s->axis, i);
@@ -260,8 +310,7 @@ static const struct quantity qtab[Q_COUNT] = {
 };
 
 /* Expand the "$a", "$l" and "$u" (stress unit) placeholders. */
-static void expand(char *out, size_t n, const char *in,
-                   const struct series *s)
+static void expand(char *out, size_t n, const char *in, const struct series *s)
 {
     size_t k = 0;
     out[0] = '\0';
@@ -320,24 +369,59 @@ static int write_mohr(const struct series *s, const struct plot_spec *p,
                       FILE *dat, FILE *gp);
 
 static const struct plot_spec plots[] = {
-    {"stress_strain", "Wall stresses during loading",
-     "wall stress σ ($u)", ROWS_LOADING, Q_EPS_AX,
-     {Q_SXX, Q_SYY, Q_SZZ, Q_NONE}, Q_SIG_AX, 0, NULL},
+    {"stress_strain",
+     "Wall stresses during loading",
+     "wall stress σ ($u)",
+     ROWS_LOADING,
+     Q_EPS_AX,
+     {Q_SXX, Q_SYY, Q_SZZ, Q_NONE},
+     Q_SIG_AX,
+     0,
+     NULL},
     {"volumetric_strain",
      "Volumetric strain during loading (ε_v > 0: dilation)",
-     "volumetric strain ε_v = V/V_0 − 1", ROWS_LOADING, Q_EPS_AX,
-     {Q_EPS_V, Q_NONE}, Q_NONE, F_ZERO, NULL},
-    {"stress_ratio", "Stress ratio during loading",
-     "sin ψ = (σ_{$a} − $l)/(σ_{$a} + $l)", ROWS_LOADING, Q_EPS_AX,
-     {Q_SIN_PSI, Q_NONE}, Q_SIN_PSI, F_ZERO, NULL},
+     "volumetric strain ε_v = V/V_0 − 1",
+     ROWS_LOADING,
+     Q_EPS_AX,
+     {Q_EPS_V, Q_NONE},
+     Q_NONE,
+     F_ZERO,
+     NULL},
+    {"stress_ratio",
+     "Stress ratio during loading",
+     "sin ψ = (σ_{$a} − $l)/(σ_{$a} + $l)",
+     ROWS_LOADING,
+     Q_EPS_AX,
+     {Q_SIN_PSI, Q_NONE},
+     Q_SIN_PSI,
+     F_ZERO,
+     NULL},
     {"deviatoric_stress_strain",
      "Deviatoric stress versus deviatoric strain during loading",
-     "deviatoric stress σ_D = 2(σ_{xx} − σ_{yy})/3 ($u)", ROWS_LOADING,
-     Q_EPS_D, {Q_SIG_D, Q_NONE}, Q_NONE, F_ZERO, NULL},
-    {"energies", "Energies during the run", "energy (J)", ROWS_ALL, Q_T,
-     {Q_EKIN, Q_EROT, Q_EPOT, Q_NONE}, Q_NONE, F_LOGY | F_STAGES, NULL},
-    {"mohr_circles", "Mohr circles of the wall stresses during loading",
-     "shear stress τ ($u)", ROWS_LOADING, Q_NONE, {Q_NONE}, Q_NONE, 0,
+     "deviatoric stress σ_D = 2(σ_{xx} − σ_{yy})/3 ($u)",
+     ROWS_LOADING,
+     Q_EPS_D,
+     {Q_SIG_D, Q_NONE},
+     Q_NONE,
+     F_ZERO,
+     NULL},
+    {"energies",
+     "Energies during the run",
+     "energy (J)",
+     ROWS_ALL,
+     Q_T,
+     {Q_EKIN, Q_EROT, Q_EPOT, Q_NONE},
+     Q_NONE,
+     F_LOGY | F_STAGES,
+     NULL},
+    {"mohr_circles",
+     "Mohr circles of the wall stresses during loading",
+     "shear stress τ ($u)",
+     ROWS_LOADING,
+     Q_NONE,
+     {Q_NONE},
+     Q_NONE,
+     0,
      write_mohr},
 };
 
@@ -350,8 +434,7 @@ static int has_qty(const struct series *s, int q)
     return q != Q_NONE && qtab[q].min_dim <= s->dim;
 }
 
-static void row_range(const struct series *s, int rows, size_t *lo,
-                      size_t *hi)
+static void row_range(const struct series *s, int rows, size_t *lo, size_t *hi)
 {
     *lo = rows == ROWS_ALL ? 0 : s->lo;
     *hi = rows == ROWS_ALL ? s->n : s->hi;
@@ -368,15 +451,14 @@ static size_t stride_of(size_t lo, size_t hi)
 static void subtitle(char *out, size_t n, const struct series *s, int rows)
 {
     if (rows == ROWS_ALL)
-        snprintf(out, n, "%dD, whole run; dashed lines: stage changes",
-                 s->dim);
+        snprintf(out, n, "%dD, whole run; dashed lines: stage changes", s->dim);
     else
         snprintf(out, n, "%dD, loading stage %d, loading axis %c", s->dim,
                  s->stage, axis_name[s->axis]);
 }
 
-static void gp_head(FILE *gp, const struct series *s,
-                    const struct plot_spec *p, const char *xlabel)
+static void gp_head(FILE *gp, const struct series *s, const struct plot_spec *p,
+                    const char *xlabel)
 {
     char title[512], sub[160], ylabel[256], x[256];
     subtitle(sub, sizeof sub, s, p->rows);
@@ -403,17 +485,19 @@ static void dat_head(FILE *dat, const struct series *s,
 /* A picture without any valid point still renders, saying so. */
 static void gp_no_data(FILE *gp, unsigned flags)
 {
-    fprintf(gp, "set label 1 \"no valid data\" at graph 0.5, graph 0.5 "
-                "center\n"
-                "set xrange [0:1]\nset yrange [%s]\nplot NaN notitle\n",
+    fprintf(gp,
+            "set label 1 \"no valid data\" at graph 0.5, graph 0.5 "
+            "center\n"
+            "set xrange [0:1]\nset yrange [%s]\nplot NaN notitle\n",
             flags & F_LOGY ? "1:10" : "0:1");
 }
 
 static void gp_stage_lines(FILE *gp, const struct series *s)
 {
     const double *st = s->c[TS_STAGE], *t = s->c[TS_T];
-    fprintf(gp, "set label \"stage %d\" at %.9g, graph 0.97 offset 0.5,0 "
-                "font \",9\"\n",
+    fprintf(gp,
+            "set label \"stage %d\" at %.9g, graph 0.97 offset 0.5,0 "
+            "font \",9\"\n",
             (int)st[0], t[0]);
     for (size_t i = 1; i < s->n; i++) {
         if (st[i] == st[i - 1])
@@ -427,8 +511,8 @@ static void gp_stage_lines(FILE *gp, const struct series *s)
     }
 }
 
-static void gp_peak(FILE *gp, const struct series *s,
-                    const struct plot_spec *p, size_t lo, size_t hi)
+static void gp_peak(FILE *gp, const struct series *s, const struct plot_spec *p,
+                    size_t lo, size_t hi)
 {
     size_t best = hi;
     double vmax = -INFINITY;
@@ -458,8 +542,7 @@ static void gp_peak(FILE *gp, const struct series *s,
             "set label 2 \"peak %s = %.4g\" at %.9g, %.9g %s point "
             "pointtype 7 pointsize 1.5 offset %s,0.8\n"
             "set offsets 0, 0, graph 0.08, 0\n",
-            lab, vmax, x, vmax, right ? "right" : "left",
-            right ? "-1" : "1");
+            lab, vmax, x, vmax, right ? "right" : "left", right ? "-1" : "1");
 }
 
 /* gnuplot reads '?' as a missing value (set datafile missing "?"). */
@@ -516,8 +599,9 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
             continue;
         char lab[128];
         expand(lab, sizeof lab, y[k]->label, s);
-        fprintf(gp, "%s\"%s.dat\" using 1:%d with lines linewidth 2 "
-                    "title \"%s\"",
+        fprintf(gp,
+                "%s\"%s.dat\" using 1:%d with lines linewidth 2 "
+                "title \"%s\"",
                 sep, p->name, k + 2, lab);
         sep = ", \\\n     ";
     }
@@ -537,8 +621,7 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
 /* Principal stresses of row i: the wall stresses are principal because
  * the walls are frictionless and axis-aligned; sigma_1 the largest,
  * sigma_3 the smallest. */
-static void principal(const struct series *s, size_t i, double *s1,
-                      double *s3)
+static void principal(const struct series *s, size_t i, double *s1, double *s3)
 {
     *s1 = -INFINITY;
     *s3 = INFINITY;
@@ -552,8 +635,8 @@ static void mohr_block(FILE *dat, const char *what, double t, double s1,
                        double s3)
 {
     const double c = 0.5 * (s1 + s3), r = 0.5 * (s1 - s3);
-    fprintf(dat, "# %s: t = %.9g s, sigma_1 = %.9g, sigma_3 = %.9g\n", what,
-            t, s1, s3);
+    fprintf(dat, "# %s: t = %.9g s, sigma_1 = %.9g, sigma_3 = %.9g\n", what, t,
+            s1, s3);
     for (int k = 0; k <= 180; k++) {
         double th = M_PI * k / 180.0;
         fprintf(dat, "%.9g %.9g\n", c + r * cos(th), r * sin(th));
@@ -594,8 +677,9 @@ static int write_mohr(const struct series *s, const struct plot_spec *p,
     principal(s, s->hi - 1, &e1, &e3);
     mohr_block(dat, "end of loading", t[s->hi - 1], e1, e3);
     const double phi = asin(best), xmax = 1.1 * fmax(s1, e1);
-    fprintf(dat, "# tangent tau = sigma tan(phi), phi = %.9g deg\n0 0\n"
-                 "%.9g %.9g\n",
+    fprintf(dat,
+            "# tangent tau = sigma tan(phi), phi = %.9g deg\n0 0\n"
+            "%.9g %.9g\n",
             phi * 180.0 / M_PI, xmax, xmax * tan(phi));
     fprintf(gp,
             /* equal scales so circles look round; the y range fills the
@@ -607,7 +691,8 @@ static int write_mohr(const struct series *s, const struct plot_spec *p,
             "title \"end of loading (t = %.4g s)\", \\\n"
             "     \"\" index 2 with lines dashtype 2 linecolor \"gray40\" "
             "title \"τ = σ tan φ, φ = %.1f°\"\n",
-            xmax, 0.55 * xmax, p->name, t[peak], t[s->hi - 1], phi * 180.0 / M_PI);
+            xmax, 0.55 * xmax, p->name, t[peak], t[s->hi - 1],
+            phi * 180.0 / M_PI);
     return DEM_OK;
 }
 
@@ -700,10 +785,10 @@ static int read_forces(const char *outdir, size_t n, double **fsum,
         return rc;
     FILE *probe = fopen(path, "r");
     if (!probe)
-        return errno == ENOENT ? DEM_OK
-                               : dem_error_set(err, DEM_EIO,
-                                               "%s: cannot open: %s", path,
-                                               strerror(errno));
+        return errno == ENOENT
+                   ? DEM_OK
+                   : dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
+                                   strerror(errno));
     fclose(probe);
     static const struct dem__csv_want want[1] = {{"fsum", 1}};
     struct dem__csv_table t;
@@ -724,18 +809,21 @@ static int read_forces(const char *outdir, size_t n, double **fsum,
 }
 
 static int draw_particles(const struct series *s, const char *outdir,
-                          const char *plotdir,
-                          const struct dem__csv_table *pt,
+                          const char *plotdir, const struct dem__csv_table *pt,
                           struct dem_error *err)
 {
     double *fsum = NULL, *speed = NULL;
     int rc = read_forces(outdir, pt->nrow, &fsum, err);
     if (rc)
         return rc;
-    struct dem__plot_packing pk = {
-        .n = (int)pt->nrow, .dim = s->dim, .x = pt->col[PK_X],
-        .y = pt->col[PK_Y], .z = pt->col[PK_Z], .r = pt->col[PK_R],
-        .value = fsum, .value_label = "contact force sum Σ|f| (N)"};
+    struct dem__plot_packing pk = {.n = (int)pt->nrow,
+                                   .dim = s->dim,
+                                   .x = pt->col[PK_X],
+                                   .y = pt->col[PK_Y],
+                                   .z = pt->col[PK_Z],
+                                   .r = pt->col[PK_R],
+                                   .value = fsum,
+                                   .value_label = "contact force sum Σ|f| (N)"};
     if (!fsum) {
         speed = malloc((pt->nrow ? pt->nrow : 1) * sizeof *speed);
         if (!speed)
@@ -823,13 +911,12 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
      * when it is missing the curves are still drawn and the error is
      * reported at the end */
     struct dem_error perr = {0, ""};
-    rc = dem_path_join(path, sizeof path, outdir, "particles_final.csv",
-                       err);
+    rc = dem_path_join(path, sizeof path, outdir, "particles_final.csv", err);
     int prc = rc ? rc : dem__csv_table_read(&pt, path, pk_want, PK_NCOL, &perr);
-    s.dim = all_zero(s.c[TS_LZ], s.n) &&
-                    (prc || all_zero(pt.col[PK_Z], pt.nrow))
-                ? 2
-                : 3;
+    s.dim =
+        all_zero(s.c[TS_LZ], s.n) && (prc || all_zero(pt.col[PK_Z], pt.nrow))
+            ? 2
+            : 3;
     if (!find_loading_from_config(&s, outdir))
         find_loading(&s);
 
@@ -837,8 +924,7 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
         rc = dem_path_join(plotdir, sizeof plotdir, outdir, "plots", err);
     if (!rc)
         rc = dem_mkdir_p(plotdir, err);
-    if (!rc && !dem_path_join(path, sizeof path, plotdir, "gnuplot.log",
-                              NULL))
+    if (!rc && !dem_path_join(path, sizeof path, plotdir, "gnuplot.log", NULL))
         remove(path); /* the messages of an earlier plotting */
     for (size_t k = 0; !rc && k < NPLOTS; k++)
         rc = write_plot(&s, &plots[k], plotdir, err);

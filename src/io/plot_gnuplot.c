@@ -132,8 +132,8 @@ int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
     if (!rc)
         rc = dem_path_join(log, sizeof log, plotdir, "gnuplot.log", err);
     if (!rc)
-        rc = dem_path_join(errpath, sizeof errpath, plotdir, "gnuplot.err",
-                           err);
+        rc =
+            dem_path_join(errpath, sizeof errpath, plotdir, "gnuplot.err", err);
     if (rc)
         return rc;
 
@@ -159,8 +159,7 @@ int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
     }
     if (rename(tmp, png) != 0) {
         remove(tmp);
-        return dem_error_set(err, DEM_EIO, "%s: gnuplot wrote no picture",
-                             png);
+        return dem_error_set(err, DEM_EIO, "%s: gnuplot wrote no picture", png);
     }
     return DEM_OK;
 }

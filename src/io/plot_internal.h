@@ -32,13 +32,13 @@ int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
 /* What the particle picture needs: n discs or spheres, one colour value
  * each, the box. */
 struct dem__plot_packing {
-    int n;                 /* particles */
-    int dim;               /* 2 or 3 */
+    int n;                   /* particles */
+    int dim;                 /* 2 or 3 */
     const double *x, *y, *z; /* m; centres (z unused in 2D) */
-    const double *r;       /* m; radii */
-    const double *value;   /* colour value per particle (>= 0) */
+    const double *r;         /* m; radii */
+    const double *value;     /* colour value per particle (>= 0) */
     const char *value_label; /* e.g. "contact force sum |f| (N)" */
-    double lo[3], hi[3];   /* m; box */
+    double lo[3], hi[3];     /* m; box */
 };
 
 /* Draw the packing (3D: the cut by z = (lo+hi)/2) into png_path. */

@@ -16,10 +16,10 @@
 
 #include "io/plot_internal.h"
 
-#define LONG_SIDE 1000.0 /* px; the long side of the picture */
-#define MIN_SIDE 360.0   /* px; room for the title and the colour bar */
-#define MARGIN_TOP 70.0  /* px; two title lines */
-#define MARGIN 20.0      /* px; left and bottom */
+#define LONG_SIDE 1000.0   /* px; the long side of the picture */
+#define MIN_SIDE 360.0     /* px; room for the title and the colour bar */
+#define MARGIN_TOP 70.0    /* px; two title lines */
+#define MARGIN 20.0        /* px; left and bottom */
 #define MARGIN_RIGHT 120.0 /* px; colour bar and its numbers */
 #define PERCENTILE 0.95
 
@@ -76,9 +76,9 @@ static int scale_of(const struct dem__plot_packing *pk, double *scale)
 
 /* Where the box goes on the picture: pixels per metre and origin. */
 struct frame {
-    double sc;         /* px per m */
-    double x0, y0;     /* px; top-left corner of the box */
-    double w, h;       /* px; picture size */
+    double sc;           /* px per m */
+    double x0, y0;       /* px; top-left corner of the box */
+    double w, h;         /* px; picture size */
     double lo[2], hi[2]; /* m; box in x and y */
 };
 
@@ -162,8 +162,7 @@ static void draw_box(cairo_t *cr, const struct frame *fr)
     cairo_stroke(cr);
 }
 
-static void text_at(cairo_t *cr, double x, double y, double size,
-                    const char *s)
+static void text_at(cairo_t *cr, double x, double y, double size, const char *s)
 {
     cairo_set_font_size(cr, size);
     cairo_move_to(cr, x, y);
@@ -214,12 +213,15 @@ static void draw_titles(cairo_t *cr, const struct dem__plot_packing *pk,
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
                            CAIRO_FONT_WEIGHT_NORMAL);
     if (pk->dim == 2)
-        snprintf(line, sizeof line, "N = %d %s; colour: %s, blue weak, red "
-                 "strong (95th percentile)", pk->n, kind, pk->value_label);
+        snprintf(line, sizeof line,
+                 "N = %d %s; colour: %s, blue weak, red "
+                 "strong (95th percentile)",
+                 pk->n, kind, pk->value_label);
     else
-        snprintf(line, sizeof line, "N = %d %s, %d cut; colour: %s, blue "
-                 "weak, red strong (95th percentile)", pk->n, kind, shown,
-                 pk->value_label);
+        snprintf(line, sizeof line,
+                 "N = %d %s, %d cut; colour: %s, blue "
+                 "weak, red strong (95th percentile)",
+                 pk->n, kind, shown, pk->value_label);
     text_at(cr, MARGIN, 52.0, 13.0, line);
 }
 
@@ -246,10 +248,9 @@ int dem__plot_particles(const struct dem__plot_packing *pk,
 {
     struct frame fr;
     if (make_frame(pk, &fr))
-        return dem_error_set(err, DEM_EIO,
-                             "%s: the box [%g, %g] x [%g, %g] m is empty",
-                             png_path, pk->lo[0], pk->hi[0], pk->lo[1],
-                             pk->hi[1]);
+        return dem_error_set(
+            err, DEM_EIO, "%s: the box [%g, %g] x [%g, %g] m is empty",
+            png_path, pk->lo[0], pk->hi[0], pk->lo[1], pk->hi[1]);
     double scale;
     if (scale_of(pk, &scale))
         return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", png_path);
@@ -270,11 +271,11 @@ int dem__plot_particles(const struct dem__plot_packing *pk,
     draw_box(cr, &fr);
     draw_colorbar(cr, &fr, scale);
     draw_titles(cr, pk, shown);
-    int rc = cairo_status(cr) == CAIRO_STATUS_SUCCESS
-                 ? write_png(surf, png_path, err)
-                 : dem_error_set(err, DEM_EINTERNAL, "%s: drawing failed: %s",
-                                 png_path,
-                                 cairo_status_to_string(cairo_status(cr)));
+    int rc =
+        cairo_status(cr) == CAIRO_STATUS_SUCCESS
+            ? write_png(surf, png_path, err)
+            : dem_error_set(err, DEM_EINTERNAL, "%s: drawing failed: %s",
+                            png_path, cairo_status_to_string(cairo_status(cr)));
     cairo_destroy(cr);
     cairo_surface_destroy(surf);
     return rc;

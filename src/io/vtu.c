@@ -103,8 +103,7 @@ int dem_vtu_write_particles(const char *path, const struct dem_particles *p,
     fputs("      </Points>\n", f);
     /* Vertex cells: cell i is point i. */
     cells(f, n, VTK_VERTEX, NULL, NULL);
-    fputs("      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n",
-          f);
+    fputs("      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n", f);
     array1(f, "radius", n, p->r);
     array3(f, "velocity", n, p->vx, p->vy, p->vz);
     array3(f, "omega", n, p->wx, p->wy, p->wz);
@@ -151,8 +150,7 @@ int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
             "format=\"ascii\">\n",
             npts);
     for (int k = 0; k < npts; k++)
-        fprintf(f, "%.17g %.17g %.17g\n", pts[k][0], pts[k][1],
-                pts[k][2]);
+        fprintf(f, "%.17g %.17g %.17g\n", pts[k][0], pts[k][1], pts[k][2]);
     fputs("        </DataArray>\n"
           "      </Points>\n",
           f);
@@ -170,11 +168,20 @@ static void put_attr(FILE *f, const char *s)
 {
     for (; *s; s++) {
         switch (*s) {
-        case '&': fputs("&amp;", f); break;
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '"': fputs("&quot;", f); break;
-        default: fputc(*s, f);
+        case '&':
+            fputs("&amp;", f);
+            break;
+        case '<':
+            fputs("&lt;", f);
+            break;
+        case '>':
+            fputs("&gt;", f);
+            break;
+        case '"':
+            fputs("&quot;", f);
+            break;
+        default:
+            fputc(*s, f);
         }
     }
 }

@@ -44,8 +44,9 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
         const double m = P->m[i], I = 1.0 / P->inv_I[i];
         const double v[3] = {P->vx[i], P->vy[i], P->vz[i]};
         o->e_kin += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        o->e_rot += 0.5 * I * (P->wx[i] * P->wx[i] + P->wy[i] * P->wy[i] +
-                               P->wz[i] * P->wz[i]);
+        o->e_rot +=
+            0.5 * I *
+            (P->wx[i] * P->wx[i] + P->wy[i] * P->wy[i] + P->wz[i] * P->wz[i]);
         for (int a = 0; a < 3; a++)
             for (int c = 0; c < 3; c++)
                 o->sigma_kin[a][c] += m * v[a] * v[c];
@@ -55,7 +56,8 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     for (int a = 0; a < 3; a++)
         for (int c = 0; c < 3; c++) {
             o->sigma_kin[a][c] /= o->V;
-            o->sigma_lw[a][c] = S->fabric_stress[a][c] / o->V + o->sigma_kin[a][c];
+            o->sigma_lw[a][c] =
+                S->fabric_stress[a][c] / o->V + o->sigma_kin[a][c];
             o->fabric[a][c] = S->n_pp ? S->fabric[a][c] / (double)S->n_pp : 0.0;
         }
     o->e_pot = S->e_pot;
@@ -73,7 +75,8 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
         long c_nr = 0;
         long nr = dem_measure_rattlers(s, scratch, &c_nr);
         o->rattler_fraction = P->n ? (double)nr / P->n : 0.0;
-        o->coordination_nr = P->n > nr ? 2.0 * (double)c_nr / (double)(P->n - nr) : 0.0;
+        o->coordination_nr =
+            P->n > nr ? 2.0 * (double)c_nr / (double)(P->n - nr) : 0.0;
         free(scratch);
     }
 
@@ -149,50 +152,93 @@ long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
 
 /* The timeseries columns, in order: name and value. Extend at the end;
  * the first 23 are the user-facing contract (SPEC §7). */
-#define DEM_SAMPLE_COLUMNS(X)                                                \
-    X("t", s->t)                                                             \
-    X("stage", (double)s->stage)                                             \
-    X("Lx", s->L[0]) X("Ly", s->L[1]) X("Lz", s->L[2])                       \
-    X("eps_xx", s->eps[0]) X("eps_yy", s->eps[1]) X("eps_zz", s->eps[2])     \
-    X("eps_v", s->eps_v)                                                     \
-    X("sigma_xx", s->sigma[0]) X("sigma_yy", s->sigma[1])                    \
-    X("sigma_zz", s->sigma[2])                                               \
-    X("sigma_lw_xx", s->sigma_lw[0][0]) X("sigma_lw_yy", s->sigma_lw[1][1])  \
-    X("sigma_lw_zz", s->sigma_lw[2][2])                                      \
-    X("p", s->p) X("q", s->q)                                                \
-    X("e_kin", s->e_kin) X("e_rot", s->e_rot) X("e_pot", s->e_pot)           \
-    X("coordination", s->coordination)                                       \
-    X("sliding_fraction", s->sliding_fraction)                               \
-    X("void_ratio", s->void_ratio)                                           \
-    X("coordination_nr", s->coordination_nr)                                 \
-    X("rattler_fraction", s->rattler_fraction)                               \
-    X("inertial_number", s->inertial_number)                                 \
-    X("solid_fraction", s->solid_fraction)                                   \
-    X("sigma_lw_xy", s->sigma_lw[0][1]) X("sigma_lw_xz", s->sigma_lw[0][2])  \
-    X("sigma_lw_yz", s->sigma_lw[1][2])                                      \
-    X("sigma_kin_xx", s->sigma_kin[0][0])                                    \
-    X("sigma_kin_yy", s->sigma_kin[1][1])                                    \
-    X("sigma_kin_zz", s->sigma_kin[2][2])                                    \
-    X("fabric_xx", s->fabric[0][0]) X("fabric_yy", s->fabric[1][1])          \
-    X("fabric_zz", s->fabric[2][2])                                          \
-    X("contacts_pp", s->n_pp) X("contacts_pw", s->n_pw)                      \
-    X("max_overlap", s->max_overlap)                                         \
-    X("xmin_pos", s->wall_pos[0]) X("xmax_pos", s->wall_pos[1])              \
-    X("ymin_pos", s->wall_pos[2]) X("ymax_pos", s->wall_pos[3])              \
-    X("zmin_pos", s->wall_pos[4]) X("zmax_pos", s->wall_pos[5])              \
-    X("xmin_vel", s->wall_vel[0]) X("xmax_vel", s->wall_vel[1])              \
-    X("ymin_vel", s->wall_vel[2]) X("ymax_vel", s->wall_vel[3])              \
-    X("zmin_vel", s->wall_vel[4]) X("zmax_vel", s->wall_vel[5])              \
-    X("xmin_force", s->wall_force[0]) X("xmax_force", s->wall_force[1])      \
-    X("ymin_force", s->wall_force[2]) X("ymax_force", s->wall_force[3])      \
-    X("zmin_force", s->wall_force[4]) X("zmax_force", s->wall_force[5])
+#define DEM_SAMPLE_COLUMNS(X)                                                                      \
+    X("t", s->t)                                                                                   \
+    X("stage", (double)s->stage)                                                                   \
+    X("Lx", s->L[0])                                                                               \
+    X("Ly", s->L[1]) X("Lz", s->L[2]) X("eps_xx", s->eps[0]) X(                                    \
+        "eps_yy", s->eps[1]) X("eps_zz", s->eps[2]) X("eps_v",                                     \
+                                                      s->eps_v) X("sigma_xx",                      \
+                                                                  s->sigma[0])                     \
+        X("sigma_yy", s->sigma[1]) X("sigma_zz", s->sigma[2]) X(                                   \
+            "sigma_lw_xx",                                                                         \
+            s->sigma_lw[0][0]) X("sigma_lw_yy",                                                    \
+                                 s->sigma_lw[1][1]) X("sigma_lw_zz",                               \
+                                                      s->sigma_lw[2][2])                           \
+            X("p", s->p) X("q", s->q) X("e_kin", s->e_kin) X("e_rot", s->e_rot) X(                 \
+                "e_pot",                                                                           \
+                s->e_pot) X("coordination", s->coordination)                                       \
+                X("sliding_fraction", s->sliding_fraction) X(                                      \
+                    "void_ratio",                                                                  \
+                    s->void_ratio) X("coordination_nr", s->coordination_nr)                        \
+                    X("rattler_fraction", s->rattler_fraction) X(                                  \
+                        "inertial_number",                                                         \
+                        s->inertial_number) X("solid_fraction", s->solid_fraction)                 \
+                        X("sigma_lw_xy", s->sigma_lw[0][1]) X("sigma_lw_xz", s->sigma_lw[0][2]) X( \
+                            "sigma_lw_yz",                                                         \
+                            s->sigma_lw                                                            \
+                                [1][2]) X("sigma_kin_xx", s->sigma_kin[0][0])                      \
+                            X("sigma_kin_yy", s->sigma_kin[1][1]) X(                               \
+                                "sigma_kin_zz",                                                    \
+                                s->sigma_kin                                                       \
+                                    [2][2]) X("fabric_xx", s->fabric[0][0])                        \
+                                X("fabric_yy",                                                     \
+                                  s->fabric                                                        \
+                                      [1][1]) X("fabric_zz", s->fabric[2][2])                      \
+                                    X("contacts_pp", s->n_pp) X(                                   \
+                                        "contacts_pw",                                             \
+                                        s->n_pw) X("max_overlap", s->max_overlap)                  \
+                                        X("xmin_pos", s->wall_pos[0]) X(                           \
+                                            "xmax_pos",                                            \
+                                            s->wall_pos                                            \
+                                                [1]) X("ymin_pos", s->wall_pos[2])                 \
+                                            X("ymax_pos", s->wall_pos[3]) X(                       \
+                                                "zmin_pos",                                        \
+                                                s->wall_pos                                        \
+                                                    [4]) X("zmax_pos", s->wall_pos[5])             \
+                                                X("xmin_vel", s->wall_vel[0]) X(                   \
+                                                    "xmax_vel",                                    \
+                                                    s->wall_vel                                    \
+                                                        [1]) X("ymin_vel", s->wall_vel[2])         \
+                                                    X("ymax_vel", s->wall_vel[3]) X(               \
+                                                        "zmin_vel",                                \
+                                                        s->wall_vel[4])                            \
+                                                        X("zmax_vel", s->wall_vel[5]) X(           \
+                                                            "xmin_force",                          \
+                                                            s->wall_force[0])                      \
+                                                            X("xmax_force",                        \
+                                                              s->wall_force                        \
+                                                                  [1]) X("ymi"                     \
+                                                                         "n_"                      \
+                                                                         "for"                     \
+                                                                         "ce",                     \
+                                                                         s->wall_force             \
+                                                                             [2])                  \
+                                                                X("ymax_"                          \
+                                                                  "force",                         \
+                                                                  s->wall_force                    \
+                                                                      [3])                         \
+                                                                    X(                             \
+                                                                        "zmin"                     \
+                                                                        "_for"                     \
+                                                                        "ce",                      \
+                                                                        s->wall_force              \
+                                                                            [4])                   \
+                                                                        X("zm"                     \
+                                                                          "ax"                     \
+                                                                          "_f"                     \
+                                                                          "or"                     \
+                                                                          "c"                      \
+                                                                          "e",                     \
+                                                                          s->wall_force            \
+                                                                              [5])
 
 void dem_sample_write_header(FILE *f, int dim)
 {
     (void)dim;
     const char *sep = "";
-#define HEADER_(name, value)                                                 \
-    fprintf(f, "%s%s", sep, name);                                           \
+#define HEADER_(name, value)                                                   \
+    fprintf(f, "%s%s", sep, name);                                             \
     sep = ",";
     DEM_SAMPLE_COLUMNS(HEADER_)
 #undef HEADER_
@@ -203,8 +249,8 @@ void dem_sample_write_row(FILE *f, const struct dem_sample *s, int dim)
 {
     (void)dim;
     const char *sep = "";
-#define ROW_(name, value)                                                    \
-    fprintf(f, "%s%.10g", sep, (double)(value));                             \
+#define ROW_(name, value)                                                      \
+    fprintf(f, "%s%.10g", sep, (double)(value));                               \
     sep = ",";
     DEM_SAMPLE_COLUMNS(ROW_)
 #undef ROW_

@@ -15,39 +15,40 @@
 #include "core/sim.h"
 
 struct dem_sample {
-    double t;              /* s; simulated time */
-    int stage;             /* stage index */
-    double L[3];           /* m; box edge lengths (2D: Lz = 0) */
-    double V;              /* m^3 (2D: m^2); box volume */
-    double eps[3];         /* axial strains 1 - L/L0 */
-    double eps_v;          /* V/V0 - 1 */
-    double sigma[3];       /* Pa (2D: N/m); wall stresses */
-    double sigma_wall[6];  /* Pa; each wall's outward force / area */
-    double sigma_lw[3][3]; /* Pa; Love-Weber stress, kinetic part included */
-    double sigma_kin[3][3];/* Pa; its kinetic part */
-    double p;              /* Pa; mean wall stress over dim axes */
-    double q;              /* Pa; deviatoric wall stress: 3D sqrt(3 J2),
-                              2D |sigma_yy - sigma_xx|/2 */
-    double e_kin;          /* J; translational kinetic energy */
-    double e_rot;          /* J; rotational kinetic energy */
-    double e_pot;          /* J; elastic energy in contacts */
-    double coordination;   /* 2 N_pp / N: particle contacts per particle */
-    double coordination_nr;/* the same without rattlers: particles with
-                              fewer than 2 (2D) or 4 (3D) contacts, walls
-                              counted, removed recursively */
+    double t;                /* s; simulated time */
+    int stage;               /* stage index */
+    double L[3];             /* m; box edge lengths (2D: Lz = 0) */
+    double V;                /* m^3 (2D: m^2); box volume */
+    double eps[3];           /* axial strains 1 - L/L0 */
+    double eps_v;            /* V/V0 - 1 */
+    double sigma[3];         /* Pa (2D: N/m); wall stresses */
+    double sigma_wall[6];    /* Pa; each wall's outward force / area */
+    double sigma_lw[3][3];   /* Pa; Love-Weber stress, kinetic part included */
+    double sigma_kin[3][3];  /* Pa; its kinetic part */
+    double p;                /* Pa; mean wall stress over dim axes */
+    double q;                /* Pa; deviatoric wall stress: 3D sqrt(3 J2),
+                                2D |sigma_yy - sigma_xx|/2 */
+    double e_kin;            /* J; translational kinetic energy */
+    double e_rot;            /* J; rotational kinetic energy */
+    double e_pot;            /* J; elastic energy in contacts */
+    double coordination;     /* 2 N_pp / N: particle contacts per particle */
+    double coordination_nr;  /* the same without rattlers: particles with
+                                fewer than 2 (2D) or 4 (3D) contacts, walls
+                                counted, removed recursively */
     double rattler_fraction; /* rattlers / N */
-    double inertial_number;/* I = rate sqrt(m d / (p d^(dim-1))): rate the
-                              fastest axial strain rate of the box, m and d
-                              the mean particle mass and diameter */
+    double inertial_number;  /* I = rate sqrt(m d / (p d^(dim-1))): rate the
+                                fastest axial strain rate of the box, m and d
+                                the mean particle mass and diameter */
     double sliding_fraction; /* sliding / all contacts (walls included) */
-    double solid_fraction; /* V_solid / V */
-    double void_ratio;     /* (V - V_solid)/V_solid */
-    double fabric[3][3];   /* (1/N_pp) sum n (x) n over pair contacts */
-    double max_overlap;    /* largest delta / radius */
-    double n_pp, n_pw;     /* contact counts */
-    double wall_pos[6];    /* m; wall coordinates (xmin xmax ymin ymax zmin zmax) */
-    double wall_vel[6];    /* m/s */
-    double wall_force[6];  /* N; outward force of the particles on each wall */
+    double solid_fraction;   /* V_solid / V */
+    double void_ratio;       /* (V - V_solid)/V_solid */
+    double fabric[3][3];     /* (1/N_pp) sum n (x) n over pair contacts */
+    double max_overlap;      /* largest delta / radius */
+    double n_pp, n_pw;       /* contact counts */
+    double
+        wall_pos[6]; /* m; wall coordinates (xmin xmax ymin ymax zmin zmax) */
+    double wall_vel[6];   /* m/s */
+    double wall_force[6]; /* N; outward force of the particles on each wall */
 };
 
 /* Sample the state; requires that the last force pass measured (set

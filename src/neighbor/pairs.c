@@ -46,7 +46,7 @@ void dem_pairs_free(struct dem_pairs *pl)
 }
 
 /* Grow an array to c elements; 0 on success. */
-#define GROW(ptr, c)                                                         \
+#define GROW(ptr, c)                                                           \
     (((ptr) = grow_((ptr), (size_t)(c) * sizeof *(ptr))) == NULL)
 
 static void *grow_(void *p, size_t bytes)
@@ -106,8 +106,8 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
             memset(lists[k]->start, 0, (size_t)c * sizeof(int));
         lists[k]->start_cap = c;
     }
-    if (GROW(pl->rstart, c) || GROW(pl->cell_of, c) ||
-        GROW(pl->cell_list, c) || GROW(pl->old_of, c))
+    if (GROW(pl->rstart, c) || GROW(pl->cell_of, c) || GROW(pl->cell_list, c) ||
+        GROW(pl->old_of, c))
         return -1;
     /* the permutation swaps this with the particles' arrays: same length */
     free(pl->scratch);
@@ -118,8 +118,7 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
     return 0;
 }
 
-static int cell_index(const struct dem_pairs *pl, double x, double y,
-                      double z)
+static int cell_index(const struct dem_pairs *pl, double x, double y, double z)
 {
     const double pos[3] = {x, y, z};
     int c[3];
@@ -292,7 +291,8 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
 #pragma omp parallel
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        const int i0 = (int)((long)n * t / nt), i1 = (int)((long)n * (t + 1) / nt);
+        const int i0 = (int)((long)n * t / nt),
+                  i1 = (int)((long)n * (t + 1) / nt);
         size_t cap = (size_t)longest + 4096, m = 0;
         int *buf = malloc(cap * sizeof *buf);
         for (int i = i0; buf && i < i1; i++) {
@@ -444,14 +444,12 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
     return DEM_OK;
 }
 
-int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair,
-                      int nwc)
+int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc)
 {
     npair = npair > 0 ? npair : 1;
     nwc = nwc > 0 ? nwc : 1;
     if (particles_reserve(pl, n, cap) || list_reserve(&pl->cur, npair) ||
-        list_reserve(&pl->wcur, nwc) ||
-        forces_reserve(&pl->f, pl->cur.cap) ||
+        list_reserve(&pl->wcur, nwc) || forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return DEM_ENOMEM;
     if (pl->cur.cap > pl->rpos_cap) {
@@ -467,7 +465,8 @@ int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,
 {
     (void)dim;
     int cap = 1024, n = 0;
-    int *a = malloc((size_t)cap * sizeof *a), *b = malloc((size_t)cap * sizeof *b);
+    int *a = malloc((size_t)cap * sizeof *a),
+        *b = malloc((size_t)cap * sizeof *b);
     if (!a || !b)
         goto fail;
     for (int i = 0; i < p->n; i++)

@@ -28,14 +28,14 @@ struct dem_particles;
 
 /* Contact entries and the history each carries. */
 struct dem_contact_list {
-    int n;              /* entries */
-    int cap;            /* allocated entries */
-    int *i;             /* particle */
-    int *j;             /* partner: particle (> i) or wall index */
+    int n;                      /* entries */
+    int cap;                    /* allocated entries */
+    int *i;                     /* particle */
+    int *j;                     /* partner: particle (> i) or wall index */
     double *xi_x, *xi_y, *xi_z; /* m; tangential spring */
-    double *dmax;       /* m; largest overlap reached (luding history) */
+    double *dmax;         /* m; largest overlap reached (luding history) */
     unsigned char *state; /* DEM_CONTACT_* bits (contact/tangential.h) */
-    int *start;         /* n_particles + 1 row offsets by i */
+    int *start;           /* n_particles + 1 row offsets by i */
     int start_cap;
 };
 
@@ -54,29 +54,29 @@ struct dem_contact_forces {
 };
 
 struct dem_pairs {
-    struct dem_contact_list cur;   /* particle pairs the force loop uses */
-    struct dem_contact_list old;   /* the previous pairs, for the history */
-    struct dem_contact_list wcur;  /* particle-wall contacts (j = wall) */
-    struct dem_contact_list wold;  /* the previous ones */
-    struct dem_contact_forces f;   /* forces of cur, pair k at slot rpos[k]:
-                                      in the order of the particles as j */
-    struct dem_contact_forces wf;  /* forces of wcur, entry k at k */
-    int *rstart;        /* n_particles + 1: slots of the pairs where a
-                           particle is j */
-    int *rpos;          /* cur.n: slot of pair k, in [rstart[j], rstart[j+1]) */
+    struct dem_contact_list cur;  /* particle pairs the force loop uses */
+    struct dem_contact_list old;  /* the previous pairs, for the history */
+    struct dem_contact_list wcur; /* particle-wall contacts (j = wall) */
+    struct dem_contact_list wold; /* the previous ones */
+    struct dem_contact_forces f;  /* forces of cur, pair k at slot rpos[k]:
+                                     in the order of the particles as j */
+    struct dem_contact_forces wf; /* forces of wcur, entry k at k */
+    int *rstart;                  /* n_particles + 1: slots of the pairs where a
+                                     particle is j */
+    int *rpos; /* cur.n: slot of pair k, in [rstart[j], rstart[j+1]) */
     int rpos_cap;
     /* cell grid */
-    int nc[3];          /* cells per axis */
-    double lo[3];       /* m; lower corner */
-    double inv_h[3];    /* 1/m; inverse cell edge */
-    int *cell_start;    /* ncell + 1 offsets into cell_list */
-    int *cell_list;     /* particles sorted by cell */
-    int *cell_of;       /* cell of each particle */
+    int nc[3];       /* cells per axis */
+    double lo[3];    /* m; lower corner */
+    double inv_h[3]; /* 1/m; inverse cell edge */
+    int *cell_start; /* ncell + 1 offsets into cell_list */
+    int *cell_list;  /* particles sorted by cell */
+    int *cell_of;    /* cell of each particle */
     int ncell_cap;
     /* re-ordering */
-    int *old_of;        /* old index of each particle after a re-order */
-    double *scratch;    /* one particle array of doubles */
-    int nalloc;         /* allocated length of the per-particle arrays */
+    int *old_of;         /* old index of each particle after a re-order */
+    double *scratch;     /* one particle array of doubles */
+    int nalloc;          /* allocated length of the per-particle arrays */
     double wall_pos0[6]; /* m; wall positions at the last build */
 };
 
@@ -98,8 +98,7 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
  * re-ordering), npair pairs and nwc wall contacts, as a build would, so
  * that a checkpoint can fill cur, wcur, f, wf, rstart and rpos directly.
  * The lists keep their counts; a later build works as usual. */
-int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair,
-                      int nwc);
+int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
 
 /* Reference: all pairs with gap below skin by brute force O(N^2); for tests.
  * Fills pi/pj (caller frees) and returns the count, or a negative status. */

@@ -11,8 +11,7 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
     const struct dem_stage_config *c = st->cfg;
     for (int w = 0; w < s->nwall; w++) {
         if (s->wall[w].axis == c->axis)
-            dem__stage_walls_stress(s, w, c->pressure, c->amplitude,
-                                    c->period);
+            dem__stage_walls_stress(s, w, c->pressure, c->amplitude, c->period);
         else
             dem__stage_walls_stress(s, w, c->pressure, 0.0, 0.0);
     }

@@ -41,18 +41,18 @@ struct run_ctx {
     struct dem_sim sim;
     const struct dem_run_options *opt;
     const char *outdir;
-    char *config_text;           /* the resolved config, as in config.cfg */
-    struct dem_ckpt_run st;      /* loop state, saved in checkpoints;
-                                    st.snap_t is the snapshot list */
+    char *config_text;            /* the resolved config, as in config.cfg */
+    struct dem_ckpt_run st;       /* loop state, saved in checkpoints;
+                                     st.snap_t is the snapshot list */
     struct dem_stage_state stage; /* the stage under way */
-    FILE *ts;                    /* timeseries.csv.part */
+    FILE *ts;                     /* timeseries.csv.part */
     char ts_path[DEM_PATH_MAX];
-    char **snap_files;           /* names of the snapshots */
-    int nnames;                  /* entries of snap_files */
-    FILE *dump;                  /* dump.lammpstrj.part, or NULL */
+    char **snap_files; /* names of the snapshots */
+    int nnames;        /* entries of snap_files */
+    FILE *dump;        /* dump.lammpstrj.part, or NULL */
     char dump_path[DEM_PATH_MAX];
     char ckpt_path[DEM_PATH_MAX]; /* checkpoint.bin */
-    double last_ckpt;            /* wall clock of the last checkpoint */
+    double last_ckpt;             /* wall clock of the last checkpoint */
     /* progress */
     int show_progress;
     double wall_t0, last_show;
@@ -188,7 +188,8 @@ static double worst_overlap(const struct dem_sim *s, int *a, int *b)
         double dx = P->x[i] - P->x[j], dy = P->y[i] - P->y[j],
                dz = P->z[i] - P->z[j];
         double amin = P->r[i] < P->r[j] ? P->r[i] : P->r[j];
-        double ratio = (P->r[i] + P->r[j] - sqrt(dx * dx + dy * dy + dz * dz)) / amin;
+        double ratio =
+            (P->r[i] + P->r[j] - sqrt(dx * dx + dy * dy + dz * dz)) / amin;
         if (ratio > worst) {
             worst = ratio;
             *a = P->id[i];
@@ -199,7 +200,9 @@ static double worst_overlap(const struct dem_sim *s, int *a, int *b)
         int i = W->i[k];
         const struct dem_wall *w = &s->wall[W->j[k]];
         double pos[3] = {P->x[i], P->y[i], P->z[i]};
-        double ratio = (P->r[i] - (w->side ? -1.0 : 1.0) * (pos[w->axis] - w->pos)) / P->r[i];
+        double ratio =
+            (P->r[i] - (w->side ? -1.0 : 1.0) * (pos[w->axis] - w->pos)) /
+            P->r[i];
         if (ratio > worst) {
             worst = ratio;
             *a = P->id[i];
@@ -217,7 +220,8 @@ static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
     const struct dem_sim *s = &r->sim;
     const struct dem_particles *P = &s->p;
     for (int i = 0; i < P->n; i++) {
-        const double q[6] = {P->x[i], P->y[i], P->z[i], P->vx[i], P->vy[i], P->vz[i]};
+        const double q[6] = {P->x[i],  P->y[i],  P->z[i],
+                             P->vx[i], P->vy[i], P->vz[i]};
         for (int c = 0; c < 6; c++)
             if (!isfinite(q[c]))
                 return dem_error_set(
@@ -264,8 +268,7 @@ static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
             "%.3g J with every wall fixed and no gravity (checks."
             "energy_growth = %.2f); the time step %.3g s is probably too "
             "large",
-            s->t, s->step, r->st.e_free, e, s->cfg.checks.energy_growth,
-            s->dt);
+            s->t, s->step, r->st.e_free, e, s->cfg.checks.energy_growth, s->dt);
     }
     return DEM_OK;
 }
@@ -362,8 +365,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     int rc;
     for (;;) {
         const int by_time = s->t + 1.5 * dt > st->t_end;
-        const int last =
-            by_time || (max_steps > 0 && s->step + 1 >= max_steps);
+        const int last = by_time || (max_steps > 0 && s->step + 1 >= max_steps);
         int sample = last || s->t + 1.5 * dt >= r->st.next_out;
         if (sample)
             s->measure = 1;
@@ -386,8 +388,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         rc = check_stable(r, &smp, err);
         if (rc)
             return rc;
-        if (loading && !r->st.warned_inertia &&
-            smp.inertial_number > 1e-3) {
+        if (loading && !r->st.warned_inertia && smp.inertial_number > 1e-3) {
             r->st.warned_inertia = 1;
             if (r->show_progress)
                 fputc('\n', stderr);
@@ -522,8 +523,8 @@ static int open_outputs(struct run_ctx *r, struct dem_error *err)
      * longer belong to what is being written now */
     static const char *const stale[] = {
         "timeseries.csv", "particles_final.csv", "forces_final.csv",
-        "summary.json", "dump.lammpstrj", "particles_unstable.csv",
-        "checkpoint.bin", "checkpoint.bin.tmp", "dump.lammpstrj.part"};
+        "summary.json",   "dump.lammpstrj",      "particles_unstable.csv",
+        "checkpoint.bin", "checkpoint.bin.tmp",  "dump.lammpstrj.part"};
     for (size_t k = 0; k < sizeof stale / sizeof stale[0]; k++) {
         rc = dem_path_join(path, sizeof path, dir, stale[k], err);
         if (rc)
@@ -532,8 +533,8 @@ static int open_outputs(struct run_ctx *r, struct dem_error *err)
     }
     r->ts = fopen(r->ts_path, "w");
     if (!r->ts)
-        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s",
-                             r->ts_path, strerror(errno));
+        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", r->ts_path,
+                             strerror(errno));
     dem_sample_write_header(r->ts, cfg->dim);
     if (cfg->output.dump_interval > 0) {
         r->dump = fopen(r->dump_path, "w");
@@ -599,13 +600,13 @@ static int finish_outputs(struct run_ctx *r, struct dem_error *err)
     char path[DEM_PATH_MAX];
     int rc = r->dump ? commit_part(&r->dump, r->dump_path, err) : DEM_OK;
     if (!rc)
-        rc = dem_path_join(path, sizeof path, r->outdir,
-                           "particles_final.csv", err);
+        rc = dem_path_join(path, sizeof path, r->outdir, "particles_final.csv",
+                           err);
     if (!rc)
         rc = dem_particles_write_csv(&r->sim.p, path, err);
     if (!rc)
-        rc = dem_path_join(path, sizeof path, r->outdir,
-                           "forces_final.csv", err);
+        rc = dem_path_join(path, sizeof path, r->outdir, "forces_final.csv",
+                           err);
     if (!rc)
         rc = dem_particles_write_forces_csv(&r->sim.p, path, err);
     if (rc)
@@ -781,8 +782,8 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
     int first = r.st.stage;
     if (!rc) {
         struct dem_stage_state st = {&r.sim.cfg.stages[first], first,
-                                     r.st.stage_t_start, r.st.stage_t_end,
-                                     r.st.sets_reference, 0};
+                                     r.st.stage_t_start,       r.st.stage_t_end,
+                                     r.st.sets_reference,      0};
         r.stage = st;
         start_progress(&r);
     }

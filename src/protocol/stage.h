@@ -14,16 +14,16 @@
 
 struct dem_stage_state {
     const struct dem_stage_config *cfg; /* this stage's config */
-    int index;          /* position in the stage list */
-    double t_start;     /* s; simulated time the stage began */
+    int index;                          /* position in the stage list */
+    double t_start;                     /* s; simulated time the stage began */
     double t_end;       /* s; the stage ends at this time at the latest */
     int sets_reference; /* 1: strains are referred to this stage's start */
     int timed_out;      /* set by the runner when t_end ended the stage */
 };
 
 struct dem_stage_ops {
-    const char *name;   /* the config's type string */
-    const char *doc;    /* one line for --help */
+    const char *name; /* the config's type string */
+    const char *doc;  /* one line for --help */
     /* Set wall modes; set st->t_end and st->sets_reference. */
     int (*begin)(struct dem_sim *s, struct dem_stage_state *st,
                  struct dem_error *err);
@@ -37,7 +37,7 @@ struct dem_stage_ops {
 const struct dem_stage_ops *dem_stage_lookup(int type);
 
 /* Helpers shared by the stage types. */
-void dem__stage_walls_stress(struct dem_sim *s, int w, double p0,
-                             double amp, double t0);
+void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
+                             double t0);
 
 #endif

@@ -63,7 +63,8 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
     if (!dem_sweep_run_finished(rundir)) {
         snprintf(r->reason, sizeof r->reason,
                  "the run did not finish (no timeseries.csv or summary.json; "
-                 "see runs/%s/run.log)", r->name);
+                 "see runs/%s/run.log)",
+                 r->name);
         return DEM_OK;
     }
     char path[DEM_PATH_MAX];
@@ -322,8 +323,7 @@ static void params(struct dem__json *j, const char *key,
     dem__json_close(j);
 }
 
-static void null_reason(struct dem__json *j, const char *key,
-                        const char *why)
+static void null_reason(struct dem__json *j, const char *key, const char *why)
 {
     char k[96];
     dem__json_null(j, key);
@@ -333,7 +333,8 @@ static void null_reason(struct dem__json *j, const char *key,
 
 static const char *role_names(int roles, char *buf, size_t n)
 {
-    snprintf(buf, n, "%s%s%s", roles & DEM_SWEEP_ROLE_PRESSURE ? "pressure " : "",
+    snprintf(buf, n, "%s%s%s",
+             roles & DEM_SWEEP_ROLE_PRESSURE ? "pressure " : "",
              roles & DEM_SWEEP_ROLE_MU ? "mu " : "",
              roles & DEM_SWEEP_ROLE_KC ? "kc " : "");
     size_t len = strlen(buf);
@@ -672,8 +673,7 @@ static int analyse(struct dem__sweep *s)
 }
 
 int dem_sweep_collect(const struct dem_sweep_grid *g,
-                      const struct dem_sweep_options *o,
-                      struct dem_error *err)
+                      const struct dem_sweep_options *o, struct dem_error *err)
 {
     struct dem__sweep s;
     memset(&s, 0, sizeof s);

@@ -57,7 +57,8 @@ static int parse_keys(struct dem_sweep_param *p, const char *s, size_t n,
         memcpy(k, s + i, j - i);
         k[j - i] = '\0';
         for (const char *c = k; *c; c++)
-            if (!key_char(*c) || (*c == '.' && (c == k || !c[1] || c[1] == '.'))) {
+            if (!key_char(*c) ||
+                (*c == '.' && (c == k || !c[1] || c[1] == '.'))) {
                 char msg[DEM_NAME_MAX + 80];
                 snprintf(msg, sizeof msg,
                          "'%s' is not a dotted config key (e.g. contact.mu, "
@@ -104,9 +105,10 @@ static int parse_values(struct dem_sweep_param *p, const char *s,
             continue;
         const size_t len = (size_t)(c - v);
         if (len == 0)
-            return bad(err, arg, *s ? "empty value (two commas, or a comma "
-                                      "at the end)"
-                                    : "no values after '='");
+            return bad(err, arg,
+                       *s ? "empty value (two commas, or a comma "
+                            "at the end)"
+                          : "no values after '='");
         if (p->nvalues == DEM_SWEEP_MAX_VALUES)
             return bad(err, arg, "too many values");
         if (len >= DEM_SWEEP_VALUE_MAX)
@@ -210,7 +212,8 @@ void dem_sweep_point_names(const struct dem_sweep_grid *g,
     for (long i = 0; i < n && !fallback; i++) {
         char sets[DEM_SWEEP_MAX_PARAMS * DEM_SWEEP_MAX_KEYS]
                  [DEM_NAME_MAX + DEM_SWEEP_VALUE_MAX];
-        const int ns = dem_sweep_point_sets(g, i, sets, (int)(sizeof sets / sizeof *sets));
+        const int ns =
+            dem_sweep_point_sets(g, i, sets, (int)(sizeof sets / sizeof *sets));
         char *out = names[i];
         size_t len = 0;
         out[0] = '\0';

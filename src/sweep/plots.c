@@ -92,13 +92,17 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             xmax = fmax(xmax, s->runs[s->ff[0][q].members[c]].peak_s1);
     xmax *= 1.1;
     if (!(xmax > 0.0)) {
-        fprintf(gp, "set label \"no run has a peak\" at graph 0.5, 0.5 center\n"
-                    "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 notitle\n");
+        fprintf(
+            gp,
+            "set label \"no run has a peak\" at graph 0.5, 0.5 center\n"
+            "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 notitle\n");
         return DEM_OK;
     }
     int block = 0;
-    fprintf(gp, "set size ratio -1\nset xrange [0:%.6g]\nset yrange [0:%.6g]\n"
-                "plot \\\n", xmax, 0.6 * xmax);
+    fprintf(gp,
+            "set size ratio -1\nset xrange [0:%.6g]\nset yrange [0:%.6g]\n"
+            "plot \\\n",
+            xmax, 0.6 * xmax);
     for (int q = 0; q < s->ffg.n; q++) {
         const struct dem__sweep_ff *f = &s->ff[0][q];
         char lab[512], par[520];
@@ -114,21 +118,24 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 fprintf(dat, "%.9g %.9g\n", m + rad * cos(M_PI * k / 180.0),
                         rad * sin(M_PI * k / 180.0));
             fprintf(dat, "\n\n");
-            fprintf(gp, "  \"mohr_circles.dat\" index %d with lines "
-                        "linewidth 2 linecolor %ld title \"p = %.4g%s\" "
-                        "noenhanced, \\\n",
+            fprintf(gp,
+                    "  \"mohr_circles.dat\" index %d with lines "
+                    "linewidth 2 linecolor %ld title \"p = %.4g%s\" "
+                    "noenhanced, \\\n",
                     block++, c + 1, r->pressure, par);
         }
         if (f->fit.ok) {
             const double t = tan(f->fit.phi_deg / DEG);
-            fprintf(dat, "# flow function%s: phi = %.6g deg, c = %.6g\n0 %.9g\n"
-                         "%.9g %.9g\n\n\n",
+            fprintf(dat,
+                    "# flow function%s: phi = %.6g deg, c = %.6g\n0 %.9g\n"
+                    "%.9g %.9g\n\n\n",
                     par, f->fit.phi_deg, f->fit.c, f->fit.c, xmax,
                     f->fit.c + xmax * t);
-            fprintf(gp, "  \"mohr_circles.dat\" index %d with lines "
-                        "dashtype %d linewidth 2 linecolor \"black\" title "
-                        "\"flow function φ = %.1f°, c = %.3g, R² = %.3f%s\" "
-                        "noenhanced, \\\n",
+            fprintf(gp,
+                    "  \"mohr_circles.dat\" index %d with lines "
+                    "dashtype %d linewidth 2 linecolor \"black\" title "
+                    "\"flow function φ = %.1f°, c = %.3g, R² = %.3f%s\" "
+                    "noenhanced, \\\n",
                     block++, q + 2, f->fit.phi_deg, f->fit.c, f->fit.r2, par);
         }
     }
@@ -192,12 +199,13 @@ static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
             fputc('\n', dat);
         }
         fprintf(dat, "\n\n");
-        fprintf(gp, "  \"friction_vs_mu.dat\" index %d using 1:2 with "
-                    "linespoints pointtype 6 pointsize 1.5 linecolor %d "
-                    "title \"peak%s\" noenhanced, \\\n"
-                    "  \"\" index %d using 1:3 with linespoints pointtype 7 "
-                    "pointsize 1.5 linecolor %d title \"critical state%s\" "
-                    "noenhanced, \\\n",
+        fprintf(gp,
+                "  \"friction_vs_mu.dat\" index %d using 1:2 with "
+                "linespoints pointtype 6 pointsize 1.5 linecolor %d "
+                "title \"peak%s\" noenhanced, \\\n"
+                "  \"\" index %d using 1:3 with linespoints pointtype 7 "
+                "pointsize 1.5 linecolor %d title \"critical state%s\" "
+                "noenhanced, \\\n",
                 q, q + 1, par, q, q + 1, par);
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
@@ -224,19 +232,22 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
         if (!isfinite(k1k2))
             k1k2 = r->k1 / r->k2;
     }
-    fprintf(dat, "\n\n# block 1: the analytic curve, columns 1 kc/k2  "
-                 "2 scale * |f_min|/(k2 delta_max), |f_min|/(k2 delta_max) = "
-                 "x (1 - k1/k2)/(1 + x), k1/k2 = %.6g, scale = %.9g (least "
-                 "squares)\n",
-                 k1k2, s->kc_scale);
+    fprintf(dat,
+            "\n\n# block 1: the analytic curve, columns 1 kc/k2  "
+            "2 scale * |f_min|/(k2 delta_max), |f_min|/(k2 delta_max) = "
+            "x (1 - k1/k2)/(1 + x), k1/k2 = %.6g, scale = %.9g (least "
+            "squares)\n",
+            k1k2, s->kc_scale);
     xmax = xmax > 0.0 ? 1.1 * xmax : 1.0;
     for (int k = 0; k <= 100 && isfinite(s->kc_scale); k++) {
         const double x = xmax * k / 100.0;
-        fprintf(dat, "%.9g %.9g\n", x, s->kc_scale * dem__sweep_fmin_norm(x, k1k2, 1.0));
+        fprintf(dat, "%.9g %.9g\n", x,
+                s->kc_scale * dem__sweep_fmin_norm(x, k1k2, 1.0));
     }
-    fprintf(gp, "set xrange [0:%.6g]\nplot \"cohesion_vs_kc.dat\" index 0 "
-                "with points pointtype 7 pointsize 1.5 title \"flow "
-                "functions\"%s\n",
+    fprintf(gp,
+            "set xrange [0:%.6g]\nplot \"cohesion_vs_kc.dat\" index 0 "
+            "with points pointtype 7 pointsize 1.5 title \"flow "
+            "functions\"%s\n",
             xmax,
             isfinite(s->kc_scale)
                 ? ", \\\n  \"\" index 1 with lines linewidth 2 title "
@@ -271,9 +282,10 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 pmax = fmax(pmax, v->p[k][m]);
             }
             fprintf(dat, "\n\n");
-            fprintf(gp, "  \"void_ratio_vs_pressure.dat\" index %d with "
-                        "points pointtype %d pointsize 1.5 linecolor %d "
-                        "title \"%s%s\" noenhanced, \\\n",
+            fprintf(gp,
+                    "  \"void_ratio_vs_pressure.dat\" index %d with "
+                    "points pointtype %d pointsize 1.5 linecolor %d "
+                    "title \"%s%s\" noenhanced, \\\n",
                     block++, k ? 7 : 6, 2 * q + k + 1, state[k], par);
         }
         for (int k = 0; k < 2; k++) {
@@ -285,10 +297,11 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
             }
             fprintf(dat, "\n\n");
             if (f->ok)
-                fprintf(gp, "  \"void_ratio_vs_pressure.dat\" index %d with "
-                            "lines linewidth 2 linecolor %d title \"fit %s: "
-                            "e0 = %.4f, n = %.3f, h_s = %.4g, R² = %.3f%s\" "
-                            "noenhanced, \\\n",
+                fprintf(gp,
+                        "  \"void_ratio_vs_pressure.dat\" index %d with "
+                        "lines linewidth 2 linecolor %d title \"fit %s: "
+                        "e0 = %.4f, n = %.3f, h_s = %.4g, R² = %.3f%s\" "
+                        "noenhanced, \\\n",
                         block, 2 * q + k + 1, state[k], f->e0, f->n, v->hs,
                         f->r2, par);
             block++;
@@ -302,8 +315,7 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
 
 static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
-    dem__gp_head(gp, "strain_accumulation",
-                 "Strain accumulated per cycle",
+    dem__gp_head(gp, "strain_accumulation", "Strain accumulated per cycle",
                  "cycle c", "Δε_D per cycle");
     fprintf(dat, "# columns 1 cycle  2 eps_D gained in the cycle  3 eps_D "
                  "at its end; one block per cyclic run\n");
@@ -320,8 +332,9 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
         for (int k = 0; k < r->ncyc; k++)
             fprintf(dat, "%d %.9g %.9g\n", k + 1, r->cyc_inc[k], r->cyc_end[k]);
         fprintf(dat, "\n\n");
-        fprintf(gp, "  \"strain_accumulation.dat\" index %d with linespoints "
-                    "pointtype 7 title \"μ = %.3g%s%s%s\" noenhanced, \\\n",
+        fprintf(gp,
+                "  \"strain_accumulation.dat\" index %d with linespoints "
+                "pointtype 7 title \"μ = %.3g%s%s%s\" noenhanced, \\\n",
                 block++, r->mu, par, r->verdict[0] ? ": " : "", r->verdict);
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
@@ -361,8 +374,9 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         return rc;
     const char *cmd = dem__gp_command();
     if (!dem__gp_available(cmd)) {
-        fprintf(stderr, "dembox: sweep: warning: %s not found; the plot "
-                        "scripts are in %s, run them with gnuplot\n",
+        fprintf(stderr,
+                "dembox: sweep: warning: %s not found; the plot "
+                "scripts are in %s, run them with gnuplot\n",
                 cmd, plotdir);
         return DEM_OK;
     }

@@ -31,9 +31,8 @@
 typedef char run_name[DEM_SWEEP_RUNNAME_MAX + 8];
 
 /* The config of the target with the user's --set and then extra. */
-static int parse_with(const struct dem_sweep_options *o,
-                      char (*extra)[SET_LEN], int nextra,
-                      struct dem_config *c, struct dem_error *err)
+static int parse_with(const struct dem_sweep_options *o, char (*extra)[SET_LEN],
+                      int nextra, struct dem_config *c, struct dem_error *err)
 {
     const char *sets[MAX_USER_SETS + MAX_POINT_SETS];
     int n = 0;
@@ -53,8 +52,7 @@ static int parse_with(const struct dem_sweep_options *o,
 }
 
 int dem_sweep_validate(const struct dem_sweep_grid *g,
-                       const struct dem_sweep_options *o,
-                       struct dem_error *err)
+                       const struct dem_sweep_options *o, struct dem_error *err)
 {
     struct dem_config *c = malloc(sizeof *c);
     if (!c)
@@ -71,12 +69,10 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
             struct dem_error e = {0, ""};
             rc = parse_with(o, sets, p->nkeys, c, &e);
             if (rc)
-                dem_error_set(err, rc,
-                              "sweep: --param '%s': value %s for %s%s: %s",
-                              p->text, p->values[v], p->keys[0],
-                              p->nkeys > 1 ? " (and the keys linked to it)"
-                                           : "",
-                              e.msg);
+                dem_error_set(
+                    err, rc, "sweep: --param '%s': value %s for %s%s: %s",
+                    p->text, p->values[v], p->keys[0],
+                    p->nkeys > 1 ? " (and the keys linked to it)" : "", e.msg);
         }
     }
     /* then every combination */
@@ -168,10 +164,10 @@ static int can_resume(const char *rundir)
 }
 
 struct job {
-    pid_t pid;       /* 0: not running */
+    pid_t pid; /* 0: not running */
     long point;
-    int resume;      /* 1: this attempt resumes a checkpoint */
-    double started;  /* s, monotonic clock */
+    int resume;     /* 1: this attempt resumes a checkpoint */
+    double started; /* s, monotonic clock */
 };
 
 static double now(void)
@@ -305,8 +301,8 @@ static int write_index(const struct dem_sweep_grid *g, const char *runs,
 /* Run the points flagged in todo[], at most o->jobs at once. */
 static int run_points(const struct dem_sweep_grid *g,
                       const struct dem_sweep_options *o, const char *runs,
-                      run_name *names, char *todo,
-                      struct dem_sweep_report *rep, struct dem_error *err)
+                      run_name *names, char *todo, struct dem_sweep_report *rep,
+                      struct dem_error *err)
 {
     const long n = dem_sweep_grid_size(g);
     const int jobs = o->jobs > 0 ? o->jobs : 1;
@@ -376,8 +372,10 @@ static int run_points(const struct dem_sweep_grid *g,
         if (!ok && job[s].resume) {
             /* the resume did not work: run the point again from the start */
             if (!o->quiet)
-                fprintf(stderr, "dembox: sweep: resuming %s failed, running "
-                                "it again\n", names[i]);
+                fprintf(stderr,
+                        "dembox: sweep: resuming %s failed, running "
+                        "it again\n",
+                        names[i]);
             todo[i] = 1;
             if (i < next)
                 next = i;
@@ -388,16 +386,18 @@ static int run_points(const struct dem_sweep_grid *g,
         rep->resumed += job[s].resume;
         if (ok) {
             if (!o->quiet)
-                fprintf(stderr, "dembox: sweep: [%ld/%ld] %s finished (%.1f s)\n",
-                        done, total, names[i], now() - job[s].started);
+                fprintf(stderr,
+                        "dembox: sweep: [%ld/%ld] %s finished (%.1f s)\n", done,
+                        total, names[i], now() - job[s].started);
         } else {
             char how[64], last[512];
             describe_status(status, how, sizeof how);
             last_log_line(rundir, last, sizeof last);
             rep->failed++;
-            fprintf(stderr, "dembox: sweep: [%ld/%ld] %s failed (%s)%s%s; see %s/run.log\n",
-                    done, total, names[i], how, last[0] ? ": " : "", last,
-                    rundir);
+            fprintf(
+                stderr,
+                "dembox: sweep: [%ld/%ld] %s failed (%s)%s%s; see %s/run.log\n",
+                done, total, names[i], how, last[0] ? ": " : "", last, rundir);
         }
     }
     /* on an internal error, wait for the children that still run */
@@ -440,8 +440,10 @@ int dem_sweep_run(const struct dem_sweep_grid *g,
         rep->skipped += !todo[i];
     }
     if (!rc && rep->skipped && !o->quiet)
-        fprintf(stderr, "dembox: sweep: %ld of %ld runs already finished, "
-                        "skipped\n", rep->skipped, n);
+        fprintf(stderr,
+                "dembox: sweep: %ld of %ld runs already finished, "
+                "skipped\n",
+                rep->skipped, n);
     if (!rc)
         rc = run_points(g, o, runs, names, todo, rep, err);
     free(names);

@@ -28,7 +28,7 @@
 #define DEM_SWEEP_MAX_KEYS 8     /* keys linked in one --param */
 #define DEM_SWEEP_MAX_VALUES 256 /* values of one --param */
 #define DEM_SWEEP_MAX_POINTS 10000
-#define DEM_SWEEP_VALUE_MAX 128  /* characters of one value */
+#define DEM_SWEEP_VALUE_MAX 128   /* characters of one value */
 #define DEM_SWEEP_RUNNAME_MAX 120 /* longer names become run_NNNN */
 
 /* What a parameter is to the cross-run analysis, from its keys. */
@@ -39,12 +39,12 @@ enum dem_sweep_role {
 };
 
 struct dem_sweep_param {
-    char text[512];  /* the --param argument, for messages */
+    char text[512]; /* the --param argument, for messages */
     int nkeys;
     char keys[DEM_SWEEP_MAX_KEYS][DEM_NAME_MAX]; /* dotted config paths */
     int nvalues;
     char (*values)[DEM_SWEEP_VALUE_MAX]; /* as given (owned) */
-    int roles;       /* enum dem_sweep_role bits */
+    int roles;                           /* enum dem_sweep_role bits */
 };
 
 struct dem_sweep_grid {
@@ -81,11 +81,11 @@ struct dem_sweep_options {
     const char *outdir;      /* DIR */
     const char *const *sets; /* --set KEY=VALUE for every run */
     int nsets;
-    int jobs;                /* runs at once (>= 1) */
-    int threads;             /* OpenMP threads per run (>= 1) */
-    int quiet;               /* 1: no progress lines on stderr */
-    const char *exe;         /* dembox binary; NULL = /proc/self/exe */
-    long max_steps;          /* > 0: passed to every run as --max-steps */
+    int jobs;        /* runs at once (>= 1) */
+    int threads;     /* OpenMP threads per run (>= 1) */
+    int quiet;       /* 1: no progress lines on stderr */
+    const char *exe; /* dembox binary; NULL = /proc/self/exe */
+    long max_steps;  /* > 0: passed to every run as --max-steps */
 };
 
 struct dem_sweep_report {
@@ -120,7 +120,6 @@ int dem_sweep_run_finished(const char *rundir);
  * missing or failed are listed with their reason and left out of the
  * cross-run analysis. */
 int dem_sweep_collect(const struct dem_sweep_grid *g,
-                      const struct dem_sweep_options *o,
-                      struct dem_error *err);
+                      const struct dem_sweep_options *o, struct dem_error *err);
 
 #endif

@@ -13,25 +13,25 @@ struct dem__sweep_run {
     int ok;                        /* 1: finished and read */
     char reason[DEM_ERRMSG_MAX];   /* why not, when ok = 0 */
     int dim;
-    double mu;          /* friction of the loading stage */
-    double k1, k2, kc;  /* N/m; luding stiffnesses (linear: k1 = k2 = k) */
-    double pressure;    /* confining pressure of the loading stage */
+    double mu;         /* friction of the loading stage */
+    double k1, k2, kc; /* N/m; luding stiffnesses (linear: k1 = k2 = k) */
+    double pressure;   /* confining pressure of the loading stage */
     double peak_sin, peak_phi, peak_s1, peak_s3;
     double crit_sin, crit_phi, crit_s1, crit_s3;
     double e_init, e_crit;
-    double hs;          /* hardness of the void-ratio fit (summary.json) */
-    char verdict[32];   /* "ratcheting", "shakedown", "" */
+    double hs;        /* hardness of the void-ratio fit (summary.json) */
+    char verdict[32]; /* "ratcheting", "shakedown", "" */
     double cyc_ratio;
-    int ncyc;           /* complete cycles (0: no cyclic stage) */
-    int cyclic;         /* 1: the run has a cyclic stage */
+    int ncyc;                  /* complete cycles (0: no cyclic stage) */
+    int cyclic;                /* 1: the run has a cyclic stage */
     double *cyc_end, *cyc_inc; /* eps_D at the end of / gained in a cycle */
 };
 
 /* Runs that differ only in the parameters of some role form a group. */
 struct dem__sweep_groups {
-    int n;        /* groups */
-    int *gid;     /* per run: its group, -1 when the run is not ok */
-    long *rep;    /* per group: its first run */
+    int n;     /* groups */
+    int *gid;  /* per run: its group, -1 when the run is not ok */
+    long *rep; /* per group: its first run */
 };
 
 struct dem__sweep_ff {
@@ -42,9 +42,9 @@ struct dem__sweep_ff {
 
 struct dem__sweep_void {
     double hs;
-    long m[2];               /* initial, critical: points */
+    long m[2]; /* initial, critical: points */
     long *members[2];
-    double *p[2], *e[2];     /* the points */
+    double *p[2], *e[2]; /* the points */
     struct dem_voidfit fit[2];
 };
 
@@ -52,14 +52,14 @@ struct dem__sweep {
     const struct dem_sweep_grid *g;
     long n;
     struct dem__sweep_run *runs;
-    int roles;                      /* roles of all parameters */
+    int roles; /* roles of all parameters */
     /* flow function, [0] at peak, [1] in critical state */
     char ff_reason[DEM_REASON_MAX]; /* non-empty: not computed */
     struct dem__sweep_groups ffg;   /* runs grouped except pressure */
     struct dem__sweep_ff *ff[2];    /* per group */
     /* friction versus mu */
     char mu_reason[DEM_REASON_MAX];
-    struct dem__sweep_groups mug;   /* grouped except mu */
+    struct dem__sweep_groups mug; /* grouped except mu */
     /* cohesion versus kc/k2 */
     char kc_reason[DEM_REASON_MAX];
     double kc_scale; /* least-squares factor of the f_min curve */

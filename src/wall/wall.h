@@ -6,14 +6,13 @@
  *
  *  fixed   does not move.
  *  strain  position follows x0 + D g(t - t_start) with the profile g:
- *          cosine (1 - cos(pi t/T))/2, linear t/T, cyclic (1 - cos(2 pi t/T))/2;
- *          after T the cosine and linear profiles hold their end value.
- *  stress  m_w xdd = F_out * s_out - s_out * sigma(t) A - gamma_w xd, where
- *          s_out = -1 (side 0) or +1 (side 1) is the outward direction,
- *          F_out >= 0 the force the particles push the wall outward with,
- *          A the current face area, and sigma(t) = p0 + (Dsigma/2)(1 - cos(2 pi t/t0))
- *          (Dsigma = 0: constant). An optional speed limit |xd| <= vmax
- *          keeps a light servo from slamming into a loose gas.
+ *          cosine (1 - cos(pi t/T))/2, linear t/T, cyclic (1 - cos(2 pi
+ * t/T))/2; after T the cosine and linear profiles hold their end value. stress
+ * m_w xdd = F_out * s_out - s_out * sigma(t) A - gamma_w xd, where s_out = -1
+ * (side 0) or +1 (side 1) is the outward direction, F_out >= 0 the force the
+ * particles push the wall outward with, A the current face area, and sigma(t) =
+ * p0 + (Dsigma/2)(1 - cos(2 pi t/t0)) (Dsigma = 0: constant). An optional speed
+ * limit |xd| <= vmax keeps a light servo from slamming into a loose gas.
  */
 #ifndef DEM_WALL_WALL_H
 #define DEM_WALL_WALL_H
@@ -25,26 +24,26 @@ enum dem_wall_mode {
 };
 
 struct dem_wall {
-    int axis;        /* 0 = x, 1 = y, 2 = z */
-    int side;        /* 0 = min face, 1 = max face */
-    int mode;        /* enum dem_wall_mode */
-    double pos;      /* m; coordinate of the plane along axis */
-    double vel;      /* m/s; velocity along axis */
-    double force;    /* N; outward force from the particles this step (>= 0
-                        when compressed) */
+    int axis;     /* 0 = x, 1 = y, 2 = z */
+    int side;     /* 0 = min face, 1 = max face */
+    int mode;     /* enum dem_wall_mode */
+    double pos;   /* m; coordinate of the plane along axis */
+    double vel;   /* m/s; velocity along axis */
+    double force; /* N; outward force from the particles this step (>= 0
+                     when compressed) */
     /* strain control */
-    int profile;     /* enum dem_profile */
-    double x0;       /* m; start position */
-    double delta;    /* m; total displacement along axis (signed) */
-    double period;   /* s; T of the profile */
-    double t_start;  /* s; simulated time the motion began */
+    int profile;    /* enum dem_profile */
+    double x0;      /* m; start position */
+    double delta;   /* m; total displacement along axis (signed) */
+    double period;  /* s; T of the profile */
+    double t_start; /* s; simulated time the motion began */
     /* stress control */
-    double mass;     /* kg; m_w */
-    double gamma;    /* kg/s; gamma_w */
-    double vmax;     /* m/s; speed limit, 0 = none */
-    double p0;       /* Pa (2D: N/m); mean target stress */
-    double amp;      /* Pa; Dsigma of the cyclic target, 0 = constant */
-    double t0;       /* s; period of the cyclic target */
+    double mass;  /* kg; m_w */
+    double gamma; /* kg/s; gamma_w */
+    double vmax;  /* m/s; speed limit, 0 = none */
+    double p0;    /* Pa (2D: N/m); mean target stress */
+    double amp;   /* Pa; Dsigma of the cyclic target, 0 = constant */
+    double t0;    /* s; period of the cyclic target */
 };
 
 /* Outward direction of wall w along its axis: -1 for side 0, +1 for side 1. */
