@@ -370,8 +370,11 @@ static void measure_contacts(struct dem_sim *s)
         if (L->state[k] & DEM_CONTACT_SLIDING)
             S->n_sliding++;
         const double amin = P->r[i] < P->r[j] ? P->r[i] : P->r[j];
-        if (delta / amin > S->max_overlap_ratio)
+        if (delta / amin > S->max_overlap_ratio) {
             S->max_overlap_ratio = delta / amin;
+            S->max_overlap_i = P->id[i];
+            S->max_overlap_j = P->id[j];
+        }
         const double fa = fabs(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
         P->fsum[i] += fa;
         P->fsum[j] += fa;
@@ -406,8 +409,11 @@ static void measure_contacts(struct dem_sim *s)
         S->n_pw++;
         if (WL->state[k] & DEM_CONTACT_SLIDING)
             S->n_sliding++;
-        if (delta / P->r[i] > S->max_overlap_ratio)
+        if (delta / P->r[i] > S->max_overlap_ratio) {
             S->max_overlap_ratio = delta / P->r[i];
+            S->max_overlap_i = P->id[i];
+            S->max_overlap_j = -1;
+        }
         P->fsum[i] += fabs(f[a]);
         P->ncontact[i]++;
     }

@@ -41,6 +41,8 @@ struct dem_contact_sums {
     long n_pw;                  /* particle-wall contacts */
     long n_sliding;             /* sliding contacts (pp and pw) */
     double max_overlap_ratio;   /* largest delta / radius */
+    int max_overlap_i;          /* id of a particle of that contact */
+    int max_overlap_j;          /* id of the other, -1 for a wall */
 };
 
 /* Wall-clock seconds spent in each phase of the step (timed only when

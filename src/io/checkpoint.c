@@ -330,6 +330,8 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_i64(io, &S->n_pw);
     io_i64(io, &S->n_sliding);
     io_f64(io, &S->max_overlap_ratio);
+    io_i32(io, &S->max_overlap_i);
+    io_i32(io, &S->max_overlap_j);
     for (int w = 0; w < DEM_MAX_WALLS; w++)
         io_wall(io, &s->wall[w]);
 

@@ -175,43 +175,6 @@ static int drive_free(const struct dem_sim *s)
            s->cfg.gravity[2] == 0.0;
 }
 
-/* The contact with the largest overlap / smaller radius: the ids of its
- * particles (-1 for a wall) and the ratio. */
-static double worst_overlap(const struct dem_sim *s, int *a, int *b)
-{
-    const struct dem_particles *P = &s->p;
-    const struct dem_contact_list *L = &s->pairs.cur, *W = &s->pairs.wcur;
-    double worst = -1.0;
-    *a = *b = -1;
-    for (int k = 0; k < L->n; k++) {
-        int i = L->i[k], j = L->j[k];
-        double dx = P->x[i] - P->x[j], dy = P->y[i] - P->y[j],
-               dz = P->z[i] - P->z[j];
-        double amin = P->r[i] < P->r[j] ? P->r[i] : P->r[j];
-        double ratio =
-            (P->r[i] + P->r[j] - sqrt(dx * dx + dy * dy + dz * dz)) / amin;
-        if (ratio > worst) {
-            worst = ratio;
-            *a = P->id[i];
-            *b = P->id[j];
-        }
-    }
-    for (int k = 0; k < W->n; k++) {
-        int i = W->i[k];
-        const struct dem_wall *w = &s->wall[W->j[k]];
-        double pos[3] = {P->x[i], P->y[i], P->z[i]};
-        double ratio =
-            (P->r[i] - (w->side ? -1.0 : 1.0) * (pos[w->axis] - w->pos)) /
-            P->r[i];
-        if (ratio > worst) {
-            worst = ratio;
-            *a = P->id[i];
-            *b = -1;
-        }
-    }
-    return worst;
-}
-
 /* Stop with a diagnosis (step, time, particle, quantity, likely cause)
  * when the state is no longer physical. */
 static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
@@ -240,8 +203,9 @@ static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
             s->t, s->step, s->dt);
     const double lim = s->cfg.checks.max_overlap;
     if (smp->max_overlap > lim) {
-        int a, b;
-        double worst = worst_overlap(s, &a, &b);
+        /* the measurement pass of this sample found the contact */
+        const int a = s->sums.max_overlap_i, b = s->sums.max_overlap_j;
+        const double worst = smp->max_overlap;
         char partner[32];
         if (b >= 0)
             snprintf(partner, sizeof partner, "particle %d", b);
