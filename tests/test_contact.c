@@ -99,16 +99,17 @@ static void coulomb_limit_stick_slip_and_back(void **state)
 {
     (void)state;
     const struct dem_tangential T = {1000.0, 0.0, 0.6, 0.4};
-    const double n[3] = {0, 0, 1}, fn = 1.0, dt = 1e-3, v = 1e-5;
-    double xi[3] = {0, 0, 0}, ft[3];
-    unsigned char st = DEM_CONTACT_ACTIVE;
-    double vij[3] = {v, 0, 0};
+    const struct dem_vec3 n = {0, 0, 1};
+    const double fn = 1.0, dt = 1e-3, v = 1e-5;
+    struct dem_vec3 xi = {0, 0, 0}, ft;
+    int st = DEM_CONTACT_ACTIVE;
+    struct dem_vec3 vij = {v, 0, 0};
     int first_slide = -1;
     double fmax = 0.0;
     for (int k = 0; k < 100000; k++) {
-        double expect_static = -T.kt * xi[0]; /* force if it sticks */
-        dem_tangential_force(n, vij, fn, dt, &T, xi, &st, ft);
-        double f = fabs(ft[0]);
+        double expect_static = -T.kt * xi.x; /* force if it sticks */
+        ft = dem_tangential_force(n, vij, fn, dt, &T, &xi, &st);
+        double f = fabs(ft.x);
         fmax = f > fmax ? f : fmax;
         assert_true(f <= T.mu_s * fn + 1e-12);
         if (st & DEM_CONTACT_SLIDING) {
@@ -122,29 +123,29 @@ static void coulomb_limit_stick_slip_and_back(void **state)
                             T.mu_s * fn + 1e-12);
             }
         } else {
-            assert_close(ft[0], expect_static, 1e-12);
+            assert_close(ft.x, expect_static, 1e-12);
         }
-        assert_close(ft[1], 0.0, 0.0);
+        assert_close(ft.y, 0.0, 0.0);
     }
     assert_true(first_slide > 0);
     assert_close(fmax, T.mu_s * fn, T.kt * v * dt + 1e-12);
     /* reverse the drive: the contact sticks and the force rises linearly
      * from where it was, through zero, up to +mu_s f_n, where it slides */
-    vij[0] = -v;
-    const double f_end = ft[0];
+    vij.x = -v;
+    const double f_end = ft.x;
     double prev = f_end;
     int k_slide = -1;
     for (int k = 0; k < 200000 && k_slide < 0; k++) {
-        dem_tangential_force(n, vij, fn, dt, &T, xi, &st, ft);
+        ft = dem_tangential_force(n, vij, fn, dt, &T, &xi, &st);
         if (st & DEM_CONTACT_SLIDING) {
             k_slide = k;
-            assert_close(ft[0], T.mu_d * fn, 1e-12);
+            assert_close(ft.x, T.mu_d * fn, 1e-12);
         } else {
             /* the first step still applies the spring increment of the
              * forward step (the force uses the spring of the last update) */
             double step = k == 0 ? -T.kt * v * dt : T.kt * v * dt;
-            assert_close(ft[0] - prev, step, 1e-12);
-            prev = ft[0];
+            assert_close(ft.x - prev, step, 1e-12);
+            prev = ft.x;
         }
     }
     assert_true(f_end < 0.0);

@@ -58,14 +58,14 @@ DEM_INLINE double normal_force(const int law,
     return fn;
 }
 
-/* The arrays one pass works on, read into locals once: a store to the
- * state bytes (unsigned char may alias anything) would otherwise make the
- * compiler reload every array pointer from its struct after each contact. */
+/* The arrays one pass works on, read into locals once, so that the
+ * compiler need not reload an array pointer from its struct after a
+ * store. */
 struct pass {
     const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
     const int *ci, *cj;
     double *xi_x, *xi_y, *xi_z, *dmax;
-    unsigned char *state;
+    int *state;
     struct dem_contact_force *F; /* stored forces, at each contact's slot */
     const int *start, *slot;     /* pairs: rows by i, slot of each pair */
     double *fx, *fy, *fz;        /* pairs: N; damping + sum over pairs as i */
@@ -84,98 +84,136 @@ static struct pass pass_of(const struct dem_particles *P,
     return q;
 }
 
-/* A listed contact that is not closed: its history ends and its stored
- * force is zero. A list build zeroes every stored force, so only a
- * contact that has just opened needs writing. */
-DEM_INLINE void forget(const struct pass *q, int k, int slot)
+/* Tangential force and history update of wall contact k (or, with
+ * touch = 0, the end of its history); its force is stored with it. */
+DEM_INLINE void finish_wall_contact(const struct pass *q, int k, int touch,
+                                    struct dem_vec3 n, struct dem_vec3 vij,
+                                    double fn, double fc, double dmax,
+                                    double dt, const struct dem_tangential *T)
 {
-    if (!q->state[k])
-        return;
-    q->xi_x[k] = q->xi_y[k] = q->xi_z[k] = 0.0;
-    q->dmax[k] = 0.0;
-    q->state[k] = 0;
-    struct dem_contact_force *o = &q->F[slot];
-    o->f[0] = o->f[1] = o->f[2] = 0.0;
-    o->c[0] = o->c[1] = o->c[2] = 0.0;
+    struct dem_vec3 xi = {q->xi_x[k], q->xi_y[k], q->xi_z[k]};
+    int st = q->state[k] | DEM_CONTACT_ACTIVE;
+    const struct dem_vec3 ft =
+        dem_tangential_force(n, vij, fc, dt, T, &xi, &st);
+    q->xi_x[k] = touch ? xi.x : 0.0;
+    q->xi_y[k] = touch ? xi.y : 0.0;
+    q->xi_z[k] = touch ? xi.z : 0.0;
+    q->dmax[k] = touch ? dmax : 0.0;
+    q->state[k] = touch ? st : 0;
+    struct dem_contact_force *o = &q->F[k];
+    o->f[0] = touch ? fn * n.x + ft.x : 0.0;
+    o->f[1] = touch ? fn * n.y + ft.y : 0.0;
+    o->f[2] = touch ? fn * n.z + ft.z : 0.0;
+    o->c[0] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
+    o->c[1] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
+    o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
 }
 
-/* Tangential force and history update of contact k; its force is stored
- * at slot and returned. */
-DEM_INLINE const struct dem_contact_force *
-finish_contact(const struct pass *q, int k, int slot, const double n[3],
-               const double vij[3], double fn, double fc, double dt,
-               const struct dem_tangential *T)
+/* Pairs per chunk of the pair loop: the chunk's forces stay in the L1
+ * cache between the vectorised contact loop and the sums. */
+enum { CHUNK = 128 };
+
+/* Force on i and n x f_t of each pair of a chunk. */
+struct chunk {
+    double fx[CHUNK], fy[CHUNK], fz[CHUNK];
+    double cx[CHUNK], cy[CHUNK], cz[CHUNK];
+};
+
+/* Forces and history updates of pairs ka <= k < kb (kb - ka <= CHUNK),
+ * into o. One loop without branches over the flat list, so that the
+ * compiler runs it in SIMD lanes: every pair computes the closed-contact
+ * force, and a pair whose gap is open gets a zero force and loses its
+ * history instead. */
+DEM_INLINE void pair_chunk(const int law, const struct pass *qp, int ka, int kb,
+                           const struct dem_contact_params *cp, double dt,
+                           struct chunk *restrict o)
 {
-    double xi[3] = {q->xi_x[k], q->xi_y[k], q->xi_z[k]};
-    unsigned char st = q->state[k] | DEM_CONTACT_ACTIVE;
-    double ft[3];
-    dem_tangential_force(n, vij, fc, dt, T, xi, &st, ft);
-    q->xi_x[k] = xi[0];
-    q->xi_y[k] = xi[1];
-    q->xi_z[k] = xi[2];
-    q->state[k] = st;
-    struct dem_contact_force *o = &q->F[slot];
-    o->f[0] = fn * n[0] + ft[0];
-    o->f[1] = fn * n[1] + ft[1];
-    o->f[2] = fn * n[2] + ft[2];
-    o->c[0] = n[1] * ft[2] - n[2] * ft[1];
-    o->c[1] = n[2] * ft[0] - n[0] * ft[2];
-    o->c[2] = n[0] * ft[1] - n[1] * ft[0];
-    return o;
+    const struct pass q = *qp;
+    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+#pragma omp simd
+    for (int k = ka; k < kb; k++) {
+        const int i = q.ci[k], j = q.cj[k];
+        const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
+                     dz = q.z[i] - q.z[j];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        const double ai = q.r[i], aj = q.r[j], R = ai + aj;
+        const int touch = d2 < R * R;
+        const double d = sqrt(d2);
+        const double id = 1.0 / d;
+        const struct dem_vec3 n = {dx * id, dy * id, dz * id};
+        /* a_i n x w_i + a_j n x w_j */
+        const double cwx = ai * q.wx[i] + aj * q.wx[j];
+        const double cwy = ai * q.wy[i] + aj * q.wy[j];
+        const double cwz = ai * q.wz[i] + aj * q.wz[j];
+        const struct dem_vec3 vij = {q.vx[i] - q.vx[j] + n.y * cwz - n.z * cwy,
+                                     q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
+                                     q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
+        const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+        double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
+        const double fn =
+            normal_force(law, cp, cp->kc, R - d, ddot, ai * aj / R, &dmax, &fc);
+        struct dem_vec3 xi = {q.xi_x[k], q.xi_y[k], q.xi_z[k]};
+        int st = q.state[k] | DEM_CONTACT_ACTIVE;
+        const struct dem_vec3 ft =
+            dem_tangential_force(n, vij, fc, dt, &T, &xi, &st);
+        q.xi_x[k] = touch ? xi.x : 0.0;
+        q.xi_y[k] = touch ? xi.y : 0.0;
+        q.xi_z[k] = touch ? xi.z : 0.0;
+        if (law == DEM_NORMAL_LUDING)
+            q.dmax[k] = touch ? dmax : 0.0;
+        q.state[k] = touch ? st : 0;
+        const int m = k - ka;
+        o->fx[m] = touch ? fn * n.x + ft.x : 0.0;
+        o->fy[m] = touch ? fn * n.y + ft.y : 0.0;
+        o->fz[m] = touch ? fn * n.z + ft.z : 0.0;
+        o->cx[m] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
+        o->cy[m] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
+        o->cz[m] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
+    }
 }
 
-/* The pairs of particles i0 <= i < i1 as i: each particle's background
- * damping plus the forces of its pairs in list order go straight to its
- * force and torque accumulators (the pairs as j are added by gather). */
+/* The pairs of particles i0 <= i < i1 as i, chunk by chunk: each
+ * particle's background damping plus the forces of its pairs in list
+ * order go to its force and torque accumulators (the pairs as j are added
+ * by gather), and each pair's force is stored at its slot. */
 DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
                            const struct dem_contact_params *cp, double dt,
                            double gb)
 {
-    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
-    for (int i = i0; i < i1; i++) {
-        const double xi_ = q.x[i], yi = q.y[i], zi = q.z[i], ai = q.r[i];
-        double fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
-        double cx = 0.0, cy = 0.0, cz = 0.0;
-        for (int k = q.start[i]; k < q.start[i + 1]; k++) {
-            const int j = q.cj[k];
-            const double dx = xi_ - q.x[j], dy = yi - q.y[j], dz = zi - q.z[j];
-            const double d2 = dx * dx + dy * dy + dz * dz;
-            const double aj = q.r[j];
-            const double R = ai + aj;
-            if (d2 >= R * R) {
-                forget(&q, k, q.slot[k]);
-                continue;
+    if (i0 >= i1)
+        return;
+    struct chunk o;
+    int i = i0;
+    double fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
+    double cx = 0.0, cy = 0.0, cz = 0.0;
+    const int kend = q.start[i1];
+    for (int ka = q.start[i0]; ka < kend; ka += CHUNK) {
+        const int kb = kend - ka < CHUNK ? kend : ka + CHUNK;
+        pair_chunk(law, &q, ka, kb, cp, dt, &o);
+        for (int k = ka; k < kb; k++) {
+            while (k >= q.start[i + 1]) { /* row i is complete */
+                q.fx[i] = fx, q.fy[i] = fy, q.fz[i] = fz;
+                q.cx[i] = cx, q.cy[i] = cy, q.cz[i] = cz;
+                i++;
+                fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
+                cx = cy = cz = 0.0;
             }
-            const double d = sqrt(d2);
-            const double id = 1.0 / d;
-            const double n[3] = {dx * id, dy * id, dz * id};
-            /* a_i n x w_i + a_j n x w_j */
-            const double cwx = ai * q.wx[i] + aj * q.wx[j];
-            const double cwy = ai * q.wy[i] + aj * q.wy[j];
-            const double cwz = ai * q.wz[i] + aj * q.wz[j];
-            const double vij[3] = {q.vx[i] - q.vx[j] + n[1] * cwz - n[2] * cwy,
-                                   q.vy[i] - q.vy[j] + n[2] * cwx - n[0] * cwz,
-                                   q.vz[i] - q.vz[j] + n[0] * cwy - n[1] * cwx};
-            const double ddot =
-                -(vij[0] * n[0] + vij[1] * n[1] + vij[2] * n[2]);
-            double fc;
-            const double fn = normal_force(law, cp, cp->kc, R - d, ddot,
-                                           ai * aj / R, &q.dmax[k], &fc);
-            const struct dem_contact_force *o =
-                finish_contact(&q, k, q.slot[k], n, vij, fn, fc, dt, &T);
-            fx += o->f[0];
-            fy += o->f[1];
-            fz += o->f[2];
-            cx += o->c[0];
-            cy += o->c[1];
-            cz += o->c[2];
+            const int m = k - ka;
+            fx += o.fx[m], fy += o.fy[m], fz += o.fz[m];
+            cx += o.cx[m], cy += o.cy[m], cz += o.cz[m];
+            struct dem_contact_force *F = &q.F[q.slot[k]];
+            F->f[0] = o.fx[m], F->f[1] = o.fy[m], F->f[2] = o.fz[m];
+            F->c[0] = o.cx[m], F->c[1] = o.cy[m], F->c[2] = o.cz[m];
         }
-        q.fx[i] = fx;
-        q.fy[i] = fy;
-        q.fz[i] = fz;
-        q.cx[i] = cx;
-        q.cy[i] = cy;
-        q.cz[i] = cz;
+    }
+    /* the last row with pairs, and the rows without pairs after it */
+    for (;;) {
+        q.fx[i] = fx, q.fy[i] = fy, q.fz[i] = fz;
+        q.cx[i] = cx, q.cy[i] = cy, q.cz[i] = cz;
+        if (++i >= i1)
+            break;
+        fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
+        cx = cy = cz = 0.0;
     }
 }
 
@@ -184,7 +222,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
  * law is a literal in each instance, so that the outlined parallel region
  * is compiled for that law alone. */
 #define PAIR_PASS(LAW)                                                         \
-    {                                                                          \
+    do {                                                                       \
         const struct pass q =                                                  \
             pass_of(&s->p, &s->pairs.cur, &s->pairs.f, s->pairs.rpos);         \
         const struct dem_contact_params cp = s->cp;                            \
@@ -196,16 +234,22 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
             pair_range(LAW, q, (int)((long)n * t / nt),                        \
                        (int)((long)n * (t + 1) / nt), &cp, dt, gb);            \
         }                                                                      \
-    }
+    } while (0)
 
 static void pair_pass_linear(struct dem_sim *s)
-    PAIR_PASS(DEM_NORMAL_LINEAR) static void pair_pass_luding(struct dem_sim *s)
-        PAIR_PASS(DEM_NORMAL_LUDING)
+{
+    PAIR_PASS(DEM_NORMAL_LINEAR);
+}
 
-    /* Wall contacts k0 <= k < k1. */
-    DEM_INLINE void wall_range(const int law, const struct pass q, int k0,
-                               int k1, const struct dem_contact_params *cp,
-                               double dt, const struct dem_wall *walls)
+static void pair_pass_luding(struct dem_sim *s)
+{
+    PAIR_PASS(DEM_NORMAL_LUDING);
+}
+
+/* Wall contacts k0 <= k < k1. */
+DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
+                           const struct dem_contact_params *cp, double dt,
+                           const struct dem_wall *walls)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->wall_mu,
                                      cp->wall_mu};
@@ -214,30 +258,28 @@ static void pair_pass_linear(struct dem_sim *s)
         const struct dem_wall *W = &walls[q.cj[k]];
         const int a = W->axis;
         const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
-        const double pos[3] = {q.x[i], q.y[i], q.z[i]};
+        const double pa = a == 0 ? q.x[i] : a == 1 ? q.y[i] : q.z[i];
         const double ai = q.r[i];
-        const double delta = ai - sgn * (pos[a] - W->pos);
-        if (delta <= 0.0) {
-            forget(&q, k, k);
-            continue;
-        }
-        double n[3] = {0.0, 0.0, 0.0};
-        n[a] = sgn;
-        const double cw[3] = {ai * q.wx[i], ai * q.wy[i], ai * q.wz[i]};
-        double vij[3] = {q.vx[i] + n[1] * cw[2] - n[2] * cw[1],
-                         q.vy[i] + n[2] * cw[0] - n[0] * cw[2],
-                         q.vz[i] + n[0] * cw[1] - n[1] * cw[0]};
-        vij[a] -= W->vel;
-        const double ddot = -(vij[a] * sgn);
-        double fc;
-        const double fn = normal_force(law, cp, cp->wall_kc, delta, ddot, ai,
-                                       &q.dmax[k], &fc);
-        finish_contact(&q, k, k, n, vij, fn, fc, dt, &T);
+        const double delta = ai - sgn * (pa - W->pos);
+        const int touch = delta > 0.0;
+        const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
+                                   a == 2 ? sgn : 0.0};
+        const double cwx = ai * q.wx[i], cwy = ai * q.wy[i], cwz = ai * q.wz[i];
+        /* the wall's surface moves along its normal at W->vel */
+        const struct dem_vec3 vij = {
+            q.vx[i] + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
+            q.vy[i] + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
+            q.vz[i] + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
+        const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+        double fc, dmax = q.dmax[k];
+        const double fn =
+            normal_force(law, cp, cp->wall_kc, delta, ddot, ai, &dmax, &fc);
+        finish_wall_contact(&q, k, touch, n, vij, fn, fc, dmax, dt, &T);
     }
 }
 
 #define WALL_PASS(LAW)                                                         \
-    {                                                                          \
+    do {                                                                       \
         const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf, 0); \
         const struct dem_contact_params cp = s->cp;                            \
         const double dt = s->dt;                                               \
@@ -250,17 +292,23 @@ static void pair_pass_linear(struct dem_sim *s)
             wall_range(LAW, q, (int)((long)nw * t / nt),                       \
                        (int)((long)nw * (t + 1) / nt), &cp, dt, walls);        \
         }                                                                      \
-    }
+    } while (0)
 
 static void wall_pass_linear(struct dem_sim *s)
-    WALL_PASS(DEM_NORMAL_LINEAR) static void wall_pass_luding(struct dem_sim *s)
-        WALL_PASS(DEM_NORMAL_LUDING)
+{
+    WALL_PASS(DEM_NORMAL_LINEAR);
+}
 
-    /* Particles i0 <= i < i1: to the damping and pairs as i (summed by the
-     * pair pass), add the pairs as j, whose forces lie in one stream, and
-     * the wall contacts; then the torques. */
-    static void gather_range(int i0, int i1, const struct dem_particles *P,
-                             const struct dem_pairs *pl, double gr)
+static void wall_pass_luding(struct dem_sim *s)
+{
+    WALL_PASS(DEM_NORMAL_LUDING);
+}
+
+/* Particles i0 <= i < i1: to the damping and pairs as i (summed by the
+ * pair pass), add the pairs as j, whose forces lie in one stream, and the
+ * wall contacts; then the torques. */
+static void gather_range(int i0, int i1, const struct dem_particles *P,
+                         const struct dem_pairs *pl, double gr)
 {
     const double *restrict wx = P->wx, *restrict wy = P->wy,
                            *restrict wz = P->wz, *restrict r = P->r;
@@ -356,7 +404,7 @@ static void measure_contacts(struct dem_sim *s)
                 S->fabric_stress[a][c] += b[a] * f[c];
                 S->fabric[a][c] += n[a] * n[c];
             }
-        const double xi[3] = {L->xi_x[k], L->xi_y[k], L->xi_z[k]};
+        const struct dem_vec3 xi = {L->xi_x[k], L->xi_y[k], L->xi_z[k]};
         double e = dem_tangential_energy(xi, cp->kt);
         if (cp->normal == DEM_NORMAL_LUDING) {
             const struct dem_luding Lu = {cp->k1, cp->k2, cp->kc, cp->phi_f};
@@ -396,7 +444,7 @@ static void measure_contacts(struct dem_sim *s)
          * plane: -dist n, so -l (x) f = dist n (x) f */
         for (int c = 0; c < 3; c++)
             S->fabric_stress[a][c] += dist * sgn * f[c];
-        const double xi[3] = {WL->xi_x[k], WL->xi_y[k], WL->xi_z[k]};
+        const struct dem_vec3 xi = {WL->xi_x[k], WL->xi_y[k], WL->xi_z[k]};
         double e = dem_tangential_energy(xi, cp->kt);
         if (cp->normal == DEM_NORMAL_LUDING) {
             const struct dem_luding Lu = {cp->k1, cp->k2, cp->wall_kc,

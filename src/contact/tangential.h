@@ -37,67 +37,60 @@ struct dem_tangential {
     double mu_d;    /* dynamic friction coefficient, mu_d <= mu_s */
 };
 
-/* Tangential force of one contact.
+/* A vector of three numbers, passed by value: the kernels below are
+ * called inside vectorised loops, where arrays would stop the compiler. */
+struct dem_vec3 {
+    double x, y, z;
+};
+
+/* Tangential force of one contact, returned (force on i, N).
  *   n     unit normal (from j to i)
  *   vij   relative velocity of the contact surfaces (i relative to j)
  *   fc    normal force for the Coulomb limit (>= 0), N
  *   dt    time step, s
  *   xi    in: stored spring xi'; out: the spring for the next step, m
  *   state in/out: DEM_CONTACT_SLIDING bit
- *   ft    out: tangential force on i, N
+ * Both cases are computed and one is selected, so that a loop over
+ * contacts vectorises; nothing is divided by zero in either case.
  */
-static inline void dem_tangential_force(const double n[3], const double vij[3],
-                                        double fc, double dt,
-                                        const struct dem_tangential *T,
-                                        double xi[3], unsigned char *state,
-                                        double ft[3])
+static inline struct dem_vec3
+dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
+                     double dt, const struct dem_tangential *T,
+                     struct dem_vec3 *xi, int *state)
 {
-    double nxi = n[0] * xi[0] + n[1] * xi[1] + n[2] * xi[2];
-    double sx = xi[0] - n[0] * nxi;
-    double sy = xi[1] - n[1] * nxi;
-    double sz = xi[2] - n[2] * nxi;
-    double nv = n[0] * vij[0] + n[1] * vij[1] + n[2] * vij[2];
-    double vtx = vij[0] - n[0] * nv;
-    double vty = vij[1] - n[1] * nv;
-    double vtz = vij[2] - n[2] * nv;
-    double f0x = -T->kt * sx - T->gamma_t * vtx;
-    double f0y = -T->kt * sy - T->gamma_t * vty;
-    double f0z = -T->kt * sz - T->gamma_t * vtz;
-    double f0sq = f0x * f0x + f0y * f0y + f0z * f0z;
-    int sliding = (*state & DEM_CONTACT_SLIDING) != 0;
-    double limit = (sliding ? T->mu_d : T->mu_s) * fc;
-    if (f0sq <= limit * limit) {
-        /* static friction; a sliding contact sticks again here */
-        *state &= (unsigned char)~DEM_CONTACT_SLIDING;
-        xi[0] = sx + vtx * dt;
-        xi[1] = sy + vty * dt;
-        xi[2] = sz + vtz * dt;
-        ft[0] = f0x;
-        ft[1] = f0y;
-        ft[2] = f0z;
-        return;
-    }
-    *state |= DEM_CONTACT_SLIDING;
-    double f0 = sqrt(f0sq);
-    double fd = T->mu_d * fc;
-    double s = fd / f0; /* f0 > limit >= 0, so no division by zero */
-    ft[0] = f0x * s;
-    ft[1] = f0y * s;
-    ft[2] = f0z * s;
-    if (T->kt > 0.0) {
-        double ik = 1.0 / T->kt;
-        xi[0] = -ik * (ft[0] + T->gamma_t * vtx);
-        xi[1] = -ik * (ft[1] + T->gamma_t * vty);
-        xi[2] = -ik * (ft[2] + T->gamma_t * vtz);
-    } else {
-        xi[0] = xi[1] = xi[2] = 0.0;
-    }
+    const double nxi = n.x * xi->x + n.y * xi->y + n.z * xi->z;
+    const double sx = xi->x - n.x * nxi;
+    const double sy = xi->y - n.y * nxi;
+    const double sz = xi->z - n.z * nxi;
+    const double nv = n.x * vij.x + n.y * vij.y + n.z * vij.z;
+    const double vtx = vij.x - n.x * nv;
+    const double vty = vij.y - n.y * nv;
+    const double vtz = vij.z - n.z * nv;
+    const double f0x = -T->kt * sx - T->gamma_t * vtx;
+    const double f0y = -T->kt * sy - T->gamma_t * vty;
+    const double f0z = -T->kt * sz - T->gamma_t * vtz;
+    const double f0sq = f0x * f0x + f0y * f0y + f0z * f0z;
+    const int sliding = (*state & DEM_CONTACT_SLIDING) != 0;
+    const double limit = (sliding ? T->mu_d : T->mu_s) * fc;
+    /* static friction (a sliding contact sticks again here) or sliding at
+     * mu_d f_C along the test force; f0 > limit >= 0 when sliding */
+    const int stick = f0sq <= limit * limit;
+    const double scale = stick ? 1.0 : T->mu_d * fc / sqrt(stick ? 1.0 : f0sq);
+    const struct dem_vec3 ft = {f0x * scale, f0y * scale, f0z * scale};
+    /* sliding: the spring that gives the sliding force */
+    const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
+    xi->x = stick ? sx + vtx * dt : -ik * (ft.x + T->gamma_t * vtx);
+    xi->y = stick ? sy + vty * dt : -ik * (ft.y + T->gamma_t * vty);
+    xi->z = stick ? sz + vtz * dt : -ik * (ft.z + T->gamma_t * vtz);
+    *state =
+        stick ? *state & ~DEM_CONTACT_SLIDING : *state | DEM_CONTACT_SLIDING;
+    return ft;
 }
 
 /* Elastic energy of the tangential spring, J. */
-static inline double dem_tangential_energy(const double xi[3], double kt)
+static inline double dem_tangential_energy(struct dem_vec3 xi, double kt)
 {
-    return 0.5 * kt * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+    return 0.5 * kt * (xi.x * xi.x + xi.y * xi.y + xi.z * xi.z);
 }
 
 #endif

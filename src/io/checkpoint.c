@@ -121,6 +121,20 @@ static void io_i32s(struct ck_io *io, int *a, int n)
     io_bytes(io, a, (size_t)n * sizeof *a);
 }
 
+/* Contact states (DEM_CONTACT_* bits): one byte each in the file. */
+static void io_states(struct ck_io *io, int *a, int n)
+{
+    unsigned char b[4096];
+    for (int k0 = 0; k0 < n; k0 += (int)sizeof b) {
+        const int m = n - k0 < (int)sizeof b ? n - k0 : (int)sizeof b;
+        for (int k = 0; k < m; k++)
+            b[k] = (unsigned char)a[k0 + k];
+        io_bytes(io, b, (size_t)m);
+        for (int k = 0; k < m; k++)
+            a[k0 + k] = b[k];
+    }
+}
+
 static void io_tag(struct ck_io *io, const char *tag)
 {
     char t[4];
@@ -198,7 +212,7 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
     io_f64s(io, L->xi_y, n);
     io_f64s(io, L->xi_z, n);
     io_f64s(io, L->dmax, n);
-    io_bytes(io, L->state, (size_t)n);
+    io_states(io, L->state, n);
     io_i32s(io, L->start, np + 1);
     io_f64s(io, (double *)F->v, 6 * n);
 }

@@ -33,9 +33,12 @@ struct dem_contact_list {
     int *i;                     /* particle */
     int *j;                     /* partner: particle (> i) or wall index */
     double *xi_x, *xi_y, *xi_z; /* m; tangential spring */
-    double *dmax;         /* m; largest overlap reached (luding history) */
-    unsigned char *state; /* DEM_CONTACT_* bits (contact/tangential.h) */
-    int *start;           /* n_particles + 1 row offsets by i */
+    double *dmax; /* m; largest overlap reached (luding history) */
+    int *state;   /* DEM_CONTACT_* bits (contact/tangential.h); an int, not a
+                     byte, so that the force loop vectorises with 256-bit
+                     vectors too (gcc 12 does not mix byte masks with
+                     double lanes there) */
+    int *start;   /* n_particles + 1 row offsets by i */
     int start_cap;
 };
 
