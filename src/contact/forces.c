@@ -304,14 +304,26 @@ static void wall_pass_luding(struct dem_sim *s)
     WALL_PASS(DEM_NORMAL_LUDING);
 }
 
+/* The closing half kick of a step (h = dt/2, g gravity), or none. */
+struct kick {
+    int on;
+    double h, g[3];
+};
+
 /* Particles i0 <= i < i1: to the damping and pairs as i (summed by the
  * pair pass), add the pairs as j, whose forces lie in one stream, and the
- * wall contacts; then the torques. */
-static void gather_range(int i0, int i1, const struct dem_particles *P,
-                         const struct dem_pairs *pl, double gr)
+ * wall contacts; then the torques, and the half kick if asked for (the
+ * same arithmetic as the first half kick in core/sim.c). K.on is a
+ * literal in each caller, so the kick costs no branch. */
+DEM_INLINE void gather_range(int i0, int i1, const struct dem_particles *P,
+                             const struct dem_pairs *pl, double gr,
+                             const struct kick K)
 {
-    const double *restrict wx = P->wx, *restrict wy = P->wy,
-                           *restrict wz = P->wz, *restrict r = P->r;
+    double *restrict vx = P->vx, *restrict vy = P->vy, *restrict vz = P->vz;
+    double *restrict wx = P->wx, *restrict wy = P->wy, *restrict wz = P->wz;
+    const double *restrict r = P->r, *restrict im = P->inv_m,
+                           *restrict iI = P->inv_I;
+    const double h = K.h, gx = h * K.g[0], gy = h * K.g[1], gz = h * K.g[2];
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
@@ -338,17 +350,28 @@ static void gather_range(int i0, int i1, const struct dem_particles *P,
             cz += WF[k].c[2];
         }
         const double g = gr * a * a;
+        const double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
+                     tz = -g * wz[i] - a * cz;
         ofx[i] = fx;
         ofy[i] = fy;
         ofz[i] = fz;
-        otx[i] = -g * wx[i] - a * cx;
-        oty[i] = -g * wy[i] - a * cy;
-        otz[i] = -g * wz[i] - a * cz;
+        otx[i] = tx;
+        oty[i] = ty;
+        otz[i] = tz;
+        if (K.on) {
+            vx[i] += h * im[i] * fx + gx;
+            vy[i] += h * im[i] * fy + gy;
+            vz[i] += h * im[i] * fz + gz;
+            wx[i] += h * iI[i] * tx;
+            wy[i] += h * iI[i] * ty;
+            wz[i] += h * iI[i] * tz;
+        }
     }
 }
 
-/* Sum every particle's forces and torques in a fixed order. */
-static void gather(struct dem_sim *s)
+/* Sum every particle's forces and torques in a fixed order (then kick
+ * it when K.on). */
+static void gather(struct dem_sim *s, const struct kick K)
 {
     const struct dem_particles *P = &s->p;
     const struct dem_pairs *pl = &s->pairs;
@@ -359,8 +382,14 @@ static void gather(struct dem_sim *s)
 #pragma omp parallel
     {
         int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        gather_range((int)((long)n * t / nt), (int)((long)n * (t + 1) / nt), P,
-                     pl, gr);
+        const int i0 = (int)((long)n * t / nt),
+                  i1 = (int)((long)n * (t + 1) / nt);
+        if (K.on)
+            gather_range(i0, i1, P, pl, gr,
+                         (struct kick){1, K.h, {K.g[0], K.g[1], K.g[2]}});
+        else
+            gather_range(i0, i1, P, pl, gr,
+                         (struct kick){0, 0.0, {0.0, 0.0, 0.0}});
     }
 
     /* the walls feel the opposite forces: their outward push, in list order */
@@ -467,7 +496,7 @@ static void measure_contacts(struct dem_sim *s)
     }
 }
 
-void dem_sim_forces(struct dem_sim *s)
+static void forces(struct dem_sim *s, const struct kick K)
 {
     if (s->cp.normal == DEM_NORMAL_LUDING) {
         pair_pass_luding(s);
@@ -476,8 +505,19 @@ void dem_sim_forces(struct dem_sim *s)
         pair_pass_linear(s);
         wall_pass_linear(s);
     }
-    gather(s);
+    gather(s, K);
     if (s->measure)
         measure_contacts(s);
     s->measure = 0;
+}
+
+void dem_sim_forces(struct dem_sim *s)
+{
+    forces(s, (struct kick){0, 0.0, {0.0, 0.0, 0.0}});
+}
+
+void dem_sim_forces_kick(struct dem_sim *s, double h)
+{
+    const double *g = s->cfg.gravity;
+    forces(s, (struct kick){1, h, {g[0], g[1], g[2]}});
 }

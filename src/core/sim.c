@@ -162,36 +162,24 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
 
 /* 1 when some particle or wall moved more than half the skin since the
  * last build: until then no contact can form that is not listed. */
-static int needs_rebuild(const struct dem_sim *s)
-{
-    const double half = 0.5 * s->skin;
-    for (int w = 0; w < s->nwall; w++)
-        if (fabs(s->wall[w].pos - s->pairs.wall_pos0[w]) > half)
-            return 1;
-    const struct dem_particles *p = &s->p;
-    const double lim = half * half;
-    const int n = p->n;
-    int moved = 0;
-#pragma omp parallel for schedule(static) reduction(| : moved)
-    for (int i = 0; i < n; i++) {
-        double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
-               dz = p->z[i] - p->z0[i];
-        moved |= dx * dx + dy * dy + dz * dz > lim;
-    }
-    return moved;
-}
-
-/* Particles i0 <= i < i1: v += h (f/m + g), w += h t/I. */
-static void kick_range(int i0, int i1, double h, const double g[3],
-                       struct dem_particles *p)
+/* Particles i0 <= i < i1: half kick v += h (f/m + g), w += h t/I, then
+ * drift r += dt v; returns whether one has moved more than half the skin
+ * (squared: lim) since the last list build. */
+static int kick_drift_range(int i0, int i1, double h, double dt,
+                            const double g[3], double lim,
+                            struct dem_particles *p)
 {
     double *restrict vx = p->vx, *restrict vy = p->vy, *restrict vz = p->vz;
     double *restrict wx = p->wx, *restrict wy = p->wy, *restrict wz = p->wz;
+    double *restrict x = p->x, *restrict y = p->y, *restrict z = p->z;
+    const double *restrict x0 = p->x0, *restrict y0 = p->y0,
+                           *restrict z0 = p->z0;
     const double *restrict fx = p->fx, *restrict fy = p->fy,
                            *restrict fz = p->fz, *restrict tx = p->tx,
                            *restrict ty = p->ty, *restrict tz = p->tz;
     const double *restrict im = p->inv_m, *restrict iI = p->inv_I;
     const double gx = h * g[0], gy = h * g[1], gz = h * g[2];
+    int moved = 0;
     for (int i = i0; i < i1; i++) {
         vx[i] += h * im[i] * fx[i] + gx;
         vy[i] += h * im[i] * fy[i] + gy;
@@ -199,42 +187,40 @@ static void kick_range(int i0, int i1, double h, const double g[3],
         wx[i] += h * iI[i] * tx[i];
         wy[i] += h * iI[i] * ty[i];
         wz[i] += h * iI[i] * tz[i];
+        x[i] += dt * vx[i];
+        y[i] += dt * vy[i];
+        z[i] += dt * vz[i];
+        const double dx = x[i] - x0[i], dy = y[i] - y0[i], dz = z[i] - z0[i];
+        moved |= dx * dx + dy * dy + dz * dz > lim;
     }
+    return moved;
 }
 
-/* Particles i0 <= i < i1: r += h v. */
-static void drift_range(int i0, int i1, double h, struct dem_particles *p)
-{
-    double *restrict x = p->x, *restrict y = p->y, *restrict z = p->z;
-    const double *restrict vx = p->vx, *restrict vy = p->vy,
-                           *restrict vz = p->vz;
-    for (int i = i0; i < i1; i++) {
-        x[i] += h * vx[i];
-        y[i] += h * vy[i];
-        z[i] += h * vz[i];
-    }
-}
-
-static void kick(struct dem_sim *s, double h)
+/* The first half of a step for every particle; returns whether the
+ * particles call for a list rebuild. */
+static int kick_drift(struct dem_sim *s, double h)
 {
     const int n = s->p.n;
-#pragma omp parallel
+    const double half = 0.5 * s->skin;
+    int moved = 0;
+#pragma omp parallel reduction(| : moved)
     {
         int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        kick_range((int)((long)n * t / nt), (int)((long)n * (t + 1) / nt), h,
-                   s->cfg.gravity, &s->p);
+        moved = kick_drift_range((int)((long)n * t / nt),
+                                 (int)((long)n * (t + 1) / nt), h, s->dt,
+                                 s->cfg.gravity, half * half, &s->p);
     }
+    return moved;
 }
 
-static void drift(struct dem_sim *s, double h)
+/* Whether a wall has moved more than half the skin since the last build. */
+static int walls_need_rebuild(const struct dem_sim *s)
 {
-    const int n = s->p.n;
-#pragma omp parallel
-    {
-        int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        drift_range((int)((long)n * t / nt), (int)((long)n * (t + 1) / nt), h,
-                    &s->p);
-    }
+    const double half = 0.5 * s->skin;
+    for (int w = 0; w < s->nwall; w++)
+        if (fabs(s->wall[w].pos - s->pairs.wall_pos0[w]) > half)
+            return 1;
+    return 0;
 }
 
 /* Acceleration of a stress-controlled wall along its axis, m/s^2. */
@@ -288,28 +274,25 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     const double h = 0.5 * s->dt;
     struct dem_timers *T = &s->timers;
     double t0 = lap(s);
-    kick(s, h);
-    drift(s, s->dt);
+    const int moved = kick_drift(s, h);
     double t1 = lap(s);
     walls_kick(s, h);
     walls_drift(s, s->t + s->dt);
     double t2 = lap(s);
     s->t += s->dt;
     s->step++;
-    if (needs_rebuild(s)) {
+    if (moved || walls_need_rebuild(s)) {
         int rc = dem_sim_rebuild(s, err);
         if (rc)
             return rc;
     }
     double t3 = lap(s);
-    dem_sim_forces(s);
+    dem_sim_forces_kick(s, h);
     double t4 = lap(s);
-    kick(s, h);
-    double t5 = lap(s);
     walls_kick(s, h);
-    double t6 = lap(s);
-    T->integrate += (t1 - t0) + (t5 - t4);
-    T->walls += (t2 - t1) + (t6 - t5);
+    double t5 = lap(s);
+    T->integrate += t1 - t0;
+    T->walls += (t2 - t1) + (t5 - t4);
     T->neighbor += t3 - t2;
     T->force += t4 - t3;
     return DEM_OK;

@@ -109,6 +109,9 @@ void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d);
 /* Recompute forces of the current state without moving anything
  * (fills s->sums when s->measure is set). */
 void dem_sim_forces(struct dem_sim *s);
+/* The same, then the closing half kick of a step in the same pass over
+ * the particles: v += h (f/m + g), w += h t/I. */
+void dem_sim_forces_kick(struct dem_sim *s, double h);
 
 /* Box edge lengths and volume (area in 2D) from the wall positions. */
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume);
