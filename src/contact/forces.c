@@ -217,10 +217,27 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
     }
 }
 
-/* All particles in equal blocks, one per thread: each particle's rows
- * are summed on their own, so the split does not change any result. The
- * law is a literal in each instance, so that the outlined parallel region
- * is compiled for that law alone. */
+/* First row of block t of nt: the blocks have about equal work, counted
+ * as one unit per particle plus one per pair (binary search in the row
+ * offsets start[0..n]). */
+static int row_block(const int *start, int n, int t, int nt)
+{
+    const long target = ((long)start[n] + n) * t / nt;
+    int lo = 0, hi = n; /* first i with start[i] + i >= target */
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if ((long)start[mid] + mid < target)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* All particles in blocks of equal work, one per thread: each particle's
+ * rows are summed on their own, so the split does not change any result.
+ * The law is a literal in each instance, so that the outlined parallel
+ * region is compiled for that law alone. */
 #define PAIR_PASS(LAW)                                                         \
     do {                                                                       \
         const struct pass q =                                                  \
@@ -231,8 +248,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
         _Pragma("omp parallel")                                                \
         {                                                                      \
             int nt = omp_get_num_threads(), t = omp_get_thread_num();          \
-            pair_range(LAW, q, (int)((long)n * t / nt),                        \
-                       (int)((long)n * (t + 1) / nt), &cp, dt, gb);            \
+            pair_range(LAW, q, row_block(q.start, n, t, nt),                   \
+                       row_block(q.start, n, t + 1, nt), &cp, dt, gb);         \
         }                                                                      \
     } while (0)
 
