@@ -11,16 +11,16 @@
  * infinite mass and radius whose surface moves only along its normal.
  *
  * A pass has three parts, each parallel over independent items:
- *  1. every particle's row of pairs (it is i): each pair's force and
- *     history; the particle's background damping plus these forces in
- *     list order; each pair's force also stored at its slot in the order
- *     of the particles as j;
+ *  1. every listed pair: force and history, stored with the pair; one
+ *     loop without branches over the flat list, run in SIMD lanes;
  *  2. every wall contact: force and history, stored with the contact;
- *  3. every particle: add its pairs as j (one stream of slots) and its
- *     wall contacts in list order; then the torques.
+ *  3. every particle: its background damping, then the forces of its
+ *     pairs as i (its row), as j (its reverse row) and of its wall
+ *     contacts, each in list order; then the torques and, in a time step,
+ *     the closing half kick.
  * Every sum therefore runs in one fixed order, and the result is the same
- * bit for bit whatever the number of threads. The loop body is written
- * once as an always-inline function and instantiated per normal law (a
+ * bit for bit whatever the number of threads. The loop bodies are written
+ * once as always-inline functions and instantiated per normal law (a
  * literal in each parallel region), so there is no function pointer and
  * no configuration branch per contact.
  */
@@ -66,21 +66,16 @@ struct pass {
     const int *ci, *cj;
     double *xi_x, *xi_y, *xi_z, *dmax;
     int *state;
-    struct dem_contact_force *F; /* stored forces, at each contact's slot */
-    const int *start, *slot;     /* pairs: rows by i, slot of each pair */
-    double *fx, *fy, *fz;        /* pairs: N; damping + sum over pairs as i */
-    double *cx, *cy, *cz;        /* pairs: N; sum of n x f_t over them */
+    struct dem_contact_force *F; /* stored forces, at each entry's index */
 };
 
 static struct pass pass_of(const struct dem_particles *P,
                            struct dem_contact_list *L,
-                           struct dem_contact_forces *F, const int *slot)
+                           struct dem_contact_forces *F)
 {
-    struct pass q = {P->x,     P->y,    P->z,    P->vx,   P->vy,    P->vz,
-                     P->wx,    P->wy,   P->wz,   P->r,    L->i,     L->j,
-                     L->xi_x,  L->xi_y, L->xi_z, L->dmax, L->state, F->v,
-                     L->start, slot,    P->fx,   P->fy,   P->fz,    P->tx,
-                     P->ty,    P->tz};
+    struct pass q = {P->x,    P->y,    P->z,    P->vx,   P->vy,    P->vz,
+                     P->wx,   P->wy,   P->wz,   P->r,    L->i,     L->j,
+                     L->xi_x, L->xi_y, L->xi_z, L->dmax, L->state, F->v};
     return q;
 }
 
@@ -109,29 +104,16 @@ DEM_INLINE void finish_wall_contact(const struct pass *q, int k, int touch,
     o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
 }
 
-/* Pairs per chunk of the pair loop: the chunk's forces stay in the L1
- * cache between the vectorised contact loop and the sums. */
-enum { CHUNK = 128 };
-
-/* Force on i and n x f_t of each pair of a chunk. */
-struct chunk {
-    double fx[CHUNK], fy[CHUNK], fz[CHUNK];
-    double cx[CHUNK], cy[CHUNK], cz[CHUNK];
-};
-
-/* Forces and history updates of pairs ka <= k < kb (kb - ka <= CHUNK),
- * into o. One loop without branches over the flat list, so that the
- * compiler runs it in SIMD lanes: every pair computes the closed-contact
- * force, and a pair whose gap is open gets a zero force and loses its
- * history instead. */
-DEM_INLINE void pair_chunk(const int law, const struct pass *qp, int ka, int kb,
-                           const struct dem_contact_params *cp, double dt,
-                           struct chunk *restrict o)
+/* Forces and history updates of pairs k0 <= k < k1. One loop without
+ * branches, so that the compiler runs it in SIMD lanes: every pair
+ * computes the closed-contact force, and a pair whose gap is open gets a
+ * zero force and loses its history instead. */
+DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
+                           const struct dem_contact_params *cp, double dt)
 {
-    const struct pass q = *qp;
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
 #pragma omp simd
-    for (int k = ka; k < kb; k++) {
+    for (int k = k0; k < k1; k++) {
         const int i = q.ci[k], j = q.cj[k];
         const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
                      dz = q.z[i] - q.z[j];
@@ -162,94 +144,30 @@ DEM_INLINE void pair_chunk(const int law, const struct pass *qp, int ka, int kb,
         if (law == DEM_NORMAL_LUDING)
             q.dmax[k] = touch ? dmax : 0.0;
         q.state[k] = touch ? st : 0;
-        const int m = k - ka;
-        o->fx[m] = touch ? fn * n.x + ft.x : 0.0;
-        o->fy[m] = touch ? fn * n.y + ft.y : 0.0;
-        o->fz[m] = touch ? fn * n.z + ft.z : 0.0;
-        o->cx[m] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
-        o->cy[m] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
-        o->cz[m] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
+        struct dem_contact_force *o = &q.F[k];
+        o->f[0] = touch ? fn * n.x + ft.x : 0.0;
+        o->f[1] = touch ? fn * n.y + ft.y : 0.0;
+        o->f[2] = touch ? fn * n.z + ft.z : 0.0;
+        o->c[0] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
+        o->c[1] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
+        o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
     }
 }
 
-/* The pairs of particles i0 <= i < i1 as i, chunk by chunk: each
- * particle's background damping plus the forces of its pairs in list
- * order go to its force and torque accumulators (the pairs as j are added
- * by gather), and each pair's force is stored at its slot. */
-DEM_INLINE void pair_range(const int law, const struct pass q, int i0, int i1,
-                           const struct dem_contact_params *cp, double dt,
-                           double gb)
-{
-    if (i0 >= i1)
-        return;
-    struct chunk o;
-    int i = i0;
-    double fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
-    double cx = 0.0, cy = 0.0, cz = 0.0;
-    const int kend = q.start[i1];
-    for (int ka = q.start[i0]; ka < kend; ka += CHUNK) {
-        const int kb = kend - ka < CHUNK ? kend : ka + CHUNK;
-        pair_chunk(law, &q, ka, kb, cp, dt, &o);
-        for (int k = ka; k < kb; k++) {
-            while (k >= q.start[i + 1]) { /* row i is complete */
-                q.fx[i] = fx, q.fy[i] = fy, q.fz[i] = fz;
-                q.cx[i] = cx, q.cy[i] = cy, q.cz[i] = cz;
-                i++;
-                fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
-                cx = cy = cz = 0.0;
-            }
-            const int m = k - ka;
-            fx += o.fx[m], fy += o.fy[m], fz += o.fz[m];
-            cx += o.cx[m], cy += o.cy[m], cz += o.cz[m];
-            struct dem_contact_force *F = &q.F[q.slot[k]];
-            F->f[0] = o.fx[m], F->f[1] = o.fy[m], F->f[2] = o.fz[m];
-            F->c[0] = o.cx[m], F->c[1] = o.cy[m], F->c[2] = o.cz[m];
-        }
-    }
-    /* the last row with pairs, and the rows without pairs after it */
-    for (;;) {
-        q.fx[i] = fx, q.fy[i] = fy, q.fz[i] = fz;
-        q.cx[i] = cx, q.cy[i] = cy, q.cz[i] = cz;
-        if (++i >= i1)
-            break;
-        fx = -gb * q.vx[i], fy = -gb * q.vy[i], fz = -gb * q.vz[i];
-        cx = cy = cz = 0.0;
-    }
-}
-
-/* First row of block t of nt: the blocks have about equal work, counted
- * as one unit per particle plus one per pair (binary search in the row
- * offsets start[0..n]). */
-static int row_block(const int *start, int n, int t, int nt)
-{
-    const long target = ((long)start[n] + n) * t / nt;
-    int lo = 0, hi = n; /* first i with start[i] + i >= target */
-    while (lo < hi) {
-        const int mid = lo + (hi - lo) / 2;
-        if ((long)start[mid] + mid < target)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
-/* All particles in blocks of equal work, one per thread: each particle's
- * rows are summed on their own, so the split does not change any result.
- * The law is a literal in each instance, so that the outlined parallel
- * region is compiled for that law alone. */
+/* All pairs in equal blocks, one per thread. The law is a literal in
+ * each instance, so that the outlined parallel region is compiled for
+ * that law alone. */
 #define PAIR_PASS(LAW)                                                         \
     do {                                                                       \
-        const struct pass q =                                                  \
-            pass_of(&s->p, &s->pairs.cur, &s->pairs.f, s->pairs.rpos);         \
+        const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f);      \
         const struct dem_contact_params cp = s->cp;                            \
-        const double dt = s->dt, gb = s->cfg.damping.gamma_b;                  \
-        const int n = s->p.n;                                                  \
+        const double dt = s->dt;                                               \
+        const int np = s->pairs.cur.n;                                         \
         _Pragma("omp parallel")                                                \
         {                                                                      \
             int nt = omp_get_num_threads(), t = omp_get_thread_num();          \
-            pair_range(LAW, q, row_block(q.start, n, t, nt),                   \
-                       row_block(q.start, n, t + 1, nt), &cp, dt, gb);         \
+            pair_range(LAW, q, (int)((long)np * t / nt),                       \
+                       (int)((long)np * (t + 1) / nt), &cp, dt);               \
         }                                                                      \
     } while (0)
 
@@ -297,7 +215,7 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
 
 #define WALL_PASS(LAW)                                                         \
     do {                                                                       \
-        const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf, 0); \
+        const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf);    \
         const struct dem_contact_params cp = s->cp;                            \
         const double dt = s->dt;                                               \
         const int nw = s->pairs.wcur.n;                                        \
@@ -327,15 +245,16 @@ struct kick {
     double h, g[3];
 };
 
-/* Particles i0 <= i < i1: to the damping and pairs as i (summed by the
- * pair pass), add the pairs as j, whose forces lie in one stream, and the
- * wall contacts; then the torques, and the half kick if asked for (the
- * same arithmetic as the first half kick in core/sim.c). K.on is a
- * literal in each caller, so the kick costs no branch. */
+/* Particles i0 <= i < i1: background damping plus the forces of the
+ * pairs as i (the particle's row), as j (its reverse row) and of the wall
+ * contacts; then the torques, and the half kick if asked for (the same
+ * arithmetic as the first half kick in core/sim.c). K.on is a literal in
+ * each caller, so the kick costs no branch. */
 DEM_INLINE void gather_range(int i0, int i1, const struct dem_particles *P,
-                             const struct dem_pairs *pl, double gr,
+                             const struct dem_pairs *pl, double gb, double gr,
                              const struct kick K)
 {
+    const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
     double *restrict vx = P->vx, *restrict vy = P->vy, *restrict vz = P->vz;
     double *restrict wx = P->wx, *restrict wy = P->wy, *restrict wz = P->wz;
     const double *restrict r = P->r, *restrict im = P->inv_m,
@@ -348,15 +267,24 @@ DEM_INLINE void gather_range(int i0, int i1, const struct dem_particles *P,
                                                               pl->wf.v;
     for (int i = i0; i < i1; i++) {
         const double a = r[i];
-        double fx = ofx[i], fy = ofy[i], fz = ofz[i];
-        double cx = otx[i], cy = oty[i], cz = otz[i]; /* sums of n x f_t */
+        double fx = -gb * vx[i], fy = -gb * vy[i], fz = -gb * vz[i];
+        double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
+        for (int k = start[i]; k < start[i + 1]; k++) {
+            fx += F[k].f[0];
+            fy += F[k].f[1];
+            fz += F[k].f[2];
+            cx += F[k].c[0];
+            cy += F[k].c[1];
+            cz += F[k].c[2];
+        }
         for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-            fx -= F[q].f[0];
-            fy -= F[q].f[1];
-            fz -= F[q].f[2];
-            cx += F[q].c[0];
-            cy += F[q].c[1];
-            cz += F[q].c[2];
+            const struct dem_contact_force *o = &F[rpair[q]];
+            fx -= o->f[0];
+            fy -= o->f[1];
+            fz -= o->f[2];
+            cx += o->c[0];
+            cy += o->c[1];
+            cz += o->c[2];
         }
         for (int k = wstart[i]; k < wstart[i + 1]; k++) {
             fx += WF[k].f[0];
@@ -394,7 +322,7 @@ static void gather(struct dem_sim *s, const struct kick K)
     const struct dem_pairs *pl = &s->pairs;
     const struct dem_contact_list *WL = &pl->wcur;
     const struct dem_contact_forces *WF = &pl->wf;
-    const double gr = s->cfg.damping.gamma_br;
+    const double gb = s->cfg.damping.gamma_b, gr = s->cfg.damping.gamma_br;
     const int n = P->n;
 #pragma omp parallel
     {
@@ -402,10 +330,10 @@ static void gather(struct dem_sim *s, const struct kick K)
         const int i0 = (int)((long)n * t / nt),
                   i1 = (int)((long)n * (t + 1) / nt);
         if (K.on)
-            gather_range(i0, i1, P, pl, gr,
+            gather_range(i0, i1, P, pl, gb, gr,
                          (struct kick){1, K.h, {K.g[0], K.g[1], K.g[2]}});
         else
-            gather_range(i0, i1, P, pl, gr,
+            gather_range(i0, i1, P, pl, gb, gr,
                          (struct kick){0, 0.0, {0.0, 0.0, 0.0}});
     }
 
@@ -440,7 +368,7 @@ static void measure_contacts(struct dem_sim *s)
         const int i = L->i[k], j = L->j[k];
         const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
                              P->z[i] - P->z[j]};
-        const double *f = F->v[pl->rpos[k]].f;
+        const double *f = F->v[k].f;
         const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
         const double n[3] = {b[0] / d, b[1] / d, b[2] / d};
         const double R = P->r[i] + P->r[j], delta = R - d;

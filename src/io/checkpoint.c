@@ -368,7 +368,7 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     if (io->why)
         return;
     io_i32s(io, pl->rstart, N + 1);
-    io_i32s(io, pl->rpos, npair);
+    io_i32s(io, pl->rpair, npair);
 
     io_tag(io, "WALC");
     io_list(io, &pl->wcur, &pl->wf, N, nwc);
@@ -415,9 +415,9 @@ static const char *check_restored(const struct dem_sim *s,
         for (int k = W->start[i]; k < W->start[i + 1]; k++)
             if (W->i[k] != i || W->j[k] < 0 || W->j[k] >= s->nwall)
                 return "corrupt (wall contact list)";
-        for (int k = L->start[i]; k < L->start[i + 1]; k++)
-            if (pl->rpos[k] < pl->rstart[L->j[k]] ||
-                pl->rpos[k] >= pl->rstart[L->j[k] + 1])
+        for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
+            if (pl->rpair[q] < 0 || pl->rpair[q] >= L->n ||
+                L->j[pl->rpair[q]] != i)
                 return "corrupt (reverse pair rows)";
     }
     for (int w = 0; w < DEM_MAX_WALLS; w++)

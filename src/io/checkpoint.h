@@ -33,7 +33,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 3u
+#define DEM_CKPT_VERSION 4u
 
 /* The run loop's state at a checkpoint, saved as plain data. */
 struct dem_ckpt_run {

@@ -36,7 +36,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     forces_free(&pl->f);
     forces_free(&pl->wf);
     free(pl->rstart);
-    free(pl->rpos);
+    free(pl->rpair);
     free(pl->cell_start);
     free(pl->cell_list);
     free(pl->cell_of);
@@ -376,14 +376,14 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
     return DEM_OK;
 }
 
-/* Slots of the pairs grouped by their j particle (stable in list order). */
+/* The pairs grouped by their j particle (stable in list order). */
 static int build_reverse(struct dem_pairs *pl, int n)
 {
     const struct dem_contact_list *L = &pl->cur;
-    if (L->n > pl->rpos_cap) {
-        if (GROW(pl->rpos, L->cap))
+    if (L->n > pl->rpair_cap) {
+        if (GROW(pl->rpair, L->cap))
             return -1;
-        pl->rpos_cap = L->cap;
+        pl->rpair_cap = L->cap;
     }
     int *rs = pl->rstart;
     memset(rs, 0, (size_t)(n + 1) * sizeof *rs);
@@ -392,7 +392,7 @@ static int build_reverse(struct dem_pairs *pl, int n)
     for (int i = 0; i < n; i++)
         rs[i + 1] += rs[i];
     for (int k = 0; k < L->n; k++)
-        pl->rpos[k] = rs[L->j[k]]++;
+        pl->rpair[rs[L->j[k]]++] = k;
     for (int i = n; i > 0; i--)
         rs[i] = rs[i - 1];
     rs[0] = 0;
@@ -452,10 +452,10 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc)
         list_reserve(&pl->wcur, nwc) || forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return DEM_ENOMEM;
-    if (pl->cur.cap > pl->rpos_cap) {
-        if (GROW(pl->rpos, pl->cur.cap))
+    if (pl->cur.cap > pl->rpair_cap) {
+        if (GROW(pl->rpair, pl->cur.cap))
             return DEM_ENOMEM;
-        pl->rpos_cap = pl->cur.cap;
+        pl->rpair_cap = pl->cur.cap;
     }
     return DEM_OK;
 }

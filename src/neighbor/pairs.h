@@ -14,10 +14,10 @@
  * dem_pairs_build) so that neighbours are close in memory.
  *
  * Each entry also has room for the force of the last pass (the force on
- * i and n x f_t). A pair's force is kept in the order of the particles as
- * j, so that each particle reads the forces of its pairs as j in one
- * stream; with the sums over a particle's pairs as i done in the force loop
- * itself, every sum runs in a fixed order whatever the number of threads.
+ * i and n x f_t), at the same index. A particle sums the forces of its
+ * pairs as i from its row and those of its pairs as j through the reverse
+ * rows (rstart, rpair); every sum runs in a fixed order whatever the
+ * number of threads.
  */
 #ifndef DEM_NEIGHBOR_PAIRS_H
 #define DEM_NEIGHBOR_PAIRS_H
@@ -43,8 +43,8 @@ struct dem_contact_list {
 };
 
 /* Force of one entry in the last force pass. The six numbers of a
- * contact sit together: the sum over a particle's contacts as j reads
- * them through an index, one cache line per contact. */
+ * contact sit together: the sum over a particle's pairs as j reads them
+ * through an index, so one contact costs one cache line (or two). */
 struct dem_contact_force {
     double f[3]; /* N; force on i (on j it is the opposite) */
     double c[3]; /* N; n x f_t: torque on i is -a_i c, on j -a_j c */
@@ -61,13 +61,12 @@ struct dem_pairs {
     struct dem_contact_list old;  /* the previous pairs, for the history */
     struct dem_contact_list wcur; /* particle-wall contacts (j = wall) */
     struct dem_contact_list wold; /* the previous ones */
-    struct dem_contact_forces f;  /* forces of cur, pair k at slot rpos[k]:
-                                     in the order of the particles as j */
+    struct dem_contact_forces f;  /* forces of cur, pair k at k */
     struct dem_contact_forces wf; /* forces of wcur, entry k at k */
-    int *rstart;                  /* n_particles + 1: slots of the pairs where a
-                                     particle is j */
-    int *rpos; /* cur.n: slot of pair k, in [rstart[j], rstart[j+1]) */
-    int rpos_cap;
+    int *rstart; /* n_particles + 1: rows of rpair by j */
+    int *rpair;  /* cur.n: the pairs grouped by their j particle, in list
+                    order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
+    int rpair_cap;
     /* cell grid */
     int nc[3];       /* cells per axis */
     double lo[3];    /* m; lower corner */
@@ -99,7 +98,7 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
 
 /* Allocate room for n particles (arrays of at least cap doubles for the
  * re-ordering), npair pairs and nwc wall contacts, as a build would, so
- * that a checkpoint can fill cur, wcur, f, wf, rstart and rpos directly.
+ * that a checkpoint can fill cur, wcur, f, wf, rstart and rpair directly.
  * The lists keep their counts; a later build works as usual. */
 int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
 
