@@ -3,7 +3,8 @@
 #
 # usage: bench/peers.sh [--dim 2|3] [--n N] [--steps S] [--np P]
 #                       [--codes "dembox lammps-hh lammps-gr liggghts"]
-#                       [--data DIR] [--dembox PATH] [--work DIR]
+#                       [--replicate K] [--data DIR] [--dembox PATH]
+#                       [--work DIR]
 #
 #   --dim, --n      the packing DIR/pack{dim}d_{N}.data (LAMMPS data file,
 #                   atom_style sphere); default 3D N = 3375 (2D N = 1950)
@@ -19,6 +20,11 @@
 #                                damping velocity (absolute damping: the
 #                                exact mapping of dembox's law)
 #                     liggghts   model hooke/stiffness, absolute damping
+#   --replicate K   tile the periodic packing K times along every axis
+#                   (K^3 N particles in 3D, K^2 N in 2D; written to the
+#                   work folder as pack{dim}d_{K^dim N}.data, which every
+#                   code then reads): large packings with the very local
+#                   structure of the small one, for per-particle costs
 #   --data          folder of the packings (default $DEMBOX_BENCH_DATA or
 #                   /work/shared/bench/data)
 #   --dembox        the dembox binary (default build/dembox of this tree)
@@ -37,7 +43,7 @@
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
-DIM=3 N= STEPS=20000 NP=1
+DIM=3 N= STEPS=20000 NP=1 REP=1
 CODES="dembox lammps-hh lammps-gr liggghts"
 DATA=${DEMBOX_BENCH_DATA:-/work/shared/bench/data}
 DEMBOX=$here/../build/dembox
@@ -50,6 +56,7 @@ while [ $# -gt 0 ]; do
     --n) N=${2:?}; shift 2 ;;
     --steps) STEPS=${2:?}; shift 2 ;;
     --np) NP=${2:?}; shift 2 ;;
+    --replicate) REP=${2:?}; shift 2 ;;
     --codes) CODES=${2:?}; shift 2 ;;
     --data) DATA=${2:?}; shift 2 ;;
     --dembox) DEMBOX=${2:?}; shift 2 ;;
@@ -63,12 +70,47 @@ case $DIM in 2|3) ;; *) die "--dim must be 2 or 3" ;; esac
 [[ $N =~ ^[0-9]+$ ]] || die "--n must be a positive integer"
 [[ $STEPS =~ ^[1-9][0-9]*$ ]] || die "--steps must be a positive integer"
 [[ $NP =~ ^[1-9][0-9]*$ ]] || die "--np must be a positive integer"
+[[ $REP =~ ^[1-9][0-9]*$ ]] || die "--replicate must be a positive integer"
 PACK=$DATA/pack${DIM}d_${N}.data
 [ -f "$PACK" ] || die "$PACK: no such packing (prepare it as in /work/shared/bench/README.md)"
 PACK=$(cd "$(dirname "$PACK")" && pwd)/$(basename "$PACK")
 [ -n "$WORK" ] || WORK=$(mktemp -d "${TMPDIR:-/tmp}/dembox-peers.XXXXXX")
 mkdir -p "$WORK"
 WORK=$(cd "$WORK" && pwd)
+
+# Tile the periodic packing REP times per axis: copy (a, b, c) is shifted
+# by a, b, c box lengths and its ids by the copy's number times N. Image
+# flags are dropped (the positions lie in the box).
+if [ "$REP" -gt 1 ]; then
+  N=$(( N * REP ** DIM ))
+  TILED=$WORK/pack${DIM}d_${N}.data
+  awk -v K="$REP" -v dim="$DIM" '
+    function copies(line, sec,   f, nf, a, b, c, m, o) {
+      nf = split(line, f, " ")
+      for (c = 0; c < (dim == 3 ? K : 1); c++)
+        for (b = 0; b < K; b++)
+          for (a = 0; a < K; a++) {
+            m = (c * K + b) * K + a
+            o = (f[1] + m * n0)
+            if (sec == 1)
+              printf "%d %s %s %s %.17g %.17g %.17g 0 0 0\n", o, f[2], f[3], f[4],
+                     f[5] + a * L[1], f[6] + b * L[2], f[7] + c * L[3]
+            else
+              printf "%d %s %s %s %s %s %s\n", o, f[2], f[3], f[4], f[5], f[6], f[7]
+          }
+    }
+    / atoms$/ {n0 = $1; printf "%d atoms\n", n0 * K ^ dim; next}
+    / xlo xhi$/ {L[1] = $2 - $1; printf "%.17g %.17g xlo xhi\n", $1, $1 + K * L[1]; next}
+    / ylo yhi$/ {L[2] = $2 - $1; printf "%.17g %.17g ylo yhi\n", $1, $1 + K * L[2]; next}
+    / zlo zhi$/ {L[3] = $2 - $1; c3 = dim == 3 ? K : 1
+                 printf "%.17g %.17g zlo zhi\n", $1, $1 + c3 * L[3]; next}
+    /^Atoms/ {sec = 1; print; next}
+    /^Velocities/ {sec = 2; print; next}
+    /^[A-Za-z]/ {sec = 0; print; next}
+    sec > 0 && NF >= 7 {copies($0, sec); next}
+    {print}' "$PACK" > "$TILED"
+  PACK=$TILED
+fi
 TAG=${DIM}d_${N}_s${STEPS}_np${NP}
 LOAD0=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")
 

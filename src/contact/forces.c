@@ -79,12 +79,15 @@ static struct pass pass_of(const struct dem_particles *P,
     return q;
 }
 
-/* Tangential force and history update of wall contact k (or, with
- * touch = 0, the end of its history); its force is stored with it. */
-DEM_INLINE void finish_wall_contact(const struct pass *q, int k, int touch,
-                                    struct dem_vec3 n, struct dem_vec3 vij,
-                                    double fn, double fc, double dmax,
-                                    double dt, const struct dem_tangential *T)
+/* Tangential force and history update of contact k, stored with it; with
+ * touch = 0 (its gap is open) the force is zero and the history is
+ * erased instead. dmax is the luding law's history (the linear law has
+ * none to store). */
+DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
+                               int touch, struct dem_vec3 n,
+                               struct dem_vec3 vij, double fn, double fc,
+                               double dmax, double dt,
+                               const struct dem_tangential *T)
 {
     struct dem_vec3 xi = {q->xi_x[k], q->xi_y[k], q->xi_z[k]};
     int st = q->state[k] | DEM_CONTACT_ACTIVE;
@@ -93,7 +96,8 @@ DEM_INLINE void finish_wall_contact(const struct pass *q, int k, int touch,
     q->xi_x[k] = touch ? xi.x : 0.0;
     q->xi_y[k] = touch ? xi.y : 0.0;
     q->xi_z[k] = touch ? xi.z : 0.0;
-    q->dmax[k] = touch ? dmax : 0.0;
+    if (law == DEM_NORMAL_LUDING)
+        q->dmax[k] = touch ? dmax : 0.0;
     q->state[k] = touch ? st : 0;
     struct dem_contact_force *o = &q->F[k];
     o->f[0] = touch ? fn * n.x + ft.x : 0.0;
@@ -134,23 +138,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
         const double fn =
             normal_force(law, cp, cp->kc, R - d, ddot, ai * aj / R, &dmax, &fc);
-        struct dem_vec3 xi = {q.xi_x[k], q.xi_y[k], q.xi_z[k]};
-        int st = q.state[k] | DEM_CONTACT_ACTIVE;
-        const struct dem_vec3 ft =
-            dem_tangential_force(n, vij, fc, dt, &T, &xi, &st);
-        q.xi_x[k] = touch ? xi.x : 0.0;
-        q.xi_y[k] = touch ? xi.y : 0.0;
-        q.xi_z[k] = touch ? xi.z : 0.0;
-        if (law == DEM_NORMAL_LUDING)
-            q.dmax[k] = touch ? dmax : 0.0;
-        q.state[k] = touch ? st : 0;
-        struct dem_contact_force *o = &q.F[k];
-        o->f[0] = touch ? fn * n.x + ft.x : 0.0;
-        o->f[1] = touch ? fn * n.y + ft.y : 0.0;
-        o->f[2] = touch ? fn * n.z + ft.z : 0.0;
-        o->c[0] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
-        o->c[1] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
-        o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
+        finish_contact(law, &q, k, touch, n, vij, fn, fc, dmax, dt, &T);
     }
 }
 
@@ -181,13 +169,14 @@ static void pair_pass_luding(struct dem_sim *s)
     PAIR_PASS(DEM_NORMAL_LUDING);
 }
 
-/* Wall contacts k0 <= k < k1. */
+/* Wall contacts k0 <= k < k1, in SIMD lanes as the pairs. */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
                            const struct dem_wall *walls)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->wall_mu,
                                      cp->wall_mu};
+#pragma omp simd
     for (int k = k0; k < k1; k++) {
         const int i = q.ci[k];
         const struct dem_wall *W = &walls[q.cj[k]];
@@ -206,10 +195,10 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
             q.vy[i] + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
             q.vz[i] + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
         const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
-        double fc, dmax = q.dmax[k];
+        double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
         const double fn =
             normal_force(law, cp, cp->wall_kc, delta, ddot, ai, &dmax, &fc);
-        finish_wall_contact(&q, k, touch, n, vij, fn, fc, dmax, dt, &T);
+        finish_contact(law, &q, k, touch, n, vij, fn, fc, dmax, dt, &T);
     }
 }
 
