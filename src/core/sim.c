@@ -160,8 +160,10 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
     return DEM_OK;
 }
 
-/* 1 when some particle or wall moved more than half the skin since the
- * last build: until then no contact can form that is not listed. */
+/* The list is rebuilt when some particle or wall has moved more than half
+ * the skin since the last build: until then no contact can form that is
+ * not listed. */
+
 /* Particles i0 <= i < i1: half kick v += h (f/m + g), w += h t/I, then
  * drift r += dt v; returns whether one has moved more than half the skin
  * (squared: lim) since the last list build. */
