@@ -334,50 +334,6 @@ static void write_text(const char *dir, const char *name, const char *text)
     assert_int_equal(fclose(f), 0);
 }
 
-static void table_reads_columns_by_name(void **state)
-{
-    (void)state;
-    write_text(tmpdir, "t.csv", "t,a,b\n0,1,2\n0.5,3e-3,-4\n\n1,5,6\r\n");
-    char path[256];
-    snprintf(path, sizeof path, "%s/t.csv", tmpdir);
-    struct dem_table tb;
-    struct dem_error err = {0, ""};
-    assert_int_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
-    assert_int_equal(tb.nrow, 3);
-    assert_int_equal(tb.ncol, 3);
-    const double *b = dem_table_column(&tb, "b", path, &err);
-    assert_non_null(b);
-    assert_close(b[1], -4.0, 0.0);
-    assert_close(b[2], 6.0, 0.0);
-    assert_null(dem_table_column(&tb, "sigma_yy", path, &err));
-    assert_non_null(strstr(err.msg, "no column 'sigma_yy'"));
-    dem_table_free(&tb);
-
-    /* only the wanted columns are kept; a junk field elsewhere is skipped */
-    write_text(tmpdir, "w.csv", "t,a,b\n0,junk,2\n1,junk,3\n");
-    snprintf(path, sizeof path, "%s/w.csv", tmpdir);
-    const char *const want[] = {"b", "t", "zz"};
-    assert_int_equal(dem_table_read(&tb, path, want, 3, &err), 0);
-    assert_int_equal(tb.ncol, 2);
-    assert_int_equal(dem_table_find(&tb, "a"), -1);
-    assert_close(dem_table_column(&tb, "b", path, &err)[1], 3.0, 0.0);
-    dem_table_free(&tb);
-
-    write_text(tmpdir, "bad.csv", "t,a,b\n0,1,2\n0.5,x3,4\n");
-    snprintf(path, sizeof path, "%s/bad.csv", tmpdir);
-    assert_int_not_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
-    assert_non_null(strstr(err.msg, "bad.csv:3: column 2 (a)"));
-    write_text(tmpdir, "short.csv", "t,a,b\n0,1\n");
-    snprintf(path, sizeof path, "%s/short.csv", tmpdir);
-    assert_int_not_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
-    assert_non_null(strstr(err.msg, "short.csv:2:"));
-    assert_non_null(strstr(err.msg, "missing: b"));
-    write_text(tmpdir, "long.csv", "t,a\n0,1,2\n");
-    snprintf(path, sizeof path, "%s/long.csv", tmpdir);
-    assert_int_not_equal(dem_table_read(&tb, path, NULL, 0, &err), 0);
-    assert_non_null(strstr(err.msg, "long.csv:2: more values"));
-}
-
 static void json_writer_escapes_and_nulls(void **state)
 {
     (void)state;
@@ -705,7 +661,6 @@ int main(void)
         cmocka_unit_test(ratchet_increments_recovered),
         cmocka_unit_test(shakedown_recognised),
         cmocka_unit_test(loop_area_of_an_ellipse),
-        cmocka_unit_test(table_reads_columns_by_name),
         cmocka_unit_test(json_writer_escapes_and_nulls),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),

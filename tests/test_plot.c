@@ -7,7 +7,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "io/csvtable.h"
 #include "io/plot.h"
 #include "measure/measure.h"
 #include "testutil.h"
@@ -352,36 +351,6 @@ static void forces_file_of_wrong_length_is_an_error(void **state)
     remove_dir(dir);
 }
 
-/* Columns are found by name whatever their order; comments and blank
- * lines are skipped; an optional column may be absent. */
-static void csv_columns_are_read_by_name(void **state)
-{
-    (void)state;
-    char *dir = make_dir();
-    char p[1024];
-    path_of(p, sizeof p, dir, "t.csv");
-    FILE *f = fopen(p, "w");
-    fprintf(f, "# comment\n\nb , a,c\n1,2,3\n\n# more\n4, 5 ,6\n");
-    fclose(f);
-    const struct dem__csv_want want[3] = {{"a", 1}, {"c", 1}, {"zz", 0}};
-    struct dem__csv_table t;
-    struct dem_error err = {0, ""};
-    assert_int_equal(dem__csv_table_read(&t, p, want, 3, &err), 0);
-    assert_int_equal(t.nrow, 2);
-    assert_close(t.col[0][0], 2.0, 0.0);
-    assert_close(t.col[0][1], 5.0, 0.0);
-    assert_close(t.col[1][1], 6.0, 0.0);
-    assert_null(t.col[2]);
-    dem__csv_table_free(&t);
-
-    f = fopen(p, "w");
-    fprintf(f, "a,c\n1,x\n");
-    fclose(f);
-    assert_int_not_equal(dem__csv_table_read(&t, p, want, 3, &err), 0);
-    assert_non_null(strstr(err.msg, ":2: column 'c'"));
-    remove_dir(dir);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -393,7 +362,6 @@ int main(void)
         cmocka_unit_test(missing_column_names_the_column),
         cmocka_unit_test(header_only_timeseries_is_a_clear_error),
         cmocka_unit_test(forces_file_of_wrong_length_is_an_error),
-        cmocka_unit_test(csv_columns_are_read_by_name),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

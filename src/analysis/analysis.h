@@ -20,32 +20,6 @@
 
 #define DEM_REASON_MAX 200
 
-/* ------------------------------------------------------- timeseries.c */
-
-/* A CSV table of numbers read by column names. Each kept column is its
- * own array, so a long run costs only the columns the analysis uses. */
-struct dem_table {
-    int ncol;     /* number of kept columns */
-    char **names; /* their names (owned) */
-    long nrow;    /* number of data rows */
-    double **col; /* col[k][r]: column k, row r (owned) */
-};
-
-/* Read a CSV file with one header line of names and rows of numbers,
- * keeping the columns listed in want[0..nwant-1] that the header has
- * (want = NULL: every column). Every row must have as many fields as the
- * header; the kept ones must be numbers. Errors name the file, the line
- * and the column. */
-int dem_table_read(struct dem_table *t, const char *path,
-                   const char *const *want, int nwant, struct dem_error *err);
-void dem_table_free(struct dem_table *t);
-/* Index of the column called name, or -1. */
-int dem_table_find(const struct dem_table *t, const char *name);
-/* The column called name (nrow values); NULL and an error naming path
- * and the column when the table lacks it. */
-const double *dem_table_column(const struct dem_table *t, const char *name,
-                               const char *path, struct dem_error *err);
-
 /* ---------------------------------------------------------------- fit.c */
 
 /* Least-squares line y = a + b x. */

@@ -14,6 +14,7 @@
 
 #include "analysis/analysis.h"
 #include "io/config.h"
+#include "io/csvtable.h"
 #include "io/fsutil.h"
 #include "io/json.h"
 #include "io/outfile.h"
@@ -112,28 +113,43 @@ static int check_run_folder(const char *outdir, char *cfg_path, char *ts_path,
         has_ts ? "" : "timeseries.csv");
 }
 
-static const char *const eps[3] = {"eps_xx", "eps_yy", "eps_zz"};
-static const char *const sig[3] = {"sigma_xx", "sigma_yy", "sigma_zz"};
-static const char *const wanted[] = {
-    "t",      "stage",  "eps_v",    "void_ratio", "inertial_number", "eps_xx",
-    "eps_yy", "eps_zz", "sigma_xx", "sigma_yy",   "sigma_zz"};
+/* Positions in `wanted` of the columns read from timeseries.csv. */
+enum {
+    COL_T,
+    COL_STAGE,
+    COL_EV,
+    COL_E,
+    COL_I,
+    COL_EPS,
+    COL_SIG = COL_EPS + 3,
+    NCOL = COL_SIG + 3
+};
 
-static int get_columns(const struct dem_table *tb, const char *path,
-                       struct columns *c, struct dem_error *err)
+static const struct dem__csv_want wanted[NCOL] = {
+    [COL_T] = {"t", 1},
+    [COL_STAGE] = {"stage", 1},
+    [COL_EV] = {"eps_v", 1},
+    [COL_E] = {"void_ratio", 1},
+    [COL_I] = {"inertial_number", 0},
+    [COL_EPS] = {"eps_xx", 1},
+    [COL_EPS + 1] = {"eps_yy", 1},
+    [COL_EPS + 2] = {"eps_zz", 1},
+    [COL_SIG] = {"sigma_xx", 1},
+    [COL_SIG + 1] = {"sigma_yy", 1},
+    [COL_SIG + 2] = {"sigma_zz", 1},
+};
+
+static void get_columns(const struct dem__csv_table *tb, struct columns *c)
 {
-    if (!(c->t = dem_table_column(tb, "t", path, err)) ||
-        !(c->stage = dem_table_column(tb, "stage", path, err)) ||
-        !(c->eps_v = dem_table_column(tb, "eps_v", path, err)) ||
-        !(c->void_ratio = dem_table_column(tb, "void_ratio", path, err)))
-        return err->code;
-    for (int a = 0; a < 3; a++)
-        if (!(c->eps[a] = dem_table_column(tb, eps[a], path, err)) ||
-            !(c->sigma[a] = dem_table_column(tb, sig[a], path, err)))
-            return err->code;
-    c->inertial = dem_table_find(tb, "inertial_number") >= 0
-                      ? dem_table_column(tb, "inertial_number", path, err)
-                      : NULL;
-    return DEM_OK;
+    c->t = tb->col[COL_T];
+    c->stage = tb->col[COL_STAGE];
+    c->eps_v = tb->col[COL_EV];
+    c->void_ratio = tb->col[COL_E];
+    c->inertial = tb->col[COL_I];
+    for (int a = 0; a < 3; a++) {
+        c->eps[a] = tb->col[COL_EPS + a];
+        c->sigma[a] = tb->col[COL_SIG + a];
+    }
 }
 
 static void curves_free(struct curves *cv)
@@ -619,29 +635,29 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     if (!cfg)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
     rc = dem_config_load_file(cfg, cfg_path, NULL, 0, err);
-    struct dem_table tb = {0, NULL, 0, NULL};
+    struct dem__csv_table tb = {0};
     struct columns c = {0};
     if (!rc)
-        rc = dem_table_read(&tb, ts_path, wanted,
-                            (int)(sizeof wanted / sizeof *wanted), err);
+        rc = dem__csv_table_read(&tb, ts_path, wanted, NCOL, err);
     if (!rc)
-        rc = get_columns(&tb, ts_path, &c, err);
+        get_columns(&tb, &c);
+    const long nrow = (long)tb.nrow;
     struct result R;
     result_init(&R, rc ? 0 : cfg->dim);
     if (!rc) {
         R.cyc_stage = last_stage_of(cfg, DEM_STAGE_CYCLIC);
-        rc = analyze_loading(cfg, &c, tb.nrow, &R);
+        rc = analyze_loading(cfg, &c, nrow, &R);
     }
     if (!rc)
-        rc = analyze_void_fit(cfg, &c, tb.nrow, &R);
+        rc = analyze_void_fit(cfg, &c, nrow, &R);
     if (!rc && R.cyc_stage >= 0)
-        rc = analyze_cyclic(cfg, &c, tb.nrow, &R);
+        rc = analyze_cyclic(cfg, &c, nrow, &R);
     if (rc == DEM_ENOMEM)
         dem_error_set(err, rc, "%s: out of memory", outdir);
     if (!rc)
         rc = write_file(outdir, &R, err);
     free(R.cycles);
-    dem_table_free(&tb);
+    dem__csv_table_free(&tb);
     free(cfg);
     return rc;
 }

@@ -94,6 +94,11 @@ static int map_header(struct dem__csv_table *t, char **field, int nf, int *slot,
 {
     for (int i = 0; i < nf; i++) {
         slot[i] = -1;
+        /* a stray comma would otherwise shift every later column */
+        if (!*field[i])
+            return dem_error_set(err, DEM_EIO,
+                                 "%s:%ld: column %d has an empty name", r->path,
+                                 r->lineno, i + 1);
         for (int k = 0; k < nwant; k++)
             if (!strcmp(field[i], want[k].name) && !t->col[k]) {
                 t->col[k] = malloc(sizeof(double));
@@ -107,7 +112,7 @@ static int map_header(struct dem__csv_table *t, char **field, int nf, int *slot,
     for (int k = 0; k < nwant; k++)
         if (want[k].required && !t->col[k])
             return dem_error_set(err, DEM_EIO,
-                                 "%s:%ld: missing column '%s' in the header",
+                                 "%s:%ld: no column '%s' in the header",
                                  r->path, r->lineno, want[k].name);
     return DEM_OK;
 }
@@ -120,23 +125,33 @@ static int read_rows(struct dem__csv_table *t, struct reader *r, char **field,
     char *s;
     while ((s = next_line(r)) != NULL) {
         int n = split(s, field, nf);
-        if (n != nf)
-            return dem_error_set(
-                err, DEM_EIO, "%s:%ld: %s fields, the header has %d", r->path,
-                r->lineno, n > nf ? "more" : "fewer", nf);
+        if (n > nf)
+            return dem_error_set(err, DEM_EIO,
+                                 "%s:%ld: more values than the %d columns of "
+                                 "the header",
+                                 r->path, r->lineno, nf);
+        if (n < nf)
+            return dem_error_set(err, DEM_EIO,
+                                 "%s:%ld: %d values, the header has %d "
+                                 "columns (first missing: %s)",
+                                 r->path, r->lineno, n, nf, names[n]);
         if (t->nrow == cap && grow(t, &cap))
             return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", r->path);
         for (int i = 0; i < nf; i++) {
             if (slot[i] < 0)
                 continue;
+            /* nan and inf are read as such (the callers test isfinite
+             * where it matters); ERANGE on underflow gives a harmless
+             * denormal or 0. Only a missing number or trailing junk is an
+             * error. */
             char *end;
-            errno = 0;
             double v = strtod(field[i], &end);
             if (end == field[i] || *end != '\0')
                 return dem_error_set(err, DEM_EIO,
-                                     "%s:%ld: column '%s': '%s' is not a "
-                                     "number",
-                                     r->path, r->lineno, names[i], field[i]);
+                                     "%s:%ld: column %d (%s): not a number: "
+                                     "'%s'",
+                                     r->path, r->lineno, i + 1, names[i],
+                                     field[i]);
             t->col[slot[i]][t->nrow] = v;
         }
         t->nrow++;

@@ -3,8 +3,11 @@
  * The outputs of a run (timeseries.csv, particles_final.csv,
  * forces_final.csv) are read back by their header names, never by column
  * position, so that columns may be added or reordered without breaking a
- * reader. Lines starting with '#' and blank lines are skipped anywhere; the
- * first other line is the header. Internal to the io module.
+ * reader and an old run with fewer columns still reads. Only the wanted
+ * columns are parsed and kept: a cyclic run of 10^6 rows costs 8 MB per
+ * column instead of the whole table. Lines starting with '#' and blank
+ * lines are skipped anywhere; the first other line is the header. Fields
+ * are trimmed of blanks. Internal to the library (plots and analysis).
  */
 #ifndef DEM_IO_CSVTABLE_H
 #define DEM_IO_CSVTABLE_H
@@ -26,11 +29,13 @@ struct dem__csv_table {
     double **col; /* col[k][row]; NULL for an optional column not present */
 };
 
-/* Read path keeping only the columns in want[0..nwant). A missing file,
- * a missing required column, a row with the wrong number of fields or a
- * field that is not a number give an error whose message starts with
- * "PATH:" (and the line for row errors). A file with a header and no rows
- * is not an error here (nrow = 0); callers decide. */
+/* Read path keeping only the columns in want[0..nwant); the first of
+ * equal header names is used. A missing file, an empty header name, a
+ * missing required column ("no column 'NAME'"), a row with the wrong
+ * number of fields or a wanted field that is not a number give an error
+ * whose message starts with "PATH:", then the line and, for a field, the
+ * column's position and name. Unwanted fields are not parsed. A file with
+ * a header and no rows is not an error here (nrow = 0); callers decide. */
 int dem__csv_table_read(struct dem__csv_table *t, const char *path,
                         const struct dem__csv_want *want, int nwant,
                         struct dem_error *err);
