@@ -108,37 +108,68 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
 }
 
-/* Forces and history updates of pairs k0 <= k < k1. One loop without
- * branches, so that the compiler runs it in SIMD lanes: every pair
- * computes the closed-contact force, and a pair whose gap is open gets a
- * zero force and loses its history instead. */
+/* Contact k is open: no force, no history. */
+DEM_INLINE void open_contact(const struct pass *q, int k)
+{
+    q->xi_x[k] = q->xi_y[k] = q->xi_z[k] = 0.0;
+    q->dmax[k] = 0.0;
+    q->state[k] = 0;
+    struct dem_contact_force *o = &q->F[k];
+    o->f[0] = o->f[1] = o->f[2] = 0.0;
+    o->c[0] = o->c[1] = o->c[2] = 0.0;
+}
+
+/* Force and history update of pair k. With scalar = 0 (SIMD lanes) there
+ * is no branch: the pair computes the closed-contact force, and if its
+ * gap is open it gets a zero force and loses its history instead; scalar
+ * code (scalar = 1) skips an open pair at once. */
+DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
+                         int k, const struct dem_contact_params *cp, double dt,
+                         const struct dem_tangential *T)
+{
+    const struct pass q = *qp;
+    const int i = q.ci[k], j = q.cj[k];
+    const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
+                 dz = q.z[i] - q.z[j];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    const double ai = q.r[i], aj = q.r[j], R = ai + aj;
+    const int touch = d2 < R * R;
+    if (scalar && !touch) {
+        open_contact(&q, k);
+        return;
+    }
+    const double d = sqrt(d2);
+    const double id = 1.0 / d;
+    const struct dem_vec3 n = {dx * id, dy * id, dz * id};
+    /* a_i n x w_i + a_j n x w_j */
+    const double cwx = ai * q.wx[i] + aj * q.wx[j];
+    const double cwy = ai * q.wy[i] + aj * q.wy[j];
+    const double cwz = ai * q.wz[i] + aj * q.wz[j];
+    const struct dem_vec3 vij = {q.vx[i] - q.vx[j] + n.y * cwz - n.z * cwy,
+                                 q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
+                                 q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
+    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+    double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
+    const double fn =
+        normal_force(law, cp, cp->kc, R - d, ddot, ai * aj / R, &dmax, &fc);
+    finish_contact(law, &q, k, touch, n, vij, fn, fc, dmax, dt, T);
+}
+
+/* Forces and history updates of pairs k0 <= k < k1. The linear law runs
+ * in SIMD lanes. The luding law runs as scalar code: its branches
+ * (loading, un-/re-loading, adhesive re-mapping with a square root) all
+ * computed in every lane made it slower than scalar code with branches. */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    if (law == DEM_NORMAL_LUDING) {
+        for (int k = k0; k < k1; k++)
+            pair_one(law, 1, &q, k, cp, dt, &T);
+    } else {
 #pragma omp simd
-    for (int k = k0; k < k1; k++) {
-        const int i = q.ci[k], j = q.cj[k];
-        const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
-                     dz = q.z[i] - q.z[j];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        const double ai = q.r[i], aj = q.r[j], R = ai + aj;
-        const int touch = d2 < R * R;
-        const double d = sqrt(d2);
-        const double id = 1.0 / d;
-        const struct dem_vec3 n = {dx * id, dy * id, dz * id};
-        /* a_i n x w_i + a_j n x w_j */
-        const double cwx = ai * q.wx[i] + aj * q.wx[j];
-        const double cwy = ai * q.wy[i] + aj * q.wy[j];
-        const double cwz = ai * q.wz[i] + aj * q.wz[j];
-        const struct dem_vec3 vij = {q.vx[i] - q.vx[j] + n.y * cwz - n.z * cwy,
-                                     q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
-                                     q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
-        const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
-        double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
-        const double fn =
-            normal_force(law, cp, cp->kc, R - d, ddot, ai * aj / R, &dmax, &fc);
-        finish_contact(law, &q, k, touch, n, vij, fn, fc, dmax, dt, &T);
+        for (int k = k0; k < k1; k++)
+            pair_one(law, 0, &q, k, cp, dt, &T);
     }
 }
 

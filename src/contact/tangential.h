@@ -50,8 +50,8 @@ struct dem_vec3 {
  *   dt    time step, s
  *   xi    in: stored spring xi'; out: the spring for the next step, m
  *   state in/out: DEM_CONTACT_SLIDING bit
- * Both cases are computed and one is selected, so that a loop over
- * contacts vectorises; nothing is divided by zero in either case.
+ * In a loop run in SIMD lanes the compiler computes the sliding case
+ * under a mask; scalar code branches past it (most contacts stick).
  */
 static inline struct dem_vec3
 dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
@@ -72,18 +72,25 @@ dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
     const double f0sq = f0x * f0x + f0y * f0y + f0z * f0z;
     const int sliding = (*state & DEM_CONTACT_SLIDING) != 0;
     const double limit = (sliding ? T->mu_d : T->mu_s) * fc;
-    /* static friction (a sliding contact sticks again here) or sliding at
-     * mu_d f_C along the test force; f0 > limit >= 0 when sliding */
-    const int stick = f0sq <= limit * limit;
-    const double scale = stick ? 1.0 : T->mu_d * fc / sqrt(stick ? 1.0 : f0sq);
-    const struct dem_vec3 ft = {f0x * scale, f0y * scale, f0z * scale};
-    /* sliding: the spring that gives the sliding force */
-    const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
-    xi->x = stick ? sx + vtx * dt : -ik * (ft.x + T->gamma_t * vtx);
-    xi->y = stick ? sy + vty * dt : -ik * (ft.y + T->gamma_t * vty);
-    xi->z = stick ? sz + vtz * dt : -ik * (ft.z + T->gamma_t * vtz);
-    *state =
-        stick ? *state & ~DEM_CONTACT_SLIDING : *state | DEM_CONTACT_SLIDING;
+    /* static friction; a sliding contact sticks again here */
+    struct dem_vec3 ft = {f0x, f0y, f0z};
+    xi->x = sx + vtx * dt;
+    xi->y = sy + vty * dt;
+    xi->z = sz + vtz * dt;
+    *state &= ~DEM_CONTACT_SLIDING;
+    if (f0sq > limit * limit) {
+        /* sliding at mu_d f_C along the test force (f0 > limit >= 0), with
+         * the spring that gives this force */
+        const double scale = T->mu_d * fc / sqrt(f0sq);
+        const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
+        ft.x = f0x * scale;
+        ft.y = f0y * scale;
+        ft.z = f0z * scale;
+        xi->x = -ik * (ft.x + T->gamma_t * vtx);
+        xi->y = -ik * (ft.y + T->gamma_t * vty);
+        xi->z = -ik * (ft.z + T->gamma_t * vtz);
+        *state |= DEM_CONTACT_SLIDING;
+    }
     return ft;
 }
 
