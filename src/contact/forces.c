@@ -200,36 +200,51 @@ static void pair_pass_luding(struct dem_sim *s)
     PAIR_PASS(DEM_NORMAL_LUDING);
 }
 
-/* Wall contacts k0 <= k < k1, in SIMD lanes as the pairs. */
+/* Force and history update of wall contact k (no branch, as pair_one). */
+DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
+                         const struct dem_contact_params *cp, double dt,
+                         const struct dem_wall *walls,
+                         const struct dem_tangential *T)
+{
+    const struct pass q = *qp;
+    const int i = q.ci[k];
+    const struct dem_wall *W = &walls[q.cj[k]];
+    const int a = W->axis;
+    const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
+    const double pa = a == 0 ? q.x[i] : a == 1 ? q.y[i] : q.z[i];
+    const double ai = q.r[i];
+    const double delta = ai - sgn * (pa - W->pos);
+    const int touch = delta > 0.0;
+    const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
+                               a == 2 ? sgn : 0.0};
+    const double cwx = ai * q.wx[i], cwy = ai * q.wy[i], cwz = ai * q.wz[i];
+    /* the wall's surface moves along its normal at W->vel */
+    const struct dem_vec3 vij = {
+        q.vx[i] + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
+        q.vy[i] + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
+        q.vz[i] + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
+    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+    double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
+    const double fn =
+        normal_force(law, cp, cp->wall_kc, delta, ddot, ai, &dmax, &fc);
+    finish_contact(law, qp, k, touch, n, vij, fn, fc, dmax, dt, T);
+}
+
+/* Wall contacts k0 <= k < k1: in SIMD lanes, or scalar for the luding
+ * law (see pair_range). */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
                            const struct dem_wall *walls)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->wall_mu,
                                      cp->wall_mu};
+    if (law == DEM_NORMAL_LUDING) {
+        for (int k = k0; k < k1; k++)
+            wall_one(law, &q, k, cp, dt, walls, &T);
+    } else {
 #pragma omp simd
-    for (int k = k0; k < k1; k++) {
-        const int i = q.ci[k];
-        const struct dem_wall *W = &walls[q.cj[k]];
-        const int a = W->axis;
-        const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
-        const double pa = a == 0 ? q.x[i] : a == 1 ? q.y[i] : q.z[i];
-        const double ai = q.r[i];
-        const double delta = ai - sgn * (pa - W->pos);
-        const int touch = delta > 0.0;
-        const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
-                                   a == 2 ? sgn : 0.0};
-        const double cwx = ai * q.wx[i], cwy = ai * q.wy[i], cwz = ai * q.wz[i];
-        /* the wall's surface moves along its normal at W->vel */
-        const struct dem_vec3 vij = {
-            q.vx[i] + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
-            q.vy[i] + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
-            q.vz[i] + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
-        const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
-        double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
-        const double fn =
-            normal_force(law, cp, cp->wall_kc, delta, ddot, ai, &dmax, &fc);
-        finish_contact(law, &q, k, touch, n, vij, fn, fc, dmax, dt, &T);
+        for (int k = k0; k < k1; k++)
+            wall_one(law, &q, k, cp, dt, walls, &T);
     }
 }
 
