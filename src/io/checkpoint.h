@@ -16,8 +16,7 @@
  *     SIM   time, step, time step, skin, builds, contact law in force,
  *           RNG state, last measured sums, walls
  *     PART  every particle array (DEM_PARTICLE_*_ARRAYS)
- *     PAIR  the pair list with its history, row starts, stored forces and
- *           the reverse rows
+ *     PAIR  the pair list with its history, row starts and stored forces
  *     WALC  the particle-wall list with its history and stored forces
  *     NBR   wall positions at the last neighbour-list build
  *     END
@@ -33,7 +32,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 4u
+#define DEM_CKPT_VERSION 5u
 
 /* The run loop's state at a checkpoint, saved as plain data. */
 struct dem_ckpt_run {
