@@ -181,6 +181,7 @@ static int sim_from_data(struct dem_sim *s, const struct dem_config *cfg,
     int rc = dem_sim_create_empty(s, cfg, d->n, lo, hi, err);
     if (rc)
         return rc;
+    s->reorder = 1; /* as dem_sim_create: in cell order at every build */
     for (int k = 0; k < d->n; k++) {
         int i = dem_particles_add(&s->p, d->x[k], d->y[k], d->z[k],
                                   0.5 * d->diameter[k], d->density[k],
