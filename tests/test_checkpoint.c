@@ -366,7 +366,8 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     assert_same_list(&a.pairs.cur, &a.pairs.f, &b.pairs.cur, &b.pairs.f, a.p.n);
     assert_same_list(&a.pairs.wcur, &a.pairs.wf, &b.pairs.wcur, &b.pairs.wf,
                      a.p.n);
-    SAME_ARRAY(a.pairs.reach, b.pairs.reach, a.p.n + 1);
+    SAME_ARRAY(a.pairs.rstart, b.pairs.rstart, a.p.n + 1);
+    SAME_ARRAY(a.pairs.rpair, b.pairs.rpair, a.pairs.cur.n);
     SAME_BITS(a.pairs.wall_pos0, b.pairs.wall_pos0);
 
     /* the restored state evolves exactly as the original */

@@ -274,12 +274,9 @@ static double lap(const struct dem_sim *s)
 int dem_sim_step(struct dem_sim *s, struct dem_error *err)
 {
     const double h = 0.5 * s->dt;
-    const int chain = s->chain;
-    s->chain = 0;
     struct dem_timers *T = &s->timers;
     double t0 = lap(s);
-    const int moved = s->drifted ? s->moved : kick_drift(s, h);
-    s->drifted = 0;
+    const int moved = kick_drift(s, h);
     double t1 = lap(s);
     walls_kick(s, h);
     walls_drift(s, s->t + s->dt);
@@ -292,8 +289,7 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
             return rc;
     }
     double t3 = lap(s);
-    s->moved = dem_sim_forces_kick(s, h, chain);
-    s->drifted = chain;
+    dem_sim_forces_kick(s, h);
     double t4 = lap(s);
     walls_kick(s, h);
     double t5 = lap(s);

@@ -70,18 +70,11 @@ struct dem_sim {
     int nwall;                           /* 2 * dim */
     struct dem_wall wall[DEM_MAX_WALLS]; /* index 2*axis + side */
 
-    double skin;    /* m; Verlet skin */
-    long nbuild;    /* neighbour-list builds so far */
-    int reorder;    /* 1: sort particles in cell order at each
-                       rebuild (indices change; id does not) */
-    int measure;    /* 1: the next force pass fills sums */
-    int chain;      /* 1: the next step is followed at once by another one
-                       (see dem_sim_step) */
-    int drifted;    /* 1: the last step was chained: the next one's first
-                       half kick and drift are done */
-    int moved;      /* for drifted: whether the drift calls for a rebuild */
-    int sums_clear; /* 1: the particles' force and torque arrays hold
-                       zeros, ready for the next pass to add into */
+    double skin; /* m; Verlet skin */
+    long nbuild; /* neighbour-list builds so far */
+    int reorder; /* 1: sort particles in cell order at each
+                    rebuild (indices change; id does not) */
+    int measure; /* 1: the next force pass fills sums */
     struct dem_contact_sums sums;
     int timing;               /* 1: accumulate timers */
     struct dem_timers timers; /* s; time per phase */
@@ -104,13 +97,7 @@ int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
 int dem_sim_ready(struct dem_sim *s, struct dem_error *err);
 
 /* One time step (velocity Verlet): half kick, drift, walls, neighbour
- * check, forces, half kick. With s->chain set (it is cleared by the step)
- * the caller promises that the next call is dem_sim_step again, with
- * nothing read or changed in between: the force pass then also does the
- * next step's half kick and drift, so the particles are not visited
- * twice. Until that next step the particles are half a step ahead
- * (positions at t + dt, velocities at t + dt/2 + dt) and their force
- * arrays are cleared; results are the same bit for bit as unchained. */
+ * check, forces, half kick. */
 int dem_sim_step(struct dem_sim *s, struct dem_error *err);
 
 /* Rebuild the neighbour list now (carrying contact history). */
@@ -123,11 +110,8 @@ void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d);
  * (fills s->sums when s->measure is set). */
 void dem_sim_forces(struct dem_sim *s);
 /* The same, then the closing half kick of a step in the same pass over
- * the particles: v += h (f/m + g), w += h t/I. With chain, also the next
- * step's half kick and drift (see dem_sim_step); returns then whether
- * some particle has moved more than half the skin since the last list
- * build (else 0). */
-int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
+ * the particles: v += h (f/m + g), w += h t/I. */
+void dem_sim_forces_kick(struct dem_sim *s, double h);
 
 /* Box edge lengths and volume (area in 2D) from the wall positions. */
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume);

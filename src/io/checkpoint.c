@@ -218,8 +218,8 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
 }
 
 /* Bytes per particle, pair and wall contact in the file. */
-#define BYTES_PER_PARTICLE (23 * 8 + 2 * 4 + 2 * 4)
-#define BYTES_PER_PAIR (2 * 4 + 4 * 8 + 1 + 6 * 8)
+#define BYTES_PER_PARTICLE (23 * 8 + 2 * 4 + 3 * 4)
+#define BYTES_PER_PAIR (2 * 4 + 4 * 8 + 1 + 6 * 8 + 4)
 #define BYTES_PER_WALL_CONTACT (2 * 4 + 4 * 8 + 1 + 6 * 8)
 
 /* Text read from a file, made fit for a one-line message: every byte that
@@ -367,6 +367,8 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_list(io, &pl->cur, &pl->f, N, npair);
     if (io->why)
         return;
+    io_i32s(io, pl->rstart, N + 1);
+    io_i32s(io, pl->rpair, npair);
 
     io_tag(io, "WALC");
     io_list(io, &pl->wcur, &pl->wf, N, nwc);
@@ -403,7 +405,8 @@ static const char *check_restored(const struct dem_sim *s,
         if (p->id[i] < 0 || p->id[i] >= N)
             return "corrupt (particle ids)";
     const struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
-    if (!rows_ok(L->start, N, L->n) || !rows_ok(W->start, N, W->n))
+    if (!rows_ok(L->start, N, L->n) || !rows_ok(W->start, N, W->n) ||
+        !rows_ok(pl->rstart, N, L->n))
         return "corrupt (contact rows)";
     for (int i = 0; i < N; i++) {
         for (int k = L->start[i]; k < L->start[i + 1]; k++)
@@ -412,6 +415,10 @@ static const char *check_restored(const struct dem_sim *s,
         for (int k = W->start[i]; k < W->start[i + 1]; k++)
             if (W->i[k] != i || W->j[k] < 0 || W->j[k] >= s->nwall)
                 return "corrupt (wall contact list)";
+        for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
+            if (pl->rpair[q] < 0 || pl->rpair[q] >= L->n ||
+                L->j[pl->rpair[q]] != i)
+                return "corrupt (reverse pair rows)";
     }
     for (int w = 0; w < DEM_MAX_WALLS; w++)
         if (s->wall[w].axis != w / 2 || s->wall[w].side != w % 2)
@@ -628,8 +635,6 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
             c.time_step_auto = s->cfg.time_step_auto;
             s->cfg = c;
             io.why = check_restored(s, run);
-            if (!io.why)
-                dem_pairs_index(&s->pairs, s->p.n);
         }
     }
     if (io.why && !rc)

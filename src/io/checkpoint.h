@@ -16,7 +16,8 @@
  *     SIM   time, step, time step, skin, builds, contact law in force,
  *           RNG state, last measured sums, walls
  *     PART  every particle array (DEM_PARTICLE_*_ARRAYS)
- *     PAIR  the pair list with its history, row starts and stored forces
+ *     PAIR  the pair list with its history, row starts, stored forces and
+ *           the reverse rows
  *     WALC  the particle-wall list with its history and stored forces
  *     NBR   wall positions at the last neighbour-list build
  *     END
@@ -32,7 +33,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 5u
+#define DEM_CKPT_VERSION 4u
 
 /* The run loop's state at a checkpoint, saved as plain data. */
 struct dem_ckpt_run {

@@ -35,7 +35,8 @@ void dem_pairs_free(struct dem_pairs *pl)
     list_free(&pl->wold);
     forces_free(&pl->f);
     forces_free(&pl->wf);
-    free(pl->reach);
+    free(pl->rstart);
+    free(pl->rpair);
     free(pl->cell_start);
     free(pl->cell_list);
     free(pl->cell_of);
@@ -81,6 +82,14 @@ static int forces_reserve(struct dem_contact_forces *f, int cap)
     return 0;
 }
 
+/* Stored forces of n entries set to zero (the force loop writes only
+ * contacts that are closed or have just opened). */
+static void forces_zero(struct dem_contact_forces *f, int n)
+{
+    if (n > 0)
+        memset(f->v, 0, (size_t)n * sizeof *f->v);
+}
+
 /* Per-particle arrays for n particles (row offsets need n + 1). */
 static int particles_reserve(struct dem_pairs *pl, int n, int cap)
 {
@@ -97,7 +106,7 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
             memset(lists[k]->start, 0, (size_t)c * sizeof(int));
         lists[k]->start_cap = c;
     }
-    if (GROW(pl->reach, c) || GROW(pl->cell_of, c) || GROW(pl->cell_list, c) ||
+    if (GROW(pl->rstart, c) || GROW(pl->cell_of, c) || GROW(pl->cell_list, c) ||
         GROW(pl->old_of, c))
         return -1;
     /* the permutation swaps this with the particles' arrays: same length */
@@ -367,18 +376,27 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
     return DEM_OK;
 }
 
-void dem_pairs_index(struct dem_pairs *pl, int n)
+/* The pairs grouped by their j particle (stable in list order). */
+static int build_reverse(struct dem_pairs *pl, int n)
 {
     const struct dem_contact_list *L = &pl->cur;
-    int *reach = pl->reach;
-    for (int j = 0; j <= n; j++)
-        reach[j] = j;
+    if (L->n > pl->rpair_cap) {
+        if (GROW(pl->rpair, L->cap))
+            return -1;
+        pl->rpair_cap = L->cap;
+    }
+    int *rs = pl->rstart;
+    memset(rs, 0, (size_t)(n + 1) * sizeof *rs);
     for (int k = 0; k < L->n; k++)
-        if (L->i[k] < reach[L->j[k]])
-            reach[L->j[k]] = L->i[k];
-    for (int j = n - 1; j >= 0; j--)
-        if (reach[j + 1] < reach[j])
-            reach[j] = reach[j + 1];
+        rs[L->j[k] + 1]++;
+    for (int i = 0; i < n; i++)
+        rs[i + 1] += rs[i];
+    for (int k = 0; k < L->n; k++)
+        pl->rpair[rs[L->j[k]]++] = k;
+    for (int i = n; i > 0; i--)
+        rs[i] = rs[i - 1];
+    rs[0] = 0;
+    return 0;
 }
 
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
@@ -416,10 +434,11 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
         rc = build_walls(pl, p, skin, w, nwall, err);
     if (rc)
         return rc;
-    if (forces_reserve(&pl->f, pl->cur.cap) ||
+    if (build_reverse(pl, n) || forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
-    dem_pairs_index(pl, n);
+    forces_zero(&pl->f, pl->cur.n);
+    forces_zero(&pl->wf, pl->wcur.n);
     for (int k = 0; k < nwall && k < 6; k++)
         pl->wall_pos0[k] = w[k].pos;
     return DEM_OK;
@@ -433,6 +452,11 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc)
         list_reserve(&pl->wcur, nwc) || forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return DEM_ENOMEM;
+    if (pl->cur.cap > pl->rpair_cap) {
+        if (GROW(pl->rpair, pl->cur.cap))
+            return DEM_ENOMEM;
+        pl->rpair_cap = pl->cur.cap;
+    }
     return DEM_OK;
 }
 

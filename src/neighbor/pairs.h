@@ -13,10 +13,11 @@
  * between. At a rebuild the particles may be re-ordered in cell order (see
  * dem_pairs_build) so that neighbours are close in memory.
  *
- * Each entry also has room for its force (the force on i and n x f_t),
- * at the same index: the force pass (contact/forces.c) writes there the
- * forces of a measured pass, and the pairs that cross from one thread's
- * block of particles into another's; reach[] finds those.
+ * Each entry also has room for the force of the last pass (the force on
+ * i and n x f_t), at the same index. A particle sums the forces of its
+ * pairs as i from its row and those of its pairs as j through the reverse
+ * rows (rstart, rpair); every sum runs in a fixed order whatever the
+ * number of threads.
  */
 #ifndef DEM_NEIGHBOR_PAIRS_H
 #define DEM_NEIGHBOR_PAIRS_H
@@ -62,9 +63,10 @@ struct dem_pairs {
     struct dem_contact_list wold; /* the previous ones */
     struct dem_contact_forces f;  /* forces of cur, pair k at k */
     struct dem_contact_forces wf; /* forces of wcur, entry k at k */
-    int *reach; /* n_particles + 1: reach[j] is the lowest particle with
-                   a pair (i, j') for some j' >= j, or j if there is none;
-                   the pairs with i < j <= j' lie in rows reach[j].. j-1 */
+    int *rstart; /* n_particles + 1: rows of rpair by j */
+    int *rpair;  /* cur.n: the pairs grouped by their j particle, in list
+                    order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
+    int rpair_cap;
     /* cell grid */
     int nc[3];       /* cells per axis */
     double lo[3];    /* m; lower corner */
@@ -96,13 +98,9 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
 
 /* Allocate room for n particles (arrays of at least cap doubles for the
  * re-ordering), npair pairs and nwc wall contacts, as a build would, so
- * that a checkpoint can fill cur, wcur, f and wf directly (then call
- * dem_pairs_index). The lists keep their counts; a later build works as
- * usual. */
+ * that a checkpoint can fill cur, wcur, f, wf, rstart and rpair directly.
+ * The lists keep their counts; a later build works as usual. */
 int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
-
-/* reach[] of the pair list cur for n particles (a build does this). */
-void dem_pairs_index(struct dem_pairs *pl, int n);
 
 /* Reference: all pairs with gap below skin by brute force O(N^2); for tests.
  * Fills pi/pj (caller frees) and returns the count, or a negative status. */
