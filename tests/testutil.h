@@ -92,9 +92,11 @@ static inline void test_ready(struct dem_sim *s)
 static inline void test_step(struct dem_sim *s, long n)
 {
     struct dem_error err;
-    for (long k = 0; k < n; k++)
+    for (long k = 0; k < n; k++) {
+        s->chain = k + 1 < n;
         if (dem_sim_step(s, &err))
             fail_msg("step %ld: %s", s->step, err.msg);
+    }
 }
 
 #endif

@@ -316,6 +316,7 @@ static int relax(struct dem_sim *s, const struct workload *w,
         const int sample = k % every == 0;
         if (sample)
             s->measure = 1;
+        s->chain = !sample;
         rc = dem_sim_step(s, err);
         if (rc)
             return rc;
@@ -510,6 +511,7 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     for (long k = 0; k < steps && !rc; k++) {
         if (k == steps - 1)
             s.measure = 1;
+        s.chain = k < steps - 1;
         rc = dem_sim_step(&s, err);
     }
     r->seconds = wall_clock() - t0;

@@ -276,19 +276,29 @@ static void wall_pass_luding(struct dem_sim *s)
 
 /* The closing half kick of a step (h = dt/2, g gravity), or none. */
 struct kick {
-    int on;
-    double h, g[3];
+    int on;                  /* the closing half kick */
+    int chain;               /* then also the next step's half kick and drift */
+    double h, dt, lim, g[3]; /* s, s, m^2 (half the skin squared), m/s^2 */
 };
 
 /* Particles i0 <= i < i1: background damping plus the forces of the
  * pairs as i (the particle's row), as j (its reverse row) and of the wall
  * contacts; then the torques, and the half kick if asked for (the same
- * arithmetic as the first half kick in core/sim.c). K.on is a literal in
- * each caller, so the kick costs no branch. */
-DEM_INLINE void gather_range(int i0, int i1, const struct dem_particles *P,
-                             const struct dem_pairs *pl, double gb, double gr,
-                             const struct kick K)
+ * arithmetic as the first half kick in core/sim.c). With K.chain the
+ * particle then goes on into the next step: its half kick and drift
+ * (again the arithmetic of core/sim.c), and the force and torque are not
+ * stored (nothing reads them before they are computed again). Returns
+ * then whether a particle has moved more than half the skin since the
+ * last list build. K.on and K.chain are literals in each caller, so they
+ * cost no branch. */
+DEM_INLINE int gather_range(int i0, int i1, const struct dem_particles *P,
+                            const struct dem_pairs *pl, double gb, double gr,
+                            const struct kick K)
 {
+    double *restrict x = P->x, *restrict y = P->y, *restrict z = P->z;
+    const double *restrict x0 = P->x0, *restrict y0 = P->y0,
+                           *restrict z0 = P->z0;
+    int moved = 0;
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
     double *restrict vx = P->vx, *restrict vy = P->vy, *restrict vz = P->vz;
     double *restrict wx = P->wx, *restrict wy = P->wy, *restrict wz = P->wz;
@@ -332,13 +342,15 @@ DEM_INLINE void gather_range(int i0, int i1, const struct dem_particles *P,
         const double g = gr * a * a;
         const double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
                      tz = -g * wz[i] - a * cz;
-        ofx[i] = fx;
-        ofy[i] = fy;
-        ofz[i] = fz;
-        otx[i] = tx;
-        oty[i] = ty;
-        otz[i] = tz;
-        if (K.on) {
+        if (!K.chain) {
+            ofx[i] = fx;
+            ofy[i] = fy;
+            ofz[i] = fz;
+            otx[i] = tx;
+            oty[i] = ty;
+            otz[i] = tz;
+        }
+        for (int kick = 0; kick < (K.chain ? 2 : K.on); kick++) {
             vx[i] += h * im[i] * fx + gx;
             vy[i] += h * im[i] * fy + gy;
             vz[i] += h * im[i] * fz + gz;
@@ -346,12 +358,22 @@ DEM_INLINE void gather_range(int i0, int i1, const struct dem_particles *P,
             wy[i] += h * iI[i] * ty;
             wz[i] += h * iI[i] * tz;
         }
+        if (K.chain) {
+            x[i] += K.dt * vx[i];
+            y[i] += K.dt * vy[i];
+            z[i] += K.dt * vz[i];
+            const double dx = x[i] - x0[i], dy = y[i] - y0[i],
+                         dz = z[i] - z0[i];
+            moved |= dx * dx + dy * dy + dz * dz > K.lim;
+        }
     }
+    return moved;
 }
 
 /* Sum every particle's forces and torques in a fixed order (then kick
- * it when K.on). */
-static void gather(struct dem_sim *s, const struct kick K)
+ * it when K.on, and move it on when K.chain); returns whether the list
+ * must be rebuilt (K.chain only). */
+static int gather(struct dem_sim *s, const struct kick K)
 {
     const struct dem_particles *P = &s->p;
     const struct dem_pairs *pl = &s->pairs;
@@ -359,17 +381,24 @@ static void gather(struct dem_sim *s, const struct kick K)
     const struct dem_contact_forces *WF = &pl->wf;
     const double gb = s->cfg.damping.gamma_b, gr = s->cfg.damping.gamma_br;
     const int n = P->n;
-#pragma omp parallel
+    int moved = 0;
+#pragma omp parallel reduction(| : moved)
     {
         int nt = omp_get_num_threads(), t = omp_get_thread_num();
         const int i0 = (int)((long)n * t / nt),
                   i1 = (int)((long)n * (t + 1) / nt);
-        if (K.on)
-            gather_range(i0, i1, P, pl, gb, gr,
-                         (struct kick){1, K.h, {K.g[0], K.g[1], K.g[2]}});
-        else
-            gather_range(i0, i1, P, pl, gb, gr,
-                         (struct kick){0, 0.0, {0.0, 0.0, 0.0}});
+        struct kick k = K;
+        if (K.chain) {
+            k.on = k.chain = 1;
+            moved = gather_range(i0, i1, P, pl, gb, gr, k);
+        } else if (K.on) {
+            k.on = 1;
+            k.chain = 0;
+            moved = gather_range(i0, i1, P, pl, gb, gr, k);
+        } else {
+            k.on = k.chain = 0;
+            moved = gather_range(i0, i1, P, pl, gb, gr, k);
+        }
     }
 
     /* the walls feel the opposite forces: their outward push, in list order */
@@ -381,6 +410,7 @@ static void gather(struct dem_sim *s, const struct kick K)
     }
     for (int w = 0; w < s->nwall; w++)
         s->wall[w].force = fout[w];
+    return moved;
 }
 
 /* Sums for the measurements, from the stored contact forces and the
@@ -476,7 +506,7 @@ static void measure_contacts(struct dem_sim *s)
     }
 }
 
-static void forces(struct dem_sim *s, const struct kick K)
+static int forces(struct dem_sim *s, const struct kick K)
 {
     if (s->cp.normal == DEM_NORMAL_LUDING) {
         pair_pass_luding(s);
@@ -485,19 +515,21 @@ static void forces(struct dem_sim *s, const struct kick K)
         pair_pass_linear(s);
         wall_pass_linear(s);
     }
-    gather(s, K);
+    const int moved = gather(s, K);
     if (s->measure)
         measure_contacts(s);
     s->measure = 0;
+    return moved;
 }
 
 void dem_sim_forces(struct dem_sim *s)
 {
-    forces(s, (struct kick){0, 0.0, {0.0, 0.0, 0.0}});
+    forces(s, (struct kick){0, 0, 0.0, 0.0, 0.0, {0.0, 0.0, 0.0}});
 }
 
-void dem_sim_forces_kick(struct dem_sim *s, double h)
+int dem_sim_forces_kick(struct dem_sim *s, double h, int chain)
 {
-    const double *g = s->cfg.gravity;
-    forces(s, (struct kick){1, h, {g[0], g[1], g[2]}});
+    const double *g = s->cfg.gravity, half = 0.5 * s->skin;
+    return forces(
+        s, (struct kick){1, chain, h, s->dt, half * half, {g[0], g[1], g[2]}});
 }

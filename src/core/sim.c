@@ -275,8 +275,11 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
 {
     const double h = 0.5 * s->dt;
     struct dem_timers *T = &s->timers;
+    const int chain = s->chain;
+    s->chain = 0;
     double t0 = lap(s);
-    const int moved = kick_drift(s, h);
+    const int moved = s->drifted ? s->moved : kick_drift(s, h);
+    s->drifted = 0;
     double t1 = lap(s);
     walls_kick(s, h);
     walls_drift(s, s->t + s->dt);
@@ -289,7 +292,8 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
             return rc;
     }
     double t3 = lap(s);
-    dem_sim_forces_kick(s, h);
+    s->moved = dem_sim_forces_kick(s, h, chain);
+    s->drifted = chain;
     double t4 = lap(s);
     walls_kick(s, h);
     double t5 = lap(s);

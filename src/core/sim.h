@@ -75,6 +75,11 @@ struct dem_sim {
     int reorder; /* 1: sort particles in cell order at each
                     rebuild (indices change; id does not) */
     int measure; /* 1: the next force pass fills sums */
+    int chain;   /* 1: the next step is followed at once by another one
+                    (see dem_sim_step) */
+    int drifted; /* 1: the last step was chained: the next one's first
+                    half kick and drift are done */
+    int moved;   /* for drifted: whether the drift calls for a rebuild */
     struct dem_contact_sums sums;
     int timing;               /* 1: accumulate timers */
     struct dem_timers timers; /* s; time per phase */
@@ -97,7 +102,14 @@ int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
 int dem_sim_ready(struct dem_sim *s, struct dem_error *err);
 
 /* One time step (velocity Verlet): half kick, drift, walls, neighbour
- * check, forces, half kick. */
+ * check, forces, half kick. With s->chain set (the step clears it) the
+ * caller promises that the next call is dem_sim_step again, with nothing
+ * read or changed in between: the force pass then also does the next
+ * step's half kick and drift, so that the particles are visited once per
+ * step, not twice. Until that next step the particles are half a step
+ * ahead (positions at t + dt, velocities at t + 3 dt / 2) and their force
+ * and torque arrays are stale. The results are the same bit for bit as
+ * without chaining. */
 int dem_sim_step(struct dem_sim *s, struct dem_error *err);
 
 /* Rebuild the neighbour list now (carrying contact history). */
@@ -110,8 +122,11 @@ void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d);
  * (fills s->sums when s->measure is set). */
 void dem_sim_forces(struct dem_sim *s);
 /* The same, then the closing half kick of a step in the same pass over
- * the particles: v += h (f/m + g), w += h t/I. */
-void dem_sim_forces_kick(struct dem_sim *s, double h);
+ * the particles: v += h (f/m + g), w += h t/I. With chain, also the next
+ * step's half kick and drift (see dem_sim_step); returns then whether
+ * some particle has moved more than half the skin since the last list
+ * build (else 0). */
+int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
 
 /* Box edge lengths and volume (area in 2D) from the wall positions. */
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume);

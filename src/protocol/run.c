@@ -333,6 +333,8 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         int sample = last || s->t + 1.5 * dt >= r->st.next_out;
         if (sample)
             s->measure = 1;
+        /* between samples nothing looks at the particles */
+        s->chain = !sample;
         rc = dem_sim_step(s, err);
         if (rc)
             return rc;
