@@ -10,14 +10,17 @@
  * -a_i (n x f_t) on i and -a_j (n x f_t) on j. A wall is a partner of
  * infinite mass and radius whose surface moves only along its normal.
  *
- * A pass has three parts, each parallel over independent items:
+ * A pass has three parts, each split over the threads in equal blocks
+ * of independent items, in one parallel region with one barrier before
+ * the third:
  *  1. every listed pair: force and history, stored with the pair; one
  *     loop without branches over the flat list, run in SIMD lanes;
  *  2. every wall contact: force and history, stored with the contact;
  *  3. every particle: its background damping, then the forces of its
  *     pairs as i (its row), as j (its reverse row) and of its wall
  *     contacts, each in list order; then the torques and, in a time step,
- *     the closing half kick.
+ *     the closing half kick (and in a chained step the next half kick and
+ *     drift, see dem_sim_step).
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
  * once as always-inline functions and instantiated per normal law (a
@@ -31,6 +34,7 @@
 #include "contact/luding.h"
 #include "contact/normal.h"
 #include "contact/tangential.h"
+#include "core/parallel.h"
 #include "core/sim.h"
 
 #if defined(__GNUC__)
@@ -173,33 +177,6 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     }
 }
 
-/* All pairs in equal blocks, one per thread. The law is a literal in
- * each instance, so that the outlined parallel region is compiled for
- * that law alone. */
-#define PAIR_PASS(LAW)                                                         \
-    do {                                                                       \
-        const struct pass q = pass_of(&s->p, &s->pairs.cur, &s->pairs.f);      \
-        const struct dem_contact_params cp = s->cp;                            \
-        const double dt = s->dt;                                               \
-        const int np = s->pairs.cur.n;                                         \
-        _Pragma("omp parallel")                                                \
-        {                                                                      \
-            int nt = omp_get_num_threads(), t = omp_get_thread_num();          \
-            pair_range(LAW, q, (int)((long)np * t / nt),                       \
-                       (int)((long)np * (t + 1) / nt), &cp, dt);               \
-        }                                                                      \
-    } while (0)
-
-static void pair_pass_linear(struct dem_sim *s)
-{
-    PAIR_PASS(DEM_NORMAL_LINEAR);
-}
-
-static void pair_pass_luding(struct dem_sim *s)
-{
-    PAIR_PASS(DEM_NORMAL_LUDING);
-}
-
 /* Force and history update of wall contact k (no branch, as pair_one). */
 DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
                          const struct dem_contact_params *cp, double dt,
@@ -246,32 +223,6 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
         for (int k = k0; k < k1; k++)
             wall_one(law, &q, k, cp, dt, walls, &T);
     }
-}
-
-#define WALL_PASS(LAW)                                                         \
-    do {                                                                       \
-        const struct pass q = pass_of(&s->p, &s->pairs.wcur, &s->pairs.wf);    \
-        const struct dem_contact_params cp = s->cp;                            \
-        const double dt = s->dt;                                               \
-        const int nw = s->pairs.wcur.n;                                        \
-        struct dem_wall walls[DEM_MAX_WALLS];                                  \
-        memcpy(walls, s->wall, sizeof walls);                                  \
-        _Pragma("omp parallel")                                                \
-        {                                                                      \
-            int nt = omp_get_num_threads(), t = omp_get_thread_num();          \
-            wall_range(LAW, q, (int)((long)nw * t / nt),                       \
-                       (int)((long)nw * (t + 1) / nt), &cp, dt, walls);        \
-        }                                                                      \
-    } while (0)
-
-static void wall_pass_linear(struct dem_sim *s)
-{
-    WALL_PASS(DEM_NORMAL_LINEAR);
-}
-
-static void wall_pass_luding(struct dem_sim *s)
-{
-    WALL_PASS(DEM_NORMAL_LUDING);
 }
 
 /* The closing half kick of a step (h = dt/2, g gravity), or none. */
@@ -370,46 +321,66 @@ DEM_INLINE int gather_range(int i0, int i1, const struct dem_particles *P,
     return moved;
 }
 
-/* Sum every particle's forces and torques in a fixed order (then kick
- * it when K.on, and move it on when K.chain); returns whether the list
- * must be rebuilt (K.chain only). */
-static int gather(struct dem_sim *s, const struct kick K)
-{
-    const struct dem_particles *P = &s->p;
-    const struct dem_pairs *pl = &s->pairs;
-    const struct dem_contact_list *WL = &pl->wcur;
-    const struct dem_contact_forces *WF = &pl->wf;
-    const double gb = s->cfg.damping.gamma_b, gr = s->cfg.damping.gamma_br;
-    const int n = P->n;
-    int moved = 0;
-#pragma omp parallel reduction(| : moved)
-    {
-        int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        const int i0 = (int)((long)n * t / nt),
-                  i1 = (int)((long)n * (t + 1) / nt);
-        struct kick k = K;
-        if (K.chain) {
-            k.on = k.chain = 1;
-            moved = gather_range(i0, i1, P, pl, gb, gr, k);
-        } else if (K.on) {
-            k.on = 1;
-            k.chain = 0;
-            moved = gather_range(i0, i1, P, pl, gb, gr, k);
-        } else {
-            k.on = k.chain = 0;
-            moved = gather_range(i0, i1, P, pl, gb, gr, k);
-        }
-    }
+/* What one force pass reads, gathered once. */
+struct contacts {
+    struct pass q, wq; /* pairs, wall contacts */
+    struct dem_contact_params cp;
+    struct dem_wall walls[DEM_MAX_WALLS];
+    const struct dem_particles *P;
+    const struct dem_pairs *pl;
+    double dt, gb, gr;
+    int np, nw, n; /* pairs, wall contacts, particles */
+};
 
-    /* the walls feel the opposite forces: their outward push, in list order */
-    double fout[DEM_MAX_WALLS] = {0};
-    for (int k = 0; k < WL->n; k++) {
-        const struct dem_wall *W = &s->wall[WL->j[k]];
-        const double f = WF->v[k].f[W->axis];
-        fout[WL->j[k]] += f * (W->side ? -1.0 : 1.0);
-    }
-    for (int w = 0; w < s->nwall; w++)
-        s->wall[w].force = fout[w];
+/* Thread t's share of a pass, in one parallel region: equal blocks of
+ * the pairs and of the wall contacts, then (once every contact force is
+ * stored) an equal block of the particles to sum, kick and move on. */
+DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
+                               const struct kick K, int t, int nt)
+{
+    pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
+               &c->cp, c->dt);
+    wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
+               &c->cp, c->dt, c->walls);
+#pragma omp barrier
+    return gather_range(dem_block(c->n, t, nt), dem_block(c->n, t + 1, nt),
+                        c->P, c->pl, c->gb, c->gr, K);
+}
+
+/* One instance per normal law and kind of kick (literals), so that each
+ * outlined parallel region is compiled for them alone. */
+#define CONTACTS(LAW, ON, CHAIN)                                               \
+    do {                                                                       \
+        const struct kick k_ = {ON,   CHAIN, K.h,                              \
+                                K.dt, K.lim, {K.g[0], K.g[1], K.g[2]}};        \
+        _Pragma("omp parallel reduction(| : moved)")                           \
+        {                                                                      \
+            moved = contacts_thread(LAW, c, k_, omp_get_thread_num(),          \
+                                    omp_get_num_threads());                    \
+        }                                                                      \
+    } while (0)
+
+static int contacts_linear(const struct contacts *c, const struct kick K)
+{
+    int moved = 0;
+    if (K.chain)
+        CONTACTS(DEM_NORMAL_LINEAR, 1, 1);
+    else if (K.on)
+        CONTACTS(DEM_NORMAL_LINEAR, 1, 0);
+    else
+        CONTACTS(DEM_NORMAL_LINEAR, 0, 0);
+    return moved;
+}
+
+static int contacts_luding(const struct contacts *c, const struct kick K)
+{
+    int moved = 0;
+    if (K.chain)
+        CONTACTS(DEM_NORMAL_LUDING, 1, 1);
+    else if (K.on)
+        CONTACTS(DEM_NORMAL_LUDING, 1, 0);
+    else
+        CONTACTS(DEM_NORMAL_LUDING, 0, 0);
     return moved;
 }
 
@@ -508,14 +479,35 @@ static void measure_contacts(struct dem_sim *s)
 
 static int forces(struct dem_sim *s, const struct kick K)
 {
-    if (s->cp.normal == DEM_NORMAL_LUDING) {
-        pair_pass_luding(s);
-        wall_pass_luding(s);
-    } else {
-        pair_pass_linear(s);
-        wall_pass_linear(s);
+    struct dem_pairs *pl = &s->pairs;
+    struct contacts c = {
+        .q = pass_of(&s->p, &pl->cur, &pl->f),
+        .wq = pass_of(&s->p, &pl->wcur, &pl->wf),
+        .cp = s->cp,
+        .P = &s->p,
+        .pl = pl,
+        .dt = s->dt,
+        .gb = s->cfg.damping.gamma_b,
+        .gr = s->cfg.damping.gamma_br,
+        .np = pl->cur.n,
+        .nw = pl->wcur.n,
+        .n = s->p.n,
+    };
+    memcpy(c.walls, s->wall, sizeof c.walls);
+    const int moved = s->cp.normal == DEM_NORMAL_LUDING
+                          ? contacts_luding(&c, K)
+                          : contacts_linear(&c, K);
+
+    /* the walls feel the opposite forces: their outward push, in list order */
+    const struct dem_contact_list *WL = &pl->wcur;
+    double fout[DEM_MAX_WALLS] = {0};
+    for (int k = 0; k < WL->n; k++) {
+        const struct dem_wall *W = &s->wall[WL->j[k]];
+        const double f = pl->wf.v[k].f[W->axis];
+        fout[WL->j[k]] += f * (W->side ? -1.0 : 1.0);
     }
-    const int moved = gather(s, K);
+    for (int w = 0; w < s->nwall; w++)
+        s->wall[w].force = fout[w];
     if (s->measure)
         measure_contacts(s);
     s->measure = 0;

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "core/parallel.h"
 #include "core/placement.h"
 
 void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d)
@@ -208,9 +209,8 @@ static int kick_drift(struct dem_sim *s, double h)
 #pragma omp parallel reduction(| : moved)
     {
         int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        moved = kick_drift_range((int)((long)n * t / nt),
-                                 (int)((long)n * (t + 1) / nt), h, s->dt,
-                                 s->cfg.gravity, half * half, &s->p);
+        moved = kick_drift_range(dem_block(n, t, nt), dem_block(n, t + 1, nt),
+                                 h, s->dt, s->cfg.gravity, half * half, &s->p);
     }
     return moved;
 }

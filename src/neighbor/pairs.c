@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/parallel.h"
 #include "core/particles.h"
 #include "wall/wall.h"
 
@@ -291,8 +292,7 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
 #pragma omp parallel
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        const int i0 = (int)((long)n * t / nt),
-                  i1 = (int)((long)n * (t + 1) / nt);
+        const int i0 = dem_block(n, t, nt), i1 = dem_block(n, t + 1, nt);
         size_t cap = (size_t)longest + 4096, m = 0;
         int *buf = malloc(cap * sizeof *buf);
         for (int i = i0; buf && i < i1; i++) {
