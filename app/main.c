@@ -159,8 +159,9 @@ static const char *const usage_bench =
     "  --quiet           no progress display\n"
     "\n"
     "The packing is relaxed once (not timed) and cached; only the loop is\n"
-    "timed. The summary gives the time per phase (neighbours, forces,\n"
-    "integration, walls), the coordination and the memory per particle;\n"
+    "timed. The summary gives the time per phase (neighbours, forces with\n"
+    "the kicks and drifts of chained steps, integration of the others,\n"
+    "walls), the coordination and the memory per particle;\n"
     "the last line is particle_steps_per_second=<number>.\n";
 
 static const char *const usage_examples =

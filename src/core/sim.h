@@ -49,8 +49,10 @@ struct dem_contact_sums {
  * dem_sim.timing is set, e.g. by the benchmark). */
 struct dem_timers {
     double neighbor;  /* rebuild checks and neighbour-list builds */
-    double force;     /* particle-particle and particle-wall forces */
-    double integrate; /* particle kicks and drifts */
+    double force;     /* particle-particle and particle-wall forces, the
+                         closing half kick and, in a chained step, the
+                         next half kick and drift */
+    double integrate; /* first half kick and drift of an unchained step */
     double walls;     /* wall motion */
 };
 
