@@ -151,18 +151,25 @@ static void run_threads(int threads, int chained, double *out, int n_out)
     omp_set_num_threads(1);
 }
 
+/* Whether run_threads gives the same numbers bit for bit both ways. */
+static void assert_same_runs(int threads_a, int chained_a, int threads_b,
+                             int chained_b)
+{
+    const int n = 6 * 512;
+    double *a = calloc((size_t)n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
+    run_threads(threads_a, chained_a, a, n);
+    run_threads(threads_b, chained_b, b, n);
+    assert_memory_equal(a, b, (size_t)n * sizeof *a);
+    free(a);
+    free(b);
+}
+
 /* The force sums run in a fixed order (contact/forces.c), so one and two
  * threads give the same run bit for bit. */
 static void threads_give_identical_results(void **state)
 {
     (void)state;
-    const int n = 6 * 512;
-    double *a = calloc((size_t)n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
-    run_threads(1, 1, a, n);
-    run_threads(2, 1, b, n);
-    assert_memory_equal(a, b, (size_t)n * sizeof *a);
-    free(a);
-    free(b);
+    assert_same_runs(1, 1, 2, 1);
 }
 
 /* A chained step does the next step's half kick and drift in its force
@@ -171,13 +178,7 @@ static void threads_give_identical_results(void **state)
 static void chained_steps_give_identical_results(void **state)
 {
     (void)state;
-    const int n = 6 * 512;
-    double *a = calloc((size_t)n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
-    run_threads(1, 1, a, n);
-    run_threads(1, 0, b, n);
-    assert_memory_equal(a, b, (size_t)n * sizeof *a);
-    free(a);
-    free(b);
+    assert_same_runs(1, 1, 1, 0);
 }
 
 int main(void)

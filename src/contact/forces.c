@@ -234,11 +234,11 @@ struct kick {
 
 /* Particles i0 <= i < i1: background damping plus the forces of the
  * pairs as i (the particle's row), as j (its reverse row) and of the wall
- * contacts; then the torques, and the half kick if asked for (the same
- * arithmetic as the first half kick in core/sim.c). With K.chain the
- * particle then goes on into the next step: its half kick and drift
- * (again the arithmetic of core/sim.c), and the force and torque are not
- * stored (nothing reads them before they are computed again). Returns
+ * contacts; then the torques, and the half kick if asked for. With
+ * K.chain the particle then goes on into the next step: its half kick
+ * and drift (dem_particle_kick and _drift, as the first pass of a step in
+ * core/sim.c), and the force and torque are not stored (nothing reads
+ * them before they are computed again). Returns
  * then whether a particle has moved more than half the skin since the
  * last list build. K.on and K.chain are literals in each caller, so they
  * cost no branch. */
@@ -246,16 +246,13 @@ DEM_INLINE int gather_range(int i0, int i1, const struct dem_particles *P,
                             const struct dem_pairs *pl, double gb, double gr,
                             const struct kick K)
 {
-    double *restrict x = P->x, *restrict y = P->y, *restrict z = P->z;
-    const double *restrict x0 = P->x0, *restrict y0 = P->y0,
-                           *restrict z0 = P->z0;
     int moved = 0;
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
-    double *restrict vx = P->vx, *restrict vy = P->vy, *restrict vz = P->vz;
-    double *restrict wx = P->wx, *restrict wy = P->wy, *restrict wz = P->wz;
-    const double *restrict r = P->r, *restrict im = P->inv_m,
-                           *restrict iI = P->inv_I;
-    const double h = K.h, gx = h * K.g[0], gy = h * K.g[1], gz = h * K.g[2];
+    /* the kicks write these through P: no restrict */
+    const double *vx = P->vx, *vy = P->vy, *vz = P->vz;
+    const double *wx = P->wx, *wy = P->wy, *wz = P->wz;
+    const double *restrict r = P->r;
+    const double hg[3] = {K.h * K.g[0], K.h * K.g[1], K.h * K.g[2]};
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
@@ -301,21 +298,11 @@ DEM_INLINE int gather_range(int i0, int i1, const struct dem_particles *P,
             oty[i] = ty;
             otz[i] = tz;
         }
-        for (int kick = 0; kick < (K.chain ? 2 : K.on); kick++) {
-            vx[i] += h * im[i] * fx + gx;
-            vy[i] += h * im[i] * fy + gy;
-            vz[i] += h * im[i] * fz + gz;
-            wx[i] += h * iI[i] * tx;
-            wy[i] += h * iI[i] * ty;
-            wz[i] += h * iI[i] * tz;
-        }
+        if (K.on)
+            dem_particle_kick(P, i, K.h, hg, fx, fy, fz, tx, ty, tz);
         if (K.chain) {
-            x[i] += K.dt * vx[i];
-            y[i] += K.dt * vy[i];
-            z[i] += K.dt * vz[i];
-            const double dx = x[i] - x0[i], dy = y[i] - y0[i],
-                         dz = z[i] - z0[i];
-            moved |= dx * dx + dy * dy + dz * dz > K.lim;
+            dem_particle_kick(P, i, K.h, hg, fx, fy, fz, tx, ty, tz);
+            moved |= dem_particle_drift(P, i, K.dt, K.lim);
         }
     }
     return moved;
@@ -360,27 +347,22 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
         }                                                                      \
     } while (0)
 
-static int contacts_linear(const struct contacts *c, const struct kick K)
+static int contacts(const struct contacts *c, const struct kick K)
 {
+    const int luding = c->cp.normal == DEM_NORMAL_LUDING;
     int moved = 0;
-    if (K.chain)
+    if (luding && K.chain)
+        CONTACTS(DEM_NORMAL_LUDING, 1, 1);
+    else if (luding && K.on)
+        CONTACTS(DEM_NORMAL_LUDING, 1, 0);
+    else if (luding)
+        CONTACTS(DEM_NORMAL_LUDING, 0, 0);
+    else if (K.chain)
         CONTACTS(DEM_NORMAL_LINEAR, 1, 1);
     else if (K.on)
         CONTACTS(DEM_NORMAL_LINEAR, 1, 0);
     else
         CONTACTS(DEM_NORMAL_LINEAR, 0, 0);
-    return moved;
-}
-
-static int contacts_luding(const struct contacts *c, const struct kick K)
-{
-    int moved = 0;
-    if (K.chain)
-        CONTACTS(DEM_NORMAL_LUDING, 1, 1);
-    else if (K.on)
-        CONTACTS(DEM_NORMAL_LUDING, 1, 0);
-    else
-        CONTACTS(DEM_NORMAL_LUDING, 0, 0);
     return moved;
 }
 
@@ -494,9 +476,7 @@ static int forces(struct dem_sim *s, const struct kick K)
         .n = s->p.n,
     };
     memcpy(c.walls, s->wall, sizeof c.walls);
-    const int moved = s->cp.normal == DEM_NORMAL_LUDING
-                          ? contacts_luding(&c, K)
-                          : contacts_linear(&c, K);
+    const int moved = contacts(&c, K);
 
     /* the walls feel the opposite forces: their outward push, in list order */
     const struct dem_contact_list *WL = &pl->wcur;

@@ -35,8 +35,9 @@ struct dem_particles {
  * permutation and checkpoints cannot forget one. */
 #define DEM_PARTICLE_DOUBLE_ARRAYS(X)                                          \
     X(x)                                                                       \
-    X(y) X(z) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy) X(fz) X(tx)      \
-        X(ty) X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(fsum)
+    X(y)                                                                       \
+    X(z) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy) X(fz) X(tx) X(ty)     \
+        X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(fsum)
 
 #define DEM_PARTICLE_INT_ARRAYS(X) X(id) X(ncontact)
 
@@ -52,6 +53,36 @@ int dem_particles_add(struct dem_particles *p, double x, double y, double z,
  * swaps it with the arrays, so it points to another spare one after. */
 void dem_particles_permute(struct dem_particles *p, const int *old_of,
                            double **scratch);
+/* Velocity Verlet for particle i, written once for every pass that moves
+ * particles (so that a step done in one pass or in two gives the same
+ * numbers bit for bit). Half kick by force f and torque t:
+ * v += h f/m + hg, w += h t/I, with h = dt/2 and hg = h g. */
+static inline void dem_particle_kick(const struct dem_particles *p, int i,
+                                     double h, const double hg[3], double fx,
+                                     double fy, double fz, double tx, double ty,
+                                     double tz)
+{
+    p->vx[i] += h * p->inv_m[i] * fx + hg[0];
+    p->vy[i] += h * p->inv_m[i] * fy + hg[1];
+    p->vz[i] += h * p->inv_m[i] * fz + hg[2];
+    p->wx[i] += h * p->inv_I[i] * tx;
+    p->wy[i] += h * p->inv_I[i] * ty;
+    p->wz[i] += h * p->inv_I[i] * tz;
+}
+
+/* Drift r += dt v of particle i; returns whether its squared distance
+ * from its position at the last list build (x0) exceeds lim. */
+static inline int dem_particle_drift(const struct dem_particles *p, int i,
+                                     double dt, double lim)
+{
+    p->x[i] += dt * p->vx[i];
+    p->y[i] += dt * p->vy[i];
+    p->z[i] += dt * p->vz[i];
+    const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
+                 dz = p->z[i] - p->z0[i];
+    return dx * dx + dy * dy + dz * dz > lim;
+}
+
 /* Mass and moment of inertia of a particle of radius a (see dem_mass_model). */
 void dem_particle_mass(double a, double density, int mass_model, int dim,
                        double *mass, double *inertia);

@@ -165,36 +165,18 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
  * the skin since the last build: until then no contact can form that is
  * not listed. */
 
-/* Particles i0 <= i < i1: half kick v += h (f/m + g), w += h t/I, then
- * drift r += dt v; returns whether one has moved more than half the skin
- * (squared: lim) since the last list build. */
+/* Particles i0 <= i < i1: half kick, then drift; returns whether one has
+ * moved more than half the skin (squared: lim) since the last list build. */
 static int kick_drift_range(int i0, int i1, double h, double dt,
                             const double g[3], double lim,
-                            struct dem_particles *p)
+                            const struct dem_particles *p)
 {
-    double *restrict vx = p->vx, *restrict vy = p->vy, *restrict vz = p->vz;
-    double *restrict wx = p->wx, *restrict wy = p->wy, *restrict wz = p->wz;
-    double *restrict x = p->x, *restrict y = p->y, *restrict z = p->z;
-    const double *restrict x0 = p->x0, *restrict y0 = p->y0,
-                           *restrict z0 = p->z0;
-    const double *restrict fx = p->fx, *restrict fy = p->fy,
-                           *restrict fz = p->fz, *restrict tx = p->tx,
-                           *restrict ty = p->ty, *restrict tz = p->tz;
-    const double *restrict im = p->inv_m, *restrict iI = p->inv_I;
-    const double gx = h * g[0], gy = h * g[1], gz = h * g[2];
+    const double hg[3] = {h * g[0], h * g[1], h * g[2]};
     int moved = 0;
     for (int i = i0; i < i1; i++) {
-        vx[i] += h * im[i] * fx[i] + gx;
-        vy[i] += h * im[i] * fy[i] + gy;
-        vz[i] += h * im[i] * fz[i] + gz;
-        wx[i] += h * iI[i] * tx[i];
-        wy[i] += h * iI[i] * ty[i];
-        wz[i] += h * iI[i] * tz[i];
-        x[i] += dt * vx[i];
-        y[i] += dt * vy[i];
-        z[i] += dt * vz[i];
-        const double dx = x[i] - x0[i], dy = y[i] - y0[i], dz = z[i] - z0[i];
-        moved |= dx * dx + dy * dy + dz * dz > lim;
+        dem_particle_kick(p, i, h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
+                          p->ty[i], p->tz[i]);
+        moved |= dem_particle_drift(p, i, dt, lim);
     }
     return moved;
 }
