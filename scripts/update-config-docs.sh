@@ -5,7 +5,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 gen=build/tests/config-keys.md
-[ -f "$gen" ] || (cd build && ./tests/test_config >/dev/null 2>&1 || true)
+[ -f "$gen" ] || (cd build/tests && DEMBOX_SOURCE_DIR=../.. ./test_config >/dev/null 2>&1 || true)
 awk -v gen="$gen" '
   /<!-- keys:begin/ { print; while ((getline l < gen) > 0) print l; skip = 1; next }
   /<!-- keys:end/ { skip = 0 }

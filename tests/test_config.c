@@ -357,7 +357,15 @@ static const struct bad bad_inputs[] = {
     {"contact = {\n  k = 1e400;\n};", 0, "contact.k: must be finite", 2},
     {"gravity = [0.0, 0.0, -1e400];", 0, "gravity: must be finite", 1},
     {"contact = {\n  k = -5.0;\n};", 0, "contact.k: must be > 0 (got -5)", 2},
-    {"contact = {\n  kt = 0.0;\n};", 0, "contact.kt", 2},
+    {"contact = {\n  kt = 0.0;\n};", 0,
+     "contact.kt: 0 needs friction off: with contact.mu_s = 0.5", 2},
+    {"contact = {\n  kt = 0.0;\n  mu = 0.0;\n  wall_mu = 0.2;\n};", 0,
+     "contact.kt: 0 needs friction off: with contact.wall_mu = 0.2", 2},
+    {"contact = { kt = 0.0; mu = 0.0; };\nstages = (\n { type = \"hold\"; "
+     "duration = 0.1;\n   mu = 0.3; }\n);",
+     0, "stages.0.mu: friction 0.3 with contact.kt = 0", 4},
+    {"contact = {\n  kt = -1.0;\n  mu = 0.0;\n};", 0, "contact.kt: must be >= 0",
+     2},
     {"particles = {\n  density = 0.0;\n};", 0, "particles.density", 2},
     {"contact = {\n  mu_s = 0.3;\n  mu_d = 0.5;\n};", 0, "contact.mu_d", 3},
     {"contact = {\n  mu = 0.3;\n  mu_s = 0.5;\n};", 0, "contact.mu_s", 3},
@@ -557,6 +565,22 @@ static void validate_checks_a_struct_without_lines(void **state)
     assert_non_null(strstr(err.msg, "stages.0.tolerance: must be finite"));
 }
 
+/* k_t = 0 is accepted without friction (pairs, walls and every stage) and
+ * written back into the resolved config. */
+static void frictionless_kt_zero_is_accepted(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c,
+             "contact = { kt = 0.0; mu = 0.0; wall_mu = 0.0; };\n"
+             "stages = ( { type = \"hold\"; duration = 0.1; mu = 0.0; } );\n",
+             0, 0);
+    assert_true(c.contact.kt == 0.0 && c.contact.mu_s == 0.0);
+    char *text = written(&c);
+    assert_non_null(strstr(text, "kt = 0.0;"));
+    free(text);
+}
+
 /* ------------------------------------------------------- documentation */
 
 static char *printed(void (*print)(FILE *))
@@ -632,6 +656,7 @@ int main(void)
         cmocka_unit_test(file_placement_ignores_count_for_box_fill),
         cmocka_unit_test(quotes_in_comments_and_escapes_are_not_open_strings),
         cmocka_unit_test(validate_checks_a_struct_without_lines),
+        cmocka_unit_test(frictionless_kt_zero_is_accepted),
         cmocka_unit_test(key_help_lists_every_key),
         cmocka_unit_test(docs_key_table_matches_descriptor_table),
     };

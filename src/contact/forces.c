@@ -315,7 +315,8 @@ struct contacts {
     struct dem_wall walls[DEM_MAX_WALLS];
     const struct dem_particles *P;
     const struct dem_pairs *pl;
-    double dt, gb, gr;
+    double dt;     /* s; the springs' time step, 0 for a re-evaluation */
+    double gb, gr; /* background damping, kg/s */
     int np, nw, n; /* pairs, wall contacts, particles */
 };
 
@@ -468,7 +469,9 @@ static int forces(struct dem_sim *s, const struct kick K)
         .cp = s->cp,
         .P = &s->p,
         .pl = pl,
-        .dt = s->dt,
+        /* a pass without a kick re-evaluates the present state: the
+         * springs take no displacement (see dem_sim_forces) */
+        .dt = K.on ? s->dt : 0.0,
         .gb = s->cfg.damping.gamma_b,
         .gr = s->cfg.damping.gamma_br,
         .np = pl->cur.n,

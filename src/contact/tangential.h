@@ -4,20 +4,33 @@
  * (seed 001, Eqs. 1-3) and David et al., "Powder flow testing with biaxial
  * and triaxial devices" (seed 000, Eqs. 2-4). The sequence, per step:
  *
- *   xi      = xi' - n (n . xi')                 project the stored spring
  *   v_t     = v_ij - n (n . v_ij)               tangential velocity
+ *   xi      = xi' - n (n . xi') + v_t dt        project the stored spring
+ *                                               and stretch it to now
  *   f0      = -k_t xi - gamma_t v_t             test force
  *   sticking contact: static  if |f0| <= mu_s f_C
  *   sliding  contact: sliding while |f0| >  mu_d f_C  (seed 000)
- *   static:  xi' = xi + v_t dt,                      force f0
+ *   static:  xi' = xi,                               force f0
  *   sliding: xi' = -(1/k_t)(mu_d f_C t + gamma_t v_t), t = f0/|f0|,
  *            force mu_d f_C t
+ *
+ * The papers write the spring update xi' = xi + v_t dt after the force:
+ * in their explicit step the positions move with the same velocity v_t
+ * afterwards, so the spring and the positions stay at one time. In our
+ * velocity-Verlet step the force is computed after the drift, at the new
+ * positions, and v_t is the half-step velocity that made that drift; the
+ * spring must therefore take the increment v_t dt before the force, or
+ * it lags one step behind the positions and the force carries an extra
+ * +k_t dt v_t, a negative damping (docs/physics.md, "Time integration of
+ * the tangential spring"). LAMMPS's linear_history uses the same order.
  *
  * f_C is the normal force used in the Coulomb limit. It never goes
  * negative: with the linear law it is max(f_n, 0) (f_n includes the
  * dashpot); with adhesion it is max(f_n + k_c delta, 0) as in Luding,
  * "Cohesive, frictional powders: contact models for tension", Granular
  * Matter 10 (2008) 235, so that an adhesive contact still has friction.
+ * k_t = 0 is allowed only without friction (then f_C mu = 0 and the
+ * spring stays zero; the config layer refuses it with mu > 0).
  */
 #ifndef DEM_CONTACT_TANGENTIAL_H
 #define DEM_CONTACT_TANGENTIAL_H
@@ -48,7 +61,8 @@ struct dem_vec3 {
  *   vij   relative velocity of the contact surfaces (i relative to j)
  *   fc    normal force for the Coulomb limit (>= 0), N
  *   dt    time step, s
- *   xi    in: stored spring xi'; out: the spring for the next step, m
+ *   xi    in: stored spring xi' of the last step; out: the spring at the
+ *         time of this force (stored for the next step), m
  *   state in/out: DEM_CONTACT_SLIDING bit
  * In a loop run in SIMD lanes the compiler computes the sliding case
  * under a mask; scalar code branches past it (most contacts stick).
@@ -58,14 +72,16 @@ dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
                      double dt, const struct dem_tangential *T,
                      struct dem_vec3 *xi, int *state)
 {
-    const double nxi = n.x * xi->x + n.y * xi->y + n.z * xi->z;
-    const double sx = xi->x - n.x * nxi;
-    const double sy = xi->y - n.y * nxi;
-    const double sz = xi->z - n.z * nxi;
     const double nv = n.x * vij.x + n.y * vij.y + n.z * vij.z;
     const double vtx = vij.x - n.x * nv;
     const double vty = vij.y - n.y * nv;
     const double vtz = vij.z - n.z * nv;
+    /* the spring at the time of the force: projected, then stretched by
+     * this step's tangential displacement */
+    const double nxi = n.x * xi->x + n.y * xi->y + n.z * xi->z;
+    const double sx = xi->x - n.x * nxi + vtx * dt;
+    const double sy = xi->y - n.y * nxi + vty * dt;
+    const double sz = xi->z - n.z * nxi + vtz * dt;
     const double f0x = -T->kt * sx - T->gamma_t * vtx;
     const double f0y = -T->kt * sy - T->gamma_t * vty;
     const double f0z = -T->kt * sz - T->gamma_t * vtz;
@@ -74,14 +90,16 @@ dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
     const double limit = (sliding ? T->mu_d : T->mu_s) * fc;
     /* static friction; a sliding contact sticks again here */
     struct dem_vec3 ft = {f0x, f0y, f0z};
-    xi->x = sx + vtx * dt;
-    xi->y = sy + vty * dt;
-    xi->z = sz + vtz * dt;
+    xi->x = sx;
+    xi->y = sy;
+    xi->z = sz;
     *state &= ~DEM_CONTACT_SLIDING;
-    if (f0sq > limit * limit) {
-        /* sliding at mu_d f_C along the test force (f0 > limit >= 0), with
-         * the spring that gives this force */
-        const double scale = T->mu_d * fc / sqrt(f0sq);
+    if (f0sq >= limit * limit) {
+        /* sliding at mu_d f_C along the test force, with the spring that
+         * gives this force; a zero test force at a zero limit (no
+         * friction, or f_C = 0) slides with no force, so that without
+         * friction the spring never accumulates */
+        const double scale = f0sq > 0.0 ? T->mu_d * fc / sqrt(f0sq) : 0.0;
         const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
         ft.x = f0x * scale;
         ft.y = f0y * scale;

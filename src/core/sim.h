@@ -121,7 +121,9 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err);
 void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d);
 
 /* Recompute forces of the current state without moving anything
- * (fills s->sums when s->measure is set). */
+ * (fills s->sums when s->measure is set). The tangential springs take
+ * no displacement (it is added by the step that moves the particles),
+ * so a second call gives the same forces. */
 void dem_sim_forces(struct dem_sim *s);
 /* The same, then the closing half kick of a step in the same pass over
  * the particles: v += h (f/m + g), w += h t/I. With chain, also the next

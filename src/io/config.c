@@ -273,9 +273,9 @@ static const struct key keys[] = {
      .kind = K_DOUBLE,
      TOP(contact.kt),
      .def = 1000,
-     GT(0),
+     GE(0),
      .unit = "N/m",
-     .doc = "tangential stiffness"},
+     .doc = "tangential stiffness (0 only without friction)"},
     {.name = "contact.gamma_t",
      .kind = K_DOUBLE,
      TOP(contact.gamma_t),
@@ -1239,6 +1239,36 @@ static int check_stages(const struct ctx *x, const struct dem_config *c,
     return 0;
 }
 
+/* k_t = 0 is well defined without friction: no spring, no tangential
+ * force. With friction it would leave only the dashpot -gamma_t v_t under
+ * the Coulomb limit: no static friction, so nothing could rest on a
+ * slope or hold a shear stress at rest. */
+static int check_kt(const struct ctx *x, const struct dem_config *c,
+                    struct dem_error *err)
+{
+    if (c->contact.kt != 0)
+        return 0;
+    if (c->contact.mu_s > 0)
+        return fail_key(x, -1, "contact.kt", err,
+                        "0 needs friction off: with contact.mu_s = %g there "
+                        "would be no static friction (give kt > 0, or "
+                        "contact.mu = 0)",
+                        c->contact.mu_s);
+    if (c->contact.wall_mu > 0)
+        return fail_key(x, -1, "contact.kt", err,
+                        "0 needs friction off: with contact.wall_mu = %g "
+                        "there would be no static wall friction (give kt > "
+                        "0, or wall_mu = 0)",
+                        c->contact.wall_mu);
+    for (int i = 0; i < c->nstages && i < DEM_MAX_STAGES; i++)
+        if (c->stages[i].mu > 0)
+            return fail_key(x, i, "mu", err,
+                            "friction %g with contact.kt = 0: there would be "
+                            "no static friction (give contact.kt > 0)",
+                            c->stages[i].mu);
+    return 0;
+}
+
 /* Everything except the time step, which needs these to be valid. */
 static int validate_body(const struct ctx *x, const struct dem_config *c,
                          struct dem_error *err)
@@ -1250,6 +1280,8 @@ static int validate_body(const struct ctx *x, const struct dem_config *c,
         return fail_key(x, -1, "contact.mu_d", err,
                         "must be <= contact.mu_s (got %g > %g)",
                         c->contact.mu_d, c->contact.mu_s);
+    if (check_kt(x, c, err))
+        return DEM_ECONFIG;
     if (c->contact.normal == DEM_NORMAL_LUDING && c->contact.k1 > c->contact.k2)
         return fail_key(x, -1, "contact.k1", err,
                         "must be <= contact.k2 (got %g > %g)", c->contact.k1,
