@@ -364,8 +364,8 @@ static const struct bad bad_inputs[] = {
     {"contact = { kt = 0.0; mu = 0.0; };\nstages = (\n { type = \"hold\"; "
      "duration = 0.1;\n   mu = 0.3; }\n);",
      0, "stages.0.mu: friction 0.3 with contact.kt = 0", 4},
-    {"contact = {\n  kt = -1.0;\n  mu = 0.0;\n};", 0, "contact.kt: must be >= 0",
-     2},
+    {"contact = {\n  kt = -1.0;\n  mu = 0.0;\n};", 0,
+     "contact.kt: must be >= 0", 2},
     {"particles = {\n  density = 0.0;\n};", 0, "particles.density", 2},
     {"contact = {\n  mu_s = 0.3;\n  mu_d = 0.5;\n};", 0, "contact.mu_d", 3},
     {"contact = {\n  mu = 0.3;\n  mu_s = 0.5;\n};", 0, "contact.mu_s", 3},

@@ -239,7 +239,8 @@ static void packing_left_alone_never_gains_energy(void **state)
         for (int k = 0; k < nside; k++)
             for (int j = 0; j < nside; j++)
                 for (int i = 0; i < nside; i++) {
-                    const double r = 0.52 * h * (0.95 + 0.1 * dem_rng_uniform(&rng));
+                    const double r =
+                        0.52 * h * (0.95 + 0.1 * dem_rng_uniform(&rng));
                     test_add(&s, (i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h,
                              r);
                 }
@@ -292,9 +293,9 @@ static void frictionless_runs_do_not_depend_on_kt(void **state)
         struct dem_rng rng;
         dem_rng_seed(&rng, 3);
         for (int k = 0; k < 64; k++) {
-            const int id = test_add(&s, 0.005 + 0.01 * (k % 4),
-                                    0.005 + 0.01 * (k / 4 % 4),
-                                    0.005 + 0.01 * (k / 16), 5.2e-3);
+            const int id =
+                test_add(&s, 0.005 + 0.01 * (k % 4), 0.005 + 0.01 * (k / 4 % 4),
+                         0.005 + 0.01 * (k / 16), 5.2e-3);
             s.p.vx[id] = 0.05 * (2 * dem_rng_uniform(&rng) - 1);
             s.p.wz[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
         }
