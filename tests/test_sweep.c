@@ -1,6 +1,7 @@
 /* Parameter sweeps: grid expansion and --param errors, the refusal of a
  * bad grid point before anything runs, the cross-run fits on synthetic
- * summaries with known answers (flow function, void-ratio envelope), and
+ * summaries with known answers (flow function, void-ratio envelope, the
+ * mean and standard error over seeds), and
  * a real sweep of three tiny runs in two jobs that a restart skips. */
 #include "testutil.h"
 
@@ -258,6 +259,112 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* Runs that differ only in the seed form an ensemble: sweep.json gives
+ * the mean and the standard error of the mean (sample standard deviation
+ * over sqrt(n)) of every number, of the increment of every cycle, and of
+ * the flow functions fitted per seed. Synthetic summaries with known
+ * answers: 2 frictions x 3 seeds x 2 pressures; seed k (k = 1, 2, 3)
+ * shifts phi by 2 (k - 2) degrees, c by 10 (k - 2), the peak sin(phi) by
+ * 0.01 (k - 2) and gains k 1e-3 in its one cycle. */
+static void seed_ensembles_give_mean_and_standard_error(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/ensembles", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.mu=0.1,0.5");
+    add(&g, "seed=1,2,3");
+    add(&g, "stages.1.pressure=100,400");
+    const long np = dem_sweep_grid_size(&g);
+    assert_int_equal(np, 12);
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(np * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    const double mus[2] = {0.1, 0.5}, p[2] = {100, 400};
+    for (long i = 0; i < np; i++) {
+        int idx[DEM_SWEEP_MAX_PARAMS];
+        dem_sweep_grid_point(&g, i, idx);
+        const double d = idx[1] - 1.0; /* seed - 2 */
+        const double phi = (30.0 + 2.0 * d) / DEG, c = 50.0 + 10.0 * d;
+        const double s = sin(phi), pr = p[idx[2]];
+        const double s1 = pr * (1 + s) / (1 - s) + 2 * c * cos(phi) / (1 - s);
+        char summary[1536], set[3][64];
+        snprintf(summary, sizeof summary,
+                 "{\"dimension\": 2, \"loading_stage\": 1, "
+                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
+                 "%.17g, \"phi_deg\": 30, \"sigma_axial\": %.17g, "
+                 "\"sigma_lateral\": %.17g}, \"critical\": {\"sin_phi\": "
+                 "null}, \"void_ratio_initial\": 0.2, \"cyclic_stage\": 1, "
+                 "\"verdict\": \"%s\", \"cycles\": [{\"cycle\": 1, "
+                 "\"strain_end\": %.17g, \"strain_increment\": %.17g}]}\n",
+                 pr, 0.4 + 0.1 * mus[idx[0]] + 0.01 * d, s1, pr,
+                 d > 0 ? "ratcheting" : "shakedown", (d + 2) * 1e-3,
+                 (d + 2) * 1e-3);
+        snprintf(set[0], sizeof set[0], "contact.mu=%g", mus[idx[0]]);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
+        fake_run(dir, cfg, set[0], summary);
+    }
+    free(names);
+    struct dem_sweep_options o = {cfg, out, NULL, 0, 1, 1, 1, NULL, 0};
+    struct dem_error err = {0, ""};
+    if (dem_sweep_collect(&g, &o, &err))
+        fail_msg("%s", err.msg);
+    struct dem__jval js;
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(&js, dir, &err))
+        fail_msg("%s", err.msg);
+    const struct dem__jval *en = dem__jread_get(&js, "ensembles");
+    assert_non_null(en);
+    assert_int_equal(en->type, DEM__JSON_ARRAY);
+    assert_int_equal(en->n, 4); /* 2 frictions x 2 pressures */
+    for (int q = 0; q < en->n; q++) {
+        const struct dem__jval *e = &en->items[q];
+        const double mu = dem__jread_number(e, "mu");
+        assert_close(dem__jread_number(e, "runs"), 3, 0);
+        assert_close(dem__jread_number(e, "peak_sin_phi.mean"), 0.4 + 0.1 * mu,
+                     1e-12);
+        assert_close(dem__jread_number(e, "peak_sin_phi.se"), 0.01 / sqrt(3.0),
+                     1e-12);
+        assert_close(dem__jread_number(e, "peak_sin_phi.n"), 3, 0);
+        /* no critical state in any run: no mean, no error */
+        assert_close(dem__jread_number(e, "critical_sin_phi.n"), 0, 0);
+        assert_close(dem__jread_number(e, "verdicts.ratcheting"), 1, 0);
+        const struct dem__jval *cy = dem__jread_get(e, "cycles");
+        assert_int_equal(cy->n, 1);
+        /* sweep.json keeps 10 significant digits */
+        assert_rel(dem__jread_number(&cy->items[0], "strain_increment.mean"),
+                   2e-3, 1e-9);
+        assert_rel(dem__jread_number(&cy->items[0], "strain_increment.se"),
+                   1e-3 / sqrt(3.0), 1e-9);
+    }
+    const struct dem__jval *fe = dem__jread_get(&js, "flow_function_ensemble");
+    assert_non_null(fe);
+    assert_int_equal(fe->n, 2); /* one per friction */
+    for (int q = 0; q < fe->n; q++) {
+        assert_close(dem__jread_number(&fe->items[q], "fits"), 3, 0);
+        assert_close(dem__jread_number(&fe->items[q], "phi_deg.mean"), 30.0,
+                     1e-6);
+        assert_close(dem__jread_number(&fe->items[q], "phi_deg.se"),
+                     2.0 / sqrt(3.0), 1e-6);
+        assert_close(dem__jread_number(&fe->items[q], "cohesion.mean"), 50.0,
+                     1e-6);
+        assert_close(dem__jread_number(&fe->items[q], "cohesion.se"),
+                     10.0 / sqrt(3.0), 1e-6);
+    }
+    dem__jread_free(&js);
+    /* the pictures of an ensemble sweep draw error bars */
+    snprintf(dir, sizeof dir, "%s/plots/friction_vs_mu.gp", out);
+    FILE *f = fopen(dir, "r");
+    assert_non_null(f);
+    char text[8192];
+    const size_t len = fread(text, 1, sizeof text - 1, f);
+    text[len] = '\0';
+    fclose(f);
+    assert_non_null(strstr(text, "yerrorlines"));
+    dem_sweep_grid_free(&g);
+}
+
 static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
 {
     (void)state;
@@ -323,6 +430,7 @@ int main(void)
         cmocka_unit_test(bad_param_is_an_error_naming_it),
         cmocka_unit_test(bad_grid_point_is_refused_before_running),
         cmocka_unit_test(flow_function_and_void_fit_recover_known_values),
+        cmocka_unit_test(seed_ensembles_give_mean_and_standard_error),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
     };
     return cmocka_run_group_tests(tests, setup, NULL);

@@ -7,6 +7,7 @@
  * are dem_voidfit over the same groups.
  */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -286,6 +287,124 @@ static int void_ratios(struct dem__sweep *s)
     return DEM_OK;
 }
 
+/* ----------------------------------------------------------- ensembles */
+
+struct dem__sweep_stat dem__sweep_stat_of(const double *x, long n)
+{
+    struct dem__sweep_stat st = {NAN, NAN, 0};
+    double sum = 0.0;
+    for (long k = 0; k < n; k++)
+        if (isfinite(x[k])) {
+            sum += x[k];
+            st.n++;
+        }
+    if (st.n == 0)
+        return st;
+    st.mean = sum / st.n;
+    if (st.n < 2)
+        return st;
+    double ss = 0.0;
+    for (long k = 0; k < n; k++)
+        if (isfinite(x[k]))
+            ss += (x[k] - st.mean) * (x[k] - st.mean);
+    /* the sample standard deviation over sqrt(n) */
+    st.se = sqrt(ss / (st.n - 1) / st.n);
+    return st;
+}
+
+/* Statistics over the runs of ensemble q of one number of a run (field
+ * at byte offset off of struct dem__sweep_run). */
+static struct dem__sweep_stat ens_stat(const struct dem__sweep *s, int q,
+                                       size_t off, double *buf)
+{
+    long m = 0;
+    for (long i = 0; i < s->n; i++)
+        if (s->eng.gid[i] == q)
+            buf[m++] = *(const double *)((const char *)&s->runs[i] + off);
+    return dem__sweep_stat_of(buf, m);
+}
+
+static int ensembles(struct dem__sweep *s)
+{
+    const int G = s->eng.n;
+    s->ens = calloc((size_t)(G > 0 ? G : 1), sizeof *s->ens);
+    double *buf = malloc(((size_t)s->n + 1) * sizeof *buf);
+    if (!s->ens || !buf) {
+        free(buf);
+        return DEM_ENOMEM;
+    }
+    for (int q = 0; q < G; q++) {
+        struct dem__sweep_ens *e = &s->ens[q];
+#define STAT(F) ens_stat(s, q, offsetof(struct dem__sweep_run, F), buf)
+        e->peak_sin = STAT(peak_sin);
+        e->peak_phi = STAT(peak_phi);
+        e->crit_sin = STAT(crit_sin);
+        e->crit_phi = STAT(crit_phi);
+        e->e_init = STAT(e_init);
+        e->e_crit = STAT(e_crit);
+#undef STAT
+        for (long i = 0; i < s->n; i++) {
+            const struct dem__sweep_run *r = &s->runs[i];
+            if (s->eng.gid[i] != q)
+                continue;
+            e->runs++;
+            e->ncyc = r->ncyc > e->ncyc ? r->ncyc : e->ncyc;
+            e->ratcheting += !strcmp(r->verdict, "ratcheting");
+            e->shakedown += !strcmp(r->verdict, "shakedown");
+        }
+        if (e->ncyc == 0)
+            continue;
+        e->cyc_inc = malloc(2 * (size_t)e->ncyc * sizeof *e->cyc_inc);
+        if (!e->cyc_inc) {
+            free(buf);
+            return DEM_ENOMEM;
+        }
+        e->cyc_end = e->cyc_inc + e->ncyc;
+        for (int c = 0; c < e->ncyc; c++)
+            for (int which = 0; which < 2; which++) {
+                long m = 0;
+                for (long i = 0; i < s->n; i++) {
+                    const struct dem__sweep_run *r = &s->runs[i];
+                    if (s->eng.gid[i] == q && c < r->ncyc)
+                        buf[m++] = which ? r->cyc_end[c] : r->cyc_inc[c];
+                }
+                (which ? e->cyc_end : e->cyc_inc)[c] =
+                    dem__sweep_stat_of(buf, m);
+            }
+    }
+    /* flow functions: the fits of the seeds of one ensemble */
+    const int F = s->ffeg.n;
+    for (int state = 0; state < 2 && !s->ff_reason[0]; state++) {
+        s->ffe[state] = calloc((size_t)(F > 0 ? F : 1), sizeof **s->ffe);
+        double *b = malloc(3 * ((size_t)s->ffg.n + 1) * sizeof *b);
+        if (!s->ffe[state] || !b) {
+            free(b);
+            free(buf);
+            return DEM_ENOMEM;
+        }
+        for (int q = 0; q < F; q++) {
+            long m = 0;
+            for (int g = 0; g < s->ffg.n; g++) {
+                const struct dem_mohr_fit *f = &s->ff[state][g].fit;
+                if (s->ffeg.gid[s->ffg.rep[g]] != q || !f->ok)
+                    continue;
+                b[m] = f->phi_deg;
+                b[s->ffg.n + m] = tan(f->phi_deg / DEG);
+                b[2 * s->ffg.n + m] = f->c;
+                m++;
+            }
+            struct dem__sweep_ffens *e = &s->ffe[state][q];
+            e->fits = (int)m;
+            e->phi_deg = dem__sweep_stat_of(b, m);
+            e->tan_phi = dem__sweep_stat_of(b + s->ffg.n, m);
+            e->c = dem__sweep_stat_of(b + 2 * s->ffg.n, m);
+        }
+        free(b);
+    }
+    free(buf);
+    return DEM_OK;
+}
+
 /* ------------------------------------------------------------- writing */
 
 /* A value as given on the command line: a number when it is one, a
@@ -333,10 +452,11 @@ static void null_reason(struct dem__json *j, const char *key, const char *why)
 
 static const char *role_names(int roles, char *buf, size_t n)
 {
-    snprintf(buf, n, "%s%s%s",
+    snprintf(buf, n, "%s%s%s%s",
              roles & DEM_SWEEP_ROLE_PRESSURE ? "pressure " : "",
              roles & DEM_SWEEP_ROLE_MU ? "mu " : "",
-             roles & DEM_SWEEP_ROLE_KC ? "kc " : "");
+             roles & DEM_SWEEP_ROLE_KC ? "kc " : "",
+             roles & DEM_SWEEP_ROLE_SEED ? "seed " : "");
     size_t len = strlen(buf);
     if (len)
         buf[len - 1] = '\0';
@@ -600,6 +720,79 @@ static void write_cyclic(struct dem__json *j, const struct dem__sweep *s)
     dem__json_close(j);
 }
 
+static void write_stat(struct dem__json *j, const char *key,
+                       struct dem__sweep_stat st)
+{
+    dem__json_object(j, key, 1);
+    dem__json_number(j, "mean", st.mean);
+    dem__json_number(j, "se", st.se);
+    dem__json_int(j, "n", st.n);
+    dem__json_close(j);
+}
+
+static void write_ensembles(struct dem__json *j, const struct dem__sweep *s)
+{
+    if (!(s->roles & DEM_SWEEP_ROLE_SEED)) {
+        null_reason(j, "ensembles",
+                    "the sweep does not vary the seed (--param seed=1,2,3 "
+                    "makes ensembles of independent samples)");
+        return;
+    }
+    dem__json_array(j, "ensembles", 0);
+    for (int q = 0; q < s->eng.n; q++) {
+        const struct dem__sweep_ens *e = &s->ens[q];
+        const long rep = s->eng.rep[q];
+        dem__json_object(j, NULL, 0);
+        params(j, "params", s, rep, DEM_SWEEP_ROLE_SEED);
+        dem__json_int(j, "runs", e->runs);
+        dem__json_number(j, "mu", s->runs[rep].mu);
+        dem__json_number(j, "confining_pressure", s->runs[rep].pressure);
+        write_stat(j, "peak_sin_phi", e->peak_sin);
+        write_stat(j, "peak_phi_deg", e->peak_phi);
+        write_stat(j, "critical_sin_phi", e->crit_sin);
+        write_stat(j, "critical_phi_deg", e->crit_phi);
+        write_stat(j, "void_ratio_initial", e->e_init);
+        write_stat(j, "void_ratio_critical", e->e_crit);
+        if (e->ncyc > 0) {
+            dem__json_object(j, "verdicts", 1);
+            dem__json_int(j, "ratcheting", e->ratcheting);
+            dem__json_int(j, "shakedown", e->shakedown);
+            dem__json_close(j);
+            dem__json_array(j, "cycles", 0);
+            for (int c = 0; c < e->ncyc; c++) {
+                dem__json_object(j, NULL, 1);
+                dem__json_int(j, "cycle", c + 1);
+                write_stat(j, "strain_increment", e->cyc_inc[c]);
+                write_stat(j, "strain_end", e->cyc_end[c]);
+                dem__json_close(j);
+            }
+            dem__json_close(j);
+        }
+        dem__json_close(j);
+    }
+    dem__json_close(j);
+    if (s->ff_reason[0])
+        return;
+    for (int state = 0; state < 2; state++) {
+        dem__json_array(j,
+                        state ? "flow_function_critical_ensemble"
+                              : "flow_function_ensemble",
+                        0);
+        for (int q = 0; q < s->ffeg.n; q++) {
+            const struct dem__sweep_ffens *e = &s->ffe[state][q];
+            dem__json_object(j, NULL, 0);
+            params(j, "group", s, s->ffeg.rep[q],
+                   DEM_SWEEP_ROLE_PRESSURE | DEM_SWEEP_ROLE_SEED);
+            dem__json_int(j, "fits", e->fits);
+            write_stat(j, "phi_deg", e->phi_deg);
+            write_stat(j, "tan_phi", e->tan_phi);
+            write_stat(j, "cohesion", e->c);
+            dem__json_close(j);
+        }
+        dem__json_close(j);
+    }
+}
+
 static void write_sweep(FILE *f, const struct dem__sweep *s,
                         const struct dem_sweep_options *o)
 {
@@ -622,6 +815,7 @@ static void write_sweep(FILE *f, const struct dem__sweep *s,
     write_cohesion(&j, s);
     write_voids(&j, s);
     write_cyclic(&j, s);
+    write_ensembles(&j, s);
     dem__json_end(&j);
 }
 
@@ -640,6 +834,14 @@ static void sweep_free(struct dem__sweep *s)
             free(s->vr[q].p[k]);
         }
     free(s->vr);
+    for (int q = 0; s->ens && q < s->eng.n; q++)
+        free(s->ens[q].cyc_inc);
+    free(s->ens);
+    free(s->ffe[0]);
+    free(s->ffe[1]);
+    groups_free(&s->eng);
+    groups_free(&s->mueg);
+    groups_free(&s->ffeg);
     groups_free(&s->ffg);
     groups_free(&s->mug);
     for (long i = 0; s->runs && i < s->n; i++)
@@ -653,9 +855,17 @@ static int analyse(struct dem__sweep *s)
     if (!rc)
         rc = group(s, DEM_SWEEP_ROLE_MU, &s->mug);
     if (!rc)
+        rc = group(s, DEM_SWEEP_ROLE_SEED, &s->eng);
+    if (!rc)
+        rc = group(s, DEM_SWEEP_ROLE_PRESSURE | DEM_SWEEP_ROLE_SEED, &s->ffeg);
+    if (!rc)
+        rc = group(s, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, &s->mueg);
+    if (!rc)
         rc = flow_functions(s);
     if (!rc)
         rc = void_ratios(s);
+    if (!rc)
+        rc = ensembles(s);
     if (rc)
         return rc;
     if (!(s->roles & DEM_SWEEP_ROLE_MU))

@@ -35,6 +35,8 @@ static int key_roles(const char *key)
     if (!strcmp(key, "contact.kc") || !strcmp(key, "contact.k1") ||
         !strcmp(key, "contact.k2"))
         r |= DEM_SWEEP_ROLE_KC;
+    if (!strcmp(key, "seed"))
+        r |= DEM_SWEEP_ROLE_SEED;
     return r;
 }
 

@@ -170,6 +170,61 @@ static long members_by_mu(const struct dem__sweep *s,
     return m;
 }
 
+/* With seeds: the mean over each ensemble with its standard error, one
+ * block per group of the other parameters, sorted by mu. */
+static int w_friction_ens(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    int *order = malloc(((size_t)s->eng.n + 1) * sizeof *order);
+    if (!order)
+        return DEM_ENOMEM;
+    fprintf(dat, "# columns: 1 mu  2 peak sin(phi)  3 its standard error  "
+                 "4 critical sin(phi)  5 its standard error  6 runs; means "
+                 "over the seeds; one block per group of the other "
+                 "parameters; ? = none\n");
+    fprintf(gp, "set xrange [0:*]\nset yrange [0:*]\nplot \\\n");
+    for (int g = 0; g < s->mueg.n; g++) {
+        int m = 0;
+        for (int q = 0; q < s->eng.n; q++) {
+            if (s->mueg.gid[s->eng.rep[q]] != g)
+                continue;
+            int k = m++;
+            while (k > 0 && s->runs[s->eng.rep[order[k - 1]]].mu >
+                                s->runs[s->eng.rep[q]].mu) {
+                order[k] = order[k - 1];
+                k--;
+            }
+            order[k] = q;
+        }
+        char lab[512], par[520];
+        label(s, s->mueg.rep[g], DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab,
+              sizeof lab);
+        paren(lab, par, sizeof par);
+        fprintf(dat, "# group%s\n", par);
+        for (int k = 0; k < m; k++) {
+            const struct dem__sweep_ens *e = &s->ens[order[k]];
+            const double v[4] = {e->peak_sin.mean, e->peak_sin.se,
+                                 e->crit_sin.mean, e->crit_sin.se};
+            fprintf(dat, "%.9g", s->runs[s->eng.rep[order[k]]].mu);
+            for (int c = 0; c < 4; c++)
+                isfinite(v[c]) ? fprintf(dat, " %.9g", v[c])
+                               : fprintf(dat, " ?");
+            fprintf(dat, " %d\n", e->runs);
+        }
+        fprintf(dat, "\n\n");
+        fprintf(gp,
+                "  \"friction_vs_mu.dat\" index %d using 1:2:3 with "
+                "yerrorlines pointtype 6 pointsize 1.5 linecolor %d "
+                "title \"peak, mean ± s.e.%s\" noenhanced, \\\n"
+                "  \"\" index %d using 1:4:5 with yerrorlines pointtype 7 "
+                "pointsize 1.5 linecolor %d title \"critical state, mean "
+                "± s.e.%s\" noenhanced, \\\n",
+                g, g + 1, par, g, g + 1, par);
+    }
+    fprintf(gp, "  0 linetype -3 notitle\n");
+    free(order);
+    return DEM_OK;
+}
+
 static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     long *idx = malloc((size_t)s->n * sizeof *idx);
@@ -178,6 +233,10 @@ static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
     dem__gp_head(gp, "friction_vs_mu",
                  "Macroscopic friction at peak and in critical state",
                  "microscopic friction μ", "sin φ = (σ_1 - σ_3)/(σ_1 + σ_3)");
+    if (s->roles & DEM_SWEEP_ROLE_SEED) {
+        free(idx);
+        return w_friction_ens(s, dat, gp);
+    }
     fprintf(dat, "# columns: 1 mu  2 peak sin(phi)  3 critical sin(phi)  "
                  "4 peak phi (deg)  5 critical phi (deg); one block per "
                  "group of the other parameters; ? = none\n");
@@ -220,14 +279,22 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
     dem__gp_head(gp, "cohesion_vs_kc",
                  "Macroscopic cohesion versus k_c/k_2 (flow functions at peak)",
                  "k_c/k_2", "cohesion c");
+    const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
     fprintf(dat, "# block 0: columns 1 kc/k2  2 cohesion c (from the flow "
-                 "function)\n");
+                 "function)  3 its standard error over the seeds (0 without "
+                 "seeds)\n");
     double xmax = 0.0, k1k2 = NAN;
-    for (int q = 0; q < s->ffg.n; q++) {
-        const struct dem__sweep_run *r = &s->runs[s->ffg.rep[q]];
-        const struct dem_mohr_fit *f = &s->ff[0][q].fit;
+    const int G = ens ? s->ffeg.n : s->ffg.n;
+    for (int q = 0; q < G; q++) {
+        const struct dem__sweep_run *r =
+            &s->runs[ens ? s->ffeg.rep[q] : s->ffg.rep[q]];
+        const double c = ens                  ? s->ffe[0][q].c.mean
+                         : s->ff[0][q].fit.ok ? s->ff[0][q].fit.c
+                                              : NAN;
+        const double se = ens ? s->ffe[0][q].c.se : 0.0;
         fprintf(dat, "%.9g ", r->kc / r->k2);
-        f->ok ? fprintf(dat, "%.9g\n", f->c) : fprintf(dat, "?\n");
+        isfinite(c) ? fprintf(dat, "%.9g ", c) : fprintf(dat, "? ");
+        fprintf(dat, "%.9g\n", isfinite(se) ? se : 0.0);
         xmax = fmax(xmax, r->kc / r->k2);
         if (!isfinite(k1k2))
             k1k2 = r->k1 / r->k2;
@@ -246,9 +313,9 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
     }
     fprintf(gp,
             "set xrange [0:%.6g]\nplot \"cohesion_vs_kc.dat\" index 0 "
-            "with points pointtype 7 pointsize 1.5 title \"flow "
-            "functions\"%s\n",
-            xmax,
+            "using 1:2:3 with yerrorbars pointtype 7 pointsize 1.5 title "
+            "\"flow functions%s\"%s\n",
+            xmax, ens ? ", mean ± s.e. over the seeds" : "",
             isfinite(s->kc_scale)
                 ? ", \\\n  \"\" index 1 with lines linewidth 2 title "
                   "\"A |f_{min}|/(k_2 δ_{max}) (A fitted)\""
@@ -313,10 +380,51 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
 
 /* ------------------------------------------------ strain accumulation */
 
+/* With seeds: per ensemble, the mean increment per cycle with its
+ * standard error. */
+static int w_cyclic_ens(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    fprintf(dat, "# columns 1 cycle  2 mean eps_D gained in the cycle  3 its "
+                 "standard error  4 mean eps_D at its end  5 its standard "
+                 "error  6 runs; one block per ensemble (runs differing "
+                 "only in the seed)\n");
+    fprintf(gp, "set xtics 1\nplot \\\n");
+    int block = 0;
+    for (int q = 0; q < s->eng.n; q++) {
+        const struct dem__sweep_ens *e = &s->ens[q];
+        if (e->ncyc == 0)
+            continue;
+        const long rep = s->eng.rep[q];
+        char lab[512], par[520];
+        label(s, rep, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
+        paren(lab, par, sizeof par);
+        fprintf(dat, "# mu = %.6g%s: %d runs\n", s->runs[rep].mu, par, e->runs);
+        for (int c = 0; c < e->ncyc; c++) {
+            const double v[4] = {e->cyc_inc[c].mean, e->cyc_inc[c].se,
+                                 e->cyc_end[c].mean, e->cyc_end[c].se};
+            fprintf(dat, "%d", c + 1);
+            for (int k = 0; k < 4; k++)
+                isfinite(v[k]) ? fprintf(dat, " %.9g", v[k])
+                               : fprintf(dat, " ?");
+            fprintf(dat, " %d\n", e->cyc_inc[c].n);
+        }
+        fprintf(dat, "\n\n");
+        fprintf(gp,
+                "  \"strain_accumulation.dat\" index %d using 1:2:3 with "
+                "yerrorlines pointtype 7 title \"μ = %.3g%s, %d runs (%d "
+                "ratcheting)\" noenhanced, \\\n",
+                block++, s->runs[rep].mu, par, e->runs, e->ratcheting);
+    }
+    fprintf(gp, "  0 linetype -3 notitle\n");
+    return DEM_OK;
+}
+
 static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     dem__gp_head(gp, "strain_accumulation", "Strain accumulated per cycle",
                  "cycle c", "Δε_D per cycle");
+    if (s->roles & DEM_SWEEP_ROLE_SEED)
+        return w_cyclic_ens(s, dat, gp);
     fprintf(dat, "# columns 1 cycle  2 eps_D gained in the cycle  3 eps_D "
                  "at its end; one block per cyclic run\n");
     fprintf(gp, "plot \\\n");

@@ -35,7 +35,9 @@
 enum dem_sweep_role {
     DEM_SWEEP_ROLE_PRESSURE = 1, /* a key ending in ".pressure" */
     DEM_SWEEP_ROLE_MU = 2,       /* contact.mu, mu_s, mu_d or stages.N.mu */
-    DEM_SWEEP_ROLE_KC = 4        /* contact.kc (or k1, k2: kc/k2 changes) */
+    DEM_SWEEP_ROLE_KC = 4,       /* contact.kc (or k1, k2: kc/k2 changes) */
+    DEM_SWEEP_ROLE_SEED = 8      /* seed: runs that differ only in it are
+                                    an ensemble of independent samples */
 };
 
 struct dem_sweep_param {

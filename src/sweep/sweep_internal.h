@@ -48,6 +48,32 @@ struct dem__sweep_void {
     struct dem_voidfit fit[2];
 };
 
+/* Mean and standard error of the mean over the finite values of an
+ * ensemble; se is NaN for fewer than 2 values, mean for none. */
+struct dem__sweep_stat {
+    double mean, se; /* the quantity's unit */
+    int n;           /* finite values */
+};
+
+/* The runs that differ only in the seed (an ensemble of independent
+ * samples of one grid point without the seed). */
+struct dem__sweep_ens {
+    int runs; /* finished runs */
+    struct dem__sweep_stat peak_sin, peak_phi, crit_sin, crit_phi;
+    struct dem__sweep_stat e_init, e_crit;
+    int ncyc;                        /* cycles of the longest run */
+    struct dem__sweep_stat *cyc_inc; /* per cycle: eps_D gained */
+    struct dem__sweep_stat *cyc_end; /* per cycle: eps_D at its end */
+    int ratcheting, shakedown;       /* verdicts */
+};
+
+/* The flow functions of the seeds of one ensemble (runs differing in
+ * pressure and seed): their friction angle, slope and cohesion. */
+struct dem__sweep_ffens {
+    int fits; /* seeds whose flow function was fitted */
+    struct dem__sweep_stat phi_deg, tan_phi, c;
+};
+
 struct dem__sweep {
     const struct dem_sweep_grid *g;
     long n;
@@ -68,7 +94,16 @@ struct dem__sweep {
     struct dem__sweep_void *vr;
     /* cyclic runs */
     char cyc_reason[DEM_REASON_MAX];
+    /* ensembles over the seed (roles & DEM_SWEEP_ROLE_SEED) */
+    struct dem__sweep_groups eng;    /* runs grouped except seed */
+    struct dem__sweep_groups mueg;   /* runs grouped except mu, seed */
+    struct dem__sweep_ens *ens;      /* per group of eng */
+    struct dem__sweep_groups ffeg;   /* runs grouped except pressure, seed */
+    struct dem__sweep_ffens *ffe[2]; /* per group of ffeg: peak, critical */
 };
+
+/* Mean and standard error of the finite values among x[0..n-1]. */
+struct dem__sweep_stat dem__sweep_stat_of(const double *x, long n);
 
 /* |f_min|/(k2 delta_max) = (kc/k2)(1 - k1/k2)/(1 + kc/k2) (SPEC 2.2). */
 double dem__sweep_fmin_norm(double kc, double k1, double k2);
