@@ -1,34 +1,142 @@
-#!/bin/sh
-# Reproduce the figures of both seeds with the scaled built-in examples
-# (docs/reproduction.md records the results). Long: about 25 CPU-minutes
-# on this project's reference machine; JOBS runs in parallel (default: all
-# cores). Each sweep restarts where it stopped when run again.
-# Usage: scripts/reproduce.sh [OUTDIR]
-set -eu
+#!/bin/bash
+# Reproduce the figures of both papers (docs/reproduction.md records the
+# results). Every part is a `dembox sweep` into OUTDIR/NAME; running the
+# same command again resumes: finished runs are skipped, unfinished ones
+# continue from their checkpoints.
+#
+# usage: scripts/reproduce.sh [--quick | --paper] [--jobs N] [--only NAMES]
+#                             [--numbers DIR] [--smoke] [--list] [OUTDIR]
+#
+#   --quick       the scaled built-in examples, one sample per point
+#                 (default; about 25 CPU minutes)
+#   --paper       the papers' sizes and parameters with 3 seeds per point
+#                 (about 11 CPU hours: run it over several sessions)
+#   --jobs N      runs at once (default: the number of cores)
+#   --only NAMES  only these parts (comma-separated; see --list)
+#   --numbers DIR after each part, copy its sweep.json and every run's
+#                 summary.json and config.cfg to DIR/NAME/ (the numbers
+#                 behind docs/reproduction.md)
+#   --smoke       every run stops after 300 steps (checks the command, not
+#                 the physics; used by CTest)
+#   --list        print the parts with their CPU time and exit
+#   OUTDIR        default: reproduce-quick or reproduce-paper
+#
+# OUTDIR/reproduce.id records the mode and the parts; a folder made by
+# another mode, another set of parts or another dembox version is refused
+# (a resumed sweep must continue the same runs). A part whose runs fail is
+# reported and the others go on; the exit status is then 1.
+set -u
+HERE=$(pwd)
 cd "$(dirname "$0")/.."
-OUT=${1:-reproduce}
+
+MODE=quick JOBS= ONLY= NUMBERS= SMOKE= LIST= OUT=
+die() { echo "reproduce.sh: $*" >&2; exit 2; }
+while [ $# -gt 0 ]; do
+    case $1 in
+    --quick) MODE=quick; shift ;;
+    --paper) MODE=paper; shift ;;
+    --jobs) JOBS=${2:-}; shift 2 || die "--jobs needs a number" ;;
+    --only) ONLY=${2:-}; shift 2 || die "--only needs part names" ;;
+    --numbers) NUMBERS=${2:-}; shift 2 || die "--numbers needs a folder" ;;
+    --smoke) SMOKE=1; shift ;;
+    --list) LIST=1; shift ;;
+    -h | --help) sed -n '2,/^set -u/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    -*) die "unknown option $1 (see --help)" ;;
+    *) [ -z "$OUT" ] || die "one OUTDIR only (got $OUT and $1)"; OUT=$1; shift ;;
+    esac
+done
 JOBS=${JOBS:-$(nproc)}
-B=./build/dembox
-[ -x "$B" ] || ./scripts/setup.sh build
-sweep() { name=$1; shift; echo "== $name"; "$B" sweep "$@" -o "$OUT/$name" --jobs "$JOBS" --quiet; }
+[[ $JOBS =~ ^[1-9][0-9]*$ ]] || die "--jobs must be a positive integer (got $JOBS)"
+OUT=${OUT:-reproduce-$MODE}
+# paths given by the caller are relative to where it was called from
+case $OUT in /*) ;; *) OUT=$HERE/$OUT ;; esac
+case $NUMBERS in /* | "") ;; *) NUMBERS=$HERE/$NUMBERS ;; esac
+case ${DEMBOX:-} in /* | "") ;; *) DEMBOX=$HERE/$DEMBOX ;; esac
+B=${DEMBOX:-./build/dembox} # DEMBOX: another dembox binary (tests)
 
-# seed 001 Figs. 6-8: frictional powder (mu = 0.5) at three side pressures;
-# Mohr circles at peak and the flow function (Fig. 7), void ratio (Fig. 8)
-sweep pressure biaxial2d --param stages.0.pressure,stages.1.pressure=250,500,1000
+# The parts: NAME|CPU minutes|figures|sweep arguments. CPU minutes on
+# this project's machine (docs/reproduction.md gives the measured ones;
+# parts not yet run there are estimated from the runs' size, about 10
+# CPU seconds per simulated second of 3375 spheres at dt = 2e-5 s and
+# about 5 CPU minutes per 0.5 s of 1950 discs at dt = 2e-7 s).
+quick_parts() {
+    cat <<'EOF'
+pressure|4|001 Figs. 6, 7, 8, §3.3|biaxial2d --param stages.0.pressure,stages.1.pressure=250,500,1000
+cohesion|8|001 Figs. 4, 5, §3.1|biaxial2d-cohesive --param contact.kc=1.0e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=250,500,1000
+friction-dense|5|000 Fig. 3 left (dense), Fig. 2 left|biaxial2d --param contact.mu=0.1,0.3,0.5,1.0
+friction-loose|5|000 Fig. 3 left (loose)|biaxial2d --param contact.mu,stages.0.mu=0.1,0.3,0.5,1.0
+cyclic|5|000 Figs. 2 right, 3 right|cyclic3d --param contact.mu=0.1,0.3,1.0
+EOF
+}
+paper_parts() {
+    cat <<'EOF'
+cyclic-period|30|000: the period does not matter (t0 = 1, 2, 5 s)|cyclic3d-paper --set contact.mu=0.1 --set stages.1.cycles=10 --param stages.1.period=1,2,5 --param seed=1,2
+cyclic-mu|140|000 Figs. 2 right, 3 right (50 cycles, t0 = 1 s)|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --param contact.mu=0.01,0.1,0.3,0.5,1.0 --param seed=1,2,3
+biaxial-pressure|90|001 Figs. 6, 7, 8, §3.3 (40 % strain)|biaxial2d-paper --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
+biaxial-cohesion|240|001 Figs. 4, 5, §3.1|biaxial2d-paper --set contact.mu=0.0 --param contact.kc=0.0,2.5e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
+friction-dense|180|000 Fig. 2 left, Fig. 3 left (dense)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
+friction-loose|180|000 Fig. 3 left (loose: prepared with mu)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu,stages.0.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
+EOF
+}
+parts() { if [ "$MODE" = paper ]; then paper_parts; else quick_parts; fi; }
 
-# seed 001 Figs. 4-5: frictionless, cohesive powder; flow function per
-# cohesion (Fig. 5 top) and macroscopic cohesion versus kc/k2 (Fig. 5 bottom)
-sweep cohesion biaxial2d-cohesive --param contact.kc=1.0e4,5.0e4,1.0e5 \
-    --param stages.0.pressure,stages.1.pressure=250,500,1000
+# the parts chosen
+ALL=$(parts | cut -d'|' -f1 | tr '\n' ' ')
+if [ -n "$ONLY" ]; then
+    for n in ${ONLY//,/ }; do
+        case " $ALL " in *" $n "*) ;; *) die "--only: no part '$n' in --$MODE (parts: $ALL)" ;; esac
+    done
+    CHOSEN=" ${ONLY//,/ } "
+else
+    CHOSEN=" $ALL "
+fi
+selected() { parts | while IFS='|' read -r n m f a; do case "$CHOSEN" in *" $n "*) echo "$n|$m|$f|$a" ;; esac; done; }
 
-# seed 000 Fig. 3 left: macroscopic friction at peak and in the critical
-# state versus contact friction, for two initial conditions: dense
-# (frictionless preparation) and looser (prepared with the contact friction)
-sweep friction-dense biaxial2d --param contact.mu=0.1,0.3,0.5,1.0
-sweep friction-loose biaxial2d --param contact.mu,stages.0.mu=0.1,0.3,0.5,1.0
+total=0
+printf '%-18s %8s  %s\n' part CPU-min figures
+while IFS='|' read -r n m f a; do
+    printf '%-18s %8s  %s\n' "$n" "$m" "$f"
+    total=$((total + m))
+done < <(selected)
+wall=$(( (total + JOBS - 1) / JOBS ))
+echo "mode --$MODE: about $total CPU minutes in all, $wall minutes with $JOBS jobs" \
+     "(finished runs are skipped)"
+[ -z "$LIST" ] || exit 0
 
-# seed 000 Figs. 2 right and 3 right: cyclic loading, strain accumulation
-# per cycle for several contact frictions (ratcheting or shakedown)
-sweep cyclic cyclic3d --param contact.mu=0.1,0.3,0.5
+[ -x "$B" ] || ./scripts/setup.sh build >/dev/null || die "build failed"
+[ -x "$B" ] || die "$B: not executable"
+VERSION=$("$B" --version 2>/dev/null | head -1)
+ID="mode=$MODE smoke=${SMOKE:-0} version=$VERSION parts=$(echo $CHOSEN)"
+mkdir -p "$OUT" || die "$OUT: cannot create"
+if [ -f "$OUT/reproduce.id" ]; then
+    old=$(cat "$OUT/reproduce.id")
+    [ "$old" = "$ID" ] || die "$OUT was made by another command ($old); use another OUTDIR"
+elif [ -n "$(ls -A "$OUT")" ]; then
+    die "$OUT is not empty and was not made by reproduce.sh; use another OUTDIR"
+fi
+echo "$ID" > "$OUT/reproduce.id"
 
+failed=""
+while IFS='|' read -r n m f a; do
+    echo "== $n ($f; about $m CPU minutes) $(date -u +%H:%M:%S)"
+    # shellcheck disable=SC2086 # the arguments are split on purpose
+    if ! "$B" sweep $a -o "$OUT/$n" --jobs "$JOBS" \
+        --set output.checkpoint_interval=120 ${SMOKE:+--max-steps 300}; then
+        failed="$failed $n"
+    fi
+    if [ -n "$NUMBERS" ] && [ -f "$OUT/$n/sweep.json" ]; then
+        mkdir -p "$NUMBERS/$n"
+        cp "$OUT/$n/sweep.json" "$NUMBERS/$n/"
+        for r in "$OUT/$n"/runs/*/; do
+            [ -f "$r/summary.json" ] || continue
+            d="$NUMBERS/$n/runs/$(basename "$r")"
+            mkdir -p "$d"
+            cp "$r/summary.json" "$r/config.cfg" "$d/"
+        done
+    fi
+done < <(selected)
+if [ -n "$failed" ]; then
+    echo "reproduce.sh: runs failed in:$failed (see OUTDIR/PART/runs/*/run.log); run the same command again to retry them" >&2
+    exit 1
+fi
 echo "results in $OUT/*/sweep.json and $OUT/*/plots/"

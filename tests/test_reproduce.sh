@@ -1,0 +1,42 @@
+#!/bin/sh
+# scripts/reproduce.sh, checked without the long runs: --list adds up the
+# parts, bad input is refused with a message and status 2, two parts run
+# in --smoke mode (300 steps per run) and give their sweep.json, the
+# numbers are copied, a second call skips the finished runs, and a folder
+# of another mode is refused.
+set -eu
+SRC=${DEMBOX_SOURCE_DIR:?run through ctest}
+BIN=${DEMBOX_BIN:?run through ctest}
+T=$(mktemp -d "${TMPDIR:-/tmp}/dembox-test-reproduce.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+R="$SRC/scripts/reproduce.sh"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$R" --paper --list --jobs 2 > "$T/list" || fail "--list"
+grep -q "^cyclic-mu " "$T/list" || fail "--paper --list lacks cyclic-mu"
+grep -q "CPU minutes in all" "$T/list" || fail "--list gives no total"
+
+set +e
+"$R" --only bogus "$T/x" 2> "$T/err"; rc=$?
+set -e
+[ $rc -eq 2 ] || fail "--only bogus: status $rc"
+grep -q "no part 'bogus'" "$T/err" || fail "--only bogus: $(cat "$T/err")"
+
+out="$T/quick"
+DEMBOX=$BIN "$R" --quick --smoke --jobs 2 --only pressure,cyclic \
+    --numbers "$T/numbers" "$out" > "$T/log" 2>&1 || fail "smoke run: $(tail -5 "$T/log")"
+for p in pressure cyclic; do
+    [ -s "$out/$p/sweep.json" ] || fail "no $p/sweep.json"
+    [ -s "$T/numbers/$p/sweep.json" ] || fail "--numbers did not copy $p"
+done
+ls "$T/numbers/pressure/runs"/*/summary.json > /dev/null || fail "no summaries copied"
+DEMBOX=$BIN "$R" --quick --smoke --jobs 2 --only pressure,cyclic "$out" \
+    > "$T/log2" 2>&1 || fail "second call: $(tail -5 "$T/log2")"
+grep -q "skipped\|already finished" "$T/log2" || fail "second call did not skip: $(cat "$T/log2")"
+
+set +e
+DEMBOX=$BIN "$R" --paper --only cyclic-mu "$out" 2> "$T/err"; rc=$?
+set -e
+[ $rc -eq 2 ] || fail "another mode in the same folder: status $rc"
+grep -q "made by another command" "$T/err" || fail "$(cat "$T/err")"
+echo "test_reproduce: ok"
