@@ -38,6 +38,7 @@ static void run_init(struct dem__sweep_run *r)
                      &r->cyc_ratio};
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
+    r->stage = r->axis = -1;
 }
 
 static int read_cycles(struct dem__sweep_run *r, const struct dem__jval *cyc)
@@ -90,6 +91,8 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
     r->dim = c->dim;
     const double ls = dem__jread_number(&js, "loading_stage");
     const int st = isfinite(ls) ? (int)ls : -1;
+    r->stage = st;
+    r->axis = st >= 0 && st < c->nstages ? c->stages[st].axis : -1;
     r->mu = st >= 0 && st < c->nstages && c->stages[st].mu >= 0.0
                 ? c->stages[st].mu
                 : c->contact.mu_s;
@@ -888,6 +891,7 @@ int dem_sweep_collect(const struct dem_sweep_grid *g,
     struct dem__sweep s;
     memset(&s, 0, sizeof s);
     s.g = g;
+    s.outdir = o->outdir;
     s.n = dem_sweep_grid_size(g);
     for (int k = 0; k < g->nparams; k++)
         s.roles |= g->params[k].roles;

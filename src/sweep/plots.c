@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/csvtable.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"
 #include "io/plot_internal.h"
@@ -378,6 +379,74 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
     return DEM_OK;
 }
 
+/* ------------------------------------- stress ratio versus void ratio */
+
+/* Seed 001 Fig. 8 bottom: sin(psi) = (s1 - s3)/(s1 + s3) against the void
+ * ratio during the loading stage of every run, from its timeseries.csv
+ * (at most 400 points per run). A run whose file cannot be read is left
+ * out with a comment in the data file. */
+static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    static const struct dem__csv_want want[] = {
+        {"stage", 1},    {"void_ratio", 1}, {"sigma_xx", 1},
+        {"sigma_yy", 1}, {"sigma_zz", 1},
+    };
+    dem__gp_head(gp, "stress_ratio_vs_void_ratio",
+                 "Stress ratio versus void ratio during loading",
+                 "void ratio e", "sin ψ = (σ_1 - σ_3)/(σ_1 + σ_3)");
+    fprintf(dat, "# columns 1 void ratio  2 sin(psi); one block per run, "
+                 "its loading stage, in time order\n");
+    fprintf(gp, "plot \\\n");
+    int block = 0;
+    for (long i = 0; i < s->n; i++) {
+        const struct dem__sweep_run *r = &s->runs[i];
+        if (!r->ok || r->stage < 0 || r->axis < 0 || r->axis >= r->dim)
+            continue;
+        char path[DEM_PATH_MAX], leaf[DEM_SWEEP_RUNNAME_MAX + 40];
+        snprintf(leaf, sizeof leaf, "runs/%s/timeseries.csv", r->name);
+        struct dem__csv_table t = {0};
+        struct dem_error e = {0, ""};
+        if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
+            dem__csv_table_read(&t, path, want, 5, &e)) {
+            fprintf(dat, "# %s: not read: %s\n\n\n", r->name, e.msg);
+            dem__csv_table_free(&t);
+            fprintf(gp,
+                    "  \"stress_ratio_vs_void_ratio.dat\" index %d with "
+                    "lines notitle, \\\n",
+                    block++);
+            continue;
+        }
+        long rows = 0;
+        for (size_t k = 0; k < t.nrow; k++)
+            rows += (int)t.col[0][k] == r->stage;
+        const long every = rows > 400 ? (rows + 399) / 400 : 1;
+        fprintf(dat, "# %s: confining pressure %.6g\n", r->name, r->pressure);
+        long seen = 0;
+        for (size_t k = 0; k < t.nrow; k++) {
+            if ((int)t.col[0][k] != r->stage || seen++ % every)
+                continue;
+            const double s1 = t.col[2 + r->axis][k];
+            double s3 = 0.0;
+            for (int a = 0; a < r->dim; a++)
+                if (a != r->axis)
+                    s3 += t.col[2 + a][k] / (r->dim - 1);
+            if (s1 + s3 > 0.0)
+                fprintf(dat, "%.9g %.9g\n", t.col[1][k], (s1 - s3) / (s1 + s3));
+        }
+        fprintf(dat, "\n\n");
+        dem__csv_table_free(&t);
+        char lab[512], par[520];
+        label(s, i, DEM_SWEEP_ROLE_PRESSURE, lab, sizeof lab);
+        paren(lab, par, sizeof par);
+        fprintf(gp,
+                "  \"stress_ratio_vs_void_ratio.dat\" index %d with lines "
+                "title \"p = %.4g%s\" noenhanced, \\\n",
+                block++, r->pressure, par);
+    }
+    fprintf(gp, "  0 linetype -3 notitle\n");
+    return DEM_OK;
+}
+
 /* ------------------------------------------------ strain accumulation */
 
 /* With seeds: per ensemble, the mean increment per cycle with its
@@ -461,6 +530,7 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         {"friction_vs_mu", s->mu_reason, w_friction},
         {"cohesion_vs_kc", s->kc_reason, w_cohesion},
         {"void_ratio_vs_pressure", s->void_reason, w_voids},
+        {"stress_ratio_vs_void_ratio", s->void_reason, w_psi_e},
         {"strain_accumulation", s->cyc_reason, w_cyclic},
     };
     const int np = (int)(sizeof plots / sizeof *plots);

@@ -13,6 +13,7 @@ struct dem__sweep_run {
     int ok;                        /* 1: finished and read */
     char reason[DEM_ERRMSG_MAX];   /* why not, when ok = 0 */
     int dim;
+    int stage, axis;   /* loading stage and its axis (-1: none) */
     double mu;         /* friction of the loading stage */
     double k1, k2, kc; /* N/m; luding stiffnesses (linear: k1 = k2 = k) */
     double pressure;   /* confining pressure of the loading stage */
@@ -76,6 +77,7 @@ struct dem__sweep_ffens {
 
 struct dem__sweep {
     const struct dem_sweep_grid *g;
+    const char *outdir; /* the sweep folder (runs/NAME below it) */
     long n;
     struct dem__sweep_run *runs;
     int roles; /* roles of all parameters */
