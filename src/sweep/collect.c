@@ -401,6 +401,18 @@ static int ensembles(struct dem__sweep *s)
             e->phi_deg = dem__sweep_stat_of(b, m);
             e->tan_phi = dem__sweep_stat_of(b + s->ffg.n, m);
             e->c = dem__sweep_stat_of(b + 2 * s->ffg.n, m);
+            /* the void-ratio fits of the same seeds */
+            m = 0;
+            for (int g = 0; g < s->ffg.n && s->vr; g++) {
+                const struct dem_voidfit *v = &s->vr[g].fit[state];
+                if (s->ffeg.gid[s->ffg.rep[g]] != q || !v->ok)
+                    continue;
+                b[m] = v->e0;
+                b[s->ffg.n + m] = v->n;
+                m++;
+            }
+            e->e0 = dem__sweep_stat_of(b, m);
+            e->n = dem__sweep_stat_of(b + s->ffg.n, m);
         }
         free(b);
     }
@@ -790,6 +802,8 @@ static void write_ensembles(struct dem__json *j, const struct dem__sweep *s)
             write_stat(j, "phi_deg", e->phi_deg);
             write_stat(j, "tan_phi", e->tan_phi);
             write_stat(j, "cohesion", e->c);
+            write_stat(j, "void_ratio_e0", e->e0);
+            write_stat(j, "void_ratio_n", e->n);
             dem__json_close(j);
         }
         dem__json_close(j);

@@ -73,6 +73,9 @@ struct dem__sweep_ens {
 struct dem__sweep_ffens {
     int fits; /* seeds whose flow function was fitted */
     struct dem__sweep_stat phi_deg, tan_phi, c;
+    /* the void-ratio fits e = e0 - (p/hs)^n of the same seeds (state as
+     * the flow function: initial with [0], critical with [1]) */
+    struct dem__sweep_stat e0, n;
 };
 
 struct dem__sweep {
