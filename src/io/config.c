@@ -1248,18 +1248,18 @@ static int check_kt(const struct ctx *x, const struct dem_config *c,
 {
     if (c->contact.kt != 0)
         return 0;
-    if (c->contact.mu_s > 0)
-        return fail_key(x, -1, "contact.kt", err,
-                        "0 needs friction off: with contact.mu_s = %g there "
-                        "would be no static friction (give kt > 0, or "
-                        "contact.mu = 0)",
-                        c->contact.mu_s);
-    if (c->contact.wall_mu > 0)
-        return fail_key(x, -1, "contact.kt", err,
-                        "0 needs friction off: with contact.wall_mu = %g "
-                        "there would be no static wall friction (give kt > "
-                        "0, or wall_mu = 0)",
-                        c->contact.wall_mu);
+    const struct {
+        const char *key, *off; /* the friction key, how to switch it off */
+        double mu;
+    } fr[] = {{"contact.mu_s", "contact.mu = 0", c->contact.mu_s},
+              {"contact.wall_mu", "wall_mu = 0", c->contact.wall_mu}};
+    for (size_t k = 0; k < sizeof fr / sizeof *fr; k++)
+        if (fr[k].mu > 0)
+            return fail_key(x, -1, "contact.kt", err,
+                            "0 needs friction off: with %s = %g there "
+                            "would be no static friction (give kt > 0, or "
+                            "%s)",
+                            fr[k].key, fr[k].mu, fr[k].off);
     for (int i = 0; i < c->nstages && i < DEM_MAX_STAGES; i++)
         if (c->stages[i].mu > 0)
             return fail_key(x, i, "mu", err,
