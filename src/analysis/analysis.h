@@ -189,16 +189,23 @@ enum dem_verdict {
 struct dem_cycles {
     int n;            /* complete cycles found */
     double first;     /* increment of cycle 1 */
+    double mid_mean;  /* mean increment over the middle third of the cycles */
     double late_mean; /* mean increment over the last third of the cycles */
+    double late_se;   /* standard error of late_mean (cycle-to-cycle scatter) */
     double ratio;     /* late_mean / first, signed along the first one */
-    int late_count;   /* cycles in the last third */
+    int late_count;   /* cycles in the last (and in the middle) third */
     int verdict;      /* enum dem_verdict */
     char reason[DEM_REASON_MAX];
 };
 
-/* Ratcheting unless the mean increment of the last third is at most this
- * fraction of the first cycle's increment. */
-#define DEM_RATCHET_FRACTION 0.1
+/* Ratcheting when the mean increment of the last third of the cycles,
+ * along the first cycle's direction, is above twice its standard error
+ * and at least this fraction of the middle third's. A rate falling like
+ * 1/c gives (1/2)/(5/6) = 0.6 between the centres of the two thirds:
+ * ratcheting means the rate falls more slowly than 1/c, so that the
+ * accumulated strain grows without bound. */
+#define DEM_RATCHET_FRACTION 0.6
+#define DEM_VERDICT_MIN_CYCLES 6 /* two cycles in each third */
 
 /* Split samples (t, eps_D, sigma_D) of a cyclic stage that starts at t0
  * into cycles of `period` s; eps_D and sigma_D are interpolated linearly at

@@ -517,11 +517,13 @@ static void write_void_fit(struct dem__json *j, const struct result *R)
 
 static const char *const verdict_criterion =
     "eps_D = eps_axis - mean(eps_lateral) is read at the end of every "
-    "cycle (t0 + k period); its increment per cycle is compared between "
-    "the mean over the last third of the cycles (at least 1) and the first "
-    "cycle: ratcheting if that mean, taken along the sign of the first "
-    "increment, exceeds 0.1 times the first increment; shakedown "
-    "otherwise; no verdict with fewer than 3 complete cycles";
+    "cycle (t0 + k period); its increments per cycle, taken along the sign "
+    "of the first cycle's, are averaged over the last third and over the "
+    "middle third of the cycles: ratcheting if the last third's mean is "
+    "above twice its standard error (cycle-to-cycle scatter) and at least "
+    "0.6 times the middle third's (the rate falls more slowly than 1/c, so "
+    "the accumulated strain grows without bound); shakedown otherwise; no "
+    "verdict with fewer than 6 complete cycles";
 
 static void write_cyclic(struct dem__json *j, const struct result *R)
 {
@@ -550,7 +552,9 @@ static void write_cyclic(struct dem__json *j, const struct result *R)
     dem__json_string(j, "verdict_reason", R->csum.reason);
     dem__json_string(j, "verdict_criterion", verdict_criterion);
     dem__json_number(j, "cycle_increment_first", R->csum.first);
+    dem__json_number(j, "cycle_increment_middle", R->csum.mid_mean);
     dem__json_number(j, "cycle_increment_late", R->csum.late_mean);
+    dem__json_number(j, "cycle_increment_late_se", R->csum.late_se);
     dem__json_number(j, "cycle_increment_ratio", R->csum.ratio);
 }
 

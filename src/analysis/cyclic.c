@@ -1,7 +1,7 @@
 /* Cycles of a stress-controlled cyclic test (seed 000 Figs. 2 right and
  * 3 right): deviatoric strain accumulated per cycle, the work of each
  * hysteresis loop, and the verdict ratcheting (the accumulation goes on)
- * or shakedown (it dies out).
+ * or shakedown (it dies out; see verdict()).
  *
  * Cycle k covers [t0 + (k-1) T, t0 + k T]; values at the boundaries are
  * interpolated linearly between samples so that the cycles do not depend
@@ -49,30 +49,59 @@ static double loop_work(const double *t, const double *e, const double *s,
     return w + 0.5 * (sp + sb) * (eb - ep);
 }
 
+/* Mean (and standard error) of the increments of cycles [k0, k1), taken
+ * along dir. */
+static double mean_of(const struct dem_cycle *c, int k0, int k1, double dir,
+                      double *se)
+{
+    const int m = k1 - k0;
+    double sum = 0.0, ss = 0.0;
+    for (int k = k0; k < k1; k++)
+        sum += dir * c[k].strain_increment;
+    const double mean = sum / m;
+    for (int k = k0; k < k1; k++) {
+        const double d = dir * c[k].strain_increment - mean;
+        ss += d * d;
+    }
+    if (se)
+        *se = m > 1 ? sqrt(ss / (m - 1) / m) : NAN;
+    return mean;
+}
+
+/* Ratcheting: the strain accumulated per cycle in the last third of the
+ * cycles is significantly above zero (more than twice its standard error
+ * from the cycle-to-cycle scatter) and has not fallen below
+ * DEM_RATCHET_FRACTION of the middle third's. Shakedown otherwise: the
+ * accumulation has stopped, or is dying out faster than 1/c. The first
+ * cycle, which holds the response to the first loading, is only used for
+ * the direction. */
 static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
 {
     o->verdict = DEM_VERDICT_NONE;
-    if (nc < 3) {
+    if (nc < DEM_VERDICT_MIN_CYCLES) {
         snprintf(o->reason, sizeof o->reason,
-                 "%d complete cycle(s): the verdict needs at least 3", nc);
+                 "%d complete cycle(s): the verdict needs at least %d", nc,
+                 DEM_VERDICT_MIN_CYCLES);
         return;
     }
     o->first = c[0].strain_increment;
-    o->late_count = nc / 3;
-    double sum = 0.0;
-    for (int k = nc - o->late_count; k < nc; k++)
-        sum += c[k].strain_increment;
-    o->late_mean = sum / o->late_count;
+    const double dir = o->first >= 0.0 ? 1.0 : -1.0;
+    const int L = nc / 3;
+    o->late_count = L;
+    o->late_mean = dir * mean_of(c, nc - L, nc, dir, &o->late_se);
+    o->mid_mean = dir * mean_of(c, nc - 2 * L, nc - L, dir, NULL);
     o->ratio = o->first != 0.0 ? o->late_mean / o->first : NAN;
-    /* accumulation counts in the direction of the first cycle's */
-    const double along = o->first >= 0.0 ? o->late_mean : -o->late_mean;
-    const int ratchet = along > DEM_RATCHET_FRACTION * fabs(o->first);
-    o->verdict = ratchet ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
+    const double late = dir * o->late_mean, mid = dir * o->mid_mean;
+    const int significant = late > 2.0 * o->late_se;
+    const int steady = late >= DEM_RATCHET_FRACTION * mid;
+    o->verdict =
+        significant && steady ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
     snprintf(o->reason, sizeof o->reason,
-             "mean increment of the last %d cycles %.4g is %s %.0f%% of the "
-             "first cycle's %.4g",
-             o->late_count, o->late_mean, ratchet ? "above" : "at most",
-             100.0 * DEM_RATCHET_FRACTION, o->first);
+             "mean increment of the last %d cycles %.4g +- %.2g (s.e.) is %s "
+             "twice its error and %s %.0f%% of the middle %d cycles' %.4g",
+             L, o->late_mean, o->late_se, significant ? "above" : "within",
+             steady ? "at least" : "below", 100.0 * DEM_RATCHET_FRACTION, L,
+             o->mid_mean);
 }
 
 int dem_cycles_analyze(const double *t, const double *eps_d,
@@ -81,7 +110,7 @@ int dem_cycles_analyze(const double *t, const double *eps_d,
                        struct dem_cycles *o)
 {
     o->n = 0;
-    o->first = o->late_mean = o->ratio = NAN;
+    o->first = o->mid_mean = o->late_mean = o->late_se = o->ratio = NAN;
     o->late_count = 0;
     o->verdict = DEM_VERDICT_NONE;
     o->reason[0] = '\0';
