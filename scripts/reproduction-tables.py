@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+"""The tables of docs/reproduction.md from the numbers behind them.
+
+usage: scripts/reproduction-tables.py DIR
+
+DIR holds one folder per part of `scripts/reproduce.sh --paper`, as
+written by its --numbers option (docs/reproduction/paper/): PART/sweep.json
+and PART/runs/NAME/summary.json. Prints Markdown, one section per part
+found; means are given with their standard error over the seeds
+(mean ± s.e., n samples). Python 3 standard library only.
+"""
+import json
+import math
+import os
+import sys
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def pm(st, scale=1.0, digits=3):
+    """'mean ± se' of a {mean, se, n} object."""
+    if not st or st.get("mean") is None:
+        return "–"
+    m = st["mean"] * scale
+    if st.get("se") is None:
+        return "%.*g (n = %d)" % (digits, m, st["n"])
+    return "%.*g ± %.2g" % (digits, m, st["se"] * scale)
+
+
+def mean_se(xs):
+    xs = [x for x in xs if x is not None and math.isfinite(x)]
+    n = len(xs)
+    if n == 0:
+        return None
+    m = sum(xs) / n
+    se = (math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1) / n)
+          if n > 1 else None)
+    return {"mean": m, "se": se, "n": n}
+
+
+def summaries(part):
+    """name -> summary.json of every run of a part."""
+    out, runs = {}, os.path.join(part, "runs")
+    for name in sorted(os.listdir(runs)) if os.path.isdir(runs) else []:
+        p = os.path.join(runs, name, "summary.json")
+        if os.path.exists(p):
+            out[name] = load(p)
+    return out
+
+
+def cyclic_period(part):
+    s = load(os.path.join(part, "sweep.json"))
+    print("\n### cyclic-period: strain gained per cycle (1e-6) against "
+          "the period t0\n")
+    rows = s.get("strain_accumulation") or []
+    n = max(len(r["cycles"]) for r in rows)
+    print("| run | verdict | " + " | ".join("c = %d" % (k + 1)
+                                            for k in range(n)) + " |")
+    print("|---|---|" + "---|" * n)
+    for r in rows:
+        print("| %s | %s | %s |" % (r["run"], r["verdict"], " | ".join(
+            "%.3g" % (c["strain_increment"] * 1e6) for c in r["cycles"])))
+
+
+def cyclic_mu(part):
+    s = load(os.path.join(part, "sweep.json"))
+    ens = s.get("ensembles") or []
+    print("\n### cyclic-mu: strain gained per cycle (1e-6), mean ± s.e. "
+          "over the seeds\n")
+    pick = [1, 2, 3, 5, 10, 20, 30, 40, 50]
+    print("| μ | runs | verdicts (ratcheting/shakedown) | " +
+          " | ".join("c = %d" % c for c in pick) + " | ε_D after the last "
+          "cycle (1e-6) |")
+    print("|---|---|---|" + "---|" * len(pick) + "---|")
+    for e in sorted(ens, key=lambda e: e["mu"]):
+        cyc = e.get("cycles") or []
+        cells = [pm(cyc[c - 1]["strain_increment"], 1e6) if c <= len(cyc)
+                 else "" for c in pick]
+        end = pm(cyc[-1]["strain_end"], 1e6) if cyc else "–"
+        v = e.get("verdicts", {})
+        print("| %g | %d | %d/%d | %s | %s |" % (
+            e["mu"], e["runs"], v.get("ratcheting", 0),
+            v.get("shakedown", 0), " | ".join(cells), end))
+    # the rate of the last third, per seed, with the creep exponent
+    print("\nPer run: mean increment of the last third of the cycles "
+          "(1e-6, ± s.e.), its ratio to the middle third's, and the "
+          "exponent α of a fit Δ ∝ c^−α over cycles 2 to N (where all are "
+          "positive).\n")
+    print("| run | verdict | last third | last / middle | α |")
+    print("|---|---|---|---|---|")
+    for name, sm in summaries(part).items():
+        cyc = [c["strain_increment"] for c in sm.get("cycles", [])]
+        late, mid = sm.get("cycle_increment_late"), sm.get(
+            "cycle_increment_middle")
+        se = sm.get("cycle_increment_late_se")
+        pts = [(math.log(k + 1), math.log(d)) for k, d in enumerate(cyc)
+               if k > 0 and d > 0]
+        alpha = "–"
+        if len(pts) == len(cyc) - 1 and len(pts) > 2:
+            mx = sum(p[0] for p in pts) / len(pts)
+            my = sum(p[1] for p in pts) / len(pts)
+            b = (sum((p[0] - mx) * (p[1] - my) for p in pts) /
+                 sum((p[0] - mx) ** 2 for p in pts))
+            alpha = "%.2f" % -b
+        ratio = ("%.2f" % (late / mid) if late is not None and mid
+                 else "–")
+        print("| %s | %s | %s | %s | %s |" % (
+            name, sm.get("verdict"),
+            "%.3g ± %.2g" % (late * 1e6, (se or 0) * 1e6)
+            if late is not None else "–", ratio, alpha))
+
+
+def biaxial_pressure(part):
+    s = load(os.path.join(part, "sweep.json"))
+    print("\n### %s: flow functions (mean ± s.e. over the seeds)\n"
+          % os.path.basename(part))
+    print("| group | state | seeds fitted | φ (deg) | tan φ | c (N/m) | "
+          "e0 | n |")
+    print("|---|---|---|---|---|---|---|---|")
+    for key, state in (("flow_function_ensemble", "peak"),
+                       ("flow_function_critical_ensemble", "critical")):
+        for f in s.get(key) or []:
+            print("| %s | %s | %d | %s | %s | %s | %s | %s |" % (
+                json.dumps(f["group"]), state, f["fits"], pm(f["phi_deg"]),
+                pm(f["tan_phi"]), pm(f["cohesion"]), pm(f["void_ratio_e0"]),
+                pm(f["void_ratio_n"])))
+    print("\nPer confining pressure (mean ± s.e. over the seeds):\n")
+    print("| group | runs | peak sin φ | critical sin φ (runs on a plateau) "
+          "| e initial | e critical | initial slope of ε_v | dilatant "
+          "slope |")
+    print("|---|---|---|---|---|---|---|---|")
+    sm = summaries(part)
+    for e in sorted(s.get("ensembles") or [],
+                    key=lambda e: (json.dumps({k: v for k, v in
+                                               e["params"].items()
+                                               if "pressure" not in k}),
+                                   e["confining_pressure"])):
+        names = [r["name"] for r in s["runs"]
+                 if {k: v for k, v in r["params"].items() if k != "seed"}
+                 == e["params"] and r["name"] in sm]
+        slope0 = mean_se([sm[n].get("volumetric_slope_initial")
+                          for n in names])
+        slope1 = mean_se([sm[n].get("volumetric_slope_dilatant")
+                          for n in names])
+        print("| %s | %d | %s | %s | %s | %s | %s | %s |" % (
+            json.dumps(e["params"]), e["runs"], pm(e["peak_sin_phi"]),
+            pm(e["critical_sin_phi"]) + " (%d)" % e["critical_sin_phi"]["n"],
+            pm(e["void_ratio_initial"]), pm(e["void_ratio_critical"]),
+            pm(slope0), pm(slope1)))
+
+
+def main():
+    if len(sys.argv) != 2 or not os.path.isdir(sys.argv[1]):
+        sys.exit(__doc__.strip().split("\n\n")[1])
+    d = sys.argv[1]
+    for name, fn in (("cyclic-period", cyclic_period),
+                     ("cyclic-mu", cyclic_mu),
+                     ("biaxial-pressure", biaxial_pressure),
+                     ("biaxial-cohesion", biaxial_pressure),
+                     ("friction-dense", biaxial_pressure),
+                     ("friction-loose", biaxial_pressure)):
+        if os.path.exists(os.path.join(d, name, "sweep.json")):
+            fn(os.path.join(d, name))
+
+
+if __name__ == "__main__":
+    main()
