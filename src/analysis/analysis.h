@@ -191,7 +191,8 @@ struct dem_cycles {
     double first;     /* increment of cycle 1 */
     double mid_mean;  /* mean increment over the middle third of the cycles */
     double late_mean; /* mean increment over the last third of the cycles */
-    double late_se;   /* standard error of late_mean (cycle-to-cycle scatter) */
+    double late_se;   /* standard error of late_mean from the scatter of
+                         successive increments (von Neumann) */
     double ratio;     /* late_mean / first, signed along the first one */
     int late_count;   /* cycles in the last (and in the middle) third */
     int verdict;      /* enum dem_verdict */

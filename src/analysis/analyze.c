@@ -520,8 +520,10 @@ static const char *const verdict_criterion =
     "cycle (t0 + k period); its increments per cycle, taken along the sign "
     "of the first cycle's, are averaged over the last third and over the "
     "middle third of the cycles: ratcheting if the last third's mean is "
-    "above twice its standard error (cycle-to-cycle scatter) and at least "
-    "0.6 times the middle third's (the rate falls more slowly than 1/c, so "
+    "above twice its standard error (from the scatter of successive "
+    "increments) and not "
+    "below 0.6 times the middle third's by more than twice the standard "
+    "error of that difference (the rate falls more slowly than 1/c, so "
     "the accumulated strain grows without bound); shakedown otherwise; no "
     "verdict with fewer than 6 complete cycles";
 

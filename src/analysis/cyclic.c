@@ -49,28 +49,30 @@ static double loop_work(const double *t, const double *e, const double *s,
     return w + 0.5 * (sp + sb) * (eb - ep);
 }
 
-/* Mean (and standard error) of the increments of cycles [k0, k1), taken
- * along dir. */
+/* Mean of the increments of cycles [k0, k1), taken along dir, and its
+ * standard error from their cycle-to-cycle scatter. The scatter is
+ * estimated from successive differences (von Neumann: the variance is
+ * half the mean squared difference of neighbours), so that a smooth trend
+ * within the cycles, such as a decaying creep, does not count as noise. */
 static double mean_of(const struct dem_cycle *c, int k0, int k1, double dir,
                       double *se)
 {
     const int m = k1 - k0;
-    double sum = 0.0, ss = 0.0;
-    for (int k = k0; k < k1; k++)
-        sum += dir * c[k].strain_increment;
-    const double mean = sum / m;
+    double sum = 0.0, dd = 0.0;
     for (int k = k0; k < k1; k++) {
-        const double d = dir * c[k].strain_increment - mean;
-        ss += d * d;
+        sum += dir * c[k].strain_increment;
+        if (k > k0) {
+            const double d = c[k].strain_increment - c[k - 1].strain_increment;
+            dd += d * d;
+        }
     }
-    if (se)
-        *se = m > 1 ? sqrt(ss / (m - 1) / m) : NAN;
-    return mean;
+    *se = m > 1 ? sqrt(dd / (2.0 * (m - 1)) / m) : NAN;
+    return sum / m;
 }
 
 /* Ratcheting: the strain accumulated per cycle in the last third of the
  * cycles is significantly above zero (more than twice its standard error
- * from the cycle-to-cycle scatter) and has not fallen below
+ * from the cycle-to-cycle scatter) and not significantly below
  * DEM_RATCHET_FRACTION of the middle third's. Shakedown otherwise: the
  * accumulation has stopped, or is dying out faster than 1/c. The first
  * cycle, which holds the response to the first loading, is only used for
@@ -88,20 +90,26 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     const double dir = o->first >= 0.0 ? 1.0 : -1.0;
     const int L = nc / 3;
     o->late_count = L;
+    double mid_se;
     o->late_mean = dir * mean_of(c, nc - L, nc, dir, &o->late_se);
-    o->mid_mean = dir * mean_of(c, nc - 2 * L, nc - L, dir, NULL);
+    o->mid_mean = dir * mean_of(c, nc - 2 * L, nc - L, dir, &mid_se);
     o->ratio = o->first != 0.0 ? o->late_mean / o->first : NAN;
     const double late = dir * o->late_mean, mid = dir * o->mid_mean;
+    const double f = DEM_RATCHET_FRACTION;
     const int significant = late > 2.0 * o->late_se;
-    const int steady = late >= DEM_RATCHET_FRACTION * mid;
+    /* the decay counts only where it stands out of the scatter of both
+     * thirds (twice the standard error of late - f mid) */
+    const int steady = late >= f * mid - 2.0 * sqrt(o->late_se * o->late_se +
+                                                    f * f * mid_se * mid_se);
     o->verdict =
         significant && steady ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
     snprintf(o->reason, sizeof o->reason,
              "mean increment of the last %d cycles %.4g +- %.2g (s.e.) is %s "
-             "twice its error and %s %.0f%% of the middle %d cycles' %.4g",
+             "twice its error and %s %.0f%% of the middle %d cycles' %.4g "
+             "+- %.2g",
              L, o->late_mean, o->late_se, significant ? "above" : "within",
-             steady ? "at least" : "below", 100.0 * DEM_RATCHET_FRACTION, L,
-             o->mid_mean);
+             steady ? "not significantly below" : "significantly below",
+             100.0 * f, L, o->mid_mean, mid_se);
 }
 
 int dem_cycles_analyze(const double *t, const double *eps_d,
