@@ -885,10 +885,18 @@ static int analyse(struct dem__sweep *s)
         rc = ensembles(s);
     if (rc)
         return rc;
+    int monotonic = 0;
+    for (long i = 0; i < s->n; i++)
+        monotonic += s->runs[i].ok && (isfinite(s->runs[i].peak_sin) ||
+                                       isfinite(s->runs[i].crit_sin));
     if (!(s->roles & DEM_SWEEP_ROLE_MU))
         snprintf(s->mu_reason, sizeof s->mu_reason,
                  "the sweep does not vary the friction (contact.mu, mu_s, "
                  "mu_d or stages.N.mu)");
+    else if (!monotonic)
+        snprintf(s->mu_reason, sizeof s->mu_reason,
+                 "no finished run has a peak or a critical state (a "
+                 "compress stage)");
     cohesion_check(s);
     int cyclic = 0;
     for (long i = 0; i < s->n; i++)

@@ -457,34 +457,53 @@ static int w_cyclic_ens(const struct dem__sweep *s, FILE *dat, FILE *gp)
                  "standard error  4 mean eps_D at its end  5 its standard "
                  "error  6 runs; one block per ensemble (runs differing "
                  "only in the seed)\n");
-    fprintf(gp, "set xtics 1\nplot \\\n");
-    int block = 0;
-    for (int q = 0; q < s->eng.n; q++) {
-        const struct dem__sweep_ens *e = &s->ens[q];
-        if (e->ncyc == 0)
-            continue;
-        const long rep = s->eng.rep[q];
-        char lab[512], par[520];
-        label(s, rep, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
-        paren(lab, par, sizeof par);
-        fprintf(dat, "# mu = %.6g%s: %d runs\n", s->runs[rep].mu, par, e->runs);
-        for (int c = 0; c < e->ncyc; c++) {
-            const double v[4] = {e->cyc_inc[c].mean, e->cyc_inc[c].se,
-                                 e->cyc_end[c].mean, e->cyc_end[c].se};
-            fprintf(dat, "%d", c + 1);
-            for (int k = 0; k < 4; k++)
-                isfinite(v[k]) ? fprintf(dat, " %.9g", v[k])
-                               : fprintf(dat, " ?");
-            fprintf(dat, " %d\n", e->cyc_inc[c].n);
+    /* two panels on logarithmic axes (the increments span many decades):
+     * the strain accumulated since the start of the stage, and the strain
+     * gained per cycle; non-positive means are not drawn */
+    fprintf(gp, "set multiplot layout 1,2 title \"Strain accumulation, mean "
+                "± s.e. over the seeds\"\n"
+                "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
+                "set key inside top left box opaque\n");
+    for (int panel = 0; panel < 2; panel++) {
+        int block = 0;
+        fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
+                panel ? "unset key\n" : "",
+                panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
+        for (int q = 0; q < s->eng.n; q++) {
+            const struct dem__sweep_ens *e = &s->ens[q];
+            if (e->ncyc == 0)
+                continue;
+            const long rep = s->eng.rep[q];
+            char lab[512], par[520];
+            label(s, rep, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab,
+                  sizeof lab);
+            paren(lab, par, sizeof par);
+            if (panel == 0) {
+                fprintf(dat, "# mu = %.6g%s: %d runs\n", s->runs[rep].mu, par,
+                        e->runs);
+                for (int c = 0; c < e->ncyc; c++) {
+                    const double v[4] = {e->cyc_inc[c].mean, e->cyc_inc[c].se,
+                                         e->cyc_end[c].mean, e->cyc_end[c].se};
+                    fprintf(dat, "%d", c + 1);
+                    for (int k = 0; k < 4; k++)
+                        isfinite(v[k]) ? fprintf(dat, " %.9g", v[k])
+                                       : fprintf(dat, " ?");
+                    fprintf(dat, " %d\n", e->cyc_inc[c].n);
+                }
+                fprintf(dat, "\n\n");
+            }
+            fprintf(gp,
+                    "  \"strain_accumulation.dat\" index %d using 1:%s with "
+                    "yerrorlines pointtype 7 pointsize 0.6 linecolor %d "
+                    "title \"μ = %.3g%s, %d runs (%d ratcheting)\" "
+                    "noenhanced, \\\n",
+                    block, panel ? "($2 > 0 ? $2 : 1/0):3" : "4:5", block + 1,
+                    s->runs[rep].mu, par, e->runs, e->ratcheting);
+            block++;
         }
-        fprintf(dat, "\n\n");
-        fprintf(gp,
-                "  \"strain_accumulation.dat\" index %d using 1:2:3 with "
-                "yerrorlines pointtype 7 title \"μ = %.3g%s, %d runs (%d "
-                "ratcheting)\" noenhanced, \\\n",
-                block++, s->runs[rep].mu, par, e->runs, e->ratcheting);
+        fprintf(gp, "  1/0 notitle\n");
     }
-    fprintf(gp, "  0 linetype -3 notitle\n");
+    fprintf(gp, "unset multiplot\n");
     return DEM_OK;
 }
 
