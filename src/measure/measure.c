@@ -152,86 +152,66 @@ long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
 
 /* The timeseries columns, in order: name and value. Extend at the end;
  * the first 23 are the user-facing contract (SPEC §7). */
-#define DEM_SAMPLE_COLUMNS(X)                                                                      \
-    X("t", s->t)                                                                                   \
-    X("stage", (double)s->stage)                                                                   \
-    X("Lx", s->L[0])                                                                               \
-    X("Ly", s->L[1]) X("Lz", s->L[2]) X("eps_xx", s->eps[0]) X(                                    \
-        "eps_yy", s->eps[1]) X("eps_zz", s->eps[2]) X("eps_v",                                     \
-                                                      s->eps_v) X("sigma_xx",                      \
-                                                                  s->sigma[0])                     \
-        X("sigma_yy", s->sigma[1]) X("sigma_zz", s->sigma[2]) X(                                   \
-            "sigma_lw_xx",                                                                         \
-            s->sigma_lw[0][0]) X("sigma_lw_yy",                                                    \
-                                 s->sigma_lw[1][1]) X("sigma_lw_zz",                               \
-                                                      s->sigma_lw[2][2])                           \
-            X("p", s->p) X("q", s->q) X("e_kin", s->e_kin) X("e_rot", s->e_rot) X(                 \
-                "e_pot",                                                                           \
-                s->e_pot) X("coordination", s->coordination)                                       \
-                X("sliding_fraction", s->sliding_fraction) X(                                      \
-                    "void_ratio",                                                                  \
-                    s->void_ratio) X("coordination_nr", s->coordination_nr)                        \
-                    X("rattler_fraction", s->rattler_fraction) X(                                  \
-                        "inertial_number",                                                         \
-                        s->inertial_number) X("solid_fraction", s->solid_fraction)                 \
-                        X("sigma_lw_xy", s->sigma_lw[0][1]) X("sigma_lw_xz", s->sigma_lw[0][2]) X( \
-                            "sigma_lw_yz",                                                         \
-                            s->sigma_lw                                                            \
-                                [1][2]) X("sigma_kin_xx", s->sigma_kin[0][0])                      \
-                            X("sigma_kin_yy", s->sigma_kin[1][1]) X(                               \
-                                "sigma_kin_zz",                                                    \
-                                s->sigma_kin                                                       \
-                                    [2][2]) X("fabric_xx", s->fabric[0][0])                        \
-                                X("fabric_yy",                                                     \
-                                  s->fabric                                                        \
-                                      [1][1]) X("fabric_zz", s->fabric[2][2])                      \
-                                    X("contacts_pp", s->n_pp) X(                                   \
-                                        "contacts_pw",                                             \
-                                        s->n_pw) X("max_overlap", s->max_overlap)                  \
-                                        X("xmin_pos", s->wall_pos[0]) X(                           \
-                                            "xmax_pos",                                            \
-                                            s->wall_pos                                            \
-                                                [1]) X("ymin_pos", s->wall_pos[2])                 \
-                                            X("ymax_pos", s->wall_pos[3]) X(                       \
-                                                "zmin_pos",                                        \
-                                                s->wall_pos                                        \
-                                                    [4]) X("zmax_pos", s->wall_pos[5])             \
-                                                X("xmin_vel", s->wall_vel[0]) X(                   \
-                                                    "xmax_vel",                                    \
-                                                    s->wall_vel                                    \
-                                                        [1]) X("ymin_vel", s->wall_vel[2])         \
-                                                    X("ymax_vel", s->wall_vel[3]) X(               \
-                                                        "zmin_vel",                                \
-                                                        s->wall_vel[4])                            \
-                                                        X("zmax_vel", s->wall_vel[5]) X(           \
-                                                            "xmin_force",                          \
-                                                            s->wall_force[0])                      \
-                                                            X("xmax_force",                        \
-                                                              s->wall_force                        \
-                                                                  [1]) X("ymi"                     \
-                                                                         "n_"                      \
-                                                                         "for"                     \
-                                                                         "ce",                     \
-                                                                         s->wall_force             \
-                                                                             [2])                  \
-                                                                X("ymax_"                          \
-                                                                  "force",                         \
-                                                                  s->wall_force                    \
-                                                                      [3])                         \
-                                                                    X(                             \
-                                                                        "zmin"                     \
-                                                                        "_for"                     \
-                                                                        "ce",                      \
-                                                                        s->wall_force              \
-                                                                            [4])                   \
-                                                                        X("zm"                     \
-                                                                          "ax"                     \
-                                                                          "_f"                     \
-                                                                          "or"                     \
-                                                                          "c"                      \
-                                                                          "e",                     \
-                                                                          s->wall_force            \
-                                                                              [5])
+// clang-format off
+#define DEM_SAMPLE_COLUMNS(X) \
+    X("t", s->t) \
+    X("stage", (double)s->stage) \
+    X("Lx", s->L[0]) \
+    X("Ly", s->L[1]) \
+    X("Lz", s->L[2]) \
+    X("eps_xx", s->eps[0]) \
+    X("eps_yy", s->eps[1]) \
+    X("eps_zz", s->eps[2]) \
+    X("eps_v", s->eps_v) \
+    X("sigma_xx", s->sigma[0]) \
+    X("sigma_yy", s->sigma[1]) \
+    X("sigma_zz", s->sigma[2]) \
+    X("sigma_lw_xx", s->sigma_lw[0][0]) \
+    X("sigma_lw_yy", s->sigma_lw[1][1]) \
+    X("sigma_lw_zz", s->sigma_lw[2][2]) \
+    X("p", s->p) \
+    X("q", s->q) \
+    X("e_kin", s->e_kin) \
+    X("e_rot", s->e_rot) \
+    X("e_pot", s->e_pot) \
+    X("coordination", s->coordination) \
+    X("sliding_fraction", s->sliding_fraction) \
+    X("void_ratio", s->void_ratio) \
+    X("coordination_nr", s->coordination_nr) \
+    X("rattler_fraction", s->rattler_fraction) \
+    X("inertial_number", s->inertial_number) \
+    X("solid_fraction", s->solid_fraction) \
+    X("sigma_lw_xy", s->sigma_lw[0][1]) \
+    X("sigma_lw_xz", s->sigma_lw[0][2]) \
+    X("sigma_lw_yz", s->sigma_lw[1][2]) \
+    X("sigma_kin_xx", s->sigma_kin[0][0]) \
+    X("sigma_kin_yy", s->sigma_kin[1][1]) \
+    X("sigma_kin_zz", s->sigma_kin[2][2]) \
+    X("fabric_xx", s->fabric[0][0]) \
+    X("fabric_yy", s->fabric[1][1]) \
+    X("fabric_zz", s->fabric[2][2]) \
+    X("contacts_pp", s->n_pp) \
+    X("contacts_pw", s->n_pw) \
+    X("max_overlap", s->max_overlap) \
+    X("xmin_pos", s->wall_pos[0]) \
+    X("xmax_pos", s->wall_pos[1]) \
+    X("ymin_pos", s->wall_pos[2]) \
+    X("ymax_pos", s->wall_pos[3]) \
+    X("zmin_pos", s->wall_pos[4]) \
+    X("zmax_pos", s->wall_pos[5]) \
+    X("xmin_vel", s->wall_vel[0]) \
+    X("xmax_vel", s->wall_vel[1]) \
+    X("ymin_vel", s->wall_vel[2]) \
+    X("ymax_vel", s->wall_vel[3]) \
+    X("zmin_vel", s->wall_vel[4]) \
+    X("zmax_vel", s->wall_vel[5]) \
+    X("xmin_force", s->wall_force[0]) \
+    X("xmax_force", s->wall_force[1]) \
+    X("ymin_force", s->wall_force[2]) \
+    X("ymax_force", s->wall_force[3]) \
+    X("zmin_force", s->wall_force[4]) \
+    X("zmax_force", s->wall_force[5])
+// clang-format on
 
 void dem_sample_write_header(FILE *f, int dim)
 {
