@@ -7,8 +7,10 @@
 #include "testutil.h"
 
 #include "analysis/analysis.h"
+#include "io/config.h"
 #include "io/json.h"
 #include "measure/measure.h"
+#include "protocol/stage.h"
 
 #define DEG (180.0 / M_PI)
 
@@ -648,6 +650,73 @@ static void analyze_counts_cycles_of_a_cyclic_run(void **state)
     free(js);
 }
 
+/* A run that compresses and then cycles: the loading stage is the last
+ * one that loads (the cyclic stage), for the analysis as for the runner
+ * and the plots (dem_stage_loading_index); until 2026-11-23 the analysis
+ * took the compression and the plots the cycles. */
+static void one_loading_stage_for_analysis_and_plots(void **state)
+{
+    (void)state;
+    enum { C = 8, PER = 50 };
+    static double inc[C], t[C * PER + 1], ed[C * PER + 1], sd[C * PER + 1];
+    for (int k = 0; k < C; k++)
+        inc[k] = 1e-3;
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "compress-cyclic");
+    write_text(dir, "config.cfg",
+               "dimension = 3;\n"
+               "stages = (\n"
+               "  { type = \"isotropic\"; pressure = 1000.0; },\n"
+               "  { type = \"compress\"; axis = \"z\"; strain = 0.01; "
+               "duration = 0.5; pressure = 1000.0; },\n"
+               "  { type = \"cyclic\"; axis = \"x\"; pressure = 1000.0; "
+               "amplitude = 200.0; period = 1.0; cycles = 8; }\n"
+               ");\n"
+               "output = { interval = 0.02; };\n");
+    struct dem_config cfg;
+    struct dem_error err = {0, ""};
+    snprintf(path, sizeof path, "%s/config.cfg", dir);
+    if (dem_config_load_file(&cfg, path, NULL, 0, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(dem_stage_loading_index(&cfg), 2);
+    const double t0 = 1.0;
+    const long n = make_cycles(t0, inc, C, PER, t, ed, sd);
+    FILE *f = open_timeseries(dir, 3);
+    struct dem_sample s;
+    memset(&s, 0, sizeof s);
+    s.sigma[0] = s.sigma[1] = s.sigma[2] = 1000.0;
+    s.void_ratio = 0.6;
+    for (int k = 0; k <= 25; k++) { /* isotropic, then the compression */
+        s.t = 0.5 + 0.02 * k;
+        s.stage = k == 0 ? 0 : 1;
+        s.eps[2] = 0.01 * (s.t - 0.5) / 0.5;
+        s.sigma[2] = 1000.0 + 5e4 * s.eps[2];
+        dem_sample_write_row(f, &s, 3);
+    }
+    s.eps[2] = 0.0;
+    s.sigma[2] = 1000.0;
+    for (long i = 1; i < n; i++) {
+        s.t = t[i];
+        s.stage = 2;
+        s.eps[0] = 0.5 * ed[i];
+        s.eps[1] = s.eps[2] = -0.5 * ed[i];
+        s.sigma[0] = 1000.0 + 1.5 * sd[i];
+        dem_sample_write_row(f, &s, 3);
+    }
+    assert_int_equal(fclose(f), 0);
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = slurp(path);
+    assert_non_null(js);
+    assert_close(json_get(js, "loading_stage"), 2, 0);
+    assert_non_null(strstr(js, "\"loading_type\": \"cyclic\""));
+    assert_close(json_get(js, "cyclic_stage"), 2, 0);
+    assert_non_null(strstr(js, "the loading stage 2 is cyclic"));
+    assert_non_null(strstr(js, "\"verdict\": \"ratcheting\""));
+    free(js);
+}
+
 static void analyze_rejects_a_folder_that_is_not_a_run(void **state)
 {
     (void)state;
@@ -704,6 +773,7 @@ int main(void)
         cmocka_unit_test(ratchet_increments_recovered),
         cmocka_unit_test(shakedown_recognised),
         cmocka_unit_test(verdict_ignores_the_first_loading),
+        cmocka_unit_test(one_loading_stage_for_analysis_and_plots),
         cmocka_unit_test(loop_area_of_an_ellipse),
         cmocka_unit_test(json_writer_escapes_and_nulls),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),

@@ -18,6 +18,7 @@
 #include "io/fsutil.h"
 #include "io/json.h"
 #include "io/outfile.h"
+#include "protocol/stage.h"
 
 #define DEG (180.0 / M_PI)
 
@@ -211,14 +212,6 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
     return DEM_OK;
 }
 
-static int last_stage_of(const struct dem_config *cfg, int type)
-{
-    for (int k = cfg->nstages - 1; k >= 0; k--)
-        if (cfg->stages[k].type == type)
-            return k;
-    return -1;
-}
-
 /* Peak, critical state and the slopes of a compress stage. */
 static int analyze_monotonic(const struct curves *cv, int dim, struct result *R)
 {
@@ -360,8 +353,11 @@ static void loading_scalars(const struct curves *cv, struct result *R)
 static int analyze_loading(const struct dem_config *cfg,
                            const struct columns *c, long nrow, struct result *R)
 {
-    const int comp = last_stage_of(cfg, DEM_STAGE_COMPRESS);
-    R->stage = comp >= 0 ? comp : R->cyc_stage;
+    /* the loading stage (dem_stage_loading_index): peak and critical state
+     * when it is a compression, the cycles when it is cyclic */
+    R->stage = dem_stage_loading_index(cfg);
+    const int comp =
+        R->stage >= 0 && cfg->stages[R->stage].type == DEM_STAGE_COMPRESS;
     if (R->stage < 0) {
         snprintf(R->none_reason, sizeof R->none_reason,
                  "the run has no compress or cyclic stage");
@@ -386,12 +382,14 @@ static int analyze_loading(const struct dem_config *cfg,
         return DEM_OK;
     }
     loading_scalars(&cv, R);
-    if (comp >= 0)
+    if (comp)
         rc = analyze_monotonic(&cv, cfg->dim, R);
     else
         snprintf(R->mono_reason, sizeof R->mono_reason,
-                 "no compress stage: peak, critical state and slopes need "
-                 "a strain-controlled compression");
+                 "no compress stage: the loading stage %d is cyclic; peak, "
+                 "critical state and slopes need a strain-controlled "
+                 "compression as the last loading stage",
+                 R->stage);
     curves_free(&cv);
     return rc;
 }
@@ -651,7 +649,9 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     struct result R;
     result_init(&R, rc ? 0 : cfg->dim);
     if (!rc) {
-        R.cyc_stage = last_stage_of(cfg, DEM_STAGE_CYCLIC);
+        const int ls = dem_stage_loading_index(cfg);
+        R.cyc_stage =
+            ls >= 0 && cfg->stages[ls].type == DEM_STAGE_CYCLIC ? ls : -1;
         rc = analyze_loading(cfg, &c, nrow, &R);
     }
     if (!rc)

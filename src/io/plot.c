@@ -26,6 +26,7 @@
 #include "io/fsutil.h"
 #include "io/outfile.h"
 #include "io/plot_internal.h"
+#include "protocol/stage.h"
 
 /* At most this many rows per curve: gnuplot stays fast on long cyclic
  * runs, and 1e5 points still resolve every loop of 100 cycles. */
@@ -183,10 +184,7 @@ static int find_loading_from_config(struct series *s, const char *outdir)
     if (dem_path_join(path, sizeof path, outdir, "config.cfg", NULL) ||
         dem_config_load_file(&cfg, path, 0, 0, &e))
         return 0;
-    int k = cfg.nstages - 1;
-    while (k >= 0 && cfg.stages[k].type != DEM_STAGE_COMPRESS &&
-           cfg.stages[k].type != DEM_STAGE_CYCLIC)
-        k--;
+    const int k = dem_stage_loading_index(&cfg);
     if (k < 0)
         return 0;
     const double *st = s->c[TS_STAGE];

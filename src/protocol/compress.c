@@ -33,4 +33,5 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 
 const struct dem_stage_ops dem_stage_compress = {
     "compress",
-    "strain-controlled axial compression, lateral walls at pressure", begin, 0};
+    "strain-controlled axial compression, lateral walls at pressure", begin, 0,
+    1};

@@ -19,6 +19,16 @@ const struct dem_stage_ops *dem_stage_lookup(int type)
     return registry[type];
 }
 
+int dem_stage_loading_index(const struct dem_config *c)
+{
+    for (int k = c->nstages - 1; k >= 0; k--) {
+        const struct dem_stage_ops *ops = dem_stage_lookup(c->stages[k].type);
+        if (ops && ops->loading)
+            return k;
+    }
+    return -1;
+}
+
 void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                              double t0)
 {

@@ -324,8 +324,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     const double snap = s->cfg.output.snapshot_interval;
     const double ckpt = s->cfg.output.checkpoint_interval;
     const long max_steps = r->st.max_steps;
-    const int loading =
-        c->type == DEM_STAGE_COMPRESS || c->type == DEM_STAGE_CYCLIC;
+    const int loading = ops->loading;
     int rc;
     for (;;) {
         const int by_time = s->t + 1.5 * dt > st->t_end;

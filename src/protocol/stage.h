@@ -31,10 +31,17 @@ struct dem_stage_ops {
      * may leave this NULL: they end at t_end). */
     int (*done)(const struct dem_sim *s, const struct dem_stage_state *st,
                 const struct dem_sample *smp);
+    int loading; /* 1: the stage loads the sample along an axis (the
+                    stages the analysis and the plots look at) */
 };
 
 /* The stage type table entry, or NULL for an unknown type. */
 const struct dem_stage_ops *dem_stage_lookup(int type);
+
+/* The loading stage of a run: the last stage whose type loads (compress,
+ * cyclic), or -1 when there is none. The one definition the runner, the
+ * analysis and the plots use. */
+int dem_stage_loading_index(const struct dem_config *c);
 
 /* Helpers shared by the stage types. */
 void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
