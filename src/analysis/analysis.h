@@ -191,8 +191,10 @@ struct dem_cycles {
     double first;     /* increment of cycle 1 */
     double mid_mean;  /* mean increment over the middle third of the cycles */
     double late_mean; /* mean increment over the last third of the cycles */
-    double late_se;   /* standard error of late_mean from the scatter of
-                         successive increments (von Neumann) */
+    double late_se;   /* standard error of late_mean (and of mid_mean):
+                         the scatter of the increments of the last two
+                         thirds, from their second differences, over
+                         sqrt(late_count) */
     double ratio;     /* late_mean / first, signed along the first one */
     int late_count;   /* cycles in the last (and in the middle) third */
     int verdict;      /* enum dem_verdict */

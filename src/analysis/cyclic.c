@@ -49,25 +49,30 @@ static double loop_work(const double *t, const double *e, const double *s,
     return w + 0.5 * (sp + sb) * (eb - ep);
 }
 
-/* Mean of the increments of cycles [k0, k1), taken along dir, and its
- * standard error from their cycle-to-cycle scatter. The scatter is
- * estimated from successive differences (von Neumann: the variance is
- * half the mean squared difference of neighbours), so that a smooth trend
- * within the cycles, such as a decaying creep, does not count as noise. */
-static double mean_of(const struct dem_cycle *c, int k0, int k1, double dir,
-                      double *se)
+/* Mean of the increments of cycles [k0, k1), taken along dir. */
+static double mean_of(const struct dem_cycle *c, int k0, int k1, double dir)
 {
-    const int m = k1 - k0;
-    double sum = 0.0, dd = 0.0;
-    for (int k = k0; k < k1; k++) {
+    double sum = 0.0;
+    for (int k = k0; k < k1; k++)
         sum += dir * c[k].strain_increment;
-        if (k > k0) {
-            const double d = c[k].strain_increment - c[k - 1].strain_increment;
-            dd += d * d;
-        }
+    return sum / (k1 - k0);
+}
+
+/* The cycle-to-cycle scatter (standard deviation) of the increments of
+ * cycles [k0, k1), from their second differences: for independent noise
+ * of variance s^2 the second difference has variance 6 s^2, and a smooth
+ * trend such as a decaying creep hardly contributes (first differences
+ * would take its slope for scatter). Needs k1 - k0 >= 3. */
+static double scatter_of(const struct dem_cycle *c, int k0, int k1)
+{
+    double ss = 0.0;
+    for (int k = k0 + 1; k < k1 - 1; k++) {
+        const double d2 = c[k + 1].strain_increment -
+                          2.0 * c[k].strain_increment +
+                          c[k - 1].strain_increment;
+        ss += d2 * d2;
     }
-    *se = m > 1 ? sqrt(dd / (2.0 * (m - 1)) / m) : NAN;
-    return sum / m;
+    return sqrt(ss / (6.0 * (k1 - k0 - 2)));
 }
 
 /* Ratcheting: the strain accumulated per cycle in the last third of the
@@ -90,9 +95,12 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     const double dir = o->first >= 0.0 ? 1.0 : -1.0;
     const int L = nc / 3;
     o->late_count = L;
-    double mid_se;
-    o->late_mean = dir * mean_of(c, nc - L, nc, dir, &o->late_se);
-    o->mid_mean = dir * mean_of(c, nc - 2 * L, nc - L, dir, &mid_se);
+    /* the scatter of the middle and last thirds together */
+    const double sd = scatter_of(c, nc - 2 * L, nc);
+    const double mid_se = sd / sqrt(L);
+    o->late_se = mid_se;
+    o->late_mean = dir * mean_of(c, nc - L, nc, dir);
+    o->mid_mean = dir * mean_of(c, nc - 2 * L, nc - L, dir);
     o->ratio = o->first != 0.0 ? o->late_mean / o->first : NAN;
     const double late = dir * o->late_mean, mid = dir * o->mid_mean;
     const double f = DEM_RATCHET_FRACTION;

@@ -898,12 +898,17 @@ static int analyse(struct dem__sweep *s)
                  "no finished run has a peak or a critical state (a "
                  "compress stage)");
     cohesion_check(s);
-    int cyclic = 0;
-    for (long i = 0; i < s->n; i++)
+    int cyclic = 0, cycles = 0;
+    for (long i = 0; i < s->n; i++) {
         cyclic += s->runs[i].ok && s->runs[i].cyclic;
+        cycles += s->runs[i].ok ? s->runs[i].ncyc : 0;
+    }
     if (!cyclic)
         snprintf(s->cyc_reason, sizeof s->cyc_reason,
                  "no finished run has a cyclic stage");
+    else if (!cycles)
+        snprintf(s->cyc_reason, sizeof s->cyc_reason,
+                 "no finished cyclic run has a complete cycle");
     return DEM_OK;
 }
 

@@ -463,7 +463,7 @@ static int w_cyclic_ens(const struct dem__sweep *s, FILE *dat, FILE *gp)
     fprintf(gp, "set multiplot layout 1,2 title \"Strain accumulation, mean "
                 "± s.e. over the seeds\"\n"
                 "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
-                "set key inside top left box opaque\n");
+                "set key inside top left box opaque font \",10\"\n");
     for (int panel = 0; panel < 2; panel++) {
         int block = 0;
         fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
@@ -515,25 +515,41 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
         return w_cyclic_ens(s, dat, gp);
     fprintf(dat, "# columns 1 cycle  2 eps_D gained in the cycle  3 eps_D "
                  "at its end; one block per cyclic run\n");
-    fprintf(gp, "plot \\\n");
-    int block = 0;
-    for (long i = 0; i < s->n; i++) {
-        const struct dem__sweep_run *r = &s->runs[i];
-        if (!r->ok || !r->cyclic)
-            continue;
-        char lab[512], par[520];
-        label(s, i, DEM_SWEEP_ROLE_MU, lab, sizeof lab);
-        paren(lab, par, sizeof par);
-        fprintf(dat, "# %s: mu = %.6g\n", r->name, r->mu);
-        for (int k = 0; k < r->ncyc; k++)
-            fprintf(dat, "%d %.9g %.9g\n", k + 1, r->cyc_inc[k], r->cyc_end[k]);
-        fprintf(dat, "\n\n");
-        fprintf(gp,
-                "  \"strain_accumulation.dat\" index %d with linespoints "
-                "pointtype 7 title \"μ = %.3g%s%s%s\" noenhanced, \\\n",
-                block++, r->mu, par, r->verdict[0] ? ": " : "", r->verdict);
+    /* as for ensembles: two panels on logarithmic axes */
+    fprintf(gp, "set multiplot layout 1,2 title \"Strain accumulation\"\n"
+                "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
+                "set key inside top left box opaque font \",10\"\n");
+    for (int panel = 0; panel < 2; panel++) {
+        int block = 0;
+        fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
+                panel ? "unset key\n" : "",
+                panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
+        for (long i = 0; i < s->n; i++) {
+            const struct dem__sweep_run *r = &s->runs[i];
+            if (!r->ok || !r->cyclic)
+                continue;
+            char lab[512], par[520];
+            label(s, i, DEM_SWEEP_ROLE_MU, lab, sizeof lab);
+            paren(lab, par, sizeof par);
+            if (panel == 0) {
+                fprintf(dat, "# %s: mu = %.6g\n", r->name, r->mu);
+                for (int k = 0; k < r->ncyc; k++)
+                    fprintf(dat, "%d %.9g %.9g\n", k + 1, r->cyc_inc[k],
+                            r->cyc_end[k]);
+                fprintf(dat, "\n\n");
+            }
+            fprintf(
+                gp,
+                "  \"strain_accumulation.dat\" index %d using 1:%s with "
+                "linespoints pointtype 7 pointsize 0.6 linecolor %d "
+                "title \"μ = %.3g%s%s%s\" noenhanced, \\\n",
+                block, panel ? "($2 > 0 ? $2 : 1/0)" : "($3 > 0 ? $3 : 1/0)",
+                block + 1, r->mu, par, r->verdict[0] ? ": " : "", r->verdict);
+            block++;
+        }
+        fprintf(gp, "  1/0 notitle\n");
     }
-    fprintf(gp, "  0 linetype -3 notitle\n");
+    fprintf(gp, "unset multiplot\n");
     return DEM_OK;
 }
 
