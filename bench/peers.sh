@@ -26,14 +26,14 @@
 #                   code then reads): large packings with the very local
 #                   structure of the small one, for per-particle costs
 #   --data          folder of the packings (default $DEMBOX_BENCH_DATA or
-#                   /work/shared/bench/data)
+#                   ../shared/bench/data next to this repository)
 #   --dembox        the dembox binary (default build/dembox of this tree)
 #   --work          folder for the inputs and logs (default: a new
 #                   temporary folder, kept and printed)
 #
 # The LAMMPS and LIGGGHTS inputs are written here (they follow the
-# workload of /work/shared/bench/run{2,3}d.{lmp,lgt}, see
-# /work/shared/bench/README.md): periodic box, fix nve/sphere, fix viscous
+# workload of ../shared/bench/run{2,3}d.{lmp,lgt} next to this repository,
+# see ../shared/bench/README.md): periodic box, fix nve/sphere, fix viscous
 # (background damping on translation), fix deform (isochoric compression at
 # the strain rate dembox's wall applies). dembox uses walls instead (see
 # docs/performance.md). Loop times come from each code's own timer
@@ -45,7 +45,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 DIM=3 N= STEPS=20000 NP=1 REP=1
 CODES="dembox lammps-hh lammps-gr liggghts"
-DATA=${DEMBOX_BENCH_DATA:-/work/shared/bench/data}
+DATA=${DEMBOX_BENCH_DATA:-$here/../../shared/bench/data}
 DEMBOX=$here/../build/dembox
 WORK=
 
@@ -72,7 +72,7 @@ case $DIM in 2|3) ;; *) die "--dim must be 2 or 3" ;; esac
 [[ $NP =~ ^[1-9][0-9]*$ ]] || die "--np must be a positive integer"
 [[ $REP =~ ^[1-9][0-9]*$ ]] || die "--replicate must be a positive integer"
 PACK=$DATA/pack${DIM}d_${N}.data
-[ -f "$PACK" ] || die "$PACK: no such packing (prepare it as in /work/shared/bench/README.md)"
+[ -f "$PACK" ] || die "$PACK: no such packing (prepare it as in ../shared/bench/README.md)"
 PACK=$(cd "$(dirname "$PACK")" && pwd)/$(basename "$PACK")
 [ -n "$WORK" ] || WORK=$(mktemp -d "${TMPDIR:-/tmp}/dembox-peers.XXXXXX")
 mkdir -p "$WORK"
@@ -177,7 +177,7 @@ EOF
 write_liggghts() {
   # LIGGGHTS reads "Atoms" without the "# sphere" comment, and in 2D gives
   # a disc the mass pi r^2 rho: rescale the density column so the masses
-  # are LAMMPS's sphere masses (the same fix as /work/shared/bench/run_bench.sh).
+  # are LAMMPS's sphere masses (the same fix as ../shared/bench/run_bench.sh).
   awk -v dim="$DIM" '
     /^Atoms/ {print "Atoms"; sec=1; next}
     /^Velocities/ {print "Velocities"; sec=0; next}

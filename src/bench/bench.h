@@ -1,5 +1,6 @@
 /* The benchmark behind `dembox bench`: time the engine on the peers'
- * workload (docs/performance.md, /work/shared/bench/README.md).
+ * workload (docs/performance.md, ../shared/bench/README.md next to this
+ * repository).
  *
  * Workload: a dense, relaxed packing in a box of six (2D: four) planar
  * walls, compressed slowly along z (2D: y) by the strain-controlled max-side
