@@ -94,10 +94,10 @@ dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
     xi->y = sy;
     xi->z = sz;
     *state &= ~DEM_CONTACT_SLIDING;
-    if (f0sq >= limit * limit) {
+    if (f0sq > limit * limit || limit <= 0.0) {
         /* sliding at mu_d f_C along the test force, with the spring that
-         * gives this force; a zero test force at a zero limit (no
-         * friction, or f_C = 0) slides with no force, so that without
+         * gives this force; at a zero limit (no friction, or f_C = 0)
+         * even a zero test force slides, with no force, so that without
          * friction the spring never accumulates */
         const double scale = f0sq > 0.0 ? T->mu_d * fc / sqrt(f0sq) : 0.0;
         const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
