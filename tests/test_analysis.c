@@ -314,9 +314,10 @@ static int verdict_of(const double *inc)
 
 /* The first cycle holds the response to the first loading and can be ten
  * times any later one (seen: 3.4e-3, then 1e-4 to 1e-3 per cycle at
- * mu = 0.01 in cyclic3d-paper). A steady but noisy accumulation after it
- * is ratcheting; an accumulation dying out faster than 1/c, or noise
- * around zero, is shakedown; a rate falling like c^-0.5 still ratchets.
+ * mu = 0.01 in cyclic3d-paper), and of either sign. A steady but noisy
+ * accumulation after it is ratcheting, in either direction; one that
+ * turns back, one dying out faster than 1/c, or noise around zero, is
+ * shakedown; a rate falling like c^-0.5 still ratchets.
  * (Judged against a tenth of the first cycle, as before 2026-11-23, the
  * noisy ratchet was called shakedown.) */
 static void verdict_ignores_the_first_loading(void **state)
@@ -328,7 +329,10 @@ static void verdict_ignores_the_first_loading(void **state)
     for (int k = 1; k < C; k++) /* 1e-4 +- 5e-5, deterministic scatter */
         inc[k] = 1e-4 + 5e-5 * sin(2.7 * k * k);
     assert_int_equal(verdict_of(inc), DEM_VERDICT_RATCHETING);
-    for (int k = 1; k < C; k++) /* the same against the first direction */
+    for (int k = 1; k < C; k++) /* the same against the first cycle's */
+        inc[k] = -inc[k];       /* direction: still a steady ratchet */
+    assert_int_equal(verdict_of(inc), DEM_VERDICT_RATCHETING);
+    for (int k = 20; k < C; k++) /* the last third turns back */
         inc[k] = -inc[k];
     assert_int_equal(verdict_of(inc), DEM_VERDICT_SHAKEDOWN);
     for (int k = 1; k < C; k++) /* scatter around zero */

@@ -208,6 +208,9 @@ struct dem_cycles {
  * ratcheting means the rate falls more slowly than 1/c, so that the
  * accumulated strain grows without bound. */
 #define DEM_RATCHET_FRACTION 0.6
+/* ... and at least this fraction of the first cycle's increment: below
+ * it, a thousand cycles add less strain than the first loading did. */
+#define DEM_RATCHET_MIN_RATE 1e-3
 #define DEM_VERDICT_MIN_CYCLES 6 /* two cycles in each third */
 
 /* Split samples (t, eps_D, sigma_D) of a cyclic stage that starts at t0

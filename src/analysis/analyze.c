@@ -516,13 +516,15 @@ static void write_void_fit(struct dem__json *j, const struct result *R)
 static const char *const verdict_criterion =
     "eps_D = eps_axis - mean(eps_lateral) is read at the end of every "
     "cycle (t0 + k period); its increments per cycle, taken along the sign "
-    "of the first cycle's, are averaged over the last third and over the "
-    "middle third of the cycles: ratcheting if the last third's mean is "
+    "of the middle third's accumulation, are averaged over the last third "
+    "and over the middle third of the cycles: ratcheting if the last "
+    "third's mean is "
     "above twice its standard error (from the second differences of the "
     "increments of the last two thirds) and not "
     "below 0.6 times the middle third's by more than twice the standard "
     "error of that difference (the rate falls more slowly than 1/c, so "
-    "the accumulated strain grows without bound); shakedown otherwise; no "
+    "the accumulated strain grows without bound), and at least 1e-3 times "
+    "the first cycle's increment; shakedown otherwise; no "
     "verdict with fewer than 6 complete cycles";
 
 static void write_cyclic(struct dem__json *j, const struct result *R)
@@ -569,6 +571,7 @@ static void write_criteria(struct dem__json *j, const struct result *R)
     dem__json_number(j, "dilatant_window_samples",
                      R->mono ? (double)R->sl.window : NAN);
     dem__json_number(j, "ratchet_fraction", DEM_RATCHET_FRACTION);
+    dem__json_number(j, "ratchet_min_rate", DEM_RATCHET_MIN_RATE);
     dem__json_close(j);
 }
 

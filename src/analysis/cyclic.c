@@ -78,10 +78,10 @@ static double scatter_of(const struct dem_cycle *c, int k0, int k1)
 /* Ratcheting: the strain accumulated per cycle in the last third of the
  * cycles is significantly above zero (more than twice its standard error
  * from the cycle-to-cycle scatter) and not significantly below
- * DEM_RATCHET_FRACTION of the middle third's. Shakedown otherwise: the
+ * DEM_RATCHET_FRACTION of the middle third's, both taken in the
+ * direction of the middle third's accumulation. Shakedown otherwise: the
  * accumulation has stopped, or is dying out faster than 1/c. The first
- * cycle, which holds the response to the first loading, is only used for
- * the direction. */
+ * cycle, which holds the response to the first loading, is not used. */
 static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
 {
     o->verdict = DEM_VERDICT_NONE;
@@ -92,8 +92,11 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
         return;
     }
     o->first = c[0].strain_increment;
-    const double dir = o->first >= 0.0 ? 1.0 : -1.0;
     const int L = nc / 3;
+    /* the direction of the accumulation: that of the middle third (the
+     * first cycle can go the other way, e.g. a dense packing that
+     * extends under the first load and then creeps back) */
+    const double dir = mean_of(c, nc - 2 * L, nc - L, 1.0) >= 0.0 ? 1.0 : -1.0;
     o->late_count = L;
     /* the scatter of the middle and last thirds together */
     const double sd = scatter_of(c, nc - 2 * L, nc);
@@ -104,7 +107,8 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     o->ratio = o->first != 0.0 ? o->late_mean / o->first : NAN;
     const double late = dir * o->late_mean, mid = dir * o->mid_mean;
     const double f = DEM_RATCHET_FRACTION;
-    const int significant = late > 2.0 * o->late_se;
+    const int significant = late > 2.0 * o->late_se &&
+                            late >= DEM_RATCHET_MIN_RATE * fabs(o->first);
     /* the decay counts only where it stands out of the scatter of both
      * thirds (twice the standard error of late - f mid) */
     const int steady = late >= f * mid - 2.0 * sqrt(o->late_se * o->late_se +
@@ -112,12 +116,10 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     o->verdict =
         significant && steady ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
     snprintf(o->reason, sizeof o->reason,
-             "mean increment of the last %d cycles %.4g +- %.2g (s.e.) is %s "
-             "twice its error and %s %.0f%% of the middle %d cycles' %.4g "
-             "+- %.2g",
-             L, o->late_mean, o->late_se, significant ? "above" : "within",
-             steady ? "not significantly below" : "significantly below",
-             100.0 * f, L, o->mid_mean, mid_se);
+             "last %d cycles: %.4g +- %.2g per cycle, %s 2 s.e. and 1e-3 "
+             "of cycle 1 (%.4g); %s 0.6 x the middle %d (%.4g)",
+             L, o->late_mean, o->late_se, significant ? "above" : "not above",
+             o->first, steady ? "not below" : "below", L, o->mid_mean);
 }
 
 int dem_cycles_analyze(const double *t, const double *eps_d,
