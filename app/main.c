@@ -112,6 +112,9 @@ static const char *const usage_sweep =
     "  --threads N         OpenMP threads per run (default 1)\n"
     "  --set KEY=VALUE     override a key in every run\n"
     "  --max-steps N       stop every run after N steps (smoke tests)\n"
+    "  --collect           run nothing: analyse the runs already in DIR\n"
+    "                      (runs not finished count as failed) and write\n"
+    "                      sweep.json and the plots\n"
     "  --quiet             no progress lines\n"
     "\n"
     "Each point runs as `dembox run` into DIR/runs/NAME, NAME made of its\n"
@@ -344,7 +347,7 @@ static int cmd_sweep(int argc, char **argv)
     struct dem_sweep_options o = {0, 0, sets, 0, 1, 1, 0, 0, 0};
     struct dem_error err = {0, ""};
     long v;
-    int rc = 0;
+    int rc = 0, collect = 0;
     for (int k = 0; k < argc && !rc; k++) {
         const char *a = argv[k];
         const int more = k + 1 < argc;
@@ -376,6 +379,8 @@ static int cmd_sweep(int argc, char **argv)
             o.max_steps = v;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             o.quiet = 1;
+        } else if (!strcmp(a, "--collect")) {
+            collect = 1;
         } else if (a[0] == '-') {
             fprintf(
                 stderr,
@@ -399,6 +404,15 @@ static int cmd_sweep(int argc, char **argv)
         o.outdir = outbuf;
     }
     struct dem_sweep_report rep;
+    if (!rc && collect) {
+        if (dem_sweep_collect(&grid, &o, &err))
+            rc = fail(err.msg);
+        else if (!o.quiet)
+            fprintf(stderr, "dembox: sweep: collected %s/sweep.json\n",
+                    o.outdir);
+        dem_sweep_grid_free(&grid);
+        return rc;
+    }
     if (!rc && dem_sweep_run(&grid, &o, &rep, &err))
         rc = fail(err.msg);
     if (!rc && !o.quiet)

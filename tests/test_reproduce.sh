@@ -2,7 +2,8 @@
 # scripts/reproduce.sh, checked without the long runs: --list adds up the
 # parts, bad input is refused with a message and status 2, two parts run
 # in --smoke mode (300 steps per run) and give their sweep.json, the
-# numbers are copied, a second call skips the finished runs, and a folder
+# numbers are copied, a second call skips the finished runs, `dembox sweep
+# --collect` analyses them again without running anything, and a folder
 # of another mode is refused.
 set -eu
 SRC=${DEMBOX_SOURCE_DIR:?run through ctest}
@@ -33,6 +34,14 @@ ls "$T/numbers/pressure/runs"/*/summary.json > /dev/null || fail "no summaries c
 DEMBOX=$BIN "$R" --quick --smoke --jobs 2 --only pressure,cyclic "$out" \
     > "$T/log2" 2>&1 || fail "second call: $(tail -5 "$T/log2")"
 grep -q "skipped\|already finished" "$T/log2" || fail "second call did not skip: $(cat "$T/log2")"
+
+# dembox sweep --collect analyses what is there and runs nothing
+rm "$out/pressure/sweep.json"
+"$BIN" sweep biaxial2d --param stages.0.pressure,stages.1.pressure=250,500,1000 \
+    -o "$out/pressure" --collect > "$T/log3" 2>&1 || fail "--collect: $(cat "$T/log3")"
+[ -s "$out/pressure/sweep.json" ] || fail "--collect wrote no sweep.json"
+grep -q '"runs_finished": 3' "$out/pressure/sweep.json" || fail "--collect: runs not read"
+grep -q "started" "$T/log3" && fail "--collect ran something: $(cat "$T/log3")"
 
 set +e
 DEMBOX=$BIN "$R" --paper --only cyclic-mu "$out" 2> "$T/err"; rc=$?
