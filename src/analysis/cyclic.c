@@ -49,12 +49,12 @@ static double loop_work(const double *t, const double *e, const double *s,
     return w + 0.5 * (sp + sb) * (eb - ep);
 }
 
-/* Mean of the increments of cycles [k0, k1), taken along dir. */
-static double mean_of(const struct dem_cycle *c, int k0, int k1, double dir)
+/* Mean of the increments of cycles [k0, k1). */
+static double mean_of(const struct dem_cycle *c, int k0, int k1)
 {
     double sum = 0.0;
     for (int k = k0; k < k1; k++)
-        sum += dir * c[k].strain_increment;
+        sum += c[k].strain_increment;
     return sum / (k1 - k0);
 }
 
@@ -93,33 +93,31 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     }
     o->first = c[0].strain_increment;
     const int L = nc / 3;
-    /* the direction of the accumulation: that of the middle third (the
-     * first cycle can go the other way, e.g. a dense packing that
-     * extends under the first load and then creeps back) */
-    const double dir = mean_of(c, nc - 2 * L, nc - L, 1.0) >= 0.0 ? 1.0 : -1.0;
     o->late_count = L;
-    /* the scatter of the middle and last thirds together */
-    const double sd = scatter_of(c, nc - 2 * L, nc);
-    const double mid_se = sd / sqrt(L);
-    o->late_se = mid_se;
-    o->late_mean = dir * mean_of(c, nc - L, nc, dir);
-    o->mid_mean = dir * mean_of(c, nc - 2 * L, nc - L, dir);
+    o->mid_mean = mean_of(c, nc - 2 * L, nc - L);
+    o->late_mean = mean_of(c, nc - L, nc);
+    /* one scatter for both thirds, so both means have this error */
+    o->late_se = scatter_of(c, nc - 2 * L, nc) / sqrt(L);
     o->ratio = o->first != 0.0 ? o->late_mean / o->first : NAN;
+    /* along the middle third's accumulation (the first cycle can go the
+     * other way, e.g. a dense packing that extends under the first load
+     * and then creeps back) */
+    const double dir = o->mid_mean >= 0.0 ? 1.0 : -1.0;
     const double late = dir * o->late_mean, mid = dir * o->mid_mean;
-    const double f = DEM_RATCHET_FRACTION;
-    const int significant = late > 2.0 * o->late_se &&
-                            late >= DEM_RATCHET_MIN_RATE * fabs(o->first);
-    /* the decay counts only where it stands out of the scatter of both
-     * thirds (twice the standard error of late - f mid) */
-    const int steady = late >= f * mid - 2.0 * sqrt(o->late_se * o->late_se +
-                                                    f * f * mid_se * mid_se);
+    const double f = DEM_RATCHET_FRACTION, se = o->late_se;
+    const int significant =
+        late > 2.0 * se && late >= DEM_RATCHET_MIN_RATE * fabs(o->first);
+    /* the decay counts only where it stands out of the scatter: twice the
+     * standard error of late - f mid */
+    const int steady = late >= f * mid - 2.0 * se * sqrt(1.0 + f * f);
     o->verdict =
         significant && steady ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
     snprintf(o->reason, sizeof o->reason,
-             "last %d cycles: %.4g +- %.2g per cycle, %s 2 s.e. and 1e-3 "
-             "of cycle 1 (%.4g); %s 0.6 x the middle %d (%.4g)",
-             L, o->late_mean, o->late_se, significant ? "above" : "not above",
-             o->first, steady ? "not below" : "below", L, o->mid_mean);
+             "last %d cycles: %.4g +- %.2g per cycle, %s 2 s.e. and %g "
+             "of cycle 1 (%.4g); %s %g x the middle %d (%.4g)",
+             L, o->late_mean, se, significant ? "above" : "not above",
+             DEM_RATCHET_MIN_RATE, o->first, steady ? "not below" : "below", f,
+             L, o->mid_mean);
 }
 
 int dem_cycles_analyze(const double *t, const double *eps_d,
