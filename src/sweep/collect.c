@@ -292,7 +292,8 @@ static int void_ratios(struct dem__sweep *s)
 
 /* ----------------------------------------------------------- ensembles */
 
-struct dem__sweep_stat dem__sweep_stat_of(const double *x, long n)
+/* Mean and standard error of the finite values among x[0..n-1]. */
+static struct dem__sweep_stat stat_of(const double *x, long n)
 {
     struct dem__sweep_stat st = {NAN, NAN, 0};
     double sum = 0.0;
@@ -324,11 +325,15 @@ static struct dem__sweep_stat ens_stat(const struct dem__sweep *s, int q,
     for (long i = 0; i < s->n; i++)
         if (s->eng.gid[i] == q)
             buf[m++] = *(const double *)((const char *)&s->runs[i] + off);
-    return dem__sweep_stat_of(buf, m);
+    return stat_of(buf, m);
 }
 
+/* Only for a sweep over the seed: without it every run is its own
+ * ensemble and nothing would be learnt. */
 static int ensembles(struct dem__sweep *s)
 {
+    if (!(s->roles & DEM_SWEEP_ROLE_SEED))
+        return DEM_OK;
     const int G = s->eng.n;
     s->ens = calloc((size_t)(G > 0 ? G : 1), sizeof *s->ens);
     double *buf = malloc(((size_t)s->n + 1) * sizeof *buf);
@@ -372,7 +377,7 @@ static int ensembles(struct dem__sweep *s)
                         buf[m++] = which ? r->cyc_end[c] : r->cyc_inc[c];
                 }
                 (which ? e->cyc_end : e->cyc_inc)[c] =
-                    dem__sweep_stat_of(buf, m);
+                    stat_of(buf, m);
             }
     }
     /* flow functions: the fits of the seeds of one ensemble */
@@ -398,9 +403,9 @@ static int ensembles(struct dem__sweep *s)
             }
             struct dem__sweep_ffens *e = &s->ffe[state][q];
             e->fits = (int)m;
-            e->phi_deg = dem__sweep_stat_of(b, m);
-            e->tan_phi = dem__sweep_stat_of(b + s->ffg.n, m);
-            e->c = dem__sweep_stat_of(b + 2 * s->ffg.n, m);
+            e->phi_deg = stat_of(b, m);
+            e->tan_phi = stat_of(b + s->ffg.n, m);
+            e->c = stat_of(b + 2 * s->ffg.n, m);
             /* the void-ratio fits of the same seeds */
             m = 0;
             for (int g = 0; g < s->ffg.n && s->vr; g++) {
@@ -411,8 +416,8 @@ static int ensembles(struct dem__sweep *s)
                 b[s->ffg.n + m] = v->n;
                 m++;
             }
-            e->e0 = dem__sweep_stat_of(b, m);
-            e->n = dem__sweep_stat_of(b + s->ffg.n, m);
+            e->e0 = stat_of(b, m);
+            e->n = stat_of(b + s->ffg.n, m);
         }
         free(b);
     }

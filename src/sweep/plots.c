@@ -449,107 +449,105 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
 
 /* ------------------------------------------------ strain accumulation */
 
-/* With seeds: per ensemble, the mean increment per cycle with its
- * standard error. */
-static int w_cyclic_ens(const struct dem__sweep *s, FILE *dat, FILE *gp)
+/* One block of strain_accumulation.dat: cycle, eps_D gained in it and its
+ * standard error, eps_D at its end and its standard error, runs. */
+static void cyclic_block(FILE *dat, int ncyc, const double *inc,
+                         const double *inc_se, const double *end,
+                         const double *end_se, const int *runs)
 {
-    fprintf(dat, "# columns 1 cycle  2 mean eps_D gained in the cycle  3 its "
-                 "standard error  4 mean eps_D at its end  5 its standard "
-                 "error  6 runs; one block per ensemble (runs differing "
-                 "only in the seed)\n");
-    /* two panels on logarithmic axes (the increments span many decades):
-     * the strain accumulated since the start of the stage, and the strain
-     * gained per cycle; non-positive means are not drawn */
-    fprintf(gp, "set multiplot layout 1,2 title \"Strain accumulation, mean "
-                "± s.e. over the seeds\"\n"
-                "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
-                "set key inside top left box opaque font \",10\"\n");
+    for (int c = 0; c < ncyc; c++) {
+        const double v[4] = {inc[c], inc_se[c], end[c], end_se[c]};
+        fprintf(dat, "%d", c + 1);
+        for (int k = 0; k < 4; k++)
+            isfinite(v[k]) ? fprintf(dat, " %.9g", v[k]) : fprintf(dat, " ?");
+        fprintf(dat, " %d\n", runs[c]);
+    }
+    fprintf(dat, "\n\n");
+}
+
+/* Strain accumulation, one series per cyclic run or, with seeds, per
+ * ensemble (means with their standard errors). Two panels on logarithmic
+ * axes, as the increments span many decades: the strain accumulated since
+ * the start of the stage, and the strain gained per cycle; non-positive
+ * values are not drawn. */
+static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
+    dem__gp_head(gp, "strain_accumulation", "Strain accumulated per cycle",
+                 "cycle c", "Δε_D per cycle");
+    fprintf(dat,
+            "# columns 1 cycle  2 eps_D gained in the cycle  3 its standard "
+            "error  4 eps_D at its end  5 its standard error  6 runs; one "
+            "block per %s\n",
+            ens ? "ensemble (runs differing only in the seed): means over it"
+                : "cyclic run (errors 0)");
+    typedef char title_t[640];
+    title_t *title = malloc(((size_t)s->n + 1) * sizeof *title);
+    if (!title)
+        return DEM_ENOMEM;
+    int m = 0;
+    for (long i = 0; i < s->n; i++) {
+        const struct dem__sweep_run *r = &s->runs[i];
+        const int q = s->eng.gid[i];
+        /* each run, or each ensemble at its first run */
+        if (!r->ok || !r->cyclic || (ens && s->eng.rep[q] != i))
+            continue;
+        const int nc = ens ? s->ens[q].ncyc : r->ncyc;
+        if (nc == 0)
+            continue;
+        double *v = malloc(4 * (size_t)nc * sizeof *v);
+        int *runs = malloc((size_t)nc * sizeof *runs);
+        if (!v || !runs) {
+            free(v);
+            free(runs);
+            free(title);
+            return DEM_ENOMEM;
+        }
+        for (int c = 0; c < nc; c++) {
+            const struct dem__sweep_ens *e = ens ? &s->ens[q] : NULL;
+            v[c] = e ? e->cyc_inc[c].mean : r->cyc_inc[c];
+            v[nc + c] = e ? e->cyc_inc[c].se : 0.0;
+            v[2 * nc + c] = e ? e->cyc_end[c].mean : r->cyc_end[c];
+            v[3 * nc + c] = e ? e->cyc_end[c].se : 0.0;
+            runs[c] = e ? e->cyc_inc[c].n : 1;
+        }
+        char lab[512], par[520];
+        label(s, i, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
+        paren(lab, par, sizeof par);
+        fprintf(dat, "# %s: mu = %.6g%s\n", ens ? "ensemble" : r->name, r->mu,
+                par);
+        cyclic_block(dat, nc, v, v + nc, v + 2 * nc, v + 3 * nc, runs);
+        free(v);
+        free(runs);
+        if (ens)
+            snprintf(title[m++], sizeof *title,
+                     "μ = %.3g%s, %d runs (%d ratcheting)", r->mu, par,
+                     s->ens[q].runs, s->ens[q].ratcheting);
+        else
+            snprintf(title[m++], sizeof *title, "μ = %.3g%s%s%s", r->mu, par,
+                     r->verdict[0] ? ": " : "", r->verdict);
+    }
+    fprintf(gp,
+            "set multiplot layout 1,2 title \"Strain accumulation%s\"\n"
+            "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
+            "set key inside top left box opaque font \",10\"\n",
+            ens ? ", mean ± s.e. over the seeds" : "");
     for (int panel = 0; panel < 2; panel++) {
-        int block = 0;
         fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
                 panel ? "unset key\n" : "",
                 panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
-        for (int q = 0; q < s->eng.n; q++) {
-            const struct dem__sweep_ens *e = &s->ens[q];
-            if (e->ncyc == 0)
-                continue;
-            const long rep = s->eng.rep[q];
-            char lab[512], par[520];
-            label(s, rep, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab,
-                  sizeof lab);
-            paren(lab, par, sizeof par);
-            if (panel == 0) {
-                fprintf(dat, "# mu = %.6g%s: %d runs\n", s->runs[rep].mu, par,
-                        e->runs);
-                for (int c = 0; c < e->ncyc; c++) {
-                    const double v[4] = {e->cyc_inc[c].mean, e->cyc_inc[c].se,
-                                         e->cyc_end[c].mean, e->cyc_end[c].se};
-                    fprintf(dat, "%d", c + 1);
-                    for (int k = 0; k < 4; k++)
-                        isfinite(v[k]) ? fprintf(dat, " %.9g", v[k])
-                                       : fprintf(dat, " ?");
-                    fprintf(dat, " %d\n", e->cyc_inc[c].n);
-                }
-                fprintf(dat, "\n\n");
-            }
+        for (int b = 0; b < m; b++)
             fprintf(gp,
                     "  \"strain_accumulation.dat\" index %d using 1:%s with "
                     "yerrorlines pointtype 7 pointsize 0.6 linecolor %d "
-                    "title \"μ = %.3g%s, %d runs (%d ratcheting)\" "
-                    "noenhanced, \\\n",
-                    block, panel ? "($2 > 0 ? $2 : 1/0):3" : "4:5", block + 1,
-                    s->runs[rep].mu, par, e->runs, e->ratcheting);
-            block++;
-        }
+                    "title \"%s\" noenhanced, \\\n",
+                    b,
+                    panel ? "($2 > 0 ? $2 : 1/0):3" : "($4 > 0 ? $4 : 1/0):5",
+                    b + 1, title[b]);
         fprintf(gp, "  1/0 notitle\n");
     }
     fprintf(gp, "unset multiplot\n");
-    return DEM_OK;
-}
-
-static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
-{
-    dem__gp_head(gp, "strain_accumulation", "Strain accumulated per cycle",
-                 "cycle c", "Δε_D per cycle");
-    if (s->roles & DEM_SWEEP_ROLE_SEED)
-        return w_cyclic_ens(s, dat, gp);
-    fprintf(dat, "# columns 1 cycle  2 eps_D gained in the cycle  3 eps_D "
-                 "at its end; one block per cyclic run\n");
-    /* as for ensembles: two panels on logarithmic axes */
-    fprintf(gp, "set multiplot layout 1,2 title \"Strain accumulation\"\n"
-                "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
-                "set key inside top left box opaque font \",10\"\n");
-    for (int panel = 0; panel < 2; panel++) {
-        int block = 0;
-        fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
-                panel ? "unset key\n" : "",
-                panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
-        for (long i = 0; i < s->n; i++) {
-            const struct dem__sweep_run *r = &s->runs[i];
-            if (!r->ok || !r->cyclic)
-                continue;
-            char lab[512], par[520];
-            label(s, i, DEM_SWEEP_ROLE_MU, lab, sizeof lab);
-            paren(lab, par, sizeof par);
-            if (panel == 0) {
-                fprintf(dat, "# %s: mu = %.6g\n", r->name, r->mu);
-                for (int k = 0; k < r->ncyc; k++)
-                    fprintf(dat, "%d %.9g %.9g\n", k + 1, r->cyc_inc[k],
-                            r->cyc_end[k]);
-                fprintf(dat, "\n\n");
-            }
-            fprintf(
-                gp,
-                "  \"strain_accumulation.dat\" index %d using 1:%s with "
-                "linespoints pointtype 7 pointsize 0.6 linecolor %d "
-                "title \"μ = %.3g%s%s%s\" noenhanced, \\\n",
-                block, panel ? "($2 > 0 ? $2 : 1/0)" : "($3 > 0 ? $3 : 1/0)",
-                block + 1, r->mu, par, r->verdict[0] ? ": " : "", r->verdict);
-            block++;
-        }
-        fprintf(gp, "  1/0 notitle\n");
-    }
-    fprintf(gp, "unset multiplot\n");
+    free(title);
     return DEM_OK;
 }
 

@@ -107,8 +107,6 @@ struct dem__sweep {
     struct dem__sweep_ffens *ffe[2]; /* per group of ffeg: peak, critical */
 };
 
-/* Mean and standard error of the finite values among x[0..n-1]. */
-struct dem__sweep_stat dem__sweep_stat_of(const double *x, long n);
 
 /* |f_min|/(k2 delta_max) = (kc/k2)(1 - k1/k2)/(1 + kc/k2) (SPEC 2.2). */
 double dem__sweep_fmin_norm(double kc, double k1, double k2);
