@@ -171,102 +171,59 @@ static long members_by_mu(const struct dem__sweep *s,
     return m;
 }
 
-/* With seeds: the mean over each ensemble with its standard error, one
- * block per group of the other parameters, sorted by mu. */
-static int w_friction_ens(const struct dem__sweep *s, FILE *dat, FILE *gp)
-{
-    int *order = malloc(((size_t)s->eng.n + 1) * sizeof *order);
-    if (!order)
-        return DEM_ENOMEM;
-    fprintf(dat, "# columns: 1 mu  2 peak sin(phi)  3 its standard error  "
-                 "4 critical sin(phi)  5 its standard error  6 runs; means "
-                 "over the seeds; one block per group of the other "
-                 "parameters; ? = none\n");
-    fprintf(gp, "set xrange [0:*]\nset yrange [0:*]\nplot \\\n");
-    for (int g = 0; g < s->mueg.n; g++) {
-        int m = 0;
-        for (int q = 0; q < s->eng.n; q++) {
-            if (s->mueg.gid[s->eng.rep[q]] != g)
-                continue;
-            int k = m++;
-            while (k > 0 && s->runs[s->eng.rep[order[k - 1]]].mu >
-                                s->runs[s->eng.rep[q]].mu) {
-                order[k] = order[k - 1];
-                k--;
-            }
-            order[k] = q;
-        }
-        char lab[512], par[520];
-        label(s, s->mueg.rep[g], DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab,
-              sizeof lab);
-        paren(lab, par, sizeof par);
-        fprintf(dat, "# group%s\n", par);
-        for (int k = 0; k < m; k++) {
-            const struct dem__sweep_ens *e = &s->ens[order[k]];
-            const double v[4] = {e->peak_sin.mean, e->peak_sin.se,
-                                 e->crit_sin.mean, e->crit_sin.se};
-            fprintf(dat, "%.9g", s->runs[s->eng.rep[order[k]]].mu);
-            for (int c = 0; c < 4; c++)
-                isfinite(v[c]) ? fprintf(dat, " %.9g", v[c])
-                               : fprintf(dat, " ?");
-            fprintf(dat, " %d\n", e->runs);
-        }
-        fprintf(dat, "\n\n");
-        fprintf(gp,
-                "  \"friction_vs_mu.dat\" index %d using 1:2:3 with "
-                "yerrorlines pointtype 6 pointsize 1.5 linecolor %d "
-                "title \"peak, mean ± s.e.%s\" noenhanced, \\\n"
-                "  \"\" index %d using 1:4:5 with yerrorlines pointtype 7 "
-                "pointsize 1.5 linecolor %d title \"critical state, mean "
-                "± s.e.%s\" noenhanced, \\\n",
-                g, g + 1, par, g, g + 1, par);
-    }
-    fprintf(gp, "  0 linetype -3 notitle\n");
-    free(order);
-    return DEM_OK;
-}
-
+/* sin(phi) at peak and in critical state against mu, one block per group
+ * of the other parameters, sorted by mu: per run or, with seeds, per
+ * ensemble (means with their standard errors; single runs have zero
+ * errors). */
 static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
+    const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
+    const struct dem__sweep_groups *G = ens ? &s->mueg : &s->mug;
+    const int role = DEM_SWEEP_ROLE_MU | (ens ? DEM_SWEEP_ROLE_SEED : 0);
+    const char *stat = ens ? ", mean ± s.e." : "";
     long *idx = malloc((size_t)s->n * sizeof *idx);
     if (!idx)
         return DEM_ENOMEM;
     dem__gp_head(gp, "friction_vs_mu",
                  "Macroscopic friction at peak and in critical state",
                  "microscopic friction μ", "sin φ = (σ_1 - σ_3)/(σ_1 + σ_3)");
-    if (s->roles & DEM_SWEEP_ROLE_SEED) {
-        free(idx);
-        return w_friction_ens(s, dat, gp);
-    }
-    fprintf(dat, "# columns: 1 mu  2 peak sin(phi)  3 critical sin(phi)  "
-                 "4 peak phi (deg)  5 critical phi (deg); one block per "
-                 "group of the other parameters; ? = none\n");
+    fprintf(dat,
+            "# columns: 1 mu  2 peak sin(phi)  3 its standard error  "
+            "4 critical sin(phi)  5 its standard error  6 runs; %s; one "
+            "block per group of the other parameters; ? = none\n",
+            ens ? "means over the seeds" : "one run per line (errors 0)");
     fprintf(gp, "set xrange [0:*]\nset yrange [0:*]\nplot \\\n");
-    for (int q = 0; q < s->mug.n; q++) {
+    for (int g = 0; g < G->n; g++) {
         char lab[512], par[520];
-        label(s, s->mug.rep[q], DEM_SWEEP_ROLE_MU, lab, sizeof lab);
+        label(s, G->rep[g], role, lab, sizeof lab);
         paren(lab, par, sizeof par);
         fprintf(dat, "# group%s\n", par);
-        const long m = members_by_mu(s, &s->mug, q, idx);
+        const long m = members_by_mu(s, G, g, idx);
         for (long k = 0; k < m; k++) {
-            const struct dem__sweep_run *r = &s->runs[idx[k]];
-            const double v[4] = {r->peak_sin, r->crit_sin, r->peak_phi,
-                                 r->crit_phi};
+            const long i = idx[k];
+            const struct dem__sweep_run *r = &s->runs[i];
+            const struct dem__sweep_ens *e =
+                ens ? &s->ens[s->eng.gid[i]] : NULL;
+            if (e && s->eng.rep[s->eng.gid[i]] != i)
+                continue; /* an ensemble is written at its first run */
+            const double v[4] = {
+                e ? e->peak_sin.mean : r->peak_sin, e ? e->peak_sin.se : 0.0,
+                e ? e->crit_sin.mean : r->crit_sin, e ? e->crit_sin.se : 0.0};
             fprintf(dat, "%.9g", r->mu);
             for (int c = 0; c < 4; c++)
                 isfinite(v[c]) ? fprintf(dat, " %.9g", v[c])
                                : fprintf(dat, " ?");
-            fputc('\n', dat);
+            fprintf(dat, " %d\n", e ? e->runs : 1);
         }
         fprintf(dat, "\n\n");
         fprintf(gp,
-                "  \"friction_vs_mu.dat\" index %d using 1:2 with "
-                "linespoints pointtype 6 pointsize 1.5 linecolor %d "
-                "title \"peak%s\" noenhanced, \\\n"
-                "  \"\" index %d using 1:3 with linespoints pointtype 7 "
-                "pointsize 1.5 linecolor %d title \"critical state%s\" "
+                "  \"friction_vs_mu.dat\" index %d using 1:2:3 with "
+                "yerrorlines pointtype 6 pointsize 1.5 linecolor %d "
+                "title \"peak%s%s\" noenhanced, \\\n"
+                "  \"\" index %d using 1:4:5 with yerrorlines pointtype 7 "
+                "pointsize 1.5 linecolor %d title \"critical state%s%s\" "
                 "noenhanced, \\\n",
-                q, q + 1, par, q, q + 1, par);
+                g, g + 1, stat, par, g, g + 1, stat, par);
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
     free(idx);
