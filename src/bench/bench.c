@@ -173,38 +173,6 @@ static int cache_path(const struct dem_bench_options *o, int dim, int n,
     return DEM_OK;
 }
 
-/* A simulation of the particles of a data file with walls at lo/hi. */
-static int sim_from_data(struct dem_sim *s, const struct dem_config *cfg,
-                         const struct dem_lammps_data *d, const double lo[3],
-                         const double hi[3], struct dem_error *err)
-{
-    int rc = dem_sim_create_empty(s, cfg, d->n, lo, hi, err);
-    if (rc)
-        return rc;
-    s->reorder = 1; /* as dem_sim_create: in cell order at every build */
-    for (int k = 0; k < d->n; k++) {
-        int i = dem_particles_add(&s->p, d->x[k], d->y[k], d->z[k],
-                                  0.5 * d->diameter[k], d->density[k],
-                                  DEM_MASS_SPHERE, cfg->dim);
-        if (i < 0) {
-            dem_sim_destroy(s);
-            return dem_error_set(err, DEM_EINTERNAL, "bench: particle %d", k);
-        }
-        s->p.vx[i] = d->vx[k];
-        s->p.vy[i] = d->vy[k];
-        s->p.vz[i] = cfg->dim == 2 ? 0.0 : d->vz[k];
-        s->p.wz[i] = d->wz[k];
-        if (cfg->dim == 3) {
-            s->p.wx[i] = d->wx[k];
-            s->p.wy[i] = d->wy[k];
-        }
-    }
-    rc = dem_sim_ready(s, err);
-    if (rc)
-        dem_sim_destroy(s);
-    return rc;
-}
-
 /* The peers' periodic packing in walls: the box faces, each moved outward
  * until no particle overlaps it (positions are not changed). */
 static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
@@ -251,7 +219,7 @@ static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
                 hi[a] = c[a] + r;
         }
     }
-    rc = sim_from_data(s, cfg, &d, lo, hi, err);
+    rc = dem_lammps_data_sim(s, cfg, &d, lo, hi, err);
     dem_lammps_data_free(&d);
     return rc;
 }
@@ -399,7 +367,7 @@ static int load_cache(struct dem_sim *s, const struct dem_config *cfg,
                              "%s: holds %d particles, expected %d; remove it",
                              path, d.n, cfg->particles.count);
     }
-    rc = sim_from_data(s, cfg, &d, d.lo, d.hi, err);
+    rc = dem_lammps_data_sim(s, cfg, &d, d.lo, d.hi, err);
     dem_lammps_data_free(&d);
     return rc;
 }

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/sim.h"
 #include "io/outfile.h"
 
 #ifndef M_PI
@@ -369,4 +370,36 @@ int dem_lammps_data_write(const char *path, const struct dem_particles *p,
         fprintf(o.f, "%d %.17g %.17g %.17g %.17g %.17g %.17g\n", p->id[i] + 1,
                 p->vx[i], p->vy[i], p->vz[i], p->wx[i], p->wy[i], p->wz[i]);
     return dem__outfile_commit(&o, err);
+}
+
+int dem_lammps_data_sim(struct dem_sim *s, const struct dem_config *cfg,
+                        const struct dem_lammps_data *d, const double lo[3],
+                        const double hi[3], struct dem_error *err)
+{
+    int rc = dem_sim_create_empty(s, cfg, d->n, lo, hi, err);
+    if (rc)
+        return rc;
+    s->reorder = 1; /* as dem_sim_create: in cell order at every build */
+    for (int k = 0; k < d->n; k++) {
+        int i = dem_particles_add(&s->p, d->x[k], d->y[k], d->z[k],
+                                  0.5 * d->diameter[k], d->density[k],
+                                  DEM_MASS_SPHERE, cfg->dim);
+        if (i < 0) {
+            dem_sim_destroy(s);
+            return dem_error_set(err, DEM_EINTERNAL,
+                                 "particle %d of the data file", k);
+        }
+        s->p.vx[i] = d->vx[k];
+        s->p.vy[i] = d->vy[k];
+        s->p.vz[i] = cfg->dim == 2 ? 0.0 : d->vz[k];
+        s->p.wz[i] = d->wz[k];
+        if (cfg->dim == 3) {
+            s->p.wx[i] = d->wx[k];
+            s->p.wy[i] = d->wy[k];
+        }
+    }
+    rc = dem_sim_ready(s, err);
+    if (rc)
+        dem_sim_destroy(s);
+    return rc;
 }

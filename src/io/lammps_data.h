@@ -46,4 +46,15 @@ int dem_lammps_data_write(const char *path, const struct dem_particles *p,
                           const double lo[3], const double hi[3],
                           const char *comment, struct dem_error *err);
 
+struct dem_sim;
+struct dem_config;
+
+/* A simulation of the particles of d (radius, density, position, velocity;
+ * sphere masses) in walls at lo/hi, re-ordered in cell order at every list
+ * build as in every run, ready to step. Particle k of the file has index
+ * and id k. */
+int dem_lammps_data_sim(struct dem_sim *s, const struct dem_config *cfg,
+                        const struct dem_lammps_data *d, const double lo[3],
+                        const double hi[3], struct dem_error *err);
+
 #endif

@@ -123,34 +123,15 @@ static int build(struct dem_sim *s, const struct opts *o, struct dem_error *e)
              o->gz, d.n, o->gamma_t, o->mu, o->wall_mu, o->gamma_b);
     struct dem_config c;
     rc = dem_config_parse(&c, text, "dembox_case", 0, 0, e);
-    if (!rc)
-        rc = dem_sim_create_empty(s, &c, d.n, d.lo, d.hi, e);
-    if (rc) {
-        dem_lammps_data_free(&d);
-        return rc;
-    }
-    s->reorder = 1; /* as in every run */
-    for (int k = 0; k < d.n && !rc; k++) {
-        /* the data file's ids are 1..n in file order: id = k + 1 */
-        const int i = dem_particles_add(&s->p, d.x[k], d.y[k], d.z[k],
-                                        0.5 * d.diameter[k], d.density[k],
-                                        DEM_MASS_SPHERE, 3);
-        if (i < 0 || d.id[k] != k + 1)
+    /* the dumps name particle k by id k + 1: the file's order */
+    for (int k = 0; k < d.n && !rc; k++)
+        if (d.id[k] != k + 1)
             rc = dem_error_set(e, DEM_ECONFIG,
                                "%s: atom ids must be 1..N in file order",
                                o->data);
-        else {
-            s->p.vx[i] = d.vx[k];
-            s->p.vy[i] = d.vy[k];
-            s->p.vz[i] = d.vz[k];
-            s->p.wx[i] = d.wx[k];
-            s->p.wy[i] = d.wy[k];
-            s->p.wz[i] = d.wz[k];
-        }
-    }
-    dem_lammps_data_free(&d);
     if (!rc)
-        rc = dem_sim_ready(s, e);
+        rc = dem_lammps_data_sim(s, &c, &d, d.lo, d.hi, e);
+    dem_lammps_data_free(&d);
     return rc;
 }
 
