@@ -356,8 +356,9 @@ static int analyze_loading(const struct dem_config *cfg,
     /* the loading stage (dem_stage_loading_index): peak and critical state
      * when it is a compression, the cycles when it is cyclic */
     R->stage = dem_stage_loading_index(cfg);
-    const int comp =
-        R->stage >= 0 && cfg->stages[R->stage].type == DEM_STAGE_COMPRESS;
+    const int type = R->stage >= 0 ? cfg->stages[R->stage].type : -1;
+    const int comp = type == DEM_STAGE_COMPRESS;
+    R->cyc_stage = type == DEM_STAGE_CYCLIC ? R->stage : -1;
     if (R->stage < 0) {
         snprintf(R->none_reason, sizeof R->none_reason,
                  "the run has no compress or cyclic stage");
@@ -651,12 +652,8 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     const long nrow = (long)tb.nrow;
     struct result R;
     result_init(&R, rc ? 0 : cfg->dim);
-    if (!rc) {
-        const int ls = dem_stage_loading_index(cfg);
-        R.cyc_stage =
-            ls >= 0 && cfg->stages[ls].type == DEM_STAGE_CYCLIC ? ls : -1;
+    if (!rc)
         rc = analyze_loading(cfg, &c, nrow, &R);
-    }
     if (!rc)
         rc = analyze_void_fit(cfg, &c, nrow, &R);
     if (!rc && R.cyc_stage >= 0)
