@@ -17,6 +17,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "dembox_models.h"
+
 #define DEM_VERSION "0.1.0"
 
 /* ---------------------------------------------------------------- errors */
@@ -75,9 +77,27 @@ enum dem_mass_model {
         1 /* 2D only: m = pi rho a^2 (per unit thickness), I = m a^2/2 */
 };
 
+/* The normal laws, in the order of DEM_NORMAL_MODELS (dembox_models.h):
+ * DEM_NORMAL_LINEAR (seed 000 Eq. 1), DEM_NORMAL_LUDING (seed 001 Fig. 2,
+ * hysteretic adhesive). */
 enum dem_normal_law {
-    DEM_NORMAL_LINEAR = 0, /* seed 000 Eq. 1 */
-    DEM_NORMAL_LUDING = 1  /* seed 001 Fig. 2, hysteretic adhesive */
+#define DEM_NORMAL_ENUM_(TAG, name, lanes) DEM_NORMAL_##TAG,
+    DEM_NORMAL_MODELS(DEM_NORMAL_ENUM_)
+#undef DEM_NORMAL_ENUM_
+        DEM_NORMAL_NMODELS
+};
+
+/* Contact parameters: contact.normal and one field per key of
+ * DEM_CONTACT_KEYS (dembox_models.h, with units and meaning), e.g.
+ * k (linear stiffness), k1, k2, kc, phi_f (luding), gamma_n, kt, gamma_t,
+ * mu_s, mu_d, wall_mu, wall_kc. */
+struct dem_contact_params {
+    int normal; /* enum dem_normal_law */
+#define DEM_CONTACT_FIELD_(MODEL, name, unit, def, ...) double name;
+#define DEM_CONTACT_ALIAS_(MODEL, name, field, unit, def, ...)
+    DEM_CONTACT_KEYS(DEM_CONTACT_FIELD_, DEM_CONTACT_ALIAS_)
+#undef DEM_CONTACT_FIELD_
+#undef DEM_CONTACT_ALIAS_
 };
 
 enum dem_stage_type {
@@ -138,21 +158,7 @@ struct dem_config {
                                     initial gas box (default 0.1 3D, 0.2 2D) */
     } particles;
 
-    struct {
-        int normal;     /* enum dem_normal_law */
-        double k;       /* N/m; linear stiffness */
-        double k1;      /* N/m; luding loading stiffness */
-        double k2;      /* N/m; luding un-/re-loading stiffness */
-        double kc;      /* N/m; luding adhesive stiffness (>= 0) */
-        double phi_f;   /* luding 2008 plasticity depth; 0 = constant k2 */
-        double gamma_n; /* kg/s; normal viscosity */
-        double kt;      /* N/m; tangential stiffness */
-        double gamma_t; /* kg/s; tangential viscosity */
-        double mu_s;    /* static friction coefficient */
-        double mu_d;    /* dynamic friction coefficient (<= mu_s) */
-        double wall_mu; /* particle-wall friction (static = dynamic) */
-        double wall_kc; /* N/m; particle-wall adhesive stiffness; default 0 */
-    } contact;
+    struct dem_contact_params contact;
 
     struct {
         double gamma_b;  /* kg/s; background translational damping */

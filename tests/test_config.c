@@ -11,6 +11,7 @@
 
 #include <cmocka.h>
 
+#include "contact/models.h"
 #include "io/config.h"
 #include "io/examples.h"
 
@@ -194,8 +195,7 @@ static void set_overrides_scalars_enums_arrays_and_stages(void **state)
     assert_true(c.stages[0].pressure == 500.0);
     assert_true(c.stages[1].pressure == 250.0);
     assert_int_equal(c.stages[1].axis, 0);
-    assert_true(c.time_step_auto &&
-                c.time_step == dem_config_contact_time(&c) / 50);
+    assert_true(c.time_step_auto && c.time_step == dem_contact_time(&c) / 50);
     assert_int_equal(c.seed, 7);
 
     /* A config without stages: the default stage can be changed. */
@@ -230,8 +230,8 @@ static void contact_time_matches_seed_000(void **state)
     const double m = 4.0 / 3.0 * M_PI * 2000 * 5e-3 * 5e-3 * 5e-3;
     const double mij = m / 2, eta = 0.05 / (2 * mij);
     const double tc = M_PI / sqrt(5000 / mij - eta * eta);
-    assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
-    assert_float_equal(dem_config_contact_time(&c), 1.02e-3, 0.005e-3);
+    assert_float_equal(dem_contact_time(&c), tc, 1e-12);
+    assert_float_equal(dem_contact_time(&c), 1.02e-3, 0.005e-3);
     /* restitution r = exp(-eta t_c) ~ 0.953 */
     assert_float_equal(exp(-eta * tc), 0.953, 0.001);
 
@@ -240,10 +240,10 @@ static void contact_time_matches_seed_000(void **state)
              "particles = { radius = { distribution = \"uniform\"; min = 5e-3; "
              "max = 8e-3; }; };",
              0, 0);
-    assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
+    assert_float_equal(dem_contact_time(&c), tc, 1e-12);
     parse_ok(&c, "particles = { radius = { min = 5e-3; mean = 6e-3; }; };", 0,
              0);
-    assert_float_equal(dem_config_contact_time(&c), tc, 1e-12);
+    assert_float_equal(dem_contact_time(&c), tc, 1e-12);
 
     /* luding: the stiffest spring k2; undamped here */
     parse_ok(&c,
@@ -251,16 +251,14 @@ static void contact_time_matches_seed_000(void **state)
              "0.0; };\nparticles = { radius = { distribution = \"mono\"; "
              "mean = 5e-3; }; };",
              0, 0);
-    assert_float_equal(dem_config_contact_time(&c), M_PI / sqrt(2e4 / mij),
-                       1e-12);
+    assert_float_equal(dem_contact_time(&c), M_PI / sqrt(2e4 / mij), 1e-12);
 
     /* overdamped: the undamped half period */
     parse_ok(&c,
              "contact = { gamma_n = 100.0; };\nparticles = { radius = { "
              "distribution = \"mono\"; mean = 5e-3; }; };",
              0, 0);
-    assert_float_equal(dem_config_contact_time(&c), M_PI / sqrt(5000 / mij),
-                       1e-12);
+    assert_float_equal(dem_contact_time(&c), M_PI / sqrt(5000 / mij), 1e-12);
 
     /* disc mass in 2D: m = pi rho a^2 */
     parse_ok(&c,
@@ -269,8 +267,8 @@ static void contact_time_matches_seed_000(void **state)
              "mean = 5e-3; }; };",
              0, 0);
     const double md = M_PI * 2000 * 5e-3 * 5e-3;
-    assert_float_equal(dem_config_contact_time(&c),
-                       M_PI / sqrt(5000 / (md / 2)), 1e-12);
+    assert_float_equal(dem_contact_time(&c), M_PI / sqrt(5000 / (md / 2)),
+                       1e-12);
 }
 
 static void auto_time_step_is_a_fiftieth_of_contact_time(void **state)
@@ -279,7 +277,7 @@ static void auto_time_step_is_a_fiftieth_of_contact_time(void **state)
     struct dem_config c;
     parse_ok(&c, "time_step = \"auto\";", 0, 0);
     assert_int_equal(c.time_step_auto, 1);
-    assert_float_equal(c.time_step, dem_config_contact_time(&c) / 50, 1e-20);
+    assert_float_equal(c.time_step, dem_contact_time(&c) / 50, 1e-20);
 }
 
 static void every_example_parses(void **state)
@@ -411,7 +409,9 @@ static const struct bad bad_inputs[] = {
     {"contact = {\n  normal = \"luding\";\n  phi_f = 0.0;\n};", 0,
      "contact.phi_f", 3},
     {"contact = {\n  k1 = 5e4;\n};", 0,
-     "contact.k1: Luding parameter given with the linear law", 2},
+     "contact.k1: a key of the luding law, given with contact.normal = "
+     "\"linear\"",
+     2},
     {"contact = {\n  phi_f = 0.5;\n};", 0, "contact.phi_f", 2},
     {"contact = {\n  normal = \"luding\";\n  k = 5000.0;\n};", 0, "contact.k",
      3},

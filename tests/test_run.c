@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "contact/models.h"
 #include "io/config.h"
 #include "io/csvtable.h"
 #include "io/examples.h"
@@ -218,7 +219,7 @@ static void energy_growth_is_diagnosed(void **state)
     struct dem_config c;
     struct dem_error err = {0, ""};
     assert_int_equal(dem_config_parse(&c, text, "egrowth", 0, 0, &err), 0);
-    c.time_step = 0.8 * dem_config_contact_time(&c);
+    c.time_step = 0.8 * dem_contact_time(&c);
     char out[1024];
     snprintf(out, sizeof out, "%s/egrowth", tmpdir);
     struct dem_run_options o = {.outdir = out, .quiet = 1, .threads = 1};

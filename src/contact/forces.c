@@ -23,44 +23,20 @@
  *     drift, see dem_sim_step).
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
- * once as always-inline functions and instantiated per normal law (a
- * literal in each parallel region), so there is no function pointer and
- * no configuration branch per contact.
+ * once as always-inline functions and instantiated per normal law of
+ * DEM_NORMAL_MODELS (a literal in each parallel region; the models'
+ * kernels are chosen in contact/models.h), so there is no function
+ * pointer and no configuration branch per contact. A wall contact runs
+ * the same model with the wall's parameters (dem_contact_wall_view).
  */
 #include <math.h>
 #include <omp.h>
 #include <string.h>
 
-#include "contact/luding.h"
-#include "contact/normal.h"
+#include "contact/models.h"
 #include "contact/tangential.h"
 #include "core/parallel.h"
 #include "core/sim.h"
-
-#if defined(__GNUC__)
-#define DEM_INLINE static inline __attribute__((always_inline))
-#else
-#define DEM_INLINE static inline
-#endif
-
-/* Normal force of one contact (spring and dashpot) and the normal force fc
- * for its Coulomb limit; the luding law updates the history dmax. */
-DEM_INLINE double normal_force(const int law,
-                               const struct dem_contact_params *cp, double kc,
-                               double delta, double ddot, double a12,
-                               double *dmax, double *fc)
-{
-    double fn;
-    if (law == DEM_NORMAL_LUDING) {
-        const struct dem_luding L = {cp->k1, cp->k2, kc, cp->phi_f};
-        fn = dem_luding_force(delta, dmax, &L, a12) + cp->gamma_n * ddot;
-        *fc = dem_luding_coulomb_force(fn, delta, kc);
-    } else {
-        fn = dem_normal_linear_force(delta, ddot, cp->k, cp->gamma_n);
-        *fc = fn > 0.0 ? fn : 0.0;
-    }
-    return fn;
-}
 
 /* The arrays one pass works on, read into locals once, so that the
  * compiler need not reload an array pointer from its struct after a
@@ -68,7 +44,9 @@ DEM_INLINE double normal_force(const int law,
 struct pass {
     const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
     const int *ci, *cj;
-    double *xi_x, *xi_y, *xi_z, *dmax;
+#define HIST_ARRAY_(MODEL, name, unit, doc) double *name;
+    DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
+#undef HIST_ARRAY_
     int *state;
     struct dem_contact_force *F; /* stored forces, at each entry's index */
 };
@@ -77,31 +55,61 @@ static struct pass pass_of(const struct dem_particles *P,
                            struct dem_contact_list *L,
                            struct dem_contact_forces *F)
 {
-    struct pass q = {P->x,    P->y,    P->z,    P->vx,   P->vy,    P->vz,
-                     P->wx,   P->wy,   P->wz,   P->r,    L->i,     L->j,
-                     L->xi_x, L->xi_y, L->xi_z, L->dmax, L->state, F->v};
+    struct pass q = {P->x,
+                     P->y,
+                     P->z,
+                     P->vx,
+                     P->vy,
+                     P->vz,
+                     P->wx,
+                     P->wy,
+                     P->wz,
+                     P->r,
+                     L->i,
+                     L->j,
+#define HIST_OF_(MODEL, name, unit, doc) L->name,
+                     DEM_CONTACT_HISTORY(HIST_OF_)
+#undef HIST_OF_
+                         L->state,
+                     F->v};
     return q;
+}
+
+/* Contact k's history values used by law, read from the list (the others
+ * are 0 and never stored). */
+DEM_INLINE struct dem_history load_history(const int law, const struct pass *q,
+                                           int k)
+{
+    struct dem_history h;
+#define HIST_LOAD_(MODEL, name, unit, doc)                                     \
+    h.name = DEM_MODEL_USES(law, MODEL) ? q->name[k] : 0.0;
+    DEM_CONTACT_HISTORY(HIST_LOAD_)
+#undef HIST_LOAD_
+    return h;
 }
 
 /* Tangential force and history update of contact k, stored with it; with
  * touch = 0 (its gap is open) the force is zero and the history is
- * erased instead. dmax is the luding law's history (the linear law has
- * none to store). */
+ * erased instead. h holds the history after the normal force; only the
+ * values law uses are stored. */
 DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
                                int touch, struct dem_vec3 n,
                                struct dem_vec3 vij, double fn, double fc,
-                               double dmax, double dt,
+                               struct dem_history h, double dt,
                                const struct dem_tangential *T)
 {
-    struct dem_vec3 xi = {q->xi_x[k], q->xi_y[k], q->xi_z[k]};
+    struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
     int st = q->state[k] | DEM_CONTACT_ACTIVE;
     const struct dem_vec3 ft =
         dem_tangential_force(n, vij, fc, dt, T, &xi, &st);
-    q->xi_x[k] = touch ? xi.x : 0.0;
-    q->xi_y[k] = touch ? xi.y : 0.0;
-    q->xi_z[k] = touch ? xi.z : 0.0;
-    if (law == DEM_NORMAL_LUDING)
-        q->dmax[k] = touch ? dmax : 0.0;
+    h.xi_x = xi.x;
+    h.xi_y = xi.y;
+    h.xi_z = xi.z;
+#define HIST_STORE_(MODEL, name, unit, doc)                                    \
+    if (DEM_MODEL_USES(law, MODEL))                                            \
+        q->name[k] = touch ? h.name : 0.0;
+    DEM_CONTACT_HISTORY(HIST_STORE_)
+#undef HIST_STORE_
     q->state[k] = touch ? st : 0;
     struct dem_contact_force *o = &q->F[k];
     o->f[0] = touch ? fn * n.x + ft.x : 0.0;
@@ -115,8 +123,9 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
 /* Contact k is open: no force, no history. */
 DEM_INLINE void open_contact(const struct pass *q, int k)
 {
-    q->xi_x[k] = q->xi_y[k] = q->xi_z[k] = 0.0;
-    q->dmax[k] = 0.0;
+#define HIST_ZERO_(MODEL, name, unit, doc) q->name[k] = 0.0;
+    DEM_CONTACT_HISTORY(HIST_ZERO_)
+#undef HIST_ZERO_
     q->state[k] = 0;
     struct dem_contact_force *o = &q->F[k];
     o->f[0] = o->f[1] = o->f[2] = 0.0;
@@ -153,21 +162,22 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
                                  q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
                                  q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
     const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
-    double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
+    struct dem_history h = load_history(law, &q, k);
+    double fc;
     const double fn =
-        normal_force(law, cp, cp->kc, R - d, ddot, ai * aj / R, &dmax, &fc);
-    finish_contact(law, &q, k, touch, n, vij, fn, fc, dmax, dt, T);
+        dem_normal_force(law, cp, R - d, ddot, ai * aj / R, &h, &fc);
+    finish_contact(law, &q, k, touch, n, vij, fn, fc, h, dt, T);
 }
 
-/* Forces and history updates of pairs k0 <= k < k1. The linear law runs
- * in SIMD lanes. The luding law runs as scalar code: its branches
+/* Forces and history updates of pairs k0 <= k < k1, in SIMD lanes or as
+ * scalar code as the law's lanes column says (the luding law's branches
  * (loading, un-/re-loading, adhesive re-mapping with a square root) all
- * computed in every lane made it slower than scalar code with branches. */
+ * computed in every lane made it slower than scalar code with branches). */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
-    if (law == DEM_NORMAL_LUDING) {
+    if (!dem_normal_simd(law)) {
         for (int k = k0; k < k1; k++)
             pair_one(law, 1, &q, k, cp, dt, &T);
     } else {
@@ -201,21 +211,20 @@ DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
         q.vy[i] + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
         q.vz[i] + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
     const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
-    double fc, dmax = law == DEM_NORMAL_LUDING ? q.dmax[k] : 0.0;
-    const double fn =
-        normal_force(law, cp, cp->wall_kc, delta, ddot, ai, &dmax, &fc);
-    finish_contact(law, qp, k, touch, n, vij, fn, fc, dmax, dt, T);
+    struct dem_history h = load_history(law, &q, k);
+    double fc;
+    const double fn = dem_normal_force(law, cp, delta, ddot, ai, &h, &fc);
+    finish_contact(law, qp, k, touch, n, vij, fn, fc, h, dt, T);
 }
 
-/* Wall contacts k0 <= k < k1: in SIMD lanes, or scalar for the luding
- * law (see pair_range). */
+/* Wall contacts k0 <= k < k1, with the wall's parameters cp
+ * (dem_contact_wall_view), in SIMD lanes or not as pair_range. */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
                            const struct dem_wall *walls)
 {
-    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->wall_mu,
-                                     cp->wall_mu};
-    if (law == DEM_NORMAL_LUDING) {
+    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    if (!dem_normal_simd(law)) {
         for (int k = k0; k < k1; k++)
             wall_one(law, &q, k, cp, dt, walls, &T);
     } else {
@@ -310,8 +319,8 @@ DEM_INLINE int gather_range(int i0, int i1, const struct dem_particles *P,
 
 /* What one force pass reads, gathered once. */
 struct contacts {
-    struct pass q, wq; /* pairs, wall contacts */
-    struct dem_contact_params cp;
+    struct pass q, wq;                 /* pairs, wall contacts */
+    struct dem_contact_params cp, cpw; /* pairs, wall contacts */
     struct dem_wall walls[DEM_MAX_WALLS];
     const struct dem_particles *P;
     const struct dem_pairs *pl;
@@ -329,7 +338,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
                &c->cp, c->dt);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
-               &c->cp, c->dt, c->walls);
+               &c->cpw, c->dt, c->walls);
 #pragma omp barrier
     return gather_range(dem_block(c->n, t, nt), dem_block(c->n, t + 1, nt),
                         c->P, c->pl, c->gb, c->gr, K);
@@ -350,21 +359,31 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
 
 static int contacts(const struct contacts *c, const struct kick K)
 {
-    const int luding = c->cp.normal == DEM_NORMAL_LUDING;
     int moved = 0;
-    if (luding && K.chain)
-        CONTACTS(DEM_NORMAL_LUDING, 1, 1);
-    else if (luding && K.on)
-        CONTACTS(DEM_NORMAL_LUDING, 1, 0);
-    else if (luding)
-        CONTACTS(DEM_NORMAL_LUDING, 0, 0);
-    else if (K.chain)
-        CONTACTS(DEM_NORMAL_LINEAR, 1, 1);
-    else if (K.on)
-        CONTACTS(DEM_NORMAL_LINEAR, 1, 0);
-    else
-        CONTACTS(DEM_NORMAL_LINEAR, 0, 0);
+    switch (c->cp.normal) {
+#define CONTACTS_OF_(TAG, name, lanes)                                         \
+    case DEM_NORMAL_##TAG:                                                     \
+        if (K.chain)                                                           \
+            CONTACTS(DEM_NORMAL_##TAG, 1, 1);                                  \
+        else if (K.on)                                                         \
+            CONTACTS(DEM_NORMAL_##TAG, 1, 0);                                  \
+        else                                                                   \
+            CONTACTS(DEM_NORMAL_##TAG, 0, 0);                                  \
+        break;
+        DEM_NORMAL_MODELS(CONTACTS_OF_)
+#undef CONTACTS_OF_
+    }
     return moved;
+}
+
+/* The history values of entry k of a list. */
+static struct dem_history list_history(const struct dem_contact_list *L, int k)
+{
+    struct dem_history h;
+#define HIST_GET_(MODEL, name, unit, doc) h.name = L->name[k];
+    DEM_CONTACT_HISTORY(HIST_GET_)
+#undef HIST_GET_
+    return h;
 }
 
 /* Sums for the measurements, from the stored contact forces and the
@@ -376,6 +395,7 @@ static void measure_contacts(struct dem_sim *s)
     const struct dem_contact_list *L = &pl->cur, *WL = &pl->wcur;
     const struct dem_contact_forces *F = &pl->f, *WF = &pl->wf;
     const struct dem_contact_params *cp = &s->cp;
+    const struct dem_contact_params cpw = dem_contact_wall_view(cp);
     struct dem_contact_sums *S = &s->sums;
     memset(S, 0, sizeof *S);
     memset(P->fsum, 0, (size_t)P->n * sizeof *P->fsum);
@@ -397,15 +417,11 @@ static void measure_contacts(struct dem_sim *s)
                 S->fabric_stress[a][c] += b[a] * f[c];
                 S->fabric[a][c] += n[a] * n[c];
             }
-        const struct dem_vec3 xi = {L->xi_x[k], L->xi_y[k], L->xi_z[k]};
+        const struct dem_history h = list_history(L, k);
+        const struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
         double e = dem_tangential_energy(xi, cp->kt);
-        if (cp->normal == DEM_NORMAL_LUDING) {
-            const struct dem_luding Lu = {cp->k1, cp->k2, cp->kc, cp->phi_f};
-            e += dem_luding_energy(delta, L->dmax[k], &Lu,
-                                   P->r[i] * P->r[j] / R);
-        } else {
-            e += dem_normal_linear_energy(delta, cp->k);
-        }
+        e +=
+            dem_normal_energy(cp->normal, cp, delta, P->r[i] * P->r[j] / R, &h);
         S->e_pot += e;
         S->n_pp++;
         if (L->state[k] & DEM_CONTACT_SLIDING)
@@ -437,15 +453,10 @@ static void measure_contacts(struct dem_sim *s)
          * plane: -dist n, so -l (x) f = dist n (x) f */
         for (int c = 0; c < 3; c++)
             S->fabric_stress[a][c] += dist * sgn * f[c];
-        const struct dem_vec3 xi = {WL->xi_x[k], WL->xi_y[k], WL->xi_z[k]};
-        double e = dem_tangential_energy(xi, cp->kt);
-        if (cp->normal == DEM_NORMAL_LUDING) {
-            const struct dem_luding Lu = {cp->k1, cp->k2, cp->wall_kc,
-                                          cp->phi_f};
-            e += dem_luding_energy(delta, WL->dmax[k], &Lu, P->r[i]);
-        } else {
-            e += dem_normal_linear_energy(delta, cp->k);
-        }
+        const struct dem_history h = list_history(WL, k);
+        const struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
+        double e = dem_tangential_energy(xi, cpw.kt);
+        e += dem_normal_energy(cpw.normal, &cpw, delta, P->r[i], &h);
         S->e_pot += e;
         S->n_pw++;
         if (WL->state[k] & DEM_CONTACT_SLIDING)
@@ -467,6 +478,7 @@ static int forces(struct dem_sim *s, const struct kick K)
         .q = pass_of(&s->p, &pl->cur, &pl->f),
         .wq = pass_of(&s->p, &pl->wcur, &pl->wf),
         .cp = s->cp,
+        .cpw = dem_contact_wall_view(&s->cp),
         .P = &s->p,
         .pl = pl,
         /* a pass without a kick re-evaluates the present state: the

@@ -37,23 +37,14 @@
 
 #include <math.h>
 
-/* Bits of a contact's state byte (per pair and per particle-wall contact). */
-enum {
-    DEM_CONTACT_ACTIVE = 1, /* the contact was closed in the last step */
-    DEM_CONTACT_SLIDING = 2 /* the contact slides (dynamic friction) */
-};
+#include "contact/state.h"
+#include "core/vec3.h"
 
 struct dem_tangential {
     double kt;      /* N/m; tangential spring stiffness */
     double gamma_t; /* kg/s; tangential viscosity */
     double mu_s;    /* static friction coefficient */
     double mu_d;    /* dynamic friction coefficient, mu_d <= mu_s */
-};
-
-/* A vector of three numbers, passed by value: the kernels below are
- * called inside vectorised loops, where arrays would stop the compiler. */
-struct dem_vec3 {
-    double x, y, z;
 };
 
 /* Tangential force of one contact, returned (force on i, N).

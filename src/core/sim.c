@@ -22,31 +22,13 @@ void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d)
     s->cp.mu_d = mu_d;
 }
 
-static void contact_params_from_config(struct dem_contact_params *cp,
-                                       const struct dem_config *c)
-{
-    cp->normal = c->contact.normal;
-    cp->k = c->contact.k;
-    cp->k1 = c->contact.k1;
-    cp->k2 = c->contact.k2;
-    cp->kc = c->contact.kc;
-    cp->phi_f = c->contact.phi_f;
-    cp->gamma_n = c->contact.gamma_n;
-    cp->kt = c->contact.kt;
-    cp->gamma_t = c->contact.gamma_t;
-    cp->mu_s = c->contact.mu_s;
-    cp->mu_d = c->contact.mu_d;
-    cp->wall_mu = c->contact.wall_mu;
-    cp->wall_kc = c->contact.wall_kc;
-}
-
 static void sim_begin(struct dem_sim *s, const struct dem_config *cfg)
 {
     memset(s, 0, sizeof *s);
     s->cfg = *cfg;
     s->dim = cfg->dim;
     s->dt = cfg->time_step;
-    contact_params_from_config(&s->cp, cfg);
+    s->cp = cfg->contact;
     dem_rng_seed(&s->rng, cfg->seed);
 }
 

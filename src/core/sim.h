@@ -16,21 +16,6 @@
 
 #define DEM_MAX_WALLS 6
 
-/* Contact parameters as the force loop uses them (resolved from config). */
-struct dem_contact_params {
-    int normal;        /* enum dem_normal_law */
-    double k;          /* N/m; linear stiffness */
-    double k1, k2;     /* N/m; luding loading, un-/re-loading stiffness */
-    double kc;         /* N/m; luding adhesive stiffness */
-    double phi_f;      /* luding 2008 plasticity depth (0 = constant k2) */
-    double gamma_n;    /* kg/s */
-    double kt;         /* N/m */
-    double gamma_t;    /* kg/s */
-    double mu_s, mu_d; /* particle-particle friction */
-    double wall_mu;    /* particle-wall friction */
-    double wall_kc;    /* N/m; particle-wall adhesive stiffness */
-};
-
 /* Sums gathered by the force loop when measurement is requested. */
 struct dem_contact_sums {
     double fabric_stress[3][3]; /* N m; sum over contacts of l (x) f,
@@ -66,7 +51,8 @@ struct dem_sim {
     struct dem_particles p;       /* particle data */
     struct dem_pairs pairs;       /* Verlet lists of pair and wall contacts
                                      with their history */
-    struct dem_contact_params cp; /* contact law in force now */
+    struct dem_contact_params cp; /* contact law in force now (pairs; a
+                                     wall contact: dem_contact_wall_view) */
     struct dem_rng rng;           /* seeded random numbers */
 
     int nwall;                           /* 2 * dim */

@@ -208,10 +208,9 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
         return;
     io_i32s(io, L->i, n);
     io_i32s(io, L->j, n);
-    io_f64s(io, L->xi_x, n);
-    io_f64s(io, L->xi_y, n);
-    io_f64s(io, L->xi_z, n);
-    io_f64s(io, L->dmax, n);
+#define HIST_IO_(MODEL, name, unit, doc) io_f64s(io, L->name, n);
+    DEM_CONTACT_HISTORY(HIST_IO_)
+#undef HIST_IO_
     io_states(io, L->state, n);
     io_i32s(io, L->start, np + 1);
     io_f64s(io, (double *)F->v, 6 * n);
@@ -219,8 +218,10 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
 
 /* Bytes per particle, pair and wall contact in the file. */
 #define BYTES_PER_PARTICLE (23 * 8 + 2 * 4 + 3 * 4)
-#define BYTES_PER_PAIR (2 * 4 + 4 * 8 + 1 + 6 * 8 + 4)
-#define BYTES_PER_WALL_CONTACT (2 * 4 + 4 * 8 + 1 + 6 * 8)
+#define HIST_COUNT_(MODEL, name, unit, doc) +1
+#define NHISTORY (0 DEM_CONTACT_HISTORY(HIST_COUNT_))
+#define BYTES_PER_PAIR (2 * 4 + NHISTORY * 8 + 1 + 6 * 8 + 4)
+#define BYTES_PER_WALL_CONTACT (2 * 4 + NHISTORY * 8 + 1 + 6 * 8)
 
 /* Text read from a file, made fit for a one-line message: every byte that
  * is not printable ASCII becomes '?'. */
@@ -330,11 +331,14 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_i32(io, &s->measure);
     struct dem_contact_params *cp = &s->cp;
     io_i32(io, &cp->normal);
-    double *c[] = {&cp->k,     &cp->k1,      &cp->k2,      &cp->kc,
-                   &cp->phi_f, &cp->gamma_n, &cp->kt,      &cp->gamma_t,
-                   &cp->mu_s,  &cp->mu_d,    &cp->wall_mu, &cp->wall_kc};
-    for (size_t k = 0; k < sizeof c / sizeof c[0]; k++)
-        io_f64(io, c[k]);
+    if (io->reading && !io->why &&
+        (cp->normal < 0 || cp->normal >= DEM_NORMAL_NMODELS))
+        io->why = "corrupt (unknown contact law)";
+#define PARAM_IO_(MODEL, name, unit, def, ...) io_f64(io, &cp->name);
+#define ALIAS_IO_(MODEL, name, field, unit, def, ...)
+    DEM_CONTACT_KEYS(PARAM_IO_, ALIAS_IO_)
+#undef PARAM_IO_
+#undef ALIAS_IO_
     io_bytes(io, s->rng.s, sizeof s->rng.s);
     struct dem_contact_sums *S = &s->sums;
     io_f64s(io, &S->fabric_stress[0][0], 9);

@@ -30,6 +30,8 @@
 
 #include <libconfig.h>
 
+#include "contact/models.h"
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -53,8 +55,6 @@ enum key_scope {
 };
 
 /* Flags. */
-#define F_LINEAR 0x01u     /* belongs to contact.normal = "linear" only */
-#define F_LUDING 0x02u     /* belongs to contact.normal = "luding" only */
 #define F_UNSET_ZERO 0x04u /* stored 0 means "not given"; range otherwise */
 #define F_UNSET_NEG 0x08u  /* stored < 0 means "not given"; range otherwise */
 #define F_MU 0x10u         /* contact.mu: sets mu_s and mu_d together */
@@ -77,6 +77,8 @@ struct key {
     double lo, hi;            /* valid range, where has_lo / has_hi */
     unsigned char has_lo, lo_open, has_hi, hi_open;
     unsigned flags;       /* F_* */
+    int law;              /* 1 + the normal law (enum dem_normal_law) the
+                             key belongs to; 0 = every law */
     unsigned uses;        /* stage keys: stage types (T_*) that use the key */
     unsigned needs;       /* stage keys: stage types that require it */
     const char *unit;     /* SI unit, "-" for dimensionless */
@@ -87,7 +89,11 @@ struct key {
 static const char *const dist_names[] = {"mono", "uniform", "gaussian", 0};
 static const char *const place_names[] = {"lattice", "random", "file", 0};
 static const char *const mass_names[] = {"sphere", "disc", 0};
-static const char *const law_names[] = {"linear", "luding", 0};
+static const char *const law_names[] = {
+#define LAW_NAME_(TAG, name, lanes) #name,
+    DEM_NORMAL_MODELS(LAW_NAME_)
+#undef LAW_NAME_
+        0};
 static const char *const stage_names[] = {"isotropic", "compress", "cyclic",
                                           "hold", 0};
 static const char *const axis_names[] = {"x", "y", "z", 0};
@@ -220,117 +226,36 @@ static const struct key keys[] = {
      .names = law_names,
      .unit = "-",
      .doc = "normal law: linear spring-dashpot or luding hysteretic"},
-    {.name = "contact.k",
-     .kind = K_DOUBLE,
-     TOP(contact.k),
-     .def = 5000,
-     GT(0),
-     .flags = F_LINEAR,
-     .unit = "N/m",
-     .doc = "linear normal stiffness"},
-    {.name = "contact.k1",
-     .kind = K_DOUBLE,
-     TOP(contact.k1),
-     .def = 5e4,
-     GT(0),
-     .flags = F_LUDING,
-     .unit = "N/m",
-     .doc = "luding loading stiffness (<= k2)"},
-    {.name = "contact.k2",
-     .kind = K_DOUBLE,
-     TOP(contact.k2),
-     .def = 1e5,
-     GT(0),
-     .flags = F_LUDING,
-     .unit = "N/m",
-     .doc = "luding un-/re-loading stiffness"},
-    {.name = "contact.kc",
-     .kind = K_DOUBLE,
-     TOP(contact.kc),
-     .def = 0,
-     GE(0),
-     .flags = F_LUDING,
-     .unit = "N/m",
-     .doc = "luding adhesive stiffness (0 = no adhesion)"},
-    {.name = "contact.phi_f",
-     .kind = K_DOUBLE,
-     TOP(contact.phi_f),
-     .def = 0,
-     GT(0),
-     LE(1),
-     .flags = F_LUDING | F_UNSET_ZERO,
-     .unit = "-",
-     .def_text = "not given",
-     .doc = "luding 2008 plasticity depth in (0, 1]; not given = constant k2"},
-    {.name = "contact.gamma_n",
-     .kind = K_DOUBLE,
-     TOP(contact.gamma_n),
-     .def = 0.05,
-     GE(0),
-     .unit = "kg/s",
-     .doc = "normal viscosity"},
-    {.name = "contact.kt",
-     .kind = K_DOUBLE,
-     TOP(contact.kt),
-     .def = 1000,
-     GE(0),
-     .unit = "N/m",
-     .doc = "tangential stiffness (0 only without friction)"},
-    {.name = "contact.gamma_t",
-     .kind = K_DOUBLE,
-     TOP(contact.gamma_t),
-     .def = 0.01,
-     GE(0),
-     .unit = "kg/s",
-     .doc = "tangential viscosity"},
-    {.name = "contact.mu",
-     .kind = K_DOUBLE,
-     TOP(contact.mu_s),
-     .def = 0.5,
-     GE(0),
-     .flags = F_MU,
-     .unit = "-",
-     .doc = "friction coefficient: sets mu_s = mu_d"},
-    {.name = "contact.mu_s",
-     .kind = K_DOUBLE,
-     TOP(contact.mu_s),
-     .def = 0.5,
-     GE(0),
-     .flags = F_MU_PAIR,
-     .unit = "-",
-     .def_text = "= mu",
-     .doc = "static friction (give with mu_d instead of mu)"},
-    {.name = "contact.mu_d",
-     .kind = K_DOUBLE,
-     TOP(contact.mu_d),
-     .def = 0.5,
-     GE(0),
-     .flags = F_MU_PAIR,
-     .unit = "-",
-     .def_text = "= mu",
-     .doc = "dynamic friction, <= mu_s (give with mu_s instead of mu)"},
-    {.name = "contact.wall_mu",
-     .kind = K_DOUBLE,
-     TOP(contact.wall_mu),
-     .def = 0,
-     GE(0),
-     .unit = "-",
-     .doc = "particle-wall friction (static = dynamic)"},
-    {.name = "contact.wall_kc",
-     .kind = K_DOUBLE,
-     TOP(contact.wall_kc),
-     .def = 0,
-     GE(0),
-     .unit = "N/m",
-     .doc = "particle-wall adhesive stiffness"},
+/* the keys of the contact models (dembox_models.h) */
+#define CONTACT_KEY_(MODEL, key, unit_, def_, doc_, ...)                       \
+    {.name = "contact." #key,                                                  \
+     .kind = K_DOUBLE,                                                         \
+     TOP(contact.key),                                                         \
+     .def = (def_),                                                            \
+     .law = 1 + DEM_NORMAL_##MODEL,                                            \
+     .unit = (unit_),                                                          \
+     .doc = (doc_),                                                            \
+     __VA_ARGS__},
+#define CONTACT_ALIAS_(MODEL, key, field, unit_, def_, doc_, ...)              \
+    {.name = "contact." #key,                                                  \
+     .kind = K_DOUBLE,                                                         \
+     TOP(contact.field),                                                       \
+     .def = (def_),                                                            \
+     .law = 1 + DEM_NORMAL_##MODEL,                                            \
+     .unit = (unit_),                                                          \
+     .doc = (doc_),                                                            \
+     __VA_ARGS__},
+    DEM_CONTACT_KEYS(CONTACT_KEY_, CONTACT_ALIAS_)
+#undef CONTACT_KEY_
+#undef CONTACT_ALIAS_
 
-    {.name = "damping.gamma_b",
-     .kind = K_DOUBLE,
-     TOP(damping.gamma_b),
-     .def = 0.2,
-     GE(0),
-     .unit = "kg/s",
-     .doc = "background damping force -gamma_b v"},
+        {.name = "damping.gamma_b",
+         .kind = K_DOUBLE,
+         TOP(damping.gamma_b),
+         .def = 0.2,
+         GE(0),
+         .unit = "kg/s",
+         .doc = "background damping force -gamma_b v"},
     {.name = "damping.gamma_br",
      .kind = K_DOUBLE,
      TOP(damping.gamma_br),
@@ -1022,19 +947,13 @@ static int walk_group(struct ctx *x, struct dem_config *c,
 static int check_given(const struct ctx *x, struct dem_config *c,
                        struct dem_error *err)
 {
-    int luding = c->contact.normal == DEM_NORMAL_LUDING;
-    for (size_t k = 0; k < NKEYS; k++) {
-        if (!x->at[k])
-            continue;
-        if ((keys[k].flags & F_LUDING) && !luding)
+    const char *law = dem_normal_name(c->contact.normal);
+    for (size_t k = 0; k < NKEYS; k++)
+        if (x->at[k] && keys[k].law && keys[k].law != 1 + c->contact.normal)
             return fail_at(x, x->at[k], keys[k].name, err,
-                           "Luding parameter given with the linear law "
-                           "(contact.normal = \"linear\")");
-        if ((keys[k].flags & F_LINEAR) && luding)
-            return fail_at(x, x->at[k], keys[k].name, err,
-                           "linear-law parameter given with the Luding law "
-                           "(use k1, k2, kc)");
-    }
+                           "a key of the %s law, given with "
+                           "contact.normal = \"%s\"",
+                           dem_normal_name(keys[k].law - 1), law);
     const config_setting_t *mu = x->at[find_key("contact.mu", S_TOP)];
     const config_setting_t *mus = x->at[find_key("contact.mu_s", S_TOP)];
     const config_setting_t *mud = x->at[find_key("contact.mu_d", S_TOP)];
@@ -1053,48 +972,12 @@ static int check_given(const struct ctx *x, struct dem_config *c,
     return 0;
 }
 
-/* --------------------------------------------------------- contact time */
-
-/* Smallest radius the distribution can produce (m). */
-static double smallest_radius(const struct dem_config *c)
-{
-    return c->particles.distribution == DEM_DIST_MONO ? c->particles.mean
-                                                      : c->particles.min;
-}
-
 /* Radius of the average particle (m), for the "does it fit" estimate. */
 static double typical_radius(const struct dem_config *c)
 {
     if (c->particles.distribution == DEM_DIST_UNIFORM)
         return 0.5 * (c->particles.min + c->particles.max);
     return c->particles.mean;
-}
-
-static double particle_mass(const struct dem_config *c, double a)
-{
-    const double rho = c->particles.density;
-    if (c->dim == 2 && c->particles.mass_model == DEM_MASS_DISC)
-        return M_PI * rho * a * a;
-    return 4.0 / 3.0 * M_PI * rho * a * a * a;
-}
-
-/* The pair of two smallest particles has reduced mass m/2; a particle on a
- * wall has m_ij = m (the wall is an infinite mass), so its contact lasts
- * sqrt(2) times longer and never limits the step. The stiffest normal
- * spring is k (linear) or the un-/re-loading stiffness k2 (luding; with
- * phi_f, k2 is the upper limit of the growing stiffness). */
-double dem_config_contact_time(const struct dem_config *c)
-{
-    const double m_ij = 0.5 * particle_mass(c, smallest_radius(c));
-    const double k =
-        c->contact.normal == DEM_NORMAL_LUDING ? c->contact.k2 : c->contact.k;
-    const double eta = c->contact.gamma_n / (2.0 * m_ij);
-    const double w0sq = k / m_ij;
-    /* An overdamped pair has no oscillation; its undamped half period is
-     * still the time scale the integrator has to resolve. */
-    if (eta * eta >= w0sq)
-        return M_PI / sqrt(w0sq);
-    return M_PI / sqrt(w0sq - eta * eta);
 }
 
 /* ----------------------------------------------------------- validation */
@@ -1239,36 +1122,6 @@ static int check_stages(const struct ctx *x, const struct dem_config *c,
     return 0;
 }
 
-/* k_t = 0 is well defined without friction: no spring, no tangential
- * force. With friction it would leave only the dashpot -gamma_t v_t under
- * the Coulomb limit: no static friction, so nothing could rest on a
- * slope or hold a shear stress at rest. */
-static int check_kt(const struct ctx *x, const struct dem_config *c,
-                    struct dem_error *err)
-{
-    if (c->contact.kt != 0)
-        return 0;
-    const struct {
-        const char *key, *off; /* the friction key, how to switch it off */
-        double mu;
-    } fr[] = {{"contact.mu_s", "contact.mu = 0", c->contact.mu_s},
-              {"contact.wall_mu", "wall_mu = 0", c->contact.wall_mu}};
-    for (size_t k = 0; k < sizeof fr / sizeof *fr; k++)
-        if (fr[k].mu > 0)
-            return fail_key(x, -1, "contact.kt", err,
-                            "0 needs friction off: with %s = %g there "
-                            "would be no static friction (give kt > 0, or "
-                            "%s)",
-                            fr[k].key, fr[k].mu, fr[k].off);
-    for (int i = 0; i < c->nstages && i < DEM_MAX_STAGES; i++)
-        if (c->stages[i].mu > 0)
-            return fail_key(x, i, "mu", err,
-                            "friction %g with contact.kt = 0: there would be "
-                            "no static friction (give contact.kt > 0)",
-                            c->stages[i].mu);
-    return 0;
-}
-
 /* Everything except the time step, which needs these to be valid. */
 static int validate_body(const struct ctx *x, const struct dem_config *c,
                          struct dem_error *err)
@@ -1276,16 +1129,11 @@ static int validate_body(const struct ctx *x, const struct dem_config *c,
     for (size_t k = 0; k < NKEYS; k++)
         if (keys[k].scope == S_TOP && check_key(x, &keys[k], c, -1, err))
             return DEM_ECONFIG;
-    if (c->contact.mu_d > c->contact.mu_s)
-        return fail_key(x, -1, "contact.mu_d", err,
-                        "must be <= contact.mu_s (got %g > %g)",
-                        c->contact.mu_d, c->contact.mu_s);
-    if (check_kt(x, c, err))
-        return DEM_ECONFIG;
-    if (c->contact.normal == DEM_NORMAL_LUDING && c->contact.k1 > c->contact.k2)
-        return fail_key(x, -1, "contact.k1", err,
-                        "must be <= contact.k2 (got %g > %g)", c->contact.k1,
-                        c->contact.k2);
+    char msg[DEM_ERRMSG_MAX / 2];
+    int stage;
+    const char *bad = dem_contact_check(c, &stage, msg, sizeof msg);
+    if (bad)
+        return fail_key(x, stage, bad, err, "%s", msg);
     if (c->particles.mass_model == DEM_MASS_DISC && c->dim != 2)
         return fail_key(x, -1, "particles.mass_model", err,
                         "\"disc\" is only valid with dimension = 2");
@@ -1304,7 +1152,7 @@ static int validate_body(const struct ctx *x, const struct dem_config *c,
 static int check_time_step(const struct ctx *x, const struct dem_config *c,
                            struct dem_error *err)
 {
-    const double dt = c->time_step, tc = dem_config_contact_time(c);
+    const double dt = c->time_step, tc = dem_contact_time(c);
     if (!isfinite(dt) || !(dt > 0))
         return fail_key(x, -1, "time_step", err,
                         "must be > 0 and finite (got %g)", dt);
@@ -1790,7 +1638,7 @@ static void set_name(struct dem_config *c, const char *source)
 
 static void warn_time_step(const struct ctx *x, const struct dem_config *c)
 {
-    const double tc = dem_config_contact_time(c);
+    const double tc = dem_contact_time(c);
     if (c->time_step > tc / 10)
         fprintf(stderr,
                 "dembox: warning: %s: time_step: %g s is above t_c/10 = %g s; "
@@ -1843,7 +1691,7 @@ int dem_config_parse(struct dem_config *c, const char *text, const char *source,
     if ((rc = validate_body(x, c, err)) != 0)
         goto out;
     if (c->time_step_auto)
-        c->time_step = dem_config_contact_time(c) / 50;
+        c->time_step = dem_contact_time(c) / 50;
     if ((rc = check_time_step(x, c, err)) != 0)
         goto out;
     warn_time_step(x, c);
@@ -1981,11 +1829,13 @@ static void write_line(FILE *f, int depth, const char *lhs, const char *rhs,
  * them would be an error or would change nothing. */
 static const char *omitted(const struct key *k, const struct dem_config *c)
 {
-    const int luding = c->contact.normal == DEM_NORMAL_LUDING;
-    if ((k->flags & F_LUDING) && !luding)
-        return "not used by the linear law";
-    if ((k->flags & F_LINEAR) && luding)
-        return "not used by the luding law";
+    static const char *const unused[] = {
+#define UNUSED_NOTE_(TAG, name, lanes) "not used by the " #name " law",
+        DEM_NORMAL_MODELS(UNUSED_NOTE_)
+#undef UNUSED_NOTE_
+    };
+    if (k->law && k->law != 1 + c->contact.normal)
+        return unused[c->contact.normal];
     if ((k->flags & F_UNSET_ZERO) && key_value(c, k) == 0)
         return "not given";
     if ((k->flags & F_MU) && c->contact.mu_s != c->contact.mu_d)

@@ -33,10 +33,6 @@ int dem_config_validate(const struct dem_config *c, struct dem_error *err);
 /* Write c as a complete libconfig file that parses back to the same c. */
 int dem_config_write(const struct dem_config *c, FILE *f);
 
-/* Contact duration t_c (s) of the stiffest, lightest particle pair the
- * config can produce (smallest radius, largest stiffness). */
-double dem_config_contact_time(const struct dem_config *c);
-
 /* Print the documentation of every key (name, type, default, unit, doc). */
 void dem_config_print_keys(FILE *f);
 

@@ -13,10 +13,9 @@ static void list_free(struct dem_contact_list *l)
 {
     free(l->i);
     free(l->j);
-    free(l->xi_x);
-    free(l->xi_y);
-    free(l->xi_z);
-    free(l->dmax);
+#define HIST_FREE_(MODEL, name, unit, doc) free(l->name);
+    DEM_CONTACT_HISTORY(HIST_FREE_)
+#undef HIST_FREE_
     free(l->state);
     free(l->start);
     memset(l, 0, sizeof *l);
@@ -65,10 +64,13 @@ static int list_reserve(struct dem_contact_list *l, int cap)
     int c = l->cap ? l->cap : 1024;
     while (c < cap)
         c += c / 2;
-    if (GROW(l->i, c) || GROW(l->j, c) || GROW(l->xi_x, c) ||
-        GROW(l->xi_y, c) || GROW(l->xi_z, c) || GROW(l->dmax, c) ||
-        GROW(l->state, c))
+    if (GROW(l->i, c) || GROW(l->j, c) || GROW(l->state, c))
         return -1;
+#define HIST_GROW_(MODEL, name, unit, doc)                                     \
+    if (GROW(l->name, c))                                                      \
+        return -1;
+    DEM_CONTACT_HISTORY(HIST_GROW_)
+#undef HIST_GROW_
     l->cap = c;
     return 0;
 }
@@ -199,17 +201,11 @@ static int old_find(const struct dem_contact_list *o, int a, int b)
 static void carry_history(struct dem_contact_list *L, int k,
                           const struct dem_contact_list *O, int o)
 {
-    if (o >= 0) {
-        L->xi_x[k] = O->xi_x[o];
-        L->xi_y[k] = O->xi_y[o];
-        L->xi_z[k] = O->xi_z[o];
-        L->dmax[k] = O->dmax[o];
-        L->state[k] = O->state[o];
-    } else {
-        L->xi_x[k] = L->xi_y[k] = L->xi_z[k] = 0.0;
-        L->dmax[k] = 0.0;
-        L->state[k] = 0;
-    }
+#define HIST_CARRY_(MODEL, name, unit, doc)                                    \
+    L->name[k] = o >= 0 ? O->name[o] : 0.0;
+    DEM_CONTACT_HISTORY(HIST_CARRY_)
+#undef HIST_CARRY_
+    L->state[k] = o >= 0 ? O->state[o] : 0;
 }
 
 static void swap_lists(struct dem_contact_list *a, struct dem_contact_list *b)

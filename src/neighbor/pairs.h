@@ -28,17 +28,19 @@ struct dem_particles;
 
 /* Contact entries and the history each carries. */
 struct dem_contact_list {
-    int n;                      /* entries */
-    int cap;                    /* allocated entries */
-    int *i;                     /* particle */
-    int *j;                     /* partner: particle (> i) or wall index */
-    double *xi_x, *xi_y, *xi_z; /* m; tangential spring */
-    double *dmax; /* m; largest overlap reached (luding history) */
-    int *state;   /* DEM_CONTACT_* bits (contact/tangential.h); an int, not a
-                     byte, so that the force loop vectorises with 256-bit
-                     vectors too (gcc 12 does not mix byte masks with
-                     double lanes there) */
-    int *start;   /* n_particles + 1 row offsets by i */
+    int n;   /* entries */
+    int cap; /* allocated entries */
+    int *i;  /* particle */
+    int *j;  /* partner: particle (> i) or wall index */
+#define DEM_LIST_HISTORY_(MODEL, name, unit, doc) double *name;
+    DEM_CONTACT_HISTORY(DEM_LIST_HISTORY_) /* the history values
+                                              (dembox_models.h) */
+#undef DEM_LIST_HISTORY_
+    int *state; /* DEM_CONTACT_* bits (contact/state.h); an int, not a
+                   byte, so that the force loop vectorises with 256-bit
+                   vectors too (gcc 12 does not mix byte masks with
+                   double lanes there) */
+    int *start; /* n_particles + 1 row offsets by i */
     int start_cap;
 };
 
@@ -63,9 +65,9 @@ struct dem_pairs {
     struct dem_contact_list wold; /* the previous ones */
     struct dem_contact_forces f;  /* forces of cur, pair k at k */
     struct dem_contact_forces wf; /* forces of wcur, entry k at k */
-    int *rstart; /* n_particles + 1: rows of rpair by j */
-    int *rpair;  /* cur.n: the pairs grouped by their j particle, in list
-                    order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
+    int *rstart;                  /* n_particles + 1: rows of rpair by j */
+    int *rpair; /* cur.n: the pairs grouped by their j particle, in list
+                   order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
     int rpair_cap;
     /* cell grid */
     int nc[3];       /* cells per axis */

@@ -1,0 +1,82 @@
+/* dembox — the list of contact models.
+ *
+ * One list says which contact models exist, which config keys (and
+ * struct dem_contact_params fields) each one has and which history
+ * values each contact carries. Everything else is generated from it: the
+ * enum of normal laws, the parameter struct, the config keys with their
+ * ranges and docs (src/io/config.c), the contact history arrays, their
+ * carry across neighbour-list rebuilds and their checkpoint fields
+ * (src/neighbor/pairs.c, src/io/checkpoint.c), and one instance of the
+ * force pass per model (src/contact/forces.c).
+ *
+ * Adding a normal model is one file, src/contact/model_NAME.h, with its
+ * kernels (force, energy, stiffness, check; see model_linear.h), plus its
+ * line in DEM_NORMAL_MODELS below and the lines of its keys and history
+ * values in the lists after it (docs/architecture.md).
+ *
+ * The tokens GT, GE, LT, LE and F_* in the key lines are ranges and flags
+ * of src/io/config.c, where the key table is generated; elsewhere they
+ * are not expanded.
+ */
+#ifndef DEMBOX_MODELS_H
+#define DEMBOX_MODELS_H
+
+/* Normal models: X(TAG, name, lanes). The enum value is DEM_NORMAL_TAG,
+ * the config value contact.normal = "name", the kernels are
+ * dem_normal_name_* in src/contact/model_name.h. lanes: SIMD when the
+ * kernel has no branch that SIMD lanes would all have to take (the pair
+ * loop then runs vectorised), else SCALAR. */
+#define DEM_NORMAL_MODELS(X)                                                   \
+    X(LINEAR, linear, SIMD)                                                    \
+    X(LUDING, luding, SCALAR)
+
+/* Contact keys, in the order of the resolved config:
+ *   P(MODEL, name, unit, default, doc, range and flags...)
+ * a key contact.name stored in the field of that name;
+ *   A(MODEL, name, field, unit, default, doc, range and flags...)
+ * a key stored in another key's field (contact.mu sets mu_s and mu_d).
+ * MODEL is the normal model that uses the key (a key of another model is
+ * refused), or ANY. */
+#define DEM_CONTACT_KEYS(P, A)                                                 \
+    P(LINEAR, k, "N/m", 5000, "linear normal stiffness", GT(0))                \
+    P(LUDING, k1, "N/m", 5e4, "luding loading stiffness (<= k2)", GT(0))       \
+    P(LUDING, k2, "N/m", 1e5, "luding un-/re-loading stiffness", GT(0))        \
+    P(LUDING, kc, "N/m", 0, "luding adhesive stiffness (0 = no adhesion)",     \
+      GE(0))                                                                   \
+    P(LUDING, phi_f, "-", 0,                                                   \
+      "luding 2008 plasticity depth in (0, 1]; not given = constant k2",       \
+      GT(0), LE(1), .flags = F_UNSET_ZERO, .def_text = "not given")            \
+    P(ANY, gamma_n, "kg/s", 0.05, "normal viscosity", GE(0))                   \
+    P(ANY, kt, "N/m", 1000, "tangential stiffness (0 only without friction)",  \
+      GE(0))                                                                   \
+    P(ANY, gamma_t, "kg/s", 0.01, "tangential viscosity", GE(0))               \
+    A(ANY, mu, mu_s, "-", 0.5, "friction coefficient: sets mu_s = mu_d",       \
+      GE(0), .flags = F_MU)                                                    \
+    P(ANY, mu_s, "-", 0.5, "static friction (give with mu_d instead of mu)",   \
+      GE(0), .flags = F_MU_PAIR, .def_text = "= mu")                           \
+    P(ANY, mu_d, "-", 0.5,                                                     \
+      "dynamic friction, <= mu_s (give with mu_s instead of mu)", GE(0),       \
+      .flags = F_MU_PAIR, .def_text = "= mu")                                  \
+    P(ANY, wall_mu, "-", 0, "particle-wall friction (static = dynamic)",       \
+      GE(0))                                                                   \
+    P(ANY, wall_kc, "N/m", 0, "particle-wall adhesive stiffness", GE(0))
+
+/* Parameters a particle-wall contact takes from another field:
+ * W(field, wall field). A wall contact runs the same model as a pair,
+ * with these fields replaced. */
+#define DEM_CONTACT_WALL_FIELDS(W)                                             \
+    W(kc, wall_kc)                                                             \
+    W(mu_s, wall_mu)                                                           \
+    W(mu_d, wall_mu)
+
+/* History values every contact carries from step to step:
+ * H(MODEL, name, unit, doc); stored only while MODEL (or ANY) is the
+ * normal model in force, zero otherwise. The contact's state bits
+ * (contact/state.h) are carried with them. */
+#define DEM_CONTACT_HISTORY(H)                                                 \
+    H(ANY, xi_x, "m", "tangential spring, x")                                  \
+    H(ANY, xi_y, "m", "tangential spring, y")                                  \
+    H(ANY, xi_z, "m", "tangential spring, z")                                  \
+    H(LUDING, dmax, "m", "largest overlap reached")
+
+#endif /* DEMBOX_MODELS_H */

@@ -1,0 +1,16 @@
+/* The history values of one contact as local variables, one field per
+ * line of DEM_CONTACT_HISTORY (dembox_models.h). The force pass loads
+ * them from the contact list, the models update them, the pass stores
+ * them back; in a vectorised loop the compiler keeps them in registers. */
+#ifndef DEM_CONTACT_HISTORY_H
+#define DEM_CONTACT_HISTORY_H
+
+#include "dembox.h"
+
+struct dem_history {
+#define DEM_HISTORY_FIELD_(MODEL, name, unit, doc) double name;
+    DEM_CONTACT_HISTORY(DEM_HISTORY_FIELD_)
+#undef DEM_HISTORY_FIELD_
+};
+
+#endif

@@ -1,0 +1,104 @@
+/* The contact models: what the config layer and the time step need. */
+#include "contact/models.h"
+
+#include <math.h>
+#include <stdio.h>
+
+#include "core/particles.h"
+
+const char *dem_normal_name(int law)
+{
+#define DEM_NAME_(TAG, name, lanes)                                            \
+    if (law == DEM_NORMAL_##TAG)                                               \
+        return #name;
+    DEM_NORMAL_MODELS(DEM_NAME_)
+#undef DEM_NAME_
+    return NULL;
+}
+
+double dem_contact_stiffness(const struct dem_contact_params *c)
+{
+#define DEM_STIFF_(TAG, name, lanes)                                           \
+    if (c->normal == DEM_NORMAL_##TAG)                                         \
+        return dem_model_##name##_stiffness(c);
+    DEM_NORMAL_MODELS(DEM_STIFF_)
+#undef DEM_STIFF_
+    return 0.0;
+}
+
+/* The pair of two smallest particles has reduced mass m/2; a particle on a
+ * wall has m_ij = m (the wall is an infinite mass), so its contact lasts
+ * sqrt(2) times longer and never limits the step. */
+double dem_contact_time(const struct dem_config *c)
+{
+    const double a = c->particles.distribution == DEM_DIST_MONO
+                         ? c->particles.mean
+                         : c->particles.min;
+    double m;
+    dem_particle_mass(a, c->particles.density, c->particles.mass_model, c->dim,
+                      &m, NULL);
+    const double m_ij = 0.5 * m;
+    const double k = dem_contact_stiffness(&c->contact);
+    const double eta = c->contact.gamma_n / (2.0 * m_ij);
+    const double w0sq = k / m_ij;
+    /* An overdamped pair has no oscillation; its undamped half period is
+     * still the time scale the integrator has to resolve. */
+    if (eta * eta >= w0sq)
+        return M_PI / sqrt(w0sq);
+    return M_PI / sqrt(w0sq - eta * eta);
+}
+
+/* k_t = 0 is well defined without friction: no spring, no tangential
+ * force. With friction it would leave only the dashpot -gamma_t v_t under
+ * the Coulomb limit: no static friction, so nothing could rest on a
+ * slope or hold a shear stress at rest. */
+static const char *check_kt(const struct dem_config *c, int *stage, char *msg,
+                            size_t n)
+{
+    if (c->contact.kt != 0)
+        return NULL;
+    const struct {
+        const char *key, *off; /* the friction key, how to switch it off */
+        double mu;
+    } fr[] = {{"contact.mu_s", "contact.mu = 0", c->contact.mu_s},
+              {"contact.wall_mu", "wall_mu = 0", c->contact.wall_mu}};
+    for (size_t k = 0; k < sizeof fr / sizeof *fr; k++)
+        if (fr[k].mu > 0) {
+            snprintf(msg, n,
+                     "0 needs friction off: with %s = %g there would be no "
+                     "static friction (give kt > 0, or %s)",
+                     fr[k].key, fr[k].mu, fr[k].off);
+            return "contact.kt";
+        }
+    for (int i = 0; i < c->nstages && i < DEM_MAX_STAGES; i++)
+        if (c->stages[i].mu > 0) {
+            snprintf(msg, n,
+                     "friction %g with contact.kt = 0: there would be no "
+                     "static friction (give contact.kt > 0)",
+                     c->stages[i].mu);
+            *stage = i;
+            return "mu";
+        }
+    return NULL;
+}
+
+const char *dem_contact_check(const struct dem_config *c, int *stage, char *msg,
+                              size_t n)
+{
+    const struct dem_contact_params *cp = &c->contact;
+    *stage = -1;
+    if (cp->mu_d > cp->mu_s) {
+        snprintf(msg, n, "must be <= contact.mu_s (got %g > %g)", cp->mu_d,
+                 cp->mu_s);
+        return "contact.mu_d";
+    }
+    const char *key = check_kt(c, stage, msg, n);
+    if (key)
+        return key;
+#define DEM_CHECK_(TAG, name, lanes)                                           \
+    if (cp->normal == DEM_NORMAL_##TAG)                                        \
+        return dem_model_##name##_check(cp, msg, n);
+    DEM_NORMAL_MODELS(DEM_CHECK_)
+#undef DEM_CHECK_
+    return NULL;
+}
