@@ -13,9 +13,10 @@
 #                 (about 11 CPU hours: run it over several sessions)
 #   --jobs N      runs at once (default: the number of cores)
 #   --only NAMES  only these parts (comma-separated; see --list)
-#   --numbers DIR after each part, copy its sweep.json and every run's
-#                 summary.json and config.cfg to DIR/NAME/ (the numbers
-#                 behind docs/reproduction.md)
+#   --numbers DIR after each part, copy its sweep.json, its pictures
+#                 (plots/: .png with the .dat and .gp that draw them) and
+#                 every run's summary.json and config.cfg to DIR/NAME/
+#                 (the numbers behind docs/reproduction.md)
 #   --smoke       every run stops after 300 steps (checks the command, not
 #                 the physics; used by CTest)
 #   --list        print the parts with their CPU time and exit
@@ -138,6 +139,11 @@ while IFS='|' read -r n m f a; do
             mkdir -p "$d"
             cp "$r/summary.json" "$r/config.cfg" "$d/"
         done
+        if [ -d "$OUT/$n/plots" ]; then
+            mkdir -p "$NUMBERS/$n/plots"
+            cp "$OUT/$n"/plots/*.png "$OUT/$n"/plots/*.dat "$OUT/$n"/plots/*.gp \
+                "$NUMBERS/$n/plots/" 2>/dev/null
+        fi
     fi
 done < <(selected)
 if [ -n "$failed" ]; then

@@ -379,7 +379,10 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     struct dem_sweep_grid g;
     memset(&g, 0, sizeof g);
     add(&g, "stages.0.pressure,stages.1.pressure=250,500,1000");
-    struct dem_sweep_options o = {cfg, out, NULL, 0, 2, 1, 1, exe, 1000};
+    /* a short isotropic stage, so that 1000 steps reach the compression */
+    const char *const sets[] = {"stages.0.max_time=2e-5",
+                                "output.interval=5e-6"};
+    struct dem_sweep_options o = {cfg, out, sets, 2, 2, 1, 1, exe, 1000};
     struct dem_sweep_report rep;
     struct dem_error err = {0, ""};
     if (dem_sweep_run(&g, &o, &rep, &err))
@@ -404,6 +407,39 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     assert_close(dem__jread_number(&runs->items[2], "confining_pressure"),
                  1000.0, 0.0);
     dem__jread_free(&js);
+
+    /* the loading curves: one block per run, from the start of its
+     * compression (axial strain ~ 0), the strain growing along it */
+    snprintf(path, sizeof path, "%s/plots/loading_curves.dat", out);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[512];
+    int blocks = 0, rows = 0, first = 0;
+    double last_e = 0.0;
+    while (fgets(line, sizeof line, f)) {
+        if (strstr(line, "not read") || strstr(line, "no rows"))
+            fail_msg("%s: %s", path, line);
+        if (!strncmp(line, "# stages", 8)) {
+            blocks++;
+            first = 1;
+            continue;
+        }
+        double e, ev, q;
+        if (sscanf(line, "%lf %lf %lf", &e, &ev, &q) != 3)
+            continue;
+        if (first)
+            assert_true(fabs(e) < 1e-6);
+        else
+            assert_true(e > last_e);
+        first = 0;
+        rows++;
+        last_e = e;
+    }
+    fclose(f);
+    assert_int_equal(blocks, 3);
+    assert_true(rows > 3 * 10);
+    snprintf(path, sizeof path, "%s/plots/loading_curves.gp", out);
+    assert_int_equal(access(path, F_OK), 0);
 
     /* the restart finds every run finished */
     if (dem_sweep_run(&g, &o, &rep, &err))

@@ -404,6 +404,122 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
     return DEM_OK;
 }
 
+/* ---------------------------------------------------- loading curves */
+
+/* Whether run i was loaded by a compress stage (the curves against axial
+ * strain apply to it). */
+static int compressed(const struct dem__sweep_run *r)
+{
+    return r->ok && r->stage >= 0 && !r->cyclic && r->axis >= 0 &&
+           r->axis < r->dim;
+}
+
+/* Seed 001 Figs. 4 and 6, seed 000 Fig. 2 left: volumetric strain (top)
+ * and deviatoric stress sigma_axial - sigma_lateral (bottom) against the
+ * axial strain during the loading stage of every compressed run, from its
+ * timeseries.csv (at most 400 points per run). Runs that differ only in
+ * the seed share a colour and one key entry. */
+static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    static const struct dem__csv_want want[] = {
+        {"stage", 1}, {"eps_xx", 1},   {"eps_yy", 1},   {"eps_zz", 1},
+        {"eps_v", 1}, {"sigma_xx", 1}, {"sigma_yy", 1}, {"sigma_zz", 1},
+    };
+    dem__gp_head(gp, "loading_curves", "", "axial strain", "");
+    fprintf(gp, "set terminal pngcairo size 1000,1100 enhanced font "
+                "\"Sans,12\"\nset output outfile\nunset title\n"
+                "set key outside right top\nset tmargin 5\n"
+                "set multiplot layout 2,1 title \"Loading curves: the "
+                "loading stage of every run\"\n");
+    fprintf(dat, "# columns 1 axial strain  2 volumetric strain  3 "
+                 "sigma_axial - sigma_lateral; one block per run, its "
+                 "loading stage, in time order\n");
+    char *pv = NULL, *ps = NULL; /* the two plot commands */
+    size_t nv = 0, ns = 0;
+    FILE *fv = open_memstream(&pv, &nv), *fs = open_memstream(&ps, &ns);
+    if (!fv || !fs) {
+        if (fv)
+            fclose(fv);
+        if (fs)
+            fclose(fs);
+        free(pv);
+        free(ps);
+        return DEM_ENOMEM;
+    }
+    int block = 0;
+    for (long i = 0; i < s->n; i++) {
+        const struct dem__sweep_run *r = &s->runs[i];
+        if (!compressed(r))
+            continue;
+        char path[DEM_PATH_MAX], leaf[DEM_SWEEP_RUNNAME_MAX + 40];
+        snprintf(leaf, sizeof leaf, "runs/%s/timeseries.csv", r->name);
+        struct dem__csv_table t = {0};
+        struct dem_error e = {0, ""};
+        if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
+            dem__csv_table_read(&t, path, want, 8, &e)) {
+            fprintf(dat, "# %s: not read: %s\n", r->name, e.msg);
+            dem__csv_table_free(&t);
+            continue;
+        }
+        long rows = 0;
+        for (size_t k = 0; k < t.nrow; k++)
+            rows += (int)t.col[0][k] == r->stage;
+        if (rows == 0) { /* stopped before its loading stage */
+            fprintf(dat, "# %s: no rows in its loading stage\n", r->name);
+            dem__csv_table_free(&t);
+            continue;
+        }
+        const long every = rows > 400 ? (rows + 399) / 400 : 1;
+        fprintf(dat, "# %s\n", r->name);
+        long seen = 0;
+        for (size_t k = 0; k < t.nrow; k++) {
+            if ((int)t.col[0][k] != r->stage || seen++ % every)
+                continue;
+            double lat = 0.0;
+            for (int a = 0; a < r->dim; a++)
+                if (a != r->axis)
+                    lat += t.col[5 + a][k] / (r->dim - 1);
+            fprintf(dat, "%.9g %.9g %.9g\n", t.col[1 + r->axis][k], t.col[4][k],
+                    t.col[5 + r->axis][k] - lat);
+        }
+        fprintf(dat, "\n\n");
+        dem__csv_table_free(&t);
+        /* one colour and one key entry per group of seeds */
+        const long grp = s->eng.gid ? s->eng.gid[i] : i;
+        int first = 1;
+        for (long j = 0; j < i && first; j++)
+            first = !(compressed(&s->runs[j]) &&
+                      (s->eng.gid ? s->eng.gid[j] : j) == grp);
+        char lab[512], title[600];
+        label(s, i, DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
+        if (first)
+            snprintf(title, sizeof title, "title \"%s\"",
+                     lab[0] ? lab : r->name);
+        else
+            snprintf(title, sizeof title, "notitle");
+        const char *sep = block ? ", \\\n  " : "plot ";
+        fprintf(fv,
+                "%s'loading_curves.dat' index %d using 1:2 with lines "
+                "lc %ld noenhanced %s",
+                sep, block, grp + 1, title);
+        fprintf(fs,
+                "%s'loading_curves.dat' index %d using 1:3 with lines "
+                "lc %ld noenhanced %s",
+                sep, block, grp + 1, title);
+        block++;
+    }
+    fclose(fv);
+    fclose(fs);
+    fprintf(gp, "set ylabel \"volumetric strain ε_v (expansion > 0)\"\n%s\n",
+            block ? pv : "plot 0 notitle");
+    fprintf(gp, "set ylabel \"σ_{axial} - σ_{lateral} (Pa; 2D: N/m)\"\n%s\n",
+            block ? ps : "plot 0 notitle");
+    fprintf(gp, "unset multiplot\n");
+    free(pv);
+    free(ps);
+    return DEM_OK;
+}
+
 /* ------------------------------------------------ strain accumulation */
 
 /* One block of strain_accumulation.dat: cycle, eps_D gained in it and its
@@ -511,6 +627,10 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
 int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
                      struct dem_error *err)
 {
+    const char *curves_reason = "no run was loaded by a compress stage";
+    for (long i = 0; i < s->n; i++)
+        if (compressed(&s->runs[i]))
+            curves_reason = "";
     const struct {
         const char *name;
         const char *reason; /* non-empty: the sweep does not show it */
@@ -522,6 +642,7 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         {"void_ratio_vs_pressure", s->void_reason, w_voids},
         {"stress_ratio_vs_void_ratio", s->void_reason, w_psi_e},
         {"strain_accumulation", s->cyc_reason, w_cyclic},
+        {"loading_curves", curves_reason, w_curves},
     };
     const int np = (int)(sizeof plots / sizeof *plots);
     char plotdir[DEM_PATH_MAX];
