@@ -11,7 +11,6 @@
 #include "dembox.h"
 #include "io/config.h"
 #include "io/examples.h"
-#include "io/plot.h"
 #include "sweep/sweep.h"
 
 #define DEFAULT_EXAMPLE "biaxial2d"
@@ -222,8 +221,8 @@ static void on_signal(int sig)
 }
 
 /* dem_run or dem_run_resume with SIGINT and SIGTERM turned into a
- * checkpoint and a clean stop; the previous handlers are restored after.
- * Returns the exit status. */
+ * checkpoint and a clean stop (the previous handlers are restored after),
+ * then the analysis and the pictures. Returns the exit status. */
 static int run_with_signals(const struct dem_config *cfg, const char *resume,
                             struct dem_run_options *opt)
 {
@@ -246,6 +245,10 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
         fprintf(stderr, "dembox: %s\n", err.msg);
         return 128 + (stop_signal ? (int)stop_signal : SIGINT);
     }
+    if (!rc)
+        rc = dem_analyze(dir, &err);
+    if (!rc)
+        rc = dem_plot_run(dir, &err);
     if (rc)
         return fail(err.msg);
     if (!opt->quiet)

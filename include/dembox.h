@@ -218,7 +218,10 @@ struct dem_run_options {
 };
 
 /* Run every stage of cfg (validated) and write the outputs of SPEC §7 to
- * opt->outdir. On failure no output is left looking complete.
+ * opt->outdir: config.cfg, timeseries.csv, snapshots, particles_final.csv,
+ * forces_final.csv. The analysis (summary.json) and the pictures are
+ * separate calls: dem_analyze, then dem_plot_run. On failure no output
+ * is left looking complete.
  *
  * Checkpoints: every output.checkpoint_interval seconds of wall-clock time
  * (checked at timeseries samples) the complete state is written to
@@ -253,5 +256,20 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
  * timeseries (message names file, line and column), a failed write.
  * Formulas and criteria: docs/analysis.md. */
 int dem_analyze(const char *outdir, struct dem_error *err);
+
+/* ----------------------------------------------------------------- plot */
+
+/* Pictures of a finished run (SPEC §7): write OUTDIR/plots/ from the files
+ * of the run in outdir (after dem_run, and dem_analyze for the Mohr
+ * circle). Every curve picture is a data file NAME.dat and a gnuplot
+ * script NAME.gp (re-run with `cd plots && gnuplot NAME.gp`) and the
+ * NAME.png they draw; particles.png is drawn with cairo (the final
+ * packing, in 3D its mid-plane cut, coloured by force or speed).
+ * docs/plots.md describes every picture. The environment variable
+ * DEMBOX_GNUPLOT names the gnuplot command (default "gnuplot"); without
+ * it, one warning line goes to stderr, the scripts and data stay and the
+ * call succeeds. Errors name the file and, for a missing column, the
+ * column. */
+int dem_plot_run(const char *outdir, struct dem_error *err);
 
 #endif /* DEMBOX_H */

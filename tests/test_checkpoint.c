@@ -424,6 +424,8 @@ static void stop_and_resume(const char *text, const char *name, long max_steps,
     assert_false(exists(out, "checkpoint.bin"));
     assert_false(exists(out, "timeseries.csv.part"));
     assert_same_outputs(ref, out, dump);
+    if (dem_analyze(ref, &err) || dem_analyze(out, &err))
+        fail_msg("%s", err.msg);
     assert_same_file(ref, out, "summary.json");
 
     /* a finished run is not resumed */

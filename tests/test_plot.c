@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "io/plot.h"
+#include "dembox.h"
 #include "measure/measure.h"
 #include "testutil.h"
 

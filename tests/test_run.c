@@ -41,7 +41,8 @@ static void run_text(const char *text, const char *name,
     snprintf(outdir, n, "%s/%s", tmpdir, name);
     struct dem_run_options o = {
         .outdir = outdir, .quiet = 1, .threads = 1, .max_steps = max_steps};
-    if (dem_run(&c, &o, &err))
+    if (dem_run(&c, &o, &err) || dem_analyze(outdir, &err) ||
+        dem_plot_run(outdir, &err))
         fail_msg("%s: %s", name, err.msg);
 }
 

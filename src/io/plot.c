@@ -13,7 +13,7 @@
  * departs most from the mean strain of the other axes, i.e. the most
  * anisotropic deformation; that axis is the loading axis.
  */
-#include "io/plot.h"
+#include "dembox.h"
 
 #include <errno.h>
 #include <math.h>

@@ -30,7 +30,6 @@
 #include "io/fsutil.h"
 #include "io/outfile.h"
 #include "io/particles_csv.h"
-#include "io/plot.h"
 #include "io/vtu.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"
@@ -588,8 +587,9 @@ static void start_progress(struct run_ctx *r)
     r->step0 = r->sim.step;
 }
 
-/* The stages from first on, then the final outputs, the analysis and the
- * pictures; releases everything r holds. */
+/* The stages from first on, then the final outputs; releases everything
+ * r holds. (The analysis and the pictures are the caller's: dem_analyze,
+ * dem_plot_run.) */
 static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
                           struct dem_error *err)
 {
@@ -597,10 +597,6 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
         rc = run_stages(r, first, resumed, err);
     if (!rc)
         rc = finish_outputs(r, err);
-    if (!rc)
-        rc = dem_analyze(r->outdir, err);
-    if (!rc)
-        rc = dem_plot_run(r->outdir, err);
     if (!rc) {
         /* finished: the outputs are complete, nothing to resume */
         char tmp[DEM_PATH_MAX + 8];
