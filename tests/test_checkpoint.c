@@ -272,7 +272,7 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     parse(&c, small_2d);
     struct dem_sim a, b;
     struct dem_error err = {0, ""};
-    assert_int_equal(dem_sim_create(&a, &c, &err), 0);
+    assert_int_equal(dem_sim_create(&a, &c, NULL, &err), 0);
     for (int w = 0; w < a.nwall; w++)
         dem_wall_set_stress(&a.wall[w], 0.01, 2.0, 0.5, 500.0, 100.0, 1e-3,
                             a.t);

@@ -15,6 +15,7 @@
 #include "core/particles.h"
 #include "core/placement.h"
 #include "core/rng.h"
+#include "io/particles_csv.h"
 
 /* The config defaults of SPEC §8, filled by hand (the parser lives in
  * another module). */
@@ -40,7 +41,17 @@ static int place(struct dem_particles *p, const struct dem_config *c,
 {
     struct dem_rng g;
     dem_rng_seed(&g, c->seed);
-    return dem_place_particles(p, c, &g, lo, hi, err);
+    if (c->particles.placement != DEM_PLACE_FILE)
+        return dem_place_particles(p, c, &g, NULL, lo, hi, err);
+    /* a file's particles are read (and checked against box.size) first */
+    struct dem_particles given;
+    int rc = dem_particles_load(&given, c, err);
+    if (!rc)
+        rc = dem_place_particles(p, c, &g, &given, lo, hi, err);
+    else
+        memset(p, 0, sizeof *p);
+    dem_particles_free(&given);
+    return rc;
 }
 
 static void place_ok(struct dem_particles *p, const struct dem_config *c,

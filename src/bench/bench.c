@@ -343,7 +343,7 @@ static int prepare(const struct dem_config *cfg, const struct workload *w,
 {
     struct dem_sim s;
     int rc = data ? sim_from_peer_file(&s, cfg, data, err)
-                  : dem_sim_create(&s, cfg, err);
+                  : dem_sim_create(&s, cfg, NULL, err);
     if (rc)
         return rc;
     rc = relax(&s, w, o, err);

@@ -20,8 +20,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/particles_csv.h"
-
 /* Tries for one Gaussian radius before the distribution is declared
  * (numerically) empty inside [min, max]. */
 #define DEM_GAUSS_MAX_DRAWS 100000
@@ -365,72 +363,58 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
     return DEM_OK;
 }
 
-static int place_file(struct dem_particles *p, const struct dem_config *cfg,
-                      int dim, double *rmax, double lo[3], double hi[3],
-                      struct dem_error *err)
+/* The particles read from particles.file (given, taken over), in box.size
+ * or in their bounding box. */
+static void place_file(struct dem_particles *p, struct dem_particles *given,
+                       const struct dem_config *cfg, int dim, double *rmax,
+                       double lo[3], double hi[3])
 {
-    const char *path = cfg->particles.file;
-    int *lines = NULL;
-    int rc =
-        dem_particles_read_csv_lines(p, path, dim, cfg->particles.density,
-                                     cfg->particles.mass_model, &lines, err);
-    if (rc)
-        return rc;
+    *p = *given;
+    memset(given, 0, sizeof *given);
     *rmax = 0.0;
     for (int i = 0; i < p->n; i++)
         if (p->r[i] > *rmax)
             *rmax = p->r[i];
     if (box_given(cfg, dim)) {
-        rc = check_box(cfg, dim, err);
-        for (int i = 0; i < p->n && rc == DEM_OK; i++) {
-            const double c[3] = {p->x[i], p->y[i], p->z[i]};
-            for (int a = 0; a < dim; a++)
-                if (c[a] - p->r[i] < 0.0 || c[a] + p->r[i] > cfg->box.size[a]) {
-                    rc = dem_error_set(
-                        err, DEM_ECONFIG,
-                        "%s:%d: particle at %c = %g m with radius %g m is not "
-                        "inside box.size (0 to %g m)",
-                        path, lines[i], "xyz"[a], c[a], p -> r[i],
-                        cfg -> box.size[a]);
-                    break;
-                }
-        }
-        for (int a = 0; a < dim && rc == DEM_OK; a++) {
+        for (int a = 0; a < dim; a++) {
             lo[a] = 0.0;
             hi[a] = cfg->box.size[a];
         }
-    } else {
-        /* Bounding box grown by a thousandth of the largest radius, so the
-         * walls start just clear of every particle. */
-        double margin = 1e-3 * *rmax; /* m */
-        for (int a = 0; a < dim; a++) {
-            const double *c = a == 0 ? p->x : a == 1 ? p->y : p->z;
-            lo[a] = c[0] - p->r[0];
-            hi[a] = c[0] + p->r[0];
-            for (int i = 1; i < p->n; i++) {
-                if (c[i] - p->r[i] < lo[a])
-                    lo[a] = c[i] - p->r[i];
-                if (c[i] + p->r[i] > hi[a])
-                    hi[a] = c[i] + p->r[i];
-            }
-            lo[a] -= margin;
-            hi[a] += margin;
-        }
+        return;
     }
-    free(lines);
-    return rc;
+    /* Bounding box grown by a thousandth of the largest radius, so the
+     * walls start just clear of every particle. */
+    double margin = 1e-3 * *rmax; /* m */
+    for (int a = 0; a < dim; a++) {
+        const double *c = a == 0 ? p->x : a == 1 ? p->y : p->z;
+        lo[a] = c[0] - p->r[0];
+        hi[a] = c[0] + p->r[0];
+        for (int i = 1; i < p->n; i++) {
+            if (c[i] - p->r[i] < lo[a])
+                lo[a] = c[i] - p->r[i];
+            if (c[i] + p->r[i] > hi[a])
+                hi[a] = c[i] + p->r[i];
+        }
+        lo[a] -= margin;
+        hi[a] += margin;
+    }
 }
 
 int dem_place_particles(struct dem_particles *p, const struct dem_config *cfg,
-                        struct dem_rng *rng, double lo[3], double hi[3],
-                        struct dem_error *err)
+                        struct dem_rng *rng, struct dem_particles *given,
+                        double lo[3], double hi[3], struct dem_error *err)
 {
     memset(p, 0, sizeof *p);
     int dim = cfg->dim == 2 ? 2 : 3;
     double rmax = 0.0; /* m */
-    int rc;
+    int rc = DEM_OK;
     if (cfg->particles.placement == DEM_PLACE_FILE) {
-        rc = place_file(p, cfg, dim, &rmax, lo, hi, err);
+        if (!given || given->n < 1)
+            return dem_error_set(err, DEM_EINTERNAL,
+                                 "particles.placement = \"file\": the "
+                                 "particles of %s were not read",
+                                 cfg->particles.file);
+        place_file(p, given, cfg, dim, &rmax, lo, hi);
     } else {
         rc = add_with_radii(p, cfg, dim, rng, &rmax, err);
         if (rc == DEM_OK && cfg->particles.placement == DEM_PLACE_RANDOM)

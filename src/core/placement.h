@@ -21,11 +21,13 @@
 /* Allocate p (cap = particle count) and place the particles of cfg; lo and
  * hi receive the initial box (m). All radii are drawn from rng first, in
  * particle order, then the positions, so one seed gives the same radii for
- * every placement. In 2D every z is 0 and the box is [-r_max, r_max] in z.
- * On error p is left empty and err names the config key (or the file and
- * line) at fault. */
+ * every placement. With particles.placement = "file" the particles are
+ * given, already read and checked against box.size (io/particles_csv.h,
+ * dem_particles_load); p takes them over and given is left empty. In 2D
+ * every z is 0 and the box is [-r_max, r_max] in z. On error p is left
+ * empty and err names the config key at fault. */
 int dem_place_particles(struct dem_particles *p, const struct dem_config *cfg,
-                        struct dem_rng *rng, double lo[3], double hi[3],
-                        struct dem_error *err);
+                        struct dem_rng *rng, struct dem_particles *given,
+                        double lo[3], double hi[3], struct dem_error *err);
 
 #endif

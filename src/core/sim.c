@@ -47,11 +47,11 @@ static void place_walls(struct dem_sim *s, const double lo[3],
 }
 
 int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
-                   struct dem_error *err)
+                   struct dem_particles *given, struct dem_error *err)
 {
     sim_begin(s, cfg);
     double lo[3], hi[3];
-    int rc = dem_place_particles(&s->p, cfg, &s->rng, lo, hi, err);
+    int rc = dem_place_particles(&s->p, cfg, &s->rng, given, lo, hi, err);
     if (!rc) {
         place_walls(s, lo, hi);
         s->reorder = 1;

@@ -74,9 +74,10 @@ struct dem_sim {
 };
 
 /* Build the simulation from a validated config: particles placed, walls
- * around them, all fixed. */
+ * around them, all fixed. given: the particles of placement "file" (read
+ * by the caller, e.g. with dem_particles_load; taken over), else NULL. */
 int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
-                   struct dem_error *err);
+                   struct dem_particles *given, struct dem_error *err);
 void dem_sim_destroy(struct dem_sim *s);
 
 /* For tests and tools: a simulation with room for cap particles and no

@@ -459,3 +459,43 @@ int dem_particles_write_forces_csv(const struct dem_particles *p,
     free(order);
     return dem__outfile_commit(&o, err);
 }
+
+int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
+                       struct dem_error *err)
+{
+    const char *path = cfg->particles.file;
+    const int dim = cfg->dim == 2 ? 2 : 3;
+    int *lines = NULL;
+    int rc =
+        dem_particles_read_csv_lines(p, path, dim, cfg->particles.density,
+                                     cfg->particles.mass_model, &lines, err);
+    if (rc)
+        return rc;
+    int given = 0;
+    for (int a = 0; a < dim; a++)
+        given |= cfg->box.size[a] != 0.0;
+    for (int a = 0; a < dim && given && !rc; a++) {
+        const double L = cfg->box.size[a];
+        if (!(L > 0.0) || !isfinite(L))
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "box.size: component %d must be a positive "
+                               "length (m), got %g",
+                               a, L);
+    }
+    for (int i = 0; i < p->n && given && !rc; i++) {
+        const double c[3] = {p->x[i], p->y[i], p->z[i]};
+        for (int a = 0; a < dim; a++)
+            if (c[a] - p->r[i] < 0.0 || c[a] + p->r[i] > cfg->box.size[a]) {
+                rc = dem_error_set(err, DEM_ECONFIG,
+                                   "%s:%d: particle at %c = %g m with radius "
+                                   "%g m is not inside box.size (0 to %g m)",
+                                   path, lines[i], "xyz"[a], c[a], p -> r[i],
+                                   cfg -> box.size[a]);
+                break;
+            }
+    }
+    free(lines);
+    if (rc)
+        dem_particles_free(p);
+    return rc;
+}

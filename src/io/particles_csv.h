@@ -39,6 +39,13 @@ int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
                                   int mass_model, int **lines,
                                   struct dem_error *err);
 
+/* The particles of cfg->particles.file (placement "file"), with cfg's
+ * dimension, density and mass model; when cfg gives box.size, every
+ * particle must lie inside it (a message names the file and line of the
+ * first that does not). On error p is left empty. */
+int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
+                       struct dem_error *err);
+
 /* Write the header x,y,z,vx,vy,vz,wx,wy,wz,radius,mass and one row per
  * particle in order of p->id, every number with 17 significant digits so
  * a reload is bit-exact. Written to PATH.tmp and renamed. */

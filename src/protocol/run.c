@@ -637,7 +637,15 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
         omp_set_num_threads(opt->threads);
     /* build the simulation first: a bad particle file must fail before
      * any output exists */
-    int rc = dem_sim_create(&r.sim, cfg, err);
+    struct dem_particles given = {0};
+    int rc = cfg->particles.placement == DEM_PLACE_FILE
+                 ? dem_particles_load(&given, cfg, err)
+                 : DEM_OK;
+    if (!rc)
+        rc = dem_sim_create(
+            &r.sim, cfg,
+            cfg->particles.placement == DEM_PLACE_FILE ? &given : NULL, err);
+    dem_particles_free(&given);
     if (rc)
         return rc;
     rc = config_text(cfg, &r.config_text, err);
