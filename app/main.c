@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bench/bench.h"
 #include "dembox.h"
@@ -220,12 +221,43 @@ static void on_signal(int sig)
     stop_signal = sig;
 }
 
+/* Whether a progress line is on the terminal (it has no newline yet). */
+static int progress_shown;
+
+/* The library's warnings: one line each, after a progress line if one is
+ * showing. */
+static void cli_warning(const char *line, void *user)
+{
+    (void)user;
+    if (progress_shown)
+        fputc('\n', stderr);
+    progress_shown = 0;
+    fprintf(stderr, "dembox: warning: %s\n", line);
+}
+
+/* A run's progress, redrawn in place on a terminal. */
+static void cli_progress(const struct dem_progress *p, void *user)
+{
+    (void)user;
+    fprintf(stderr,
+            "\r\033[Kstage %d/%d %-9s t = %.4g s  %5.1f%%  ETA %s%.0f s  "
+            "%.3g particle-steps/s",
+            p->stage, p->nstages, p->stage_type, p->t, 100.0 * p->fraction,
+            p->eta_is_bound ? "<= " : "", p->eta, p->speed);
+    progress_shown = !p->stage_done;
+    if (p->stage_done)
+        fputc('\n', stderr);
+    fflush(stderr);
+}
+
 /* dem_run or dem_run_resume with SIGINT and SIGTERM turned into a
  * checkpoint and a clean stop (the previous handlers are restored after),
  * then the analysis and the pictures. Returns the exit status. */
 static int run_with_signals(const struct dem_config *cfg, const char *resume,
-                            struct dem_run_options *opt)
+                            struct dem_run_options *opt, int quiet)
 {
+    if (!quiet && isatty(STDERR_FILENO))
+        opt->progress = cli_progress;
     struct sigaction sa, old_int, old_term;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -251,7 +283,7 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
         rc = dem_plot_run(dir, &err);
     if (rc)
         return fail(err.msg);
-    if (!opt->quiet)
+    if (!quiet)
         fprintf(stderr, "dembox: results in %s\n", dir);
     return 0;
 }
@@ -262,6 +294,7 @@ static int cmd_run(int argc, char **argv)
     const char *sets[MAX_SETS];
     int nsets = 0;
     struct dem_run_options opt = {0};
+    int quiet = 0;
     for (int k = 0; k < argc; k++) {
         const char *a = argv[k];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -295,7 +328,7 @@ static int cmd_run(int argc, char **argv)
                 return fail("run: --resume needs an output folder");
             resume = argv[k];
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-            opt.quiet = 1;
+            quiet = 1;
         } else if (a[0] == '-') {
             fprintf(stderr,
                     "dembox: run: unknown option %s (see dembox help run)\n",
@@ -311,7 +344,7 @@ static int cmd_run(int argc, char **argv)
         if (target || outdir || nsets || opt.max_steps)
             return fail("run: --resume takes only OUTDIR, --threads and "
                         "--quiet (the run keeps its config)");
-        return run_with_signals(0, resume, &opt);
+        return run_with_signals(0, resume, &opt, quiet);
     }
     if (!target)
         target = DEFAULT_EXAMPLE;
@@ -340,7 +373,7 @@ static int cmd_run(int argc, char **argv)
         outdir = outbuf;
     }
     opt.outdir = outdir;
-    return run_with_signals(&cfg, 0, &opt);
+    return run_with_signals(&cfg, 0, &opt, quiet);
 }
 
 static int cmd_sweep(int argc, char **argv)
@@ -576,6 +609,7 @@ static int cmd_help(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    dem_set_warning_handler(cli_warning, NULL);
     if (argc < 2) {
         fputs(usage_main, stderr);
         return 1;

@@ -56,6 +56,22 @@ int dem_error_set(struct dem_error *err, int code, const char *fmt, ...)
 #endif
     ;
 
+/* -------------------------------------------------------------- messages */
+
+/* The library writes no text of its own. Each warning (one line without
+ * a newline, e.g. "stage 1: inertial number 0.002 > 1e-3 at t = ...") goes
+ * to the function set here, with user passed through; fn = NULL restores
+ * the default, "dembox: warning: LINE" on stderr. Set it before a run,
+ * not during one. */
+typedef void (*dem_warning_fn)(const char *line, void *user);
+void dem_set_warning_handler(dem_warning_fn fn, void *user);
+/* Hand a printf-style warning to the handler (for the library's modules). */
+void dem_warn(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
 /* ---------------------------------------------------------------- config */
 
 enum dem_radius_dist {
@@ -203,12 +219,29 @@ struct dem_config {
 
 /* ------------------------------------------------------------------- run */
 
+/* Where a run stands, for a progress display. */
+struct dem_progress {
+    int stage, nstages;     /* stage (1-based) of nstages */
+    const char *stage_type; /* "isotropic", "compress", ... */
+    double t;               /* s; simulated time */
+    double fraction;        /* of the stage done, 0 to 1 */
+    double eta;             /* s of wall-clock time left in the stage (an
+                               upper bound for an isotropic stage, which
+                               may end early) */
+    int eta_is_bound;       /* 1: eta is an upper bound */
+    double speed;           /* particle-steps per second so far */
+    int stage_done;         /* 1: the last report of this stage */
+};
+
 struct dem_run_options {
     const char *outdir; /* output folder, created with its parents */
-    int quiet;          /* 1: no progress display on stderr */
-    int threads;        /* OpenMP threads; 0 = all cores */
-    long max_steps;     /* > 0: end the run after this many steps (smoke
-                           tests); outputs are written as for a full run */
+    /* called about four times a second of wall-clock time and once at the
+     * end of each stage (stage_done = 1); NULL = no reports */
+    void (*progress)(const struct dem_progress *p, void *user);
+    void *progress_user;
+    int threads;    /* OpenMP threads; 0 = all cores */
+    long max_steps; /* > 0: end the run after this many steps (smoke
+                       tests); outputs are written as for a full run */
     volatile sig_atomic_t *stop; /* may be NULL; when *stop becomes
                            non-zero (e.g. from a SIGINT handler) the run
                            writes a checkpoint at its next sample and

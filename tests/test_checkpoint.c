@@ -160,7 +160,7 @@ static int run(const struct dem_config *c, const char *outdir, long max_steps,
                long stop_after, int threads, struct dem_error *err)
 {
     struct dem_run_options o = {.outdir = outdir,
-                                .quiet = 1,
+
                                 .threads = threads,
                                 .max_steps = max_steps,
                                 .stop_after_steps = stop_after};
@@ -170,8 +170,8 @@ static int run(const struct dem_config *c, const char *outdir, long max_steps,
 static int resume(const char *outdir, long stop_after, int threads,
                   struct dem_error *err)
 {
-    struct dem_run_options o = {
-        .quiet = 1, .threads = threads, .stop_after_steps = stop_after};
+    struct dem_run_options o = {.threads = threads,
+                                .stop_after_steps = stop_after};
     return dem_run_resume(outdir, &o, err);
 }
 

@@ -40,7 +40,7 @@ static void run_text(const char *text, const char *name,
         fail_msg("%s: %s", name, err.msg);
     snprintf(outdir, n, "%s/%s", tmpdir, name);
     struct dem_run_options o = {
-        .outdir = outdir, .quiet = 1, .threads = 1, .max_steps = max_steps};
+        .outdir = outdir, .threads = 1, .max_steps = max_steps};
     if (dem_run(&c, &o, &err) || dem_analyze(outdir, &err) ||
         dem_plot_run(outdir, &err))
         fail_msg("%s: %s", name, err.msg);
@@ -177,7 +177,7 @@ static void overlap_blow_up_is_diagnosed(void **state)
     assert_int_equal(dem_config_parse(&c, text, "blowup", 0, 0, &err), 0);
     char out[1024];
     snprintf(out, sizeof out, "%s/blowup", tmpdir);
-    struct dem_run_options o = {.outdir = out, .quiet = 1, .threads = 1};
+    struct dem_run_options o = {.outdir = out, .threads = 1};
     assert_int_equal(dem_run(&c, &o, &err), DEM_EUNSTABLE);
     assert_non_null(strstr(err.msg, "particle"));
     assert_non_null(strstr(err.msg, "overlaps"));
@@ -223,7 +223,7 @@ static void energy_growth_is_diagnosed(void **state)
     c.time_step = 0.8 * dem_contact_time(&c);
     char out[1024];
     snprintf(out, sizeof out, "%s/egrowth", tmpdir);
-    struct dem_run_options o = {.outdir = out, .quiet = 1, .threads = 1};
+    struct dem_run_options o = {.outdir = out, .threads = 1};
     assert_int_equal(dem_run(&c, &o, &err), DEM_EUNSTABLE);
     assert_non_null(strstr(err.msg, "energy grew"));
     assert_non_null(strstr(err.msg, "time step"));

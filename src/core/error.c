@@ -26,3 +26,25 @@ int dem_error_set(struct dem_error *err, int code, const char *fmt, ...)
     }
     return code;
 }
+
+static dem_warning_fn warning_fn;
+static void *warning_user;
+
+void dem_set_warning_handler(dem_warning_fn fn, void *user)
+{
+    warning_fn = fn;
+    warning_user = user;
+}
+
+void dem_warn(const char *fmt, ...)
+{
+    char line[DEM_ERRMSG_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    if (warning_fn)
+        warning_fn(line, warning_user);
+    else
+        fprintf(stderr, "dembox: warning: %s\n", line);
+}

@@ -1640,10 +1640,9 @@ static void warn_time_step(const struct ctx *x, const struct dem_config *c)
 {
     const double tc = dem_contact_time(c);
     if (c->time_step > tc / 10)
-        fprintf(stderr,
-                "dembox: warning: %s: time_step: %g s is above t_c/10 = %g s; "
-                "collisions are resolved by fewer than 10 steps\n",
-                x->source, c->time_step, tc / 10);
+        dem_warn("%s: time_step: %g s is above t_c/10 = %g s; collisions "
+                 "are resolved by fewer than 10 steps",
+                 x->source, c->time_step, tc / 10);
 }
 
 int dem_config_parse(struct dem_config *c, const char *text, const char *source,

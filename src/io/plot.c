@@ -850,10 +850,7 @@ static int run_gnuplot_all(const char *plotdir, struct dem_error *err)
 {
     const char *cmd = dem__gp_command();
     if (!dem__gp_available(cmd)) {
-        fprintf(stderr,
-                "dembox: warning: %s not found; plot scripts written to "
-                "%s\n",
-                cmd, plotdir);
+        dem_warn("%s not found; plot scripts written to %s", cmd, plotdir);
         /* a picture of an earlier plotting would no longer match its
          * data */
         for (size_t k = 0; k < NPLOTS; k++) {

@@ -53,7 +53,6 @@ struct run_ctx {
     char ckpt_path[DEM_PATH_MAX]; /* checkpoint.bin */
     double last_ckpt;             /* wall clock of the last checkpoint */
     /* progress */
-    int show_progress;
     double wall_t0, last_show;
     long step0;
 };
@@ -65,13 +64,15 @@ static double wall_clock(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* A progress report to the caller, at most four a second; done: the
+ * stage's last. */
 static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
-                          int force)
+                          int done)
 {
-    if (!r->show_progress)
+    if (!r->opt->progress)
         return;
     double now = wall_clock();
-    if (!force && now - r->last_show < 0.25)
+    if (!done && now - r->last_show < 0.25)
         return;
     r->last_show = now;
     const struct dem_sim *s = &r->sim;
@@ -84,14 +85,18 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
     double steps_left = (st->t_end - s->t) / s->dt;
     if (steps_left < 0.0)
         steps_left = 0.0;
-    double eta = speed > 0 ? steps_left * s->p.n / speed : 0.0;
-    fprintf(stderr,
-            "\r\033[Kstage %d/%d %-9s t = %.4g s  %5.1f%%  ETA %s%.0f s  "
-            "%.3g particle-steps/s",
-            st->index + 1, s->cfg.nstages,
-            dem_stage_lookup(st->cfg->type)->name, s->t, 100.0 * frac,
-            st->cfg->type == DEM_STAGE_ISOTROPIC ? "<= " : "", eta, speed);
-    fflush(stderr);
+    const struct dem_progress p = {
+        .stage = st->index + 1,
+        .nstages = s->cfg.nstages,
+        .stage_type = dem_stage_lookup(st->cfg->type)->name,
+        .t = s->t,
+        .fraction = frac,
+        .eta = speed > 0 ? steps_left * s->p.n / speed : 0.0,
+        .eta_is_bound = st->cfg->type == DEM_STAGE_ISOTROPIC,
+        .speed = speed,
+        .stage_done = done,
+    };
+    r->opt->progress(&p, r->opt->progress_user);
 }
 
 /* The box as [lo, hi]; in 2D z spans the largest particle. */
@@ -354,13 +359,10 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             return rc;
         if (loading && !r->st.warned_inertia && smp.inertial_number > 1e-3) {
             r->st.warned_inertia = 1;
-            if (r->show_progress)
-                fputc('\n', stderr);
-            fprintf(stderr,
-                    "dembox: warning: stage %d: inertial number %.2g > 1e-3 "
-                    "at t = %.4g s: the loading is not quasi-static; load "
-                    "more slowly (longer duration or period)\n",
-                    index, smp.inertial_number, s->t);
+            dem_warn("stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
+                     "the loading is not quasi-static; load more slowly "
+                     "(longer duration or period)",
+                     index, smp.inertial_number, s->t);
         }
         if (snap > 0 && s->t + 0.5 * dt >= r->st.next_snap) {
             rc = write_snapshot(r, err);
@@ -387,8 +389,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             break;
         if (stop_requested(r)) {
             rc = write_checkpoint(r, err);
-            if (r->show_progress)
-                fputc('\n', stderr);
+            show_progress(r, st, 1);
             if (rc)
                 return rc;
             return dem_error_set(err, DEM_EINTERRUPTED,
@@ -403,14 +404,10 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         }
     }
     show_progress(r, st, 1);
-    if (r->show_progress)
-        fputc('\n', stderr);
     if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
-        fprintf(stderr,
-                "dembox: warning: stage %d (isotropic) reached max_time "
-                "%.4g s before relaxing (E_kin/E_pot >= %.3g or wall stress "
-                "off target)\n",
-                index, c->max_time, c->tolerance);
+        dem_warn("stage %d (isotropic) reached max_time %.4g s before "
+                 "relaxing (E_kin/E_pot >= %.3g or wall stress off target)",
+                 index, c->max_time, c->tolerance);
     return DEM_OK;
 }
 
@@ -581,7 +578,6 @@ static int finish_outputs(struct run_ctx *r, struct dem_error *err)
 
 static void start_progress(struct run_ctx *r)
 {
-    r->show_progress = !r->opt->quiet && isatty(STDERR_FILENO);
     r->wall_t0 = wall_clock();
     r->last_ckpt = r->wall_t0;
     r->step0 = r->sim.step;

@@ -663,10 +663,9 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         return rc;
     const char *cmd = dem__gp_command();
     if (!dem__gp_available(cmd)) {
-        fprintf(stderr,
-                "dembox: sweep: warning: %s not found; the plot "
-                "scripts are in %s, run them with gnuplot\n",
-                cmd, plotdir);
+        dem_warn("sweep: %s not found; the plot scripts are in %s, run them "
+                 "with gnuplot",
+                 cmd, plotdir);
         return DEM_OK;
     }
     for (int k = 0; !rc && k < np; k++)
