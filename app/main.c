@@ -267,7 +267,7 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
     sigaction(SIGTERM, &sa, &old_term);
     stop_signal = 0;
     opt->stop = &stop_signal;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0, "", cli_warning, NULL};
     int rc =
         resume ? dem_run_resume(resume, opt, &err) : dem_run(cfg, opt, &err);
     sigaction(SIGINT, &old_int, 0);
@@ -350,7 +350,7 @@ static int cmd_run(int argc, char **argv)
         target = DEFAULT_EXAMPLE;
 
     struct dem_config cfg;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0, "", cli_warning, NULL};
     int rc;
     char name[DEM_NAME_MAX];
     const struct dem_example *ex = dem_example_find(target);
@@ -381,7 +381,7 @@ static int cmd_sweep(int argc, char **argv)
     static struct dem_sweep_grid grid;
     const char *sets[MAX_SETS];
     struct dem_sweep_options o = {0, 0, sets, 0, 1, 1, 0, 0, 0};
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0, "", cli_warning, NULL};
     long v;
     int rc = 0, collect = 0;
     for (int k = 0; k < argc && !rc; k++) {
@@ -464,7 +464,7 @@ static int cmd_plot(int argc, char **argv)
 {
     if (argc != 1 || argv[0][0] == '-')
         return fail("plot: give one OUTDIR (see dembox help plot)");
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0, "", cli_warning, NULL};
     if (dem_plot_run(argv[0], &err))
         return fail(err.msg);
     return 0;
@@ -478,7 +478,7 @@ static int cmd_analyze(int argc, char **argv)
     }
     if (argc != 1 || argv[0][0] == '-')
         return fail("analyze: give one OUTDIR (see dembox help analyze)");
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0, "", cli_warning, NULL};
     if (dem_analyze(argv[0], &err))
         return fail(err.msg);
     return 0;
@@ -536,7 +536,7 @@ static int cmd_bench(int argc, char **argv)
         }
     }
     struct dem_bench_result r;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0, "", cli_warning, NULL};
     if (dem_bench_run(&o, &r, &err))
         return fail(err.msg);
     dem_bench_print(stdout, &r);
@@ -609,7 +609,6 @@ static int cmd_help(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-    dem_set_warning_handler(cli_warning, NULL);
     if (argc < 2) {
         fputs(usage_main, stderr);
         return 1;

@@ -48,7 +48,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     char dir[64], path[128];
     snprintf(dir, sizeof dir, "/tmp/dembox_fuzz_ckpt_tmpl_%ld", (long)getpid());
     struct dem_config c;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_config_parse(&c, tiny, "fuzz template", 0, 0, &err))
         abort();
     struct dem_run_options o;
@@ -89,7 +89,7 @@ static void read_file(const char *path, const uint8_t *data, size_t size)
     struct dem_sim s;
     struct dem_ckpt_run run;
     char *config = 0;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int rc = dem_checkpoint_read(path, &s, &config, &run, &err);
     if (rc != DEM_OK) {
         if (strchr(err.msg, '\n') || err.msg[0] == '\0')

@@ -38,7 +38,7 @@ static void round_trip(const struct dem_config *a)
     dem_config_write(a, f);
     fclose(f);
     struct dem_config *b = malloc(sizeof *b);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (b) {
         if (dem_config_parse(b, buf, "fuzz.cfg", 0, 0, &err) != DEM_OK) {
             fprintf(stderr, "round trip: %s\n%s", err.msg, buf);
@@ -57,7 +57,7 @@ static void round_trip(const struct dem_config *a)
 static void parse(const char *text, const char *const *sets, int nsets)
 {
     struct dem_config *c = malloc(sizeof *c);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (!c)
         return;
     int rc = dem_config_parse(c, text, "fuzz.cfg", sets, nsets, &err);

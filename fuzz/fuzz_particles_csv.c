@@ -28,7 +28,7 @@ static void read_as(const uint8_t *data, size_t size, int dim, int model)
     if (!size)
         fgetc(f);
     struct dem_particles p;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int *lines = 0;
     int rc = dem_particles_read_csv_stream(&p, f, "fuzz.csv", dim, 2000.0,
                                            model, &lines, &err);

@@ -42,9 +42,17 @@ enum dem_status {
 
 #define DEM_ERRMSG_MAX 1024
 
+/* What a library call reports back: the failure, and the warnings on the
+ * way. The library writes no text of its own: each warning (one line
+ * without a newline, e.g. "stage 1: inertial number 0.002 > 1e-3 at t =
+ * ...") goes to warn, with warn_user passed through; without warn (e.g.
+ * struct dem_error err = {0, ""}) it is written to stderr as
+ * "dembox: warning: LINE". */
 struct dem_error {
     int code;                 /* enum dem_status of the last failure */
     char msg[DEM_ERRMSG_MAX]; /* one line, no trailing newline */
+    void (*warn)(const char *line, void *user); /* warnings; NULL = stderr */
+    void *warn_user;
 };
 
 /* Short description of a status code. */
@@ -56,19 +64,11 @@ int dem_error_set(struct dem_error *err, int code, const char *fmt, ...)
 #endif
     ;
 
-/* -------------------------------------------------------------- messages */
-
-/* The library writes no text of its own. Each warning (one line without
- * a newline, e.g. "stage 1: inertial number 0.002 > 1e-3 at t = ...") goes
- * to the function set here, with user passed through; fn = NULL restores
- * the default, "dembox: warning: LINE" on stderr. Set it before a run,
- * not during one. */
-typedef void (*dem_warning_fn)(const char *line, void *user);
-void dem_set_warning_handler(dem_warning_fn fn, void *user);
-/* Hand a printf-style warning to the handler (for the library's modules). */
-void dem_warn(const char *fmt, ...)
+/* Hand a printf-style warning to err's warn function (err may be NULL:
+ * stderr). */
+void dem_warn(const struct dem_error *err, const char *fmt, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
+    __attribute__((format(printf, 2, 3)))
 #endif
     ;
 

@@ -504,7 +504,7 @@ static void analyze_writes_summary_of_a_biaxial_run(void **state)
     char dir[128], path[160];
     run_dir(dir, sizeof dir, "biaxial");
     write_biaxial_run(dir);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int rc = dem_analyze(dir, &err);
     if (rc)
         fail_msg("dem_analyze: %s", err.msg);
@@ -620,7 +620,7 @@ static void analyze_counts_cycles_of_a_cyclic_run(void **state)
     char dir[128], path[160];
     run_dir(dir, sizeof dir, "cyclic");
     write_cyclic_run(dir, C, inc);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_analyze(dir, &err))
         fail_msg("dem_analyze: %s", err.msg);
     snprintf(path, sizeof path, "%s/summary.json", dir);
@@ -678,7 +678,7 @@ static void one_loading_stage_for_analysis_and_plots(void **state)
                ");\n"
                "output = { interval = 0.02; };\n");
     struct dem_config cfg;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     snprintf(path, sizeof path, "%s/config.cfg", dir);
     if (dem_config_load_file(&cfg, path, NULL, 0, &err))
         fail_msg("%s", err.msg);
@@ -726,7 +726,7 @@ static void analyze_rejects_a_folder_that_is_not_a_run(void **state)
     (void)state;
     char dir[128], path[160];
     run_dir(dir, sizeof dir, "empty");
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_not_equal(dem_analyze(dir, &err), 0);
     assert_non_null(strstr(err.msg, "not a dembox run"));
     assert_non_null(strstr(err.msg, "config.cfg"));

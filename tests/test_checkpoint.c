@@ -69,7 +69,7 @@ static const char *const small_3d =
 
 static void parse(struct dem_config *c, const char *text)
 {
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_config_parse(c, text, "test", 0, 0, &err))
         fail_msg("config: %s", err.msg);
     snprintf(c->name, sizeof c->name, "test");
@@ -271,7 +271,7 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     struct dem_config c;
     parse(&c, small_2d);
     struct dem_sim a, b;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(dem_sim_create(&a, &c, NULL, &err), 0);
     for (int w = 0; w < a.nwall; w++)
         dem_wall_set_stress(&a.wall[w], 0.01, 2.0, 0.5, 500.0, 100.0, 1e-3,
@@ -398,7 +398,7 @@ static void stop_and_resume(const char *text, const char *name, long max_steps,
     struct dem_config c;
     parse(&c, text);
     char ref[1024], out[1024], n2[256];
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     snprintf(n2, sizeof n2, "%s-ref", name);
     dir_path(ref, sizeof ref, n2);
     dir_path(out, sizeof out, name);
@@ -459,7 +459,7 @@ static void expect_refused(const char *out, const char *ckpt, const void *buf,
                            size_t len, const char *what)
 {
     write_all(ckpt, buf, len);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int rc = resume(out, 0, 1, &err);
     if (rc != DEM_EIO)
         fail_msg("%s: expected refusal, got %d: %s", what, rc, err.msg);
@@ -488,7 +488,7 @@ static void bad_checkpoints_are_refused_with_a_clear_message(void **state)
     struct dem_config c;
     parse(&c, small_2d);
     char ref[1024], out[1024], ckpt[1100];
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     dir_path(ref, sizeof ref, "refused-ref");
     dir_path(out, sizeof out, "refused");
     file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
@@ -597,7 +597,7 @@ static void write_error_keeps_the_last_checkpoint(void **state)
     struct dem_config c;
     parse(&c, small_2d);
     char ref[1024], out[1024], ckpt[1100], tmp[1200];
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     dir_path(ref, sizeof ref, "diskfull-ref");
     dir_path(out, sizeof out, "diskfull");
     file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
@@ -710,7 +710,7 @@ static void command_setup(const char *name, char *cfgfile, size_t ncf,
     dir_path(ref, nref, n2);
     struct dem_config c;
     parse(&c, small_2d);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (run(&c, ref, atol(LONG_STEPS), 0, 1, &err))
         fail_msg("%s", err.msg);
 }
@@ -799,7 +799,7 @@ static void write_error_in_outputs_stops_the_command(void **state)
     file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
     struct dem_config c;
     parse(&c, small_2d);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(run(&c, out, atol(LONG_STEPS), 3000, 1, &err),
                      DEM_EINTERRUPTED);
     size_t len = 0, len2 = 0;

@@ -30,7 +30,7 @@ static void csv_columns_are_read_by_name(void **state)
                sizeof p);
     const struct dem__csv_want want[3] = {{"a", 1}, {"c", 1}, {"zz", 0}};
     struct dem__csv_table t;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(dem__csv_table_read(&t, p, want, 3, &err), 0);
     assert_int_equal(t.nrow, 2);
     assert_close(t.col[0][0], 2.0, 0.0);
@@ -54,7 +54,7 @@ static void table_reads_columns_by_name(void **state)
                sizeof path);
     const struct dem__csv_want all[] = {{"t", 1}, {"a", 1}, {"b", 1}};
     struct dem__csv_table tb;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(dem__csv_table_read(&tb, path, all, 3, &err), 0);
     assert_int_equal(tb.nrow, 3);
     assert_int_equal(tb.ncol, 3);

@@ -65,7 +65,7 @@ static void small_file_parses_to_its_numbers(void **state)
     snprintf(path, sizeof path, "%s/small.data", tmpdir);
     write_text(path, small_file);
     struct dem_lammps_data d;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int rc = dem_lammps_data_read(&d, path, &err);
     if (rc)
         fail_msg("%s", err.msg);
@@ -91,7 +91,7 @@ static void write_then_read_is_bit_exact(void **state)
 {
     (void)state;
     struct dem_particles p;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(dem_particles_init(&p, 3, &err), 0);
     const double r[3] = {4.1e-3, 5.0e-3, 6.3e-3};
     for (int i = 0; i < 3; i++) {
@@ -171,7 +171,7 @@ static void malformed_files_name_file_and_line(void **state)
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         write_text(path, cases[k].text);
         struct dem_lammps_data d;
-        struct dem_error err = {0, ""};
+        struct dem_error err = {0};
         int rc = dem_lammps_data_read(&d, path, &err);
         if (rc == 0)
             fail_msg("case %zu: accepted", k);
@@ -200,7 +200,7 @@ static void peers_packing_reads_completely(void **state)
     if (access(path, R_OK) != 0)
         skip();
     struct dem_lammps_data d;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int rc = dem_lammps_data_read(&d, path, &err);
     if (rc)
         fail_msg("%s", err.msg);

@@ -183,7 +183,7 @@ static int file_contains(const char *dir, const char *leaf, const char *s)
 
 static void run_ok(const char *dir)
 {
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int rc = dem_plot_run(dir, &err);
     if (rc)
         fail_msg("dem_plot_run: %s", err.msg);
@@ -252,7 +252,7 @@ static void missing_gnuplot_still_writes_scripts(void **state)
     assert_non_null(old);
     fclose(old);
     setenv("DEMBOX_GNUPLOT", "dembox-no-such-gnuplot", 1);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     int rc = dem_plot_run(dir, &err);
     unsetenv("DEMBOX_GNUPLOT");
     assert_int_equal(rc, 0);
@@ -267,7 +267,7 @@ static void missing_timeseries_names_the_file(void **state)
     (void)state;
     char *dir = make_dir();
     write_particles(dir, 2, 0);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_not_equal(dem_plot_run(dir, &err), 0);
     assert_non_null(strstr(err.msg, "timeseries.csv"));
     remove_dir(dir);
@@ -315,7 +315,7 @@ static void missing_column_names_the_column(void **state)
     write_timeseries(dir, 2, 1, 10);
     write_particles(dir, 2, 0);
     drop_column(dir, "sigma_yy");
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_not_equal(dem_plot_run(dir, &err), 0);
     assert_non_null(strstr(err.msg, "'sigma_yy'"));
     assert_non_null(strstr(err.msg, "timeseries.csv"));
@@ -328,7 +328,7 @@ static void header_only_timeseries_is_a_clear_error(void **state)
     char *dir = make_dir();
     write_timeseries(dir, 2, 1, 0);
     write_particles(dir, 2, 0);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_not_equal(dem_plot_run(dir, &err), 0);
     assert_non_null(strstr(err.msg, "no data rows"));
     remove_dir(dir);
@@ -345,7 +345,7 @@ static void forces_file_of_wrong_length_is_an_error(void **state)
     FILE *f = fopen(p, "w");
     fprintf(f, "fsum\n1\n2\n");
     fclose(f);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_not_equal(dem_plot_run(dir, &err), 0);
     assert_non_null(strstr(err.msg, "forces_final.csv"));
     remove_dir(dir);

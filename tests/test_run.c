@@ -35,7 +35,7 @@ static void run_text(const char *text, const char *name,
                      char *outdir, size_t n)
 {
     struct dem_config c;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_config_parse(&c, text, name, sets, nsets, &err))
         fail_msg("%s: %s", name, err.msg);
     snprintf(outdir, n, "%s/%s", tmpdir, name);
@@ -173,7 +173,7 @@ static void overlap_blow_up_is_diagnosed(void **state)
         "} );\n"
         "output = { interval = 1.0e-3; snapshot_interval = 0.0; };\n";
     struct dem_config c;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(dem_config_parse(&c, text, "blowup", 0, 0, &err), 0);
     char out[1024];
     snprintf(out, sizeof out, "%s/blowup", tmpdir);
@@ -218,7 +218,7 @@ static void energy_growth_is_diagnosed(void **state)
              "output = { interval = 2.0e-3; snapshot_interval = 0.0; };\n",
              file);
     struct dem_config c;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(dem_config_parse(&c, text, "egrowth", 0, 0, &err), 0);
     c.time_step = 0.8 * dem_contact_time(&c);
     char out[1024];

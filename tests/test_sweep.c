@@ -58,7 +58,7 @@ static void tiny_config(char *path, size_t n)
 
 static void add(struct dem_sweep_grid *g, const char *arg)
 {
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_sweep_param_add(g, arg, &err))
         fail_msg("%s", err.msg);
 }
@@ -112,7 +112,7 @@ static void bad_param_is_an_error_naming_it(void **state)
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         struct dem_sweep_grid g;
         memset(&g, 0, sizeof g);
-        struct dem_error err = {0, ""};
+        struct dem_error err = {0};
         assert_int_equal(dem_sweep_param_add(&g, bad[k], &err), DEM_EUSAGE);
         assert_non_null(strstr(err.msg, bad[k]));
         assert_int_equal(g.nparams, 0);
@@ -120,7 +120,7 @@ static void bad_param_is_an_error_naming_it(void **state)
     /* the same key in two --param options */
     struct dem_sweep_grid g;
     memset(&g, 0, sizeof g);
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     add(&g, "contact.mu=0.1,0.2");
     assert_int_equal(dem_sweep_param_add(&g, "contact.mu=0.3", &err),
                      DEM_EUSAGE);
@@ -155,7 +155,7 @@ static void bad_grid_point_is_refused_before_running(void **state)
     struct dem_sweep_options o = {
         cfg, out, NULL, 0, 2, 1, 1, getenv("DEMBOX_BIN"), 200};
     struct dem_sweep_report rep;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     assert_int_equal(dem_sweep_run(&g, &o, &rep, &err), DEM_ECONFIG);
     assert_non_null(strstr(err.msg, "--param 'contact.mu=0.3,-1'"));
     assert_non_null(strstr(err.msg, "contact.mu"));
@@ -169,7 +169,7 @@ static void fake_run(const char *dir, const char *cfgpath, const char *set,
                      const char *summary)
 {
     struct dem_config c;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     const char *sets[] = {set};
     if (dem_config_load_file(&c, cfgpath, sets, 1, &err))
         fail_msg("%s", err.msg);
@@ -221,7 +221,7 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     }
     free(names);
     struct dem_sweep_options o = {cfg, out, NULL, 0, 1, 1, 1, NULL, 0};
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_sweep_collect(&g, &o, &err))
         fail_msg("%s", err.msg);
 
@@ -307,7 +307,7 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
     }
     free(names);
     struct dem_sweep_options o = {cfg, out, NULL, 0, 1, 1, 1, NULL, 0};
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_sweep_collect(&g, &o, &err))
         fail_msg("%s", err.msg);
     struct dem__jval js;
@@ -384,7 +384,7 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
                                 "output.interval=5e-6"};
     struct dem_sweep_options o = {cfg, out, sets, 2, 2, 1, 1, exe, 1000};
     struct dem_sweep_report rep;
-    struct dem_error err = {0, ""};
+    struct dem_error err = {0};
     if (dem_sweep_run(&g, &o, &rep, &err))
         fail_msg("%s", err.msg);
     assert_int_equal(rep.points, 3);

@@ -27,24 +27,15 @@ int dem_error_set(struct dem_error *err, int code, const char *fmt, ...)
     return code;
 }
 
-static dem_warning_fn warning_fn;
-static void *warning_user;
-
-void dem_set_warning_handler(dem_warning_fn fn, void *user)
-{
-    warning_fn = fn;
-    warning_user = user;
-}
-
-void dem_warn(const char *fmt, ...)
+void dem_warn(const struct dem_error *err, const char *fmt, ...)
 {
     char line[DEM_ERRMSG_MAX];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(line, sizeof line, fmt, ap);
     va_end(ap);
-    if (warning_fn)
-        warning_fn(line, warning_user);
+    if (err && err->warn)
+        err->warn(line, err->warn_user);
     else
         fprintf(stderr, "dembox: warning: %s\n", line);
 }

@@ -1636,11 +1636,13 @@ static void set_name(struct dem_config *c, const char *source)
         *dot = '\0';
 }
 
-static void warn_time_step(const struct ctx *x, const struct dem_config *c)
+static void warn_time_step(const struct ctx *x, const struct dem_config *c,
+                           struct dem_error *err)
 {
     const double tc = dem_contact_time(c);
     if (c->time_step > tc / 10)
-        dem_warn("%s: time_step: %g s is above t_c/10 = %g s; collisions "
+        dem_warn(err,
+                 "%s: time_step: %g s is above t_c/10 = %g s; collisions "
                  "are resolved by fewer than 10 steps",
                  x->source, c->time_step, tc / 10);
 }
@@ -1693,7 +1695,7 @@ int dem_config_parse(struct dem_config *c, const char *text, const char *source,
         c->time_step = dem_contact_time(c) / 50;
     if ((rc = check_time_step(x, c, err)) != 0)
         goto out;
-    warn_time_step(x, c);
+    warn_time_step(x, c, err);
 out:
     config_destroy(&cfg);
     free(x);

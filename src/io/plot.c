@@ -850,7 +850,7 @@ static int run_gnuplot_all(const char *plotdir, struct dem_error *err)
 {
     const char *cmd = dem__gp_command();
     if (!dem__gp_available(cmd)) {
-        dem_warn("%s not found; plot scripts written to %s", cmd, plotdir);
+        dem_warn(err, "%s not found; plot scripts written to %s", cmd, plotdir);
         /* a picture of an earlier plotting would no longer match its
          * data */
         for (size_t k = 0; k < NPLOTS; k++) {
@@ -905,7 +905,7 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     /* the particle file is read now because it decides the dimension;
      * when it is missing the curves are still drawn and the error is
      * reported at the end */
-    struct dem_error perr = {0, ""};
+    struct dem_error perr = {0};
     rc = dem_path_join(path, sizeof path, outdir, "particles_final.csv", err);
     int prc = rc ? rc : dem__csv_table_read(&pt, path, pk_want, PK_NCOL, &perr);
     s.dim =

@@ -359,7 +359,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             return rc;
         if (loading && !r->st.warned_inertia && smp.inertial_number > 1e-3) {
             r->st.warned_inertia = 1;
-            dem_warn("stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
+            dem_warn(err, "stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
                      "the loading is not quasi-static; load more slowly "
                      "(longer duration or period)",
                      index, smp.inertial_number, s->t);
@@ -405,7 +405,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     }
     show_progress(r, st, 1);
     if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
-        dem_warn("stage %d (isotropic) reached max_time %.4g s before "
+        dem_warn(err, "stage %d (isotropic) reached max_time %.4g s before "
                  "relaxing (E_kin/E_pot >= %.3g or wall stress off target)",
                  index, c->max_time, c->tolerance);
     return DEM_OK;

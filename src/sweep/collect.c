@@ -70,7 +70,7 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
         return DEM_OK;
     }
     char path[DEM_PATH_MAX];
-    struct dem_error e = {0, ""};
+    struct dem_error e = {0};
     struct dem_config *c = malloc(sizeof *c);
     if (!c)
         return DEM_ENOMEM;

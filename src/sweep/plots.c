@@ -362,7 +362,7 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
         char path[DEM_PATH_MAX], leaf[DEM_SWEEP_RUNNAME_MAX + 40];
         snprintf(leaf, sizeof leaf, "runs/%s/timeseries.csv", r->name);
         struct dem__csv_table t = {0};
-        struct dem_error e = {0, ""};
+        struct dem_error e = {0};
         if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
             dem__csv_table_read(&t, path, want, 5, &e)) {
             fprintf(dat, "# %s: not read: %s\n\n\n", r->name, e.msg);
@@ -454,7 +454,7 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
         char path[DEM_PATH_MAX], leaf[DEM_SWEEP_RUNNAME_MAX + 40];
         snprintf(leaf, sizeof leaf, "runs/%s/timeseries.csv", r->name);
         struct dem__csv_table t = {0};
-        struct dem_error e = {0, ""};
+        struct dem_error e = {0};
         if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
             dem__csv_table_read(&t, path, want, 8, &e)) {
             fprintf(dat, "# %s: not read: %s\n", r->name, e.msg);
@@ -663,7 +663,7 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         return rc;
     const char *cmd = dem__gp_command();
     if (!dem__gp_available(cmd)) {
-        dem_warn("sweep: %s not found; the plot scripts are in %s, run them "
+        dem_warn(err, "sweep: %s not found; the plot scripts are in %s, run them "
                  "with gnuplot",
                  cmd, plotdir);
         return DEM_OK;

@@ -66,7 +66,7 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
             char sets[DEM_SWEEP_MAX_KEYS][SET_LEN];
             for (int m = 0; m < p->nkeys; m++)
                 snprintf(sets[m], SET_LEN, "%s=%s", p->keys[m], p->values[v]);
-            struct dem_error e = {0, ""};
+            struct dem_error e = {0};
             rc = parse_with(o, sets, p->nkeys, c, &e);
             if (rc)
                 dem_error_set(
@@ -80,7 +80,7 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
     for (long i = 0; !rc && i < n && g->nparams > 1; i++) {
         char sets[MAX_POINT_SETS][SET_LEN];
         const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
-        struct dem_error e = {0, ""};
+        struct dem_error e = {0};
         rc = parse_with(o, sets, ns, c, &e);
         if (rc) {
             char what[1024] = "";
