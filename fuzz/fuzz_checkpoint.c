@@ -97,7 +97,7 @@ static void read_file(const char *path, const uint8_t *data, size_t size)
         return;
     }
     free(config);
-    free(run.snap_t);
+    dem_ckpt_run_free(&run);
     dem_sim_destroy(&s);
 }
 

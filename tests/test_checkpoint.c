@@ -284,21 +284,20 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     assert_true(a.pairs.cur.n > 0 && a.pairs.wcur.n > 0);
 
     double snaps[3] = {0.0, 1e-4, 2e-4};
-    struct dem_ckpt_run ra = {.stage = 1,
-                              .stage_t_start = 1e-4,
-                              .stage_t_end = 5e-3,
-                              .sets_reference = 1,
-                              .next_out = 6e-4,
-                              .warned_inertia = 1,
-                              .L0 = {0.01, 0.02, 0.0},
-                              .V0 = 2e-4,
-                              .next_snap = 3e-4,
-                              .next_dump = 7e-4,
-                              .max_steps = 123456,
-                              .ts_bytes = 98765,
-                              .dump_bytes = 4321,
-                              .nsnap = 3,
-                              .snap_t = snaps};
+    struct dem_ckpt_run ra = {
+        .stage = 1,
+        .stage_t_start = 1e-4,
+        .stage_t_end = 5e-3,
+        .sets_reference = 1,
+        .next_out = 6e-4,
+        .warned_inertia = 1,
+        .L0 = {0.01, 0.02, 0.0},
+        .V0 = 2e-4,
+        .max_steps = 123456,
+        .noutputs = 3,
+        .out = {{.bytes = 98765},
+                {.next = 3e-4, .count = 3, .times = snaps},
+                {.bytes = 4321, .next = 7e-4}}};
     char path[1024], *text = config_as_text(&a.cfg), *text_b = 0;
     dir_path(path, sizeof path, "roundtrip.bin");
     assert_int_equal(dem_checkpoint_write(path, text, &a, &ra, &err), 0);
@@ -323,13 +322,15 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     SAME_BITS(ra.warned_inertia, rb.warned_inertia);
     SAME_BITS(ra.L0, rb.L0);
     SAME_BITS(ra.V0, rb.V0);
-    SAME_BITS(ra.next_snap, rb.next_snap);
-    SAME_BITS(ra.next_dump, rb.next_dump);
     SAME_BITS(ra.max_steps, rb.max_steps);
-    SAME_BITS(ra.ts_bytes, rb.ts_bytes);
-    SAME_BITS(ra.dump_bytes, rb.dump_bytes);
-    SAME_BITS(ra.nsnap, rb.nsnap);
-    SAME_ARRAY(ra.snap_t, rb.snap_t, 3);
+    SAME_BITS(ra.noutputs, rb.noutputs);
+    for (int k = 0; k < ra.noutputs; k++) {
+        SAME_BITS(ra.out[k].bytes, rb.out[k].bytes);
+        SAME_BITS(ra.out[k].next, rb.out[k].next);
+        SAME_BITS(ra.out[k].count, rb.out[k].count);
+        assert_true(!ra.out[k].times == !rb.out[k].times);
+    }
+    SAME_ARRAY(ra.out[1].times, rb.out[1].times, 3);
 
     SAME_BITS(a.dim, b.dim);
     SAME_BITS(a.dt, b.dt);
@@ -383,7 +384,7 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
 
     free(text);
     free(text_b);
-    free(rb.snap_t);
+    dem_ckpt_run_free(&rb);
     dem_sim_destroy(&a);
     dem_sim_destroy(&b);
 }
@@ -472,7 +473,8 @@ static void expect_refused(const char *out, const char *ckpt, const void *buf,
     assert_null(s.p.x);
     assert_null(s.pairs.cur.i);
     assert_null(text);
-    assert_null(r.snap_t);
+    for (int k = 0; k < DEM_CKPT_MAX_OUTPUTS; k++)
+        assert_null(r.out[k].times);
 }
 
 /* Put a valid CRC on an edited checkpoint. */

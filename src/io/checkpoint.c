@@ -303,21 +303,33 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     for (int a = 0; a < 3; a++)
         io_f64(io, &run->L0[a]);
     io_f64(io, &run->V0);
-    io_f64(io, &run->next_snap);
-    io_f64(io, &run->next_dump);
     io_i64(io, &run->max_steps);
-    io_bytes(io, &run->ts_bytes, sizeof run->ts_bytes);
-    io_bytes(io, &run->dump_bytes, sizeof run->dump_bytes);
-    io_i32(io, &run->nsnap);
-    if (io->reading && !io->why) {
-        if (run->nsnap < 0 || (size_t)run->nsnap > io->left / 8)
-            io->why = "corrupt (snapshot count)";
-        else if (!(run->snap_t = malloc((size_t)run->nsnap * 8 + 8)))
-            io->why = "out of memory";
+    io_i32(io, &run->noutputs);
+    if (io->reading && !io->why &&
+        (run->noutputs < 0 || run->noutputs > DEM_CKPT_MAX_OUTPUTS))
+        io->why = "corrupt (output count)";
+    for (int k = 0; k < run->noutputs && !io->why; k++) {
+        struct dem_output_state *o = &run->out[k];
+        io_bytes(io, &o->bytes, sizeof o->bytes);
+        io_f64(io, &o->next);
+        io_i32(io, &o->count);
+        int has_times = o->times != NULL;
+        io_i32(io, &has_times);
+        if (io->reading && !io->why) {
+            o->times = NULL;
+            if (o->count < 0 || (size_t)o->count > io->left / 8)
+                io->why = "corrupt (output entry count)";
+            else if (has_times &&
+                     !(o->times = malloc((size_t)o->count * 8 + 8)))
+                io->why = "out of memory";
+        }
+        if (io->why)
+            return;
+        if (has_times)
+            io_f64s(io, o->times, o->count);
     }
     if (io->why)
         return;
-    io_f64s(io, run->snap_t, run->nsnap);
 
     io_tag(io, "SIM ");
     io_i32(io, &s->dim);
@@ -646,11 +658,19 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
     if (rc) {
         dem_sim_destroy(s);
         memset(s, 0, sizeof *s);
-        free(run->snap_t);
+        dem_ckpt_run_free(run);
         memset(run, 0, sizeof *run);
         free(text);
         return rc;
     }
     *config_text = text;
     return DEM_OK;
+}
+
+void dem_ckpt_run_free(struct dem_ckpt_run *run)
+{
+    for (int k = 0; k < DEM_CKPT_MAX_OUTPUTS; k++) {
+        free(run->out[k].times);
+        run->out[k].times = NULL;
+    }
 }

@@ -33,7 +33,17 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 4u
+#define DEM_CKPT_VERSION 5u
+
+/* The resumable state of one output of a run (src/output/output.h). */
+struct dem_output_state {
+    int64_t bytes; /* length of its .part file at the checkpoint (0: none) */
+    double next;   /* s; simulated time of its next write */
+    int count;     /* entries written (e.g. snapshots) */
+    double *times; /* s; their times (count entries, malloc'ed, or NULL) */
+};
+
+#define DEM_CKPT_MAX_OUTPUTS 16
 
 /* The run loop's state at a checkpoint, saved as plain data. */
 struct dem_ckpt_run {
@@ -47,14 +57,13 @@ struct dem_ckpt_run {
                              stretch began (< 0: driven now) */
     double L0[3];         /* m; reference box lengths for strains */
     double V0;            /* m^3 (2D: m^2); reference volume */
-    double next_snap;     /* s; time of the next VTU snapshot */
-    double next_dump;     /* s; time of the next dump frame */
     long max_steps;       /* step limit the run started with (0 = none) */
-    int64_t ts_bytes;     /* bytes of timeseries.csv.part at the checkpoint */
-    int64_t dump_bytes;   /* bytes of dump.lammpstrj.part (0 = none) */
-    int nsnap;            /* snapshots written */
-    double *snap_t;       /* s; their times (nsnap; owned by the reader) */
+    int noutputs;         /* outputs of the run, in the order of its list */
+    struct dem_output_state out[DEM_CKPT_MAX_OUTPUTS]; /* their state */
 };
+
+/* Free the outputs' time lists of run (after dem_checkpoint_read). */
+void dem_ckpt_run_free(struct dem_ckpt_run *run);
 
 /* Write the checkpoint of s and run to path, atomically: path.tmp is
  * written, flushed to disk and renamed over path, so path always holds

@@ -26,30 +26,22 @@
 #include "core/sim.h"
 #include "io/checkpoint.h"
 #include "io/config.h"
-#include "io/dump.h"
 #include "io/fsutil.h"
-#include "io/outfile.h"
 #include "io/particles_csv.h"
-#include "io/vtu.h"
 #include "measure/measure.h"
+#include "output/output.h"
 #include "protocol/stage.h"
-
-#define MAX_SNAPSHOTS 100000
 
 struct run_ctx {
     struct dem_sim sim;
     const struct dem_run_options *opt;
     const char *outdir;
     char *config_text;            /* the resolved config, as in config.cfg */
-    struct dem_ckpt_run st;       /* loop state, saved in checkpoints;
-                                     st.snap_t is the snapshot list */
+    struct dem_ckpt_run st;       /* loop state, saved in checkpoints */
     struct dem_stage_state stage; /* the stage under way */
-    FILE *ts;                     /* timeseries.csv.part */
-    char ts_path[DEM_PATH_MAX];
-    char **snap_files; /* names of the snapshots */
-    int nnames;        /* entries of snap_files */
-    FILE *dump;        /* dump.lammpstrj.part, or NULL */
-    char dump_path[DEM_PATH_MAX];
+    /* the output files, one per kind of output/outputs.c; their state is
+     * saved in checkpoints as st.out */
+    struct dem_output out[DEM_CKPT_MAX_OUTPUTS];
     char ckpt_path[DEM_PATH_MAX]; /* checkpoint.bin */
     double last_ckpt;             /* wall clock of the last checkpoint */
     /* progress */
@@ -97,75 +89,6 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
         .stage_done = done,
     };
     r->opt->progress(&p, r->opt->progress_user);
-}
-
-/* The box as [lo, hi]; in 2D z spans the largest particle. */
-static void box_bounds(const struct dem_sim *s, double lo[3], double hi[3])
-{
-    double rmax = 0.0;
-    for (int i = 0; i < s->p.n; i++)
-        rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
-    for (int a = 0; a < 3; a++) {
-        lo[a] = a < s->dim ? s->wall[2 * a].pos : -rmax;
-        hi[a] = a < s->dim ? s->wall[2 * a + 1].pos : rmax;
-    }
-}
-
-static void snapshot_name(char *buf, size_t n, int k)
-{
-    snprintf(buf, n, "particles_%05d.vtu", k);
-}
-
-/* Append one name to the snapshot list (st.snap_t grows separately). */
-static int add_snapshot_name(struct run_ctx *r, int k, struct dem_error *err)
-{
-    char name[64];
-    snapshot_name(name, sizeof name, k);
-    char **f = realloc(r->snap_files, (size_t)(k + 1) * sizeof *f);
-    if (!f)
-        return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
-    r->snap_files = f;
-    r->snap_files[k] = strdup(name);
-    if (!r->snap_files[k])
-        return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
-    r->nnames = k + 1;
-    return DEM_OK;
-}
-
-static int write_snapshot(struct run_ctx *r, struct dem_error *err)
-{
-    const struct dem_sim *s = &r->sim;
-    const int k = r->st.nsnap;
-    if (k >= MAX_SNAPSHOTS)
-        return DEM_OK;
-    char name[64], path[DEM_PATH_MAX], box[64], boxpath[DEM_PATH_MAX];
-    snapshot_name(name, sizeof name, k);
-    snprintf(box, sizeof box, "box_%05d.vtu", k);
-    int rc = dem_path_join(path, sizeof path, r->outdir, name, err);
-    if (!rc)
-        rc = dem_path_join(boxpath, sizeof boxpath, r->outdir, box, err);
-    if (!rc)
-        rc = dem_vtu_write_particles(path, &s->p, err);
-    double lo[3], hi[3];
-    box_bounds(s, lo, hi);
-    if (!rc)
-        rc = dem_vtu_write_box(boxpath, lo, hi, s->dim, err);
-    if (rc)
-        return rc;
-    double *t = realloc(r->st.snap_t, (size_t)(k + 1) * sizeof *t);
-    if (!t)
-        return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
-    r->st.snap_t = t;
-    rc = add_snapshot_name(r, k, err);
-    if (rc)
-        return rc;
-    r->st.snap_t[k] = s->t;
-    r->st.nsnap++;
-    rc = dem_path_join(path, sizeof path, r->outdir, "particles.pvd", err);
-    if (!rc)
-        rc = dem_pvd_write(path, r->st.nsnap, r->st.snap_t,
-                           (const char *const *)r->snap_files, err);
-    return rc;
 }
 
 /* Stop with a diagnosis when the state is no longer physical. */
@@ -246,29 +169,18 @@ static void set_reference(struct run_ctx *r)
     dem_sim_box(&r->sim, r->st.L0, &r->st.V0);
 }
 
-/* Flush a .part file to disk and return its length; a failure names it. */
-static int sync_part(FILE *f, const char *path, int64_t *bytes,
-                     struct dem_error *err)
-{
-    errno = 0;
-    if (ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", path,
-                             errno ? strerror(errno) : "I/O error");
-    off_t pos = ftello(f);
-    if (pos < 0)
-        return dem_error_set(err, DEM_EIO, "%s: %s", path, strerror(errno));
-    *bytes = (int64_t)pos;
-    return DEM_OK;
-}
-
 /* Save the state at this step boundary: the .part files first, so that
  * the lengths the checkpoint records are on disk before it is. */
 static int write_checkpoint(struct run_ctx *r, struct dem_error *err)
 {
-    int rc = sync_part(r->ts, r->ts_path, &r->st.ts_bytes, err);
-    r->st.dump_bytes = 0;
-    if (!rc && r->dump)
-        rc = sync_part(r->dump, r->dump_path, &r->st.dump_bytes, err);
+    int rc = DEM_OK;
+    for (int k = 0; !rc && k < dem_output_nkinds; k++) {
+        struct dem_output *o = &r->out[k];
+        if (o->kind->sync)
+            rc = o->kind->sync(o, err);
+        r->st.out[k] = o->st;
+    }
+    r->st.noutputs = dem_output_nkinds;
     if (rc)
         return rc;
     r->st.stage = r->stage.index;
@@ -325,7 +237,6 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
     const int index = st->index;
     const double dt = s->dt, out = s->cfg.output.interval;
-    const double snap = s->cfg.output.snapshot_interval;
     const double ckpt = s->cfg.output.checkpoint_interval;
     const long max_steps = r->st.max_steps;
     const int loading = ops->loading;
@@ -348,37 +259,23 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         r->st.next_out += out;
         struct dem_sample smp;
         dem_measure(s, r->st.L0, r->st.V0, index, &smp);
-        errno = 0;
-        dem_sample_write_row(r->ts, &smp, s->dim);
-        if (ferror(r->ts))
-            return dem_error_set(err, DEM_EIO, "%s: write failed: %s",
-                                 r->ts_path,
-                                 errno ? strerror(errno) : "I/O error");
+        const struct dem_output_run orun = {s, r->outdir, r->config_text, &smp};
+        for (int k = 0; k < dem_output_nkinds; k++) {
+            struct dem_output *o = &r->out[k];
+            rc = o->kind->sample ? o->kind->sample(o, &orun, err) : DEM_OK;
+            if (rc)
+                return rc;
+        }
         rc = check_stable(r, &smp, err);
         if (rc)
             return rc;
         if (loading && !r->st.warned_inertia && smp.inertial_number > 1e-3) {
             r->st.warned_inertia = 1;
-            dem_warn(err, "stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
+            dem_warn(err,
+                     "stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
                      "the loading is not quasi-static; load more slowly "
                      "(longer duration or period)",
                      index, smp.inertial_number, s->t);
-        }
-        if (snap > 0 && s->t + 0.5 * dt >= r->st.next_snap) {
-            rc = write_snapshot(r, err);
-            if (rc)
-                return rc;
-            r->st.next_snap += snap;
-        }
-        if (r->dump && s->t + 0.5 * dt >= r->st.next_dump) {
-            double lo[3], hi[3];
-            box_bounds(s, lo, hi);
-            dem_dump_frame(r->dump, s->step, lo, hi, &s->p);
-            if (ferror(r->dump))
-                return dem_error_set(err, DEM_EIO, "%s: write failed: %s",
-                                     r->dump_path,
-                                     errno ? strerror(errno) : "I/O error");
-            r->st.next_dump += s->cfg.output.dump_interval;
         }
         show_progress(r, st, 0);
         if (last) {
@@ -405,7 +302,8 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     }
     show_progress(r, st, 1);
     if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
-        dem_warn(err, "stage %d (isotropic) reached max_time %.4g s before "
+        dem_warn(err,
+                 "stage %d (isotropic) reached max_time %.4g s before "
                  "relaxing (E_kin/E_pot >= %.3g or wall stress off target)",
                  index, c->max_time, c->tolerance);
     return DEM_OK;
@@ -446,134 +344,82 @@ static int config_text(const struct dem_config *cfg, char **text,
     return DEM_OK;
 }
 
-static int part_paths(struct run_ctx *r, struct dem_error *err)
+static int ckpt_path(struct run_ctx *r, struct dem_error *err)
 {
-    const char *dir = r->outdir;
-    int rc = dem_path_join(r->ts_path, sizeof r->ts_path, dir,
-                           "timeseries.csv.part", err);
+    return dem_path_join(r->ckpt_path, sizeof r->ckpt_path, r->outdir,
+                         "checkpoint.bin", err);
+}
+
+/* The run's outputs, in the order of output/outputs.c. */
+static void bind_outputs(struct run_ctx *r)
+{
+    for (int k = 0; k < dem_output_nkinds; k++)
+        r->out[k].kind = dem_output_kinds[k];
+}
+
+/* Remove path (outdir/leaf), which belongs to an earlier run. */
+static int remove_stale(const char *dir, const char *leaf,
+                        struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    int rc = dem_path_join(path, sizeof path, dir, leaf, err);
     if (!rc)
-        rc = dem_path_join(r->dump_path, sizeof r->dump_path, dir,
-                           "dump.lammpstrj.part", err);
-    if (!rc)
-        rc = dem_path_join(r->ckpt_path, sizeof r->ckpt_path, dir,
-                           "checkpoint.bin", err);
+        remove(path);
     return rc;
 }
 
 static int open_outputs(struct run_ctx *r, struct dem_error *err)
 {
-    const struct dem_config *cfg = &r->sim.cfg;
     const char *dir = r->outdir;
-    char path[DEM_PATH_MAX];
     int rc = dem_mkdir_p(dir, err);
     if (!rc)
-        rc = part_paths(r, err);
-    if (!rc)
-        rc = dem_path_join(path, sizeof path, dir, "config.cfg", err);
-    if (rc)
-        return rc;
-    struct dem__outfile o;
-    rc = dem__outfile_open(&o, path, err);
-    if (rc)
-        return rc;
-    fputs(r->config_text, o.f);
-    rc = dem__outfile_commit(&o, err);
-    if (rc)
-        return rc;
+        rc = ckpt_path(r, err);
     /* the results and checkpoint of an earlier run in this folder no
-     * longer belong to what is being written now */
-    static const char *const stale[] = {
-        "timeseries.csv", "particles_final.csv", "forces_final.csv",
-        "summary.json",   "dump.lammpstrj",      "particles_unstable.csv",
-        "checkpoint.bin", "checkpoint.bin.tmp",  "dump.lammpstrj.part"};
-    for (size_t k = 0; k < sizeof stale / sizeof stale[0]; k++) {
-        rc = dem_path_join(path, sizeof path, dir, stale[k], err);
-        if (rc)
-            return rc;
-        remove(path);
+     * longer belong to what is being written now: the outputs' files and
+     * the runner's own */
+    static const char *const own[] = {"summary.json", "particles_unstable.csv",
+                                      "checkpoint.bin", "checkpoint.bin.tmp"};
+    for (size_t k = 0; !rc && k < sizeof own / sizeof own[0]; k++)
+        rc = remove_stale(dir, own[k], err);
+    for (int k = 0; !rc && k < dem_output_nkinds; k++)
+        for (const char *const *f = dem_output_kinds[k]->files; !rc && f && *f;
+             f++)
+            rc = remove_stale(dir, *f, err);
+    const struct dem_output_run orun = {&r->sim, dir, r->config_text, NULL};
+    for (int k = 0; !rc && k < dem_output_nkinds; k++) {
+        struct dem_output *o = &r->out[k];
+        if (o->kind->open)
+            rc = o->kind->open(o, &orun, err);
     }
-    r->ts = fopen(r->ts_path, "w");
-    if (!r->ts)
-        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", r->ts_path,
-                             strerror(errno));
-    dem_sample_write_header(r->ts, cfg->dim);
-    if (cfg->output.dump_interval > 0) {
-        r->dump = fopen(r->dump_path, "w");
-        if (!r->dump)
-            return dem_error_set(err, DEM_EIO, "%s: cannot write: %s",
-                                 r->dump_path, strerror(errno));
-    }
-    return DEM_OK;
+    return rc;
 }
 
-/* Cut a .part file back to its length at the checkpoint and open it for
- * appending. */
-static int reopen_part(FILE **f, const char *path, int64_t bytes,
-                       struct dem_error *err)
-{
-    struct stat sb;
-    if (stat(path, &sb) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: %s; cannot resume", path,
-                             strerror(errno));
-    if ((int64_t)sb.st_size < bytes)
-        return dem_error_set(err, DEM_EIO,
-                             "%s: %lld bytes, shorter than the %lld at the "
-                             "checkpoint; cannot resume",
-                             path, (long long)sb.st_size, (long long)bytes);
-    if (truncate(path, (off_t)bytes) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: cannot truncate: %s", path,
-                             strerror(errno));
-    *f = fopen(path, "a");
-    /* positioned at the end, so that ftello gives the length even before
-     * the first append (C leaves it to the implementation) */
-    if (!*f || fseeko(*f, 0, SEEK_END) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", path,
-                             strerror(errno));
-    return DEM_OK;
-}
-
-/* Close a .part file and give it its final name (path without .part). */
-static int commit_part(FILE **f, const char *part, struct dem_error *err)
-{
-    errno = 0;
-    int bad = ferror(*f) || fflush(*f) != 0;
-    int e = errno;
-    if (fclose(*f) != 0 && !bad) {
-        bad = 1;
-        e = errno;
-    }
-    *f = 0;
-    if (bad)
-        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", part,
-                             e ? strerror(e) : "I/O error");
-    char final[DEM_PATH_MAX];
-    size_t n = strlen(part) - strlen(".part");
-    memcpy(final, part, n);
-    final[n] = '\0';
-    if (rename(part, final) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: cannot rename: %s", part,
-                             strerror(errno));
-    return DEM_OK;
-}
-
+/* Every output's last writes, in order (the timeseries last). */
 static int finish_outputs(struct run_ctx *r, struct dem_error *err)
 {
-    char path[DEM_PATH_MAX];
-    int rc = r->dump ? commit_part(&r->dump, r->dump_path, err) : DEM_OK;
-    if (!rc)
-        rc = dem_path_join(path, sizeof path, r->outdir, "particles_final.csv",
-                           err);
-    if (!rc)
-        rc = dem_particles_write_csv(&r->sim.p, path, err);
-    if (!rc)
-        rc = dem_path_join(path, sizeof path, r->outdir, "forces_final.csv",
-                           err);
-    if (!rc)
-        rc = dem_particles_write_forces_csv(&r->sim.p, path, err);
-    if (rc)
-        return rc;
-    /* the timeseries gets its final name last: it marks a finished run */
-    return commit_part(&r->ts, r->ts_path, err);
+    const struct dem_output_run orun = {&r->sim, r->outdir, r->config_text,
+                                        NULL};
+    int rc = DEM_OK;
+    for (int k = 0; !rc && k < dem_output_nkinds; k++) {
+        struct dem_output *o = &r->out[k];
+        if (o->kind->finish)
+            rc = o->kind->finish(o, &orun, err);
+    }
+    return rc;
+}
+
+/* Close what is open (a failed or interrupted run keeps its .part files)
+ * and free the outputs' state. */
+static void close_outputs(struct run_ctx *r)
+{
+    for (int k = 0; k < DEM_CKPT_MAX_OUTPUTS; k++) {
+        struct dem_output *o = &r->out[k];
+        if (o->f)
+            fclose(o->f);
+        o->f = NULL;
+        free(o->st.times);
+        o->st.times = NULL;
+    }
 }
 
 static void start_progress(struct run_ctx *r)
@@ -609,14 +455,7 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
                            "particles_unstable.csv", &e2))
             dem_particles_write_csv(&r->sim.p, path, &e2);
     }
-    if (r->ts)
-        fclose(r->ts);
-    if (r->dump)
-        fclose(r->dump);
-    for (int k = 0; k < r->nnames; k++)
-        free(r->snap_files[k]);
-    free(r->snap_files);
-    free(r->st.snap_t);
+    close_outputs(r);
     free(r->config_text);
     dem_sim_destroy(&r->sim);
     return rc;
@@ -644,17 +483,15 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     dem_particles_free(&given);
     if (rc)
         return rc;
+    bind_outputs(&r);
     rc = config_text(cfg, &r.config_text, err);
-    if (!rc)
+    if (!rc) {
+        set_reference(&r);
         rc = open_outputs(&r, err);
+    }
     if (!rc) {
         start_progress(&r);
         r.st.max_steps = opt->max_steps;
-        set_reference(&r);
-        if (cfg->output.snapshot_interval > 0)
-            rc = write_snapshot(&r, err);
-        r.st.next_snap = cfg->output.snapshot_interval;
-        r.st.next_dump = 0.0;
         r.st.e_free = -1.0;
     }
     return run_and_finish(&r, rc, 0, 0, err);
@@ -702,13 +539,16 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
     r.outdir = outdir;
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
-    char path[DEM_PATH_MAX];
-    int rc = part_paths(&r, err);
+    char path[DEM_PATH_MAX], part[DEM_PATH_MAX];
+    int rc = ckpt_path(&r, err);
     if (!rc)
         rc = dem_path_join(path, sizeof path, outdir, "timeseries.csv", err);
+    if (!rc)
+        rc = dem_path_join(part, sizeof part, outdir, "timeseries.csv.part",
+                           err);
     if (rc)
         return rc;
-    if (file_exists(path) && !file_exists(r.ts_path))
+    if (file_exists(path) && !file_exists(part))
         return dem_error_set(err, DEM_EUSAGE,
                              "%s: the run has already finished (%s exists); "
                              "nothing to resume",
@@ -721,6 +561,16 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
     rc = dem_checkpoint_read(r.ckpt_path, &r.sim, &r.config_text, &r.st, err);
     if (rc)
         return rc;
+    bind_outputs(&r);
+    if (r.st.noutputs != dem_output_nkinds)
+        rc = dem_error_set(err, DEM_EIO,
+                           "%s: written for %d outputs, this dembox has %d; "
+                           "cannot resume",
+                           r.ckpt_path, r.st.noutputs, dem_output_nkinds);
+    for (int k = 0; k < DEM_CKPT_MAX_OUTPUTS; k++) {
+        r.out[k].st = r.st.out[k]; /* the outputs own the time lists now */
+        r.st.out[k].times = NULL;
+    }
     /* the outputs and the analysis follow config.cfg: it must be the
      * config the checkpoint continues */
     if (!rc)
@@ -738,12 +588,12 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
                                     : "cannot be read");
         free(text);
     }
-    if (!rc)
-        rc = reopen_part(&r.ts, r.ts_path, r.st.ts_bytes, err);
-    if (!rc && r.sim.cfg.output.dump_interval > 0)
-        rc = reopen_part(&r.dump, r.dump_path, r.st.dump_bytes, err);
-    for (int k = 0; !rc && k < r.st.nsnap; k++)
-        rc = add_snapshot_name(&r, k, err);
+    const struct dem_output_run orun = {&r.sim, outdir, r.config_text, NULL};
+    for (int k = 0; !rc && k < dem_output_nkinds; k++) {
+        struct dem_output *o = &r.out[k];
+        if (o->kind->resume)
+            rc = o->kind->resume(o, &orun, err);
+    }
     int first = r.st.stage;
     if (!rc) {
         struct dem_stage_state st = {&r.sim.cfg.stages[first], first,

@@ -338,6 +338,30 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
 
 /* ------------------------------------- stress ratio versus void ratio */
 
+/* Read the columns want[0..n) (want[0] = "stage") of run r's
+ * timeseries.csv into t; returns the rows of its loading stage, or -1
+ * when the file cannot be read (a comment in dat says why; t is freed). */
+static long read_loading(const struct dem__sweep *s,
+                         const struct dem__sweep_run *r,
+                         const struct dem__csv_want *want, int n,
+                         struct dem__csv_table *t, FILE *dat)
+{
+    char path[DEM_PATH_MAX], leaf[DEM_SWEEP_RUNNAME_MAX + 40];
+    snprintf(leaf, sizeof leaf, "runs/%s/timeseries.csv", r->name);
+    struct dem_error e = {0};
+    memset(t, 0, sizeof *t);
+    if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
+        dem__csv_table_read(t, path, want, n, &e)) {
+        fprintf(dat, "# %s: not read: %s\n", r->name, e.msg);
+        dem__csv_table_free(t);
+        return -1;
+    }
+    long rows = 0;
+    for (size_t k = 0; k < t->nrow; k++)
+        rows += (int)t->col[0][k] == r->stage;
+    return rows;
+}
+
 /* Seed 001 Fig. 8 bottom: sin(psi) = (s1 - s3)/(s1 + s3) against the void
  * ratio during the loading stage of every run, from its timeseries.csv
  * (at most 400 points per run). A run whose file cannot be read is left
@@ -359,23 +383,16 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
         const struct dem__sweep_run *r = &s->runs[i];
         if (!r->ok || r->stage < 0 || r->axis < 0 || r->axis >= r->dim)
             continue;
-        char path[DEM_PATH_MAX], leaf[DEM_SWEEP_RUNNAME_MAX + 40];
-        snprintf(leaf, sizeof leaf, "runs/%s/timeseries.csv", r->name);
-        struct dem__csv_table t = {0};
-        struct dem_error e = {0};
-        if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
-            dem__csv_table_read(&t, path, want, 5, &e)) {
-            fprintf(dat, "# %s: not read: %s\n\n\n", r->name, e.msg);
-            dem__csv_table_free(&t);
+        struct dem__csv_table t;
+        const long rows = read_loading(s, r, want, 5, &t, dat);
+        if (rows < 0) {
+            fprintf(dat, "\n\n");
             fprintf(gp,
                     "  \"stress_ratio_vs_void_ratio.dat\" index %d with "
                     "lines notitle, \\\n",
                     block++);
             continue;
         }
-        long rows = 0;
-        for (size_t k = 0; k < t.nrow; k++)
-            rows += (int)t.col[0][k] == r->stage;
         const long every = rows > 400 ? (rows + 399) / 400 : 1;
         fprintf(dat, "# %s: confining pressure %.6g\n", r->name, r->pressure);
         long seen = 0;
@@ -451,19 +468,10 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
         const struct dem__sweep_run *r = &s->runs[i];
         if (!compressed(r))
             continue;
-        char path[DEM_PATH_MAX], leaf[DEM_SWEEP_RUNNAME_MAX + 40];
-        snprintf(leaf, sizeof leaf, "runs/%s/timeseries.csv", r->name);
-        struct dem__csv_table t = {0};
-        struct dem_error e = {0};
-        if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
-            dem__csv_table_read(&t, path, want, 8, &e)) {
-            fprintf(dat, "# %s: not read: %s\n", r->name, e.msg);
-            dem__csv_table_free(&t);
+        struct dem__csv_table t;
+        const long rows = read_loading(s, r, want, 8, &t, dat);
+        if (rows < 0)
             continue;
-        }
-        long rows = 0;
-        for (size_t k = 0; k < t.nrow; k++)
-            rows += (int)t.col[0][k] == r->stage;
         if (rows == 0) { /* stopped before its loading stage */
             fprintf(dat, "# %s: no rows in its loading stage\n", r->name);
             dem__csv_table_free(&t);
@@ -663,7 +671,8 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         return rc;
     const char *cmd = dem__gp_command();
     if (!dem__gp_available(cmd)) {
-        dem_warn(err, "sweep: %s not found; the plot scripts are in %s, run them "
+        dem_warn(err,
+                 "sweep: %s not found; the plot scripts are in %s, run them "
                  "with gnuplot",
                  cmd, plotdir);
         return DEM_OK;

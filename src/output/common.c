@@ -1,0 +1,115 @@
+/* What the output kinds share: .part files (written over a run, synced
+ * at checkpoints, renamed at the end) and the box of the snapshots. */
+#include <errno.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "io/fsutil.h"
+#include "output/output.h"
+
+/* o->part = outdir/leaf.part */
+static int part_path(struct dem_output *o, const char *outdir, const char *leaf,
+                     struct dem_error *err)
+{
+    char name[DEM_NAME_MAX];
+    snprintf(name, sizeof name, "%s.part", leaf);
+    return dem_path_join(o->part, sizeof o->part, outdir, name, err);
+}
+
+int dem__part_create(struct dem_output *o, const char *outdir, const char *leaf,
+                     struct dem_error *err)
+{
+    int rc = part_path(o, outdir, leaf, err);
+    if (rc)
+        return rc;
+    o->f = fopen(o->part, "w");
+    if (!o->f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", o->part,
+                             strerror(errno));
+    return DEM_OK;
+}
+
+int dem__part_reopen(struct dem_output *o, const char *outdir, const char *leaf,
+                     struct dem_error *err)
+{
+    int rc = part_path(o, outdir, leaf, err);
+    if (rc)
+        return rc;
+    const char *path = o->part;
+    const int64_t bytes = o->st.bytes;
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: %s; cannot resume", path,
+                             strerror(errno));
+    if ((int64_t)sb.st_size < bytes)
+        return dem_error_set(err, DEM_EIO,
+                             "%s: %lld bytes, shorter than the %lld at the "
+                             "checkpoint; cannot resume",
+                             path, (long long)sb.st_size, (long long)bytes);
+    if (truncate(path, (off_t)bytes) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: cannot truncate: %s", path,
+                             strerror(errno));
+    o->f = fopen(path, "a");
+    /* positioned at the end, so that ftello gives the length even before
+     * the first append (C leaves it to the implementation) */
+    if (!o->f || fseeko(o->f, 0, SEEK_END) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", path,
+                             strerror(errno));
+    return DEM_OK;
+}
+
+int dem__part_check(struct dem_output *o, struct dem_error *err)
+{
+    if (ferror(o->f))
+        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", o->part,
+                             errno ? strerror(errno) : "I/O error");
+    return DEM_OK;
+}
+
+int dem__part_sync(struct dem_output *o, struct dem_error *err)
+{
+    errno = 0;
+    if (ferror(o->f) || fflush(o->f) != 0 || fsync(fileno(o->f)) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", o->part,
+                             errno ? strerror(errno) : "I/O error");
+    off_t pos = ftello(o->f);
+    if (pos < 0)
+        return dem_error_set(err, DEM_EIO, "%s: %s", o->part, strerror(errno));
+    o->st.bytes = (int64_t)pos;
+    return DEM_OK;
+}
+
+int dem__part_commit(struct dem_output *o, struct dem_error *err)
+{
+    errno = 0;
+    int bad = ferror(o->f) || fflush(o->f) != 0;
+    int e = errno;
+    if (fclose(o->f) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    o->f = NULL;
+    if (bad)
+        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", o->part,
+                             e ? strerror(e) : "I/O error");
+    char final[DEM_PATH_MAX];
+    size_t n = strlen(o->part) - strlen(".part");
+    memcpy(final, o->part, n);
+    final[n] = '\0';
+    if (rename(o->part, final) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: cannot rename: %s", o->part,
+                             strerror(errno));
+    return DEM_OK;
+}
+
+void dem__output_box(const struct dem_sim *s, double lo[3], double hi[3])
+{
+    double rmax = 0.0;
+    for (int i = 0; i < s->p.n; i++)
+        rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = a < s->dim ? s->wall[2 * a].pos : -rmax;
+        hi[a] = a < s->dim ? s->wall[2 * a + 1].pos : rmax;
+    }
+}
