@@ -54,7 +54,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     struct dem_run_options o;
     memset(&o, 0, sizeof o);
     o.outdir = dir;
-    o.quiet = 1;
     o.threads = 1;
     o.stop_after_steps = 3000;
     if (dem_run(&c, &o, &err) != DEM_EINTERRUPTED)
