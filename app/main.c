@@ -8,11 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "bench/bench.h"
 #include "dembox.h"
-#include "io/config.h"
-#include "io/examples.h"
-#include "sweep/sweep.h"
 
 #define DEFAULT_EXAMPLE "biaxial2d"
 #define MAX_SETS 256

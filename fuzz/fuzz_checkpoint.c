@@ -20,7 +20,6 @@
 
 #include "dembox.h"
 #include "io/checkpoint.h"
-#include "io/config.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

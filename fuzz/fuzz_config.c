@@ -15,7 +15,6 @@
 #include <string.h>
 
 #include "dembox.h"
-#include "io/config.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -16,12 +16,13 @@
 #include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "dembox_models.h"
 
 #define DEM_VERSION "0.1.0"
 
-/* ---------------------------------------------------------------- errors */
+/* --------------------------------------------------------------- errors */
 
 /* X-macro list: symbol, value, short description. */
 #define DEM_STATUS_LIST(X)                                                     \
@@ -72,7 +73,7 @@ void dem_warn(const struct dem_error *err, const char *fmt, ...)
 #endif
     ;
 
-/* ---------------------------------------------------------------- config */
+/* --------------------------------------------------------------- config */
 
 enum dem_radius_dist {
     DEM_DIST_MONO = 0,    /* all radii = mean */
@@ -217,7 +218,7 @@ struct dem_config {
     } output;
 };
 
-/* ------------------------------------------------------------------- run */
+/* ------------------------------------------------------------------ run */
 
 /* Where a run stands, for a progress display. */
 struct dem_progress {
@@ -304,5 +305,277 @@ int dem_analyze(const char *outdir, struct dem_error *err);
  * call succeeds. Errors name the file and, for a missing column, the
  * column. */
 int dem_plot_run(const char *outdir, struct dem_error *err);
+
+/* ------------------------------------------------------- config parsing */
+
+/* Config: libconfig text -> validated struct dem_config.
+ *
+ * Every key is declared once in a descriptor table (name, type, default,
+ * unit, valid range, documentation) that the parser, the validation, the
+ * resolved config.cfg writer and `dembox help config` all use.
+ */
+
+/* Fill c with every default (dimension 3, seed 000's material). */
+void dem_config_defaults(struct dem_config *c);
+
+/* Parse config text. source names the text in messages (a file path or
+ * "example NAME"). sets are "KEY=VALUE" overrides (dotted paths, list
+ * elements by 0-based index) applied on top of the text, nsets of them.
+ * On success c is complete and validated. On failure err->msg is one line
+ * naming the key, the source and its line, and c is unspecified. */
+int dem_config_parse(struct dem_config *c, const char *text, const char *source,
+                     const char *const *sets, int nsets, struct dem_error *err);
+
+/* Read and parse a config file (see dem_config_parse). */
+int dem_config_load_file(struct dem_config *c, const char *path,
+                         const char *const *sets, int nsets,
+                         struct dem_error *err);
+
+/* Check physical validity (also called by dem_config_parse). */
+int dem_config_validate(const struct dem_config *c, struct dem_error *err);
+
+/* Write c as a complete libconfig file that parses back to the same c. */
+int dem_config_write(const struct dem_config *c, FILE *f);
+
+/* Print the documentation of every key (name, type, default, unit, doc). */
+void dem_config_print_keys(FILE *f);
+
+/* The same documentation as a Markdown table (the key table of
+ * docs/config.md, which a test keeps identical). */
+void dem_config_print_keys_markdown(FILE *f);
+
+/* ------------------------------------------------------------- examples */
+
+/* Built-in example configs, embedded from examples/NAME.cfg at build time. */
+
+struct dem_example {
+    const char *name; /* file stem, e.g. "biaxial2d" */
+    const char *text; /* the config file's text */
+};
+
+extern const struct dem_example dem_examples[];
+extern const int dem_n_examples;
+
+/* The example called name, or NULL. */
+const struct dem_example *dem_example_find(const char *name);
+
+/* ---------------------------------------------------------------- sweep */
+
+/* Parameter sweeps (SPEC §7 `dembox sweep`): a grid of runs of one config
+ * and the analysis across them.
+ *
+ * A grid is the Cartesian product of its parameters; one parameter is one
+ * or more config keys that take the same values ("linked" keys, e.g. the
+ * isotropic and the confining pressure). Point i of the grid fixes one
+ * value of every parameter; the last parameter varies fastest.
+ *
+ * Running (runner.c): every point is checked by the config parser before
+ * anything runs; then each point runs as `dembox run` in a child process
+ * (up to `jobs` at once) into DIR/runs/NAME. A point whose folder already
+ * holds a finished run of the same config is skipped, so a sweep can be
+ * restarted; an unfinished one is resumed from its checkpoint when it has
+ * one, else rerun.
+ *
+ * Collecting (collect.c, plots.c): the summaries of the runs and the
+ * cross-run analysis go to DIR/sweep.json, the pictures to DIR/plots/.
+ * docs/sweep.md describes the files.
+ */
+
+#define DEM_SWEEP_MAX_PARAMS 16  /* --param options */
+#define DEM_SWEEP_MAX_KEYS 8     /* keys linked in one --param */
+#define DEM_SWEEP_MAX_VALUES 256 /* values of one --param */
+#define DEM_SWEEP_MAX_POINTS 10000
+#define DEM_SWEEP_VALUE_MAX 128   /* characters of one value */
+#define DEM_SWEEP_RUNNAME_MAX 120 /* longer names become run_NNNN */
+
+/* What a parameter is to the cross-run analysis, from its keys. */
+enum dem_sweep_role {
+    DEM_SWEEP_ROLE_PRESSURE = 1, /* a key ending in ".pressure" */
+    DEM_SWEEP_ROLE_MU = 2,       /* contact.mu, mu_s, mu_d or stages.N.mu */
+    DEM_SWEEP_ROLE_KC = 4,       /* contact.kc (or k1, k2: kc/k2 changes) */
+    DEM_SWEEP_ROLE_SEED = 8      /* seed: runs that differ only in it are
+                                    an ensemble of independent samples */
+};
+
+struct dem_sweep_param {
+    char text[512]; /* the --param argument, for messages */
+    int nkeys;
+    char keys[DEM_SWEEP_MAX_KEYS][DEM_NAME_MAX]; /* dotted config paths */
+    int nvalues;
+    char (*values)[DEM_SWEEP_VALUE_MAX]; /* as given (owned) */
+    int roles;                           /* enum dem_sweep_role bits */
+};
+
+struct dem_sweep_grid {
+    int nparams;
+    struct dem_sweep_param params[DEM_SWEEP_MAX_PARAMS];
+};
+
+/* Add the parameter of one --param argument "KEY[,KEY...]=V1,V2,...".
+ * Values are split at commas outside quotes and brackets, so a vector
+ * value "[0.1,0.2,0.3]" stays whole. Errors (DEM_EUSAGE) quote arg and say
+ * what is wrong: no '=', an empty or malformed key, a key already swept,
+ * no or an empty value, a duplicate value, too many of anything. */
+int dem_sweep_param_add(struct dem_sweep_grid *g, const char *arg,
+                        struct dem_error *err);
+void dem_sweep_grid_free(struct dem_sweep_grid *g);
+/* Number of points (1 with no parameters). */
+long dem_sweep_grid_size(const struct dem_sweep_grid *g);
+/* The value index of every parameter at point i (idx[0..nparams-1]). */
+void dem_sweep_grid_point(const struct dem_sweep_grid *g, long i, int *idx);
+/* The "KEY=VALUE" overrides of point i, one per key: writes at most max
+ * strings of size len into sets, returns how many. */
+int dem_sweep_point_sets(const struct dem_sweep_grid *g, long i,
+                         char (*sets)[DEM_NAME_MAX + DEM_SWEEP_VALUE_MAX],
+                         int max);
+/* Folder names of all points: "KEY=VALUE_KEY=VALUE..." with characters
+ * other than letters, digits and ".+-=" replaced by '-'; when one is too
+ * long or two collide, every point is "run_NNNN" instead. names must hold
+ * dem_sweep_grid_size() entries. */
+void dem_sweep_point_names(const struct dem_sweep_grid *g,
+                           char (*names)[DEM_SWEEP_RUNNAME_MAX + 8]);
+
+struct dem_sweep_options {
+    const char *target;      /* config file or built-in example name */
+    const char *outdir;      /* DIR */
+    const char *const *sets; /* --set KEY=VALUE for every run */
+    int nsets;
+    int jobs;        /* runs at once (>= 1) */
+    int threads;     /* OpenMP threads per run (>= 1) */
+    int quiet;       /* 1: no progress lines on stderr */
+    const char *exe; /* dembox binary; NULL = /proc/self/exe */
+    long max_steps;  /* > 0: passed to every run as --max-steps */
+};
+
+struct dem_sweep_report {
+    long points;  /* grid points */
+    long skipped; /* finished before this sweep started (restart) */
+    long ran;     /* run (or resumed) by this sweep */
+    long resumed; /* of these, resumed from a checkpoint */
+    long failed;  /* runs that ended with a failure */
+};
+
+/* Check every grid point's config (nothing runs when one is bad; the
+ * message names the --param and its key, or the point), run the points
+ * not finished yet, then write sweep.json and the plots. Returns DEM_OK
+ * when every run finished and sweep.json was written; a failed run is
+ * reported on stderr and the others still run (the return is then
+ * DEM_EINTERRUPTED with a message counting the failures). */
+int dem_sweep_run(const struct dem_sweep_grid *g,
+                  const struct dem_sweep_options *o,
+                  struct dem_sweep_report *rep, struct dem_error *err);
+
+/* Only the check of dem_sweep_run: parse the config of every point. */
+int dem_sweep_validate(const struct dem_sweep_grid *g,
+                       const struct dem_sweep_options *o,
+                       struct dem_error *err);
+
+/* 1 when the run folder holds a finished run (config.cfg,
+ * timeseries.csv, summary.json, no timeseries.csv.part). */
+int dem_sweep_run_finished(const char *rundir);
+
+/* Read DIR/runs/NAME/{config.cfg,summary.json} of every point and write
+ * DIR/sweep.json and DIR/plots/ (see docs/sweep.md). Runs that are
+ * missing or failed are listed with their reason and left out of the
+ * cross-run analysis. */
+int dem_sweep_collect(const struct dem_sweep_grid *g,
+                      const struct dem_sweep_options *o, struct dem_error *err);
+
+/* ---------------------------------------------------------------- bench */
+
+/* The benchmark behind `dembox bench`: time the engine on the peers'
+ * workload (docs/performance.md, ../shared/bench/README.md next to this
+ * repository).
+ *
+ * Workload: a dense, relaxed packing in a box of six (2D: four) planar
+ * walls, compressed slowly along z (2D: y) by the strain-controlled max-side
+ * wall with a linear profile at the peers' strain rate (3D 0.05 1/s,
+ * 2D 2.5 1/s) while the lateral walls are stress-controlled at the initial
+ * mean wall stress (the compress stage). Contact law, damping, time step and
+ * radii are those of the LAMMPS/LIGGGHTS runs: linear spring-dashpot with
+ * absolute damping, tangential spring with history, Coulomb friction,
+ * background damping -gamma_b v on translation only.
+ *
+ *   3D (seed 000 material): k = 5000, kt = 1000 N/m, gamma_n = 0.05,
+ *      gamma_t = 0.005 kg/s, mu = 0.5, gamma_b = 0.001 kg/s, dt = 2e-5 s,
+ *      radii N(5, 0.7) mm cut at 3 mm, density 2000 kg/m^3.
+ *   2D (seed 001 geometry, linear law as the peers): k = 1e5, kt = 2e4 N/m,
+ *      gamma_n = 0.0211, gamma_t = 0.00211 kg/s, mu = 0.5,
+ *      gamma_b = 0.0004 kg/s, dt = 2e-7 s, radii U[0.5, 1.5] mm, sphere
+ *      masses.
+ *
+ * Packing: with a LAMMPS data file (the peers' periodic packing of the
+ * same N) the particles keep their radii, masses and positions and the
+ * walls go at the periodic box's faces, moved outward just enough that no
+ * particle overlaps a wall; otherwise particles are placed at random. In
+ * both cases a frictionless isotropic stage (all walls stress-controlled
+ * at 800 Pa in 3D, 160 N/m in 2D, strong background damping) relaxes the
+ * packing until E_kin/E_pot < 1e-4 and every wall is within 1 % of the
+ * target. The result is cached as a LAMMPS data file (box = walls) keyed by
+ * dimension, N and source; the timed run always starts from the cached
+ * file, so a first and a second call time the same state.
+ */
+
+/* Wall-clock seconds spent in each phase of the step (timed only when
+ * dem_sim.timing is set, e.g. by the benchmark). */
+struct dem_timers {
+    double neighbor;  /* rebuild checks and neighbour-list builds */
+    double force;     /* particle-particle and particle-wall forces, the
+                         closing half kick and, in a chained step, the
+                         next half kick and drift */
+    double integrate; /* first half kick and drift of an unchained step */
+    double walls;     /* wall motion */
+};
+
+#define DEM_BENCH_DEFAULT_STEPS 20000
+#define DEM_BENCH_DEFAULT_N3 3375
+#define DEM_BENCH_DEFAULT_N2 1950
+
+struct dem_bench_options {
+    int dim;               /* 2 or 3; default 3 */
+    int n;                 /* particles; 0 = 3375 (3D) or 1950 (2D) */
+    long steps;            /* timed steps; 0 = 20000 */
+    int threads;           /* OpenMP threads; 0 = leave the default */
+    const char *data;      /* LAMMPS data file to start from, or NULL:
+                              DATA_DIR/pack{dim}d_{n}.data if the
+                              environment variable DEMBOX_BENCH_DATA names a
+                              folder holding it, else a random packing */
+    const char *cache_dir; /* NULL: $XDG_CACHE_HOME/dembox, else
+                              $HOME/.cache/dembox */
+    int no_cache;          /* 1: prepare again and overwrite the cache */
+    int quiet;             /* 1: no progress on stderr */
+};
+
+struct dem_bench_result {
+    int dim, n;                /* dimension, particles */
+    long steps;                /* timed steps */
+    int threads;               /* OpenMP threads in force */
+    char source[DEM_PATH_MAX]; /* where the particles came from */
+    char cache[DEM_PATH_MAX];  /* the cached packing the run started from */
+    int cache_hit;             /* 1 if the cache was used as it was */
+    double prep_seconds;       /* s; wall time of preparation (0 on a hit) */
+    double seconds;            /* s; wall time of the timed loop */
+    double cpu_seconds;        /* s; CPU time of the process (all threads)
+                                  during the timed loop */
+    struct dem_timers timers;  /* s; per phase of the timed loop */
+    long nbuild;               /* neighbour-list builds in the timed loop */
+    double pairs_per_particle; /* listed pairs / N at the end */
+    double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N */
+    double p_start, p_end;     /* Pa (2D: N/m); mean wall stress */
+    double strain;             /* axial strain applied over the run */
+    double rss_start;          /* bytes; resident set before anything */
+    double rss_end;            /* bytes; resident set after the run */
+    double rss_peak;           /* bytes; peak resident set of the process */
+    double bytes_per_particle; /* (rss_end - rss_start) / n */
+    double particle_steps_per_second; /* n steps / seconds */
+};
+
+/* Prepare or load the packing, run the timed steps, fill r. Errors name
+ * the file or the option at fault. */
+int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
+                  struct dem_error *err);
+
+/* The human summary; its last line is particle_steps_per_second=<number>. */
+void dem_bench_print(FILE *f, const struct dem_bench_result *r);
 
 #endif /* DEMBOX_H */

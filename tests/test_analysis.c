@@ -1,5 +1,6 @@
 /* Analysis (src/analysis): every function against a curve with a known
  * answer, then dem_analyze end to end on run folders written here. */
+#include "dembox.h"
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -7,7 +8,6 @@
 #include "testutil.h"
 
 #include "analysis/analysis.h"
-#include "io/config.h"
 #include "io/json.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"

@@ -4,6 +4,7 @@
  * bytes as an uninterrupted run; corrupt, truncated, foreign and
  * other-build checkpoints are refused with one line naming the file; a
  * write error stops the run and keeps the last good checkpoint. */
+#include "dembox.h"
 #include "testutil.h"
 
 #include <errno.h>
@@ -17,7 +18,6 @@
 #include <unistd.h>
 
 #include "io/checkpoint.h"
-#include "io/config.h"
 
 static char tmpdir[256];
 

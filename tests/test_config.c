@@ -1,5 +1,6 @@
 /* Config: defaults, --set overrides, the resolved config round trip, the
  * contact time behind the time-step check, and one line per bad input. */
+#include "dembox.h"
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,8 +13,6 @@
 #include <cmocka.h>
 
 #include "contact/models.h"
-#include "io/config.h"
-#include "io/examples.h"
 
 #define SRC "test.cfg"
 

@@ -2,6 +2,7 @@
  * steps, an isotropic preparation that reaches its target, and a small 2D
  * biaxial test whose fixed walls stay put while the sample first compacts
  * and then dilates. */
+#include "dembox.h"
 #include "testutil.h"
 
 #include <stdlib.h>
@@ -9,9 +10,7 @@
 #include <unistd.h>
 
 #include "contact/models.h"
-#include "io/config.h"
 #include "io/csvtable.h"
-#include "io/examples.h"
 
 static char tmpdir[256];
 

@@ -3,16 +3,15 @@
  * summaries with known answers (flow function, void-ratio envelope, the
  * mean and standard error over seeds), and
  * a real sweep of three tiny runs in two jobs that a restart skips. */
+#include "dembox.h"
 #include "testutil.h"
 
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "io/config.h"
 #include "io/fsutil.h"
 #include "io/jsonread.h"
-#include "sweep/sweep.h"
 
 #define DEG (180.0 / M_PI)
 

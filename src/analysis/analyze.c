@@ -6,6 +6,7 @@
  * stages, builds the curves and writes the JSON. Formulas and criteria:
  * docs/analysis.md.
  */
+#include "dembox.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,7 +14,6 @@
 #include <unistd.h>
 
 #include "analysis/analysis.h"
-#include "io/config.h"
 #include "io/csvtable.h"
 #include "io/fsutil.h"
 #include "io/json.h"

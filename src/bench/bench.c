@@ -1,7 +1,7 @@
 /* The benchmark: packing preparation and cache, the timed run, the
  * summary (see bench.h for the workload). */
-#include "bench/bench.h"
 
+#include "dembox.h"
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
@@ -13,7 +13,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "io/config.h"
 #include "io/fsutil.h"
 #include "io/lammps_data.h"
 #include "measure/measure.h"

@@ -30,17 +30,6 @@ struct dem_contact_sums {
     int max_overlap_j;          /* id of the other, -1 for a wall */
 };
 
-/* Wall-clock seconds spent in each phase of the step (timed only when
- * dem_sim.timing is set, e.g. by the benchmark). */
-struct dem_timers {
-    double neighbor;  /* rebuild checks and neighbour-list builds */
-    double force;     /* particle-particle and particle-wall forces, the
-                         closing half kick and, in a chained step, the
-                         next half kick and drift */
-    double integrate; /* first half kick and drift of an unchained step */
-    double walls;     /* wall motion */
-};
-
 struct dem_sim {
     struct dem_config cfg; /* the validated config this run started from */
     int dim;               /* 2 or 3 */

@@ -12,6 +12,7 @@
  * allocation; indices are checked after, so that even a file with a valid
  * checksum but nonsense content cannot make the engine read out of bounds.
  */
+#include "dembox.h"
 #include "io/checkpoint.h"
 
 #include <errno.h>
@@ -22,7 +23,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "io/config.h"
 
 _Static_assert(sizeof(int) == 4, "checkpoints store int arrays as int32");
 _Static_assert(sizeof(double) == 8, "checkpoints store IEEE binary64");

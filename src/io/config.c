@@ -15,8 +15,8 @@
  * of the offending setting, "--set KEY=VALUE" when the setting came from a
  * command-line override, or just the source when the key was not given.
  */
-#include "io/config.h"
 
+#include "dembox.h"
 #include <ctype.h>
 #include <errno.h>
 #include <limits.h>

@@ -1,5 +1,4 @@
-#include "io/examples.h"
-
+#include "dembox.h"
 #include <string.h>
 
 const struct dem_example *dem_example_find(const char *name)

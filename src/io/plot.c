@@ -21,7 +21,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/config.h"
 #include "io/csvtable.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"

@@ -13,6 +13,7 @@
  * back to the recorded lengths and re-enters the stage loop at its top,
  * so the run continues as if it had never stopped.
  */
+#include "dembox.h"
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
@@ -25,7 +26,6 @@
 
 #include "core/sim.h"
 #include "io/checkpoint.h"
-#include "io/config.h"
 #include "io/fsutil.h"
 #include "io/particles_csv.h"
 #include "measure/measure.h"

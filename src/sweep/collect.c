@@ -6,13 +6,13 @@
  * runs that differ only in confining pressure, the void-ratio envelopes
  * are dem_voidfit over the same groups.
  */
+#include "dembox.h"
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/config.h"
 #include "io/fsutil.h"
 #include "io/json.h"
 #include "io/jsonread.h"

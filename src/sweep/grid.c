@@ -1,9 +1,9 @@
 /* The grid of a sweep: --param arguments, points, run names. */
+#include "dembox.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "sweep/sweep.h"
 
 static int bad(struct dem_error *err, const char *arg, const char *what)
 {

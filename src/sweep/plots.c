@@ -3,6 +3,7 @@
  * drawn by gnuplot (io/plot_gnuplot.c), and a picture exists only when
  * the sweep varies what it shows.
  */
+#include "dembox.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -8,6 +8,7 @@
  * OpenMP start fresh in each, which it cannot after a fork of a process
  * that already used it.
  */
+#include "dembox.h"
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -19,10 +20,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "io/config.h"
-#include "io/examples.h"
 #include "io/fsutil.h"
-#include "sweep/sweep.h"
 
 #define SET_LEN (DEM_NAME_MAX + DEM_SWEEP_VALUE_MAX)
 #define MAX_POINT_SETS (DEM_SWEEP_MAX_PARAMS * DEM_SWEEP_MAX_KEYS)

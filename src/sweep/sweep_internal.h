@@ -2,8 +2,8 @@
 #ifndef DEM_SWEEP_INTERNAL_H
 #define DEM_SWEEP_INTERNAL_H
 
+#include "dembox.h"
 #include "analysis/analysis.h"
-#include "sweep/sweep.h"
 
 /* One grid point's run: its parameters, config and summary numbers.
  * Numbers that the summary does not have are NaN. */

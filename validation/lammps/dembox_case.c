@@ -23,13 +23,13 @@
  * 1000 N/m, gamma_n = 0.05, gamma_t = 0.005, gamma_b = 0.001 kg/s,
  * dt = 2e-5 s), frictionless walls, no gravity.
  */
+#include "dembox.h"
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/sim.h"
-#include "io/config.h"
 #include "io/lammps_data.h"
 #include "measure/measure.h"
 
