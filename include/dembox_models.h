@@ -4,7 +4,7 @@
  * struct dem_contact_params fields) each one has and which history
  * values each contact carries. Everything else is generated from it: the
  * enum of normal laws, the parameter struct, the config keys with their
- * ranges and docs (src/io/config.c), the contact history arrays, their
+ * ranges and docs (src/config/keys.c), the contact history arrays, their
  * carry across neighbour-list rebuilds and their checkpoint fields
  * (src/neighbor/pairs.c, src/io/checkpoint.c), and one instance of the
  * force pass per model (src/contact/forces.c).
@@ -15,7 +15,7 @@
  * values in the lists after it (docs/architecture.md).
  *
  * The tokens GT, GE, LT, LE and F_* in the key lines are ranges and flags
- * of src/io/config.c, where the key table is generated; elsewhere they
+ * of src/config/keys.c, where the key table is generated; elsewhere they
  * are not expanded.
  */
 #ifndef DEMBOX_MODELS_H

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Regenerate the key table in docs/config.md from the descriptor table
-# (src/io/config.c), after the test test_config has written it to
+# (src/config/keys.c), after the test test_config has written it to
 # build/tests/config-keys.md.
 set -eu
 cd "$(dirname "$0")/.."

@@ -1,0 +1,221 @@
+/* Validation of a parsed config: ranges, radii, box, stages, the
+ * contact checks (contact/models.c) and the time step. */
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "config/keys.h"
+#include "contact/models.h"
+
+/* ----------------------------------------------------------- validation */
+
+void dem__cfg_range_text(const struct key *k, char *buf, size_t n)
+{
+    if (k->has_lo && k->has_hi)
+        snprintf(buf, n, "in %c%g, %g%c", k->lo_open ? '(' : '[', k->lo, k->hi,
+                 k->hi_open ? ')' : ']');
+    else if (k->has_lo)
+        snprintf(buf, n, "%s %g", k->lo_open ? ">" : ">=", k->lo);
+    else if (k->has_hi)
+        snprintf(buf, n, "%s %g", k->hi_open ? "<" : "<=", k->hi);
+    else
+        snprintf(buf, n, "any value");
+}
+
+int dem__cfg_in_range(const struct key *k, double v)
+{
+    if (k->has_lo && (k->lo_open ? !(v > k->lo) : !(v >= k->lo)))
+        return 0;
+    if (k->has_hi && (k->hi_open ? !(v < k->hi) : !(v <= k->hi)))
+        return 0;
+    return 1;
+}
+
+/* Finite values and the range of one key; time_step is left to
+ * check_time_step because "auto" is resolved after the other checks. */
+static int check_key(const struct ctx *x, const struct key *k, const void *base,
+                     int stage, struct dem_error *err)
+{
+    if (k->kind == K_VEC3) {
+        const double *v = dem__cfg_cfield(base, k);
+        for (int d = 0; d < 3; d++)
+            if (!isfinite(v[d]))
+                return dem__cfg_fail_key(
+                    x, stage, k->name, err,
+                    "must be finite (got %g in component %d)", v[d], d);
+        return 0;
+    }
+    if (k->kind == K_PATH || k->kind == K_STAGES || k->kind == K_TIME_STEP)
+        return 0;
+    /* contact.mu is stored in mu_s: check it only where it was given, so
+     * that a bad mu_s is reported as mu_s. */
+    if ((k->flags & F_MU) && !x->at[k - dem__cfg_keys])
+        return 0;
+    double v = dem__cfg_key_value(base, k);
+    if (!isfinite(v))
+        return dem__cfg_fail_key(x, stage, k->name, err,
+                                 "must be finite (got %g)", v);
+    if ((k->flags & F_UNSET_ZERO) && v == 0)
+        return 0;
+    if ((k->flags & F_UNSET_NEG) && v < 0)
+        return 0;
+    if (k->kind == K_ENUM) {
+        int n = 0;
+        while (k->names[n])
+            n++;
+        if (v < 0 || v >= n)
+            return dem__cfg_fail_key(x, stage, k->name, err,
+                                     "invalid enum value %g", v);
+        return 0;
+    }
+    if (!dem__cfg_in_range(k, v)) {
+        char r[96];
+        dem__cfg_range_text(k, r, sizeof r);
+        return dem__cfg_fail_key(x, stage, k->name, err, "must be %s (got %g)",
+                                 r, v);
+    }
+    return 0;
+}
+
+static int check_radii(const struct ctx *x, const struct dem_config *c,
+                       struct dem_error *err)
+{
+    const double mean = c->particles.mean, lo = c->particles.min,
+                 hi = c->particles.max;
+    if (c->particles.distribution == DEM_DIST_MONO)
+        return 0;
+    if (lo > hi)
+        return dem__cfg_fail_key(
+            x, -1, "particles.radius.min", err,
+            "must be <= particles.radius.max (got %g > %g)", lo, hi);
+    /* A gaussian redraws outside [min, max]; a mean outside the window
+     * would make that slow and the distribution meaningless. */
+    if (c->particles.distribution == DEM_DIST_GAUSSIAN &&
+        (mean < lo || mean > hi))
+        return dem__cfg_fail_key(
+            x, -1, "particles.radius.mean", err,
+            "must lie within [min, max] = [%g, %g] (got %g)", lo, hi, mean);
+    return 0;
+}
+
+static int check_box(const struct ctx *x, const struct dem_config *c,
+                     struct dem_error *err)
+{
+    const double *L = c->box.size;
+    if (L[0] == 0 && L[1] == 0 && L[2] == 0)
+        return 0; /* derived from the placement */
+    double vol = 1;
+    for (int d = 0; d < c->dim; d++) {
+        if (!(L[d] > 0))
+            return dem__cfg_fail_key(
+                x, -1, "box.size", err,
+                "empty box: size along %c must be > 0 (got %g)", "xyz"[d],
+                L[d]);
+        vol *= L[d];
+    }
+    /* Particles from a file are counted and checked against the box when
+     * the file is read; particles.count and the radius keys do not
+     * apply. */
+    if (c->particles.placement == DEM_PLACE_FILE)
+        return 0;
+    const double a = dem__cfg_typical_radius(c);
+    const double vp = c->dim == 2 ? M_PI * a * a : 4.0 / 3.0 * M_PI * a * a * a;
+    const double solid = c->particles.count * vp;
+    if (solid > 0.9 * vol)
+        return dem__cfg_fail_key(
+            x, -1, "particles.count", err,
+            "%d particles of radius %g m fill %g %s, more than "
+            "0.9 x the box (%g)",
+            c->particles.count, a, solid, c->dim == 2 ? "m^2" : "m^3", vol);
+    return 0;
+}
+
+static int check_stages(const struct ctx *x, const struct dem_config *c,
+                        struct dem_error *err)
+{
+    if (c->nstages < 1 || c->nstages > DEM_MAX_STAGES)
+        return dem__cfg_fail_key(x, -1, "stages", err,
+                                 "must hold 1 to %d stages (got %d)",
+                                 DEM_MAX_STAGES, c->nstages);
+    for (int i = 0; i < c->nstages; i++) {
+        const struct dem_stage_config *st = &c->stages[i];
+        if (st->type < 0 || st->type >= DEM_STAGE_NTYPES)
+            return dem__cfg_fail_key(x, i, "type", err, "invalid stage type %d",
+                                     st->type);
+        const unsigned bit = 1u << st->type;
+        for (size_t k = 0; k < dem__cfg_nkeys; k++)
+            if (dem__cfg_keys[k].scope == S_STAGE &&
+                (dem__cfg_keys[k].uses & bit) &&
+                check_key(x, &dem__cfg_keys[k], st, i, err))
+                return DEM_ECONFIG;
+        if (c->dim == 2 && (bit & (T_COMP | T_CYC)) && st->axis == 2)
+            return dem__cfg_fail_key(
+                x, i, "axis", err,
+                "\"z\" is not an axis in 2D (use \"x\" or \"y\")");
+    }
+    return 0;
+}
+
+/* Everything except the time step, which needs these to be valid. */
+int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
+                           struct dem_error *err)
+{
+    for (size_t k = 0; k < dem__cfg_nkeys; k++)
+        if (dem__cfg_keys[k].scope == S_TOP &&
+            check_key(x, &dem__cfg_keys[k], c, -1, err))
+            return DEM_ECONFIG;
+    char msg[DEM_ERRMSG_MAX / 2];
+    int stage;
+    const char *bad = dem_contact_check(c, &stage, msg, sizeof msg);
+    if (bad)
+        return dem__cfg_fail_key(x, stage, bad, err, "%s", msg);
+    if (c->particles.mass_model == DEM_MASS_DISC && c->dim != 2)
+        return dem__cfg_fail_key(x, -1, "particles.mass_model", err,
+                                 "\"disc\" is only valid with dimension = 2");
+    if (c->dim == 2 && c->gravity[2] != 0)
+        return dem__cfg_fail_key(x, -1, "gravity", err,
+                                 "z component must be 0 in 2D (got %g)",
+                                 c->gravity[2]);
+    if (c->particles.placement == DEM_PLACE_FILE && !c->particles.file[0])
+        return dem__cfg_fail_key(x, -1, "particles.placement", err,
+                                 "\"file\" needs particles.file");
+    if (check_radii(x, c, err) || check_box(x, c, err) ||
+        check_stages(x, c, err))
+        return DEM_ECONFIG;
+    return 0;
+}
+
+int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
+                             struct dem_error *err)
+{
+    const double dt = c->time_step, tc = dem_contact_time(c);
+    if (!isfinite(dt) || !(dt > 0))
+        return dem__cfg_fail_key(x, -1, "time_step", err,
+                                 "must be > 0 and finite (got %g)", dt);
+    if (dt > tc / 5)
+        return dem__cfg_fail_key(
+            x, -1, "time_step", err,
+            "%g s is above t_c/5 = %g s (t_c = %g s for the "
+            "stiffest, lightest pair); use a smaller step or "
+            "\"auto\"",
+            dt, tc / 5, tc);
+    return 0;
+}
+
+int dem_config_validate(const struct dem_config *c, struct dem_error *err)
+{
+    static const struct ctx none; /* no settings: messages name the source */
+    struct ctx x = none;
+    x.source = c->source[0] ? c->source : "config";
+    if (dem__cfg_validate_body(&x, c, err) ||
+        dem__cfg_check_time_step(&x, c, err))
+        return DEM_ECONFIG;
+    return 0;
+}
