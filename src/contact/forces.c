@@ -55,23 +55,16 @@ static struct pass pass_of(const struct dem_particles *P,
                            struct dem_contact_list *L,
                            struct dem_contact_forces *F)
 {
-    struct pass q = {P->x,
-                     P->y,
-                     P->z,
-                     P->vx,
-                     P->vy,
-                     P->vz,
-                     P->wx,
-                     P->wy,
-                     P->wz,
-                     P->r,
-                     L->i,
-                     L->j,
-#define HIST_OF_(MODEL, name, unit, doc) L->name,
-                     DEM_CONTACT_HISTORY(HIST_OF_)
+    // clang-format off
+    struct pass q = {
+        .x = P->x, .y = P->y, .z = P->z, .vx = P->vx, .vy = P->vy,
+        .vz = P->vz, .wx = P->wx, .wy = P->wy, .wz = P->wz, .r = P->r,
+        .ci = L->i, .cj = L->j, .state = L->state, .F = F->v,
+#define HIST_OF_(MODEL, name, unit, doc) .name = L->name,
+        DEM_CONTACT_HISTORY(HIST_OF_)
 #undef HIST_OF_
-                         L->state,
-                     F->v};
+    };
+    // clang-format on
     return q;
 }
 
