@@ -74,12 +74,15 @@ paper_parts() {
 cyclic-period|30|000: the period does not matter (t0 = 1, 2, 5 s)|cyclic3d-paper --set contact.mu=0.1 --set stages.1.cycles=10 --param stages.1.period=1,2,5 --param seed=1,2
 cyclic-mu|140|000 Figs. 2 right, 3 right (50 cycles, t0 = 1 s)|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --param contact.mu=0.01,0.1,0.3,0.5,1.0 --param seed=1,2,3
 biaxial-pressure|90|001 Figs. 6, 7, 8, §3.3 (40 % strain)|biaxial2d-paper --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
-peak-reference|10|001 Fig. 7 gap: reference (p = 500, 10 % strain)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param seed=1,2,3,4
-peak-kt|10|001 Fig. 7 gap: k_t = k2 instead of 0.2 k2|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --param seed=1,2,3,4
-peak-prep|10|001 Fig. 7 gap: prepared with mu = 0.5 (looser)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set stages.0.mu=0.5 --param seed=1,2,3,4
-peak-rate|15|001 Fig. 7 gap: half the strain rate|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.4 --param seed=1,2,3,4
-peak-damping|10|001 Fig. 7 gap: no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set damping.gamma_b=0.0 --param seed=1,2,3,4
-friction-dense|180|000 Fig. 2 left, Fig. 3 left (dense)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
+peak-reference|8|001 Fig. 7 gap: reference (p = 500, 10 % strain)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param seed=1,2,3,4
+peak-kt|8|001 Fig. 7 gap: k_t = k2 instead of 0.2 k2|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --param seed=1,2,3,4
+peak-prep|7|001 Fig. 7 gap: prepared with mu = 0.5 (looser)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set stages.0.mu=0.5 --param seed=1,2,3,4
+peak-rate|12|001 Fig. 7 gap: half the strain rate|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.4 --param seed=1,2,3,4
+peak-damping|7|001 Fig. 7 gap: no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set damping.gamma_b=0.0 --param seed=1,2,3,4
+peak-size|20|001 Fig. 7 gap: twice the particles (N = 3900)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set particles.count=3900 --param seed=1,2,3,4
+peak-gammat|10|001 Fig. 7 gap: no tangential viscosity|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.gamma_t=0.0 --param seed=1,2,3,4
+peak-kt-damping|10|001 Fig. 7 gap: k_t = k2 and no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param seed=1,2,3,4
+friction-dense|105|000 Fig. 2 left, Fig. 3 left (dense)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
 friction-loose|180|000 Fig. 3 left (loose: prepared with mu)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu,stages.0.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
 biaxial-cohesion|240|001 Figs. 4, 5, §3.1|biaxial2d-paper --set contact.mu=0.0 --param contact.kc=0.0,2.5e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
 EOF
