@@ -12,8 +12,8 @@
  * allocation; indices are checked after, so that even a file with a valid
  * checksum but nonsense content cannot make the engine read out of bounds.
  */
-#include "dembox.h"
 #include "io/checkpoint.h"
+#include "dembox.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -22,7 +22,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
 
 _Static_assert(sizeof(int) == 4, "checkpoints store int arrays as int32");
 _Static_assert(sizeof(double) == 8, "checkpoints store IEEE binary64");
@@ -312,20 +311,17 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
         struct dem_output_state *o = &run->out[k];
         io_bytes(io, &o->bytes, sizeof o->bytes);
         io_f64(io, &o->next);
-        io_i32(io, &o->count);
-        int has_times = o->times != NULL;
-        io_i32(io, &has_times);
+        io_i32(io, &o->count); /* with count > 0, count times follow */
         if (io->reading && !io->why) {
             o->times = NULL;
             if (o->count < 0 || (size_t)o->count > io->left / 8)
                 io->why = "corrupt (output entry count)";
-            else if (has_times &&
-                     !(o->times = malloc((size_t)o->count * 8 + 8)))
+            else if (o->count > 0 && !(o->times = malloc((size_t)o->count * 8)))
                 io->why = "out of memory";
         }
         if (io->why)
             return;
-        if (has_times)
+        if (o->count > 0)
             io_f64s(io, o->times, o->count);
     }
     if (io->why)

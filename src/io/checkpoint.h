@@ -39,8 +39,9 @@
 struct dem_output_state {
     int64_t bytes; /* length of its .part file at the checkpoint (0: none) */
     double next;   /* s; simulated time of its next write */
-    int count;     /* entries written (e.g. snapshots) */
-    double *times; /* s; their times (count entries, malloc'ed, or NULL) */
+    int count;     /* entries written with a time (snapshots), else 0 */
+    double *times; /* s; their times (count entries, malloc'ed; NULL when
+                      count = 0) */
 };
 
 #define DEM_CKPT_MAX_OUTPUTS 16

@@ -471,17 +471,10 @@ int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
                                      cfg->particles.mass_model, &lines, err);
     if (rc)
         return rc;
+    /* a given box.size has positive lengths (config validation) */
     int given = 0;
     for (int a = 0; a < dim; a++)
         given |= cfg->box.size[a] != 0.0;
-    for (int a = 0; a < dim && given && !rc; a++) {
-        const double L = cfg->box.size[a];
-        if (!(L > 0.0) || !isfinite(L))
-            rc = dem_error_set(err, DEM_ECONFIG,
-                               "box.size: component %d must be a positive "
-                               "length (m), got %g",
-                               a, L);
-    }
     for (int i = 0; i < p->n && given && !rc; i++) {
         const double c[3] = {p->x[i], p->y[i], p->z[i]};
         for (int a = 0; a < dim; a++)

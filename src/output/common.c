@@ -69,6 +69,9 @@ int dem__part_check(struct dem_output *o, struct dem_error *err)
 
 int dem__part_sync(struct dem_output *o, struct dem_error *err)
 {
+    o->st.bytes = 0;
+    if (!o->f)
+        return DEM_OK;
     errno = 0;
     if (ferror(o->f) || fflush(o->f) != 0 || fsync(fileno(o->f)) != 0)
         return dem_error_set(err, DEM_EIO, "%s: write failed: %s", o->part,
@@ -80,8 +83,12 @@ int dem__part_sync(struct dem_output *o, struct dem_error *err)
     return DEM_OK;
 }
 
-int dem__part_commit(struct dem_output *o, struct dem_error *err)
+int dem__part_finish(struct dem_output *o, const struct dem_output_run *r,
+                     struct dem_error *err)
 {
+    (void)r;
+    if (!o->f)
+        return DEM_OK;
     errno = 0;
     int bad = ferror(o->f) || fflush(o->f) != 0;
     int e = errno;

@@ -42,25 +42,12 @@ static int dump_sample(struct dem_output *o, const struct dem_output_run *r,
     return dem__part_check(o, err);
 }
 
-static int dump_sync(struct dem_output *o, struct dem_error *err)
-{
-    o->st.bytes = 0;
-    return o->f ? dem__part_sync(o, err) : DEM_OK;
-}
-
-static int dump_finish(struct dem_output *o, const struct dem_output_run *r,
-                       struct dem_error *err)
-{
-    (void)r;
-    return o->f ? dem__part_commit(o, err) : DEM_OK;
-}
-
 const struct dem_output_kind dem_output_dump = {
     .name = "dump",
     .files = files,
     .open = dump_open,
     .resume = dump_resume,
     .sample = dump_sample,
-    .sync = dump_sync,
-    .finish = dump_finish,
+    .sync = dem__part_sync,
+    .finish = dem__part_finish,
 };

@@ -76,10 +76,13 @@ int dem__part_create(struct dem_output *o, const char *outdir, const char *leaf,
 /* Cut outdir/leaf.part back to o->st.bytes and open it for appending. */
 int dem__part_reopen(struct dem_output *o, const char *outdir, const char *leaf,
                      struct dem_error *err);
-/* Flush o->f to disk and record its length in o->st.bytes. */
+/* The sync and finish of a kind with one .part file (or none: o->f
+ * NULL, e.g. a dump that is switched off): flush o->f to disk and record
+ * its length in o->st.bytes (0 without a file); close o->f and rename the
+ * .part file to its final name. */
 int dem__part_sync(struct dem_output *o, struct dem_error *err);
-/* Close o->f and rename the .part file to its final name. */
-int dem__part_commit(struct dem_output *o, struct dem_error *err);
+int dem__part_finish(struct dem_output *o, const struct dem_output_run *r,
+                     struct dem_error *err);
 /* A write error on o->f, named. */
 int dem__part_check(struct dem_output *o, struct dem_error *err);
 

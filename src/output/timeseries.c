@@ -29,13 +29,6 @@ static int ts_sample(struct dem_output *o, const struct dem_output_run *r,
     return dem__part_check(o, err);
 }
 
-static int ts_finish(struct dem_output *o, const struct dem_output_run *r,
-                     struct dem_error *err)
-{
-    (void)r;
-    return dem__part_commit(o, err);
-}
-
 const struct dem_output_kind dem_output_timeseries = {
     .name = "timeseries",
     .files = files,
@@ -43,5 +36,5 @@ const struct dem_output_kind dem_output_timeseries = {
     .resume = ts_resume,
     .sample = ts_sample,
     .sync = dem__part_sync,
-    .finish = ts_finish,
+    .finish = dem__part_finish,
 };
