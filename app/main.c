@@ -160,8 +160,14 @@ static const char *const usage_bench =
     "The packing is relaxed once (not timed) and cached; only the loop is\n"
     "timed. The summary gives the time per phase (neighbours, forces with\n"
     "the kicks and drifts of chained steps, integration of the others,\n"
-    "walls), the coordination and the memory per particle;\n"
-    "the last line is particle_steps_per_second=<number>.\n";
+    "walls), the force pass in use, the coordination and the memory per\n"
+    "particle; the last line is particle_steps_per_second=<number>.\n"
+    "\n"
+    "The force pass is built twice, with and without the CPU's gather\n"
+    "instructions (slow on some CPUs, fast on others; same results bit for\n"
+    "bit). Every run times both now and then and uses the faster; the\n"
+    "environment variable DEMBOX_PASS=gathers|loads|auto forces one\n"
+    "(also for dembox run).\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";

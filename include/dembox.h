@@ -559,6 +559,8 @@ struct dem_bench_result {
                                   during the timed loop */
     struct dem_timers timers;  /* s; per phase of the timed loop */
     long nbuild;               /* neighbour-list builds in the timed loop */
+    char pass[160];            /* the force pass's compilation at the end
+                                  and its last timing trial */
     double pairs_per_particle; /* listed pairs / N at the end */
     double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N */
     double p_start, p_end;     /* Pa (2D: N/m); mean wall stress */

@@ -4,6 +4,7 @@
 
 #include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/rng.h"
 #include "measure/measure.h"
@@ -110,10 +111,16 @@ static void two_d_stays_in_plane(void **state)
 
 /* Positions and velocities by particle id after a frictional, damped run
  * with walls and re-ordering, on the given number of threads; the steps
- * chained (test_step) or one by one. */
-static void run_threads(int threads, int chained, double *out, int n_out)
+ * chained (test_step) or one by one; with the force pass pass (the
+ * environment variable DEMBOX_PASS; NULL: unset, chosen by timing). */
+static void run_threads(int threads, int chained, const char *pass,
+                        double *out, int n_out)
 {
     omp_set_num_threads(threads);
+    if (pass)
+        setenv("DEMBOX_PASS", pass, 1);
+    else
+        unsetenv("DEMBOX_PASS");
     struct dem_config c;
     test_config(&c, 3);
     c.contact.gamma_n = 0.05;
@@ -149,16 +156,17 @@ static void run_threads(int threads, int chained, double *out, int n_out)
     }
     dem_sim_destroy(&s);
     omp_set_num_threads(1);
+    unsetenv("DEMBOX_PASS");
 }
 
 /* Whether run_threads gives the same numbers bit for bit both ways. */
-static void assert_same_runs(int threads_a, int chained_a, int threads_b,
-                             int chained_b)
+static void assert_same_runs(int threads_a, int chained_a, const char *pass_a,
+                             int threads_b, int chained_b, const char *pass_b)
 {
     const int n = 6 * 512;
     double *a = calloc((size_t)n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
-    run_threads(threads_a, chained_a, a, n);
-    run_threads(threads_b, chained_b, b, n);
+    run_threads(threads_a, chained_a, pass_a, a, n);
+    run_threads(threads_b, chained_b, pass_b, b, n);
     assert_memory_equal(a, b, (size_t)n * sizeof *a);
     free(a);
     free(b);
@@ -169,7 +177,7 @@ static void assert_same_runs(int threads_a, int chained_a, int threads_b,
 static void threads_give_identical_results(void **state)
 {
     (void)state;
-    assert_same_runs(1, 1, 2, 1);
+    assert_same_runs(1, 1, NULL, 2, 1, NULL);
 }
 
 /* A chained step does the next step's half kick and drift in its force
@@ -178,7 +186,32 @@ static void threads_give_identical_results(void **state)
 static void chained_steps_give_identical_results(void **state)
 {
     (void)state;
-    assert_same_runs(1, 1, 1, 0);
+    assert_same_runs(1, 1, NULL, 1, 0, NULL);
+}
+
+/* The force pass compiled with and without hardware gathers computes the
+ * same operations (contact/pass.h): each alone, and both by turns as the
+ * timing trials run them (3000 steps: two trials), give the same run bit
+ * for bit. An unknown DEMBOX_PASS is refused. */
+static void force_passes_give_identical_results(void **state)
+{
+    (void)state;
+    assert_same_runs(1, 1, "gathers", 1, 1, NULL);
+#if DEM_PASS_LOADS
+    assert_same_runs(1, 1, "gathers", 1, 1, "loads");
+    assert_same_runs(2, 1, "loads", 1, 1, NULL);
+#endif
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_sim s;
+    test_sim(&s, &c, 1, 0.0, 0.1);
+    test_add(&s, 0.05, 0.05, 0.05, 0.01);
+    setenv("DEMBOX_PASS", "scatters", 1);
+    struct dem_error err = {0};
+    assert_int_equal(dem_sim_ready(&s, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "DEMBOX_PASS: 'scatters'"));
+    unsetenv("DEMBOX_PASS");
+    dem_sim_destroy(&s);
 }
 
 int main(void)
@@ -188,6 +221,7 @@ int main(void)
         cmocka_unit_test(two_d_stays_in_plane),
         cmocka_unit_test(threads_give_identical_results),
         cmocka_unit_test(chained_steps_give_identical_results),
+        cmocka_unit_test(force_passes_give_identical_results),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

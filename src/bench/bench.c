@@ -485,6 +485,7 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     r->cpu_seconds = cpu_seconds() - c0;
     r->timers = s.timers;
     r->nbuild = s.nbuild - nbuild0;
+    dem_sim_pass_report(&s, r->pass, sizeof r->pass);
     r->pairs_per_particle = (double)s.pairs.cur.n / (double)s.p.n;
     if (!rc) {
         sample_now(&s, &smp);
@@ -530,6 +531,7 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
             r->seconds > 0 && r->threads > 0
                 ? 100.0 * r->cpu_seconds / (r->seconds * r->threads)
                 : 0.0);
+    fprintf(f, "force pass: %s\n", r->pass);
     struct {
         const char *name;
         double t;

@@ -79,7 +79,9 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
     for (int i = 0; i < s->p.n; i++)
         rsum += s->p.r[i];
     s->skin = s->p.n ? 0.2 * rsum / s->p.n : 0.0;
-    int rc = dem_sim_rebuild(s, err);
+    int rc = dem_sim_pass_setup(s, err);
+    if (!rc)
+        rc = dem_sim_rebuild(s, err);
     if (rc)
         return rc;
     s->measure = 1;

@@ -15,6 +15,7 @@
 #include "wall/wall.h"
 
 #define DEM_MAX_WALLS 6
+#define DEM_MAX_PASSES 2 /* compilations of the force pass */
 
 /* Sums gathered by the force loop when measurement is requested. */
 struct dem_contact_sums {
@@ -28,6 +29,17 @@ struct dem_contact_sums {
     double max_overlap_ratio;   /* largest delta / radius */
     int max_overlap_i;          /* id of a particle of that contact */
     int max_overlap_j;          /* id of the other, -1 for a wall */
+};
+
+/* Which compilation of the force pass runs, and its timing trials
+ * (contact/forces.c). */
+struct dem_pass_choice {
+    int forced;  /* -1: chosen by timing, else DEMBOX_PASS's index */
+    int current; /* the variant in use */
+    int trial;   /* passes of the running trial left, 0: none */
+    long since;  /* time steps since the last trial */
+    double best[DEM_MAX_PASSES]; /* s; each variant's fastest pass in the
+                                    trial */
 };
 
 struct dem_sim {
@@ -58,6 +70,7 @@ struct dem_sim {
                     half kick and drift are done */
     int moved;   /* for drifted: whether the drift calls for a rebuild */
     struct dem_contact_sums sums;
+    struct dem_pass_choice pass; /* the force pass's compilation */
     int timing;               /* 1: accumulate timers */
     struct dem_timers timers; /* s; time per phase */
 };
@@ -95,6 +108,14 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err);
 
 /* Friction coefficients of particle-particle contacts from now on. */
 void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d);
+
+/* Choose how the force pass runs: by timing its compilations (see
+ * contact/pass.h), or as the environment variable DEMBOX_PASS says
+ * (auto, gathers, loads); an unknown name is an error. */
+int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err);
+/* The force pass's compilation in use and why, e.g. "loads (fastest
+ * pass: gathers 0.151 ms, loads 0.144 ms)" after a timing trial. */
+void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size);
 
 /* Recompute forces of the current state without moving anything
  * (fills s->sums when s->measure is set). The tangential springs take

@@ -1,0 +1,327 @@
+/* Contact forces: the composition of the kernels for every listed pair and
+ * particle-wall contact, in the fixed order normal law -> dashpot ->
+ * Coulomb limit -> tangential law -> torques.
+ *
+ * Conventions (SPEC §2): n = (r_i - r_j)/|r_i - r_j| points from j to i;
+ * overlap delta = a_i + a_j - |r_i - r_j|; relative velocity of the contact
+ * surfaces v_ij = v_i - v_j + a_i n x w_i + a_j n x w_j; ddelta/dt = -v_ij.n.
+ * The force on i is f = f_n n + f_t, on j it is -f; torques are
+ * l x f with the branch vectors l_i = -a_i n, l_j = +a_j n, i.e.
+ * -a_i (n x f_t) on i and -a_j (n x f_t) on j. A wall is a partner of
+ * infinite mass and radius whose surface moves only along its normal.
+ *
+ * A pass has three parts, each split over the threads in equal blocks
+ * of independent items, in one parallel region with one barrier before
+ * the third:
+ *  1. every listed pair: force and history, stored with the pair; one
+ *     loop without branches over the flat list, run in SIMD lanes;
+ *  2. every wall contact: force and history, stored with the contact;
+ *  3. every particle: its background damping, then the forces of its
+ *     pairs as i (its row), as j (its reverse row) and of its wall
+ *     contacts, each in list order; then the torques and, in a time step,
+ *     the closing half kick (and in a chained step the next half kick and
+ *     drift, see dem_sim_step).
+ * Every sum therefore runs in one fixed order, and the result is the same
+ * bit for bit whatever the number of threads. The loop bodies are written
+ * once as always-inline functions and instantiated per normal law of
+ * DEM_NORMAL_MODELS (a literal in each parallel region; the models'
+ * kernels are chosen in contact/models.h), so there is no function
+ * pointer and no configuration branch per contact. A wall contact runs
+ * the same model with the wall's parameters (dem_contact_wall_view).
+ */
+#include <math.h>
+#include <omp.h>
+
+#include "contact/models.h"
+#include "contact/pass.h"
+#include "contact/tangential.h"
+#include "core/parallel.h"
+
+/* the name of this compilation's entry point (contact/pass_loads.c
+ * compiles this file again under another) */
+#ifndef DEM_PASS_ENTRY
+#define DEM_PASS_ENTRY dem__pass_gathers
+#endif
+
+/* Contact k's history values used by law, read from the list (the others
+ * are 0 and never stored). */
+DEM_INLINE struct dem_history load_history(const int law, const struct pass *q,
+                                           int k)
+{
+    struct dem_history h;
+#define HIST_LOAD_(MODEL, name, unit, doc)                                     \
+    h.name = DEM_MODEL_USES(law, MODEL) ? q->name[k] : 0.0;
+    DEM_CONTACT_HISTORY(HIST_LOAD_)
+#undef HIST_LOAD_
+    return h;
+}
+
+/* Tangential force and history update of contact k, stored with it; with
+ * touch = 0 (its gap is open) the force is zero and the history is
+ * erased instead. h holds the history after the normal force; only the
+ * values law uses are stored. */
+DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
+                               int touch, struct dem_vec3 n,
+                               struct dem_vec3 vij, double fn, double fc,
+                               struct dem_history h, double dt,
+                               const struct dem_tangential *T)
+{
+    struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
+    int st = q->state[k] | DEM_CONTACT_ACTIVE;
+    const struct dem_vec3 ft =
+        dem_tangential_force(n, vij, fc, dt, T, &xi, &st);
+    h.xi_x = xi.x;
+    h.xi_y = xi.y;
+    h.xi_z = xi.z;
+#define HIST_STORE_(MODEL, name, unit, doc)                                    \
+    if (DEM_MODEL_USES(law, MODEL))                                            \
+        q->name[k] = touch ? h.name : 0.0;
+    DEM_CONTACT_HISTORY(HIST_STORE_)
+#undef HIST_STORE_
+    q->state[k] = touch ? st : 0;
+    struct dem_contact_force *o = &q->F[k];
+    o->f[0] = touch ? fn * n.x + ft.x : 0.0;
+    o->f[1] = touch ? fn * n.y + ft.y : 0.0;
+    o->f[2] = touch ? fn * n.z + ft.z : 0.0;
+    o->c[0] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
+    o->c[1] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
+    o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
+}
+
+/* Contact k is open: no force, no history. */
+DEM_INLINE void open_contact(const struct pass *q, int k)
+{
+#define HIST_ZERO_(MODEL, name, unit, doc) q->name[k] = 0.0;
+    DEM_CONTACT_HISTORY(HIST_ZERO_)
+#undef HIST_ZERO_
+    q->state[k] = 0;
+    struct dem_contact_force *o = &q->F[k];
+    o->f[0] = o->f[1] = o->f[2] = 0.0;
+    o->c[0] = o->c[1] = o->c[2] = 0.0;
+}
+
+/* Force and history update of pair k. With scalar = 0 (SIMD lanes) there
+ * is no branch: the pair computes the closed-contact force, and if its
+ * gap is open it gets a zero force and loses its history instead; scalar
+ * code (scalar = 1) skips an open pair at once. */
+DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
+                         int k, const struct dem_contact_params *cp, double dt,
+                         const struct dem_tangential *T)
+{
+    const struct pass q = *qp;
+    const int i = q.ci[k], j = q.cj[k];
+    const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
+                 dz = q.z[i] - q.z[j];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    const double ai = q.r[i], aj = q.r[j], R = ai + aj;
+    const int touch = d2 < R * R;
+    if (scalar && !touch) {
+        open_contact(&q, k);
+        return;
+    }
+    const double d = sqrt(d2);
+    const double id = 1.0 / d;
+    const struct dem_vec3 n = {dx * id, dy * id, dz * id};
+    /* a_i n x w_i + a_j n x w_j */
+    const double cwx = ai * q.wx[i] + aj * q.wx[j];
+    const double cwy = ai * q.wy[i] + aj * q.wy[j];
+    const double cwz = ai * q.wz[i] + aj * q.wz[j];
+    const struct dem_vec3 vij = {q.vx[i] - q.vx[j] + n.y * cwz - n.z * cwy,
+                                 q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
+                                 q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
+    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+    struct dem_history h = load_history(law, &q, k);
+    double fc;
+    const double fn =
+        dem_normal_force(law, cp, R - d, ddot, ai * aj / R, &h, &fc);
+    finish_contact(law, &q, k, touch, n, vij, fn, fc, h, dt, T);
+}
+
+/* Forces and history updates of pairs k0 <= k < k1, in SIMD lanes or as
+ * scalar code as the law's lanes column says (the luding law's branches
+ * (loading, un-/re-loading, adhesive re-mapping with a square root) all
+ * computed in every lane made it slower than scalar code with branches). */
+DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
+                           const struct dem_contact_params *cp, double dt)
+{
+    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    if (!dem_normal_simd(law)) {
+        for (int k = k0; k < k1; k++)
+            pair_one(law, 1, &q, k, cp, dt, &T);
+    } else {
+#pragma omp simd
+        for (int k = k0; k < k1; k++)
+            pair_one(law, 0, &q, k, cp, dt, &T);
+    }
+}
+
+/* Force and history update of wall contact k (no branch, as pair_one). */
+DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
+                         const struct dem_contact_params *cp, double dt,
+                         const struct dem_wall *walls,
+                         const struct dem_tangential *T)
+{
+    const struct pass q = *qp;
+    const int i = q.ci[k];
+    const struct dem_wall *W = &walls[q.cj[k]];
+    const int a = W->axis;
+    const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
+    const double pa = a == 0 ? q.x[i] : a == 1 ? q.y[i] : q.z[i];
+    const double ai = q.r[i];
+    const double delta = ai - sgn * (pa - W->pos);
+    const int touch = delta > 0.0;
+    const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
+                               a == 2 ? sgn : 0.0};
+    const double cwx = ai * q.wx[i], cwy = ai * q.wy[i], cwz = ai * q.wz[i];
+    /* the wall's surface moves along its normal at W->vel */
+    const struct dem_vec3 vij = {
+        q.vx[i] + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
+        q.vy[i] + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
+        q.vz[i] + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
+    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+    struct dem_history h = load_history(law, &q, k);
+    double fc;
+    const double fn = dem_normal_force(law, cp, delta, ddot, ai, &h, &fc);
+    finish_contact(law, qp, k, touch, n, vij, fn, fc, h, dt, T);
+}
+
+/* Wall contacts k0 <= k < k1, with the wall's parameters cp
+ * (dem_contact_wall_view), in SIMD lanes or not as pair_range. */
+DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
+                           const struct dem_contact_params *cp, double dt,
+                           const struct dem_wall *walls)
+{
+    const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    if (!dem_normal_simd(law)) {
+        for (int k = k0; k < k1; k++)
+            wall_one(law, &q, k, cp, dt, walls, &T);
+    } else {
+#pragma omp simd
+        for (int k = k0; k < k1; k++)
+            wall_one(law, &q, k, cp, dt, walls, &T);
+    }
+}
+
+/* Particles i0 <= i < i1: background damping plus the forces of the
+ * pairs as i (the particle's row), as j (its reverse row) and of the wall
+ * contacts; then the torques, and the half kick if asked for. With
+ * K.chain the particle then goes on into the next step: its half kick
+ * and drift (dem_particle_kick and _drift, as the first pass of a step in
+ * core/sim.c), and the force and torque are not stored (nothing reads
+ * them before they are computed again). Returns
+ * then whether a particle has moved more than half the skin since the
+ * last list build. K.on and K.chain are literals in each caller, so they
+ * cost no branch. */
+DEM_INLINE int particle_range(int i0, int i1, const struct dem_particles *P,
+                            const struct dem_pairs *pl, double gb, double gr,
+                            const struct kick K)
+{
+    int moved = 0;
+    const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
+    /* the kicks write these through P: no restrict */
+    const double *vx = P->vx, *vy = P->vy, *vz = P->vz;
+    const double *wx = P->wx, *wy = P->wy, *wz = P->wz;
+    const double *restrict r = P->r;
+    const double hg[3] = {K.h * K.g[0], K.h * K.g[1], K.h * K.g[2]};
+    double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
+    double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
+    const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
+    const struct dem_contact_force *restrict F = pl->f.v, *restrict WF =
+                                                              pl->wf.v;
+    for (int i = i0; i < i1; i++) {
+        const double a = r[i];
+        double fx = -gb * vx[i], fy = -gb * vy[i], fz = -gb * vz[i];
+        double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
+        for (int k = start[i]; k < start[i + 1]; k++) {
+            fx += F[k].f[0];
+            fy += F[k].f[1];
+            fz += F[k].f[2];
+            cx += F[k].c[0];
+            cy += F[k].c[1];
+            cz += F[k].c[2];
+        }
+        for (int q = rstart[i]; q < rstart[i + 1]; q++) {
+            const struct dem_contact_force *o = &F[rpair[q]];
+            fx -= o->f[0];
+            fy -= o->f[1];
+            fz -= o->f[2];
+            cx += o->c[0];
+            cy += o->c[1];
+            cz += o->c[2];
+        }
+        for (int k = wstart[i]; k < wstart[i + 1]; k++) {
+            fx += WF[k].f[0];
+            fy += WF[k].f[1];
+            fz += WF[k].f[2];
+            cx += WF[k].c[0];
+            cy += WF[k].c[1];
+            cz += WF[k].c[2];
+        }
+        const double g = gr * a * a;
+        const double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
+                     tz = -g * wz[i] - a * cz;
+        if (!K.chain) {
+            ofx[i] = fx;
+            ofy[i] = fy;
+            ofz[i] = fz;
+            otx[i] = tx;
+            oty[i] = ty;
+            otz[i] = tz;
+        }
+        if (K.on)
+            dem_particle_kick(P, i, K.h, hg, fx, fy, fz, tx, ty, tz);
+        if (K.chain) {
+            dem_particle_kick(P, i, K.h, hg, fx, fy, fz, tx, ty, tz);
+            moved |= dem_particle_drift(P, i, K.dt, K.lim);
+        }
+    }
+    return moved;
+}
+
+/* Thread t's share of a pass, in one parallel region: equal blocks of
+ * the pairs and of the wall contacts, then (once every contact force is
+ * stored) an equal block of the particles to sum, kick and move on. */
+DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
+                               const struct kick K, int t, int nt)
+{
+    pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
+               &c->cp, c->dt);
+    wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
+               &c->cpw, c->dt, c->walls);
+#pragma omp barrier
+    return particle_range(dem_block(c->n, t, nt), dem_block(c->n, t + 1, nt),
+                        c->P, c->pl, c->gb, c->gr, K);
+}
+
+/* One instance per normal law and kind of kick (literals), so that each
+ * outlined parallel region is compiled for them alone. */
+#define CONTACTS(LAW, ON, CHAIN)                                               \
+    do {                                                                       \
+        const struct kick k_ = {ON,   CHAIN, K.h,                              \
+                                K.dt, K.lim, {K.g[0], K.g[1], K.g[2]}};        \
+        _Pragma("omp parallel reduction(| : moved)")                           \
+        {                                                                      \
+            moved = contacts_thread(LAW, c, k_, omp_get_thread_num(),          \
+                                    omp_get_num_threads());                    \
+        }                                                                      \
+    } while (0)
+
+int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
+{
+    int moved = 0;
+    switch (c->cp.normal) {
+#define CONTACTS_OF_(TAG, name, lanes)                                         \
+    case DEM_NORMAL_##TAG:                                                     \
+        if (K.chain)                                                           \
+            CONTACTS(DEM_NORMAL_##TAG, 1, 1);                                  \
+        else if (K.on)                                                         \
+            CONTACTS(DEM_NORMAL_##TAG, 1, 0);                                  \
+        else                                                                   \
+            CONTACTS(DEM_NORMAL_##TAG, 0, 0);                                  \
+        break;
+        DEM_NORMAL_MODELS(CONTACTS_OF_)
+#undef CONTACTS_OF_
+    }
+    return moved;
+}
+

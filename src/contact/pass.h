@@ -1,0 +1,58 @@
+/* The force pass (contact/pass.c): what it reads and its entry points.
+ *
+ * The pass is compiled twice (CMakeLists.txt): once as the compiler
+ * likes it, which on CPUs with AVX2 or AVX-512 loads each SIMD lane's
+ * particle data with hardware gathers, and once with gathers switched
+ * off (each lane's values from scalar loads). Both compute the same
+ * operations in the same order, so their results are the same bit for
+ * bit; on some CPUs (Intel Skylake to Ice Lake with the Gather Data
+ * Sampling mitigation) gathers are several times slower, on others
+ * faster. contact/forces.c times both now and then and runs the faster.
+ */
+#ifndef DEM_CONTACT_PASS_H
+#define DEM_CONTACT_PASS_H
+
+#include "core/sim.h"
+
+/* The arrays one pass works on, read into locals once, so that the
+ * compiler need not reload an array pointer from its struct after a
+ * store. */
+struct pass {
+    const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
+    const int *ci, *cj;
+#define HIST_ARRAY_(MODEL, name, unit, doc) double *name;
+    DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
+#undef HIST_ARRAY_
+    int *state;
+    struct dem_contact_force *F; /* stored forces, at each entry's index */
+};
+
+/* The closing half kick of a step (h = dt/2, g gravity), or none. */
+struct kick {
+    int on;                  /* the closing half kick */
+    int chain;               /* then also the next step's half kick and drift */
+    double h, dt, lim, g[3]; /* s, s, m^2 (half the skin squared), m/s^2 */
+};
+
+/* What one force pass reads, gathered once. */
+struct contacts {
+    struct pass q, wq;                 /* pairs, wall contacts */
+    struct dem_contact_params cp, cpw; /* pairs, wall contacts */
+    struct dem_wall walls[DEM_MAX_WALLS];
+    const struct dem_particles *P;
+    const struct dem_pairs *pl;
+    double dt;     /* s; the springs' time step, 0 for a re-evaluation */
+    double gb, gr; /* background damping, kg/s */
+    int np, nw, n; /* pairs, wall contacts, particles */
+};
+
+/* One force pass: forces and history of every pair and wall contact,
+ * then every particle's sums (and kicks, per K). Returns whether a
+ * particle has moved more than half the skin (chained steps), else 0. */
+int dem__pass_gathers(const struct contacts *c, struct kick K);
+#if DEM_PASS_LOADS
+/* The same code without hardware gathers (contact/pass_loads.c). */
+int dem__pass_loads(const struct contacts *c, struct kick K);
+#endif
+
+#endif
