@@ -113,8 +113,8 @@ static void two_d_stays_in_plane(void **state)
  * with walls and re-ordering, on the given number of threads; the steps
  * chained (test_step) or one by one; with the force pass pass (the
  * environment variable DEMBOX_PASS; NULL: unset, chosen by timing). */
-static void run_threads(int threads, int chained, const char *pass,
-                        double *out, int n_out)
+static void run_threads(int threads, int chained, const char *pass, double *out,
+                        int n_out)
 {
     omp_set_num_threads(threads);
     if (pass)

@@ -174,9 +174,9 @@ void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size)
         snprintf(buf + len, size - (size_t)len, " (the only one built)");
     else
         for (int v = 0; v < NPASS && len > 0 && (size_t)len < size; v++)
-            len += snprintf(buf + len, size - (size_t)len,
-                            "%s%s %.4g ms", v ? ", " : " (fastest pass: ",
-                            passes[v].name, 1e3 * C->best[v]);
+            len += snprintf(buf + len, size - (size_t)len, "%s%s %.4g ms",
+                            v ? ", " : " (fastest pass: ", passes[v].name,
+                            1e3 * C->best[v]);
     if (C->forced < 0 && NPASS > 1 && len > 0 && (size_t)len < size)
         snprintf(buf + len, size - (size_t)len, ")");
 }

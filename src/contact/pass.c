@@ -213,8 +213,8 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
  * last list build. K.on and K.chain are literals in each caller, so they
  * cost no branch. */
 DEM_INLINE int particle_range(int i0, int i1, const struct dem_particles *P,
-                            const struct dem_pairs *pl, double gb, double gr,
-                            const struct kick K)
+                              const struct dem_pairs *pl, double gb, double gr,
+                              const struct kick K)
 {
     int moved = 0;
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
@@ -290,7 +290,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
     return particle_range(dem_block(c->n, t, nt), dem_block(c->n, t + 1, nt),
-                        c->P, c->pl, c->gb, c->gr, K);
+                          c->P, c->pl, c->gb, c->gr, K);
 }
 
 /* One instance per normal law and kind of kick (literals), so that each
@@ -324,4 +324,3 @@ int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
     }
     return moved;
 }
-

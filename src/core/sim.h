@@ -71,8 +71,8 @@ struct dem_sim {
     int moved;   /* for drifted: whether the drift calls for a rebuild */
     struct dem_contact_sums sums;
     struct dem_pass_choice pass; /* the force pass's compilation */
-    int timing;               /* 1: accumulate timers */
-    struct dem_timers timers; /* s; time per phase */
+    int timing;                  /* 1: accumulate timers */
+    struct dem_timers timers;    /* s; time per phase */
 };
 
 /* Build the simulation from a validated config: particles placed, walls
