@@ -223,6 +223,29 @@ static void on_signal(int sig)
     stop_signal = sig;
 }
 
+/* SIGINT and SIGTERM turned into stop_signal, and back. */
+struct signals {
+    struct sigaction sint, sterm;
+};
+
+static void catch_signals(struct signals *old)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &sa, &old->sint);
+    sigaction(SIGTERM, &sa, &old->sterm);
+    stop_signal = 0;
+}
+
+static void restore_signals(const struct signals *old)
+{
+    sigaction(SIGINT, &old->sint, 0);
+    sigaction(SIGTERM, &old->sterm, 0);
+}
+
 /* Whether a progress line is on the terminal (it has no newline yet). */
 static int progress_shown;
 
@@ -260,20 +283,13 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
 {
     if (!quiet && isatty(STDERR_FILENO))
         opt->progress = cli_progress;
-    struct sigaction sa, old_int, old_term;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;
-    sigaction(SIGINT, &sa, &old_int);
-    sigaction(SIGTERM, &sa, &old_term);
-    stop_signal = 0;
+    struct signals old;
+    catch_signals(&old);
     opt->stop = &stop_signal;
     struct dem_error err = {0, "", cli_warning, NULL};
     int rc =
         resume ? dem_run_resume(resume, opt, &err) : dem_run(cfg, opt, &err);
-    sigaction(SIGINT, &old_int, 0);
-    sigaction(SIGTERM, &old_term, 0);
+    restore_signals(&old);
     const char *dir = resume ? resume : opt->outdir;
     if (rc == DEM_EINTERRUPTED) {
         fprintf(stderr, "dembox: %s\n", err.msg);
@@ -451,8 +467,16 @@ static int cmd_sweep(int argc, char **argv)
         dem_sweep_grid_free(&grid);
         return rc;
     }
-    if (!rc && dem_sweep_run(&grid, &o, &rep, &err))
-        rc = fail(err.msg);
+    if (!rc) {
+        struct signals old;
+        catch_signals(&old);
+        o.stop = &stop_signal;
+        if (dem_sweep_run(&grid, &o, &rep, &err))
+            rc = fail(err.msg);
+        restore_signals(&old);
+        if (stop_signal)
+            rc = 128 + (int)stop_signal;
+    }
     if (!rc && !o.quiet)
         fprintf(stderr,
                 "dembox: sweep: %ld runs (%ld run now, %ld skipped as "

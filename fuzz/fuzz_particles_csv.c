@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "dembox.h"
-#include "io/particles_csv.h"
+#include "formats/particles_csv.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

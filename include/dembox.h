@@ -370,8 +370,9 @@ const struct dem_example *dem_example_find(const char *name);
  * value of every parameter; the last parameter varies fastest.
  *
  * Running (runner.c): every point is checked by the config parser before
- * anything runs; then each point runs as `dembox run` in a child process
- * (up to `jobs` at once) into DIR/runs/NAME. A point whose folder already
+ * anything runs; then each point runs as `dembox run` would run it (run,
+ * analysis, pictures) in a thread of this process (up to `jobs` at once)
+ * into DIR/runs/NAME, its warnings and failure in DIR/runs/NAME/run.log. A point whose folder already
  * holds a finished run of the same config is skipped, so a sweep can be
  * restarted; an unfinished one is resumed from its checkpoint when it has
  * one, else rerun.
@@ -443,8 +444,11 @@ struct dem_sweep_options {
     int jobs;        /* runs at once (>= 1) */
     int threads;     /* OpenMP threads per run (>= 1) */
     int quiet;       /* 1: no progress lines on stderr */
-    const char *exe; /* dembox binary; NULL = /proc/self/exe */
-    long max_steps;  /* > 0: passed to every run as --max-steps */
+    long max_steps;  /* > 0: every run's dem_run_options.max_steps */
+    volatile sig_atomic_t *stop; /* may be NULL; when *stop becomes
+                           non-zero the runs under way save checkpoints
+                           and stop, no new run starts, and
+                           dem_sweep_run returns DEM_EINTERRUPTED */
 };
 
 struct dem_sweep_report {

@@ -8,7 +8,7 @@
 #include "testutil.h"
 
 #include "analysis/analysis.h"
-#include "io/json.h"
+#include "formats/json.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"
 

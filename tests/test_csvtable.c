@@ -1,4 +1,4 @@
-/* Reading numeric CSV files by column name (io/csvtable), the one parser
+/* Reading numeric CSV files by column name (formats/csvtable), the one parser
  * behind the plots and the analysis: columns found by name in any order,
  * comments, blank lines, CRLF and blanks around fields tolerated, and
  * errors that name the file, the line and the column. */
@@ -6,7 +6,7 @@
 
 #include "testutil.h"
 
-#include "io/csvtable.h"
+#include "formats/csvtable.h"
 
 #include "tmpdir.h"
 

@@ -15,7 +15,7 @@
 #include <cmocka.h>
 
 #include "core/particles.h"
-#include "io/lammps_data.h"
+#include "formats/lammps_data.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

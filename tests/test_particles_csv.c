@@ -14,7 +14,7 @@
 
 #include "core/particles.h"
 #include "core/rng.h"
-#include "io/particles_csv.h"
+#include "formats/particles_csv.h"
 
 #include "tmpdir.h"
 

@@ -15,7 +15,7 @@
 #include "core/particles.h"
 #include "core/placement.h"
 #include "core/rng.h"
-#include "io/particles_csv.h"
+#include "formats/particles_csv.h"
 
 /* The config defaults of SPEC §8, filled by hand (the parser lives in
  * another module). */

@@ -1,4 +1,4 @@
-/* Plots of a run folder (io/plot): every script, data file and picture
+/* Plots of a run folder (plot/): every script, data file and picture
  * appears, the loading stage is found from the data, and broken input
  * gives errors that name the file or the column. The timeseries is
  * written with the engine's own header and row writers, so the test

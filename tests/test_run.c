@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "contact/models.h"
-#include "io/csvtable.h"
+#include "formats/csvtable.h"
 
 static char tmpdir[256];
 

@@ -10,8 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "formats/jsonread.h"
 #include "io/fsutil.h"
-#include "io/jsonread.h"
 
 #define DEG (180.0 / M_PI)
 
@@ -127,6 +127,24 @@ static void bad_param_is_an_error_naming_it(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* 1 when both files exist and hold the same bytes. */
+static int same_file(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb;
+    while (same) {
+        const int ca = fgetc(fa), cb = fgetc(fb);
+        same = ca == cb;
+        if (ca == EOF || cb == EOF)
+            break;
+    }
+    if (fa)
+        fclose(fa);
+    if (fb)
+        fclose(fb);
+    return same;
+}
+
 static int count_entries(const char *dir)
 {
     char cmd[1200];
@@ -151,8 +169,12 @@ static void bad_grid_point_is_refused_before_running(void **state)
     memset(&g, 0, sizeof g);
     add(&g, "stages.1.pressure=250,500");
     add(&g, "contact.mu=0.3,-1");
-    struct dem_sweep_options o = {
-        cfg, out, NULL, 0, 2, 1, 1, getenv("DEMBOX_BIN"), 200};
+    struct dem_sweep_options o = {.target = cfg,
+                                  .outdir = out,
+                                  .jobs = 2,
+                                  .threads = 1,
+                                  .quiet = 1,
+                                  .max_steps = 200};
     struct dem_sweep_report rep;
     struct dem_error err = {0};
     assert_int_equal(dem_sweep_run(&g, &o, &rep, &err), DEM_ECONFIG);
@@ -219,7 +241,8 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
         fake_run(dir, cfg, set, summary);
     }
     free(names);
-    struct dem_sweep_options o = {cfg, out, NULL, 0, 1, 1, 1, NULL, 0};
+    struct dem_sweep_options o = {
+        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
     struct dem_error err = {0};
     if (dem_sweep_collect(&g, &o, &err))
         fail_msg("%s", err.msg);
@@ -305,7 +328,8 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
         fake_run(dir, cfg, set[0], summary);
     }
     free(names);
-    struct dem_sweep_options o = {cfg, out, NULL, 0, 1, 1, 1, NULL, 0};
+    struct dem_sweep_options o = {
+        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
     struct dem_error err = {0};
     if (dem_sweep_collect(&g, &o, &err))
         fail_msg("%s", err.msg);
@@ -367,11 +391,6 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
 static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
 {
     (void)state;
-    const char *exe = getenv("DEMBOX_BIN");
-    if (!exe) {
-        print_message("DEMBOX_BIN not set (run through ctest); skipped\n");
-        skip();
-    }
     char cfg[512], out[512], path[1024];
     tiny_config(cfg, sizeof cfg);
     snprintf(out, sizeof out, "%s/real", tmpdir);
@@ -381,7 +400,14 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     /* a short isotropic stage, so that 1000 steps reach the compression */
     const char *const sets[] = {"stages.0.max_time=2e-5",
                                 "output.interval=5e-6"};
-    struct dem_sweep_options o = {cfg, out, sets, 2, 2, 1, 1, exe, 1000};
+    struct dem_sweep_options o = {.target = cfg,
+                                  .outdir = out,
+                                  .sets = sets,
+                                  .nsets = 2,
+                                  .jobs = 2,
+                                  .threads = 1,
+                                  .quiet = 1,
+                                  .max_steps = 1000};
     struct dem_sweep_report rep;
     struct dem_error err = {0};
     if (dem_sweep_run(&g, &o, &rep, &err))
@@ -439,6 +465,41 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     assert_true(rows > 3 * 10);
     snprintf(path, sizeof path, "%s/plots/loading_curves.gp", out);
     assert_int_equal(access(path, F_OK), 0);
+
+    /* each run, made in one of two threads beside another run, is the
+     * run dem_run makes alone, byte for byte */
+    {
+        struct dem_config c;
+        const char *sets1[] = {sets[0], sets[1], "stages.0.pressure=500",
+                               "stages.1.pressure=500"};
+        if (dem_config_load_file(&c, cfg, sets1, 4, &err))
+            fail_msg("%s", err.msg);
+        char alone[600];
+        snprintf(alone, sizeof alone, "%s/alone", tmpdir);
+        struct dem_run_options ro = {
+            .outdir = alone, .threads = 1, .max_steps = 1000};
+        if (dem_run(&c, &ro, &err))
+            fail_msg("%s", err.msg);
+        char a[1200], b[1200];
+        snprintf(a, sizeof a, "%s/timeseries.csv", alone);
+        snprintf(b, sizeof b,
+                 "%s/runs/stages.0.pressure=500_stages.1.pressure=500/"
+                 "timeseries.csv",
+                 out);
+        assert_true(same_file(a, b));
+    }
+
+    /* a stop asked for: no run starts, no sweep.json is written */
+    volatile sig_atomic_t stop = 1;
+    char stopped[600];
+    snprintf(stopped, sizeof stopped, "%s/stopped", tmpdir);
+    struct dem_sweep_options os = o;
+    os.outdir = stopped;
+    os.stop = &stop;
+    assert_int_equal(dem_sweep_run(&g, &os, &rep, &err), DEM_EINTERRUPTED);
+    assert_int_equal(rep.ran, 0);
+    snprintf(path, sizeof path, "%s/sweep.json", stopped);
+    assert_true(access(path, F_OK) != 0);
 
     /* the restart finds every run finished */
     if (dem_sweep_run(&g, &o, &rep, &err))

@@ -14,7 +14,7 @@
 #include <cmocka.h>
 
 #include "core/particles.h"
-#include "io/vtu.h"
+#include "formats/vtu.h"
 
 #include "tmpdir.h"
 

@@ -14,9 +14,9 @@
 #include <unistd.h>
 
 #include "analysis/analysis.h"
-#include "io/csvtable.h"
+#include "formats/csvtable.h"
 #include "io/fsutil.h"
-#include "io/json.h"
+#include "formats/json.h"
 #include "io/outfile.h"
 #include "protocol/stage.h"
 

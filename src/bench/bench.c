@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "io/fsutil.h"
-#include "io/lammps_data.h"
+#include "formats/lammps_data.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"
 

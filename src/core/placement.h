@@ -22,7 +22,7 @@
  * hi receive the initial box (m). All radii are drawn from rng first, in
  * particle order, then the positions, so one seed gives the same radii for
  * every placement. With particles.placement = "file" the particles are
- * given, already read and checked against box.size (io/particles_csv.h,
+ * given, already read and checked against box.size (formats/particles_csv.h,
  * dem_particles_load); p takes them over and given is left empty. In 2D
  * every z is 0 and the box is [-r_max, r_max] in z. On error p is left
  * empty and err names the config key at fault. */

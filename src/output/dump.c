@@ -2,7 +2,7 @@
  * output.dump_interval of simulated time, when that is > 0. */
 #include <errno.h>
 
-#include "io/dump.h"
+#include "formats/dump.h"
 #include "output/output.h"
 
 static const char *const files[] = {"dump.lammpstrj", "dump.lammpstrj.part",

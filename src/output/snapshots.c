@@ -4,7 +4,7 @@
 #include <stdlib.h>
 
 #include "io/fsutil.h"
-#include "io/vtu.h"
+#include "formats/vtu.h"
 #include "output/output.h"
 
 #define MAX_SNAPSHOTS 100000

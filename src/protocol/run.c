@@ -27,7 +27,7 @@
 #include "core/sim.h"
 #include "io/checkpoint.h"
 #include "io/fsutil.h"
-#include "io/particles_csv.h"
+#include "formats/particles_csv.h"
 #include "measure/measure.h"
 #include "output/output.h"
 #include "protocol/stage.h"

@@ -14,8 +14,8 @@
 #include <string.h>
 
 #include "io/fsutil.h"
-#include "io/json.h"
-#include "io/jsonread.h"
+#include "formats/json.h"
+#include "formats/jsonread.h"
 #include "io/outfile.h"
 #include "sweep/sweep_internal.h"
 

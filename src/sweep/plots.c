@@ -1,6 +1,6 @@
 /* The pictures of a sweep (DIR/plots/, docs/sweep.md): like the per-run
  * plots, every picture is NAME.dat + NAME.gp written here and NAME.png
- * drawn by gnuplot (io/plot_gnuplot.c), and a picture exists only when
+ * drawn by gnuplot (plot/gnuplot.c), and a picture exists only when
  * the sweep varies what it shows.
  */
 #include "dembox.h"
@@ -9,10 +9,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/csvtable.h"
+#include "formats/csvtable.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"
-#include "io/plot_internal.h"
+#include "plot/plot.h"
 #include "sweep/sweep_internal.h"
 
 #define DEG (180.0 / M_PI)

@@ -1,22 +1,23 @@
 /* Running the points of a sweep: check, skip what is finished, run the
- * rest as child processes, collect.
+ * rest, collect.
  *
- * Each run is the dembox binary itself (`dembox run TARGET -o RUNDIR
- * --threads T --quiet --set ...`) started with fork and exec, its output
- * going to RUNDIR/run.log. Separate processes keep the runs independent
- * (a crash or an unstable run ends one child, not the sweep) and let
- * OpenMP start fresh in each, which it cannot after a fork of a process
- * that already used it.
+ * Each run is what `dembox run` does (dem_run or dem_run_resume, then
+ * dem_analyze and dem_plot_run), in one of o->jobs threads of this
+ * process, each run with its own OpenMP threads; its warnings and its
+ * failure go to RUNDIR/run.log. The library has no global state, so the
+ * runs are independent; a failed run ends with its status and the others
+ * go on. (Child processes forked from this one could not use OpenMP if
+ * the caller had used it before: GNU libgomp's thread pool does not
+ * survive a fork.)
  */
 #include "dembox.h"
 #include <errno.h>
-#include <signal.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -153,20 +154,12 @@ static int finished_same(const struct dem_sweep_grid *g,
     return same;
 }
 
-/* Whether an unfinished run can be resumed: `dembox run --resume RUNDIR`
- * exists in builds that write RUNDIR/checkpoint.bin, so the file's
- * presence is the test. A resume that fails is followed by a rerun. */
+/* Whether an unfinished run can be resumed (dem_run_resume): it has a
+ * checkpoint. A resume that fails is followed by a rerun. */
 static int can_resume(const char *rundir)
 {
     return exists(rundir, "checkpoint.bin");
 }
-
-struct job {
-    pid_t pid; /* 0: not running */
-    long point;
-    int resume;     /* 1: this attempt resumes a checkpoint */
-    double started; /* s, monotonic clock */
-};
 
 static double now(void)
 {
@@ -175,100 +168,155 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* fork and exec one run; its stdout and stderr go to rundir/run.log. */
-static pid_t start(const struct dem_sweep_grid *g,
-                   const struct dem_sweep_options *o, long i,
-                   const char *rundir, int resume, struct dem_error *err)
+/* A run's warnings, one line each, to its run.log. */
+static void log_warning(const char *line, void *user)
 {
-    char sets[MAX_POINT_SETS][SET_LEN], threads[32], steps[32];
-    const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
-    const char *argv[16 + 2 * (MAX_USER_SETS + MAX_POINT_SETS)];
-    int a = 0;
-    const char *exe = o->exe ? o->exe : "/proc/self/exe";
-    snprintf(threads, sizeof threads, "%d", o->threads > 0 ? o->threads : 1);
-    snprintf(steps, sizeof steps, "%ld", o->max_steps);
-    argv[a++] = "dembox";
-    argv[a++] = "run";
-    if (resume) {
-        argv[a++] = "--resume";
-        argv[a++] = rundir;
-        argv[a++] = "--quiet";
-    } else {
-        argv[a++] = o->target;
-        argv[a++] = "-o";
-        argv[a++] = rundir;
-        argv[a++] = "--threads";
-        argv[a++] = threads;
-        argv[a++] = "--quiet";
-        if (o->max_steps > 0) {
-            argv[a++] = "--max-steps";
-            argv[a++] = steps;
-        }
-        for (int k = 0; k < o->nsets && k < MAX_USER_SETS; k++) {
-            argv[a++] = "--set";
-            argv[a++] = o->sets[k];
-        }
-        for (int k = 0; k < ns; k++) {
-            argv[a++] = "--set";
-            argv[a++] = sets[k];
-        }
-    }
-    argv[a] = NULL;
+    fprintf((FILE *)user, "dembox: warning: %s\n", line);
+    fflush((FILE *)user);
+}
+
+/* Point i in rundir, as `dembox run` would do it: the run (or its resume
+ * from the checkpoint), the analysis, the pictures; warnings and the
+ * failure to rundir/run.log. Returns the status; err gets the failure. */
+static int run_point(const struct dem_sweep_grid *g,
+                     const struct dem_sweep_options *o, long i,
+                     const char *rundir, int resume, struct dem_error *err)
+{
     char log[DEM_PATH_MAX];
     int rc = dem_mkdir_p(rundir, err);
     if (!rc)
         rc = dem_path_join(log, sizeof log, rundir, "run.log", err);
     if (rc)
-        return -1;
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0) {
-        dem_error_set(err, DEM_EIO, "sweep: cannot start a run: %s",
-                      strerror(errno));
-        return -1;
-    }
-    if (pid == 0) {
-        FILE *f = fopen(log, "w");
-        if (f) {
-            dup2(fileno(f), STDOUT_FILENO);
-            dup2(fileno(f), STDERR_FILENO);
-        }
-        /* a resumed run takes its threads from the environment */
-        setenv("OMP_NUM_THREADS", threads, 1);
-        execv(exe, (char *const *)argv);
-        fprintf(stderr, "dembox: sweep: cannot execute %s: %s\n", exe,
-                strerror(errno));
-        _exit(127);
-    }
-    return pid;
-}
-
-/* The last non-empty line of rundir/run.log, for the failure message. */
-static void last_log_line(const char *rundir, char *out, size_t n)
-{
-    char path[DEM_PATH_MAX], line[1024];
-    out[0] = '\0';
-    if (dem_path_join(path, sizeof path, rundir, "run.log", NULL))
-        return;
-    FILE *f = fopen(path, "r");
+        return rc;
+    FILE *f = fopen(log, "w");
     if (!f)
-        return;
-    while (fgets(line, sizeof line, f)) {
-        line[strcspn(line, "\r\n")] = '\0';
-        if (line[0])
-            snprintf(out, n, "%.500s", line);
+        return dem_error_set(err, DEM_EIO, "%s: cannot write", log);
+    struct dem_error e = {0, "", log_warning, f};
+    struct dem_run_options opt = {
+        .outdir = rundir,
+        .threads = o->threads > 0 ? o->threads : 1,
+        .max_steps = o->max_steps,
+        .stop = o->stop,
+    };
+    if (resume) {
+        rc = dem_run_resume(rundir, &opt, &e);
+    } else {
+        char sets[MAX_POINT_SETS][SET_LEN];
+        const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
+        struct dem_config *c = malloc(sizeof *c);
+        rc = c ? parse_with(o, sets, ns, c, &e)
+               : dem_error_set(&e, DEM_ENOMEM, "out of memory");
+        if (!rc)
+            rc = dem_run(c, &opt, &e);
+        free(c);
+    }
+    if (!rc)
+        rc = dem_analyze(rundir, &e);
+    if (!rc)
+        rc = dem_plot_run(rundir, &e);
+    if (rc) {
+        fprintf(f, "dembox: %s\n", e.msg);
+        dem_error_set(err, rc, "%s", e.msg);
     }
     fclose(f);
+    return rc;
 }
 
-static void describe_status(int status, char *out, size_t n)
+/* What the workers of run_points share; lock guards every field below
+ * it. */
+struct pool {
+    const struct dem_sweep_grid *g;
+    const struct dem_sweep_options *o;
+    const char *runs;
+    run_name *names;
+    pthread_mutex_t lock;
+    char *todo;         /* points still to run */
+    char *resume_tried; /* points whose checkpoint was tried */
+    long next;          /* no point before this one is to do */
+    long total, done;
+    struct dem_sweep_report *rep;
+    int rc; /* an error of the sweep itself (not of a run) */
+    struct dem_error err;
+};
+
+/* The next point to run, or -1 (none left, a stop was asked for, or the
+ * sweep failed); under p->lock. */
+static long take_point(struct pool *p, int *resume, char *rundir)
 {
-    if (WIFEXITED(status))
-        snprintf(out, n, "exit status %d", WEXITSTATUS(status));
-    else if (WIFSIGNALED(status))
-        snprintf(out, n, "killed by signal %d", WTERMSIG(status));
-    else
-        snprintf(out, n, "status %d", status);
+    if (p->rc || (p->o->stop && *p->o->stop))
+        return -1;
+    const long n = dem_sweep_grid_size(p->g);
+    while (p->next < n && !p->todo[p->next])
+        p->next++;
+    if (p->next == n)
+        return -1;
+    const long i = p->next;
+    p->rc = dem_path_join(rundir, DEM_PATH_MAX, p->runs, p->names[i], &p->err);
+    if (p->rc)
+        return -1;
+    *resume = !p->resume_tried[i] && can_resume(rundir);
+    p->resume_tried[i] |= (char)*resume;
+    p->todo[i] = 0;
+    if (!p->o->quiet)
+        fprintf(stderr, "dembox: sweep: %s %s\n",
+                *resume ? "resuming" : "started", p->names[i]);
+    return i;
+}
+
+/* After point i ran; under p->lock. */
+static void point_done(struct pool *p, long i, int resume, const char *rundir,
+                       int rc, const char *msg, double seconds)
+{
+    const int ok = rc == DEM_OK && dem_sweep_run_finished(rundir);
+    if (rc == DEM_EINTERRUPTED && p->o->stop && *p->o->stop)
+        return; /* stopped with a checkpoint: neither done nor failed */
+    if (!ok && resume) {
+        /* the resume did not work: run the point again from the start */
+        if (!p->o->quiet)
+            fprintf(stderr,
+                    "dembox: sweep: resuming %s failed (%s), running it "
+                    "again\n",
+                    p->names[i], msg);
+        p->todo[i] = 1;
+        if (i < p->next)
+            p->next = i;
+        return;
+    }
+    p->done++;
+    p->rep->ran++;
+    p->rep->resumed += resume;
+    if (ok) {
+        if (!p->o->quiet)
+            fprintf(stderr, "dembox: sweep: [%ld/%ld] %s finished (%.1f s)\n",
+                    p->done, p->total, p->names[i], seconds);
+    } else {
+        p->rep->failed++;
+        fprintf(stderr,
+                "dembox: sweep: [%ld/%ld] %s failed: %s; see %s/run.log\n",
+                p->done, p->total, p->names[i],
+                msg[0] ? msg : "no finished outputs", rundir);
+    }
+}
+
+static void *worker(void *arg)
+{
+    struct pool *p = arg;
+    for (;;) {
+        char rundir[DEM_PATH_MAX];
+        int resume = 0;
+        pthread_mutex_lock(&p->lock);
+        const long i = take_point(p, &resume, rundir);
+        pthread_mutex_unlock(&p->lock);
+        if (i < 0)
+            break;
+        const double t0 = now();
+        struct dem_error e = {0};
+        const int rc = run_point(p->g, p->o, i, rundir, resume, &e);
+        pthread_mutex_lock(&p->lock);
+        point_done(p, i, resume, rundir, rc, e.msg, now() - t0);
+        pthread_mutex_unlock(&p->lock);
+    }
+    return NULL;
 }
 
 /* Write DIR/runs/index: one line per point, "NAME<TAB>KEY=VALUE ...". */
@@ -296,114 +344,51 @@ static int write_index(const struct dem_sweep_grid *g, const char *runs,
     return DEM_OK;
 }
 
-/* Run the points flagged in todo[], at most o->jobs at once. */
+/* Run the points flagged in todo[], at most o->jobs at once: each job is
+ * a thread of this process that takes the next point and runs it with its
+ * own OpenMP threads (the library keeps no global state: the runs are as
+ * independent as separate processes, and their results the same bit for
+ * bit). */
 static int run_points(const struct dem_sweep_grid *g,
                       const struct dem_sweep_options *o, const char *runs,
                       run_name *names, char *todo, struct dem_sweep_report *rep,
                       struct dem_error *err)
 {
     const long n = dem_sweep_grid_size(g);
-    const int jobs = o->jobs > 0 ? o->jobs : 1;
-    struct job *job = calloc((size_t)jobs, sizeof *job);
-    char *resume_tried = calloc((size_t)n, 1);
-    if (!job || !resume_tried) {
-        free(job);
-        free(resume_tried);
+    int jobs = o->jobs > 0 ? o->jobs : 1;
+    struct pool p = {
+        .g = g, .o = o, .runs = runs, .names = names, .todo = todo, .rep = rep};
+    p.resume_tried = calloc((size_t)n, 1);
+    pthread_t *tid = calloc((size_t)jobs, sizeof *tid);
+    if (!p.resume_tried || !tid) {
+        free(p.resume_tried);
+        free(tid);
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
     }
-    long next = 0, total = 0, done = 0;
     for (long i = 0; i < n; i++)
-        total += todo[i];
-    int running = 0, rc = DEM_OK;
-    for (;;) {
-        /* fill the free slots */
-        while (!rc && running < jobs) {
-            while (next < n && !todo[next])
-                next++;
-            if (next == n)
-                break;
-            char rundir[DEM_PATH_MAX];
-            rc = dem_path_join(rundir, sizeof rundir, runs, names[next], err);
-            if (rc)
-                break;
-            const int resume = !resume_tried[next] && can_resume(rundir);
-            resume_tried[next] |= resume;
-            pid_t pid = start(g, o, next, rundir, resume, err);
-            if (pid < 0) {
-                rc = err->code;
-                break;
-            }
-            int s = 0;
-            while (job[s].pid)
-                s++;
-            job[s] = (struct job){pid, next, resume, now()};
-            todo[next] = 0;
-            running++;
-            if (!o->quiet)
-                fprintf(stderr, "dembox: sweep: %s %s\n",
-                        resume ? "resuming" : "started", names[next]);
-        }
-        if (running == 0)
+        p.total += todo[i];
+    pthread_mutex_init(&p.lock, NULL);
+    int started = 0;
+    for (; started < jobs; started++)
+        if (pthread_create(&tid[started], NULL, worker, &p))
             break;
-        int status;
-        pid_t pid = waitpid(-1, &status, 0);
-        if (pid < 0) {
-            if (errno == EINTR)
-                continue;
-            rc = dem_error_set(err, DEM_EINTERNAL, "sweep: waitpid: %s",
-                               strerror(errno));
-            break;
-        }
-        int s = 0;
-        while (s < jobs && job[s].pid != pid)
-            s++;
-        if (s == jobs)
-            continue; /* not one of ours */
-        const long i = job[s].point;
-        char rundir[DEM_PATH_MAX];
-        if (dem_path_join(rundir, sizeof rundir, runs, names[i], NULL))
-            rundir[0] = '\0';
-        running--;
-        job[s].pid = 0;
-        const int ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-                       dem_sweep_run_finished(rundir);
-        if (!ok && job[s].resume) {
-            /* the resume did not work: run the point again from the start */
-            if (!o->quiet)
-                fprintf(stderr,
-                        "dembox: sweep: resuming %s failed, running "
-                        "it again\n",
-                        names[i]);
-            todo[i] = 1;
-            if (i < next)
-                next = i;
-            continue;
-        }
-        done++;
-        rep->ran++;
-        rep->resumed += job[s].resume;
-        if (ok) {
-            if (!o->quiet)
-                fprintf(stderr,
-                        "dembox: sweep: [%ld/%ld] %s finished (%.1f s)\n", done,
-                        total, names[i], now() - job[s].started);
-        } else {
-            char how[64], last[512];
-            describe_status(status, how, sizeof how);
-            last_log_line(rundir, last, sizeof last);
-            rep->failed++;
-            fprintf(
-                stderr,
-                "dembox: sweep: [%ld/%ld] %s failed (%s)%s%s; see %s/run.log\n",
-                done, total, names[i], how, last[0] ? ": " : "", last, rundir);
-        }
-    }
-    /* on an internal error, wait for the children that still run */
-    while (running > 0 && wait(NULL) > 0)
-        running--;
-    free(job);
-    free(resume_tried);
-    return rc;
+    if (!started)
+        p.rc =
+            dem_error_set(&p.err, DEM_EINTERNAL,
+                          "sweep: cannot start a thread: %s", strerror(errno));
+    for (int k = 0; k < started; k++)
+        pthread_join(tid[k], NULL);
+    pthread_mutex_destroy(&p.lock);
+    free(p.resume_tried);
+    free(tid);
+    if (p.rc)
+        return dem_error_set(err, p.rc, "%s", p.err.msg);
+    if (o->stop && *o->stop)
+        return dem_error_set(err, DEM_EINTERRUPTED,
+                             "sweep: stopped; the runs under way saved "
+                             "checkpoints: run the same command again to "
+                             "go on");
+    return DEM_OK;
 }
 
 int dem_sweep_run(const struct dem_sweep_grid *g,

@@ -30,7 +30,7 @@
 #include <string.h>
 
 #include "core/sim.h"
-#include "io/lammps_data.h"
+#include "formats/lammps_data.h"
 #include "measure/measure.h"
 
 struct opts {

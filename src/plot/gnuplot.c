@@ -10,7 +10,7 @@
 #include <sys/wait.h>
 
 #include "io/fsutil.h"
-#include "io/plot_internal.h"
+#include "plot/plot.h"
 
 void dem__gp_head(FILE *f, const char *name, const char *title,
                   const char *xlabel, const char *ylabel)

@@ -21,10 +21,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/csvtable.h"
+#include "formats/csvtable.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"
-#include "io/plot_internal.h"
+#include "plot/plot.h"
 #include "protocol/stage.h"
 
 /* At most this many rows per curve: gnuplot stays fast on long cyclic

@@ -1,4 +1,4 @@
-#include "io/dump.h"
+#include "formats/dump.h"
 
 void dem_dump_frame(FILE *f, long step, const double lo[3], const double hi[3],
                     const struct dem_particles *p)

@@ -1,5 +1,5 @@
 /* Recursive-descent JSON parser (RFC 8259), depth limited. */
-#include "io/jsonread.h"
+#include "formats/jsonread.h"
 
 #include <math.h>
 #include <stdio.h>

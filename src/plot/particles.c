@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/plot_internal.h"
+#include "plot/plot.h"
 
 #define LONG_SIDE 1000.0   /* px; the long side of the picture */
 #define MIN_SIDE 360.0     /* px; room for the title and the colour bar */

@@ -1,4 +1,4 @@
-#include "io/csvtable.h"
+#include "formats/csvtable.h"
 
 #include <errno.h>
 #include <stdio.h>

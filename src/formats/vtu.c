@@ -1,5 +1,5 @@
 /* VTK XML writers (format: "VTK File Formats", Kitware, XML section). */
-#include "io/vtu.h"
+#include "formats/vtu.h"
 
 #include <stdio.h>
 

@@ -1,5 +1,5 @@
 /* Particle CSV reader and writer (see particles_csv.h for the format). */
-#include "io/particles_csv.h"
+#include "formats/particles_csv.h"
 
 #include <ctype.h>
 #include <errno.h>

@@ -1,4 +1,4 @@
-/* Pieces shared by the plot files (io/plot*.c). Internal. */
+/* Pieces shared by the plot files (src/plot/). Internal. */
 #ifndef DEM_IO_PLOT_INTERNAL_H
 #define DEM_IO_PLOT_INTERNAL_H
 

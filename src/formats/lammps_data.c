@@ -1,5 +1,5 @@
 /* LAMMPS data files, atom_style sphere (see lammps_data.h for the format). */
-#include "io/lammps_data.h"
+#include "formats/lammps_data.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -36,7 +36,8 @@ static int split(char *s, char **fields, int max)
     if (hash)
         *hash = '\0';
     int n = 0;
-    for (char *tok = strtok(s, " \t\r\n"); tok; tok = strtok(0, " \t\r\n")) {
+    for (char *save = NULL, *tok = strtok_r(s, " \t\r\n", &save); tok;
+         tok = strtok_r(NULL, " \t\r\n", &save)) {
         if (n < max)
             fields[n] = tok;
         n++;
