@@ -81,14 +81,6 @@ static const struct dem__csv_want ts_want[TS_NCOL] = {
     [TS_ZMAX] = {"zmax_pos", 0},
 };
 
-enum pk_col { PK_X, PK_Y, PK_Z, PK_VX, PK_VY, PK_VZ, PK_R, PK_NCOL };
-
-static const struct dem__csv_want pk_want[PK_NCOL] = {
-    [PK_X] = {"x", 1},      [PK_Y] = {"y", 1},   [PK_Z] = {"z", 0},
-    [PK_VX] = {"vx", 0},    [PK_VY] = {"vy", 0}, [PK_VZ] = {"vz", 0},
-    [PK_R] = {"radius", 1},
-};
-
 /* The timeseries with what the plots derive from it. */
 struct series {
     size_t n;                 /* rows */
@@ -737,112 +729,18 @@ static int all_zero(const double *v, size_t n)
     return 1;
 }
 
-/* Extent of the packing, for a timeseries without wall positions. */
-static void packing_box(struct dem__plot_packing *w)
+/* The box at the end of the run from the last wall positions: 1 when the
+ * timeseries has them. */
+static int final_box(const struct series *s, double lo[3], double hi[3])
 {
-    const struct dem__plot_packing *pk = w;
-    for (int a = 0; a < 3; a++) {
-        w->lo[a] = INFINITY;
-        w->hi[a] = -INFINITY;
-    }
-    for (int i = 0; i < pk->n; i++) {
-        const double c[3] = {pk->x[i], pk->y[i], pk->z ? pk->z[i] : 0.0};
-        for (int a = 0; a < 3; a++) {
-            w->lo[a] = fmin(w->lo[a], c[a] - pk->r[i]);
-            w->hi[a] = fmax(w->hi[a], c[a] + pk->r[i]);
-        }
-    }
-}
-
-/* The box at the end of the run: the last wall positions, or else the
- * extent of the packing. */
-static void final_box(const struct series *s, struct dem__plot_packing *pk)
-{
-    int have = 1;
     for (int k = TS_XMIN; k < TS_XMIN + 2 * s->dim; k++)
-        have &= s->c[k] != NULL;
-    if (!have || pk->n == 0) {
-        packing_box(pk);
-        return;
-    }
+        if (!s->c[k])
+            return 0;
     for (int a = 0; a < 3; a++) {
-        pk->lo[a] = a < s->dim ? s->c[TS_XMIN + 2 * a][s->n - 1] : 0.0;
-        pk->hi[a] = a < s->dim ? s->c[TS_XMIN + 2 * a + 1][s->n - 1] : 0.0;
+        lo[a] = a < s->dim ? s->c[TS_XMIN + 2 * a][s->n - 1] : 0.0;
+        hi[a] = a < s->dim ? s->c[TS_XMIN + 2 * a + 1][s->n - 1] : 0.0;
     }
-}
-
-/* Read forces_final.csv (optional) into fsum (NULL if absent). */
-static int read_forces(const char *outdir, size_t n, double **fsum,
-                       struct dem_error *err)
-{
-    char path[DEM_PATH_MAX];
-    *fsum = NULL;
-    int rc = dem_path_join(path, sizeof path, outdir, "forces_final.csv", err);
-    if (rc)
-        return rc;
-    FILE *probe = fopen(path, "r");
-    if (!probe)
-        return errno == ENOENT
-                   ? DEM_OK
-                   : dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
-                                   strerror(errno));
-    fclose(probe);
-    static const struct dem__csv_want want[1] = {{"fsum", 1}};
-    struct dem__csv_table t;
-    rc = dem__csv_table_read(&t, path, want, 1, err);
-    if (rc)
-        return rc;
-    if (t.nrow != n) {
-        dem__csv_table_free(&t);
-        return dem_error_set(err, DEM_EIO,
-                             "%s: %zu rows, but particles_final.csv has %zu "
-                             "particles",
-                             path, t.nrow, n);
-    }
-    *fsum = t.col[0];
-    t.col[0] = NULL;
-    dem__csv_table_free(&t);
-    return DEM_OK;
-}
-
-static int draw_particles(const struct series *s, const char *outdir,
-                          const char *plotdir, const struct dem__csv_table *pt,
-                          struct dem_error *err)
-{
-    double *fsum = NULL, *speed = NULL;
-    int rc = read_forces(outdir, pt->nrow, &fsum, err);
-    if (rc)
-        return rc;
-    struct dem__plot_packing pk = {.n = (int)pt->nrow,
-                                   .dim = s->dim,
-                                   .x = pt->col[PK_X],
-                                   .y = pt->col[PK_Y],
-                                   .z = pt->col[PK_Z],
-                                   .r = pt->col[PK_R],
-                                   .value = fsum,
-                                   .value_label = "contact force sum Σ|f| (N)"};
-    if (!fsum) {
-        speed = malloc((pt->nrow ? pt->nrow : 1) * sizeof *speed);
-        if (!speed)
-            return dem_error_set(err, DEM_ENOMEM, "out of memory");
-        for (size_t i = 0; i < pt->nrow; i++) {
-            double v2 = 0.0;
-            for (int k = PK_VX; k <= PK_VZ; k++)
-                if (pt->col[k])
-                    v2 += pt->col[k][i] * pt->col[k][i];
-            speed[i] = sqrt(v2);
-        }
-        pk.value = speed;
-        pk.value_label = "speed |v| (m/s), no forces_final.csv";
-    }
-    final_box(s, &pk);
-    char png[DEM_PATH_MAX];
-    rc = dem_path_join(png, sizeof png, plotdir, "particles.png", err);
-    if (!rc)
-        rc = dem__plot_particles(&pk, png, err);
-    free(fsum);
-    free(speed);
-    return rc;
+    return 1;
 }
 
 static int run_gnuplot_all(const char *plotdir, struct dem_error *err)
@@ -905,12 +803,10 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
      * when it is missing the curves are still drawn and the error is
      * reported at the end */
     struct dem_error perr = {0};
-    rc = dem_path_join(path, sizeof path, outdir, "particles_final.csv", err);
-    int prc = rc ? rc : dem__csv_table_read(&pt, path, pk_want, PK_NCOL, &perr);
-    s.dim =
-        all_zero(s.c[TS_LZ], s.n) && (prc || all_zero(pt.col[PK_Z], pt.nrow))
-            ? 2
-            : 3;
+    const int prc = dem__plot_read_packing(outdir, &pt, &perr);
+    s.dim = all_zero(s.c[TS_LZ], s.n) && (prc || !dem__plot_packing_3d(&pt))
+                ? 2
+                : 3;
     if (!find_loading_from_config(&s, outdir))
         find_loading(&s);
 
@@ -926,8 +822,11 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
         rc = run_gnuplot_all(plotdir, err);
     if (!rc && prc)
         rc = dem_error_set(err, perr.code, "%s", perr.msg);
+    double lo[3], hi[3];
+    const int box = final_box(&s, lo, hi);
     if (!rc)
-        rc = draw_particles(&s, outdir, plotdir, &pt, err);
+        rc = dem__plot_run_particles(outdir, plotdir, &pt, s.dim,
+                                     box ? lo : NULL, box ? hi : NULL, err);
     if (!prc)
         dem__csv_table_free(&pt);
     dem__csv_table_free(&ts);

@@ -1,10 +1,11 @@
 /* Pieces shared by the plot files (src/plot/). Internal. */
-#ifndef DEM_IO_PLOT_INTERNAL_H
-#define DEM_IO_PLOT_INTERNAL_H
+#ifndef DEM_PLOT_PLOT_H
+#define DEM_PLOT_PLOT_H
 
 #include <stdio.h>
 
 #include "dembox.h"
+#include "formats/csvtable.h"
 
 /* ------------------------------------------------------------ gnuplot */
 
@@ -44,6 +45,20 @@ struct dem__plot_packing {
 /* Draw the packing (3D: the cut by z = (lo+hi)/2) into png_path. */
 int dem__plot_particles(const struct dem__plot_packing *pk,
                         const char *png_path, struct dem_error *err);
+
+/* particles.png of a run (plot/packing.c). */
+/* Read OUTDIR/particles_final.csv with the columns the picture needs. */
+int dem__plot_read_packing(const char *outdir, struct dem__csv_table *pt,
+                           struct dem_error *err);
+/* 1 when some particle of pt has z != 0. */
+int dem__plot_packing_3d(const struct dem__csv_table *pt);
+/* Draw pt into PLOTDIR/particles.png, coloured by the contact force sums
+ * of OUTDIR/forces_final.csv (by speed without it), in the box lo, hi
+ * (NULL: the extent of the packing). */
+int dem__plot_run_particles(const char *outdir, const char *plotdir,
+                            const struct dem__csv_table *pt, int dim,
+                            const double *lo, const double *hi,
+                            struct dem_error *err);
 
 /* The colour of t in [0, 1]: blue (0) -> green (0.5) -> red (1), as in
  * seed 000 Fig. 1. Values outside are clamped. */

@@ -4,7 +4,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 static int bad(struct dem_error *err, const char *arg, const char *what)
 {
     return dem_error_set(err, DEM_EUSAGE, "--param '%s': %s", arg, what);

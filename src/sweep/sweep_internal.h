@@ -2,8 +2,8 @@
 #ifndef DEM_SWEEP_INTERNAL_H
 #define DEM_SWEEP_INTERNAL_H
 
-#include "dembox.h"
 #include "analysis/analysis.h"
+#include "dembox.h"
 
 /* One grid point's run: its parameters, config and summary numbers.
  * Numbers that the summary does not have are NaN. */
@@ -107,9 +107,12 @@ struct dem__sweep {
     struct dem__sweep_ffens *ffe[2]; /* per group of ffeg: peak, critical */
 };
 
-
 /* |f_min|/(k2 delta_max) = (kc/k2)(1 - k1/k2)/(1 + kc/k2) (SPEC 2.2). */
 double dem__sweep_fmin_norm(double kc, double k1, double k2);
+
+/* Write sweep.json of s (json_out.c). */
+void dem__sweep_write_json(FILE *f, const struct dem__sweep *s,
+                           const struct dem_sweep_options *o);
 
 /* Write the sweep's pictures into outdir/plots (plots.c). */
 int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,

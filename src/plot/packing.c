@@ -1,0 +1,134 @@
+/* particles.png of a finished run: the final packing of
+ * particles_final.csv in the final box, each particle coloured by its
+ * contact force sum from forces_final.csv (by its speed when that file
+ * is absent), drawn by dem__plot_particles.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/fsutil.h"
+#include "plot/plot.h"
+
+enum pk_col { PK_X, PK_Y, PK_Z, PK_VX, PK_VY, PK_VZ, PK_R, PK_NCOL };
+
+static const struct dem__csv_want pk_want[PK_NCOL] = {
+    [PK_X] = {"x", 1},      [PK_Y] = {"y", 1},   [PK_Z] = {"z", 0},
+    [PK_VX] = {"vx", 0},    [PK_VY] = {"vy", 0}, [PK_VZ] = {"vz", 0},
+    [PK_R] = {"radius", 1},
+};
+
+/* Extent of the packing, for a timeseries without wall positions. */
+static void packing_box(struct dem__plot_packing *w)
+{
+    const struct dem__plot_packing *pk = w;
+    for (int a = 0; a < 3; a++) {
+        w->lo[a] = INFINITY;
+        w->hi[a] = -INFINITY;
+    }
+    for (int i = 0; i < pk->n; i++) {
+        const double c[3] = {pk->x[i], pk->y[i], pk->z ? pk->z[i] : 0.0};
+        for (int a = 0; a < 3; a++) {
+            w->lo[a] = fmin(w->lo[a], c[a] - pk->r[i]);
+            w->hi[a] = fmax(w->hi[a], c[a] + pk->r[i]);
+        }
+    }
+}
+
+/* Read forces_final.csv (optional) into fsum (NULL if absent). */
+static int read_forces(const char *outdir, size_t n, double **fsum,
+                       struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    *fsum = NULL;
+    int rc = dem_path_join(path, sizeof path, outdir, "forces_final.csv", err);
+    if (rc)
+        return rc;
+    FILE *probe = fopen(path, "r");
+    if (!probe)
+        return errno == ENOENT
+                   ? DEM_OK
+                   : dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
+                                   strerror(errno));
+    fclose(probe);
+    static const struct dem__csv_want want[1] = {{"fsum", 1}};
+    struct dem__csv_table t;
+    rc = dem__csv_table_read(&t, path, want, 1, err);
+    if (rc)
+        return rc;
+    if (t.nrow != n) {
+        dem__csv_table_free(&t);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: %zu rows, but particles_final.csv has %zu "
+                             "particles",
+                             path, t.nrow, n);
+    }
+    *fsum = t.col[0];
+    t.col[0] = NULL;
+    dem__csv_table_free(&t);
+    return DEM_OK;
+}
+
+int dem__plot_read_packing(const char *outdir, struct dem__csv_table *pt,
+                           struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    const int rc =
+        dem_path_join(path, sizeof path, outdir, "particles_final.csv", err);
+    return rc ? rc : dem__csv_table_read(pt, path, pk_want, PK_NCOL, err);
+}
+
+int dem__plot_packing_3d(const struct dem__csv_table *pt)
+{
+    for (size_t i = 0; pt->col[PK_Z] && i < pt->nrow; i++)
+        if (pt->col[PK_Z][i] != 0.0)
+            return 1;
+    return 0;
+}
+
+int dem__plot_run_particles(const char *outdir, const char *plotdir,
+                            const struct dem__csv_table *pt, int dim,
+                            const double *lo, const double *hi,
+                            struct dem_error *err)
+{
+    double *fsum = NULL, *speed = NULL;
+    int rc = read_forces(outdir, pt->nrow, &fsum, err);
+    if (rc)
+        return rc;
+    struct dem__plot_packing pk = {.n = (int)pt->nrow,
+                                   .dim = dim,
+                                   .x = pt->col[PK_X],
+                                   .y = pt->col[PK_Y],
+                                   .z = pt->col[PK_Z],
+                                   .r = pt->col[PK_R],
+                                   .value = fsum,
+                                   .value_label = "contact force sum Σ|f| (N)"};
+    if (!fsum) {
+        speed = malloc((pt->nrow ? pt->nrow : 1) * sizeof *speed);
+        if (!speed)
+            return dem_error_set(err, DEM_ENOMEM, "out of memory");
+        for (size_t i = 0; i < pt->nrow; i++) {
+            double v2 = 0.0;
+            for (int k = PK_VX; k <= PK_VZ; k++)
+                if (pt->col[k])
+                    v2 += pt->col[k][i] * pt->col[k][i];
+            speed[i] = sqrt(v2);
+        }
+        pk.value = speed;
+        pk.value_label = "speed |v| (m/s), no forces_final.csv";
+    }
+    if (lo && hi && pk.n > 0) {
+        memcpy(pk.lo, lo, sizeof pk.lo);
+        memcpy(pk.hi, hi, sizeof pk.hi);
+    } else {
+        packing_box(&pk);
+    }
+    char png[DEM_PATH_MAX];
+    rc = dem_path_join(png, sizeof png, plotdir, "particles.png", err);
+    if (!rc)
+        rc = dem__plot_particles(&pk, png, err);
+    free(fsum);
+    free(speed);
+    return rc;
+}
