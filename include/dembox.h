@@ -104,12 +104,21 @@ enum dem_normal_law {
         DEM_NORMAL_NMODELS
 };
 
-/* Contact parameters: contact.normal and one field per key of
+/* Contact parameters: contact.normal, the switch of each resistance
+ * (contact.rolling, contact.torsion) and one field per key of
  * DEM_CONTACT_KEYS (dembox_models.h, with units and meaning), e.g.
  * k (linear stiffness), k1, k2, kc, phi_f (luding), gamma_n, kt, gamma_t,
- * mu_s, mu_d, wall_mu, wall_kc. */
+ * mu_s, mu_d, wall_mu, wall_kc, kr, gamma_r, mu_r, ko, gamma_o, mu_o. */
+/* The models of a resistance of DEM_CONTACT_RESISTANCES (contact.rolling,
+ * contact.torsion). */
+enum dem_resistance_model { DEM_RESIST_NONE = 0, DEM_RESIST_LUDING = 1 };
+
 struct dem_contact_params {
     int normal; /* enum dem_normal_law */
+#define DEM_CONTACT_RESIST_FIELD_(TAG, name, doc)                              \
+    int name; /* enum dem_resistance_model */
+    DEM_CONTACT_RESISTANCES(DEM_CONTACT_RESIST_FIELD_)
+#undef DEM_CONTACT_RESIST_FIELD_
 #define DEM_CONTACT_FIELD_(MODEL, name, unit, def, ...) double name;
 #define DEM_CONTACT_ALIAS_(MODEL, name, field, unit, def, ...)
     DEM_CONTACT_KEYS(DEM_CONTACT_FIELD_, DEM_CONTACT_ALIAS_)
@@ -372,10 +381,10 @@ const struct dem_example *dem_example_find(const char *name);
  * Running (runner.c): every point is checked by the config parser before
  * anything runs; then each point runs as `dembox run` would run it (run,
  * analysis, pictures) in a thread of this process (up to `jobs` at once)
- * into DIR/runs/NAME, its warnings and failure in DIR/runs/NAME/run.log. A point whose folder already
- * holds a finished run of the same config is skipped, so a sweep can be
- * restarted; an unfinished one is resumed from its checkpoint when it has
- * one, else rerun.
+ * into DIR/runs/NAME, its warnings and failure in DIR/runs/NAME/run.log. A
+ * point whose folder already holds a finished run of the same config is
+ * skipped, so a sweep can be restarted; an unfinished one is resumed from its
+ * checkpoint when it has one, else rerun.
  *
  * Collecting (collect.c, plots.c): the summaries of the runs and the
  * cross-run analysis go to DIR/sweep.json, the pictures to DIR/plots/.
@@ -441,10 +450,10 @@ struct dem_sweep_options {
     const char *outdir;      /* DIR */
     const char *const *sets; /* --set KEY=VALUE for every run */
     int nsets;
-    int jobs;        /* runs at once (>= 1) */
-    int threads;     /* OpenMP threads per run (>= 1) */
-    int quiet;       /* 1: no progress lines on stderr */
-    long max_steps;  /* > 0: every run's dem_run_options.max_steps */
+    int jobs;       /* runs at once (>= 1) */
+    int threads;    /* OpenMP threads per run (>= 1) */
+    int quiet;      /* 1: no progress lines on stderr */
+    long max_steps; /* > 0: every run's dem_run_options.max_steps */
     volatile sig_atomic_t *stop; /* may be NULL; when *stop becomes
                            non-zero the runs under way save checkpoints
                            and stop, no new run starts, and

@@ -30,13 +30,23 @@
     X(LINEAR, linear, SIMD)                                                    \
     X(LUDING, luding, SCALAR)
 
+/* Resistances a contact can add to the normal and tangential laws, each
+ * switched by its own key, contact.name = "none" (the default) or
+ * "luding" (Luding, Granular Matter 10 (2008) 235): X(TAG, name, doc).
+ * The kernels are in src/contact/resistance.h. The keys and history
+ * values of a resistance carry its TAG in their MODEL column; a key
+ * given while its resistance is off is refused. */
+#define DEM_CONTACT_RESISTANCES(X)                                             \
+    X(ROLLING, rolling, "rolling resistance: torque against rolling")         \
+    X(TORSION, torsion, "torsion resistance: torque against twisting (3D)")
+
 /* Contact keys, in the order of the resolved config:
  *   P(MODEL, name, unit, default, doc, range and flags...)
  * a key contact.name stored in the field of that name;
  *   A(MODEL, name, field, unit, default, doc, range and flags...)
  * a key stored in another key's field (contact.mu sets mu_s and mu_d).
  * MODEL is the normal model that uses the key (a key of another model is
- * refused), or ANY. */
+ * refused), a resistance of DEM_CONTACT_RESISTANCES, or ANY. */
 #define DEM_CONTACT_KEYS(P, A)                                                 \
     P(LINEAR, k, "N/m", 5000, "linear normal stiffness", GT(0))                \
     P(LUDING, k1, "N/m", 5e4, "luding loading stiffness (<= k2)", GT(0))       \
@@ -59,7 +69,19 @@
       .flags = F_MU_PAIR, .def_text = "= mu")                                  \
     P(ANY, wall_mu, "-", 0, "particle-wall friction (static = dynamic)",       \
       GE(0))                                                                   \
-    P(ANY, wall_kc, "N/m", 0, "particle-wall adhesive stiffness", GE(0))
+    P(ANY, wall_kc, "N/m", 0, "particle-wall adhesive stiffness", GE(0))      \
+    P(ROLLING, kr, "N/m", 500, "rolling spring stiffness", GT(0))             \
+    P(ROLLING, gamma_r, "kg/s", 0.005, "rolling viscosity", GE(0))            \
+    P(ROLLING, mu_r, "-", 0.1,                                                 \
+      "rolling friction: torque at most mu_r f_n a_i a_j/(a_i + a_j)",        \
+      GE(0))                                                                   \
+    P(ROLLING, wall_mu_r, "-", 0, "particle-wall rolling friction", GE(0))    \
+    P(TORSION, ko, "N/m", 500, "torsion spring stiffness", GT(0))             \
+    P(TORSION, gamma_o, "kg/s", 0.005, "torsion viscosity", GE(0))            \
+    P(TORSION, mu_o, "-", 0.1,                                                 \
+      "torsion friction: torque at most mu_o f_n a_i a_j/(a_i + a_j)",        \
+      GE(0))                                                                   \
+    P(TORSION, wall_mu_o, "-", 0, "particle-wall torsion friction", GE(0))
 
 /* Parameters a particle-wall contact takes from another field:
  * W(field, wall field). A wall contact runs the same model as a pair,
@@ -67,16 +89,25 @@
 #define DEM_CONTACT_WALL_FIELDS(W)                                             \
     W(kc, wall_kc)                                                             \
     W(mu_s, wall_mu)                                                           \
-    W(mu_d, wall_mu)
+    W(mu_d, wall_mu)                                                           \
+    W(mu_r, wall_mu_r)                                                         \
+    W(mu_o, wall_mu_o)
 
 /* History values every contact carries from step to step:
- * H(MODEL, name, unit, doc); stored only while MODEL (or ANY) is the
- * normal model in force, zero otherwise. The contact's state bits
+ * H(MODEL, name, unit, doc); kept (computed, carried across list
+ * rebuilds, checkpointed) only while MODEL is the normal model or the
+ * resistance in force (ANY: always). The contact's state bits
  * (contact/state.h) are carried with them. */
 #define DEM_CONTACT_HISTORY(H)                                                 \
     H(ANY, xi_x, "m", "tangential spring, x")                                  \
     H(ANY, xi_y, "m", "tangential spring, y")                                  \
     H(ANY, xi_z, "m", "tangential spring, z")                                  \
-    H(LUDING, dmax, "m", "largest overlap reached")
+    H(LUDING, dmax, "m", "largest overlap reached")                            \
+    H(ROLLING, xr_x, "m", "rolling spring, x")                                 \
+    H(ROLLING, xr_y, "m", "rolling spring, y")                                 \
+    H(ROLLING, xr_z, "m", "rolling spring, z")                                 \
+    H(TORSION, xo_x, "m", "torsion spring, x")                                 \
+    H(TORSION, xo_y, "m", "torsion spring, y")                                 \
+    H(TORSION, xo_z, "m", "torsion spring, z")
 
 #endif /* DEMBOX_MODELS_H */

@@ -24,6 +24,7 @@ static const char *const law_names[] = {
     DEM_NORMAL_MODELS(LAW_NAME_)
 #undef LAW_NAME_
         0};
+static const char *const resist_names[] = {"none", "luding", 0};
 const char *const dem__cfg_stage_names[] = {"isotropic", "compress", "cyclic",
                                             "hold", 0};
 static const char *const axis_names[] = {"x", "y", "z", 0};
@@ -156,13 +157,24 @@ const struct key dem__cfg_keys[] = {
      .names = law_names,
      .unit = "-",
      .doc = "normal law: linear spring-dashpot or luding hysteretic"},
+/* the switches of the resistances (dembox_models.h) */
+#define RESIST_SWITCH_(TAG, name_, doc_)                                       \
+    {.name = "contact." #name_,                                                \
+     .kind = K_ENUM,                                                           \
+     TOP(contact.name_),                                                       \
+     .def = DEM_RESIST_NONE,                                                   \
+     .names = resist_names,                                                    \
+     .unit = "-",                                                              \
+     .doc = doc_},
+    DEM_CONTACT_RESISTANCES(RESIST_SWITCH_)
+#undef RESIST_SWITCH_
 /* the keys of the contact models (dembox_models.h) */
 #define CONTACT_KEY_(MODEL, key, unit_, def_, doc_, ...)                       \
     {.name = "contact." #key,                                                  \
      .kind = K_DOUBLE,                                                         \
      TOP(contact.key),                                                         \
      .def = (def_),                                                            \
-     .law = 1 + DEM_NORMAL_##MODEL,                                            \
+     .owner = 1 + DEM_OWNER_##MODEL,                                           \
      .unit = (unit_),                                                          \
      .doc = (doc_),                                                            \
      __VA_ARGS__},
@@ -171,21 +183,21 @@ const struct key dem__cfg_keys[] = {
      .kind = K_DOUBLE,                                                         \
      TOP(contact.field),                                                       \
      .def = (def_),                                                            \
-     .law = 1 + DEM_NORMAL_##MODEL,                                            \
+     .owner = 1 + DEM_OWNER_##MODEL,                                           \
      .unit = (unit_),                                                          \
      .doc = (doc_),                                                            \
      __VA_ARGS__},
-    DEM_CONTACT_KEYS(CONTACT_KEY_, CONTACT_ALIAS_)
+        DEM_CONTACT_KEYS(CONTACT_KEY_, CONTACT_ALIAS_)
 #undef CONTACT_KEY_
 #undef CONTACT_ALIAS_
 
-        {.name = "damping.gamma_b",
-         .kind = K_DOUBLE,
-         TOP(damping.gamma_b),
-         .def = 0.2,
-         GE(0),
-         .unit = "kg/s",
-         .doc = "background damping force -gamma_b v"},
+            {.name = "damping.gamma_b",
+             .kind = K_DOUBLE,
+             TOP(damping.gamma_b),
+             .def = 0.2,
+             GE(0),
+             .unit = "kg/s",
+             .doc = "background damping force -gamma_b v"},
     {.name = "damping.gamma_br",
      .kind = K_DOUBLE,
      TOP(damping.gamma_br),

@@ -411,14 +411,23 @@ int dem__cfg_check_given(const struct ctx *x, struct dem_config *c,
                          struct dem_error *err)
 {
     const char *law = dem_normal_name(c->contact.normal);
-    for (size_t k = 0; k < dem__cfg_nkeys; k++)
-        if (x->at[k] && dem__cfg_keys[k].law &&
-            dem__cfg_keys[k].law != 1 + c->contact.normal)
+    const int set = dem_contact_set(&c->contact);
+    for (size_t k = 0; k < dem__cfg_nkeys; k++) {
+        const int owner = dem__cfg_keys[k].owner - 1;
+        if (!x->at[k] || !dem__cfg_keys[k].owner || dem_owner_used(set, owner))
+            continue;
+        if (owner < DEM_OWNER_RESIST_0)
             return dem__cfg_fail_at(x, x->at[k], dem__cfg_keys[k].name, err,
                                     "a key of the %s law, given with "
                                     "contact.normal = \"%s\"",
-                                    dem_normal_name(dem__cfg_keys[k].law - 1),
-                                    law);
+                                    dem_normal_name(owner), law);
+        const char *r = dem_resistance_name(owner);
+        return dem__cfg_fail_at(x, x->at[k], dem__cfg_keys[k].name, err,
+                                "a key of the %s resistance, given with "
+                                "contact.%s = \"none\" (set it to "
+                                "\"luding\")",
+                                r, r);
+    }
     const config_setting_t *mu = x->at[dem__cfg_find_key("contact.mu", S_TOP)];
     const config_setting_t *mus =
         x->at[dem__cfg_find_key("contact.mu_s", S_TOP)];

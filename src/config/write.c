@@ -99,8 +99,15 @@ static const char *omitted(const struct key *k, const struct dem_config *c)
         DEM_NORMAL_MODELS(UNUSED_NOTE_)
 #undef UNUSED_NOTE_
     };
-    if (k->law && k->law != 1 + c->contact.normal)
-        return unused[c->contact.normal];
+    static const char *const off[] = {
+#define OFF_NOTE_(TAG, name, doc) #name " resistance off",
+        DEM_CONTACT_RESISTANCES(OFF_NOTE_)
+#undef OFF_NOTE_
+    };
+    const int owner = k->owner - 1;
+    if (k->owner && !dem_owner_used(dem_contact_set(&c->contact), owner))
+        return owner < DEM_OWNER_RESIST_0 ? unused[c->contact.normal]
+                                          : off[owner - DEM_OWNER_RESIST_FIRST];
     if ((k->flags & F_UNSET_ZERO) && dem__cfg_key_value(c, k) == 0)
         return "not given";
     if ((k->flags & F_MU) && c->contact.mu_s != c->contact.mu_d)

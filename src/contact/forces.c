@@ -21,7 +21,7 @@ static struct pass pass_of(const struct dem_particles *P,
     struct pass q = {
         .x = P->x, .y = P->y, .z = P->z, .vx = P->vx, .vy = P->vy,
         .vz = P->vz, .wx = P->wx, .wy = P->wy, .wz = P->wz, .r = P->r,
-        .ci = L->i, .cj = L->j, .state = L->state, .F = F->v,
+        .ci = L->i, .cj = L->j, .state = L->state, .F = F->v, .M = F->m,
 #define HIST_OF_(MODEL, name, unit, doc) .name = L->name,
         DEM_CONTACT_HISTORY(HIST_OF_)
 #undef HIST_OF_
@@ -30,14 +30,30 @@ static struct pass pass_of(const struct dem_particles *P,
     return q;
 }
 
-/* The history values of entry k of a list. */
-static struct dem_history list_history(const struct dem_contact_list *L, int k)
+/* The history values of entry k of a list that the model set keeps
+ * (the others 0). */
+static struct dem_history list_history(const struct dem_contact_list *L, int k,
+                                       int set)
 {
     struct dem_history h;
-#define HIST_GET_(MODEL, name, unit, doc) h.name = L->name[k];
+#define HIST_GET_(MODEL, name, unit, doc)                                      \
+    h.name = DEM_MODEL_USES(set, MODEL) ? L->name[k] : 0.0;
     DEM_CONTACT_HISTORY(HIST_GET_)
 #undef HIST_GET_
     return h;
+}
+
+/* Elastic energy of a contact's tangential, rolling and torsion springs,
+ * J (the resistances' springs are zero while off). */
+static double shear_energy(const struct dem_history *h,
+                           const struct dem_contact_params *cp)
+{
+    const struct dem_vec3 xi = {h->xi_x, h->xi_y, h->xi_z};
+    const struct dem_vec3 xr = {h->xr_x, h->xr_y, h->xr_z};
+    const struct dem_vec3 xo = {h->xo_x, h->xo_y, h->xo_z};
+    return dem_tangential_energy(xi, cp->kt) +
+           dem_resistance_energy(xr, cp->kr) +
+           dem_resistance_energy(xo, cp->ko);
 }
 
 /* Sums for the measurements, from the stored contact forces and the
@@ -51,6 +67,7 @@ static void measure_contacts(struct dem_sim *s)
     const struct dem_contact_params *cp = &s->cp;
     const struct dem_contact_params cpw = dem_contact_wall_view(cp);
     struct dem_contact_sums *S = &s->sums;
+    const int set = dem_contact_set(cp);
     memset(S, 0, sizeof *S);
     memset(P->fsum, 0, (size_t)P->n * sizeof *P->fsum);
     memset(P->ncontact, 0, (size_t)P->n * sizeof *P->ncontact);
@@ -71,9 +88,8 @@ static void measure_contacts(struct dem_sim *s)
                 S->fabric_stress[a][c] += b[a] * f[c];
                 S->fabric[a][c] += n[a] * n[c];
             }
-        const struct dem_history h = list_history(L, k);
-        const struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
-        double e = dem_tangential_energy(xi, cp->kt);
+        const struct dem_history h = list_history(L, k, set);
+        double e = shear_energy(&h, cp);
         e +=
             dem_normal_energy(cp->normal, cp, delta, P->r[i] * P->r[j] / R, &h);
         S->e_pot += e;
@@ -107,9 +123,8 @@ static void measure_contacts(struct dem_sim *s)
          * plane: -dist n, so -l (x) f = dist n (x) f */
         for (int c = 0; c < 3; c++)
             S->fabric_stress[a][c] += dist * sgn * f[c];
-        const struct dem_history h = list_history(WL, k);
-        const struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
-        double e = dem_tangential_energy(xi, cpw.kt);
+        const struct dem_history h = list_history(WL, k, set);
+        double e = shear_energy(&h, &cpw);
         e += dem_normal_energy(cpw.normal, &cpw, delta, P->r[i], &h);
         S->e_pot += e;
         S->n_pw++;
@@ -145,6 +160,9 @@ enum { TRIAL_EVERY = 2000, TRIAL_ROUNDS = 4 };
 
 int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
 {
+    const int set = dem_contact_set(&s->cp);
+    s->pairs.hist = dem_contact_history_mask(set);
+    s->pairs.torques = DEM_SET_TORQUES(set);
     struct dem_pass_choice *C = &s->pass;
     memset(C, 0, sizeof *C);
     C->forced = -1;

@@ -14,6 +14,7 @@
 #include "contact/history.h"
 #include "contact/model_linear.h"
 #include "contact/model_luding.h"
+#include "contact/resistance.h"
 #include "dembox.h"
 
 #if defined(__GNUC__)
@@ -22,13 +23,73 @@
 #define DEM_INLINE static inline
 #endif
 
-/* The MODEL column of a key or history line that every law uses. */
-#define DEM_NORMAL_ANY (-1)
+/* The owner of a key or history line (its MODEL column): a normal law,
+ * a resistance, or ANY. DEM_OWNER_TAG for each. */
+enum {
+    DEM_OWNER_ANY = -1,
+#define DEM_OWNER_NORMAL_(TAG, name, lanes) DEM_OWNER_##TAG = DEM_NORMAL_##TAG,
+    DEM_NORMAL_MODELS(DEM_OWNER_NORMAL_)
+#undef DEM_OWNER_NORMAL_
+        DEM_OWNER_RESIST_0 = 64, /* the resistances follow, in list order */
+#define DEM_OWNER_RESIST_(TAG, name, doc) DEM_OWNER_##TAG,
+    DEM_CONTACT_RESISTANCES(DEM_OWNER_RESIST_)
+#undef DEM_OWNER_RESIST_
+};
+#define DEM_OWNER_RESIST_FIRST (DEM_OWNER_RESIST_0 + 1)
 
-/* Whether a key or history value of MODEL (a tag of DEM_NORMAL_MODELS or
- * ANY) belongs to the normal law law; a constant when law is one. */
-#define DEM_MODEL_USES(law, MODEL)                                             \
-    (DEM_NORMAL_##MODEL == DEM_NORMAL_ANY || DEM_NORMAL_##MODEL == (law))
+/* The model set of a contact: its normal law in the low byte, one bit
+ * (DEM_SET_TAG) per resistance switched on. The force pass is compiled
+ * once per set (a literal there), so no owner test is left per contact. */
+#define DEM_SET_NORMAL 0xff
+enum {
+#define DEM_SET_BIT_(TAG, name, doc)                                           \
+    DEM_SET_##TAG = 1 << (8 + DEM_OWNER_##TAG - DEM_OWNER_RESIST_FIRST),
+    DEM_CONTACT_RESISTANCES(DEM_SET_BIT_)
+#undef DEM_SET_BIT_
+};
+
+/* The model set of the parameters c. */
+static inline int dem_contact_set(const struct dem_contact_params *c)
+{
+    int set = c->normal;
+#define DEM_SET_OF_(TAG, name, doc)                                            \
+    if (c->name != DEM_RESIST_NONE)                                            \
+        set |= DEM_SET_##TAG;
+    DEM_CONTACT_RESISTANCES(DEM_SET_OF_)
+#undef DEM_SET_OF_
+    return set;
+}
+
+/* Whether the owner (DEM_OWNER_*) is in the model set. */
+static inline int dem_owner_used(int set, int owner)
+{
+    if (owner == DEM_OWNER_ANY)
+        return 1;
+    if (owner < DEM_OWNER_RESIST_0)
+        return owner == (set & DEM_SET_NORMAL);
+    return (set >> (8 + owner - DEM_OWNER_RESIST_FIRST)) & 1;
+}
+
+/* Whether a key or history value of MODEL (its column's tag) belongs to
+ * the model set; a constant when set is one. */
+#define DEM_MODEL_USES(set, MODEL) dem_owner_used((set), DEM_OWNER_##MODEL)
+
+/* The history values the model set keeps: bit k for the k-th line of
+ * DEM_CONTACT_HISTORY (struct dem_pairs.hist). */
+static inline unsigned dem_contact_history_mask(int set)
+{
+    unsigned mask = 0, bit = 1;
+#define DEM_HIST_BIT_(MODEL, name, unit, doc)                                  \
+    if (DEM_MODEL_USES(set, MODEL))                                            \
+        mask |= bit;                                                           \
+    bit <<= 1;
+    DEM_CONTACT_HISTORY(DEM_HIST_BIT_)
+#undef DEM_HIST_BIT_
+    return mask;
+}
+
+/* Whether the model set has a resistance (torques besides n x f_t). */
+#define DEM_SET_TORQUES(set) (((set) & ~DEM_SET_NORMAL) != 0)
 
 /* lanes column: whether the pair loop of a law runs in SIMD lanes */
 #define DEM_LANES_SIMD 1
@@ -37,6 +98,7 @@
 /* Whether law's contacts are computed in SIMD lanes. */
 DEM_INLINE int dem_normal_simd(int law)
 {
+    law &= DEM_SET_NORMAL; /* law may be a model set */
 #define DEM_SIMD_(TAG, name, lanes)                                            \
     if (law == DEM_NORMAL_##TAG)                                               \
         return DEM_LANES_##lanes;
@@ -50,6 +112,7 @@ DEM_INLINE double dem_normal_force(int law, const struct dem_contact_params *c,
                                    double delta, double ddot, double a12,
                                    struct dem_history *h, double *fc)
 {
+    law &= DEM_SET_NORMAL; /* law may be a model set */
 #define DEM_FORCE_(TAG, name, lanes)                                           \
     if (law == DEM_NORMAL_##TAG)                                               \
         return dem_model_##name##_force(c, delta, ddot, a12, h, fc);
@@ -88,7 +151,11 @@ dem_contact_wall_view(const struct dem_contact_params *c)
 /* Name of a normal law ("linear", ...), or NULL for an invalid value. */
 const char *dem_normal_name(int law);
 
-/* Stiffest normal spring of the law in force, N/m. */
+/* Name of a resistance from its DEM_OWNER_* ("rolling", ...), or NULL. */
+const char *dem_resistance_name(int owner);
+
+/* Stiffest spring of the models in force as a normal spring, N/m (the
+ * resistances' springs count 1.25 times, see contact/models.c). */
 double dem_contact_stiffness(const struct dem_contact_params *c);
 
 /* Contact time of the pair of two smallest particles of c, s: half the

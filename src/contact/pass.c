@@ -43,8 +43,9 @@
 #define DEM_PASS_ENTRY dem__pass_gathers
 #endif
 
-/* Contact k's history values used by law, read from the list (the others
- * are 0 and never stored). */
+/* Contact k's history values used by the model set law (a normal law
+ * with the bits of the resistances on, contact/models.h), read from the
+ * list (the others are 0 and never stored). */
 DEM_INLINE struct dem_history load_history(const int law, const struct pass *q,
                                            int k)
 {
@@ -56,18 +57,58 @@ DEM_INLINE struct dem_history load_history(const int law, const struct pass *q,
     return h;
 }
 
+/* The resistances of the model set law at contact k (none: nothing is
+ * done): their torque on i, stored with the contact (zero when touch =
+ * 0), their springs in h, their slip bits in *st. dw = w_i - w_j, a the
+ * reduced radius. */
+DEM_INLINE void resist_contact(const int law, const struct pass *q, int k,
+                               int touch, struct dem_vec3 n, struct dem_vec3 dw,
+                               double a, double fc, double dt,
+                               const struct dem_contact_params *cp,
+                               struct dem_history *h, int *st)
+{
+    if (!DEM_SET_TORQUES(law))
+        return;
+    struct dem_vec3 m = {0.0, 0.0, 0.0};
+    if (law & DEM_SET_ROLLING) {
+        const struct dem_tangential R = {cp->kr, cp->gamma_r, cp->mu_r,
+                                         cp->mu_r};
+        struct dem_vec3 xr = {h->xr_x, h->xr_y, h->xr_z};
+        m = dem_rolling_torque(n, dw, a, fc, dt, &R, &xr, st);
+        h->xr_x = xr.x;
+        h->xr_y = xr.y;
+        h->xr_z = xr.z;
+    }
+    if (law & DEM_SET_TORSION) {
+        const struct dem_tangential O = {cp->ko, cp->gamma_o, cp->mu_o,
+                                         cp->mu_o};
+        struct dem_vec3 xo = {h->xo_x, h->xo_y, h->xo_z};
+        const struct dem_vec3 mo =
+            dem_torsion_torque(n, dw, a, fc, dt, &O, &xo, st);
+        h->xo_x = xo.x;
+        h->xo_y = xo.y;
+        h->xo_z = xo.z;
+        m.x += mo.x;
+        m.y += mo.y;
+        m.z += mo.z;
+    }
+    q->M[3 * k] = touch ? m.x : 0.0;
+    q->M[3 * k + 1] = touch ? m.y : 0.0;
+    q->M[3 * k + 2] = touch ? m.z : 0.0;
+}
+
 /* Tangential force and history update of contact k, stored with it; with
  * touch = 0 (its gap is open) the force is zero and the history is
- * erased instead. h holds the history after the normal force; only the
- * values law uses are stored. */
+ * erased instead. h holds the history after the normal force and the
+ * resistances, st the state bits after them; only the values law uses
+ * are stored. */
 DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
                                int touch, struct dem_vec3 n,
                                struct dem_vec3 vij, double fn, double fc,
-                               struct dem_history h, double dt,
+                               struct dem_history h, int st, double dt,
                                const struct dem_tangential *T)
 {
     struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
-    int st = q->state[k] | DEM_CONTACT_ACTIVE;
     const struct dem_vec3 ft =
         dem_tangential_force(n, vij, fc, dt, T, &xi, &st);
     h.xi_x = xi.x;
@@ -88,16 +129,20 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
 }
 
-/* Contact k is open: no force, no history. */
-DEM_INLINE void open_contact(const struct pass *q, int k)
+/* Contact k is open: no force, no torque, no history. */
+DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
 {
-#define HIST_ZERO_(MODEL, name, unit, doc) q->name[k] = 0.0;
+#define HIST_ZERO_(MODEL, name, unit, doc)                                     \
+    if (DEM_MODEL_USES(law, MODEL))                                            \
+        q->name[k] = 0.0;
     DEM_CONTACT_HISTORY(HIST_ZERO_)
 #undef HIST_ZERO_
     q->state[k] = 0;
     struct dem_contact_force *o = &q->F[k];
     o->f[0] = o->f[1] = o->f[2] = 0.0;
     o->c[0] = o->c[1] = o->c[2] = 0.0;
+    if (DEM_SET_TORQUES(law))
+        q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
 }
 
 /* Force and history update of pair k. With scalar = 0 (SIMD lanes) there
@@ -116,7 +161,7 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
     const double ai = q.r[i], aj = q.r[j], R = ai + aj;
     const int touch = d2 < R * R;
     if (scalar && !touch) {
-        open_contact(&q, k);
+        open_contact(law, &q, k);
         return;
     }
     const double d = sqrt(d2);
@@ -132,9 +177,13 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
     const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
     struct dem_history h = load_history(law, &q, k);
     double fc;
-    const double fn =
-        dem_normal_force(law, cp, R - d, ddot, ai * aj / R, &h, &fc);
-    finish_contact(law, &q, k, touch, n, vij, fn, fc, h, dt, T);
+    const double a12 = ai * aj / R;
+    const double fn = dem_normal_force(law, cp, R - d, ddot, a12, &h, &fc);
+    int st = q.state[k] | DEM_CONTACT_ACTIVE;
+    const struct dem_vec3 dw = {q.wx[i] - q.wx[j], q.wy[i] - q.wy[j],
+                                q.wz[i] - q.wz[j]};
+    resist_contact(law, &q, k, touch, n, dw, a12, fc, dt, cp, &h, &st);
+    finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, T);
 }
 
 /* Forces and history updates of pairs k0 <= k < k1, in SIMD lanes or as
@@ -182,7 +231,10 @@ DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
     struct dem_history h = load_history(law, &q, k);
     double fc;
     const double fn = dem_normal_force(law, cp, delta, ddot, ai, &h, &fc);
-    finish_contact(law, qp, k, touch, n, vij, fn, fc, h, dt, T);
+    int st = q.state[k] | DEM_CONTACT_ACTIVE;
+    const struct dem_vec3 dw = {q.wx[i], q.wy[i], q.wz[i]};
+    resist_contact(law, &q, k, touch, n, dw, ai, fc, dt, cp, &h, &st);
+    finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, T);
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
@@ -212,10 +264,12 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
  * then whether a particle has moved more than half the skin since the
  * last list build. K.on and K.chain are literals in each caller, so they
  * cost no branch. */
-DEM_INLINE int particle_range(int i0, int i1, const struct dem_particles *P,
+DEM_INLINE int particle_range(const int law, int i0, int i1,
+                              const struct dem_particles *P,
                               const struct dem_pairs *pl, double gb, double gr,
                               const struct kick K)
 {
+    const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
     int moved = 0;
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
     /* the kicks write these through P: no restrict */
@@ -258,8 +312,30 @@ DEM_INLINE int particle_range(int i0, int i1, const struct dem_particles *P,
             cz += WF[k].c[2];
         }
         const double g = gr * a * a;
-        const double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
-                     tz = -g * wz[i] - a * cz;
+        double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
+               tz = -g * wz[i] - a * cz;
+        if (DEM_SET_TORQUES(law)) {
+            /* the resistances' torques: on i as i, the opposite as j */
+            double mx = 0.0, my = 0.0, mz = 0.0;
+            for (int k = start[i]; k < start[i + 1]; k++) {
+                mx += M[3 * k];
+                my += M[3 * k + 1];
+                mz += M[3 * k + 2];
+            }
+            for (int q = rstart[i]; q < rstart[i + 1]; q++) {
+                mx -= M[3 * rpair[q]];
+                my -= M[3 * rpair[q] + 1];
+                mz -= M[3 * rpair[q] + 2];
+            }
+            for (int k = wstart[i]; k < wstart[i + 1]; k++) {
+                mx += WM[3 * k];
+                my += WM[3 * k + 1];
+                mz += WM[3 * k + 2];
+            }
+            tx += mx;
+            ty += my;
+            tz += mz;
+        }
         if (!K.chain) {
             ofx[i] = fx;
             ofy[i] = fy;
@@ -289,11 +365,12 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
-    return particle_range(dem_block(c->n, t, nt), dem_block(c->n, t + 1, nt),
-                          c->P, c->pl, c->gb, c->gr, K);
+    return particle_range(law, dem_block(c->n, t, nt),
+                          dem_block(c->n, t + 1, nt), c->P, c->pl, c->gb, c->gr,
+                          K);
 }
 
-/* One instance per normal law and kind of kick (literals), so that each
+/* One instance per model set and kind of kick (literals), so that each
  * outlined parallel region is compiled for them alone. */
 #define CONTACTS(LAW, ON, CHAIN)                                               \
     do {                                                                       \
@@ -306,19 +383,31 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
         }                                                                      \
     } while (0)
 
+#define CONTACTS_KICKS(SET)                                                    \
+    case SET:                                                                  \
+        if (K.chain)                                                           \
+            CONTACTS(SET, 1, 1);                                               \
+        else if (K.on)                                                         \
+            CONTACTS(SET, 1, 0);                                               \
+        else                                                                   \
+            CONTACTS(SET, 0, 0);                                               \
+        break;
+
+/* every combination of the resistances with each normal law */
+#define RESIST_COUNT_(TAG, name, doc) +1
+_Static_assert(0 DEM_CONTACT_RESISTANCES(RESIST_COUNT_) == 2,
+               "list every combination of the resistances below");
+#undef RESIST_COUNT_
+
 int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
 {
     int moved = 0;
-    switch (c->cp.normal) {
+    switch (dem_contact_set(&c->cp)) {
 #define CONTACTS_OF_(TAG, name, lanes)                                         \
-    case DEM_NORMAL_##TAG:                                                     \
-        if (K.chain)                                                           \
-            CONTACTS(DEM_NORMAL_##TAG, 1, 1);                                  \
-        else if (K.on)                                                         \
-            CONTACTS(DEM_NORMAL_##TAG, 1, 0);                                  \
-        else                                                                   \
-            CONTACTS(DEM_NORMAL_##TAG, 0, 0);                                  \
-        break;
+    CONTACTS_KICKS(DEM_NORMAL_##TAG)                                           \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING)                         \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_TORSION)                         \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION)
         DEM_NORMAL_MODELS(CONTACTS_OF_)
 #undef CONTACTS_OF_
     }

@@ -25,6 +25,8 @@ struct pass {
 #undef HIST_ARRAY_
     int *state;
     struct dem_contact_force *F; /* stored forces, at each entry's index */
+    double *M; /* the resistances' torques on i, 3 per entry (only with a
+                  resistance on) */
 };
 
 /* The closing half kick of a step (h = dt/2, g gravity), or none. */

@@ -47,6 +47,47 @@ struct dem_tangential {
     double mu_d;    /* dynamic friction coefficient, mu_d <= mu_s */
 };
 
+/* The Coulomb step shared by the tangential law and the resistances
+ * (contact/resistance.h): s is the spring already projected and stretched
+ * to now, v the relative velocity it acts against; returns the force
+ * -k s - gamma v when its size is within the limit (static, or a sliding
+ * contact back below mu_d f_c), else mu_d fc along it with the spring that
+ * gives that force. *xi gets the spring to keep, *state the slip bit. */
+static inline struct dem_vec3
+dem_coulomb_spring(double sx, double sy, double sz, double vx, double vy,
+                   double vz, double fc, const struct dem_tangential *T,
+                   struct dem_vec3 *xi, int *state, int slip_bit)
+{
+    const double f0x = -T->kt * sx - T->gamma_t * vx;
+    const double f0y = -T->kt * sy - T->gamma_t * vy;
+    const double f0z = -T->kt * sz - T->gamma_t * vz;
+    const double f0sq = f0x * f0x + f0y * f0y + f0z * f0z;
+    const int sliding = (*state & slip_bit) != 0;
+    const double limit = (sliding ? T->mu_d : T->mu_s) * fc;
+    /* static friction; a sliding contact sticks again here */
+    struct dem_vec3 ft = {f0x, f0y, f0z};
+    xi->x = sx;
+    xi->y = sy;
+    xi->z = sz;
+    *state &= ~slip_bit;
+    if (f0sq > limit * limit || limit <= 0.0) {
+        /* sliding at mu_d f_C along the test force, with the spring that
+         * gives this force; at a zero limit (no friction, or f_C = 0)
+         * even a zero test force slides, with no force, so that without
+         * friction the spring never accumulates */
+        const double scale = f0sq > 0.0 ? T->mu_d * fc / sqrt(f0sq) : 0.0;
+        const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
+        ft.x = f0x * scale;
+        ft.y = f0y * scale;
+        ft.z = f0z * scale;
+        xi->x = -ik * (ft.x + T->gamma_t * vx);
+        xi->y = -ik * (ft.y + T->gamma_t * vy);
+        xi->z = -ik * (ft.z + T->gamma_t * vz);
+        *state |= slip_bit;
+    }
+    return ft;
+}
+
 /* Tangential force of one contact, returned (force on i, N).
  *   n     unit normal (from j to i)
  *   vij   relative velocity of the contact surfaces (i relative to j)
@@ -73,34 +114,8 @@ dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
     const double sx = xi->x - n.x * nxi + vtx * dt;
     const double sy = xi->y - n.y * nxi + vty * dt;
     const double sz = xi->z - n.z * nxi + vtz * dt;
-    const double f0x = -T->kt * sx - T->gamma_t * vtx;
-    const double f0y = -T->kt * sy - T->gamma_t * vty;
-    const double f0z = -T->kt * sz - T->gamma_t * vtz;
-    const double f0sq = f0x * f0x + f0y * f0y + f0z * f0z;
-    const int sliding = (*state & DEM_CONTACT_SLIDING) != 0;
-    const double limit = (sliding ? T->mu_d : T->mu_s) * fc;
-    /* static friction; a sliding contact sticks again here */
-    struct dem_vec3 ft = {f0x, f0y, f0z};
-    xi->x = sx;
-    xi->y = sy;
-    xi->z = sz;
-    *state &= ~DEM_CONTACT_SLIDING;
-    if (f0sq > limit * limit || limit <= 0.0) {
-        /* sliding at mu_d f_C along the test force, with the spring that
-         * gives this force; at a zero limit (no friction, or f_C = 0)
-         * even a zero test force slides, with no force, so that without
-         * friction the spring never accumulates */
-        const double scale = f0sq > 0.0 ? T->mu_d * fc / sqrt(f0sq) : 0.0;
-        const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
-        ft.x = f0x * scale;
-        ft.y = f0y * scale;
-        ft.z = f0z * scale;
-        xi->x = -ik * (ft.x + T->gamma_t * vtx);
-        xi->y = -ik * (ft.y + T->gamma_t * vty);
-        xi->z = -ik * (ft.z + T->gamma_t * vtz);
-        *state |= DEM_CONTACT_SLIDING;
-    }
-    return ft;
+    return dem_coulomb_spring(sx, sy, sz, vtx, vty, vtz, fc, T, xi, state,
+                              DEM_CONTACT_SLIDING);
 }
 
 /* Elastic energy of the tangential spring, J. */

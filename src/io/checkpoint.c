@@ -13,6 +13,7 @@
  * checksum but nonsense content cannot make the engine read out of bounds.
  */
 #include "io/checkpoint.h"
+#include "contact/models.h"
 #include "dembox.h"
 
 #include <errno.h>
@@ -196,8 +197,11 @@ static void io_wall(struct ck_io *io, struct dem_wall *w)
         io_f64(io, d[k]);
 }
 
+/* A list with its history values of mask hist, its forces and, with
+ * torques, its resistance torques. */
 static void io_list(struct ck_io *io, struct dem_contact_list *L,
-                    struct dem_contact_forces *F, int np, int n)
+                    struct dem_contact_forces *F, int np, int n, unsigned hist,
+                    int torques)
 {
     int m = L->n;
     io_i32(io, &m);
@@ -207,17 +211,26 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
         return;
     io_i32s(io, L->i, n);
     io_i32s(io, L->j, n);
-#define HIST_IO_(MODEL, name, unit, doc) io_f64s(io, L->name, n);
+    unsigned bit = 1;
+#define HIST_IO_(MODEL, name, unit, doc)                                       \
+    if (hist & bit)                                                            \
+        io_f64s(io, L->name, n);                                               \
+    bit <<= 1;
     DEM_CONTACT_HISTORY(HIST_IO_)
 #undef HIST_IO_
     io_states(io, L->state, n);
     io_i32s(io, L->start, np + 1);
     io_f64s(io, (double *)F->v, 6 * n);
+    if (torques)
+        io_f64s(io, F->m, 3 * n);
 }
 
 /* Bytes per particle, pair and wall contact in the file. */
 #define BYTES_PER_PARTICLE (23 * 8 + 2 * 4 + 3 * 4)
-#define HIST_COUNT_(MODEL, name, unit, doc) +1
+/* at least the history values every model keeps (the file holds those
+ * of the models in force) */
+#define HIST_COUNT_(MODEL, name, unit, doc)                                    \
+    +(DEM_OWNER_##MODEL == DEM_OWNER_ANY)
 #define NHISTORY (0 DEM_CONTACT_HISTORY(HIST_COUNT_))
 #define BYTES_PER_PAIR (2 * 4 + NHISTORY * 8 + 1 + 6 * 8 + 4)
 #define BYTES_PER_WALL_CONTACT (2 * 4 + NHISTORY * 8 + 1 + 6 * 8)
@@ -342,6 +355,14 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     if (io->reading && !io->why &&
         (cp->normal < 0 || cp->normal >= DEM_NORMAL_NMODELS))
         io->why = "corrupt (unknown contact law)";
+#define RESIST_IO_(TAG, name, doc)                                             \
+    io_i32(io, &cp->name);                                                     \
+    if (io->reading && !io->why && cp->name != DEM_RESIST_NONE &&              \
+        cp->name != DEM_RESIST_LUDING)                                         \
+        io->why = "corrupt (unknown " #name " resistance)";
+    DEM_CONTACT_RESISTANCES(RESIST_IO_)
+#undef RESIST_IO_
+    const int set = dem_contact_set(cp);
 #define PARAM_IO_(MODEL, name, unit, def, ...) io_f64(io, &cp->name);
 #define ALIAS_IO_(MODEL, name, field, unit, def, ...)
     DEM_CONTACT_KEYS(PARAM_IO_, ALIAS_IO_)
@@ -376,14 +397,15 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
 #undef DEM_IO_INTS_
 
     io_tag(io, "PAIR");
-    io_list(io, &pl->cur, &pl->f, N, npair);
+    const unsigned hist = dem_contact_history_mask(set);
+    io_list(io, &pl->cur, &pl->f, N, npair, hist, DEM_SET_TORQUES(set));
     if (io->why)
         return;
     io_i32s(io, pl->rstart, N + 1);
     io_i32s(io, pl->rpair, npair);
 
     io_tag(io, "WALC");
-    io_list(io, &pl->wcur, &pl->wf, N, nwc);
+    io_list(io, &pl->wcur, &pl->wf, N, nwc, hist, DEM_SET_TORQUES(set));
 
     io_tag(io, "NBR ");
     io_f64s(io, pl->wall_pos0, 6);
@@ -649,6 +671,9 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
             io.why = check_restored(s, run);
         }
     }
+    /* the force pass as for a new run (contact/forces.c) */
+    if (!io.why && !rc)
+        rc = dem_sim_pass_setup(s, err);
     if (io.why && !rc)
         rc = refuse(err, path, "%s", io.why);
     if (rc) {

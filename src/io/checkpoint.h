@@ -33,7 +33,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 5u
+#define DEM_CKPT_VERSION 6u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {

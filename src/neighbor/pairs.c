@@ -24,6 +24,7 @@ static void list_free(struct dem_contact_list *l)
 static void forces_free(struct dem_contact_forces *f)
 {
     free(f->v);
+    free(f->m);
     memset(f, 0, sizeof *f);
 }
 
@@ -79,7 +80,7 @@ static int forces_reserve(struct dem_contact_forces *f, int cap)
 {
     if (cap <= f->cap)
         return 0;
-    if (GROW(f->v, cap))
+    if (GROW(f->v, cap) || GROW(f->m, 3 * cap))
         return -1;
     f->cap = cap;
     return 0;
@@ -87,10 +88,12 @@ static int forces_reserve(struct dem_contact_forces *f, int cap)
 
 /* Stored forces of n entries set to zero (the force loop writes only
  * contacts that are closed or have just opened). */
-static void forces_zero(struct dem_contact_forces *f, int n)
+static void forces_zero(struct dem_contact_forces *f, int n, int torques)
 {
     if (n > 0)
         memset(f->v, 0, (size_t)n * sizeof *f->v);
+    if (n > 0 && torques)
+        memset(f->m, 0, 3 * (size_t)n * sizeof *f->m);
 }
 
 /* Per-particle arrays for n particles (row offsets need n + 1). */
@@ -198,11 +201,17 @@ static int old_find(const struct dem_contact_list *o, int a, int b)
     return -1;
 }
 
+/* Entry k of L takes the history of entry o of O (none: o < 0), the
+ * values of mask hist (struct dem_pairs.hist) only. */
 static void carry_history(struct dem_contact_list *L, int k,
-                          const struct dem_contact_list *O, int o)
+                          const struct dem_contact_list *O, int o,
+                          unsigned hist)
 {
+    unsigned bit = 1;
 #define HIST_CARRY_(MODEL, name, unit, doc)                                    \
-    L->name[k] = o >= 0 ? O->name[o] : 0.0;
+    if (hist & bit)                                                            \
+        L->name[k] = o >= 0 ? O->name[o] : 0.0;                                \
+    bit <<= 1;
     DEM_CONTACT_HISTORY(HIST_CARRY_)
 #undef HIST_CARRY_
     L->state[k] = o >= 0 ? O->state[o] : 0;
@@ -338,7 +347,7 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
     for (int k = 0; k < np; k++) {
         int a = pl->old_of[L->i[k]], b = pl->old_of[L->j[k]];
         int o = O->n ? (a < b ? old_find(O, a, b) : old_find(O, b, a)) : -1;
-        carry_history(L, k, O, o);
+        carry_history(L, k, O, o, pl->hist);
     }
     return DEM_OK;
 }
@@ -364,7 +373,7 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
             L->i[L->n] = i;
             L->j[L->n] = k;
             int o = O->n ? old_find(O, pl->old_of[i], k) : -1;
-            carry_history(L, L->n, O, o);
+            carry_history(L, L->n, O, o, pl->hist);
             L->n++;
         }
     }
@@ -433,8 +442,8 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
     if (build_reverse(pl, n) || forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
-    forces_zero(&pl->f, pl->cur.n);
-    forces_zero(&pl->wf, pl->wcur.n);
+    forces_zero(&pl->f, pl->cur.n, pl->torques);
+    forces_zero(&pl->wf, pl->wcur.n, pl->torques);
     for (int k = 0; k < nwall && k < 6; k++)
         pl->wall_pos0[k] = w[k].pos;
     return DEM_OK;

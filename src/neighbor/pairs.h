@@ -56,6 +56,9 @@ struct dem_contact_force {
 struct dem_contact_forces {
     int cap;
     struct dem_contact_force *v;
+    double *m; /* N m; 3 per entry: the torque of the rolling and torsion
+                  resistances on i (on j the opposite); written and read
+                  only with a resistance on (struct dem_pairs.torques) */
 };
 
 struct dem_pairs {
@@ -82,6 +85,12 @@ struct dem_pairs {
     double *scratch;     /* one particle array of doubles */
     int nalloc;          /* allocated length of the per-particle arrays */
     double wall_pos0[6]; /* m; wall positions at the last build */
+    /* what the contact models in force keep (set by the force pass's
+     * setup, contact/forces.c) */
+    unsigned hist; /* bit k: the k-th value of DEM_CONTACT_HISTORY is
+                      kept (carried at a rebuild); the others are never
+                      read or written */
+    int torques;   /* 1: the entries' resistance torques (forces.m) */
 };
 
 struct dem_wall;
