@@ -124,6 +124,10 @@ struct dem_contact_params {
     DEM_CONTACT_KEYS(DEM_CONTACT_FIELD_, DEM_CONTACT_ALIAS_)
 #undef DEM_CONTACT_FIELD_
 #undef DEM_CONTACT_ALIAS_
+    /* derived at the start of a run (DEM_CONTACT_DERIVED) */
+#define DEM_CONTACT_DERIVED_FIELD_(MODEL, name, unit, doc) double name;
+    DEM_CONTACT_DERIVED(DEM_CONTACT_DERIVED_FIELD_)
+#undef DEM_CONTACT_DERIVED_FIELD_
 };
 
 enum dem_stage_type {

@@ -10,7 +10,8 @@
  * force pass per model (src/contact/forces.c).
  *
  * Adding a normal model is one file, src/contact/model_NAME.h, with its
- * kernels (force, energy, stiffness, check; see model_linear.h), plus its
+ * kernels (force, shear, energy, stiffness, check, derive; see
+ * model_linear.h), plus its
  * line in DEM_NORMAL_MODELS below and the lines of its keys and history
  * values in the lists after it (docs/architecture.md).
  *
@@ -28,7 +29,8 @@
  * loop then runs vectorised), else SCALAR. */
 #define DEM_NORMAL_MODELS(X)                                                   \
     X(LINEAR, linear, SIMD)                                                    \
-    X(LUDING, luding, SCALAR)
+    X(LUDING, luding, SCALAR)                                                  \
+    X(HERTZ, hertz, SIMD)
 
 /* Resistances a contact can add to the normal and tangential laws, each
  * switched by its own key, contact.name = "none" (the default) or
@@ -46,7 +48,8 @@
  *   A(MODEL, name, field, unit, default, doc, range and flags...)
  * a key stored in another key's field (contact.mu sets mu_s and mu_d).
  * MODEL is the normal model that uses the key (a key of another model is
- * refused), a resistance of DEM_CONTACT_RESISTANCES, or ANY. */
+ * refused), SPRINGS (the laws with spring constants and viscosities:
+ * linear, luding), a resistance of DEM_CONTACT_RESISTANCES, or ANY. */
 #define DEM_CONTACT_KEYS(P, A)                                                 \
     P(LINEAR, k, "N/m", 5000, "linear normal stiffness", GT(0))                \
     P(LUDING, k1, "N/m", 5e4, "luding loading stiffness (<= k2)", GT(0))       \
@@ -56,10 +59,18 @@
     P(LUDING, phi_f, "-", 0,                                                   \
       "luding 2008 plasticity depth in (0, 1]; not given = constant k2",       \
       GT(0), LE(1), .flags = F_UNSET_ZERO, .def_text = "not given")            \
-    P(ANY, gamma_n, "kg/s", 0.05, "normal viscosity", GE(0))                   \
-    P(ANY, kt, "N/m", 1000, "tangential stiffness (0 only without friction)",  \
-      GE(0))                                                                   \
-    P(ANY, gamma_t, "kg/s", 0.01, "tangential viscosity", GE(0))               \
+    P(HERTZ, E, "Pa", 1e7, "hertz Young's modulus (particles and walls)",     \
+      GT(0))                                                                   \
+    P(HERTZ, nu, "-", 0.25, "hertz Poisson ratio", GT(-1), LT(0.5))            \
+    P(HERTZ, restitution, "-", 0.8,                                            \
+      "hertz normal restitution coefficient, any impact velocity", GT(0),     \
+      LE(1))                                                                   \
+    P(HERTZ, v_impact, "m/s", 1,                                               \
+      "hertz: the fastest impact expected (sets the time step)", GT(0))       \
+    P(SPRINGS, gamma_n, "kg/s", 0.05, "normal viscosity", GE(0))               \
+    P(SPRINGS, kt, "N/m", 1000,                                                \
+      "tangential stiffness (0 only without friction)", GE(0))                \
+    P(SPRINGS, gamma_t, "kg/s", 0.01, "tangential viscosity", GE(0))           \
     A(ANY, mu, mu_s, "-", 0.5, "friction coefficient: sets mu_s = mu_d",       \
       GE(0), .flags = F_MU)                                                    \
     P(ANY, mu_s, "-", 0.5, "static friction (give with mu_d instead of mu)",   \
@@ -92,6 +103,13 @@
     W(mu_d, wall_mu)                                                           \
     W(mu_r, wall_mu_r)                                                         \
     W(mu_o, wall_mu_o)
+
+/* Values a model derives from its keys at the start of a run (fields of
+ * struct dem_contact_params, not config keys): D(MODEL, name, unit,
+ * doc); filled by the model's _derive kernel. */
+#define DEM_CONTACT_DERIVED(D)                                                 \
+    D(HERTZ, hertz_alpha, "-",                                                 \
+      "viscous damping of the restitution (contact/model_hertz.h)")
 
 /* History values every contact carries from step to step:
  * H(MODEL, name, unit, doc); kept (computed, carried across list

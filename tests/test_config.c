@@ -345,7 +345,7 @@ static const struct bad bad_inputs[] = {
     {"contact = {\n  k = \"stiff\";\n};", 0, "contact.k: must be a number", 2},
     {"particles = {\n  count = 3.5;\n};", 0, "particles.count", 2},
     {"contact = 5;", 0, "contact: must be a group", 1},
-    {"contact = {\n  normal = \"hertz\";\n};", 0, "contact.normal", 2},
+    {"contact = {\n  normal = \"mindlin\";\n};", 0, "contact.normal", 2},
     {"time_step = \"fast\";", 0, "time_step", 1},
     {"gravity = [0.0, 1.0];", 0, "gravity", 1},
     {"stages = ( 5 );", 0, "stages.0", 1},

@@ -174,7 +174,7 @@ const struct key dem__cfg_keys[] = {
      .kind = K_DOUBLE,                                                         \
      TOP(contact.key),                                                         \
      .def = (def_),                                                            \
-     .owner = 1 + DEM_OWNER_##MODEL,                                           \
+     .owner = DEM_OWNER_##MODEL,                                               \
      .unit = (unit_),                                                          \
      .doc = (doc_),                                                            \
      __VA_ARGS__},
@@ -183,7 +183,7 @@ const struct key dem__cfg_keys[] = {
      .kind = K_DOUBLE,                                                         \
      TOP(contact.field),                                                       \
      .def = (def_),                                                            \
-     .owner = 1 + DEM_OWNER_##MODEL,                                           \
+     .owner = DEM_OWNER_##MODEL,                                               \
      .unit = (unit_),                                                          \
      .doc = (doc_),                                                            \
      __VA_ARGS__},

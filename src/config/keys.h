@@ -66,9 +66,8 @@ struct key {
     double lo, hi;            /* valid range, where has_lo / has_hi */
     unsigned char has_lo, lo_open, has_hi, hi_open;
     unsigned flags; /* F_* */
-    int owner;      /* 1 + the model that owns the key (DEM_OWNER_*,
-                       contact/models.h: a normal law or a resistance);
-                       0 = every model */
+    int owner;      /* the models that own the key (a DEM_OWNER_* mask,
+                       contact/models.h); 0 = every model */
     unsigned uses; /* stage dem__cfg_keys: stage types (T_*) that use the key */
     unsigned needs;       /* stage dem__cfg_keys: stage types that require it */
     const char *unit;     /* SI unit, "-" for dimensionless */

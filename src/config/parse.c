@@ -413,14 +413,17 @@ int dem__cfg_check_given(const struct ctx *x, struct dem_config *c,
     const char *law = dem_normal_name(c->contact.normal);
     const int set = dem_contact_set(&c->contact);
     for (size_t k = 0; k < dem__cfg_nkeys; k++) {
-        const int owner = dem__cfg_keys[k].owner - 1;
-        if (!x->at[k] || !dem__cfg_keys[k].owner || dem_owner_used(set, owner))
+        const int owner = dem__cfg_keys[k].owner;
+        if (!x->at[k] || dem_owner_used(set, owner))
             continue;
-        if (owner < DEM_OWNER_RESIST_0)
+        if (owner & DEM_OWNER_NORMALS) {
+            char laws[128];
+            dem_owner_laws(owner, laws, sizeof laws);
             return dem__cfg_fail_at(x, x->at[k], dem__cfg_keys[k].name, err,
-                                    "a key of the %s law, given with "
+                                    "a key of the %s law%s, given with "
                                     "contact.normal = \"%s\"",
-                                    dem_normal_name(owner), law);
+                                    laws, strchr(laws, ' ') ? "s" : "", law);
+        }
         const char *r = dem_resistance_name(owner);
         return dem__cfg_fail_at(x, x->at[k], dem__cfg_keys[k].name, err,
                                 "a key of the %s resistance, given with "

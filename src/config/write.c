@@ -104,10 +104,14 @@ static const char *omitted(const struct key *k, const struct dem_config *c)
         DEM_CONTACT_RESISTANCES(OFF_NOTE_)
 #undef OFF_NOTE_
     };
-    const int owner = k->owner - 1;
-    if (k->owner && !dem_owner_used(dem_contact_set(&c->contact), owner))
-        return owner < DEM_OWNER_RESIST_0 ? unused[c->contact.normal]
-                                          : off[owner - DEM_OWNER_RESIST_FIRST];
+    const int owner = k->owner;
+    if (!dem_owner_used(dem_contact_set(&c->contact), owner)) {
+        if (owner & DEM_OWNER_NORMALS)
+            return unused[c->contact.normal];
+        for (int r = 0; r < DEM_NRESIST; r++)
+            if ((owner >> (16 + r)) & 1)
+                return off[r];
+    }
     if ((k->flags & F_UNSET_ZERO) && dem__cfg_key_value(c, k) == 0)
         return "not given";
     if ((k->flags & F_MU) && c->contact.mu_s != c->contact.mu_d)

@@ -21,6 +21,7 @@ static struct pass pass_of(const struct dem_particles *P,
     struct pass q = {
         .x = P->x, .y = P->y, .z = P->z, .vx = P->vx, .vy = P->vy,
         .vz = P->vz, .wx = P->wx, .wy = P->wy, .wz = P->wz, .r = P->r,
+        .m = P->m,
         .ci = L->i, .cj = L->j, .state = L->state, .F = F->v, .M = F->m,
 #define HIST_OF_(MODEL, name, unit, doc) .name = L->name,
         DEM_CONTACT_HISTORY(HIST_OF_)
@@ -44,15 +45,17 @@ static struct dem_history list_history(const struct dem_contact_list *L, int k,
 }
 
 /* Elastic energy of a contact's tangential, rolling and torsion springs,
- * J (the resistances' springs are zero while off). */
+ * J (the resistances' springs are zero while off), at overlap delta. */
 static double shear_energy(const struct dem_history *h,
-                           const struct dem_contact_params *cp)
+                           const struct dem_contact_params *cp, double delta,
+                           double a12, double m12)
 {
+    struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    dem_normal_shear(cp->normal, cp, delta, a12, m12, &T);
     const struct dem_vec3 xi = {h->xi_x, h->xi_y, h->xi_z};
     const struct dem_vec3 xr = {h->xr_x, h->xr_y, h->xr_z};
     const struct dem_vec3 xo = {h->xo_x, h->xo_y, h->xo_z};
-    return dem_tangential_energy(xi, cp->kt) +
-           dem_resistance_energy(xr, cp->kr) +
+    return dem_tangential_energy(xi, T.kt) + dem_resistance_energy(xr, cp->kr) +
            dem_resistance_energy(xo, cp->ko);
 }
 
@@ -89,7 +92,8 @@ static void measure_contacts(struct dem_sim *s)
                 S->fabric[a][c] += n[a] * n[c];
             }
         const struct dem_history h = list_history(L, k, set);
-        double e = shear_energy(&h, cp);
+        const double m12 = P->m[i] * P->m[j] / (P->m[i] + P->m[j]);
+        double e = shear_energy(&h, cp, delta, P->r[i] * P->r[j] / R, m12);
         e +=
             dem_normal_energy(cp->normal, cp, delta, P->r[i] * P->r[j] / R, &h);
         S->e_pot += e;
@@ -124,7 +128,7 @@ static void measure_contacts(struct dem_sim *s)
         for (int c = 0; c < 3; c++)
             S->fabric_stress[a][c] += dist * sgn * f[c];
         const struct dem_history h = list_history(WL, k, set);
-        double e = shear_energy(&h, &cpw);
+        double e = shear_energy(&h, &cpw, delta, P->r[i], P->m[i]);
         e += dem_normal_energy(cpw.normal, &cpw, delta, P->r[i], &h);
         S->e_pot += e;
         S->n_pw++;

@@ -14,12 +14,14 @@
 
 #include "contact/history.h"
 #include "contact/luding.h"
+#include "contact/tangential.h"
 
 static inline double dem_model_luding_force(const struct dem_contact_params *c,
                                             double delta, double ddot,
-                                            double a12, struct dem_history *h,
-                                            double *fc)
+                                            double a12, double m12,
+                                            struct dem_history *h, double *fc)
 {
+    (void)m12;
     const struct dem_luding L = {c->k1, c->k2, c->kc, c->phi_f};
     const double fn =
         dem_luding_force(delta, &h->dmax, &L, a12) + c->gamma_n * ddot;
@@ -37,8 +39,11 @@ static inline double dem_model_luding_energy(const struct dem_contact_params *c,
 
 /* k2 (with phi_f it is the upper limit of the growing stiffness) */
 static inline double
-dem_model_luding_stiffness(const struct dem_contact_params *c)
+dem_model_luding_stiffness(const struct dem_contact_params *c, double m12,
+                           double a12)
 {
+    (void)m12;
+    (void)a12;
     return c->k2;
 }
 
@@ -50,6 +55,23 @@ dem_model_luding_check(const struct dem_contact_params *c, char *msg, size_t n)
         return "contact.k1";
     }
     return NULL;
+}
+
+/* the tangential law's constants: contact.kt, contact.gamma_t */
+static inline void dem_model_luding_shear(const struct dem_contact_params *c,
+                                          double delta, double a12, double m12,
+                                          struct dem_tangential *T)
+{
+    (void)c;
+    (void)delta;
+    (void)a12;
+    (void)m12;
+    (void)T;
+}
+
+static inline void dem_model_luding_derive(struct dem_contact_params *c)
+{
+    (void)c;
 }
 
 #endif

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "core/particles.h"
 
@@ -14,6 +15,25 @@ const char *dem_normal_name(int law)
     DEM_NORMAL_MODELS(DEM_NAME_)
 #undef DEM_NAME_
     return NULL;
+}
+
+void dem_owner_laws(int owner, char *buf, size_t n)
+{
+    int count = 0, left = 0;
+    for (int law = 0; law < DEM_NORMAL_NMODELS; law++)
+        left += (owner >> law) & 1;
+    buf[0] = '\0';
+    for (int law = 0; law < DEM_NORMAL_NMODELS; law++) {
+        if (!((owner >> law) & 1))
+            continue;
+        const size_t len = strlen(buf);
+        snprintf(buf + len, n - len, "%s%s",
+                 count == 0          ? ""
+                 : count + 1 == left ? " and "
+                                     : ", ",
+                 dem_normal_name(law));
+        count++;
+    }
 }
 
 const char *dem_resistance_name(int owner)
@@ -33,12 +53,22 @@ const char *dem_resistance_name(int owner)
  * normal spring of 1.25 k for the time step. */
 #define RESIST_STIFFNESS 1.25
 
-double dem_contact_stiffness(const struct dem_contact_params *c)
+void dem_contact_derive(struct dem_contact_params *c)
+{
+#define DEM_DERIVE_(TAG, name, lanes)                                          \
+    if (c->normal == DEM_NORMAL_##TAG)                                         \
+        dem_model_##name##_derive(c);
+    DEM_NORMAL_MODELS(DEM_DERIVE_)
+#undef DEM_DERIVE_
+}
+
+double dem_contact_stiffness(const struct dem_contact_params *c, double m12,
+                             double a12)
 {
     double k = 0.0;
 #define DEM_STIFF_(TAG, name, lanes)                                           \
     if (c->normal == DEM_NORMAL_##TAG)                                         \
-        k = dem_model_##name##_stiffness(c);
+        k = dem_model_##name##_stiffness(c, m12, a12);
     DEM_NORMAL_MODELS(DEM_STIFF_)
 #undef DEM_STIFF_
     if (c->rolling != DEM_RESIST_NONE)
@@ -60,8 +90,12 @@ double dem_contact_time(const struct dem_config *c)
     dem_particle_mass(a, c->particles.density, c->particles.mass_model, c->dim,
                       &m, NULL);
     const double m_ij = 0.5 * m;
-    const double k = dem_contact_stiffness(&c->contact);
-    const double eta = c->contact.gamma_n / (2.0 * m_ij);
+    const double k = dem_contact_stiffness(&c->contact, m_ij, 0.5 * a);
+    /* the viscosity contact.gamma_n of the spring laws (another law's
+     * damping is in its stiffness's contact time, or neglected) */
+    const double eta = dem_owner_used(c->contact.normal, DEM_OWNER_SPRINGS)
+                           ? c->contact.gamma_n / (2.0 * m_ij)
+                           : 0.0;
     const double w0sq = k / m_ij;
     /* An overdamped pair has no oscillation; its undamped half period is
      * still the time scale the integrator has to resolve. */

@@ -12,6 +12,7 @@
 #include <stddef.h>
 
 #include "contact/history.h"
+#include "contact/model_hertz.h"
 #include "contact/model_linear.h"
 #include "contact/model_luding.h"
 #include "contact/resistance.h"
@@ -23,19 +24,31 @@
 #define DEM_INLINE static inline
 #endif
 
-/* The owner of a key or history line (its MODEL column): a normal law,
- * a resistance, or ANY. DEM_OWNER_TAG for each. */
+/* The resistances' indices in their list. */
 enum {
-    DEM_OWNER_ANY = -1,
-#define DEM_OWNER_NORMAL_(TAG, name, lanes) DEM_OWNER_##TAG = DEM_NORMAL_##TAG,
+#define DEM_RESIST_INDEX_(TAG, name, doc) DEM_RESIST_INDEX_##TAG,
+    DEM_CONTACT_RESISTANCES(DEM_RESIST_INDEX_)
+#undef DEM_RESIST_INDEX_
+        DEM_NRESIST
+};
+
+/* The owner of a key or history line (its MODEL column) as a mask: one
+ * bit per normal law (bits 0-15) and per resistance (bits 16 on); a key
+ * of several normal laws names a group of them (SPRINGS: the laws with
+ * a spring constant and a viscosity); ANY = 0: every model. */
+enum {
+    DEM_OWNER_ANY = 0,
+#define DEM_OWNER_NORMAL_(TAG, name, lanes)                                    \
+    DEM_OWNER_##TAG = 1 << DEM_NORMAL_##TAG,
     DEM_NORMAL_MODELS(DEM_OWNER_NORMAL_)
 #undef DEM_OWNER_NORMAL_
-        DEM_OWNER_RESIST_0 = 64, /* the resistances follow, in list order */
-#define DEM_OWNER_RESIST_(TAG, name, doc) DEM_OWNER_##TAG,
-    DEM_CONTACT_RESISTANCES(DEM_OWNER_RESIST_)
+#define DEM_OWNER_RESIST_(TAG, name, doc)                                      \
+    DEM_OWNER_##TAG = 1 << (16 + DEM_RESIST_INDEX_##TAG),
+        DEM_CONTACT_RESISTANCES(DEM_OWNER_RESIST_)
 #undef DEM_OWNER_RESIST_
+            DEM_OWNER_SPRINGS = DEM_OWNER_LINEAR | DEM_OWNER_LUDING,
 };
-#define DEM_OWNER_RESIST_FIRST (DEM_OWNER_RESIST_0 + 1)
+#define DEM_OWNER_NORMALS 0xffff
 
 /* The model set of a contact: its normal law in the low byte, one bit
  * (DEM_SET_TAG) per resistance switched on. The force pass is compiled
@@ -43,7 +56,7 @@ enum {
 #define DEM_SET_NORMAL 0xff
 enum {
 #define DEM_SET_BIT_(TAG, name, doc)                                           \
-    DEM_SET_##TAG = 1 << (8 + DEM_OWNER_##TAG - DEM_OWNER_RESIST_FIRST),
+    DEM_SET_##TAG = 1 << (8 + DEM_RESIST_INDEX_##TAG),
     DEM_CONTACT_RESISTANCES(DEM_SET_BIT_)
 #undef DEM_SET_BIT_
 };
@@ -60,14 +73,14 @@ static inline int dem_contact_set(const struct dem_contact_params *c)
     return set;
 }
 
-/* Whether the owner (DEM_OWNER_*) is in the model set. */
+/* Whether the owner (a DEM_OWNER_* mask) is in the model set. */
 static inline int dem_owner_used(int set, int owner)
 {
     if (owner == DEM_OWNER_ANY)
         return 1;
-    if (owner < DEM_OWNER_RESIST_0)
-        return owner == (set & DEM_SET_NORMAL);
-    return (set >> (8 + owner - DEM_OWNER_RESIST_FIRST)) & 1;
+    if (owner & DEM_OWNER_NORMALS)
+        return (owner >> (set & DEM_SET_NORMAL)) & 1;
+    return ((owner >> 16) & (set >> 8)) != 0;
 }
 
 /* Whether a key or history value of MODEL (its column's tag) belongs to
@@ -110,16 +123,31 @@ DEM_INLINE int dem_normal_simd(int law)
 /* Normal force of law (see contact/model_linear.h for the arguments). */
 DEM_INLINE double dem_normal_force(int law, const struct dem_contact_params *c,
                                    double delta, double ddot, double a12,
-                                   struct dem_history *h, double *fc)
+                                   double m12, struct dem_history *h,
+                                   double *fc)
 {
     law &= DEM_SET_NORMAL; /* law may be a model set */
 #define DEM_FORCE_(TAG, name, lanes)                                           \
     if (law == DEM_NORMAL_##TAG)                                               \
-        return dem_model_##name##_force(c, delta, ddot, a12, h, fc);
+        return dem_model_##name##_force(c, delta, ddot, a12, m12, h, fc);
     DEM_NORMAL_MODELS(DEM_FORCE_)
 #undef DEM_FORCE_
     *fc = 0.0;
     return 0.0;
+}
+
+/* The tangential stiffness and viscosity of law at a contact, in T (see
+ * contact/model_linear.h). */
+DEM_INLINE void dem_normal_shear(int law, const struct dem_contact_params *c,
+                                 double delta, double a12, double m12,
+                                 struct dem_tangential *T)
+{
+    law &= DEM_SET_NORMAL;
+#define DEM_SHEAR_(TAG, name, lanes)                                           \
+    if (law == DEM_NORMAL_##TAG)                                               \
+        dem_model_##name##_shear(c, delta, a12, m12, T);
+    DEM_NORMAL_MODELS(DEM_SHEAR_)
+#undef DEM_SHEAR_
 }
 
 /* Elastic energy of the normal spring of law, J. */
@@ -151,12 +179,21 @@ dem_contact_wall_view(const struct dem_contact_params *c)
 /* Name of a normal law ("linear", ...), or NULL for an invalid value. */
 const char *dem_normal_name(int law);
 
-/* Name of a resistance from its DEM_OWNER_* ("rolling", ...), or NULL. */
+/* Name of the resistance of owner (a DEM_OWNER_* of a resistance), or
+ * NULL. */
 const char *dem_resistance_name(int owner);
+/* The normal laws of owner (a mask), e.g. "linear and luding". */
+void dem_owner_laws(int owner, char *buf, size_t n);
 
-/* Stiffest spring of the models in force as a normal spring, N/m (the
- * resistances' springs count 1.25 times, see contact/models.c). */
-double dem_contact_stiffness(const struct dem_contact_params *c);
+/* Stiffest spring of the models in force as a normal spring for a pair
+ * of reduced mass m12 (kg) and radius a12 (m), N/m (the resistances'
+ * springs count 1.25 times, see contact/models.c). */
+double dem_contact_stiffness(const struct dem_contact_params *c, double m12,
+                             double a12);
+
+/* Fill the derived values (DEM_CONTACT_DERIVED) of the models in force;
+ * at the start of every run and after a checkpoint is read. */
+void dem_contact_derive(struct dem_contact_params *c);
 
 /* Contact time of the pair of two smallest particles of c, s: half the
  * period of the damped oscillation of the stiffest normal spring (or of

@@ -178,12 +178,15 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
     struct dem_history h = load_history(law, &q, k);
     double fc;
     const double a12 = ai * aj / R;
-    const double fn = dem_normal_force(law, cp, R - d, ddot, a12, &h, &fc);
+    const double m12 = q.m[i] * q.m[j] / (q.m[i] + q.m[j]); /* if used */
+    const double fn = dem_normal_force(law, cp, R - d, ddot, a12, m12, &h, &fc);
     int st = q.state[k] | DEM_CONTACT_ACTIVE;
     const struct dem_vec3 dw = {q.wx[i] - q.wx[j], q.wy[i] - q.wy[j],
                                 q.wz[i] - q.wz[j]};
     resist_contact(law, &q, k, touch, n, dw, a12, fc, dt, cp, &h, &st);
-    finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, T);
+    struct dem_tangential Tc = *T;
+    dem_normal_shear(law, cp, R - d, a12, m12, &Tc);
+    finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
 }
 
 /* Forces and history updates of pairs k0 <= k < k1, in SIMD lanes or as
@@ -230,11 +233,14 @@ DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
     const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
     struct dem_history h = load_history(law, &q, k);
     double fc;
-    const double fn = dem_normal_force(law, cp, delta, ddot, ai, &h, &fc);
+    const double fn =
+        dem_normal_force(law, cp, delta, ddot, ai, q.m[i], &h, &fc);
     int st = q.state[k] | DEM_CONTACT_ACTIVE;
     const struct dem_vec3 dw = {q.wx[i], q.wy[i], q.wz[i]};
     resist_contact(law, &q, k, touch, n, dw, ai, fc, dt, cp, &h, &st);
-    finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, T);
+    struct dem_tangential Tc = *T;
+    dem_normal_shear(law, cp, delta, ai, q.m[i], &Tc);
+    finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp

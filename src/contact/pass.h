@@ -18,7 +18,7 @@
  * compiler need not reload an array pointer from its struct after a
  * store. */
 struct pass {
-    const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
+    const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *m;
     const int *ci, *cj;
 #define HIST_ARRAY_(MODEL, name, unit, doc) double *name;
     DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */

@@ -6,6 +6,7 @@
  * scheme (stress-controlled) or follow their prescribed profile.
  */
 #include "core/sim.h"
+#include "contact/models.h"
 
 #include <math.h>
 #include <omp.h>
@@ -29,6 +30,7 @@ static void sim_begin(struct dem_sim *s, const struct dem_config *cfg)
     s->dim = cfg->dim;
     s->dt = cfg->time_step;
     s->cp = cfg->contact;
+    dem_contact_derive(&s->cp);
     dem_rng_seed(&s->rng, cfg->seed);
 }
 

@@ -363,6 +363,8 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     DEM_CONTACT_RESISTANCES(RESIST_IO_)
 #undef RESIST_IO_
     const int set = dem_contact_set(cp);
+    if (io->reading)
+        dem_contact_derive(cp);
 #define PARAM_IO_(MODEL, name, unit, def, ...) io_f64(io, &cp->name);
 #define ALIAS_IO_(MODEL, name, field, unit, def, ...)
     DEM_CONTACT_KEYS(PARAM_IO_, ALIAS_IO_)
