@@ -10,12 +10,13 @@
 #include <stdlib.h>
 
 #include "contact/luding.h"
+#include "contact/resistance.h"
 #include "contact/tangential.h"
 #include "core/rng.h"
 
 /* History of one contact in the reference. */
 struct ref_hist {
-    struct dem_vec3 xi;
+    struct dem_vec3 xi, xr, xo; /* tangential, rolling, torsion springs */
     double dmax;
     int state;
 };
@@ -59,26 +60,52 @@ static struct dem_vec3 cross(struct dem_vec3 a, struct dem_vec3 b)
 }
 
 /* One contact with overlap delta, unit normal n (from the partner to i),
- * relative surface velocity vij, reduced radius a12: force on i, and
- * n x f_t. */
+ * relative surface velocity vij, spin difference dw, reduced radius a12
+ * and mass m12: force on i, n x f_t, and the resistances' torque on i
+ * (on the partner the opposite). */
 static void ref_contact(const struct dem_sim *s, struct ref *R,
                         struct ref_hist *h, double delta, struct dem_vec3 n,
-                        struct dem_vec3 vij, double a12, double kc, double mu_s,
-                        double mu_d, struct dem_vec3 *f, struct dem_vec3 *c)
+                        struct dem_vec3 vij, struct dem_vec3 dw, double a12,
+                        double m12, double kc, double mu_s, double mu_d,
+                        double mu_r, double mu_o, struct dem_vec3 *f,
+                        struct dem_vec3 *c, struct dem_vec3 *m)
 {
     const struct dem_contact_params *cp = &s->cp;
     const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
     double fn, fc;
+    struct dem_tangential T = {cp->kt, cp->gamma_t, mu_s, mu_d};
     if (cp->normal == DEM_NORMAL_LUDING) {
         const struct dem_luding L = {cp->k1, cp->k2, kc, cp->phi_f};
         fn = dem_luding_force(delta, &h->dmax, &L, a12) + cp->gamma_n * ddot;
         fc = dem_luding_coulomb_force(fn, delta, kc);
+    } else if (cp->normal == DEM_NORMAL_HERTZ) {
+        /* Hertz-Mindlin, written out (docs/physics.md) */
+        const double es = cp->E / (2 * (1 - cp->nu * cp->nu));
+        const double gs = cp->E / (2 * (1 + cp->nu)) / (2 * (2 - cp->nu));
+        const double K = 4.0 / 3.0 * es * sqrt(a12);
+        fn = K * pow(delta, 1.5) +
+             cp->hertz_alpha * sqrt(K * m12) * pow(delta, 0.25) * ddot;
+        fc = fn > 0.0 ? fn : 0.0;
+        T.kt = 8 * gs * sqrt(a12 * delta);
+        T.gamma_t = cp->hertz_alpha * sqrt(T.kt * m12 / 1.5);
     } else {
         fn = cp->k * delta + cp->gamma_n * ddot;
         fc = fn > 0.0 ? fn : 0.0;
     }
-    const struct dem_tangential T = {cp->kt, cp->gamma_t, mu_s, mu_d};
     h->state |= DEM_CONTACT_ACTIVE;
+    m->x = m->y = m->z = 0.0;
+    if (cp->rolling) {
+        const struct dem_tangential Rr = {cp->kr, cp->gamma_r, mu_r, mu_r};
+        const struct dem_vec3 q =
+            dem_rolling_torque(n, dw, a12, fc, s->dt, &Rr, &h->xr, &h->state);
+        m->x += q.x, m->y += q.y, m->z += q.z;
+    }
+    if (cp->torsion) {
+        const struct dem_tangential O = {cp->ko, cp->gamma_o, mu_o, mu_o};
+        const struct dem_vec3 q =
+            dem_torsion_torque(n, dw, a12, fc, s->dt, &O, &h->xo, &h->state);
+        m->x += q.x, m->y += q.y, m->z += q.z;
+    }
     const struct dem_vec3 ft =
         dem_tangential_force(n, vij, fc, s->dt, &T, &h->xi, &h->state);
     if (h->state & DEM_CONTACT_SLIDING)
@@ -113,7 +140,9 @@ static void ref_forces(const struct dem_sim *s, struct ref *R)
     memset(R->f, 0, 3 * (size_t)n * sizeof *R->f);
     memset(R->t, 0, 3 * (size_t)n * sizeof *R->t);
     double *csum = calloc(3 * (size_t)n, sizeof *csum); /* sums of n x f_t */
+    double *msum = calloc(3 * (size_t)n, sizeof *msum); /* resistances */
     assert_non_null(csum);
+    assert_non_null(msum);
     const double gb = s->cfg.damping.gamma_b, gr = s->cfg.damping.gamma_br;
     for (int i = 0; i < n; i++) {
         const struct dem_vec3 v = {P->vx[i], P->vy[i], P->vz[i]};
@@ -138,13 +167,18 @@ static void ref_forces(const struct dem_sim *s, struct ref *R)
                 P->vx[i] - P->vx[j] + ai * a.x + aj * bb.x,
                 P->vy[i] - P->vy[j] + ai * a.y + aj * bb.y,
                 P->vz[i] - P->vz[j] + ai * a.z + aj * bb.z};
-            struct dem_vec3 f, c;
-            ref_contact(s, R, h, ai + aj - d, nn, vij, ai * aj / (ai + aj),
-                        cp->kc, cp->mu_s, cp->mu_d, &f, &c);
+            struct dem_vec3 f, c, m;
+            const struct dem_vec3 dw = {wi.x - wj.x, wi.y - wj.y, wi.z - wj.z};
+            const double m12 = P->m[i] * P->m[j] / (P->m[i] + P->m[j]);
+            ref_contact(s, R, h, ai + aj - d, nn, vij, dw, ai * aj / (ai + aj),
+                        m12, cp->kc, cp->mu_s, cp->mu_d, cp->mu_r, cp->mu_o, &f,
+                        &c, &m);
             add3(R->f, i, f, 1.0);
             add3(R->f, j, f, -1.0);
             add3(csum, i, c, 1.0);
             add3(csum, j, c, 1.0);
+            add3(msum, i, m, 1.0);
+            add3(msum, j, m, -1.0);
         }
     for (int i = 0; i < n; i++)
         for (int w = 0; w < s->nwall; w++) {
@@ -167,19 +201,22 @@ static void ref_forces(const struct dem_sim *s, struct ref *R)
             const struct dem_vec3 vij = {P->vx[i] + ai * a.x - vw[0],
                                          P->vy[i] + ai * a.y - vw[1],
                                          P->vz[i] + ai * a.z - vw[2]};
-            struct dem_vec3 f, c;
-            ref_contact(s, R, h, delta, nn, vij, ai, cp->wall_kc, cp->wall_mu,
-                        cp->wall_mu, &f, &c);
+            struct dem_vec3 f, c, m;
+            ref_contact(s, R, h, delta, nn, vij, wi, ai, P->m[i], cp->wall_kc,
+                        cp->wall_mu, cp->wall_mu, cp->wall_mu_r, cp->wall_mu_o,
+                        &f, &c, &m);
             add3(R->f, i, f, 1.0);
             add3(csum, i, c, 1.0);
+            add3(msum, i, m, 1.0);
         }
     for (int i = 0; i < n; i++) {
         const double a = P->r[i], g = gr * a * a;
-        R->t[3 * i] = -g * P->wx[i] - a * csum[3 * i];
-        R->t[3 * i + 1] = -g * P->wy[i] - a * csum[3 * i + 1];
-        R->t[3 * i + 2] = -g * P->wz[i] - a * csum[3 * i + 2];
+        R->t[3 * i] = -g * P->wx[i] - a * csum[3 * i] + msum[3 * i];
+        R->t[3 * i + 1] = -g * P->wy[i] - a * csum[3 * i + 1] + msum[3 * i + 1];
+        R->t[3 * i + 2] = -g * P->wz[i] - a * csum[3 * i + 2] + msum[3 * i + 2];
     }
     free(csum);
+    free(msum);
 }
 
 /* Largest |difference| between the engine's and the reference's forces
@@ -247,11 +284,27 @@ static void shake(struct dem_sim *s, double v, double w, struct dem_rng *g)
  * between, so that the springs grow until contacts slide); the lists are
  * rebuilt every 10 passes (history carried), with re-ordering when
  * asked. */
-static void engine_matches_reference(int dim, int law, int reorder)
+static void engine_matches_reference(int dim, int law, int reorder, int resist)
 {
     struct dem_config c;
     test_config(&c, dim);
     c.contact.normal = law;
+    c.contact.E = 5e6;
+    c.contact.nu = 0.3;
+    c.contact.restitution = 0.6;
+    c.contact.v_impact = 1.0;
+    if (resist) {
+        c.contact.rolling = DEM_RESIST_LUDING;
+        c.contact.torsion = dim == 3 ? DEM_RESIST_LUDING : DEM_RESIST_NONE;
+        c.contact.kr = 400.0;
+        c.contact.gamma_r = 0.004;
+        c.contact.mu_r = 0.05;
+        c.contact.wall_mu_r = 0.03;
+        c.contact.ko = 300.0;
+        c.contact.gamma_o = 0.003;
+        c.contact.mu_o = 0.04;
+        c.contact.wall_mu_o = 0.02;
+    }
     c.contact.gamma_n = 0.05;
     c.contact.gamma_t = 0.01;
     c.contact.mu_s = 0.3;
@@ -295,13 +348,13 @@ static void engine_matches_reference(int dim, int law, int reorder)
         struct dem_particles P = s.p;
         for (int i = 0; i < n; i++)
             order[s.p.id[i]] = i;
-        double *buf = malloc(14 * (size_t)n * sizeof *buf);
+        double *buf = malloc(15 * (size_t)n * sizeof *buf);
         assert_non_null(buf);
-        double *cols[14] = {0};
-        const double *src[14] = {s.p.x,  s.p.y,  s.p.z,  s.p.r,  s.p.vx,
+        double *cols[15] = {0};
+        const double *src[15] = {s.p.x,  s.p.y,  s.p.z,  s.p.r,  s.p.vx,
                                  s.p.vy, s.p.vz, s.p.wx, s.p.wy, s.p.wz,
-                                 s.p.fx, s.p.fy, s.p.fz, s.p.tx};
-        for (int a = 0; a < 14; a++) {
+                                 s.p.fx, s.p.fy, s.p.fz, s.p.tx, s.p.m};
+        for (int a = 0; a < 15; a++) {
             cols[a] = buf + (size_t)a * n;
             for (int id = 0; id < n; id++)
                 cols[a][id] = src[a][order[id]];
@@ -310,6 +363,7 @@ static void engine_matches_reference(int dim, int law, int reorder)
         P.vx = cols[4], P.vy = cols[5], P.vz = cols[6];
         P.wx = cols[7], P.wy = cols[8], P.wz = cols[9];
         P.fx = cols[10], P.fy = cols[11], P.fz = cols[12], P.tx = cols[13];
+        P.m = cols[14];
         double *ty = malloc(2 * (size_t)n * sizeof *ty);
         assert_non_null(ty);
         for (int id = 0; id < n; id++) {
@@ -335,11 +389,11 @@ static void engine_matches_reference(int dim, int law, int reorder)
         for (int w = 0; w < s.nwall; w++)
             s.wall[w].pos += 1e-6 * (2 * dem_rng_uniform(&g) - 1);
     }
-    print_message("dim %d law %d reorder %d: %ld closed, %ld sliding, %ld "
-                  "opened; worst relative difference: force %.2e, torque "
-                  "%.2e\n",
-                  dim, law, reorder, R.n_closed, R.n_sliding, R.n_opened,
-                  worst_f, worst_t);
+    print_message("dim %d law %d reorder %d resist %d: %ld closed, %ld "
+                  "sliding, %ld opened; worst relative difference: force "
+                  "%.2e, torque %.2e\n",
+                  dim, law, reorder, resist, R.n_closed, R.n_sliding,
+                  R.n_opened, worst_f, worst_t);
     /* the packing exercises every branch of the contact law */
     assert_true(R.n_closed > 1000);
     assert_true(R.n_sliding > 100);
@@ -354,38 +408,60 @@ static void engine_matches_reference(int dim, int law, int reorder)
 static void linear_3d(void **state)
 {
     (void)state;
-    engine_matches_reference(3, DEM_NORMAL_LINEAR, 0);
+    engine_matches_reference(3, DEM_NORMAL_LINEAR, 0, 0);
 }
 
 static void linear_3d_reordered(void **state)
 {
     (void)state;
-    engine_matches_reference(3, DEM_NORMAL_LINEAR, 1);
+    engine_matches_reference(3, DEM_NORMAL_LINEAR, 1, 0);
 }
 
 static void luding_3d(void **state)
 {
     (void)state;
-    engine_matches_reference(3, DEM_NORMAL_LUDING, 1);
+    engine_matches_reference(3, DEM_NORMAL_LUDING, 1, 0);
 }
 
 static void linear_2d(void **state)
 {
     (void)state;
-    engine_matches_reference(2, DEM_NORMAL_LINEAR, 1);
+    engine_matches_reference(2, DEM_NORMAL_LINEAR, 1, 0);
 }
 
 static void luding_2d(void **state)
 {
     (void)state;
-    engine_matches_reference(2, DEM_NORMAL_LUDING, 0);
+    engine_matches_reference(2, DEM_NORMAL_LUDING, 0, 0);
+}
+
+static void hertz_3d(void **state)
+{
+    (void)state;
+    engine_matches_reference(3, DEM_NORMAL_HERTZ, 1, 0);
+}
+
+/* rolling and torsion resistance on, with each normal law */
+static void resistances_3d(void **state)
+{
+    (void)state;
+    engine_matches_reference(3, DEM_NORMAL_LINEAR, 1, 1);
+    engine_matches_reference(3, DEM_NORMAL_LUDING, 0, 1);
+    engine_matches_reference(3, DEM_NORMAL_HERTZ, 1, 1);
+}
+
+static void rolling_2d(void **state)
+{
+    (void)state;
+    engine_matches_reference(2, DEM_NORMAL_LINEAR, 1, 1);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(linear_3d), cmocka_unit_test(linear_3d_reordered),
-        cmocka_unit_test(luding_3d), cmocka_unit_test(linear_2d),
-        cmocka_unit_test(luding_2d)};
+        cmocka_unit_test(linear_3d),      cmocka_unit_test(linear_3d_reordered),
+        cmocka_unit_test(luding_3d),      cmocka_unit_test(linear_2d),
+        cmocka_unit_test(luding_2d),      cmocka_unit_test(hertz_3d),
+        cmocka_unit_test(resistances_3d), cmocka_unit_test(rolling_2d)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
