@@ -265,6 +265,76 @@ static void same_seed_same_output(void **state)
     }
 }
 
+/* The number of DataSet lines of a PVD file and the last one's time. */
+static int pvd_entries(const char *outdir, const char *name, double *last)
+{
+    char path[2048], line[512];
+    snprintf(path, sizeof path, "%s/%s", outdir, name);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    int n = 0;
+    while (fgets(line, sizeof line, f)) {
+        const char *t = strstr(line, "timestep=\"");
+        if (t) {
+            n++;
+            *last = atof(t + strlen("timestep=\""));
+        }
+    }
+    fclose(f);
+    return n;
+}
+
+/* Snapshots and dump frames cover the whole run: the initial state, every
+ * interval, and the final state when the run does not end on one; the
+ * box has its own PVD with the same times; a new run in the folder
+ * removes the snapshots of the earlier one. */
+static void snapshots_and_dump_cover_start_and_end(void **state)
+{
+    (void)state;
+    char out[1024], path[2048];
+    /* 0.012 s of isotropic stage (max_time), snapshots every 0.005 s:
+     * t = 0, 0.005, 0.010 and the end */
+    const char *sets[] = {"stages=( { type = \"isotropic\"; pressure = 500.0;"
+                          " tolerance = 1.0e-9; max_time = 0.012; } )",
+                          "output.snapshot_interval=0.005",
+                          "output.dump_interval=0.005"};
+    run_text(small_2d, "snapend", sets, 3, 0, out, sizeof out);
+    double last_p = -1, last_b = -1;
+    assert_int_equal(pvd_entries(out, "particles.pvd", &last_p), 4);
+    assert_int_equal(pvd_entries(out, "box.pvd", &last_b), 4);
+    assert_true(fabs(last_p - 0.012) < 1e-6);
+    assert_true(last_b == last_p);
+    assert_true(exists(out, "particles_00003.vtu"));
+    assert_true(exists(out, "box_00003.vtu"));
+    /* the dump: frames at steps 0, ..., and the last step */
+    snprintf(path, sizeof path, "%s/dump.lammpstrj", out);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[512];
+    long first = -1, lastf = -1;
+    int frames = 0, want_step = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (want_step) {
+            lastf = atol(line);
+            if (first < 0)
+                first = lastf;
+            frames++;
+        }
+        want_step = !strncmp(line, "ITEM: TIMESTEP", 14);
+    }
+    fclose(f);
+    assert_int_equal(first, 0);
+    assert_int_equal(frames, 4);
+    /* a second run with fewer snapshots leaves none of the first's */
+    const char *sets2[] = {sets[0], "output.snapshot_interval=0.01"};
+    run_text(small_2d, "snapend", sets2, 2, 0, out, sizeof out);
+    assert_int_equal(pvd_entries(out, "particles.pvd", &last_p), 3);
+    assert_false(exists(out, "particles_00003.vtu"));
+    assert_false(exists(out, "box_00003.vtu"));
+    assert_false(exists(out, "dump.lammpstrj"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -272,6 +342,7 @@ int main(void)
         cmocka_unit_test(isotropic_stage_reaches_target_pressure),
         cmocka_unit_test(biaxial_fixed_walls_and_dilatancy),
         cmocka_unit_test(same_seed_same_output),
+        cmocka_unit_test(snapshots_and_dump_cover_start_and_end),
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
     };

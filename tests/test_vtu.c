@@ -210,7 +210,7 @@ static void particle_snapshot_is_well_formed_with_all_arrays(void **state)
     }
 }
 
-static void box_is_a_hexahedron_in_3d_and_a_closed_outline_in_2d(void **state)
+static void box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d(void **state)
 {
     (void)state;
     const double lo[3] = {0.0, -0.1, -0.005}, hi[3] = {0.3, 0.2, 0.005};
@@ -221,10 +221,24 @@ static void box_is_a_hexahedron_in_3d_and_a_closed_outline_in_2d(void **state)
     char *text = slurp(path);
     assert_well_formed(path, text);
     assert_non_null(strstr(text, "NumberOfPoints=\"8\""));
-    assert_int_equal(array_values(text, "connectivity"), 8);
-    assert_int_equal(array_values(text, "types"), 1);
+    /* a wireframe: 12 lines of 2 corners each, every corner on 3 */
+    assert_int_equal(array_values(text, "connectivity"), 24);
+    assert_int_equal(array_values(text, "types"), 12);
     const char *types = strstr(strstr(text, "Name=\"types\""), ">") + 1;
-    assert_int_equal(atoi(types), 12); /* VTK_HEXAHEDRON */
+    assert_int_equal(atoi(types), 3); /* VTK_LINE */
+    {
+        const char *c = strstr(strstr(text, "Name=\"connectivity\""), ">") + 1;
+        int seen[8] = {0};
+        for (int k = 0; k < 24; k++) {
+            char *end;
+            const long v = strtol(c, &end, 10);
+            assert_true(v >= 0 && v < 8);
+            seen[v]++;
+            c = end;
+        }
+        for (int v = 0; v < 8; v++)
+            assert_int_equal(seen[v], 3);
+    }
     /* Every corner appears: x takes both values four times each. */
     assert_int_equal(count_of(text, "\n0.29999999999999999 "), 4);
     free(text);
@@ -279,7 +293,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(particle_snapshot_is_well_formed_with_all_arrays),
-        cmocka_unit_test(box_is_a_hexahedron_in_3d_and_a_closed_outline_in_2d),
+        cmocka_unit_test(box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d),
         cmocka_unit_test(pvd_lists_every_snapshot_in_order),
         cmocka_unit_test(unwritable_path_is_an_io_error),
     };

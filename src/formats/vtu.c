@@ -6,7 +6,7 @@
 #include "io/outfile.h"
 
 /* VTK cell type numbers (vtkCellType.h). */
-enum { VTK_VERTEX = 1, VTK_POLY_LINE = 4, VTK_HEXAHEDRON = 12 };
+enum { VTK_VERTEX = 1, VTK_LINE = 3, VTK_POLY_LINE = 4 };
 
 static void header(FILE *f, const char *type)
 {
@@ -126,9 +126,11 @@ int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
     if (rc)
         return rc;
     FILE *f = o.f;
-    /* 3D: the 8 corners in VTK hexahedron order (bottom face counter-
-     * clockwise, then top face). 2D: the 4 corners at z = 0, the polyline
-     * returning to the first to close the outline. */
+    /* The corners: 2D the 4 at z = 0, 3D the 8 (bottom face counter-
+     * clockwise, then the top face). The box is drawn as lines, so that
+     * ParaView shows it as a wireframe around the packing, not as a solid
+     * that hides it: 2D one polyline back to the first corner, 3D the 12
+     * edges as lines. */
     double pts[8][3];
     int npts = dim == 2 ? 4 : 8;
     for (int k = 0; k < npts; k++) {
@@ -139,23 +141,26 @@ int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
         pts[k][2] = dim == 2 ? 0.0 : (k >= 4 ? hi[2] : lo[2]);
     }
     static const int loop2d[5] = {0, 1, 2, 3, 0};
-    int nconn = dim == 2 ? 5 : 8;
-    int ends[1] = {nconn};
+    static const int edges[24] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6,
+                                  6, 7, 7, 4, 0, 4, 1, 5, 2, 6, 3, 7};
+    static const int ends2d[1] = {5};
+    static const int ends3d[12] = {2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24};
+    const int ncell = dim == 2 ? 1 : 12;
     header(f, "UnstructuredGrid");
     fprintf(f,
             "  <UnstructuredGrid>\n"
-            "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"1\">\n"
+            "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n"
             "      <Points>\n"
             "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" "
             "format=\"ascii\">\n",
-            npts);
+            npts, ncell);
     for (int k = 0; k < npts; k++)
         fprintf(f, "%.17g %.17g %.17g\n", pts[k][0], pts[k][1], pts[k][2]);
     fputs("        </DataArray>\n"
           "      </Points>\n",
           f);
-    cells(f, 1, dim == 2 ? VTK_POLY_LINE : VTK_HEXAHEDRON,
-          dim == 2 ? loop2d : NULL, ends);
+    cells(f, ncell, dim == 2 ? VTK_POLY_LINE : VTK_LINE,
+          dim == 2 ? loop2d : edges, dim == 2 ? ends2d : ends3d);
     fputs("    </Piece>\n"
           "  </UnstructuredGrid>\n"
           "</VTKFile>\n",

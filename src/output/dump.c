@@ -1,6 +1,10 @@
-/* dump.lammpstrj: LAMMPS-style text frames (read by OVITO) every
- * output.dump_interval of simulated time, when that is > 0. */
+/* dump.lammpstrj: LAMMPS-style text frames (read by OVITO) of the initial
+ * state, then every output.dump_interval of simulated time, and of the
+ * final state, when output.dump_interval > 0. st.times[0] (count 1)
+ * keeps the time of the last frame, so that the end adds a frame only
+ * when the last one is older. */
 #include <errno.h>
+#include <stdlib.h>
 
 #include "formats/dump.h"
 #include "output/output.h"
@@ -13,12 +17,32 @@ static int dump_on(const struct dem_output_run *r)
     return r->s->cfg.output.dump_interval > 0;
 }
 
+static int frame(struct dem_output *o, const struct dem_output_run *r,
+                 struct dem_error *err)
+{
+    const struct dem_sim *s = r->s;
+    if (!o->st.times) {
+        o->st.times = malloc(sizeof *o->st.times);
+        if (!o->st.times)
+            return dem_error_set(err, DEM_ENOMEM, "out of memory (dump)");
+    }
+    o->st.count = 1;
+    o->st.times[0] = s->t;
+    double lo[3], hi[3];
+    dem__output_box(s, lo, hi);
+    errno = 0;
+    dem_dump_frame(o->f, s->step, lo, hi, &s->p);
+    return dem__part_check(o, err);
+}
+
 static int dump_open(struct dem_output *o, const struct dem_output_run *r,
                      struct dem_error *err)
 {
-    o->st.next = 0.0; /* a frame at the first sample */
-    return dump_on(r) ? dem__part_create(o, r->outdir, "dump.lammpstrj", err)
-                      : DEM_OK;
+    if (!dump_on(r))
+        return DEM_OK;
+    o->st.next = r->s->cfg.output.dump_interval;
+    int rc = dem__part_create(o, r->outdir, "dump.lammpstrj", err);
+    return rc ? rc : frame(o, r, err);
 }
 
 static int dump_resume(struct dem_output *o, const struct dem_output_run *r,
@@ -34,12 +58,18 @@ static int dump_sample(struct dem_output *o, const struct dem_output_run *r,
     const struct dem_sim *s = r->s;
     if (!o->f || s->t + 0.5 * s->dt < o->st.next)
         return DEM_OK;
-    double lo[3], hi[3];
-    dem__output_box(s, lo, hi);
-    errno = 0;
-    dem_dump_frame(o->f, s->step, lo, hi, &s->p);
     o->st.next += s->cfg.output.dump_interval;
-    return dem__part_check(o, err);
+    return frame(o, r, err);
+}
+
+static int dump_finish(struct dem_output *o, const struct dem_output_run *r,
+                       struct dem_error *err)
+{
+    const struct dem_sim *s = r->s;
+    int rc = DEM_OK;
+    if (o->f && (o->st.count == 0 || o->st.times[0] < s->t - 0.5 * s->dt))
+        rc = frame(o, r, err);
+    return rc ? rc : dem__part_finish(o, r, err);
 }
 
 const struct dem_output_kind dem_output_dump = {
@@ -49,5 +79,5 @@ const struct dem_output_kind dem_output_dump = {
     .resume = dump_resume,
     .sample = dump_sample,
     .sync = dem__part_sync,
-    .finish = dem__part_finish,
+    .finish = dump_finish,
 };

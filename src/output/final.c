@@ -1,7 +1,7 @@
 /* particles_final.csv (the state a later run can start from) and
  * forces_final.csv (per-particle contact force sums) at the end. */
-#include "io/fsutil.h"
 #include "formats/particles_csv.h"
+#include "io/fsutil.h"
 #include "output/output.h"
 
 static const char *const files[] = {"particles_final.csv", "forces_final.csv",

@@ -15,6 +15,7 @@
  */
 #include "dembox.h"
 #include <errno.h>
+#include <glob.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -25,9 +26,9 @@
 #include <unistd.h>
 
 #include "core/sim.h"
+#include "formats/particles_csv.h"
 #include "io/checkpoint.h"
 #include "io/fsutil.h"
-#include "formats/particles_csv.h"
 #include "measure/measure.h"
 #include "output/output.h"
 #include "protocol/stage.h"
@@ -358,14 +359,25 @@ static void bind_outputs(struct run_ctx *r)
 }
 
 /* Remove path (outdir/leaf), which belongs to an earlier run. */
+/* Remove dir/leaf; a leaf with a '*' is a pattern (glob(3)) and every
+ * file it matches goes. */
 static int remove_stale(const char *dir, const char *leaf,
                         struct dem_error *err)
 {
     char path[DEM_PATH_MAX];
     int rc = dem_path_join(path, sizeof path, dir, leaf, err);
-    if (!rc)
+    if (rc)
+        return rc;
+    if (!strchr(leaf, '*')) {
         remove(path);
-    return rc;
+        return DEM_OK;
+    }
+    glob_t g;
+    if (glob(path, GLOB_NOSORT, NULL, &g) == 0)
+        for (size_t k = 0; k < g.gl_pathc; k++)
+            remove(g.gl_pathv[k]);
+    globfree(&g);
+    return DEM_OK;
 }
 
 static int open_outputs(struct run_ctx *r, struct dem_error *err)
