@@ -326,6 +326,45 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     fclose(f);
     assert_int_equal(first, 0);
     assert_int_equal(frames, 4);
+    assert_int_equal(pvd_entries(out, "contacts.pvd", &last_b), 4);
+    assert_true(exists(out, "contacts_00003.vtu"));
+    /* contacts_final.csv holds every contact: the sums of |fn| per
+     * particle are forces_final.csv's fsum, and the coordinations match */
+    struct dem__csv_table ct, ft;
+    struct dem_error err = {0};
+    static const struct dem__csv_want cw[] = {
+        {"id_i", 1}, {"id_j", 1}, {"fn", 1}, {"nx", 1}, {"ny", 1}};
+    static const struct dem__csv_want fw[] = {{"fsum", 1}, {"coordination", 1}};
+    snprintf(path, sizeof path, "%s/contacts_final.csv", out);
+    if (dem__csv_table_read(&ct, path, cw, 5, &err))
+        fail_msg("%s", err.msg);
+    snprintf(path, sizeof path, "%s/forces_final.csv", out);
+    if (dem__csv_table_read(&ft, path, fw, 2, &err))
+        fail_msg("%s", err.msg);
+    assert_true(ct.nrow > 100);
+    double *sum = calloc(ft.nrow, sizeof *sum);
+    double *cnt = calloc(ft.nrow, sizeof *cnt);
+    assert_non_null(sum);
+    assert_non_null(cnt);
+    for (size_t k = 0; k < ct.nrow; k++) {
+        const int i = (int)ct.col[0][k], j = (int)ct.col[1][k];
+        assert_true(i >= 0 && (size_t)i < ft.nrow);
+        assert_close(hypot(ct.col[3][k], ct.col[4][k]), 1.0, 1e-12);
+        sum[i] += fabs(ct.col[2][k]);
+        cnt[i] += 1;
+        if (j >= 0) {
+            sum[j] += fabs(ct.col[2][k]);
+            cnt[j] += 1;
+        }
+    }
+    for (size_t i = 0; i < ft.nrow; i++) {
+        assert_close(sum[i], ft.col[0][i], 1e-9 * (1.0 + ft.col[0][i]));
+        assert_close(cnt[i], ft.col[1][i], 0.0);
+    }
+    free(sum);
+    free(cnt);
+    dem__csv_table_free(&ct);
+    dem__csv_table_free(&ft);
     /* a second run with fewer snapshots leaves none of the first's */
     const char *sets2[] = {sets[0], "output.snapshot_interval=0.01"};
     run_text(small_2d, "snapend", sets2, 2, 0, out, sizeof out);

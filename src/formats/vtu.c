@@ -1,9 +1,12 @@
 /* VTK XML writers (format: "VTK File Formats", Kitware, XML section). */
 #include "formats/vtu.h"
 
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "io/outfile.h"
+#include "measure/network.h"
 
 /* VTK cell type numbers (vtkCellType.h). */
 enum { VTK_VERTEX = 1, VTK_LINE = 3, VTK_POLY_LINE = 4 };
@@ -189,6 +192,77 @@ static void put_attr(FILE *f, const char *s)
             fputc(*s, f);
         }
     }
+}
+
+int dem_vtu_write_contacts(const char *path, const struct dem_particles *p,
+                           const struct dem_network *net, struct dem_error *err)
+{
+    const int n = p->n > 0 ? p->n : 0, nc = net->npair;
+    int *conn = malloc(2 * (size_t)(nc > 0 ? nc : 1) * sizeof *conn);
+    int *ends = malloc((size_t)(nc > 0 ? nc : 1) * sizeof *ends);
+    if (!conn || !ends) {
+        free(conn);
+        free(ends);
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (contacts)");
+    }
+    for (int k = 0; k < nc; k++) {
+        conn[2 * k] = net->c[k].i;
+        conn[2 * k + 1] = net->c[k].j;
+        ends[k] = 2 * k + 2;
+    }
+    struct dem__outfile o;
+    int rc = dem__outfile_open(&o, path, err);
+    if (rc) {
+        free(conn);
+        free(ends);
+        return rc;
+    }
+    FILE *f = o.f;
+    header(f, "UnstructuredGrid");
+    fprintf(f,
+            "  <UnstructuredGrid>\n"
+            "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n"
+            "      <Points>\n",
+            n, nc);
+    array3(f, "position", n, p->x, p->y, p->z);
+    fputs("      </Points>\n", f);
+    cells(f, nc, VTK_LINE, conn, ends);
+    fputs("      <PointData Scalars=\"radius\">\n", f);
+    array1(f, "radius", n, p->r);
+    array1i(f, "id", n, p->id);
+    fputs("      </PointData>\n"
+          "      <CellData Scalars=\"normal_force\">\n",
+          f);
+    static const char *const names[] = {"normal_force", "tangential_force",
+                                        "overlap", "sliding"};
+    for (int q = 0; q < 4; q++) {
+        fprintf(f,
+                "        <DataArray type=\"%s\" Name=\"%s\" "
+                "format=\"ascii\">\n",
+                q == 3 ? "Int32" : "Float64", names[q]);
+        for (int k = 0; k < nc; k++) {
+            const struct dem_network_contact *c = &net->c[k];
+            if (q == 0)
+                fprintf(f, "%.9g\n", c->fn);
+            else if (q == 1)
+                fprintf(f, "%.9g\n",
+                        sqrt(c->ft[0] * c->ft[0] + c->ft[1] * c->ft[1] +
+                             c->ft[2] * c->ft[2]));
+            else if (q == 2)
+                fprintf(f, "%.9g\n", c->delta);
+            else
+                fprintf(f, "%d\n", c->sliding);
+        }
+        fputs("        </DataArray>\n", f);
+    }
+    fputs("      </CellData>\n"
+          "    </Piece>\n"
+          "  </UnstructuredGrid>\n"
+          "</VTKFile>\n",
+          f);
+    free(conn);
+    free(ends);
+    return dem__outfile_commit(&o, err);
 }
 
 int dem_pvd_write(const char *path, int n, const double *times,

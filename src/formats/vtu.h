@@ -17,10 +17,21 @@
 int dem_vtu_write_particles(const char *path, const struct dem_particles *p,
                             struct dem_error *err);
 
-/* The box [lo, hi] (m): a hexahedron in 3D, a closed polyline in the
- * z = 0 plane in 2D (a filled quad would hide the particles). */
+/* The box [lo, hi] (m) as lines: its 12 edges in 3D, a closed polyline
+ * in the z = 0 plane in 2D (a solid would hide the particles). */
 int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
                       int dim, struct dem_error *err);
+
+/* The contact network (measure/network.h): the particle centres as
+ * points (PointData radius, id) and one line cell per particle pair in
+ * contact, with CellData normal_force (N), tangential_force (N, the
+ * magnitude), overlap (m) and sliding (0/1). In ParaView, the Tube
+ * filter with the radius varying by normal_force draws the force
+ * chains. Wall contacts are not drawn (contacts_final.csv has them). */
+struct dem_network;
+int dem_vtu_write_contacts(const char *path, const struct dem_particles *p,
+                           const struct dem_network *net,
+                           struct dem_error *err);
 
 /* PVD collection of n datasets: files[k] (written as given, normally
  * relative to the .pvd) at times[k] (s). Rewritten completely each call. */

@@ -1,38 +1,44 @@
-/* particles_NNNNN.vtu and box_NNNNN.vtu every output.snapshot_interval of
- * simulated time (when > 0), from the start, and one of the final state
- * when the run does not end on a snapshot; particles.pvd and box.pvd
- * list them with their times, so that ParaView shows the box of each
- * snapshot with its particles. A new run in the folder removes the
- * snapshots of an earlier one. */
+/* particles_NNNNN.vtu, box_NNNNN.vtu and contacts_NNNNN.vtu (the contact
+ * network) every output.snapshot_interval of simulated time (when > 0),
+ * from the start, and of the final state when the run does not end on a
+ * snapshot; particles.pvd, box.pvd and contacts.pvd list them with their
+ * times, so that ParaView shows each snapshot's box and contacts with its
+ * particles. A new run in the folder removes the snapshots of an earlier
+ * one. */
 #include <stdlib.h>
 
 #include "formats/vtu.h"
 #include "io/fsutil.h"
+#include "measure/network.h"
 #include "output/output.h"
 
 #define MAX_SNAPSHOTS 100000
 
-static void snapshot_name(char *buf, size_t n, int k)
+static const char *const files[] = {"particles_*.vtu",
+                                    "box_*.vtu",
+                                    "contacts_*.vtu",
+                                    "particles.pvd",
+                                    "box.pvd",
+                                    "contacts.pvd",
+                                    NULL};
+
+/* The three series of snapshots: their file name stems. */
+static const char *const series[] = {"particles", "box", "contacts"};
+enum { NSERIES = 3 };
+
+static void series_name(char *buf, size_t n, int which, int k)
 {
-    snprintf(buf, n, "particles_%05d.vtu", k);
+    snprintf(buf, n, "%s_%05d.vtu", series[which], k);
 }
 
-static const char *const files[] = {"particles_*.vtu", "box_*.vtu",
-                                    "particles.pvd", "box.pvd", NULL};
-
-static void box_name(char *buf, size_t n, int k)
-{
-    snprintf(buf, n, "box_%05d.vtu", k);
-}
-
-/* particles.pvd (or box.pvd, box = 1) for the snapshots 0 .. count-1. */
-static int write_pvd(const struct dem_output *o, const char *outdir, int box,
+/* The PVD of one series for the snapshots 0 .. count-1. */
+static int write_pvd(const struct dem_output *o, const char *outdir, int which,
                      struct dem_error *err)
 {
     const int n = o->st.count;
-    char path[DEM_PATH_MAX];
-    int rc = dem_path_join(path, sizeof path, outdir,
-                           box ? "box.pvd" : "particles.pvd", err);
+    char path[DEM_PATH_MAX], leaf[32];
+    snprintf(leaf, sizeof leaf, "%s.pvd", series[which]);
+    int rc = dem_path_join(path, sizeof path, outdir, leaf, err);
     if (rc)
         return rc;
     char(*names)[32] = malloc((size_t)(n > 0 ? n : 1) * sizeof *names);
@@ -43,10 +49,7 @@ static int write_pvd(const struct dem_output *o, const char *outdir, int box,
         return dem_error_set(err, DEM_ENOMEM, "out of memory (snapshots)");
     }
     for (int k = 0; k < n; k++) {
-        if (box)
-            box_name(names[k], sizeof names[k], k);
-        else
-            snapshot_name(names[k], sizeof names[k], k);
+        series_name(names[k], sizeof names[k], which, k);
         ptr[k] = names[k];
     }
     rc = dem_pvd_write(path, n, o->st.times, ptr, err);
@@ -62,18 +65,24 @@ static int write_snapshot(struct dem_output *o, const struct dem_output_run *r,
     const int k = o->st.count;
     if (k >= MAX_SNAPSHOTS)
         return DEM_OK;
-    char name[64], path[DEM_PATH_MAX], box[64], boxpath[DEM_PATH_MAX];
-    snapshot_name(name, sizeof name, k);
-    box_name(box, sizeof box, k);
-    int rc = dem_path_join(path, sizeof path, r->outdir, name, err);
+    char name[NSERIES][64], path[NSERIES][DEM_PATH_MAX];
+    int rc = DEM_OK;
+    for (int w = 0; !rc && w < NSERIES; w++) {
+        series_name(name[w], sizeof name[w], w, k);
+        rc = dem_path_join(path[w], sizeof path[w], r->outdir, name[w], err);
+    }
     if (!rc)
-        rc = dem_path_join(boxpath, sizeof boxpath, r->outdir, box, err);
-    if (!rc)
-        rc = dem_vtu_write_particles(path, &s->p, err);
+        rc = dem_vtu_write_particles(path[0], &s->p, err);
     double lo[3], hi[3];
     dem__output_box(s, lo, hi);
     if (!rc)
-        rc = dem_vtu_write_box(boxpath, lo, hi, s->dim, err);
+        rc = dem_vtu_write_box(path[1], lo, hi, s->dim, err);
+    struct dem_network net = {0};
+    if (!rc)
+        rc = dem_network_build(s, &net, err);
+    if (!rc)
+        rc = dem_vtu_write_contacts(path[2], &s->p, &net, err);
+    dem_network_free(&net);
     if (rc)
         return rc;
     double *t = realloc(o->st.times, (size_t)(k + 1) * sizeof *t);
@@ -82,8 +91,9 @@ static int write_snapshot(struct dem_output *o, const struct dem_output_run *r,
     o->st.times = t;
     o->st.times[k] = s->t;
     o->st.count++;
-    rc = write_pvd(o, r->outdir, 0, err);
-    return rc ? rc : write_pvd(o, r->outdir, 1, err);
+    for (int w = 0; !rc && w < NSERIES; w++)
+        rc = write_pvd(o, r->outdir, w, err);
+    return rc;
 }
 
 static int snap_open(struct dem_output *o, const struct dem_output_run *r,

@@ -5,6 +5,7 @@
  */
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -87,6 +88,27 @@ int dem__plot_packing_3d(const struct dem__csv_table *pt)
     return 0;
 }
 
+/* Read OUTDIR/contacts_final.csv (optional) into t; 1 when read. */
+static int read_chains(const char *outdir, struct dem__csv_table *t,
+                       struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    if (dem_path_join(path, sizeof path, outdir, "contacts_final.csv", err))
+        return 0;
+    FILE *probe = fopen(path, "r");
+    if (!probe)
+        return 0;
+    fclose(probe);
+    static const struct dem__csv_want want[3] = {
+        {"id_i", 1}, {"id_j", 1}, {"fn", 1}};
+    struct dem_error e = {0};
+    if (dem__csv_table_read(t, path, want, 3, &e)) {
+        dem_warn(err, "%s; particles.png without force chains", e.msg);
+        return 0;
+    }
+    return 1;
+}
+
 int dem__plot_run_particles(const char *outdir, const char *plotdir,
                             const struct dem__csv_table *pt, int dim,
                             const double *lo, const double *hi,
@@ -124,10 +146,20 @@ int dem__plot_run_particles(const char *outdir, const char *plotdir,
     } else {
         packing_box(&pk);
     }
+    struct dem__csv_table chains;
+    const int have = dim == 2 && read_chains(outdir, &chains, err);
+    if (have) {
+        pk.nchain = (int)chains.nrow;
+        pk.chain_i = chains.col[0];
+        pk.chain_j = chains.col[1];
+        pk.chain_fn = chains.col[2];
+    }
     char png[DEM_PATH_MAX];
     rc = dem_path_join(png, sizeof png, plotdir, "particles.png", err);
     if (!rc)
         rc = dem__plot_particles(&pk, png, err);
+    if (have)
+        dem__csv_table_free(&chains);
     free(fsum);
     free(speed);
     return rc;

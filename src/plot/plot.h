@@ -40,6 +40,10 @@ struct dem__plot_packing {
     const double *value;     /* colour value per particle (>= 0) */
     const char *value_label; /* e.g. "contact force sum |f| (N)" */
     double lo[3], hi[3];     /* m; box */
+    /* the contact network (2D: drawn as force chains), or nchain = 0 */
+    int nchain;
+    const double *chain_i, *chain_j; /* particle rows of each pair */
+    const double *chain_fn;          /* N; its normal force */
 };
 
 /* Draw the packing (3D: the cut by z = (lo+hi)/2) into png_path. */

@@ -1,0 +1,73 @@
+/* The contact network of the current state (measure/network.h). */
+#include "measure/network.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "contact/state.h"
+
+static void split(struct dem_network_contact *c, const double f[3])
+{
+    c->fn = f[0] * c->n[0] + f[1] * c->n[1] + f[2] * c->n[2];
+    for (int a = 0; a < 3; a++)
+        c->ft[a] = f[a] - c->fn * c->n[a];
+}
+
+int dem_network_build(const struct dem_sim *s, struct dem_network *net,
+                      struct dem_error *err)
+{
+    const struct dem_particles *P = &s->p;
+    const struct dem_contact_list *L = &s->pairs.cur, *W = &s->pairs.wcur;
+    net->n = net->npair = 0;
+    net->c = malloc((size_t)(L->n + W->n + 1) * sizeof *net->c);
+    if (!net->c)
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (contacts)");
+    for (int k = 0; k < L->n; k++) {
+        if (!(L->state[k] & DEM_CONTACT_ACTIVE))
+            continue;
+        struct dem_network_contact *c = &net->c[net->n++];
+        const int i = L->i[k], j = L->j[k];
+        const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
+                             P->z[i] - P->z[j]};
+        const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        c->i = i;
+        c->j = j;
+        c->delta = P->r[i] + P->r[j] - d;
+        /* the middle of the overlap, a_i - delta/2 from i's centre */
+        const double ri[3] = {P->x[i], P->y[i], P->z[i]};
+        for (int a = 0; a < 3; a++) {
+            c->n[a] = b[a] / d;
+            c->x[a] = ri[a] - (P->r[i] - 0.5 * c->delta) * c->n[a];
+        }
+        split(c, s->pairs.f.v[k].f);
+        c->sliding = (L->state[k] & DEM_CONTACT_SLIDING) != 0;
+    }
+    net->npair = net->n;
+    for (int k = 0; k < W->n; k++) {
+        if (!(W->state[k] & DEM_CONTACT_ACTIVE))
+            continue;
+        struct dem_network_contact *c = &net->c[net->n++];
+        const int i = W->i[k], w = W->j[k];
+        const struct dem_wall *wl = &s->wall[w];
+        const double sgn = wl->side ? -1.0 : 1.0;
+        const double ri[3] = {P->x[i], P->y[i], P->z[i]};
+        const double dist = sgn * (ri[wl->axis] - wl->pos);
+        c->i = i;
+        c->j = -1 - w;
+        c->delta = P->r[i] - dist;
+        for (int a = 0; a < 3; a++) {
+            c->n[a] = a == wl->axis ? sgn : 0.0;
+            c->x[a] = ri[a] - (dist + 0.5 * c->delta) * c->n[a];
+        }
+        split(c, s->pairs.wf.v[k].f);
+        c->sliding = (W->state[k] & DEM_CONTACT_SLIDING) != 0;
+    }
+    return DEM_OK;
+}
+
+void dem_network_free(struct dem_network *net)
+{
+    free(net->c);
+    net->c = NULL;
+    net->n = net->npair = 0;
+}

@@ -1,0 +1,32 @@
+/* The contact network of the current state: every closed contact with
+ * its partners, contact point, normal, overlap and force (for the
+ * contacts_*.vtu snapshots and contacts_final.csv, docs/outputs.md). */
+#ifndef DEM_MEASURE_NETWORK_H
+#define DEM_MEASURE_NETWORK_H
+
+#include "core/sim.h"
+
+struct dem_network_contact {
+    int i;        /* particle index (engine order; p->id[i] its id) */
+    int j;        /* partner: particle index, or -1 - w for wall w */
+    double x[3];  /* m; contact point (the middle of the overlap) */
+    double n[3];  /* unit normal, from the partner to i */
+    double delta; /* m; overlap */
+    double fn;    /* N; normal force on i (> 0 repulsive) */
+    double ft[3]; /* N; tangential force on i */
+    int sliding;  /* 1: at the Coulomb limit */
+};
+
+struct dem_network {
+    int n; /* closed contacts: the pairs first, then the wall contacts */
+    int npair;
+    struct dem_network_contact *c;
+};
+
+/* The closed contacts of s from its stored contact forces (the last force
+ * pass, at the current positions when called at a sample). */
+int dem_network_build(const struct dem_sim *s, struct dem_network *net,
+                      struct dem_error *err);
+void dem_network_free(struct dem_network *net);
+
+#endif
