@@ -1,0 +1,22 @@
+#!/bin/sh
+# Install the build into a temporary prefix, build tests/install_check.c
+# against it with pkg-config (the header and libdembox.so only) and run
+# it. usage: test_install.sh BUILD_DIR SOURCE_DIR [CC]
+set -eu
+build=$1 src=$2 cc=${3:-cc}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
+pc=$(find "$tmp/prefix" -name dembox.pc)
+[ -n "$pc" ] || { echo "test_install: no dembox.pc installed" >&2; exit 1; }
+for f in bin/dembox include/dembox.h include/dembox_models.h; do
+    [ -e "$tmp/prefix/$f" ] || { echo "test_install: $f not installed" >&2; exit 1; }
+done
+export PKG_CONFIG_PATH="$(dirname "$pc")"
+# shellcheck disable=SC2046 # the flags are split on purpose
+"$cc" -std=c11 -Wall -Werror "$src/tests/install_check.c" \
+    $(pkg-config --cflags --libs dembox) -o "$tmp/check"
+libdir=$(pkg-config --variable=libdir dembox)
+LD_LIBRARY_PATH="$libdir" "$tmp/check" "$tmp/out"
+[ -s "$tmp/out/summary.json" ] || { echo "test_install: no summary.json" >&2; exit 1; }
+"$tmp/prefix/bin/dembox" --version >/dev/null
