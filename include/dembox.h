@@ -331,6 +331,13 @@ int dem_plot_run(const char *outdir, struct dem_error *err);
 /* Fill c with every default (dimension 3, seed 000's material). */
 void dem_config_defaults(struct dem_config *c);
 
+/* The library's version (DEM_VERSION of the header it was built with). */
+const char *dem_version(void);
+
+/* sizeof(struct dem_config), for bindings that cannot see the struct
+ * (python/dembox.py allocates one of this size). */
+size_t dem_config_size(void);
+
 /* Parse config text. source names the text in messages (a file path or
  * "example NAME"). sets are "KEY=VALUE" overrides (dotted paths, list
  * elements by 0-based index) applied on top of the text, nsets of them.

@@ -20,3 +20,10 @@ libdir=$(pkg-config --variable=libdir dembox)
 LD_LIBRARY_PATH="$libdir" "$tmp/check" "$tmp/out"
 [ -s "$tmp/out/summary.json" ] || { echo "test_install: no summary.json" >&2; exit 1; }
 "$tmp/prefix/bin/dembox" --version >/dev/null
+# the Python module finds the installed library by itself
+if command -v python3 >/dev/null; then
+    v=$(env -u DEMBOX_LIB PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" \
+        python3 -c 'import dembox; print(dembox.version())')
+    [ "$v" = "$("$tmp/prefix/bin/dembox" --version | awk '{print $NF}')" ] ||
+        { echo "test_install: python module says version '$v'" >&2; exit 1; }
+fi

@@ -490,6 +490,16 @@ void dem__cfg_stage_defaults(struct dem_stage_config *s)
             dem__cfg_set_key_default(s, &dem__cfg_keys[i]);
 }
 
+const char *dem_version(void)
+{
+    return DEM_VERSION;
+}
+
+size_t dem_config_size(void)
+{
+    return sizeof(struct dem_config);
+}
+
 void dem_config_defaults(struct dem_config *c)
 {
     /* memset first so that padding and unused stages compare equal. */

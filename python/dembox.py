@@ -1,0 +1,190 @@
+"""dembox from Python: run the DEM laboratory and read its results.
+
+A thin ctypes layer over libdembox.so (the C API of include/dembox.h);
+nothing to compile. The library is found through the environment
+variable DEMBOX_LIB (a path), next to this file in an installed tree
+(PREFIX/lib/python3/dist-packages -> PREFIX/lib), or by the system's
+library search.
+
+    import dembox
+    out = dembox.run("biaxial2d", "out", sets=["contact.mu=0.3"])
+    ts = dembox.timeseries(out)          # column name -> list of floats
+    summary = dembox.summary(out)        # summary.json as a dict
+    print(summary["peak"]["phi_deg"])
+
+Every failure raises dembox.Error with the library's one-line message
+(naming the key, the file and the line for a bad config).
+"""
+import csv
+import ctypes
+import ctypes.util
+import json
+import os
+
+__all__ = ["Error", "version", "examples", "example_text", "run", "analyze",
+           "plot", "timeseries", "summary"]
+
+
+class Error(Exception):
+    """A failure reported by libdembox: its status code and message."""
+
+    def __init__(self, code, message):
+        super().__init__(message)
+        self.code = code
+
+
+def _find_library():
+    given = os.environ.get("DEMBOX_LIB")
+    if given:
+        return given
+    here = os.path.dirname(os.path.abspath(__file__))
+    for rel in ("../../libdembox.so.0", "../../../libdembox.so.0"):
+        path = os.path.normpath(os.path.join(here, rel))
+        if os.path.exists(path):
+            return path
+    found = ctypes.util.find_library("dembox")
+    if not found:
+        raise OSError("libdembox.so not found: set DEMBOX_LIB to its path")
+    return found
+
+
+_lib = ctypes.CDLL(_find_library())
+
+_WARN = ctypes.CFUNCTYPE(None, ctypes.c_char_p, ctypes.c_void_p)
+
+
+class _ErrorStruct(ctypes.Structure):
+    # struct dem_error (include/dembox.h)
+    _fields_ = [("code", ctypes.c_int),
+                ("msg", ctypes.c_char * 1024),
+                ("warn", _WARN),
+                ("warn_user", ctypes.c_void_p)]
+
+
+class _RunOptions(ctypes.Structure):
+    # struct dem_run_options (include/dembox.h)
+    _fields_ = [("outdir", ctypes.c_char_p),
+                ("progress", ctypes.c_void_p),
+                ("progress_user", ctypes.c_void_p),
+                ("threads", ctypes.c_int),
+                ("max_steps", ctypes.c_long),
+                ("stop", ctypes.c_void_p),
+                ("stop_after_steps", ctypes.c_long)]
+
+
+class _Example(ctypes.Structure):
+    _fields_ = [("name", ctypes.c_char_p), ("text", ctypes.c_char_p)]
+
+
+_lib.dem_config_size.restype = ctypes.c_size_t
+_lib.dem_version.restype = ctypes.c_char_p
+_lib.dem_example_find.restype = ctypes.POINTER(_Example)
+_lib.dem_example_find.argtypes = [ctypes.c_char_p]
+_lib.dem_config_parse.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+                                  ctypes.c_char_p, ctypes.c_void_p,
+                                  ctypes.c_int, ctypes.POINTER(_ErrorStruct)]
+_lib.dem_config_load_file.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+                                      ctypes.c_void_p, ctypes.c_int,
+                                      ctypes.POINTER(_ErrorStruct)]
+_lib.dem_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_RunOptions),
+                         ctypes.POINTER(_ErrorStruct)]
+_lib.dem_analyze.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
+_lib.dem_plot_run.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
+
+
+def _error(warnings):
+    """A struct dem_error whose warnings go to the list warnings."""
+    err = _ErrorStruct()
+
+    def warn(line, user):
+        warnings.append(line.decode())
+    err.warn = _WARN(warn)
+    return err
+
+
+def _check(rc, err):
+    if rc != 0:
+        raise Error(rc, err.msg.decode())
+
+
+def version():
+    """The library's version, e.g. "0.1.0"."""
+    return _lib.dem_version().decode()
+
+
+def examples():
+    """The names of the built-in examples."""
+    n = ctypes.c_int.in_dll(_lib, "dem_n_examples").value
+    table = (_Example * n).in_dll(_lib, "dem_examples")
+    return [table[k].name.decode() for k in range(n)]
+
+
+def example_text(name):
+    """The config text of a built-in example."""
+    ex = _lib.dem_example_find(name.encode())
+    if not ex:
+        raise Error(-6, "no built-in example '%s' (see examples())" % name)
+    return ex.contents.text.decode()
+
+
+def _config(target, sets, err):
+    """Parse target (a built-in example's name or a config file's path)."""
+    buf = ctypes.create_string_buffer(_lib.dem_config_size())
+    arr = (ctypes.c_char_p * max(len(sets), 1))(*[s.encode() for s in sets])
+    if "/" not in target and _lib.dem_example_find(target.encode()):
+        rc = _lib.dem_config_parse(buf, example_text(target).encode(),
+                                   ("example " + target).encode(), arr,
+                                   len(sets), ctypes.byref(err))
+    else:
+        rc = _lib.dem_config_load_file(buf, target.encode(), arr, len(sets),
+                                       ctypes.byref(err))
+    _check(rc, err)
+    return buf
+
+
+def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
+        plot=False, warnings=None):
+    """Run a built-in example or a config file into outdir, as `dembox run`
+    does: then the analysis (summary.json) and, with plot=True, the
+    pictures. sets are "KEY=VALUE" overrides; max_steps > 0 ends the run
+    early. Warnings are appended to the list warnings when given. Returns
+    outdir."""
+    warnings = [] if warnings is None else warnings
+    err = _error(warnings)
+    cfg = _config(target, list(sets), err)
+    opt = _RunOptions(outdir=outdir.encode(), threads=threads,
+                      max_steps=max_steps)
+    _check(_lib.dem_run(cfg, ctypes.byref(opt), ctypes.byref(err)), err)
+    if analyze:
+        _check(_lib.dem_analyze(outdir.encode(), ctypes.byref(err)), err)
+    if plot:
+        _check(_lib.dem_plot_run(outdir.encode(), ctypes.byref(err)), err)
+    return outdir
+
+
+def analyze(outdir):
+    """Write outdir/summary.json from a finished run's files."""
+    err = _error([])
+    _check(_lib.dem_analyze(outdir.encode(), ctypes.byref(err)), err)
+
+
+def plot(outdir):
+    """Draw outdir/plots/ (gnuplot and cairo)."""
+    err = _error([])
+    _check(_lib.dem_plot_run(outdir.encode(), ctypes.byref(err)), err)
+
+
+def timeseries(outdir):
+    """outdir/timeseries.csv as a dict: column name -> list of floats (an
+    empty field is None). With numpy, numpy.asarray(ts["t"]) etc."""
+    with open(os.path.join(outdir, "timeseries.csv"), newline="") as f:
+        rows = list(csv.reader(f))
+    head, body = rows[0], rows[1:]
+    return {name: [float(r[k]) if r[k] != "" else None for r in body]
+            for k, name in enumerate(head)}
+
+
+def summary(outdir):
+    """outdir/summary.json as a dict."""
+    with open(os.path.join(outdir, "summary.json")) as f:
+        return json.load(f)
