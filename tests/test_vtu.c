@@ -15,6 +15,7 @@
 
 #include "core/particles.h"
 #include "formats/vtu.h"
+#include "measure/network.h"
 
 #include "tmpdir.h"
 
@@ -254,6 +255,54 @@ static void box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d(void **state)
     free(text);
 }
 
+/* Three particles, two pair contacts and one wall contact: a point per
+ * particle plus one per wall contact, a line per contact, the wall's line
+ * ending on its own point, every cell array one value (3 for the branch)
+ * per contact. */
+static void contact_network_is_one_line_per_contact(void **state)
+{
+    (void)state;
+    struct dem_particles p;
+    struct dem_error err = {0};
+    assert_int_equal(dem_particles_init(&p, 3, &err), DEM_OK);
+    for (int i = 0; i < 3; i++)
+        dem_particles_add(&p, 0.002 * i, 0.001, 0.0, 1.1e-3, 2000.0,
+                          DEM_MASS_DISC, 2);
+    struct dem_network_contact c[3] = {
+        {.i = 0, .j = 1, .n = {-1, 0, 0}, .delta = 2e-4, .fn = 1.5},
+        {.i = 1, .j = 2, .n = {-1, 0, 0}, .delta = 2e-4, .fn = 0.5},
+        {.i = 2,
+         .j = -2,
+         .x = {0.005, 0.001, 0},
+         .n = {-1, 0, 0},
+         .delta = 1e-4,
+         .fn = 2.0,
+         .sliding = 1}};
+    const struct dem_network net = {3, 2, c};
+    char path[128];
+    snprintf(path, sizeof path, "%s/contacts.vtu", tmpdir);
+    assert_int_equal(dem_vtu_write_contacts(&p, &net, path, &err), DEM_OK);
+    char *text = slurp(path);
+    assert_well_formed(path, text);
+    assert_non_null(strstr(text, "NumberOfPoints=\"4\" NumberOfCells=\"3\""));
+    assert_int_equal(array_values(text, "connectivity"), 6);
+    const char *conn = strstr(strstr(text, "Name=\"connectivity\""), ">") + 1;
+    long v[6];
+    for (int k = 0; k < 6; k++)
+        v[k] = strtol(conn, (char **)&conn, 10);
+    assert_int_equal(v[0], 0);
+    assert_int_equal(v[1], 1);
+    assert_int_equal(v[4], 2);
+    assert_int_equal(v[5], 3); /* the wall contact's own point */
+    static const char *const one[] = {"normal_force", "tangential_force",
+                                      "overlap", "sliding", "partner"};
+    for (int q = 0; q < 5; q++)
+        assert_int_equal(array_values(text, one[q]), 3);
+    assert_int_equal(array_values(text, "branch"), 9);
+    free(text);
+    dem_particles_free(&p);
+}
+
 static void pvd_lists_every_snapshot_in_order(void **state)
 {
     (void)state;
@@ -294,6 +343,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(particle_snapshot_is_well_formed_with_all_arrays),
         cmocka_unit_test(box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d),
+        cmocka_unit_test(contact_network_is_one_line_per_contact),
         cmocka_unit_test(pvd_lists_every_snapshot_in_order),
         cmocka_unit_test(unwritable_path_is_an_io_error),
     };

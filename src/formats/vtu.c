@@ -194,10 +194,14 @@ static void put_attr(FILE *f, const char *s)
     }
 }
 
-int dem_vtu_write_contacts(const char *path, const struct dem_particles *p,
-                           const struct dem_network *net, struct dem_error *err)
+int dem_vtu_write_contacts(const struct dem_particles *p,
+                           const struct dem_network *net, const char *path,
+                           struct dem_error *err)
 {
-    const int n = p->n > 0 ? p->n : 0, nc = net->npair;
+    /* points: the particle centres, then one contact point per wall
+     * contact; cells: a line per contact (centre to centre, centre to
+     * the contact point on the wall) */
+    const int n = p->n > 0 ? p->n : 0, nc = net->n, nw = net->n - net->npair;
     int *conn = malloc(2 * (size_t)(nc > 0 ? nc : 1) * sizeof *conn);
     int *ends = malloc((size_t)(nc > 0 ? nc : 1) * sizeof *ends);
     if (!conn || !ends) {
@@ -207,7 +211,7 @@ int dem_vtu_write_contacts(const char *path, const struct dem_particles *p,
     }
     for (int k = 0; k < nc; k++) {
         conn[2 * k] = net->c[k].i;
-        conn[2 * k + 1] = net->c[k].j;
+        conn[2 * k + 1] = k < net->npair ? net->c[k].j : n + k - net->npair;
         ends[k] = 2 * k + 2;
     }
     struct dem__outfile o;
@@ -222,26 +226,32 @@ int dem_vtu_write_contacts(const char *path, const struct dem_particles *p,
     fprintf(f,
             "  <UnstructuredGrid>\n"
             "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n"
-            "      <Points>\n",
-            n, nc);
-    array3(f, "position", n, p->x, p->y, p->z);
-    fputs("      </Points>\n", f);
-    cells(f, nc, VTK_LINE, conn, ends);
-    fputs("      <PointData Scalars=\"radius\">\n", f);
-    array1(f, "radius", n, p->r);
-    array1i(f, "id", n, p->id);
-    fputs("      </PointData>\n"
-          "      <CellData Scalars=\"normal_force\">\n",
+            "      <Points>\n"
+            "        <DataArray type=\"Float64\" Name=\"position\" "
+            "NumberOfComponents=\"3\" format=\"ascii\">\n",
+            n + nw, nc);
+    for (int i = 0; i < n; i++)
+        fprintf(f, "%.9g %.9g %.9g\n", p->x[i], p->y[i], p->z[i]);
+    for (int k = net->npair; k < nc; k++)
+        fprintf(f, "%.9g %.9g %.9g\n", net->c[k].x[0], net->c[k].x[1],
+                net->c[k].x[2]);
+    fputs("        </DataArray>\n"
+          "      </Points>\n",
           f);
+    cells(f, nc, VTK_LINE, conn, ends);
+    fputs("      <CellData Scalars=\"normal_force\" Vectors=\"branch\">\n", f);
     static const char *const names[] = {"normal_force", "tangential_force",
-                                        "overlap", "sliding"};
-    for (int q = 0; q < 4; q++) {
+                                        "overlap",      "sliding",
+                                        "partner",      "branch"};
+    for (int q = 0; q < 6; q++) {
         fprintf(f,
-                "        <DataArray type=\"%s\" Name=\"%s\" "
+                "        <DataArray type=\"%s\" Name=\"%s\"%s "
                 "format=\"ascii\">\n",
-                q == 3 ? "Int32" : "Float64", names[q]);
+                q == 3 || q == 4 ? "Int32" : "Float64", names[q],
+                q == 5 ? " NumberOfComponents=\"3\"" : "");
         for (int k = 0; k < nc; k++) {
             const struct dem_network_contact *c = &net->c[k];
+            const int i = c->i, j = c->j;
             if (q == 0)
                 fprintf(f, "%.9g\n", c->fn);
             else if (q == 1)
@@ -250,8 +260,16 @@ int dem_vtu_write_contacts(const char *path, const struct dem_particles *p,
                              c->ft[2] * c->ft[2]));
             else if (q == 2)
                 fprintf(f, "%.9g\n", c->delta);
-            else
+            else if (q == 3)
                 fprintf(f, "%d\n", c->sliding);
+            else if (q == 4) /* the partner's id, or -1 - w for wall w */
+                fprintf(f, "%d\n", j >= 0 ? p->id[j] : j);
+            else if (j >= 0) /* branch: from the partner's centre to i's */
+                fprintf(f, "%.9g %.9g %.9g\n", p->x[i] - p->x[j],
+                        p->y[i] - p->y[j], p->z[i] - p->z[j]);
+            else /* from the contact point to i's centre */
+                fprintf(f, "%.9g %.9g %.9g\n", p->x[i] - c->x[0],
+                        p->y[i] - c->x[1], p->z[i] - c->x[2]);
         }
         fputs("        </DataArray>\n", f);
     }

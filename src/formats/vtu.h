@@ -22,15 +22,18 @@ int dem_vtu_write_particles(const char *path, const struct dem_particles *p,
 int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
                       int dim, struct dem_error *err);
 
-/* The contact network (measure/network.h): the particle centres as
- * points (PointData radius, id) and one line cell per particle pair in
- * contact, with CellData normal_force (N), tangential_force (N, the
- * magnitude), overlap (m) and sliding (0/1). In ParaView, the Tube
- * filter with the radius varying by normal_force draws the force
- * chains. Wall contacts are not drawn (contacts_final.csv has them). */
+/* The contact network (measure/network.h) as lines: the particle
+ * centres are the first points, then one point per wall contact (its
+ * contact point); a line per contact (centre to centre, or centre to the
+ * contact point on the wall) with CellData normal_force (N),
+ * tangential_force (N, the magnitude), overlap (m), sliding (0/1),
+ * partner (its id, or -1 - w for wall w) and branch (m; from the
+ * partner's centre, or the contact point, to i's centre). In ParaView,
+ * the Tube filter with the radius varying by normal_force draws the
+ * force chains. */
 struct dem_network;
-int dem_vtu_write_contacts(const char *path, const struct dem_particles *p,
-                           const struct dem_network *net,
+int dem_vtu_write_contacts(const struct dem_particles *p,
+                           const struct dem_network *net, const char *path,
                            struct dem_error *err);
 
 /* PVD collection of n datasets: files[k] (written as given, normally

@@ -81,7 +81,7 @@ static int write_snapshot(struct dem_output *o, const struct dem_output_run *r,
     if (!rc)
         rc = dem_network_build(s, &net, err);
     if (!rc)
-        rc = dem_vtu_write_contacts(path[2], &s->p, &net, err);
+        rc = dem_vtu_write_contacts(&s->p, &net, path[2], err);
     dem_network_free(&net);
     if (rc)
         return rc;
