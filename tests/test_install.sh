@@ -9,7 +9,8 @@ trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
 pc=$(find "$tmp/prefix" -name dembox.pc)
 [ -n "$pc" ] || { echo "test_install: no dembox.pc installed" >&2; exit 1; }
-for f in bin/dembox include/dembox.h include/dembox_models.h; do
+for f in bin/dembox include/dembox.h include/dembox_models.h \
+    share/man/man1/dembox.1 share/bash-completion/completions/dembox; do
     [ -e "$tmp/prefix/$f" ] || { echo "test_install: $f not installed" >&2; exit 1; }
 done
 export PKG_CONFIG_PATH="$(dirname "$pc")"
@@ -20,6 +21,14 @@ libdir=$(pkg-config --variable=libdir dembox)
 LD_LIBRARY_PATH="$libdir" "$tmp/check" "$tmp/out"
 [ -s "$tmp/out/summary.json" ] || { echo "test_install: no summary.json" >&2; exit 1; }
 "$tmp/prefix/bin/dembox" --version >/dev/null
+# the man page has every command's help; the completion parses
+for sec in SYNOPSIS RUN SWEEP BENCH "CONFIGURATION KEYS"; do
+    grep -q "^\.SH $sec\$" "$tmp/prefix/share/man/man1/dembox.1" ||
+        { echo "test_install: no section $sec in dembox.1" >&2; exit 1; }
+done
+grep -q "contact.mu_r" "$tmp/prefix/share/man/man1/dembox.1" ||
+    { echo "test_install: dembox.1 lacks the config keys" >&2; exit 1; }
+bash -n "$tmp/prefix/share/bash-completion/completions/dembox"
 # the Python module finds the installed library by itself
 if command -v python3 >/dev/null; then
     v=$(env -u DEMBOX_LIB PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" \
