@@ -365,6 +365,43 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     free(cnt);
     dem__csv_table_free(&ct);
     dem__csv_table_free(&ft);
+    /* the contact pictures' data are densities: P(f/<f>) over its bins of
+     * 0.1 (and what lies beyond the last) and E(theta) over the circle
+     * integrate to 1, and the mean of f/<f> is 1 */
+    double integral[2] = {0, 0}, first_moment = 0.0;
+    long beyond = 0, pairs = 0;
+    for (int q = 0; q < 2; q++) {
+        snprintf(path, sizeof path, "%s/plots/%s.dat", out,
+                 q ? "contact_normals" : "force_distribution");
+        f = fopen(path, "r");
+        assert_non_null(f);
+        double last_theta = -1, x, y;
+        while (fgets(line, sizeof line, f)) {
+            if (line[0] == '#') {
+                const char *p = strstr(line, "over the ");
+                if (p)
+                    pairs = atol(p + 9);
+                p = strstr(line, "; ");
+                if (q == 0 && p && strstr(line, "beyond"))
+                    beyond = atol(p + 2);
+                continue;
+            }
+            if (sscanf(line, "%lf %lf", &x, &y) != 2)
+                continue; /* an empty bin ("?") */
+            if (q == 0) {
+                integral[0] += 0.1 * y;
+                first_moment += 0.1 * x * y;
+            } else if (last_theta >= 0 && x > last_theta) {
+                integral[1] += (x - last_theta) * M_PI / 180.0 * y;
+            }
+            last_theta = x;
+        }
+        fclose(f);
+    }
+    assert_true(pairs > 100);
+    assert_close(integral[0] + (double)beyond / pairs, 1.0, 1e-6);
+    assert_close(integral[1], 1.0, 1e-6);
+    assert_close(first_moment, 1.0, 0.05 + (double)beyond / pairs * 6.0);
     /* a second run with fewer snapshots leaves none of the first's */
     const char *sets2[] = {sets[0], "output.snapshot_interval=0.01"};
     run_text(small_2d, "snapend", sets2, 2, 0, out, sizeof out);

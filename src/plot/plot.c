@@ -743,23 +743,29 @@ static int final_box(const struct series *s, double lo[3], double hi[3])
     return 1;
 }
 
-static int run_gnuplot_all(const char *plotdir, struct dem_error *err)
+/* gnuplot for every plot of the table and the extra ones (names). */
+static int run_gnuplot_all(const char *plotdir, const char *const *extra,
+                           int nextra, struct dem_error *err)
 {
     const char *cmd = dem__gp_command();
+    const int n = (int)NPLOTS + nextra;
     if (!dem__gp_available(cmd)) {
         dem_warn(err, "%s not found; plot scripts written to %s", cmd, plotdir);
         /* a picture of an earlier plotting would no longer match its
          * data */
-        for (size_t k = 0; k < NPLOTS; k++) {
+        for (int k = 0; k < n; k++) {
             char leaf[DEM_NAME_MAX], png[DEM_PATH_MAX];
-            snprintf(leaf, sizeof leaf, "%s.png", plots[k].name);
+            snprintf(leaf, sizeof leaf, "%s.png",
+                     k < (int)NPLOTS ? plots[k].name : extra[k - NPLOTS]);
             if (!dem_path_join(png, sizeof png, plotdir, leaf, NULL))
                 remove(png);
         }
         return DEM_OK;
     }
-    for (size_t k = 0; k < NPLOTS; k++) {
-        int rc = dem__gp_run(cmd, plotdir, plots[k].name, err);
+    for (int k = 0; k < n; k++) {
+        int rc = dem__gp_run(
+            cmd, plotdir, k < (int)NPLOTS ? plots[k].name : extra[k - NPLOTS],
+            err);
         if (rc)
             return rc;
     }
@@ -818,8 +824,12 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
         remove(path); /* the messages of an earlier plotting */
     for (size_t k = 0; !rc && k < NPLOTS; k++)
         rc = write_plot(&s, &plots[k], plotdir, err);
+    const char *extra[2];
+    int nextra = 0;
+    if (!rc) /* the contact network's pictures (plot/contacts.c) */
+        rc = dem__plot_contacts(outdir, plotdir, s.dim, extra, &nextra, err);
     if (!rc)
-        rc = run_gnuplot_all(plotdir, err);
+        rc = run_gnuplot_all(plotdir, extra, nextra, err);
     if (!rc && prc)
         rc = dem_error_set(err, perr.code, "%s", perr.msg);
     double lo[3], hi[3];
