@@ -1,0 +1,63 @@
+# stress_ratio_vs_void_ratio.gp - written by dembox; edit freely and re-run in this folder:
+#     gnuplot stress_ratio_vs_void_ratio.gp
+# The data are in stress_ratio_vs_void_ratio.dat (columns described in its header).
+set encoding utf8
+if (!exists("outfile")) outfile = "stress_ratio_vs_void_ratio.png"
+set terminal pngcairo size 1000,700 enhanced font "Sans,12"
+set output outfile
+set datafile missing "?"
+set title "Stress ratio versus void ratio during loading"
+set xlabel "void ratio e"
+set ylabel "sin ψ = (σ_1 - σ_3)/(σ_1 + σ_3)"
+set grid
+set key below box
+plot \
+  "stress_ratio_vs_void_ratio.dat" index 0 with lines title "p = 100 (contact.kc=0.0, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 1 with lines title "p = 100 (contact.kc=0.0, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 2 with lines title "p = 100 (contact.kc=0.0, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 3 with lines title "p = 250 (contact.kc=0.0, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 4 with lines title "p = 250 (contact.kc=0.0, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 5 with lines title "p = 250 (contact.kc=0.0, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 6 with lines title "p = 500 (contact.kc=0.0, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 7 with lines title "p = 500 (contact.kc=0.0, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 8 with lines title "p = 500 (contact.kc=0.0, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 9 with lines title "p = 1000 (contact.kc=0.0, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 10 with lines title "p = 1000 (contact.kc=0.0, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 11 with lines title "p = 1000 (contact.kc=0.0, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 12 with lines title "p = 100 (contact.kc=2.5e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 13 with lines title "p = 100 (contact.kc=2.5e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 14 with lines title "p = 100 (contact.kc=2.5e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 15 with lines title "p = 250 (contact.kc=2.5e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 16 with lines title "p = 250 (contact.kc=2.5e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 17 with lines title "p = 250 (contact.kc=2.5e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 18 with lines title "p = 500 (contact.kc=2.5e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 19 with lines title "p = 500 (contact.kc=2.5e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 20 with lines title "p = 500 (contact.kc=2.5e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 21 with lines title "p = 1000 (contact.kc=2.5e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 22 with lines title "p = 1000 (contact.kc=2.5e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 23 with lines title "p = 1000 (contact.kc=2.5e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 24 with lines title "p = 100 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 25 with lines title "p = 100 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 26 with lines title "p = 100 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 27 with lines title "p = 250 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 28 with lines title "p = 250 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 29 with lines title "p = 250 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 30 with lines title "p = 500 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 31 with lines title "p = 500 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 32 with lines title "p = 500 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 33 with lines title "p = 1000 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 34 with lines title "p = 1000 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 35 with lines title "p = 1000 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 36 with lines title "p = 100 (contact.kc=1.0e5, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 37 with lines title "p = 100 (contact.kc=1.0e5, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 38 with lines title "p = 100 (contact.kc=1.0e5, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 39 with lines title "p = 250 (contact.kc=1.0e5, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 40 with lines title "p = 250 (contact.kc=1.0e5, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 41 with lines title "p = 250 (contact.kc=1.0e5, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 42 with lines title "p = 500 (contact.kc=1.0e5, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 43 with lines title "p = 500 (contact.kc=1.0e5, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 44 with lines title "p = 500 (contact.kc=1.0e5, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 45 with lines title "p = 1000 (contact.kc=1.0e5, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 46 with lines title "p = 1000 (contact.kc=1.0e5, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 47 with lines title "p = 1000 (contact.kc=1.0e5, seed=3)" noenhanced, \
+  0 linetype -3 notitle
