@@ -130,6 +130,13 @@ struct dem_contact_params {
 #undef DEM_CONTACT_DERIVED_FIELD_
 };
 
+/* What bounds the sample: walls, or periodic images of it (a periodic
+ * cell whose faces the walls' controllers move, src/core/cell.h). */
+enum dem_boundary {
+    DEM_BOUNDARY_WALLS = 0,
+    DEM_BOUNDARY_PERIODIC = 1
+};
+
 enum dem_stage_type {
     DEM_STAGE_ISOTROPIC = 0,
     DEM_STAGE_COMPRESS = 1,
@@ -198,6 +205,7 @@ struct dem_config {
 
     struct {
         double size[3]; /* m; initial box; all 0 = derive from placement */
+        int boundary;   /* enum dem_boundary */
     } box;
 
     struct {

@@ -34,7 +34,7 @@ static void check_same_pairs(int dim, int reorder)
     test_ready(&s);
     for (int round = 0; round < 2; round++) {
         int *bi, *bj;
-        int nb = dem_pairs_brute(&s.p, dim, s.skin, &bi, &bj);
+        int nb = dem_pairs_brute(&s.p, dim, s.skin, NULL, &bi, &bj, NULL);
         assert_true(nb > 100);
         const struct dem_contact_list *L = &s.pairs.cur;
         assert_int_equal(L->n, nb);

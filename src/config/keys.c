@@ -24,6 +24,7 @@ static const char *const law_names[] = {
     DEM_NORMAL_MODELS(LAW_NAME_)
 #undef LAW_NAME_
         0};
+static const char *const boundary_names[] = {"walls", "periodic", 0};
 static const char *const resist_names[] = {"none", "luding", 0};
 const char *const dem__cfg_stage_names[] = {"isotropic", "compress", "cyclic",
                                             "hold", 0};
@@ -212,6 +213,14 @@ const struct key dem__cfg_keys[] = {
      .def = 0,
      .unit = "m",
      .doc = "initial box [Lx, Ly, Lz]; all 0 = derived from the placement"},
+    {.name = "box.boundary",
+     .kind = K_ENUM,
+     TOP(box.boundary),
+     .def = DEM_BOUNDARY_WALLS,
+     .names = boundary_names,
+     .unit = "-",
+     .doc = "walls (planar, frictionless unless wall_mu) or periodic (a "
+            "cell; the walls' servos then move its faces by its stress)"},
 
     {.name = "walls.mass",
      .kind = K_DOUBLE,
@@ -219,7 +228,7 @@ const struct key dem__cfg_keys[] = {
      .def = 2,
      GT(0),
      .unit = "kg",
-     .doc = "mass of a stress-controlled wall"},
+     .doc = "mass of a stress-controlled wall (periodic: of each face)"},
     {.name = "walls.gamma",
      .kind = K_DOUBLE,
      TOP(walls.gamma),

@@ -183,6 +183,24 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
         return dem__cfg_fail_key(x, -1, "gravity", err,
                                  "z component must be 0 in 2D (got %g)",
                                  c->gravity[2]);
+    if (c->box.boundary == DEM_BOUNDARY_PERIODIC &&
+        (c->gravity[0] != 0 || c->gravity[1] != 0 || c->gravity[2] != 0))
+        return dem__cfg_fail_key(x, -1, "gravity", err,
+                                 "must be 0 in a periodic cell (box.boundary "
+                                 "= \"periodic\": nothing holds the weight)");
+    if (c->box.boundary == DEM_BOUNDARY_PERIODIC) {
+        const double a = c->particles.distribution == DEM_DIST_MONO
+                             ? c->particles.mean
+                             : c->particles.max;
+        for (int d = 0; d < c->dim; d++)
+            if (c->box.size[d] > 0 && c->box.size[d] < 2.0 * 2.2 * a)
+                return dem__cfg_fail_key(
+                    x, -1, "box.size", err,
+                    "a periodic cell must be wider than two interaction "
+                    "ranges (2 x 2.2 x the largest radius = %g m) along %c "
+                    "(got %g)",
+                    4.4 * a, "xyz"[d], c->box.size[d]);
+    }
     if (c->particles.placement == DEM_PLACE_FILE && !c->particles.file[0])
         return dem__cfg_fail_key(x, -1, "particles.placement", err,
                                  "\"file\" needs particles.file");

@@ -22,7 +22,7 @@ static struct pass pass_of(const struct dem_particles *P,
         .x = P->x, .y = P->y, .z = P->z, .vx = P->vx, .vy = P->vy,
         .vz = P->vz, .wx = P->wx, .wy = P->wy, .wz = P->wz, .r = P->r,
         .m = P->m,
-        .ci = L->i, .cj = L->j, .state = L->state, .F = F->v, .M = F->m,
+        .ci = L->i, .cj = L->j, .img = L->img, .state = L->state, .F = F->v, .M = F->m,
 #define HIST_OF_(MODEL, name, unit, doc) .name = L->name,
         DEM_CONTACT_HISTORY(HIST_OF_)
 #undef HIST_OF_
@@ -75,12 +75,22 @@ static void measure_contacts(struct dem_sim *s)
     memset(P->fsum, 0, (size_t)P->n * sizeof *P->fsum);
     memset(P->ncontact, 0, (size_t)P->n * sizeof *P->ncontact);
 
+    double cv[6] = {0.0};
+    if (s->cell.on) {
+        struct dem_lattice c;
+        dem_sim_lattice(s, &c);
+        memcpy(cv, c.v, sizeof cv);
+    }
     for (int k = 0; k < L->n; k++) {
         if (!(L->state[k] & DEM_CONTACT_ACTIVE))
             continue;
         const int i = L->i[k], j = L->j[k];
-        const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
-                             P->z[i] - P->z[j]};
+        double sh[3] = {0.0, 0.0, 0.0}; /* to j's image */
+        if (s->cell.on)
+            dem_img_shift(cv, L->img[k], sh);
+        const double b[3] = {P->x[i] - P->x[j] - sh[0],
+                             P->y[i] - P->y[j] - sh[1],
+                             P->z[i] - P->z[j] - sh[2]};
         const double *f = F->v[k].f;
         const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
         const double n[3] = {b[0] / d, b[1] / d, b[2] / d};
@@ -246,6 +256,35 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
     return moved;
 }
 
+/* The periodic cell's virial from the pass's block sums and the pairs
+ * through an image (see particle_range in contact/pass.c), in a fixed
+ * order; the controllers of its faces feel sigma_aa A_a = W_aa / L_a. */
+static void cell_stress(struct dem_sim *s, const struct contacts *c)
+{
+    double W[9] = {0.0};
+    const int nb = (s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
+    for (int b = 0; b < nb; b++)
+        for (int u = 0; u < 9; u++)
+            W[u] += c->vir[9 * b + u];
+    const struct dem_pairs *pl = &s->pairs;
+    for (int q = 0; q < pl->ncross; q++) {
+        const int k = pl->cross[q];
+        double S[3];
+        dem_img_shift(c->cv, pl->cur.img[k], S);
+        const double *f = pl->f.v[k].f;
+        for (int u = 0; u < 3; u++)
+            for (int v = 0; v < 3; v++)
+                W[3 * u + v] -= S[u] * f[v];
+    }
+    for (int u = 0; u < 3; u++)
+        for (int v = 0; v < 3; v++)
+            s->cell.stress[u][v] = W[3 * u + v];
+    double L[3];
+    dem_sim_box(s, L, 0);
+    for (int w = 0; w < s->nwall; w++)
+        s->wall[w].force = W[4 * s->wall[w].axis] / L[s->wall[w].axis];
+}
+
 static int forces(struct dem_sim *s, const struct kick K)
 {
     struct dem_pairs *pl = &s->pairs;
@@ -264,9 +303,24 @@ static int forces(struct dem_sim *s, const struct kick K)
         .np = pl->cur.n,
         .nw = pl->wcur.n,
         .n = s->p.n,
+        .periodic = s->cell.on,
+        .vir = s->cell.vir,
     };
     memcpy(c.walls, s->wall, sizeof c.walls);
+    if (s->cell.on) {
+        struct dem_lattice lat;
+        dem_sim_lattice(s, &lat);
+        memcpy(c.cv, lat.v, sizeof c.cv);
+        dem_sim_cell_grad(s, c.grad);
+    }
     const int moved = run_pass(&s->pass, &c, K);
+    if (s->cell.on) {
+        cell_stress(s, &c);
+        if (s->measure)
+            measure_contacts(s);
+        s->measure = 0;
+        return moved;
+    }
 
     /* the walls feel the opposite forces: their outward push, in list order */
     const struct dem_contact_list *WL = &pl->wcur;
@@ -291,7 +345,7 @@ void dem_sim_forces(struct dem_sim *s)
 
 int dem_sim_forces_kick(struct dem_sim *s, double h, int chain)
 {
-    const double *g = s->cfg.gravity, half = 0.5 * s->skin;
+    const double *g = s->cfg.gravity, lim = s->drift_lim;
     return forces(
-        s, (struct kick){1, chain, h, s->dt, half * half, {g[0], g[1], g[2]}});
+        s, (struct kick){1, chain, h, s->dt, lim * lim, {g[0], g[1], g[2]}});
 }

@@ -54,6 +54,12 @@ enum {
  * (DEM_SET_TAG) per resistance switched on. The force pass is compiled
  * once per set (a literal there), so no owner test is left per contact. */
 #define DEM_SET_NORMAL 0xff
+#define DEM_SET_RESISTS 0x7f00 /* the resistances' bits */
+/* Not a model but the boundary, the other bit of a pass's set: a
+ * periodic cell (branch vectors through images, the affine velocity of
+ * the cell, the cell's virial; core/cell.h). */
+#define DEM_SET_PERIODIC 0x8000
+_Static_assert(DEM_NRESIST <= 7, "DEM_SET_RESISTS: room for 7 resistances");
 enum {
 #define DEM_SET_BIT_(TAG, name, doc)                                           \
     DEM_SET_##TAG = 1 << (8 + DEM_RESIST_INDEX_##TAG),
@@ -80,7 +86,7 @@ static inline int dem_owner_used(int set, int owner)
         return 1;
     if (owner & DEM_OWNER_NORMALS)
         return (owner >> (set & DEM_SET_NORMAL)) & 1;
-    return ((owner >> 16) & (set >> 8)) != 0;
+    return ((owner >> 16) & ((set & DEM_SET_RESISTS) >> 8)) != 0;
 }
 
 /* Whether a key or history value of MODEL (its column's tag) belongs to
@@ -102,7 +108,7 @@ static inline unsigned dem_contact_history_mask(int set)
 }
 
 /* Whether the model set has a resistance (torques besides n x f_t). */
-#define DEM_SET_TORQUES(set) (((set) & ~DEM_SET_NORMAL) != 0)
+#define DEM_SET_TORQUES(set) (((set) & DEM_SET_RESISTS) != 0)
 
 /* lanes column: whether the pair loop of a law runs in SIMD lanes */
 #define DEM_LANES_SIMD 1

@@ -35,6 +35,7 @@
 #include "contact/models.h"
 #include "contact/pass.h"
 #include "contact/tangential.h"
+#include "core/cell.h"
 #include "core/parallel.h"
 
 /* the name of this compilation's entry point (contact/pass_loads.c
@@ -151,12 +152,19 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
  * code (scalar = 1) skips an open pair at once. */
 DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
                          int k, const struct dem_contact_params *cp, double dt,
-                         const struct dem_tangential *T)
+                         const struct dem_tangential *T, const double *cv,
+                         const double *grad)
 {
     const struct pass q = *qp;
     const int i = q.ci[k], j = q.cj[k];
-    const double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j],
-                 dz = q.z[i] - q.z[j];
+    double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j], dz = q.z[i] - q.z[j];
+    if (law & DEM_SET_PERIODIC) { /* j's image: x_j + h s */
+        double S[3];
+        dem_img_shift(cv, q.img[k], S);
+        dx -= S[0];
+        dy -= S[1];
+        dz -= S[2];
+    }
     const double d2 = dx * dx + dy * dy + dz * dz;
     const double ai = q.r[i], aj = q.r[j], R = ai + aj;
     const int touch = d2 < R * R;
@@ -171,9 +179,14 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
     const double cwx = ai * q.wx[i] + aj * q.wx[j];
     const double cwy = ai * q.wy[i] + aj * q.wy[j];
     const double cwz = ai * q.wz[i] + aj * q.wz[j];
-    const struct dem_vec3 vij = {q.vx[i] - q.vx[j] + n.y * cwz - n.z * cwy,
-                                 q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
-                                 q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
+    struct dem_vec3 vij = {q.vx[i] - q.vx[j] + n.y * cwz - n.z * cwy,
+                           q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
+                           q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
+    if (law & DEM_SET_PERIODIC) { /* the cell's affine velocity, grad b */
+        vij.x += grad[0] * dx + grad[1] * dy + grad[2] * dz;
+        vij.y += grad[3] * dy + grad[4] * dz;
+        vij.z += grad[5] * dz;
+    }
     const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
     struct dem_history h = load_history(law, &q, k);
     double fc;
@@ -194,16 +207,17 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
  * (loading, un-/re-loading, adhesive re-mapping with a square root) all
  * computed in every lane made it slower than scalar code with branches). */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
-                           const struct dem_contact_params *cp, double dt)
+                           const struct dem_contact_params *cp, double dt,
+                           const double *cv, const double *grad)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
     if (!dem_normal_simd(law)) {
         for (int k = k0; k < k1; k++)
-            pair_one(law, 1, &q, k, cp, dt, &T);
+            pair_one(law, 1, &q, k, cp, dt, &T, cv, grad);
     } else {
 #pragma omp simd
         for (int k = k0; k < k1; k++)
-            pair_one(law, 0, &q, k, cp, dt, &T);
+            pair_one(law, 0, &q, k, cp, dt, &T, cv, grad);
     }
 }
 
@@ -273,8 +287,10 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl, double gb, double gr,
-                              const struct kick K)
+                              const struct kick K, double *vir)
 {
+    const int cell = (law & DEM_SET_PERIODIC) != 0;
+    double w[9] = {0.0}; /* the virial of the current block (cell) */
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
     int moved = 0;
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
@@ -290,7 +306,10 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                                                               pl->wf.v;
     for (int i = i0; i < i1; i++) {
         const double a = r[i];
-        double fx = -gb * vx[i], fy = -gb * vy[i], fz = -gb * vz[i];
+        /* in a cell the damping comes after the contacts' sum (the
+         * virial takes that sum) */
+        double fx = cell ? 0.0 : -gb * vx[i], fy = cell ? 0.0 : -gb * vy[i],
+               fz = cell ? 0.0 : -gb * vz[i];
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
         for (int k = start[i]; k < start[i + 1]; k++) {
             fx += F[k].f[0];
@@ -316,6 +335,26 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             cx += WF[k].c[0];
             cy += WF[k].c[1];
             cz += WF[k].c[2];
+        }
+        if (cell) {
+            /* sum over contacts of b (x) f, b = x_i - x_j', is
+             * sum_i x_i (x) f_i minus the images' shifts (contact/
+             * forces.c); plus the kinetic part m v (x) v */
+            const double xi[3] = {P->x[i], P->y[i], P->z[i]};
+            const double ui[3] = {vx[i], vy[i], vz[i]}, fi[3] = {fx, fy, fz};
+            const double mi = P->m[i];
+            for (int u = 0; u < 3; u++)
+                for (int v = 0; v < 3; v++)
+                    w[3 * u + v] += xi[u] * fi[v] + mi * ui[u] * ui[v];
+            if ((i + 1) % DEM_VIR_BLOCK == 0 || i + 1 == i1) {
+                for (int u = 0; u < 9; u++) {
+                    vir[9 * (i / DEM_VIR_BLOCK) + u] = w[u];
+                    w[u] = 0.0;
+                }
+            }
+            fx -= gb * vx[i];
+            fy -= gb * vy[i];
+            fz -= gb * vz[i];
         }
         const double g = gr * a * a;
         double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
@@ -367,13 +406,18 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                                const struct kick K, int t, int nt)
 {
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
-               &c->cp, c->dt);
+               &c->cp, c->dt, c->cv, c->grad);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
+    if (law & DEM_SET_PERIODIC) /* no virial block across two threads */
+        return particle_range(
+            law, dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
+            dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK), c->P, c->pl,
+            c->gb, c->gr, K, c->vir);
     return particle_range(law, dem_block(c->n, t, nt),
                           dem_block(c->n, t + 1, nt), c->P, c->pl, c->gb, c->gr,
-                          K);
+                          K, c->vir);
 }
 
 /* One instance per model set and kind of kick (literals), so that each
@@ -408,12 +452,17 @@ _Static_assert(0 DEM_CONTACT_RESISTANCES(RESIST_COUNT_) == 2,
 int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
 {
     int moved = 0;
-    switch (dem_contact_set(&c->cp)) {
+    switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0)) {
 #define CONTACTS_OF_(TAG, name, lanes)                                         \
     CONTACTS_KICKS(DEM_NORMAL_##TAG)                                           \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING)                         \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_TORSION)                         \
-    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION)
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION)       \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_PERIODIC)                        \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_PERIODIC)      \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_TORSION | DEM_SET_PERIODIC)      \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION |      \
+                   DEM_SET_PERIODIC)
         DEM_NORMAL_MODELS(CONTACTS_OF_)
 #undef CONTACTS_OF_
     }

@@ -20,6 +20,7 @@
 struct pass {
     const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *m;
     const int *ci, *cj;
+    const int *img; /* periodic cell: the image of j (core/cell.h) */
 #define HIST_ARRAY_(MODEL, name, unit, doc) double *name;
     DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
 #undef HIST_ARRAY_
@@ -46,6 +47,12 @@ struct contacts {
     double dt;     /* s; the springs' time step, 0 for a re-evaluation */
     double gb, gr; /* background damping, kg/s */
     int np, nw, n; /* pairs, wall contacts, particles */
+    /* periodic cell (core/cell.h) */
+    int periodic;   /* 1: run the pass of the set with DEM_SET_PERIODIC */
+    double cv[6];   /* m; the lattice, struct dem_lattice.v */
+    double grad[6]; /* 1/s; the affine velocity gradient, upper triangle */
+    double *vir;    /* N m; the virial sum x (x) f + m v (x) v of each
+                       block of DEM_VIR_BLOCK particles, 9 values each */
 };
 
 /* One force pass: forces and history of every pair and wall contact,

@@ -10,4 +10,12 @@ static inline int dem_block(int n, int t, int nt)
     return (int)((long)n * t / nt);
 }
 
+/* The same with every boundary on a multiple of g (the last block ends
+ * at n): items grouped g by g never straddle two threads. */
+static inline int dem_block_aligned(int n, int t, int nt, int g)
+{
+    const int b = (int)((long)((n + g - 1) / g) * t / nt) * g;
+    return b < n ? b : n;
+}
+
 #endif

@@ -32,6 +32,7 @@ static void sim_begin(struct dem_sim *s, const struct dem_config *cfg)
     s->cp = cfg->contact;
     dem_contact_derive(&s->cp);
     dem_rng_seed(&s->rng, cfg->seed);
+    s->cell.on = cfg->box.boundary == DEM_BOUNDARY_PERIODIC;
 }
 
 static void place_walls(struct dem_sim *s, const double lo[3],
@@ -45,6 +46,10 @@ static void place_walls(struct dem_sim *s, const double lo[3],
         W->side = w % 2;
         W->pos = W->side ? hi[W->axis] : lo[W->axis];
         W->mode = DEM_WALL_FIXED;
+    }
+    for (int k = 0; k < 3; k++) {
+        memset(&s->cell.tilt[k], 0, sizeof s->cell.tilt[k]);
+        s->cell.tilt[k].mode = DEM_WALL_FIXED;
     }
 }
 
@@ -81,7 +86,9 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
     for (int i = 0; i < s->p.n; i++)
         rsum += s->p.r[i];
     s->skin = s->p.n ? 0.2 * rsum / s->p.n : 0.0;
-    int rc = dem_sim_pass_setup(s, err);
+    int rc = dem_sim_derive(s, err);
+    if (!rc)
+        rc = dem_sim_pass_setup(s, err);
     if (!rc)
         rc = dem_sim_rebuild(s, err);
     if (rc)
@@ -91,10 +98,32 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
     return DEM_OK;
 }
 
+int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
+{
+    s->drift_lim = (s->cell.on ? 0.4 : 0.5) * s->skin;
+    if (!s->cell.on)
+        return DEM_OK;
+    double rmax = 0.0;
+    for (int i = 0; i < s->p.n; i++)
+        rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
+    s->cell.range = 2.0 * rmax + s->skin;
+    const size_t nb = (size_t)(s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
+    free(s->cell.vir);
+    s->cell.vir = calloc(9 * (nb ? nb : 1), sizeof *s->cell.vir);
+    /* the list's lattice, as a build leaves it */
+    s->pairs.periodic = 1;
+    s->pairs.lat = s->cell.built;
+    if (!s->cell.vir || dem_pairs_cross(&s->pairs))
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (cell)");
+    return DEM_OK;
+}
+
 void dem_sim_destroy(struct dem_sim *s)
 {
     dem_particles_free(&s->p);
     dem_pairs_free(&s->pairs);
+    free(s->cell.vir);
+    s->cell.vir = NULL;
 }
 
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume)
@@ -136,8 +165,18 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
             hi[a] = rmax;
         }
     }
-    int rc = dem_pairs_build(&s->pairs, p, s->dim, s->skin, lo, hi, s->wall,
-                             s->nwall, s->reorder, err);
+    int rc;
+    if (s->cell.on) {
+        /* the Lees-Edwards re-map and the wrap change no distance */
+        dem_sim_cell_remap(s);
+        dem_sim_cell_wrap(s);
+        dem_sim_lattice(s, &s->cell.built);
+        rc = dem_pairs_build(&s->pairs, p, s->dim, s->skin, lo, hi, s->wall, 0,
+                             &s->cell.built, s->reorder, err);
+    } else {
+        rc = dem_pairs_build(&s->pairs, p, s->dim, s->skin, lo, hi, s->wall,
+                             s->nwall, 0, s->reorder, err);
+    }
     if (rc)
         return rc;
     memcpy(p->x0, p->x, (size_t)p->n * sizeof *p->x);
@@ -172,7 +211,7 @@ static int kick_drift_range(int i0, int i1, double h, double dt,
 static int kick_drift(struct dem_sim *s, double h)
 {
     const int n = s->p.n;
-    const double half = 0.5 * s->skin;
+    const double half = s->drift_lim;
     int moved = 0;
 #pragma omp parallel reduction(| : moved)
     {
@@ -183,9 +222,18 @@ static int kick_drift(struct dem_sim *s, double h)
     return moved;
 }
 
-/* Whether a wall has moved more than half the skin since the last build. */
+/* Whether a wall has moved more than half the skin since the last build;
+ * in a periodic cell, whether the cell has deformed too much or a tilt
+ * calls for a re-map. */
 static int walls_need_rebuild(const struct dem_sim *s)
 {
+    if (s->cell.on) {
+        struct dem_lattice c;
+        dem_sim_lattice(s, &c);
+        return fabs(c.v[1]) > 0.5 * c.v[0] || fabs(c.v[2]) > 0.5 * c.v[0] ||
+               fabs(c.v[4]) > 0.5 * c.v[3] ||
+               dem_sim_cell_strained(s, s->cell.range);
+    }
     const double half = 0.5 * s->skin;
     for (int w = 0; w < s->nwall; w++)
         if (fabs(s->wall[w].pos - s->pairs.wall_pos0[w]) > half)
@@ -215,15 +263,30 @@ static void walls_kick(struct dem_sim *s, double h)
     }
 }
 
+static void wall_drift(struct dem_sim *s, struct dem_wall *W, double t_new)
+{
+    if (W->mode == DEM_WALL_STRESS)
+        W->pos += s->dt * W->vel;
+    else if (W->mode == DEM_WALL_STRAIN)
+        dem_wall_strain_state(W, t_new, &W->pos, &W->vel);
+}
+
+/* The walls move; in a periodic cell they and the tilts move the cell,
+ * and every particle follows it affinely. */
 static void walls_drift(struct dem_sim *s, double t_new)
 {
-    for (int w = 0; w < s->nwall; w++) {
-        struct dem_wall *W = &s->wall[w];
-        if (W->mode == DEM_WALL_STRESS)
-            W->pos += s->dt * W->vel;
-        else if (W->mode == DEM_WALL_STRAIN)
-            dem_wall_strain_state(W, t_new, &W->pos, &W->vel);
-    }
+    struct dem_lattice from, to;
+    if (s->cell.on)
+        dem_sim_lattice(s, &from);
+    for (int w = 0; w < s->nwall; w++)
+        wall_drift(s, &s->wall[w], t_new);
+    if (!s->cell.on)
+        return;
+    for (int k = 0; k < 3; k++)
+        wall_drift(s, &s->cell.tilt[k], t_new);
+    dem_sim_lattice(s, &to);
+    if (memcmp(&from, &to, sizeof from))
+        dem_sim_cell_map(s, &from, &to);
 }
 
 static double now(void)

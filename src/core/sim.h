@@ -8,6 +8,7 @@
 #ifndef DEM_CORE_SIM_H
 #define DEM_CORE_SIM_H
 
+#include "core/cell.h"
 #include "core/particles.h"
 #include "core/rng.h"
 #include "dembox.h"
@@ -57,9 +58,16 @@ struct dem_sim {
     struct dem_rng rng;           /* seeded random numbers */
 
     int nwall;                           /* 2 * dim */
-    struct dem_wall wall[DEM_MAX_WALLS]; /* index 2*axis + side */
+    struct dem_wall wall[DEM_MAX_WALLS]; /* index 2*axis + side; in a
+                                            periodic cell the controllers
+                                            of its faces (core/cell.h) */
+    struct dem_cell cell;                /* the periodic cell, if on */
 
-    double skin; /* m; Verlet skin */
+    double skin;      /* m; Verlet skin */
+    double drift_lim; /* m; a particle's displacement since the last list
+                         build that calls for a rebuild: half the skin,
+                         in a periodic cell 0.4 of it (the cell's own
+                         deformation takes DEM_CELL_AFFINE_SKIN) */
     long nbuild; /* neighbour-list builds so far */
     int reorder; /* 1: sort particles in cell order at each
                     rebuild (indices change; id does not) */
@@ -103,6 +111,11 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err);
  * without chaining. */
 int dem_sim_step(struct dem_sim *s, struct dem_error *err);
 
+/* What the engine derives from the state (for dem_sim_ready and a
+ * restored checkpoint): the drift limit, and in a periodic cell its
+ * range, the virial blocks and the list of pairs through an image. */
+int dem_sim_derive(struct dem_sim *s, struct dem_error *err);
+
 /* Rebuild the neighbour list now (carrying contact history). */
 int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err);
 
@@ -128,6 +141,28 @@ void dem_sim_forces(struct dem_sim *s);
  * some particle has moved more than half the skin since the last list
  * build (else 0). */
 int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
+
+/* The periodic cell (core/cell.c). */
+/* Share of the skin the cell's deformation may use up between two list
+ * builds (the particles' own motion takes 2 x 0.4). */
+#define DEM_CELL_AFFINE_SKIN 0.2
+/* The lattice now, from the walls and the tilts. */
+void dem_sim_lattice(const struct dem_sim *s, struct dem_lattice *c);
+/* The velocity gradient of the cell's affine field, hdot h^-1, as
+ * {xx, xy, xz, yy, yz, zz} (upper triangular), 1/s. */
+void dem_sim_cell_grad(const struct dem_sim *s, double grad[6]);
+/* Map every position (and its copy at the last build) affinely from the
+ * lattice from to the lattice to. */
+void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
+                      const struct dem_lattice *to);
+/* Wrap every position into the cell (0 <= s < 1). */
+void dem_sim_cell_wrap(struct dem_sim *s);
+/* Re-map every tilt beyond half its shear length (Lees-Edwards); returns
+ * whether one was. */
+int dem_sim_cell_remap(struct dem_sim *s);
+/* Whether the cell has deformed since the last build so much that pairs
+ * at distance range may have closed by DEM_CELL_AFFINE_SKIN of the skin. */
+int dem_sim_cell_strained(const struct dem_sim *s, double range);
 
 /* Box edge lengths and volume (area in 2D) from the wall positions. */
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume);

@@ -383,6 +383,15 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_i32(io, &S->max_overlap_j);
     for (int w = 0; w < DEM_MAX_WALLS; w++)
         io_wall(io, &s->wall[w]);
+    struct dem_cell *C = &s->cell;
+    io_i32(io, &C->on);
+    for (int k = 0; k < 3; k++) {
+        io_wall(io, &C->tilt[k]);
+        io_f64(io, &C->remapped[k]);
+    }
+    io_f64s(io, C->built.lo, 3);
+    io_f64s(io, C->built.v, 6);
+    io_f64s(io, &C->stress[0][0], 9);
 
     io_tag(io, "PART");
     int n = s->p.n;
@@ -403,6 +412,8 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_list(io, &pl->cur, &pl->f, N, npair, hist, DEM_SET_TORQUES(set));
     if (io->why)
         return;
+    if (C->on)
+        io_i32s(io, pl->cur.img, npair);
     io_i32s(io, pl->rstart, N + 1);
     io_i32s(io, pl->rpair, npair);
 
@@ -459,6 +470,14 @@ static const char *check_restored(const struct dem_sim *s,
     for (int w = 0; w < DEM_MAX_WALLS; w++)
         if (s->wall[w].axis != w / 2 || s->wall[w].side != w % 2)
             return "corrupt (walls)";
+    if (s->cell.on != (s->cfg.box.boundary == DEM_BOUNDARY_PERIODIC))
+        return "corrupt (periodic cell)";
+    for (int k = 0; s->cell.on && k < L->n; k++) {
+        const int g = L->img[k];
+        if (g < 0 || g > 42 || (g & 3) == 3 || ((g >> 2) & 3) == 3 ||
+            (s->dim == 2 && (g >> 4) != 1))
+            return "corrupt (pair images)";
+    }
     return 0;
 }
 
@@ -673,7 +692,10 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
             io.why = check_restored(s, run);
         }
     }
-    /* the force pass as for a new run (contact/forces.c) */
+    /* what the engine derives, and the force pass as for a new run
+     * (contact/forces.c) */
+    if (!io.why && !rc)
+        rc = dem_sim_derive(s, err);
     if (!io.why && !rc)
         rc = dem_sim_pass_setup(s, err);
     if (io.why && !rc)

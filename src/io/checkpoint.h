@@ -14,10 +14,12 @@
  *     CONF  run name, config source, time_step_auto, resolved config text
  *     RUN   the run loop's state (struct dem_ckpt_run)
  *     SIM   time, step, time step, skin, builds, contact law in force,
- *           RNG state, last measured sums, walls
+ *           RNG state, last measured sums, walls, the periodic cell
+ *           (on, tilts, re-mapped tilt, lattice at the last build,
+ *           virial)
  *     PART  every particle array (DEM_PARTICLE_*_ARRAYS)
- *     PAIR  the pair list with its history, row starts, stored forces and
- *           the reverse rows
+ *     PAIR  the pair list with its history, row starts, stored forces,
+ *           (periodic cell) the pairs' images, and the reverse rows
  *     WALC  the particle-wall list with its history and stored forces
  *     NBR   wall positions at the last neighbour-list build
  *     END
@@ -33,7 +35,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 6u
+#define DEM_CKPT_VERSION 7u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {

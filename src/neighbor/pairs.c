@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/cell.h"
 #include "core/parallel.h"
 #include "core/particles.h"
 #include "wall/wall.h"
@@ -13,6 +14,7 @@ static void list_free(struct dem_contact_list *l)
 {
     free(l->i);
     free(l->j);
+    free(l->img);
 #define HIST_FREE_(MODEL, name, unit, doc) free(l->name);
     DEM_CONTACT_HISTORY(HIST_FREE_)
 #undef HIST_FREE_
@@ -38,6 +40,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     forces_free(&pl->wf);
     free(pl->rstart);
     free(pl->rpair);
+    free(pl->cross);
     free(pl->cell_start);
     free(pl->cell_list);
     free(pl->cell_of);
@@ -65,7 +68,7 @@ static int list_reserve(struct dem_contact_list *l, int cap)
     int c = l->cap ? l->cap : 1024;
     while (c < cap)
         c += c / 2;
-    if (GROW(l->i, c) || GROW(l->j, c) || GROW(l->state, c))
+    if (GROW(l->i, c) || GROW(l->j, c) || GROW(l->img, c) || GROW(l->state, c))
         return -1;
 #define HIST_GROW_(MODEL, name, unit, doc)                                     \
     if (GROW(l->name, c))                                                      \
@@ -124,9 +127,8 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
     return 0;
 }
 
-static int cell_index(const struct dem_pairs *pl, double x, double y, double z)
+static int cell_index(const struct dem_pairs *pl, const double pos[3])
 {
-    const double pos[3] = {x, y, z};
     int c[3];
     for (int a = 0; a < 3; a++) {
         int k = (int)floor((pos[a] - pl->lo[a]) * pl->inv_h[a]);
@@ -135,18 +137,50 @@ static int cell_index(const struct dem_pairs *pl, double x, double y, double z)
     return (c[2] * pl->nc[1] + c[1]) * pl->nc[0] + c[0];
 }
 
+/* Where particle i sits on the grid: its position, or in a periodic
+ * cell its fractional coordinates. */
+static void grid_coord(const struct dem_pairs *pl,
+                       const struct dem_particles *p, int i, double c[3])
+{
+    const double x[3] = {p->x[i], p->y[i], p->z[i]};
+    if (pl->periodic)
+        dem_lattice_frac(&pl->lat, x, c);
+    else
+        for (int a = 0; a < 3; a++)
+            c[a] = x[a];
+}
+
+/* The grid: cells at least one interaction range (2 rmax + skin) wide,
+ * over [lo, hi] or, in a periodic cell, over the fractional coordinates
+ * [0, 1) with as many cells per axis as the cell's width holds ranges. */
 static int setup_grid(struct dem_pairs *pl, const struct dem_particles *p,
                       int dim, double skin, const double lo[3],
-                      const double hi[3], struct dem_error *err)
+                      const double hi[3], const struct dem_lattice *cell,
+                      struct dem_error *err)
 {
     double rmax = 0.0;
     for (int i = 0; i < p->n; i++)
         rmax = p->r[i] > rmax ? p->r[i] : rmax;
     const double h = 2.0 * rmax + skin;
+    double width[3] = {0.0, 0.0, 0.0};
+    pl->periodic = cell != NULL;
+    if (cell) {
+        pl->lat = *cell;
+        dem_lattice_widths(cell, dim, width);
+        for (int a = 0; a < dim; a++)
+            if (!(width[a] > 2.0 * h))
+                return dem_error_set(
+                    err, DEM_EUNSTABLE,
+                    "the periodic cell is %.4g m wide across its %c faces, "
+                    "less than two interaction ranges (2 x %.4g m: the "
+                    "largest diameter plus the skin); a pair would touch "
+                    "two images of each other",
+                    width[a], "xyz"[a], h);
+    }
     long ncell = 1;
     for (int a = 0; a < 3; a++) {
         const int flat = a == 2 && dim == 2;
-        double span = hi[a] - lo[a];
+        double span = cell ? width[a] : hi[a] - lo[a];
         int k = flat ? 1 : (int)(span / h);
         if (k < 1)
             k = 1;
@@ -154,9 +188,19 @@ static int setup_grid(struct dem_pairs *pl, const struct dem_particles *p,
         if (k > 4096)
             k = 4096;
         pl->nc[a] = k;
-        pl->lo[a] = lo[a];
-        pl->inv_h[a] = flat ? 0.0 : k / (span > 0 ? span : h);
+        pl->lo[a] = cell ? 0.0 : lo[a];
+        pl->inv_h[a] = flat ? 0.0 : cell ? k : k / (span > 0 ? span : h);
         ncell *= k;
+    }
+    /* a periodic cell needs no more cells than particles: coarser
+     * cells are still at least one range wide */
+    while (cell && ncell > 2L * p->n + 27) {
+        ncell = 1;
+        for (int a = 0; a < dim; a++) {
+            pl->nc[a] = pl->nc[a] > 1 ? pl->nc[a] / 2 : 1;
+            pl->inv_h[a] = pl->nc[a];
+            ncell *= pl->nc[a];
+        }
     }
     if (ncell > 64L * 1024 * 1024)
         return dem_error_set(err, DEM_ENOMEM,
@@ -178,8 +222,11 @@ static void sort_by_cell(struct dem_pairs *pl, const struct dem_particles *p)
     const int n = p->n;
     int *cell_of = pl->cell_of;
 #pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; i++)
-        cell_of[i] = cell_index(pl, p->x[i], p->y[i], p->z[i]);
+    for (int i = 0; i < n; i++) {
+        double c[3];
+        grid_coord(pl, p, i, c);
+        cell_of[i] = cell_index(pl, c);
+    }
     for (int i = 0; i < n; i++)
         cs[cell_of[i] + 1]++;
     for (int c = 0; c < ncell; c++)
@@ -224,6 +271,17 @@ static void swap_lists(struct dem_contact_list *a, struct dem_contact_list *b)
     *b = t;
 }
 
+/* Insert key into the sorted row out[0..m). */
+static void row_insert(int *out, int m, int key)
+{
+    int b = m - 1;
+    while (b >= 0 && out[b] > key) {
+        out[b + 1] = out[b];
+        b--;
+    }
+    out[b + 1] = key;
+}
+
 /* The neighbours j > i of particle i closer than the skin, written to
  * out (when not NULL) sorted by j; returns how many there are. */
 static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
@@ -257,20 +315,60 @@ static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
                     double cut = p->r[i] + p->r[j] + skin;
                     if (ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut)
                         continue;
-                    if (out) {
-                        /* a row holds a handful of pairs: insertion sort */
-                        int b = m - 1;
-                        while (b >= 0 && out[b] > j) {
-                            out[b + 1] = out[b];
-                            b--;
-                        }
-                        out[b + 1] = j;
-                    }
+                    if (out) /* a row holds a handful of pairs */
+                        row_insert(out, m, j);
                     m++;
                 }
             }
         }
     }
+    return m;
+}
+
+/* In a periodic cell: the neighbours j > i of particle i closer than the
+ * skin through any image, written to out (when not NULL) sorted, as
+ * j << 6 | image code; returns how many there are. The grid is over the
+ * fractional coordinates, so a neighbour cell beyond a face is the cell
+ * at the other side, seen through the image one lattice vector away. */
+static int row_of_cell(const struct dem_pairs *pl,
+                       const struct dem_particles *p, int zr, double skin,
+                       int i, int *out)
+{
+    const int c = pl->cell_of[i];
+    const int cx = c % pl->nc[0], cy = (c / pl->nc[0]) % pl->nc[1],
+              cz = c / (pl->nc[0] * pl->nc[1]);
+    const int cc3[3] = {cx, cy, cz};
+    int m = 0;
+    for (int dz = -zr; dz <= zr; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                const int d[3] = {dx, dy, dz};
+                int w[3], sh[3];
+                for (int a = 0; a < 3; a++) {
+                    w[a] = cc3[a] + d[a];
+                    sh[a] = w[a] < 0 ? -1 : w[a] >= pl->nc[a] ? 1 : 0;
+                    w[a] -= sh[a] * pl->nc[a];
+                }
+                const int code = dem_img_code(sh[0], sh[1], sh[2]);
+                double S[3];
+                dem_img_shift(pl->lat.v, code, S);
+                const int cc = (w[2] * pl->nc[1] + w[1]) * pl->nc[0] + w[0];
+                for (int q = pl->cell_start[cc]; q < pl->cell_start[cc + 1];
+                     q++) {
+                    const int j = pl->cell_list[q];
+                    if (j <= i)
+                        continue;
+                    const double ddx = p->x[i] - p->x[j] - S[0];
+                    const double ddy = p->y[i] - p->y[j] - S[1];
+                    const double ddz = p->z[i] - p->z[j] - S[2];
+                    const double cut = p->r[i] + p->r[j] + skin;
+                    if (ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut)
+                        continue;
+                    if (out)
+                        row_insert(out, m, j << 6 | code);
+                    m++;
+                }
+            }
     return m;
 }
 
@@ -311,7 +409,8 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
                 }
                 buf = b2;
             }
-            int cnt = row_of(pl, p, zr, skin, i, buf + m);
+            int cnt = pl->periodic ? row_of_cell(pl, p, zr, skin, i, buf + m)
+                                   : row_of(pl, p, zr, skin, i, buf + m);
             start[i + 1] = cnt;
             m += (size_t)cnt;
         }
@@ -335,8 +434,13 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
         if (!failed && m > 0) {
             memcpy(L->j + start[i0], buf, m * sizeof *buf);
             for (int i = i0; i < i1; i++)
-                for (int k = start[i]; k < start[i + 1]; k++)
+                for (int k = start[i]; k < start[i + 1]; k++) {
                     L->i[k] = i;
+                    if (pl->periodic) {
+                        L->img[k] = L->j[k] & 63;
+                        L->j[k] >>= 6;
+                    }
+                }
         }
         free(buf);
     }
@@ -381,6 +485,23 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
     return DEM_OK;
 }
 
+int dem_pairs_cross(struct dem_pairs *pl)
+{
+    const struct dem_contact_list *L = &pl->cur;
+    pl->ncross = 0;
+    if (!pl->periodic)
+        return 0;
+    if (L->n > pl->cross_cap) {
+        if (GROW(pl->cross, L->cap))
+            return -1;
+        pl->cross_cap = L->cap;
+    }
+    for (int k = 0; k < L->n; k++)
+        if (L->img[k] != DEM_IMG_NONE)
+            pl->cross[pl->ncross++] = k;
+    return 0;
+}
+
 /* The pairs grouped by their j particle (stable in list order). */
 static int build_reverse(struct dem_pairs *pl, int n)
 {
@@ -406,13 +527,14 @@ static int build_reverse(struct dem_pairs *pl, int n)
 
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     double skin, const double lo[3], const double hi[3],
-                    const struct dem_wall *w, int nwall, int reorder,
+                    const struct dem_wall *w, int nwall,
+                    const struct dem_lattice *cell, int reorder,
                     struct dem_error *err)
 {
     const int n = p->n;
     if (particles_reserve(pl, n, p->cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
-    int rc = setup_grid(pl, p, dim, skin, lo, hi, err);
+    int rc = setup_grid(pl, p, dim, skin, lo, hi, cell, err);
     if (rc)
         return rc;
     sort_by_cell(pl, p);
@@ -439,7 +561,8 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
         rc = build_walls(pl, p, skin, w, nwall, err);
     if (rc)
         return rc;
-    if (build_reverse(pl, n) || forces_reserve(&pl->f, pl->cur.cap) ||
+    if (build_reverse(pl, n) || dem_pairs_cross(pl) ||
+        forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
     forces_zero(&pl->f, pl->cur.n, pl->torques);
@@ -466,41 +589,61 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc)
 }
 
 int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,
-                    int **pi, int **pj)
+                    const struct dem_lattice *cell, int **pi, int **pj,
+                    int **pimg)
 {
-    (void)dim;
     int cap = 1024, n = 0;
     int *a = malloc((size_t)cap * sizeof *a),
-        *b = malloc((size_t)cap * sizeof *b);
-    if (!a || !b)
+        *b = malloc((size_t)cap * sizeof *b),
+        *g = malloc((size_t)cap * sizeof *g);
+    const int si = cell ? 1 : 0, sk = cell && dim == 3 ? 1 : 0;
+    if (!a || !b || !g)
         goto fail;
     for (int i = 0; i < p->n; i++)
-        for (int j = i + 1; j < p->n; j++) {
-            double dx = p->x[i] - p->x[j], dy = p->y[i] - p->y[j],
-                   dz = p->z[i] - p->z[j];
-            double cut = p->r[i] + p->r[j] + skin;
-            if (dx * dx + dy * dy + dz * dz >= cut * cut)
-                continue;
-            if (n == cap) {
-                cap *= 2;
-                int *na = realloc(a, (size_t)cap * sizeof *a);
-                if (!na)
-                    goto fail;
-                a = na;
-                int *nb = realloc(b, (size_t)cap * sizeof *b);
-                if (!nb)
-                    goto fail;
-                b = nb;
-            }
-            a[n] = i;
-            b[n] = j;
-            n++;
-        }
+        for (int j = i + 1; j < p->n; j++)
+            for (int sz = -sk; sz <= sk; sz++)
+                for (int sy = -si; sy <= si; sy++)
+                    for (int sx = -si; sx <= si; sx++) {
+                        const int code = dem_img_code(sx, sy, sz);
+                        double S[3] = {0.0, 0.0, 0.0};
+                        if (cell)
+                            dem_img_shift(cell->v, code, S);
+                        double dx = p->x[i] - p->x[j] - S[0],
+                               dy = p->y[i] - p->y[j] - S[1],
+                               dz = p->z[i] - p->z[j] - S[2];
+                        double cut = p->r[i] + p->r[j] + skin;
+                        if (dx * dx + dy * dy + dz * dz >= cut * cut)
+                            continue;
+                        if (n == cap) {
+                            cap *= 2;
+                            int *na = realloc(a, (size_t)cap * sizeof *a);
+                            if (!na)
+                                goto fail;
+                            a = na;
+                            int *nb = realloc(b, (size_t)cap * sizeof *b);
+                            if (!nb)
+                                goto fail;
+                            b = nb;
+                            int *ng = realloc(g, (size_t)cap * sizeof *g);
+                            if (!ng)
+                                goto fail;
+                            g = ng;
+                        }
+                        a[n] = i;
+                        b[n] = j;
+                        g[n] = code;
+                        n++;
+                    }
     *pi = a;
     *pj = b;
+    if (pimg)
+        *pimg = g;
+    else
+        free(g);
     return n;
 fail:
     free(a);
     free(b);
+    free(g);
     return DEM_ENOMEM;
 }

@@ -22,6 +22,7 @@
 #ifndef DEM_NEIGHBOR_PAIRS_H
 #define DEM_NEIGHBOR_PAIRS_H
 
+#include "core/cell.h"
 #include "dembox.h"
 
 struct dem_particles;
@@ -32,6 +33,8 @@ struct dem_contact_list {
     int cap; /* allocated entries */
     int *i;  /* particle */
     int *j;  /* partner: particle (> i) or wall index */
+    int *img; /* in a periodic cell: the image of j the pair touches
+                 (dem_img_code, core/cell.h); not kept otherwise */
 #define DEM_LIST_HISTORY_(MODEL, name, unit, doc) double *name;
     DEM_CONTACT_HISTORY(DEM_LIST_HISTORY_) /* the history values
                                               (dembox_models.h) */
@@ -72,13 +75,18 @@ struct dem_pairs {
     int *rpair; /* cur.n: the pairs grouped by their j particle, in list
                    order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
     int rpair_cap;
-    /* cell grid */
+    int *cross;  /* periodic cell: the pairs with an image of j other
+                    than j itself, in list order */
+    int ncross, cross_cap;
+    /* cell grid (periodic: over the fractional coordinates) */
     int nc[3];       /* cells per axis */
     double lo[3];    /* m; lower corner */
     double inv_h[3]; /* 1/m; inverse cell edge */
     int *cell_start; /* ncell + 1 offsets into cell_list */
     int *cell_list;  /* particles sorted by cell */
     int *cell_of;    /* cell of each particle */
+    int periodic;    /* 1: the grid is the periodic cell's */
+    struct dem_lattice lat; /* that cell at the build */
     int ncell_cap;
     /* re-ordering */
     int *old_of;         /* old index of each particle after a re-order */
@@ -101,10 +109,15 @@ void dem_pairs_free(struct dem_pairs *pl);
  * [lo, hi] (m), walls w[0..nwall), carrying the history of contacts that
  * were listed before. With reorder set, the particles are first sorted in
  * cell order (p's arrays are permuted; p->id keeps the original index).
- * dim = 2 uses one layer of cells in z. */
+ * dim = 2 uses one layer of cells in z. With a periodic lattice (else
+ * NULL) the grid covers the cell instead of [lo, hi], the particles must
+ * be inside it, and pairs are found across its faces, each with the
+ * image of j it touches; the cell must be wider than two interaction
+ * ranges (else DEM_ERANGE). */
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     double skin, const double lo[3], const double hi[3],
-                    const struct dem_wall *w, int nwall, int reorder,
+                    const struct dem_wall *w, int nwall,
+                    const struct dem_lattice *cell, int reorder,
                     struct dem_error *err);
 
 /* Allocate room for n particles (arrays of at least cap doubles for the
@@ -113,9 +126,17 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
  * The lists keep their counts; a later build works as usual. */
 int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
 
+/* The list of pairs through an image (cross), from cur's images; none
+ * unless the grid is a periodic cell's. A build makes it; a checkpoint
+ * that fills cur calls it. 0 or -1 (out of memory). */
+int dem_pairs_cross(struct dem_pairs *pl);
+
 /* Reference: all pairs with gap below skin by brute force O(N^2); for tests.
- * Fills pi/pj (caller frees) and returns the count, or a negative status. */
+ * Fills pi/pj (caller frees) and returns the count, or a negative status.
+ * With a periodic lattice (else NULL) every image of j is tried, and
+ * pimg (when not NULL; caller frees) gets the image of each pair. */
 int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,
-                    int **pi, int **pj);
+                    const struct dem_lattice *cell, int **pi, int **pj,
+                    int **pimg);
 
 #endif

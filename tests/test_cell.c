@@ -1,0 +1,334 @@
+/* The periodic cell (core/cell.h): the neighbour list through images in a
+ * sheared cell, forces across every face, edge and corner, affine motion,
+ * the Lees-Edwards energy balance and the stress servo. */
+#include "testutil.h"
+
+#include <stdlib.h>
+
+#include "core/rng.h"
+
+/* A periodic config and an empty cell [0, L]^dim with tilts t. */
+static void cell_sim(struct dem_sim *s, struct dem_config *c, int dim, int cap,
+                     double L, const double t[3])
+{
+    test_config(c, dim);
+    c->box.boundary = DEM_BOUNDARY_PERIODIC;
+    test_sim(s, c, cap, 0.0, L);
+    for (int k = 0; k < 3; k++)
+        s->cell.tilt[k].pos = dim == 3 || k == DEM_TILT_XY ? t[k] : 0.0;
+}
+
+/* Add a particle at fractional coordinates f of the cell. */
+static int add_frac(struct dem_sim *s, const double f[3], double r)
+{
+    struct dem_lattice c;
+    dem_sim_lattice(s, &c);
+    const double *v = c.v;
+    return test_add(s, c.lo[0] + v[0] * f[0] + v[1] * f[1] + v[2] * f[2],
+                    c.lo[1] + v[3] * f[1] + v[4] * f[2],
+                    s->dim == 3 ? c.lo[2] + v[5] * f[2] : 0.0, r);
+}
+
+static int cmp_long(const void *a, const void *b)
+{
+    const long *x = a, *y = b;
+    return (*x > *y) - (*x < *y);
+}
+
+/* The pairs of the list, as (id_i, id_j, image) keys, against brute force
+ * over all images. */
+static void check_list(const struct dem_sim *s)
+{
+    int *bi, *bj, *bg;
+    const int n = s->p.n;
+    int nb = dem_pairs_brute(&s->p, s->dim, s->skin, &s->cell.built, &bi, &bj,
+                             &bg);
+    assert_true(nb > 50);
+    const struct dem_contact_list *L = &s->pairs.cur;
+    assert_int_equal(L->n, nb);
+    long *a = malloc((size_t)nb * sizeof *a), *b = malloc((size_t)nb * sizeof *b);
+    for (int k = 0; k < nb; k++) {
+        a[k] = ((long)bi[k] * n + bj[k]) * 64 + bg[k];
+        b[k] = ((long)L->i[k] * n + L->j[k]) * 64 + L->img[k];
+    }
+    qsort(a, (size_t)nb, sizeof *a, cmp_long);
+    qsort(b, (size_t)nb, sizeof *b, cmp_long);
+    int crossing = 0;
+    for (int k = 0; k < nb; k++) {
+        assert_true(a[k] == b[k]);
+        crossing += (int)(a[k] % 64) != DEM_IMG_NONE;
+    }
+    /* the boundary is really crossed, and the cross list has them all */
+    assert_true(crossing > 10);
+    assert_int_equal(s->pairs.ncross, crossing);
+    free(a);
+    free(b);
+    free(bi);
+    free(bj);
+    free(bg);
+}
+
+/* In a cell sheared by txy (and in 3D txz, tyz) the linked cells over
+ * the fractional coordinates find exactly the pairs a brute-force search
+ * over the 9 (27) images finds, each with its image, before and after
+ * the particles move and wrap. */
+static void sheared_cell_list_is_brute_force(int dim)
+{
+    struct dem_config c;
+    struct dem_sim s;
+    const double t[3] = {0.047, -0.031, 0.023}; /* m; |t| < L/2 */
+    const int n = dim == 3 ? 1200 : 600;
+    cell_sim(&s, &c, dim, n, 0.1, t);
+    struct dem_rng g;
+    dem_rng_seed(&g, 7 + dim);
+    for (int i = 0; i < n; i++) {
+        const double f[3] = {dem_rng_uniform(&g), dem_rng_uniform(&g),
+                             dem_rng_uniform(&g)};
+        add_frac(&s, f, 1.5e-3 + 3e-3 * dem_rng_uniform(&g));
+    }
+    test_ready(&s);
+    check_list(&s);
+    for (int i = 0; i < n; i++) { /* some leave the cell */
+        s.p.x[i] += 6e-3 * (dem_rng_uniform(&g) - 0.5);
+        s.p.y[i] += 6e-3 * (dem_rng_uniform(&g) - 0.5);
+    }
+    struct dem_error err;
+    assert_int_equal(dem_sim_rebuild(&s, &err), 0);
+    check_list(&s);
+    dem_sim_destroy(&s);
+}
+
+static void sheared_cell_list_2d(void **state)
+{
+    (void)state;
+    sheared_cell_list_is_brute_force(2);
+}
+
+static void sheared_cell_list_3d(void **state)
+{
+    (void)state;
+    sheared_cell_list_is_brute_force(3);
+}
+
+/* Two touching spheres with velocities and spins: the force and torques
+ * on each when the pair sits inside a sheared cell, and when it straddles
+ * each face, edge and corner (one particle moved by a lattice vector) are
+ * the same to round-off. */
+static void pair_across_every_face_edge_corner(void **state)
+{
+    (void)state;
+    const double t[3] = {0.021, 0.013, -0.017};
+    double ref[2][6] = {{0}};
+    int cases = 0;
+    for (int sz = -1; sz <= 1; sz++)
+        for (int sy = -1; sy <= 1; sy++)
+            for (int sx = -1; sx <= 1; sx++) {
+                struct dem_config c;
+                struct dem_sim s;
+                cell_sim(&s, &c, 3, 2, 0.1, t);
+                c.contact.gamma_n = 0.05;
+                s.cp.gamma_n = 0.05;
+                /* i near the corner s of the cell, j within reach of i
+                 * through the image s (inside the cell for s = 0) */
+                const double fi[3] = {sx > 0 ? 0.98 : sx < 0 ? 0.02 : 0.5,
+                                      sy > 0 ? 0.98 : sy < 0 ? 0.02 : 0.5,
+                                      sz > 0 ? 0.98 : sz < 0 ? 0.02 : 0.5};
+                add_frac(&s, fi, 5e-3);
+                const double b[3] = {3e-3, 5e-3, 5e-3}; /* |b| < 2a */
+                struct dem_lattice lat;
+                dem_sim_lattice(&s, &lat);
+                double S[3];
+                dem_img_shift(lat.v, dem_img_code(sx, sy, sz), S);
+                test_add(&s, s.p.x[0] + b[0] - S[0], s.p.y[0] + b[1] - S[1],
+                         s.p.z[0] + b[2] - S[2], 5e-3);
+                const double v[2][6] = {{0.01, -0.02, 0.005, 3.0, -1.0, 2.0},
+                                        {-0.01, 0.01, 0.0, -2.0, 1.0, 0.5}};
+                for (int p = 0; p < 2; p++) {
+                    s.p.vx[p] = v[p][0];
+                    s.p.vy[p] = v[p][1];
+                    s.p.vz[p] = v[p][2];
+                    s.p.wx[p] = v[p][3];
+                    s.p.wy[p] = v[p][4];
+                    s.p.wz[p] = v[p][5];
+                }
+                test_ready(&s);
+                test_step(&s, 3); /* the spring takes some history */
+                /* particles may have been re-ordered: look them up by id */
+                double got[2][6];
+                for (int p = 0; p < 2; p++) {
+                    const int k = s.p.id[0] == p ? 0 : 1;
+                    const double a[6] = {s.p.fx[k], s.p.fy[k], s.p.fz[k],
+                                         s.p.tx[k], s.p.ty[k], s.p.tz[k]};
+                    memcpy(got[p], a, sizeof a);
+                }
+                assert_int_equal(s.pairs.cur.n, 1);
+                assert_true(fabs(got[0][0]) > 1.0); /* they do touch */
+                if (sx == -1 && sy == -1 && sz == -1) {
+                    memcpy(ref, got, sizeof ref);
+                } else {
+                    for (int p = 0; p < 2; p++)
+                        for (int u = 0; u < 6; u++)
+                            assert_close(got[p][u], ref[p][u],
+                                        1e-9 * fabs(ref[p][u]) + 1e-12);
+                }
+                cases++;
+                dem_sim_destroy(&s);
+            }
+    assert_int_equal(cases, 27);
+}
+
+/* Without contacts a particle at rest relative to the cell stays at its
+ * fractional coordinates while the cell is compressed, stretched and
+ * sheared past several Lees-Edwards re-maps, to round-off. */
+static void affine_motion_is_followed_exactly(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    const int n = 300;
+    cell_sim(&s, &c, 3, n, 0.2, t0);
+    struct dem_rng g;
+    dem_rng_seed(&g, 3);
+    double f0[300][3];
+    for (int i = 0; i < n; i++) {
+        for (int a = 0; a < 3; a++)
+            f0[i][a] = 0.02 + 0.96 * dem_rng_uniform(&g);
+        add_frac(&s, f0[i], 1e-4); /* dilute: no contact ever */
+    }
+    test_ready(&s);
+    /* x shrinks by 10 %, z grows by 5 %, txy runs to 2.3 Lx (two
+     * re-maps), tyz to -0.4 Ly, all within 0.02 s */
+    const double T = 0.02;
+    dem_wall_set_strain(&s.wall[1], DEM_PROFILE_LINEAR, -0.02, T, s.t);
+    dem_wall_set_strain(&s.wall[5], DEM_PROFILE_LINEAR, 0.01, T, s.t);
+    dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XY], DEM_PROFILE_LINEAR,
+                        2.3 * 0.18, T, s.t);
+    dem_wall_set_strain(&s.cell.tilt[DEM_TILT_YZ], DEM_PROFILE_LINEAR,
+                        -0.4 * 0.2, T, s.t);
+    s.dt = 1e-5;
+    test_step(&s, (long)(T / s.dt) + 10);
+    /* two re-maps by Lx (then between 0.2 and 0.18 m) */
+    const double *tilt_done = &s.cell.remapped[DEM_TILT_XY];
+    assert_true(*tilt_done > 2 * 0.18 && *tilt_done < 2 * 0.2);
+    assert_close(s.cell.tilt[DEM_TILT_XY].pos + *tilt_done, 2.3 * 0.18, 1e-12);
+    struct dem_lattice lat;
+    dem_sim_lattice(&s, &lat);
+    for (int k = 0; k < n; k++) {
+        const int i = s.p.id[k];
+        const double x[3] = {s.p.x[k], s.p.y[k], s.p.z[k]};
+        double f[3];
+        dem_lattice_frac(&lat, x, f);
+        for (int a = 0; a < 3; a++) {
+            /* the same point modulo the lattice; a re-map adds whole
+             * multiples of s_y to s_x */
+            double d = f[a] - f0[i][a];
+            if (a == 0)
+                d -= 2.0 * f0[i][1];
+            d -= round(d);
+            assert_close(d, 0.0, 1e-11);
+        }
+        assert_close(s.p.vx[k], 0.0, 0.0);
+        assert_close(s.p.vy[k], 0.0, 0.0);
+    }
+    dem_sim_destroy(&s);
+}
+
+/* An elastic gas (no dissipation) sheared by the tilt: its energy (peculiar
+ * kinetic plus elastic) changes by the work of the boundary, dE/dt =
+ * - sum_ab grad_ab W_ba, W = sum over contacts of b (x) f (the equations
+ * of motion x' = u + grad x, m u' = f: the affine field moves the
+ * positions only). */
+static void sheared_elastic_gas_energy_balance(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    const int n = 400;
+    cell_sim(&s, &c, 2, n, 0.1, t0);
+    c.contact.mu_s = c.contact.mu_d = 0.0; /* no friction: elastic */
+    struct dem_rng g;
+    dem_rng_seed(&g, 11);
+    for (int i = 0; i < 20; i++)
+        for (int j = 0; j < 20; j++) {
+            const double f[3] = {(i + 0.5) / 20.0, (j + 0.5) / 20.0, 0.0};
+            int k = add_frac(&s, f, 2.6e-3); /* touching a bit */
+            s.p.vx[k] = 0.02 * (dem_rng_uniform(&g) - 0.5);
+            s.p.vy[k] = 0.02 * (dem_rng_uniform(&g) - 0.5);
+        }
+    s.cfg.damping.gamma_b = s.cfg.damping.gamma_br = 0.0;
+    s.cp.mu_s = s.cp.mu_d = 0.0;
+    test_ready(&s);
+    const double T = 0.05, rate = 2.0; /* shear rate 1/s */
+    dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XY], DEM_PROFILE_LINEAR,
+                        rate * T * 0.1, T, s.t);
+    s.dt = 2e-6;
+    double work = 0.0, E0 = -1.0, E = 0.0, P_old = 0.0;
+    const long steps = (long)(T / s.dt);
+    struct dem_error err;
+    for (long k = 0; k <= steps; k++) {
+        /* energy and power at the same instant: positions at t, the
+         * velocities averaged over the two half steps */
+        s.measure = 1;
+        assert_int_equal(dem_sim_step(&s, &err), 0);
+        double ek = 0.0;
+        for (int i = 0; i < s.p.n; i++)
+            ek += 0.5 * s.p.m[i] * (s.p.vx[i] * s.p.vx[i] + s.p.vy[i] * s.p.vy[i]);
+        E = ek + s.sums.e_pot;
+        double grad[6];
+        dem_sim_cell_grad(&s, grad);
+        double(*W)[3] = s.sums.fabric_stress;
+        const double P = -(grad[0] * W[0][0] + grad[1] * W[1][0] +
+                           grad[3] * W[1][1]);
+        if (E0 < 0.0)
+            E0 = E;
+        else
+            work += 0.5 * s.dt * (P + P_old);
+        P_old = P;
+    }
+    /* measured: E0 = 0.0800 J, work = -7.17e-4 J, E - E0 within 0.1 %
+     * of it */
+    assert_true(fabs(work) > 5e-4); /* the boundary does real work */
+    assert_close(E - E0, work, 0.01 * fabs(work));
+    dem_sim_destroy(&s);
+}
+
+/* The servo: with no stress in the cell (no contact, no motion) each
+ * face moves inward under the target sigma with m v' = -sigma A -
+ * gamma v, so v(t) = -(sigma A/gamma)(1 - exp(-gamma t/m)). */
+static void servo_relaxes_with_its_mass_and_viscosity(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    cell_sim(&s, &c, 2, 10, 0.2, t0);
+    const double f[3] = {0.5, 0.5, 0.0};
+    add_frac(&s, f, 1e-3);
+    test_ready(&s);
+    const double m = 2.0, gam = 200.0, sigma = 10.0, A = 0.2;
+    for (int w = 0; w < 4; w++)
+        dem_wall_set_stress(&s.wall[w], m, gam, 0.0, sigma, 0.0, 0.0, s.t);
+    s.dt = 1e-5;
+    const double tau = m / gam;
+    test_step(&s, (long)(tau / s.dt));
+    const double vinf = sigma * A / gam;
+    /* A shrinks by about v tau / L = 1e-4 over the run */
+    assert_close(s.wall[3].vel, -vinf * (1.0 - exp(-1.0)), 2e-3 * vinf);
+    assert_close(s.wall[2].vel, vinf * (1.0 - exp(-1.0)), 2e-3 * vinf);
+    dem_sim_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(sheared_cell_list_2d),
+        cmocka_unit_test(sheared_cell_list_3d),
+        cmocka_unit_test(pair_across_every_face_edge_corner),
+        cmocka_unit_test(affine_motion_is_followed_exactly),
+        cmocka_unit_test(sheared_elastic_gas_energy_balance),
+        cmocka_unit_test(servo_relaxes_with_its_mass_and_viscosity),
+    };
+    return cmocka_run_group_tests(tests, 0, 0);
+}
