@@ -142,6 +142,7 @@ enum dem_stage_type {
     DEM_STAGE_COMPRESS = 1,
     DEM_STAGE_CYCLIC = 2,
     DEM_STAGE_HOLD = 3,
+    DEM_STAGE_SHEAR = 4,
     DEM_STAGE_NTYPES
 };
 
@@ -166,7 +167,8 @@ struct dem_stage_config {
     int profile;      /* enum dem_profile; compress */
     double amplitude; /* Pa; cyclic: delta sigma */
     double period;    /* s; cyclic: t0 */
-    int cycles;       /* cyclic: number of periods */
+    int cycles;       /* cyclic, shear: number of periods */
+    double shear_strain; /* shear: total shear strain of the cell (x by y) */
     double mu;        /* contact friction during this stage; < 0 = contact.mu */
 };
 

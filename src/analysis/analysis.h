@@ -223,4 +223,22 @@ int dem_cycles_analyze(const double *t, const double *eps_d,
                        double tol, int max, struct dem_cycle *cyc,
                        struct dem_cycles *sum);
 
+/* --------------------------------------------------------------- shear.c */
+
+#define DEM_SHEAR_CRITICAL_FRACTION 0.25 /* last quarter of the shear strain */
+#define DEM_SHEAR_PLATEAU_TOLERANCE 0.10
+
+/* Simple shear: mu = tau/sigma_n against the shear strain gamma. */
+struct dem_shear {
+    long n;                    /* samples */
+    struct dem_peak peak;      /* of mu(gamma) (strain: gamma) */
+    struct dem_critical crit;  /* mean mu over the last quarter of gamma */
+    struct dem_slopes slopes;  /* of eps_v(gamma): dilatant = the largest
+                                  windowed d eps_v / d gamma = tan psi */
+};
+
+/* The shear curves of one stage (gamma from 0 at its start). */
+void dem_shear_analyze(const double *gamma, const double *mu,
+                       const double *eps_v, long n, struct dem_shear *out);
+
 #endif

@@ -33,6 +33,7 @@
 struct columns {
     const double *t, *stage, *eps[3], *eps_v, *sigma[3], *void_ratio;
     const double *inertial; /* NULL in runs older than the column */
+    const double *gamma_xy, *sigma_xy; /* NULL in runs older than them */
 };
 
 /* The rows of one loading stage as axial/lateral curves. When the stage
@@ -76,6 +77,10 @@ struct result {
     double cyc_pressure, cyc_amplitude, cyc_period;
     struct dem_cycle *cycles;
     struct dem_cycles csum;
+    /* simple shear (the last shear stage) */
+    int shear_stage;
+    double shear_pressure;
+    struct dem_shear shear;
 };
 
 static int file_exists(const char *dir, const char *name, char *path, size_t n,
@@ -123,7 +128,9 @@ enum {
     COL_I,
     COL_EPS,
     COL_SIG = COL_EPS + 3,
-    NCOL = COL_SIG + 3
+    COL_GXY = COL_SIG + 3,
+    COL_SXY,
+    NCOL
 };
 
 static const struct dem__csv_want wanted[NCOL] = {
@@ -138,6 +145,8 @@ static const struct dem__csv_want wanted[NCOL] = {
     [COL_SIG] = {"sigma_xx", 1},
     [COL_SIG + 1] = {"sigma_yy", 1},
     [COL_SIG + 2] = {"sigma_zz", 1},
+    [COL_GXY] = {"gamma_xy", 0},
+    [COL_SXY] = {"sigma_lw_xy", 0},
 };
 
 static void get_columns(const struct dem__csv_table *tb, struct columns *c)
@@ -147,6 +156,8 @@ static void get_columns(const struct dem__csv_table *tb, struct columns *c)
     c->eps_v = tb->col[COL_EV];
     c->void_ratio = tb->col[COL_E];
     c->inertial = tb->col[COL_I];
+    c->gamma_xy = tb->col[COL_GXY];
+    c->sigma_xy = tb->col[COL_SXY];
     for (int a = 0; a < 3; a++) {
         c->eps[a] = tb->col[COL_EPS + a];
         c->sigma[a] = tb->col[COL_SIG + a];
@@ -395,11 +406,50 @@ static int analyze_loading(const struct dem_config *cfg,
     return rc;
 }
 
+/* Simple shear: the rows of the last shear stage, with the last row
+ * before it as the origin (gamma counted from there), mu = tau/sigma_n
+ * = -sigma_lw_xy/sigma_yy (tau the shear stress that resists a positive
+ * shear). */
+static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
+                         long nrow, struct result *R)
+{
+    for (int k = cfg->nstages - 1; k >= 0 && R->shear_stage < 0; k--)
+        if (cfg->stages[k].type == DEM_STAGE_SHEAR)
+            R->shear_stage = k;
+    if (R->shear_stage < 0 || !c->gamma_xy || !c->sigma_xy)
+        return DEM_OK;
+    R->shear_pressure = cfg->stages[R->shear_stage].pressure;
+    long first = -1, n = 0;
+    for (long r = 0; r < nrow; r++)
+        if ((int)c->stage[r] == R->shear_stage) {
+            if (first < 0)
+                first = r;
+            n++;
+        }
+    if (n == 0)
+        return DEM_OK;
+    const long origin = first > 0 ? first - 1 : first;
+    n += first - origin;
+    double *g = malloc(3 * (size_t)n * sizeof *g);
+    if (!g)
+        return DEM_ENOMEM;
+    double *mu = g + n, *ev = g + 2 * n;
+    for (long k = 0; k < n; k++) {
+        const long r = origin + k;
+        g[k] = c->gamma_xy[r] - c->gamma_xy[origin];
+        mu[k] = c->sigma[1][r] > 0.0 ? -c->sigma_xy[r] / c->sigma[1][r] : NAN;
+        ev[k] = k == 0 && origin < first ? 0.0 : c->eps_v[r];
+    }
+    dem_shear_analyze(g, mu, ev, n, &R->shear);
+    free(g);
+    return DEM_OK;
+}
+
 static void result_init(struct result *R, int dim)
 {
     memset(R, 0, sizeof *R);
     R->dim = dim;
-    R->stage = R->type = R->axis = R->cyc_stage = -1;
+    R->stage = R->type = R->axis = R->cyc_stage = R->shear_stage = -1;
     double *nan[] = {&R->pressure,     &R->peak_s1, &R->peak_s3, &R->crit_s1,
                      &R->crit_s3,      &R->crit_e,  &R->modulus, &R->nu,
                      &R->nu_ps,        &R->bulk,    &R->psi_deg, &R->e_init,
@@ -576,6 +626,41 @@ static void write_criteria(struct dem__json *j, const struct result *R)
     dem__json_close(j);
 }
 
+static void write_shear(struct dem__json *j, const struct result *R)
+{
+    const struct dem_shear *S = &R->shear;
+    const char *none = S->n ? 0 : "the shear stage has no rows (the run "
+                                  "stopped before it, or timeseries.csv "
+                                  "has no gamma_xy column)";
+    dem__json_object(j, "shear", 0);
+    dem__json_int(j, "stage", R->shear_stage);
+    num(j, "normal_stress", R->shear_pressure, 0);
+    dem__json_int(j, "samples", S->n);
+    dem__json_object(j, "peak", 0);
+    const int pk = S->n && S->peak.ok, cr = S->n && S->crit.ok;
+    num(j, "tau_over_sigma_n", pk ? S->peak.value : NAN,
+        none ? none : S->peak.reason);
+    num(j, "phi_deg", pk ? atan(S->peak.value) * 180.0 / M_PI : NAN,
+        none ? none : S->peak.reason);
+    num(j, "gamma", pk ? S->peak.strain : NAN, none ? none : S->peak.reason);
+    dem__json_close(j);
+    dem__json_object(j, "critical", 0);
+    num(j, "tau_over_sigma_n", cr ? S->crit.value : NAN,
+        none ? none : S->crit.reason);
+    num(j, "phi_deg", cr ? atan(S->crit.value) * 180.0 / M_PI : NAN,
+        none ? none : S->crit.reason);
+    num(j, "gamma_from", S->n ? S->crit.strain_from : NAN, none);
+    num(j, "drift", S->n ? S->crit.drift : NAN, none);
+    dem__json_close(j);
+    const int dl = S->n && S->slopes.dilatant_ok;
+    num(j, "dilatancy_max", dl ? S->slopes.dilatant : NAN,
+        none ? none : S->slopes.dilatant_reason);
+    num(j, "dilatancy_angle_deg",
+        dl ? atan(S->slopes.dilatant) * 180.0 / M_PI : NAN,
+        none ? none : S->slopes.dilatant_reason);
+    dem__json_close(j);
+}
+
 static const char *stage_name(int type)
 {
     return type == DEM_STAGE_COMPRESS ? "compress"
@@ -614,6 +699,8 @@ static void write_summary(FILE *f, const struct result *R)
     write_void_fit(&j, R);
     if (R->cyc_stage >= 0)
         write_cyclic(&j, R);
+    if (R->shear_stage >= 0)
+        write_shear(&j, R);
     write_criteria(&j, R);
     dem__json_end(&j);
 }
@@ -658,6 +745,8 @@ int dem_analyze(const char *outdir, struct dem_error *err)
         rc = analyze_void_fit(cfg, &c, nrow, &R);
     if (!rc && R.cyc_stage >= 0)
         rc = analyze_cyclic(cfg, &c, nrow, &R);
+    if (!rc)
+        rc = analyze_shear(cfg, &c, nrow, &R);
     if (rc == DEM_ENOMEM)
         dem_error_set(err, rc, "%s: out of memory", outdir);
     if (!rc)

@@ -27,7 +27,7 @@ static const char *const law_names[] = {
 static const char *const boundary_names[] = {"walls", "periodic", 0};
 static const char *const resist_names[] = {"none", "luding", 0};
 const char *const dem__cfg_stage_names[] = {"isotropic", "compress", "cyclic",
-                                            "hold", 0};
+                                            "hold",      "shear",    0};
 static const char *const axis_names[] = {"x", "y", "z", 0};
 static const char *const profile_names[] = {"cosine", "linear", "cyclic", 0};
 
@@ -317,10 +317,11 @@ const struct key dem__cfg_keys[] = {
      STG(pressure),
      .def = 0,
      GT(0),
-     .uses = T_ISO | T_COMP | T_CYC,
-     .needs = T_ISO | T_COMP | T_CYC,
+     .uses = T_ISO | T_COMP | T_CYC | T_SHEAR,
+     .needs = T_ISO | T_COMP | T_CYC | T_SHEAR,
      .unit = PRESSURE_UNIT,
-     .doc = "wall stress: isotropic target, confining, or cyclic p0"},
+     .doc = "wall stress: isotropic target, confining, cyclic p0, or the "
+            "normal stress of shear"},
     {.name = "tolerance",
      .kind = K_DOUBLE,
      STG(tolerance),
@@ -360,18 +361,18 @@ const struct key dem__cfg_keys[] = {
      STG(duration),
      .def = 0,
      GT(0),
-     .uses = T_COMP | T_HOLD,
-     .needs = T_COMP | T_HOLD,
+     .uses = T_COMP | T_HOLD | T_SHEAR,
+     .needs = T_COMP | T_HOLD | T_SHEAR,
      .unit = "s",
-     .doc = "compress: time to reach strain; hold: time to run"},
+     .doc = "compress, shear: time to reach the strain; hold: time to run"},
     {.name = "profile",
      .kind = K_ENUM,
      STG(profile),
      .def = DEM_PROFILE_COSINE,
      .names = profile_names,
-     .uses = T_COMP,
+     .uses = T_COMP | T_SHEAR,
      .unit = "-",
-     .doc = "wall motion in time: cosine, linear or cyclic"},
+     .doc = "wall (shear: tilt) motion in time: cosine, linear or cyclic"},
     {.name = "amplitude",
      .kind = K_DOUBLE,
      STG(amplitude),
@@ -395,10 +396,20 @@ const struct key dem__cfg_keys[] = {
      STG(cycles),
      .def = 1,
      GE(1),
-     .uses = T_CYC,
+     .uses = T_CYC | T_SHEAR,
      .needs = T_CYC,
      .unit = "-",
-     .doc = "cyclic: number of periods"},
+     .doc = "cyclic: number of periods; shear with profile cyclic: cycles "
+            "of 0 -> shear_strain -> 0 within duration"},
+    {.name = "shear_strain",
+     .kind = K_DOUBLE,
+     STG(shear_strain),
+     .def = 0,
+     .uses = T_SHEAR,
+     .needs = T_SHEAR,
+     .unit = "-",
+     .doc = "shear: simple shear strain of the cell, x displaced along y "
+            "(any size: the cell re-maps at 1/2, Lees-Edwards)"},
     {.name = "mu",
      .kind = K_DOUBLE,
      STG(mu),

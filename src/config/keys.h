@@ -54,7 +54,8 @@ enum key_scope {
 #define T_COMP (1u << DEM_STAGE_COMPRESS)
 #define T_CYC (1u << DEM_STAGE_CYCLIC)
 #define T_HOLD (1u << DEM_STAGE_HOLD)
-#define T_ALL (T_ISO | T_COMP | T_CYC | T_HOLD)
+#define T_SHEAR (1u << DEM_STAGE_SHEAR)
+#define T_ALL (T_ISO | T_COMP | T_CYC | T_HOLD | T_SHEAR)
 
 struct key {
     const char *name;         /* dotted path; stage keys without "stages.N." */

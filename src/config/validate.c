@@ -155,6 +155,12 @@ static int check_stages(const struct ctx *x, const struct dem_config *c,
                 (dem__cfg_keys[k].uses & bit) &&
                 check_key(x, &dem__cfg_keys[k], st, i, err))
                 return DEM_ECONFIG;
+        if (st->type == DEM_STAGE_SHEAR &&
+            c->box.boundary != DEM_BOUNDARY_PERIODIC)
+            return dem__cfg_fail_key(
+                x, i, "type", err,
+                "\"shear\" needs a periodic cell (box.boundary = "
+                "\"periodic\"): walls cannot shear the sample");
         if (c->dim == 2 && (bit & (T_COMP | T_CYC)) && st->axis == 2)
             return dem__cfg_fail_key(
                 x, i, "axis", err,

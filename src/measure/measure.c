@@ -19,6 +19,10 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     for (int a = 0; a < dim; a++)
         o->eps[a] = L0[a] > 0.0 ? 1.0 - o->L[a] / L0[a] : 0.0;
     o->eps_v = V0 > 0.0 ? o->V / V0 - 1.0 : 0.0;
+    o->gamma_xy = s->cell.on ? (s->cell.tilt[DEM_TILT_XY].pos +
+                                s->cell.remapped[DEM_TILT_XY]) /
+                                   o->L[1]
+                             : 0.0;
 
     for (int w = 0; w < s->nwall; w++) {
         const struct dem_wall *W = &s->wall[w];
@@ -210,7 +214,8 @@ long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
     X("ymin_force", s->wall_force[2]) \
     X("ymax_force", s->wall_force[3]) \
     X("zmin_force", s->wall_force[4]) \
-    X("zmax_force", s->wall_force[5])
+    X("zmax_force", s->wall_force[5]) \
+    X("gamma_xy", s->gamma_xy)
 // clang-format on
 
 void dem_sample_write_header(FILE *f, int dim)

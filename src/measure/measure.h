@@ -49,6 +49,9 @@ struct dem_sample {
         wall_pos[6]; /* m; wall coordinates (xmin xmax ymin ymax zmin zmax) */
     double wall_vel[6];   /* m/s */
     double wall_force[6]; /* N; outward force of the particles on each wall */
+    double gamma_xy;      /* periodic cell: shear strain, the x edges'
+                             tilt along y since the start over Ly,
+                             re-maps included; 0 with walls */
 };
 
 /* Sample the state; requires that the last force pass measured (set

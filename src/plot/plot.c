@@ -54,6 +54,8 @@ enum ts_col {
     TS_YMAX,
     TS_ZMIN,
     TS_ZMAX,
+    TS_GXY,
+    TS_SXY,
     TS_NCOL
 };
 
@@ -79,6 +81,9 @@ static const struct dem__csv_want ts_want[TS_NCOL] = {
     [TS_YMAX] = {"ymax_pos", 0},
     [TS_ZMIN] = {"zmin_pos", 0},
     [TS_ZMAX] = {"zmax_pos", 0},
+    /* simple shear of a periodic cell */
+    [TS_GXY] = {"gamma_xy", 0},
+    [TS_SXY] = {"sigma_lw_xy", 0},
 };
 
 /* The timeseries with what the plots derive from it. */
@@ -89,6 +94,7 @@ struct series {
     int axis;                 /* loading axis, 0..dim-1 */
     int stage;                /* loading stage index */
     size_t lo, hi;            /* its rows [lo, hi) */
+    size_t slo, shi;          /* the last shear stage's rows (none: equal) */
 };
 
 static const char axis_name[3] = {'x', 'y', 'z'};
@@ -175,10 +181,23 @@ static int find_loading_from_config(struct series *s, const char *outdir)
     if (dem_path_join(path, sizeof path, outdir, "config.cfg", NULL) ||
         dem_config_load_file(&cfg, path, 0, 0, &e))
         return 0;
+    const double *st = s->c[TS_STAGE];
+    for (int q = cfg.nstages - 1; q >= 0; q--)
+        if (cfg.stages[q].type == DEM_STAGE_SHEAR && s->c[TS_GXY] &&
+            s->c[TS_SXY]) {
+            size_t a = 0;
+            while (a < s->n && st[a] != q)
+                a++;
+            size_t b = a;
+            while (b < s->n && st[b] == q)
+                b++;
+            s->slo = a; /* eps_v is referred to the stage's start */
+            s->shi = b;
+            break;
+        }
     const int k = dem_stage_loading_index(&cfg);
     if (k < 0)
         return 0;
-    const double *st = s->c[TS_STAGE];
     size_t lo = 0;
     while (lo < s->n && st[lo] != k)
         lo++;
@@ -211,6 +230,8 @@ enum qty {
     Q_EKIN,
     Q_EROT,
     Q_EPOT,
+    Q_GAMMA,
+    Q_MU,
     Q_COUNT
 };
 
@@ -271,6 +292,18 @@ static double q_epot(const struct series *s, size_t i)
     return s->c[TS_EPOT][i];
 }
 
+static double q_gamma(const struct series *s, size_t i)
+{
+    return s->c[TS_GXY][i] - s->c[TS_GXY][s->slo];
+}
+
+/* tau/sigma_n: tau = -sigma_lw_xy resists a positive shear */
+static double q_mu(const struct series *s, size_t i)
+{
+    const double sn = s->c[TS_SYY][i];
+    return sn > 0.0 ? -s->c[TS_SXY][i] / sn : NAN;
+}
+
 /* Labels are gnuplot enhanced text; "$a" stands for the loading axis
  * pair ("yy"), "$l" for the lateral stress (2D: the other wall stress,
  * 3D: the mean of the two lateral ones). */
@@ -296,6 +329,8 @@ static const struct quantity qtab[Q_COUNT] = {
     [Q_EKIN] = {"e_kin", "kinetic E_{kin}", 2, q_ekin},
     [Q_EROT] = {"e_rot", "rotational E_{rot}", 2, q_erot},
     [Q_EPOT] = {"e_pot", "elastic E_{pot}", 2, q_epot},
+    [Q_GAMMA] = {"gamma", "shear strain γ_{xy}", 2, q_gamma},
+    [Q_MU] = {"tau_over_sigma_n", "τ/σ_n = −σ_{xy}/σ_{yy}", 2, q_mu},
 };
 
 /* Expand the "$a", "$l" and "$u" (stress unit) placeholders. */
@@ -332,7 +367,7 @@ static void expand(char *out, size_t n, const char *in, const struct series *s)
 
 /* ----------------------------------------------------------- the table */
 
-enum rows { ROWS_LOADING, ROWS_ALL };
+enum rows { ROWS_LOADING, ROWS_ALL, ROWS_SHEAR };
 
 #define F_LOGY 1u   /* log y axis; non-positive values are left out */
 #define F_ZERO 2u   /* dashed line y = 0 */
@@ -412,6 +447,24 @@ static const struct plot_spec plots[] = {
      Q_NONE,
      0,
      write_mohr},
+    {"shear",
+     "Simple shear: mobilised friction",
+     "τ/σ_n",
+     ROWS_SHEAR,
+     Q_GAMMA,
+     {Q_MU, Q_NONE},
+     Q_MU,
+     F_ZERO,
+     NULL},
+    {"shear_dilatancy",
+     "Simple shear: volumetric strain (ε_v > 0: dilation)",
+     "volumetric strain ε_v = V/V_0 − 1",
+     ROWS_SHEAR,
+     Q_GAMMA,
+     {Q_EPS_V, Q_NONE},
+     Q_NONE,
+     F_ZERO,
+     NULL},
 };
 
 #define NPLOTS (sizeof plots / sizeof plots[0])
@@ -425,8 +478,8 @@ static int has_qty(const struct series *s, int q)
 
 static void row_range(const struct series *s, int rows, size_t *lo, size_t *hi)
 {
-    *lo = rows == ROWS_ALL ? 0 : s->lo;
-    *hi = rows == ROWS_ALL ? s->n : s->hi;
+    *lo = rows == ROWS_ALL ? 0 : rows == ROWS_SHEAR ? s->slo : s->lo;
+    *hi = rows == ROWS_ALL ? s->n : rows == ROWS_SHEAR ? s->shi : s->hi;
 }
 
 /* Row stride that keeps a curve under MAX_POINTS points. */
@@ -441,6 +494,11 @@ static void subtitle(char *out, size_t n, const struct series *s, int rows)
 {
     if (rows == ROWS_ALL)
         snprintf(out, n, "%dD, whole run; dashed lines: stage changes", s->dim);
+    else if (rows == ROWS_SHEAR)
+        snprintf(out, n,
+                 "%dD periodic cell, shear stage %d: x displaced along y, "
+                 "normal stress σ_{yy} held",
+                 s->dim, (int)s->c[TS_STAGE][s->slo]);
     else
         snprintf(out, n, "%dD, loading stage %d, loading axis %c", s->dim,
                  s->stage, axis_name[s->axis]);
@@ -743,9 +801,17 @@ static int final_box(const struct series *s, double lo[3], double hi[3])
     return 1;
 }
 
+/* Whether plot k of the table is drawn for this run (the shear plots
+ * only with a shear stage). */
+static int plot_wanted(const struct series *s, int k)
+{
+    return plots[k].rows != ROWS_SHEAR || s->shi > s->slo;
+}
+
 /* gnuplot for every plot of the table and the extra ones (names). */
-static int run_gnuplot_all(const char *plotdir, const char *const *extra,
-                           int nextra, struct dem_error *err)
+static int run_gnuplot_all(const struct series *s, const char *plotdir,
+                           const char *const *extra, int nextra,
+                           struct dem_error *err)
 {
     const char *cmd = dem__gp_command();
     const int n = (int)NPLOTS + nextra;
@@ -763,6 +829,8 @@ static int run_gnuplot_all(const char *plotdir, const char *const *extra,
         return DEM_OK;
     }
     for (int k = 0; k < n; k++) {
+        if (k < (int)NPLOTS && !plot_wanted(s, k))
+            continue;
         int rc = dem__gp_run(
             cmd, plotdir, k < (int)NPLOTS ? plots[k].name : extra[k - NPLOTS],
             err);
@@ -823,13 +891,14 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     if (!rc && !dem_path_join(path, sizeof path, plotdir, "gnuplot.log", NULL))
         remove(path); /* the messages of an earlier plotting */
     for (size_t k = 0; !rc && k < NPLOTS; k++)
-        rc = write_plot(&s, &plots[k], plotdir, err);
+        if (plot_wanted(&s, (int)k))
+            rc = write_plot(&s, &plots[k], plotdir, err);
     const char *extra[2];
     int nextra = 0;
     if (!rc) /* the contact network's pictures (plot/contacts.c) */
         rc = dem__plot_contacts(outdir, plotdir, s.dim, extra, &nextra, err);
     if (!rc)
-        rc = run_gnuplot_all(plotdir, extra, nextra, err);
+        rc = run_gnuplot_all(&s, plotdir, extra, nextra, err);
     if (!rc && prc)
         rc = dem_error_set(err, perr.code, "%s", perr.msg);
     double lo[3], hi[3];

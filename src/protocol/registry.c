@@ -4,12 +4,14 @@ extern const struct dem_stage_ops dem_stage_isotropic;
 extern const struct dem_stage_ops dem_stage_compress;
 extern const struct dem_stage_ops dem_stage_cyclic;
 extern const struct dem_stage_ops dem_stage_hold;
+extern const struct dem_stage_ops dem_stage_shear;
 
 static const struct dem_stage_ops *const registry[DEM_STAGE_NTYPES] = {
     [DEM_STAGE_ISOTROPIC] = &dem_stage_isotropic,
     [DEM_STAGE_COMPRESS] = &dem_stage_compress,
     [DEM_STAGE_CYCLIC] = &dem_stage_cyclic,
     [DEM_STAGE_HOLD] = &dem_stage_hold,
+    [DEM_STAGE_SHEAR] = &dem_stage_shear,
 };
 
 const struct dem_stage_ops *dem_stage_lookup(int type)
