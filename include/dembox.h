@@ -143,6 +143,8 @@ enum dem_stage_type {
     DEM_STAGE_CYCLIC = 2,
     DEM_STAGE_HOLD = 3,
     DEM_STAGE_SHEAR = 4,
+    DEM_STAGE_CONSTANT_P = 5,
+    DEM_STAGE_CONSTANT_VOLUME = 6,
     DEM_STAGE_NTYPES
 };
 
@@ -169,6 +171,7 @@ struct dem_stage_config {
     double period;    /* s; cyclic: t0 */
     int cycles;       /* cyclic, shear: number of periods */
     double shear_strain; /* shear: total shear strain of the cell (x by y) */
+    double b;            /* constant_p: (s2 - s3)/(s1 - s3) */
     double mu;        /* contact friction during this stage; < 0 = contact.mu */
 };
 

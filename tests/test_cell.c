@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "core/rng.h"
+#include "protocol/stage.h"
 
 /* A periodic config and an empty cell [0, L]^dim with tilts t. */
 static void cell_sim(struct dem_sim *s, struct dem_config *c, int dim, int cap,
@@ -320,6 +321,79 @@ static void servo_relaxes_with_its_mass_and_viscosity(void **state)
     dem_sim_destroy(&s);
 }
 
+/* constant_volume: while the z faces close by 10 % the x and y faces
+ * follow so that the volume stays what it was, to round-off (a dilute
+ * gas: nothing else moves the cell). */
+static void constant_volume_keeps_the_volume(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    cell_sim(&s, &c, 3, 10, 0.1, t0);
+    const double f[3] = {0.5, 0.5, 0.5};
+    add_frac(&s, f, 1e-3);
+    test_ready(&s);
+    struct dem_stage_config sc = {.type = DEM_STAGE_CONSTANT_VOLUME,
+                                  .axis = 2,
+                                  .strain = 0.1,
+                                  .duration = 0.01,
+                                  .profile = DEM_PROFILE_COSINE};
+    struct dem_stage_state st = {.cfg = &sc};
+    const struct dem_stage_ops *ops = dem_stage_lookup(sc.type);
+    struct dem_error err = {0};
+    assert_int_equal(ops->begin(&s, &st, &err), DEM_OK);
+    double L[3], V0, V;
+    dem_sim_box(&s, L, &V0);
+    s.dt = 1e-5;
+    while (s.t < st.t_end - 0.5 * s.dt) {
+        ops->control(&s, &st);
+        test_step(&s, 1);
+        dem_sim_box(&s, L, &V);
+        assert_close(V / V0, 1.0, 1e-12);
+    }
+    assert_close(L[2], 0.09, 1e-12);
+    assert_close(L[0], 0.1 / sqrt(0.9), 1e-12);
+    assert_close(L[1], L[0], 1e-15);
+    dem_sim_destroy(&s);
+}
+
+/* constant_p: from the axial stress s1 of the last pass the lateral
+ * faces get the targets that make p = (s1 + s2 + s3)/3 and b = (s2 -
+ * s3)/(s1 - s3), s2 on the axis after the loading axis. */
+static void constant_p_targets_hold_p_and_b(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    cell_sim(&s, &c, 3, 10, 0.1, t0);
+    const double f[3] = {0.5, 0.5, 0.5};
+    add_frac(&s, f, 1e-3);
+    test_ready(&s);
+    struct dem_stage_config sc = {.type = DEM_STAGE_CONSTANT_P,
+                                  .axis = 2,
+                                  .strain = 0.1,
+                                  .duration = 0.01,
+                                  .pressure = 1000.0,
+                                  .b = 0.3};
+    struct dem_stage_state st = {.cfg = &sc};
+    const struct dem_stage_ops *ops = dem_stage_lookup(sc.type);
+    struct dem_error err = {0};
+    assert_int_equal(ops->begin(&s, &st, &err), DEM_OK);
+    const double s1 = 1600.0, A = 0.01; /* the z faces' area */
+    s.wall[4].force = s.wall[5].force = s1 * A;
+    ops->control(&s, &st);
+    const double s2 = s.wall[0].p0, s3 = s.wall[2].p0;
+    assert_close(s.wall[1].p0, s2, 0.0);
+    assert_close(s.wall[3].p0, s3, 0.0);
+    assert_close((s1 + s2 + s3) / 3.0, 1000.0, 1e-9);
+    assert_close((s2 - s3) / (s1 - s3), 0.3, 1e-12);
+    assert_int_equal(s.wall[5].mode, DEM_WALL_STRAIN);
+    assert_int_equal(s.wall[0].mode, DEM_WALL_STRESS);
+    dem_sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -329,6 +403,8 @@ int main(void)
         cmocka_unit_test(affine_motion_is_followed_exactly),
         cmocka_unit_test(sheared_elastic_gas_energy_balance),
         cmocka_unit_test(servo_relaxes_with_its_mass_and_viscosity),
+        cmocka_unit_test(constant_volume_keeps_the_volume),
+        cmocka_unit_test(constant_p_targets_hold_p_and_b),
     };
     return cmocka_run_group_tests(tests, 0, 0);
 }

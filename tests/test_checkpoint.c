@@ -46,6 +46,25 @@ static const char *const small_2d =
     "output = { interval = 2.0e-5; snapshot_interval = 2.0e-4;"
     " dump_interval = 1.0e-4; };\n";
 
+/* The same discs in a periodic cell: isotropic, then simple shear past a
+ * Lees-Edwards re-map (the cell's tilts, re-maps and the pairs' images
+ * are state). */
+static const char *const small_cell_2d =
+    "dimension = 2; seed = 5; time_step = \"auto\";\n"
+    "particles = { count = 150; radius = { distribution = \"uniform\";"
+    " min = 0.5e-3; max = 1.5e-3; }; placement = \"random\";"
+    " volume_fraction = 0.4; };\n"
+    "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; gamma_n = 0.1;"
+    " kt = 2.0e4; gamma_t = 0.02; mu = 0.5; };\n"
+    "box = { boundary = \"periodic\"; };\n"
+    "damping = { gamma_b = 1.0e-5; gamma_br = 0.0; };\n"
+    "walls = { mass = 0.01; gamma = 2.0; max_speed = 0.5; };\n"
+    "stages = ( { type = \"isotropic\"; pressure = 500.0; tolerance = 1.0e-4;"
+    " max_time = 3.0e-4; mu = 0.0; },\n"
+    " { type = \"shear\"; shear_strain = 0.8; duration = 4.0e-4;"
+    " profile = \"linear\"; pressure = 500.0; } );\n"
+    "output = { interval = 2.0e-5; snapshot_interval = 2.0e-4; };\n";
+
 /* A 3D cyclic test in miniature: lattice, linear law, stress-controlled
  * walls with a cyclic target. */
 static const char *const small_3d =
@@ -483,6 +502,16 @@ static void resumed_2d_run_is_bit_identical(void **state)
     stop_and_resume(small_2d, "resume2d", 6000, stops, 4, 1);
 }
 
+static void resumed_periodic_shear_run_is_bit_identical(void **state)
+{
+    (void)state;
+    /* in the isotropic stage and twice in the shear, before and after the
+     * re-map at gamma = 1/2 (dt = 1.47e-7 s: the shear starts at step
+     * 2036, re-maps near step 3400 and ends at step 4750) */
+    const long stops[] = {900, 3000, 4200};
+    stop_and_resume(small_cell_2d, "resumecell", 6000, stops, 3, 0);
+}
+
 static void resumed_3d_cyclic_run_is_bit_identical(void **state)
 {
     (void)state;
@@ -865,6 +894,7 @@ int main(void)
         cmocka_unit_test(round_trip_restores_every_field_bit_for_bit),
         cmocka_unit_test(resumed_2d_run_is_bit_identical),
         cmocka_unit_test(resumed_3d_cyclic_run_is_bit_identical),
+        cmocka_unit_test(resumed_periodic_shear_run_is_bit_identical),
         cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
         cmocka_unit_test(write_error_keeps_the_last_checkpoint),
         cmocka_unit_test(sigint_checkpoints_and_resumes_identically),

@@ -218,7 +218,7 @@ static void box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d(void **state)
     struct dem_error err = {0};
     char path[128];
     snprintf(path, sizeof path, "%s/box3.vtu", tmpdir);
-    assert_int_equal(dem_vtu_write_box(path, lo, hi, 3, &err), DEM_OK);
+    assert_int_equal(dem_vtu_write_box(path, lo, hi, NULL, 3, &err), DEM_OK);
     char *text = slurp(path);
     assert_well_formed(path, text);
     assert_non_null(strstr(text, "NumberOfPoints=\"8\""));
@@ -245,7 +245,7 @@ static void box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d(void **state)
     free(text);
 
     snprintf(path, sizeof path, "%s/box2.vtu", tmpdir);
-    assert_int_equal(dem_vtu_write_box(path, lo, hi, 2, &err), DEM_OK);
+    assert_int_equal(dem_vtu_write_box(path, lo, hi, NULL, 2, &err), DEM_OK);
     text = slurp(path);
     assert_well_formed(path, text);
     assert_non_null(strstr(text, "NumberOfPoints=\"4\""));
@@ -268,37 +268,45 @@ static void contact_network_is_one_line_per_contact(void **state)
     for (int i = 0; i < 3; i++)
         dem_particles_add(&p, 0.002 * i, 0.001, 0.0, 1.1e-3, 2000.0,
                           DEM_MASS_DISC, 2);
-    struct dem_network_contact c[3] = {
-        {.i = 0, .j = 1, .n = {-1, 0, 0}, .delta = 2e-4, .fn = 1.5},
-        {.i = 1, .j = 2, .n = {-1, 0, 0}, .delta = 2e-4, .fn = 0.5},
+    /* two pairs, a pair through a periodic image (0 touches the image of
+     * 2 on its left), a wall contact */
+    struct dem_network_contact c[4] = {
+        {.i = 0, .j = 1, .n = {-1, 0, 0}, .b = {-0.002, 0, 0}, .fn = 1.5},
+        {.i = 1, .j = 2, .n = {-1, 0, 0}, .b = {-0.002, 0, 0}, .fn = 0.5},
+        {.i = 0, .j = 2, .n = {1, 0, 0}, .b = {0.0021, 0, 0}, .image = 1},
         {.i = 2,
          .j = -2,
          .x = {0.005, 0.001, 0},
          .n = {-1, 0, 0},
+         .b = {-0.001, 0, 0},
          .delta = 1e-4,
          .fn = 2.0,
          .sliding = 1}};
-    const struct dem_network net = {3, 2, c};
+    const struct dem_network net = {4, 3, c};
     char path[128];
     snprintf(path, sizeof path, "%s/contacts.vtu", tmpdir);
     assert_int_equal(dem_vtu_write_contacts(&p, &net, path, &err), DEM_OK);
     char *text = slurp(path);
     assert_well_formed(path, text);
-    assert_non_null(strstr(text, "NumberOfPoints=\"4\" NumberOfCells=\"3\""));
-    assert_int_equal(array_values(text, "connectivity"), 6);
+    assert_non_null(strstr(text, "NumberOfPoints=\"5\" NumberOfCells=\"4\""));
+    assert_int_equal(array_values(text, "connectivity"), 8);
     const char *conn = strstr(strstr(text, "Name=\"connectivity\""), ">") + 1;
-    long v[6];
-    for (int k = 0; k < 6; k++)
+    long v[8];
+    for (int k = 0; k < 8; k++)
         v[k] = strtol(conn, (char **)&conn, 10);
     assert_int_equal(v[0], 0);
     assert_int_equal(v[1], 1);
-    assert_int_equal(v[4], 2);
-    assert_int_equal(v[5], 3); /* the wall contact's own point */
+    assert_int_equal(v[4], 0);
+    assert_int_equal(v[5], 4); /* the image of 2, after the wall's point */
+    assert_int_equal(v[6], 2);
+    assert_int_equal(v[7], 3); /* the wall contact's own point */
+    /* the image's point is i's centre minus the branch vector */
+    assert_non_null(strstr(text, "-0.0021 0.001 0\n"));
     static const char *const one[] = {"normal_force", "tangential_force",
                                       "overlap", "sliding", "partner"};
     for (int q = 0; q < 5; q++)
-        assert_int_equal(array_values(text, one[q]), 3);
-    assert_int_equal(array_values(text, "branch"), 9);
+        assert_int_equal(array_values(text, one[q]), 4);
+    assert_int_equal(array_values(text, "branch"), 12);
     free(text);
     dem_particles_free(&p);
 }
@@ -334,7 +342,7 @@ static void unwritable_path_is_an_io_error(void **state)
     const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     char path[128];
     snprintf(path, sizeof path, "%s/missing/box.vtu", tmpdir);
-    assert_int_equal(dem_vtu_write_box(path, lo, hi, 3, &err), DEM_EIO);
+    assert_int_equal(dem_vtu_write_box(path, lo, hi, NULL, 3, &err), DEM_EIO);
     assert_non_null(strstr(err.msg, path));
 }
 

@@ -368,7 +368,9 @@ static int analyze_loading(const struct dem_config *cfg,
      * when it is a compression, the cycles when it is cyclic */
     R->stage = dem_stage_loading_index(cfg);
     const int type = R->stage >= 0 ? cfg->stages[R->stage].type : -1;
-    const int comp = type == DEM_STAGE_COMPRESS;
+    const int comp = type == DEM_STAGE_COMPRESS ||
+                     type == DEM_STAGE_CONSTANT_P ||
+                     type == DEM_STAGE_CONSTANT_VOLUME;
     R->cyc_stage = type == DEM_STAGE_CYCLIC ? R->stage : -1;
     if (R->stage < 0) {
         snprintf(R->none_reason, sizeof R->none_reason,
@@ -663,9 +665,8 @@ static void write_shear(struct dem__json *j, const struct result *R)
 
 static const char *stage_name(int type)
 {
-    return type == DEM_STAGE_COMPRESS ? "compress"
-           : type == DEM_STAGE_CYCLIC ? "cyclic"
-                                      : "none";
+    const struct dem_stage_ops *ops = dem_stage_lookup(type);
+    return ops ? ops->name : "none";
 }
 
 static void write_summary(FILE *f, const struct result *R)

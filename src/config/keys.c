@@ -26,8 +26,9 @@ static const char *const law_names[] = {
         0};
 static const char *const boundary_names[] = {"walls", "periodic", 0};
 static const char *const resist_names[] = {"none", "luding", 0};
-const char *const dem__cfg_stage_names[] = {"isotropic", "compress", "cyclic",
-                                            "hold",      "shear",    0};
+const char *const dem__cfg_stage_names[] = {
+    "isotropic", "compress",   "cyclic",          "hold",
+    "shear",     "constant_p", "constant_volume", 0};
 static const char *const axis_names[] = {"x", "y", "z", 0};
 static const char *const profile_names[] = {"cosine", "linear", "cyclic", 0};
 
@@ -317,11 +318,11 @@ const struct key dem__cfg_keys[] = {
      STG(pressure),
      .def = 0,
      GT(0),
-     .uses = T_ISO | T_COMP | T_CYC | T_SHEAR,
-     .needs = T_ISO | T_COMP | T_CYC | T_SHEAR,
+     .uses = T_ISO | T_COMP | T_CYC | T_SHEAR | T_CONSTP,
+     .needs = T_ISO | T_COMP | T_CYC | T_SHEAR | T_CONSTP,
      .unit = PRESSURE_UNIT,
-     .doc = "wall stress: isotropic target, confining, cyclic p0, or the "
-            "normal stress of shear"},
+     .doc = "wall stress: isotropic target, confining, cyclic p0, the "
+            "normal stress of shear, or the mean stress of constant_p"},
     {.name = "tolerance",
      .kind = K_DOUBLE,
      STG(tolerance),
@@ -343,7 +344,7 @@ const struct key dem__cfg_keys[] = {
      STG(axis),
      .def = 1,
      .names = axis_names,
-     .uses = T_COMP | T_CYC,
+     .uses = T_AXIAL | T_CYC,
      .unit = "-",
      .doc = "loading axis (2D: x or y)"},
     {.name = "strain",
@@ -352,8 +353,8 @@ const struct key dem__cfg_keys[] = {
      .def = 0,
      GT(-1),
      LT(1),
-     .uses = T_COMP,
-     .needs = T_COMP,
+     .uses = T_AXIAL,
+     .needs = T_AXIAL,
      .unit = "-",
      .doc = "total axial strain, compression > 0"},
     {.name = "duration",
@@ -361,8 +362,8 @@ const struct key dem__cfg_keys[] = {
      STG(duration),
      .def = 0,
      GT(0),
-     .uses = T_COMP | T_HOLD | T_SHEAR,
-     .needs = T_COMP | T_HOLD | T_SHEAR,
+     .uses = T_AXIAL | T_HOLD | T_SHEAR,
+     .needs = T_AXIAL | T_HOLD | T_SHEAR,
      .unit = "s",
      .doc = "compress, shear: time to reach the strain; hold: time to run"},
     {.name = "profile",
@@ -370,7 +371,7 @@ const struct key dem__cfg_keys[] = {
      STG(profile),
      .def = DEM_PROFILE_COSINE,
      .names = profile_names,
-     .uses = T_COMP | T_SHEAR,
+     .uses = T_AXIAL | T_SHEAR,
      .unit = "-",
      .doc = "wall (shear: tilt) motion in time: cosine, linear or cyclic"},
     {.name = "amplitude",
@@ -401,6 +402,16 @@ const struct key dem__cfg_keys[] = {
      .unit = "-",
      .doc = "cyclic: number of periods; shear with profile cyclic: cycles "
             "of 0 -> shear_strain -> 0 within duration"},
+    {.name = "b",
+     .kind = K_DOUBLE,
+     STG(b),
+     .def = 0.5,
+     GE(0),
+     LE(1),
+     .uses = T_CONSTP,
+     .unit = "-",
+     .doc = "constant_p (3D): b = (s2 - s3)/(s1 - s3), s2 on the axis "
+            "after `axis` (x -> y -> z -> x)"},
     {.name = "shear_strain",
      .kind = K_DOUBLE,
      STG(shear_strain),

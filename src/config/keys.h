@@ -55,7 +55,11 @@ enum key_scope {
 #define T_CYC (1u << DEM_STAGE_CYCLIC)
 #define T_HOLD (1u << DEM_STAGE_HOLD)
 #define T_SHEAR (1u << DEM_STAGE_SHEAR)
-#define T_ALL (T_ISO | T_COMP | T_CYC | T_HOLD | T_SHEAR)
+#define T_CONSTP (1u << DEM_STAGE_CONSTANT_P)
+#define T_CONSTV (1u << DEM_STAGE_CONSTANT_VOLUME)
+/* the strain-controlled compressions along an axis */
+#define T_AXIAL (T_COMP | T_CONSTP | T_CONSTV)
+#define T_ALL (T_ISO | T_COMP | T_CYC | T_HOLD | T_SHEAR | T_CONSTP | T_CONSTV)
 
 struct key {
     const char *name;         /* dotted path; stage keys without "stages.N." */

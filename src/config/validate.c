@@ -161,7 +161,7 @@ static int check_stages(const struct ctx *x, const struct dem_config *c,
                 x, i, "type", err,
                 "\"shear\" needs a periodic cell (box.boundary = "
                 "\"periodic\"): walls cannot shear the sample");
-        if (c->dim == 2 && (bit & (T_COMP | T_CYC)) && st->axis == 2)
+        if (c->dim == 2 && (bit & (T_AXIAL | T_CYC)) && st->axis == 2)
             return dem__cfg_fail_key(
                 x, i, "axis", err,
                 "\"z\" is not an axis in 2D (use \"x\" or \"y\")");

@@ -87,24 +87,22 @@ void dem_sim_cell_grad(const struct dem_sim *s, double grad[6])
     grad[5] = L[2][2];
 }
 
-/* x <- to.lo + h_to h_from^-1 (x - from.lo) for particles i0 <= i < i1,
- * on the positions and on the positions of the last list build. */
+/* x <- to.lo + M (x - from.lo) with M = h_to h_from^-1 (upper
+ * triangular) for particles i0 <= i < i1, on the positions and on the
+ * positions of the last list build. */
 static void map_range(const struct dem_particles *p, int i0, int i1,
-                      const struct dem_lattice *from,
-                      const struct dem_lattice *to)
+                      double M[3][3], const double lf[3],
+                      const double lt[3])
 {
     double *xs[2][3] = {{p->x, p->y, p->z}, {p->x0, p->y0, p->z0}};
     for (int set = 0; set < 2; set++) {
         double *X = xs[set][0], *Y = xs[set][1], *Z = xs[set][2];
         for (int i = i0; i < i1; i++) {
-            const double x[3] = {X[i], Y[i], Z[i]};
-            double f[3];
-            dem_lattice_frac(from, x, f);
-            const double *v = to->v;
-            if (v[5] > 0.0)
-                Z[i] = to->lo[2] + v[5] * f[2];
-            Y[i] = to->lo[1] + v[3] * f[1] + v[4] * f[2];
-            X[i] = to->lo[0] + v[0] * f[0] + v[1] * f[1] + v[2] * f[2];
+            const double dx = X[i] - lf[0], dy = Y[i] - lf[1],
+                         dz = Z[i] - lf[2];
+            X[i] = lt[0] + M[0][0] * dx + M[0][1] * dy + M[0][2] * dz;
+            Y[i] = lt[1] + M[1][1] * dy + M[1][2] * dz;
+            Z[i] = lt[2] + M[2][2] * dz;
         }
     }
 }
@@ -112,12 +110,22 @@ static void map_range(const struct dem_particles *p, int i0, int i1,
 void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
                       const struct dem_lattice *to)
 {
+    double h[3][3], g[3][3], M[3][3] = {{0}};
+    matrix_of(to->v, h);
+    if (s->dim == 2)
+        h[2][2] = 1.0; /* z stays */
+    inverse_of(from->v, g);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            for (int k = 0; k < 3; k++)
+                M[a][b] += h[a][k] * g[k][b];
     const int n = s->p.n;
-#pragma omp parallel
+    /* a parallel region costs more than the map of a small sample */
+#pragma omp parallel if (n > 50000)
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        map_range(&s->p, dem_block(n, t, nt), dem_block(n, t + 1, nt), from,
-                  to);
+        map_range(&s->p, dem_block(n, t, nt), dem_block(n, t + 1, nt), M,
+                  from->lo, to->lo);
     }
 }
 

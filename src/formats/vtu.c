@@ -122,7 +122,7 @@ int dem_vtu_write_particles(const char *path, const struct dem_particles *p,
 }
 
 int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
-                      int dim, struct dem_error *err)
+                      const double tilt[3], int dim, struct dem_error *err)
 {
     struct dem__outfile o;
     int rc = dem__outfile_open(&o, path, err);
@@ -139,9 +139,14 @@ int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
     for (int k = 0; k < npts; k++) {
         int ix = (k & 1) ^ ((k >> 1) & 1); /* 0 1 1 0 around a face */
         int iy = (k >> 1) & 1;
+        const int iz = k >= 4;
         pts[k][0] = ix ? hi[0] : lo[0];
         pts[k][1] = iy ? hi[1] : lo[1];
-        pts[k][2] = dim == 2 ? 0.0 : (k >= 4 ? hi[2] : lo[2]);
+        pts[k][2] = dim == 2 ? 0.0 : (iz ? hi[2] : lo[2]);
+        if (tilt) {
+            pts[k][0] += iy * tilt[0] + iz * tilt[1];
+            pts[k][1] += iz * tilt[2];
+        }
     }
     static const int loop2d[5] = {0, 1, 2, 3, 0};
     static const int edges[24] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6,
@@ -199,9 +204,14 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
                            struct dem_error *err)
 {
     /* points: the particle centres, then one contact point per wall
-     * contact; cells: a line per contact (centre to centre, centre to
-     * the contact point on the wall) */
+     * contact, then the partner's image centre of each contact through
+     * a periodic image; cells: a line per contact (centre to centre,
+     * centre to the contact point on the wall, centre to the image, which
+     * lies outside the cell) */
     const int n = p->n > 0 ? p->n : 0, nc = net->n, nw = net->n - net->npair;
+    int nimg = 0;
+    for (int k = 0; k < net->npair; k++)
+        nimg += net->c[k].image;
     int *conn = malloc(2 * (size_t)(nc > 0 ? nc : 1) * sizeof *conn);
     int *ends = malloc((size_t)(nc > 0 ? nc : 1) * sizeof *ends);
     if (!conn || !ends) {
@@ -209,9 +219,11 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
         free(ends);
         return dem_error_set(err, DEM_ENOMEM, "out of memory (contacts)");
     }
-    for (int k = 0; k < nc; k++) {
+    for (int k = 0, m = 0; k < nc; k++) {
         conn[2 * k] = net->c[k].i;
-        conn[2 * k + 1] = k < net->npair ? net->c[k].j : n + k - net->npair;
+        conn[2 * k + 1] = k >= net->npair ? n + k - net->npair
+                          : net->c[k].image ? n + nw + m++
+                                            : net->c[k].j;
         ends[k] = 2 * k + 2;
     }
     struct dem__outfile o;
@@ -229,12 +241,18 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
             "      <Points>\n"
             "        <DataArray type=\"Float64\" Name=\"position\" "
             "NumberOfComponents=\"3\" format=\"ascii\">\n",
-            n + nw, nc);
+            n + nw + nimg, nc);
     for (int i = 0; i < n; i++)
         fprintf(f, "%.9g %.9g %.9g\n", p->x[i], p->y[i], p->z[i]);
     for (int k = net->npair; k < nc; k++)
         fprintf(f, "%.9g %.9g %.9g\n", net->c[k].x[0], net->c[k].x[1],
                 net->c[k].x[2]);
+    for (int k = 0; k < net->npair; k++) {
+        const struct dem_network_contact *c = &net->c[k];
+        if (c->image)
+            fprintf(f, "%.9g %.9g %.9g\n", p->x[c->i] - c->b[0],
+                    p->y[c->i] - c->b[1], p->z[c->i] - c->b[2]);
+    }
     fputs("        </DataArray>\n"
           "      </Points>\n",
           f);
@@ -251,7 +269,7 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
                 q == 5 ? " NumberOfComponents=\"3\"" : "");
         for (int k = 0; k < nc; k++) {
             const struct dem_network_contact *c = &net->c[k];
-            const int i = c->i, j = c->j;
+            const int j = c->j;
             if (q == 0)
                 fprintf(f, "%.9g\n", c->fn);
             else if (q == 1)
@@ -264,12 +282,9 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
                 fprintf(f, "%d\n", c->sliding);
             else if (q == 4) /* the partner's id, or -1 - w for wall w */
                 fprintf(f, "%d\n", j >= 0 ? p->id[j] : j);
-            else if (j >= 0) /* branch: from the partner's centre to i's */
-                fprintf(f, "%.9g %.9g %.9g\n", p->x[i] - p->x[j],
-                        p->y[i] - p->y[j], p->z[i] - p->z[j]);
-            else /* from the contact point to i's centre */
-                fprintf(f, "%.9g %.9g %.9g\n", p->x[i] - c->x[0],
-                        p->y[i] - c->x[1], p->z[i] - c->x[2]);
+            else /* branch: from the partner's centre (or the contact
+                    point on a wall) to i's */
+                fprintf(f, "%.9g %.9g %.9g\n", c->b[0], c->b[1], c->b[2]);
         }
         fputs("        </DataArray>\n", f);
     }

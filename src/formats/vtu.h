@@ -18,9 +18,12 @@ int dem_vtu_write_particles(const char *path, const struct dem_particles *p,
                             struct dem_error *err);
 
 /* The box [lo, hi] (m) as lines: its 12 edges in 3D, a closed polyline
- * in the z = 0 plane in 2D (a solid would hide the particles). */
+ * in the z = 0 plane in 2D (a solid would hide the particles). tilt
+ * (NULL: none) shears it into a periodic cell's parallelepiped: the
+ * corners move by txy along x per y edge, txz along x and tyz along y
+ * per z edge (core/cell.h). */
 int dem_vtu_write_box(const char *path, const double lo[3], const double hi[3],
-                      int dim, struct dem_error *err);
+                      const double tilt[3], int dim, struct dem_error *err);
 
 /* The contact network (measure/network.h) as lines: the particle
  * centres are the first points, then one point per wall contact (its

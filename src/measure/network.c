@@ -22,13 +22,20 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
     net->c = malloc((size_t)(L->n + W->n + 1) * sizeof *net->c);
     if (!net->c)
         return dem_error_set(err, DEM_ENOMEM, "out of memory (contacts)");
+    struct dem_lattice lat;
+    dem_sim_lattice(s, &lat);
     for (int k = 0; k < L->n; k++) {
         if (!(L->state[k] & DEM_CONTACT_ACTIVE))
             continue;
         struct dem_network_contact *c = &net->c[net->n++];
         const int i = L->i[k], j = L->j[k];
-        const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
-                             P->z[i] - P->z[j]};
+        double sh[3] = {0.0, 0.0, 0.0}; /* to j's image */
+        c->image = s->cell.on && L->img[k] != DEM_IMG_NONE;
+        if (c->image)
+            dem_img_shift(lat.v, L->img[k], sh);
+        const double b[3] = {P->x[i] - P->x[j] - sh[0],
+                             P->y[i] - P->y[j] - sh[1],
+                             P->z[i] - P->z[j] - sh[2]};
         const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
         c->i = i;
         c->j = j;
@@ -36,6 +43,7 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         /* the middle of the overlap, a_i - delta/2 from i's centre */
         const double ri[3] = {P->x[i], P->y[i], P->z[i]};
         for (int a = 0; a < 3; a++) {
+            c->b[a] = b[a];
             c->n[a] = b[a] / d;
             c->x[a] = ri[a] - (P->r[i] - 0.5 * c->delta) * c->n[a];
         }
@@ -54,10 +62,12 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         const double dist = sgn * (ri[wl->axis] - wl->pos);
         c->i = i;
         c->j = -1 - w;
+        c->image = 0;
         c->delta = P->r[i] - dist;
         for (int a = 0; a < 3; a++) {
             c->n[a] = a == wl->axis ? sgn : 0.0;
             c->x[a] = ri[a] - (dist + 0.5 * c->delta) * c->n[a];
+            c->b[a] = ri[a] - c->x[a];
         }
         split(c, s->pairs.wf.v[k].f);
         c->sliding = (W->state[k] & DEM_CONTACT_SLIDING) != 0;

@@ -15,6 +15,9 @@ struct dem_network_contact {
     double fn;    /* N; normal force on i (> 0 repulsive) */
     double ft[3]; /* N; tangential force on i */
     int sliding;  /* 1: at the Coulomb limit */
+    int image;    /* periodic cell: 1 when i touches an image of j */
+    double b[3];  /* m; branch vector from the partner's centre (the
+                     image's) to i's; a wall: from the contact point */
 };
 
 struct dem_network {

@@ -76,7 +76,13 @@ static int write_snapshot(struct dem_output *o, const struct dem_output_run *r,
     double lo[3], hi[3];
     dem__output_box(s, lo, hi);
     if (!rc)
-        rc = dem_vtu_write_box(path[1], lo, hi, s->dim, err);
+        rc = dem_vtu_write_box(path[1], lo, hi,
+                               s->cell.on ? (const double[3]){
+                                                s->cell.tilt[0].pos,
+                                                s->cell.tilt[1].pos,
+                                                s->cell.tilt[2].pos}
+                                          : NULL,
+                               s->dim, err);
     struct dem_network net = {0};
     if (!rc)
         rc = dem_network_build(s, &net, err);

@@ -99,10 +99,10 @@ static int read_chains(const char *outdir, struct dem__csv_table *t,
     if (!probe)
         return 0;
     fclose(probe);
-    static const struct dem__csv_want want[3] = {
-        {"id_i", 1}, {"id_j", 1}, {"fn", 1}};
+    static const struct dem__csv_want want[6] = {
+        {"id_i", 1}, {"id_j", 1}, {"fn", 1}, {"x", 1}, {"y", 1}, {"delta", 1}};
     struct dem_error e = {0};
-    if (dem__csv_table_read(t, path, want, 3, &e)) {
+    if (dem__csv_table_read(t, path, want, 6, &e)) {
         dem_warn(err, "%s; particles.png without force chains", e.msg);
         return 0;
     }
@@ -153,6 +153,9 @@ int dem__plot_run_particles(const char *outdir, const char *plotdir,
         pk.chain_i = chains.col[0];
         pk.chain_j = chains.col[1];
         pk.chain_fn = chains.col[2];
+        pk.chain_cx = chains.col[3];
+        pk.chain_cy = chains.col[4];
+        pk.chain_delta = chains.col[5];
     }
     char png[DEM_PATH_MAX];
     rc = dem_path_join(png, sizeof png, plotdir, "particles.png", err);

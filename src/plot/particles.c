@@ -178,8 +178,27 @@ static double draw_chains(cairo_t *cr, const struct dem__plot_packing *pk,
             continue;
         const double w = fn / mean;
         cairo_set_line_width(cr, w < 6.0 ? w : 6.0);
+        /* the partner's centre as seen from i through the contact point:
+         * j itself, or in a periodic cell the image of j i touches; then
+         * the line is drawn from each of the two to the other's image
+         * (both halves, cut by the cell's outline) */
+        const double ux = pk->chain_cx[k] - pk->x[i],
+                     uy = pk->chain_cy[k] - pk->y[i];
+        const double u = sqrt(ux * ux + uy * uy);
+        const double reach = u > 0.0 ? (u + pk->r[j] -
+                                         0.5 * pk->chain_delta[k]) / u
+                                     : 1.0;
+        const double bx = ux * reach, by = uy * reach; /* x_j' - x_i */
+        const double gx = pk->x[j] - pk->x[i] - bx,
+                     gy = pk->y[j] - pk->y[i] - by;
         cairo_move_to(cr, px(fr, pk->x[i]), py(fr, pk->y[i]));
-        cairo_line_to(cr, px(fr, pk->x[j]), py(fr, pk->y[j]));
+        if (gx * gx + gy * gy > pk->r[j] * pk->r[j]) { /* an image */
+            cairo_line_to(cr, px(fr, pk->x[i] + bx), py(fr, pk->y[i] + by));
+            cairo_move_to(cr, px(fr, pk->x[j]), py(fr, pk->y[j]));
+            cairo_line_to(cr, px(fr, pk->x[j] - bx), py(fr, pk->y[j] - by));
+        } else {
+            cairo_line_to(cr, px(fr, pk->x[j]), py(fr, pk->y[j]));
+        }
         cairo_stroke(cr);
     }
     return mean;

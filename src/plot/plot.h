@@ -44,6 +44,8 @@ struct dem__plot_packing {
     int nchain;
     const double *chain_i, *chain_j; /* particle rows of each pair */
     const double *chain_fn;          /* N; its normal force */
+    const double *chain_cx, *chain_cy; /* m; its contact point */
+    const double *chain_delta;         /* m; its overlap */
 };
 
 /* Draw the packing (3D: the cut by z = (lo+hi)/2) into png_path. */

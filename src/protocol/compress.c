@@ -10,16 +10,11 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 {
     (void)err;
     const struct dem_stage_config *c = st->cfg;
-    double L[3];
-    dem_sim_box(s, L, 0);
+    dem__stage_axial(s, c);
     for (int w = 0; w < s->nwall; w++) {
         struct dem_wall *W = &s->wall[w];
         if (W->axis == c->axis) {
-            if (W->side)
-                dem_wall_set_strain(W, c->profile, -c->strain * L[c->axis],
-                                    c->duration, s->t);
-            else
-                dem_wall_set_fixed(W);
+            continue;
         } else if (s->dim == 2 && W->side == 0) {
             dem_wall_set_fixed(W);
         } else {
@@ -33,5 +28,8 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 
 const struct dem_stage_ops dem_stage_compress = {
     "compress",
-    "strain-controlled axial compression, lateral walls at pressure", begin, 0,
-    1};
+    "strain-controlled axial compression, lateral walls at pressure",
+    begin,
+    0,
+    1,
+    0};

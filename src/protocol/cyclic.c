@@ -22,4 +22,5 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 
 const struct dem_stage_ops dem_stage_cyclic = {
     "cyclic", "stress along axis cycled around pressure, other walls at it",
-    begin, 0, 1};
+    begin,    0,
+    1,        0};

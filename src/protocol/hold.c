@@ -12,5 +12,6 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 }
 
 const struct dem_stage_ops dem_stage_hold = {
-    "hold", "run for duration with the walls in their current modes", begin, 0,
-    0};
+    "hold", "run for duration with the walls in their current modes",
+    begin,  0,
+    0,      0};

@@ -33,4 +33,7 @@ static int done(const struct dem_sim *s, const struct dem_stage_state *st,
 const struct dem_stage_ops dem_stage_isotropic = {
     "isotropic",
     "all walls stress-controlled at pressure until E_kin/E_pot < tolerance",
-    begin, done, 0};
+    begin,
+    done,
+    0,
+    0};

@@ -5,6 +5,8 @@ extern const struct dem_stage_ops dem_stage_compress;
 extern const struct dem_stage_ops dem_stage_cyclic;
 extern const struct dem_stage_ops dem_stage_hold;
 extern const struct dem_stage_ops dem_stage_shear;
+extern const struct dem_stage_ops dem_stage_constant_p;
+extern const struct dem_stage_ops dem_stage_constant_volume;
 
 static const struct dem_stage_ops *const registry[DEM_STAGE_NTYPES] = {
     [DEM_STAGE_ISOTROPIC] = &dem_stage_isotropic,
@@ -12,6 +14,8 @@ static const struct dem_stage_ops *const registry[DEM_STAGE_NTYPES] = {
     [DEM_STAGE_CYCLIC] = &dem_stage_cyclic,
     [DEM_STAGE_HOLD] = &dem_stage_hold,
     [DEM_STAGE_SHEAR] = &dem_stage_shear,
+    [DEM_STAGE_CONSTANT_P] = &dem_stage_constant_p,
+    [DEM_STAGE_CONSTANT_VOLUME] = &dem_stage_constant_volume,
 };
 
 const struct dem_stage_ops *dem_stage_lookup(int type)
@@ -36,4 +40,13 @@ void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
 {
     dem_wall_set_stress(&s->wall[w], s->cfg.walls.mass, s->cfg.walls.gamma,
                         s->cfg.walls.max_speed, p0, amp, t0, s->t);
+}
+
+void dem__stage_axial(struct dem_sim *s, const struct dem_stage_config *c)
+{
+    double L[3];
+    dem_sim_box(s, L, 0);
+    dem_wall_set_strain(&s->wall[2 * c->axis + 1], c->profile,
+                        -c->strain * L[c->axis], c->duration, s->t);
+    dem_wall_set_fixed(&s->wall[2 * c->axis]);
 }

@@ -250,6 +250,8 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             s->measure = 1;
         /* between samples nothing looks at the particles */
         s->chain = !sample;
+        if (ops->control)
+            ops->control(s, st);
         rc = dem_sim_step(s, err);
         if (rc)
             return rc;

@@ -33,6 +33,10 @@ struct dem_stage_ops {
                 const struct dem_sample *smp);
     int loading; /* 1: the stage loads the sample along an axis (the
                     stages the analysis and the plots look at) */
+    /* Called before every step of the stage (NULL: none): targets that
+     * follow the state, e.g. a mean stress held constant. It may change
+     * wall modes, targets and prescribed motions, nothing else. */
+    void (*control)(struct dem_sim *s, const struct dem_stage_state *st);
 };
 
 /* The stage type table entry, or NULL for an unknown type. */
@@ -46,5 +50,9 @@ int dem_stage_loading_index(const struct dem_config *c);
 /* Helpers shared by the stage types. */
 void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                              double t0);
+/* The compression of compress, constant_p and constant_volume: the max
+ * wall of c->axis moves by -strain L0 over duration with profile, the
+ * min wall is fixed. */
+void dem__stage_axial(struct dem_sim *s, const struct dem_stage_config *c);
 
 #endif
