@@ -87,6 +87,7 @@ friction-loose|180|000 Fig. 3 left (loose: prepared with mu)|biaxial2d-paper --s
 biaxial-cohesion|240|001 Figs. 4, 5, §3.1|biaxial2d-paper --set contact.mu=0.0 --param contact.kc=0.0,2.5e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
 oc-cohesion|75|001 Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = k2|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=1.0e5 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500,1000 --param seed=1,2,3
 oc-reference|60|001 Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = 0 (p = 1000: biaxial-cohesion)|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500 --param seed=1,2
+peak-cell|30|001 Fig. 7 gap: the flow function at peak in a periodic cell (no walls)|biaxial2d-paper --set box.boundary=periodic --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2
 EOF
 }
 parts() { if [ "$MODE" = paper ]; then paper_parts; else quick_parts; fi; }
