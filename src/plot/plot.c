@@ -171,6 +171,20 @@ static void find_loading(struct series *s)
     }
 }
 
+/* The rows [lo, hi) of stage k (lo = hi when it has none). */
+static void stage_rows(const struct series *s, int k, size_t *lo, size_t *hi)
+{
+    const double *st = s->c[TS_STAGE];
+    size_t a = 0;
+    while (a < s->n && st[a] != k)
+        a++;
+    size_t b = a;
+    while (b < s->n && st[b] == k)
+        b++;
+    *lo = a;
+    *hi = b;
+}
+
 /* The loading stage from OUTDIR/config.cfg: 1 when found (s->lo, s->hi,
  * s->axis and s->stage set), 0 otherwise. */
 static int find_loading_from_config(struct series *s, const char *outdir)
@@ -181,29 +195,18 @@ static int find_loading_from_config(struct series *s, const char *outdir)
     if (dem_path_join(path, sizeof path, outdir, "config.cfg", NULL) ||
         dem_config_load_file(&cfg, path, 0, 0, &e))
         return 0;
-    const double *st = s->c[TS_STAGE];
     for (int q = cfg.nstages - 1; q >= 0; q--)
         if (cfg.stages[q].type == DEM_STAGE_SHEAR && s->c[TS_GXY] &&
             s->c[TS_SXY]) {
-            size_t a = 0;
-            while (a < s->n && st[a] != q)
-                a++;
-            size_t b = a;
-            while (b < s->n && st[b] == q)
-                b++;
-            s->slo = a; /* eps_v is referred to the stage's start */
-            s->shi = b;
+            /* eps_v is referred to the stage's start: no origin row */
+            stage_rows(s, q, &s->slo, &s->shi);
             break;
         }
     const int k = dem_stage_loading_index(&cfg);
     if (k < 0)
         return 0;
-    size_t lo = 0;
-    while (lo < s->n && st[lo] != k)
-        lo++;
-    size_t hi = lo;
-    while (hi < s->n && st[hi] == k)
-        hi++;
+    size_t lo, hi;
+    stage_rows(s, k, &lo, &hi);
     if (hi == lo)
         return 0;
     s->lo = lo;

@@ -10,7 +10,7 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 {
     (void)err;
     const struct dem_stage_config *c = st->cfg;
-    dem__stage_axial(s, c);
+    dem__stage_axial(s, st);
     for (int w = 0; w < s->nwall; w++) {
         struct dem_wall *W = &s->wall[w];
         if (W->axis == c->axis) {
@@ -21,8 +21,6 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
             dem__stage_walls_stress(s, w, c->pressure, 0.0, 0.0);
         }
     }
-    st->t_end = s->t + c->duration;
-    st->sets_reference = 1;
     return DEM_OK;
 }
 

@@ -42,8 +42,11 @@ void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                         s->cfg.walls.max_speed, p0, amp, t0, s->t);
 }
 
-void dem__stage_axial(struct dem_sim *s, const struct dem_stage_config *c)
+void dem__stage_axial(struct dem_sim *s, struct dem_stage_state *st)
 {
+    const struct dem_stage_config *c = st->cfg;
+    st->t_end = s->t + c->duration;
+    st->sets_reference = 1;
     double L[3];
     dem_sim_box(s, L, 0);
     dem_wall_set_strain(&s->wall[2 * c->axis + 1], c->profile,

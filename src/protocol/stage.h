@@ -51,8 +51,9 @@ int dem_stage_loading_index(const struct dem_config *c);
 void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                              double t0);
 /* The compression of compress, constant_p and constant_volume: the max
- * wall of c->axis moves by -strain L0 over duration with profile, the
- * min wall is fixed. */
-void dem__stage_axial(struct dem_sim *s, const struct dem_stage_config *c);
+ * wall of the stage's axis moves by -strain L0 over duration with
+ * profile, the min wall is fixed; the stage ends after duration and
+ * refers the strains to its start. */
+void dem__stage_axial(struct dem_sim *s, struct dem_stage_state *st);
 
 #endif
