@@ -316,22 +316,19 @@ static int forces(struct dem_sim *s, const struct kick K)
     const int moved = run_pass(&s->pass, &c, K);
     if (s->cell.on) {
         cell_stress(s, &c);
-        if (s->measure)
-            measure_contacts(s);
-        s->measure = 0;
-        return moved;
+    } else {
+        /* the walls feel the opposite forces: their outward push, in list
+         * order */
+        const struct dem_contact_list *WL = &pl->wcur;
+        double fout[DEM_MAX_WALLS] = {0};
+        for (int k = 0; k < WL->n; k++) {
+            const struct dem_wall *W = &s->wall[WL->j[k]];
+            const double f = pl->wf.v[k].f[W->axis];
+            fout[WL->j[k]] += f * (W->side ? -1.0 : 1.0);
+        }
+        for (int w = 0; w < s->nwall; w++)
+            s->wall[w].force = fout[w];
     }
-
-    /* the walls feel the opposite forces: their outward push, in list order */
-    const struct dem_contact_list *WL = &pl->wcur;
-    double fout[DEM_MAX_WALLS] = {0};
-    for (int k = 0; k < WL->n; k++) {
-        const struct dem_wall *W = &s->wall[WL->j[k]];
-        const double f = pl->wf.v[k].f[W->axis];
-        fout[WL->j[k]] += f * (W->side ? -1.0 : 1.0);
-    }
-    for (int w = 0; w < s->nwall; w++)
-        s->wall[w].force = fout[w];
     if (s->measure)
         measure_contacts(s);
     s->measure = 0;
