@@ -131,8 +131,8 @@ static const char *const usage_sweep =
 
 static const char *const usage_bench =
     "usage: dembox bench [--dim 2|3] [--n N] [--steps S] [--threads T]\n"
-    "                    [--data FILE] [--cache-dir DIR] [--no-cache] "
-    "[--quiet]\n"
+    "                    [--boundary walls|periodic] [--data FILE]\n"
+    "                    [--cache-dir DIR] [--no-cache] [--quiet]\n"
     "\n"
     "Time S steps of a dense, relaxed packing of N particles in a box of\n"
     "walls, compressed slowly along z (2D: y) by one strain-controlled wall\n"
@@ -146,6 +146,10 @@ static const char *const usage_bench =
     "  --steps S         timed steps (default 20000)\n"
     "  --threads T       OpenMP threads (default: OMP_NUM_THREADS or all "
     "cores)\n"
+    "  --boundary B      walls (default) or periodic: the same workload in\n"
+    "                    a periodic cell whose faces move as the walls\n"
+    "                    would (prepared in the cell, a peer's file in its\n"
+    "                    own box; cached apart)\n"
     "  --data FILE       start from this LAMMPS data file (atom_style "
     "sphere;\n"
     "                    N defaults to its atom count); default:\n"
@@ -527,7 +531,8 @@ static int cmd_bench(int argc, char **argv)
             o.quiet = 1;
         } else if (!strcmp(a, "--dim") || !strcmp(a, "--n") ||
                    !strcmp(a, "--steps") || !strcmp(a, "--threads") ||
-                   !strcmp(a, "--data") || !strcmp(a, "--cache-dir")) {
+                   !strcmp(a, "--data") || !strcmp(a, "--cache-dir") ||
+                   !strcmp(a, "--boundary")) {
             if (++k >= argc) {
                 fprintf(stderr, "dembox: bench: %s needs a value\n", a);
                 return 1;
@@ -550,6 +555,15 @@ static int cmd_bench(int argc, char **argv)
                 o.threads = (int)v;
             } else if (!strcmp(a, "--data")) {
                 o.data = val;
+            } else if (!strcmp(a, "--boundary")) {
+                if (strcmp(val, "walls") && strcmp(val, "periodic")) {
+                    fprintf(stderr,
+                            "dembox: bench: --boundary must be walls or "
+                            "periodic, not %s\n",
+                            val);
+                    return 1;
+                }
+                o.periodic = !strcmp(val, "periodic");
             } else {
                 o.cache_dir = val;
             }

@@ -581,10 +581,14 @@ struct dem_bench_options {
                               $HOME/.cache/dembox */
     int no_cache;          /* 1: prepare again and overwrite the cache */
     int quiet;             /* 1: no progress on stderr */
+    int periodic;          /* 1: prepared and timed in a periodic cell
+                              (a peer's file: its own box), the cell's
+                              faces moved as the walls would be */
 };
 
 struct dem_bench_result {
     int dim, n;                /* dimension, particles */
+    int periodic;              /* 1: timed in a periodic cell */
     long steps;                /* timed steps */
     int threads;               /* OpenMP threads in force */
     char source[DEM_PATH_MAX]; /* where the particles came from */

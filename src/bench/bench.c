@@ -110,11 +110,15 @@ static int file_exists(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
+/* The workload's config; periodic: the same in a periodic cell. */
 static int make_config(struct dem_config *c, const struct workload *w, int n,
-                       struct dem_error *err)
+                       int periodic, struct dem_error *err)
 {
     char text[2048];
-    snprintf(text, sizeof text, w->config, n);
+    int k = snprintf(text, sizeof text, w->config, n);
+    if (periodic && k > 0 && (size_t)k < sizeof text)
+        snprintf(text + k, sizeof text - (size_t)k,
+                 "box = { boundary = \"periodic\"; };\n");
     return dem_config_parse(c, text, "bench workload", 0, 0, err);
 }
 
@@ -139,8 +143,8 @@ static int cache_folder(const struct dem_bench_options *o, char *out,
     return dem_mkdir_p(out, err);
 }
 
-/* The cache key: dimension, N, and the source (data file name and size,
- * or the seed of a random packing). */
+/* The cache key: dimension, N, the source (data file name and size, or
+ * the seed of a random packing) and the boundary. */
 static int cache_path(const struct dem_bench_options *o, int dim, int n,
                       const char *data, char *out, size_t len,
                       struct dem_error *err)
@@ -165,15 +169,16 @@ static int cache_path(const struct dem_bench_options *o, int dim, int n,
     } else {
         snprintf(tag, sizeof tag, "seed1");
     }
-    int k = snprintf(out, len, "%s/bench-%dd-n%d-%s-v%d.data", dir, dim, n, tag,
-                     CACHE_VERSION);
+    int k = snprintf(out, len, "%s/bench-%dd-n%d-%s%s-v%d.data", dir, dim, n,
+                     tag, o->periodic ? "-cell" : "", CACHE_VERSION);
     if (k < 0 || (size_t)k >= len)
         return dem_error_set(err, DEM_EIO, "bench: cache path too long");
     return DEM_OK;
 }
 
 /* The peers' periodic packing in walls: the box faces, each moved outward
- * until no particle overlaps it (positions are not changed). */
+ * until no particle overlaps it (positions are not changed); in a
+ * periodic cell: the file's own box. */
 static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
                               const char *path, struct dem_error *err)
 {
@@ -209,7 +214,8 @@ static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
         lo[a] = d.lo[a];
         hi[a] = d.hi[a];
     }
-    for (int k = 0; k < d.n; k++) {
+    const int walls = cfg->box.boundary != DEM_BOUNDARY_PERIODIC;
+    for (int k = 0; walls && k < d.n; k++) {
         const double r = 0.5 * d.diameter[k], c[3] = {d.x[k], d.y[k], d.z[k]};
         for (int a = 0; a < cfg->dim; a++) {
             if (c[a] - r < lo[a])
@@ -330,8 +336,9 @@ static int write_cache(const struct dem_sim *s, const char *path,
     }
     char comment[DEM_PATH_MAX + 128];
     snprintf(comment, sizeof comment,
-             "dembox bench packing (walls = box), %dD, from %s, cache v%d",
-             s->dim, source, CACHE_VERSION);
+             "dembox bench packing (%s = box), %dD, from %s, cache v%d",
+             s->cell.on ? "periodic cell" : "walls", s->dim, source,
+             CACHE_VERSION);
     return dem_lammps_data_write(path, &s->p, lo, hi, comment, err);
 }
 
@@ -415,7 +422,7 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
         omp_set_num_threads(o->threads);
     const struct workload *w = dim == 3 ? &work3 : &work2;
     struct dem_config cfg;
-    int rc = make_config(&cfg, w, n, err);
+    int rc = make_config(&cfg, w, n, o->periodic, err);
     if (rc)
         return rc;
 
@@ -466,6 +473,7 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     }
     r->strain = c.strain;
     r->dim = dim;
+    r->periodic = o->periodic;
     r->n = s.p.n;
     r->steps = steps;
     r->threads = omp_get_max_threads();
@@ -513,8 +521,9 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     const double phases = T->neighbor + T->force + T->integrate + T->walls;
     const double other = r->seconds > phases ? r->seconds - phases : 0.0;
     const char *unit = r->dim == 2 ? "N/m" : "Pa";
-    fprintf(f, "dembox bench: %dD, N = %d, %ld steps, %d thread%s\n", r->dim,
-            r->n, r->steps, r->threads, r->threads == 1 ? "" : "s");
+    fprintf(f, "dembox bench: %dD, N = %d, %ld steps, %d thread%s, %s\n",
+            r->dim, r->n, r->steps, r->threads, r->threads == 1 ? "" : "s",
+            r->periodic ? "periodic cell" : "walls");
     fprintf(f, "packing: %s\n", r->source);
     fprintf(f, "cache:   %s (%s)\n", r->cache,
             r->cache_hit ? "reused" : "prepared now");

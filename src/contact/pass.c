@@ -128,6 +128,7 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     o->c[0] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
     o->c[1] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
     o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
+    o->pad[0] = o->pad[1] = 0.0;
 }
 
 /* Contact k is open: no force, no torque, no history. */
@@ -142,6 +143,7 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
     struct dem_contact_force *o = &q->F[k];
     o->f[0] = o->f[1] = o->f[2] = 0.0;
     o->c[0] = o->c[1] = o->c[2] = 0.0;
+    o->pad[0] = o->pad[1] = 0.0;
     if (DEM_SET_TORQUES(law))
         q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
 }
@@ -232,7 +234,10 @@ DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
     const struct dem_wall *W = &walls[q.cj[k]];
     const int a = W->axis;
     const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
-    const double pa = a == 0 ? q.x[i] : a == 1 ? q.y[i] : q.z[i];
+    /* all three loaded, one picked by arithmetic (exact: 1 x + 0 y + 0 z;
+     * a load or a subtraction under a condition keeps the loop out of
+     * SIMD lanes where there are no masked gathers and divisions, AVX2) */
+    const double pa = (a == 0) * q.x[i] + (a == 1) * q.y[i] + (a == 2) * q.z[i];
     const double ai = q.r[i];
     const double delta = ai - sgn * (pa - W->pos);
     const int touch = delta > 0.0;

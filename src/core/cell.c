@@ -90,21 +90,28 @@ void dem_sim_cell_grad(const struct dem_sim *s, double grad[6])
 /* x <- to.lo + M (x - from.lo) with M = h_to h_from^-1 (upper
  * triangular) for particles i0 <= i < i1, on the positions and on the
  * positions of the last list build. */
+/* One set of coordinates (the arrays are distinct: restrict lets the
+ * loop run in SIMD lanes). */
+static void map_set(double *restrict X, double *restrict Y, double *restrict Z,
+                    int i0, int i1, double M[3][3], const double lf[3],
+                    const double lt[3])
+{
+    const double m00 = M[0][0], m01 = M[0][1], m02 = M[0][2], m11 = M[1][1],
+                 m12 = M[1][2], m22 = M[2][2];
+    for (int i = i0; i < i1; i++) {
+        const double dx = X[i] - lf[0], dy = Y[i] - lf[1], dz = Z[i] - lf[2];
+        X[i] = lt[0] + m00 * dx + m01 * dy + m02 * dz;
+        Y[i] = lt[1] + m11 * dy + m12 * dz;
+        Z[i] = lt[2] + m22 * dz;
+    }
+}
+
 static void map_range(const struct dem_particles *p, int i0, int i1,
                       double M[3][3], const double lf[3],
                       const double lt[3])
 {
-    double *xs[2][3] = {{p->x, p->y, p->z}, {p->x0, p->y0, p->z0}};
-    for (int set = 0; set < 2; set++) {
-        double *X = xs[set][0], *Y = xs[set][1], *Z = xs[set][2];
-        for (int i = i0; i < i1; i++) {
-            const double dx = X[i] - lf[0], dy = Y[i] - lf[1],
-                         dz = Z[i] - lf[2];
-            X[i] = lt[0] + M[0][0] * dx + M[0][1] * dy + M[0][2] * dz;
-            Y[i] = lt[1] + M[1][1] * dy + M[1][2] * dz;
-            Z[i] = lt[2] + M[2][2] * dz;
-        }
-    }
+    map_set(p->x, p->y, p->z, i0, i1, M, lf, lt);
+    map_set(p->x0, p->y0, p->z0, i0, i1, M, lf, lt);
 }
 
 void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,

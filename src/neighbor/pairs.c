@@ -79,11 +79,26 @@ static int list_reserve(struct dem_contact_list *l, int cap)
     return 0;
 }
 
+/* The force records at cap entries, on a cache-line boundary (see
+ * struct dem_contact_force), the first have entries kept. */
+static int grow_records(struct dem_contact_force **v, int have, int cap)
+{
+    void *q = NULL;
+    if (posix_memalign(&q, DEM_CONTACT_FORCE_ALIGN,
+                       (size_t)cap * sizeof **v) != 0)
+        return -1;
+    if (*v && have > 0)
+        memcpy(q, *v, (size_t)have * sizeof **v);
+    free(*v);
+    *v = q;
+    return 0;
+}
+
 static int forces_reserve(struct dem_contact_forces *f, int cap)
 {
     if (cap <= f->cap)
         return 0;
-    if (GROW(f->v, cap) || GROW(f->m, 3 * cap))
+    if (grow_records(&f->v, f->cap, cap) || GROW(f->m, 3 * cap))
         return -1;
     f->cap = cap;
     return 0;

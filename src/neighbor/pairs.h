@@ -48,12 +48,18 @@ struct dem_contact_list {
 };
 
 /* Force of one entry in the last force pass. The six numbers of a
- * contact sit together: the sum over a particle's pairs as j reads them
- * through an index, so one contact costs one cache line (or two). */
+ * contact sit together in one 64-byte record, aligned to a cache line:
+ * the sum over a particle's pairs as j reads them through an index, so
+ * one contact costs one cache line; and eight doubles a record let the
+ * force loop store them in SIMD lanes by shuffles where the CPU has no
+ * scatter (AVX2; six would not: gcc interleaves only groups of 2^k and
+ * 3). The pass writes zeros to pad. */
 struct dem_contact_force {
     double f[3]; /* N; force on i (on j it is the opposite) */
     double c[3]; /* N; n x f_t: torque on i is -a_i c, on j -a_j c */
+    double pad[2];
 };
+#define DEM_CONTACT_FORCE_ALIGN 64
 
 /* Forces of a list's entries (same index as the list). */
 struct dem_contact_forces {
