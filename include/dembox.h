@@ -170,7 +170,11 @@ struct dem_stage_config {
     double amplitude; /* Pa; cyclic: delta sigma */
     double period;    /* s; cyclic: t0 */
     int cycles;       /* cyclic, shear: number of periods */
-    double shear_strain; /* shear: total shear strain of the cell (x by y) */
+    double shear_strain; /* shear: total shear strain of the cell (x by y);
+                            NaN when not given (then shear_stress) */
+    double shear_stress; /* shear: target shear stress tau, Pa (2D: N/m),
+                            stress control of the tilt; NaN when not
+                            given */
     double b;            /* constant_p: (s2 - s3)/(s1 - s3) */
     double mu;        /* contact friction during this stage; < 0 = contact.mu */
 };

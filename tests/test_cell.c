@@ -42,12 +42,13 @@ static void check_list(const struct dem_sim *s)
 {
     int *bi, *bj, *bg;
     const int n = s->p.n;
-    int nb = dem_pairs_brute(&s->p, s->dim, s->skin, &s->cell.built, &bi, &bj,
-                             &bg);
+    int nb =
+        dem_pairs_brute(&s->p, s->dim, s->skin, &s->cell.built, &bi, &bj, &bg);
     assert_true(nb > 50);
     const struct dem_contact_list *L = &s->pairs.cur;
     assert_int_equal(L->n, nb);
-    long *a = malloc((size_t)nb * sizeof *a), *b = malloc((size_t)nb * sizeof *b);
+    long *a = malloc((size_t)nb * sizeof *a),
+         *b = malloc((size_t)nb * sizeof *b);
     for (int k = 0; k < nb; k++) {
         a[k] = ((long)bi[k] * n + bj[k]) * 64 + bg[k];
         b[k] = ((long)L->i[k] * n + L->j[k]) * 64 + L->img[k];
@@ -131,9 +132,15 @@ static void pair_across_every_face_edge_corner(void **state)
                 s.cp.gamma_n = 0.05;
                 /* i near the corner s of the cell, j within reach of i
                  * through the image s (inside the cell for s = 0) */
-                const double fi[3] = {sx > 0 ? 0.98 : sx < 0 ? 0.02 : 0.5,
-                                      sy > 0 ? 0.98 : sy < 0 ? 0.02 : 0.5,
-                                      sz > 0 ? 0.98 : sz < 0 ? 0.02 : 0.5};
+                const double fi[3] = {sx > 0   ? 0.98
+                                      : sx < 0 ? 0.02
+                                               : 0.5,
+                                      sy > 0   ? 0.98
+                                      : sy < 0 ? 0.02
+                                               : 0.5,
+                                      sz > 0   ? 0.98
+                                      : sz < 0 ? 0.02
+                                               : 0.5};
                 add_frac(&s, fi, 5e-3);
                 const double b[3] = {3e-3, 5e-3, 5e-3}; /* |b| < 2a */
                 struct dem_lattice lat;
@@ -170,7 +177,7 @@ static void pair_across_every_face_edge_corner(void **state)
                     for (int p = 0; p < 2; p++)
                         for (int u = 0; u < 6; u++)
                             assert_close(got[p][u], ref[p][u],
-                                        1e-9 * fabs(ref[p][u]) + 1e-12);
+                                         1e-9 * fabs(ref[p][u]) + 1e-12);
                 }
                 cases++;
                 dem_sim_destroy(&s);
@@ -279,13 +286,14 @@ static void sheared_elastic_gas_energy_balance(void **state)
         assert_int_equal(dem_sim_step(&s, &err), 0);
         double ek = 0.0;
         for (int i = 0; i < s.p.n; i++)
-            ek += 0.5 * s.p.m[i] * (s.p.vx[i] * s.p.vx[i] + s.p.vy[i] * s.p.vy[i]);
+            ek += 0.5 * s.p.m[i] *
+                  (s.p.vx[i] * s.p.vx[i] + s.p.vy[i] * s.p.vy[i]);
         E = ek + s.sums.e_pot;
         double grad[6];
         dem_sim_cell_grad(&s, grad);
         double(*W)[3] = s.sums.fabric_stress;
-        const double P = -(grad[0] * W[0][0] + grad[1] * W[1][0] +
-                           grad[3] * W[1][1]);
+        const double P =
+            -(grad[0] * W[0][0] + grad[1] * W[1][0] + grad[3] * W[1][1]);
         if (E0 < 0.0)
             E0 = E;
         else
@@ -322,6 +330,74 @@ static void servo_relaxes_with_its_mass_and_viscosity(void **state)
     /* A shrinks by about v tau / L = 1e-4 over the run */
     assert_close(s.wall[3].vel, -vinf * (1.0 - exp(-1.0)), 2e-3 * vinf);
     assert_close(s.wall[2].vel, vinf * (1.0 - exp(-1.0)), 2e-3 * vinf);
+    dem_sim_destroy(&s);
+}
+
+/* The tilt's servo: in an empty cell (no stress) a stress-controlled
+ * tilt moves under its target alone, m v' = tau A - gamma v, so v(t) =
+ * (tau A/gamma)(1 - exp(-gamma t/m)), A = V / L_y (2D: L_x). */
+static void tilt_servo_relaxes_with_its_mass_and_viscosity(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    cell_sim(&s, &c, 2, 10, 0.2, t0);
+    const double f[3] = {0.5, 0.5, 0.0};
+    add_frac(&s, f, 1e-3);
+    test_ready(&s);
+    const double m = 2.0, gam = 200.0, tau = -7.0, A = 0.2;
+    dem_wall_set_stress(&s.cell.tilt[DEM_TILT_XY], m, gam, 0.0, tau, 0.0, 0.0,
+                        s.t);
+    assert_close(dem_sim_tilt_area(&s, DEM_TILT_XY), A, 1e-12);
+    s.dt = 1e-5;
+    const double T = m / gam;
+    test_step(&s, (long)(T / s.dt));
+    const double vinf = tau * A / gam;
+    assert_close(s.cell.tilt[DEM_TILT_XY].vel, vinf * (1.0 - exp(-1.0)),
+                 1e-3 * fabs(vinf));
+    /* the faces and the other tilts stay */
+    assert_true(s.wall[3].vel == 0.0 && s.cell.tilt[DEM_TILT_XZ].pos == 0.0);
+    dem_sim_destroy(&s);
+}
+
+/* Stress control of the tilt in a loaded packing: a triangular lattice
+ * of frictionless discs, slightly compressed, its tilt driven to tau by
+ * the servo: the cell's shear stress -sigma_xy settles at tau, and the
+ * lattice shears the way tau pushes it. */
+static void tilt_servo_holds_the_shear_stress(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    cell_sim(&s, &c, 2, 400, 0.1, t0);
+    s.wall[3].pos = 0.1 * sqrt(3.0) / 2.0;
+    for (int i = 0; i < 20; i++)
+        for (int j = 0; j < 20; j++) {
+            const double f[3] = {(i + 0.25 + 0.5 * (j % 2)) / 20.0,
+                                 (j + 0.5) / 20.0, 0.0};
+            add_frac(&s, f, 2.6e-3);
+        }
+    s.cp.mu_s = s.cp.mu_d = 0.0;
+    s.cfg.damping.gamma_b = 0.05; /* settles the lattice */
+    test_ready(&s);
+    double L[3], V;
+    dem_sim_box(&s, L, &V);
+    const double p = s.cell.stress[1][1] / V; /* N/m, from the overlaps */
+    assert_true(p > 0.0);
+    const double tau = 0.05 * p;
+    dem_wall_set_stress(&s.cell.tilt[DEM_TILT_XY], 0.01, 5.0, 0.0, tau, 0.0,
+                        0.0, s.t);
+    s.dt = 1e-6;
+    test_step(&s, 100000);
+    double(*W)[3] = s.cell.stress;
+    const double got = -0.5 * (W[0][1] + W[1][0]) / V;
+    /* measured: p = 346.4 N/m, tau = 17.32 N/m held to 2e-12 relative,
+     * the tilt at 7.9e-4 m (a shear strain of 0.9 %) */
+    assert_close(got, tau, 1e-3 * tau);
+    assert_true(s.cell.tilt[DEM_TILT_XY].pos > 0.0);
+    assert_true(fabs(s.cell.tilt[DEM_TILT_XY].vel) < 1e-6);
     dem_sim_destroy(&s);
 }
 
@@ -407,6 +483,8 @@ int main(void)
         cmocka_unit_test(affine_motion_is_followed_exactly),
         cmocka_unit_test(sheared_elastic_gas_energy_balance),
         cmocka_unit_test(servo_relaxes_with_its_mass_and_viscosity),
+        cmocka_unit_test(tilt_servo_relaxes_with_its_mass_and_viscosity),
+        cmocka_unit_test(tilt_servo_holds_the_shear_stress),
         cmocka_unit_test(constant_volume_keeps_the_volume),
         cmocka_unit_test(constant_p_targets_hold_p_and_b),
     };

@@ -41,6 +41,13 @@
     "mean = 1.0e-3; }; };\n"                                                   \
     "stages = ( { type = \"hold\"; duration = 1.0e-3; } );\n"
 
+/* A periodic cell without stages (each row gives its own). */
+#define CELL2D                                                                 \
+    "dimension = 2; time_step = \"auto\"; box = { boundary = \"periodic\"; "   \
+    "};\n"                                                                     \
+    "particles = { count = 16; radius = { distribution = \"mono\"; "           \
+    "mean = 1.0e-3; }; };\n"
+
 /* The same reading its particles from p.csv. */
 #define BASEFILE                                                               \
     "dimension = 2; time_step = \"auto\";\n"                                   \
@@ -217,6 +224,20 @@ static const struct row rows[] = {
      0,
      {RUN_CFG},
      "stages.0.type: \"shear\" needs a periodic cell"},
+    {"shear with both a strain and a stress target",
+     CELL2D "stages = ( { type = \"shear\"; shear_strain = 0.5;\n"
+            "  shear_stress = 20.0; duration = 0.1; pressure = 100.0; } );\n",
+     0,
+     0,
+     {RUN_CFG},
+     "c.cfg:4: stages.0.shear_stress: given with shear_strain"},
+    {"shear with neither a strain nor a stress target",
+     CELL2D "stages = ( { type = \"shear\"; duration = 0.1;\n"
+            "  pressure = 100.0; } );\n",
+     0,
+     0,
+     {RUN_CFG},
+     "stages.0.shear_strain: a shear stage needs shear_strain"},
     {"gravity in a periodic cell",
      BASE2D "box = { boundary = \"periodic\"; };\n"
             "gravity = [0.0, -9.81, 0.0];\n",

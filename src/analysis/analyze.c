@@ -15,8 +15,8 @@
 
 #include "analysis/analysis.h"
 #include "formats/csvtable.h"
-#include "io/fsutil.h"
 #include "formats/json.h"
+#include "io/fsutil.h"
 #include "io/outfile.h"
 #include "protocol/stage.h"
 
@@ -32,7 +32,7 @@
 /* Columns of timeseries.csv the analysis needs. */
 struct columns {
     const double *t, *stage, *eps[3], *eps_v, *sigma[3], *void_ratio;
-    const double *inertial; /* NULL in runs older than the column */
+    const double *inertial;            /* NULL in runs older than the column */
     const double *gamma_xy, *sigma_xy; /* NULL in runs older than them */
 };
 
@@ -80,6 +80,11 @@ struct result {
     /* simple shear (the last shear stage) */
     int shear_stage;
     double shear_pressure;
+    double shear_stress; /* the stress-controlled stage's target tau,
+                            NaN under strain control */
+    double gamma_end;    /* gamma at the stage's last row */
+    double creep_rate;   /* 1/s; d gamma/dt, least squares over the last
+                            quarter of the stage's time */
     struct dem_shear shear;
 };
 
@@ -421,6 +426,7 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
     if (R->shear_stage < 0 || !c->gamma_xy || !c->sigma_xy)
         return DEM_OK;
     R->shear_pressure = cfg->stages[R->shear_stage].pressure;
+    R->shear_stress = cfg->stages[R->shear_stage].shear_stress;
     long first = -1, n = 0;
     for (long r = 0; r < nrow; r++)
         if ((int)c->stage[r] == R->shear_stage) {
@@ -443,6 +449,23 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
         ev[k] = k == 0 && origin < first ? 0.0 : c->eps_v[r];
     }
     dem_shear_analyze(g, mu, ev, n, &R->shear);
+    R->gamma_end = g[n - 1];
+    /* creep: the slope of gamma(t) over the last quarter of the time */
+    const double t1 = c->t[origin + n - 1],
+                 ta = t1 - 0.25 * (t1 - c->t[origin]);
+    double st = 0.0, sg = 0.0, stt = 0.0, stg = 0.0, m = 0.0;
+    for (long k = 0; k < n; k++) {
+        const double t = c->t[origin + k];
+        if (t < ta)
+            continue;
+        st += t;
+        sg += g[k];
+        stt += t * t;
+        stg += t * g[k];
+        m += 1.0;
+    }
+    const double den = m * stt - st * st;
+    R->creep_rate = m >= 3.0 && den > 0.0 ? (m * stg - st * sg) / den : NAN;
     free(g);
     return DEM_OK;
 }
@@ -452,10 +475,12 @@ static void result_init(struct result *R, int dim)
     memset(R, 0, sizeof *R);
     R->dim = dim;
     R->stage = R->type = R->axis = R->cyc_stage = R->shear_stage = -1;
-    double *nan[] = {&R->pressure,     &R->peak_s1, &R->peak_s3, &R->crit_s1,
-                     &R->crit_s3,      &R->crit_e,  &R->modulus, &R->nu,
-                     &R->nu_ps,        &R->bulk,    &R->psi_deg, &R->e_init,
-                     &R->inertial_max, &R->hs};
+    double *nan[] = {&R->pressure,     &R->peak_s1,   &R->peak_s3,
+                     &R->crit_s1,      &R->crit_s3,   &R->crit_e,
+                     &R->modulus,      &R->nu,        &R->nu_ps,
+                     &R->bulk,         &R->psi_deg,   &R->e_init,
+                     &R->inertial_max, &R->hs,        &R->shear_stress,
+                     &R->gamma_end,    &R->creep_rate};
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
     R->peak.value = R->crit.value = NAN;
@@ -631,15 +656,30 @@ static void write_criteria(struct dem__json *j, const struct result *R)
 static void write_shear(struct dem__json *j, const struct result *R)
 {
     const struct dem_shear *S = &R->shear;
-    const char *none = S->n ? 0 : "the shear stage has no rows (the run "
-                                  "stopped before it, or timeseries.csv "
-                                  "has no gamma_xy column)";
+    const char *none = S->n ? 0
+                            : "the shear stage has no rows (the run "
+                              "stopped before it, or timeseries.csv "
+                              "has no gamma_xy column)";
+    /* under stress control tau follows its target: no peak, no critical
+     * state; the answer is how far and how fast the sample shears */
+    const int stress = !isnan(R->shear_stress);
+    const char *creep = "stress-controlled shear: tau follows its target "
+                        "(shear_stress); see gamma_end and creep_rate";
+    if (!none && stress)
+        none = creep;
     dem__json_object(j, "shear", 0);
     dem__json_int(j, "stage", R->shear_stage);
+    dem__json_string(j, "control", stress ? "stress" : "strain");
     num(j, "normal_stress", R->shear_pressure, 0);
+    num(j, "shear_stress", R->shear_stress,
+        stress ? 0 : "strain-controlled shear");
     dem__json_int(j, "samples", S->n);
+    num(j, "gamma_end", S->n ? R->gamma_end : NAN, S->n ? 0 : none);
+    num(j, "creep_rate", S->n ? R->creep_rate : NAN,
+        S->n ? "fewer than 3 samples in the last quarter of the stage" : none);
     dem__json_object(j, "peak", 0);
-    const int pk = S->n && S->peak.ok, cr = S->n && S->crit.ok;
+    const int pk = S->n && !stress && S->peak.ok,
+              cr = S->n && !stress && S->crit.ok;
     num(j, "tau_over_sigma_n", pk ? S->peak.value : NAN,
         none ? none : S->peak.reason);
     num(j, "phi_deg", pk ? atan(S->peak.value) * 180.0 / M_PI : NAN,

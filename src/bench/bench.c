@@ -13,8 +13,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "io/fsutil.h"
 #include "formats/lammps_data.h"
+#include "io/fsutil.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"
 

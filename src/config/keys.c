@@ -415,12 +415,26 @@ const struct key dem__cfg_keys[] = {
     {.name = "shear_strain",
      .kind = K_DOUBLE,
      STG(shear_strain),
-     .def = 0,
+     .def = NAN,
+     .flags = F_UNSET_NAN,
      .uses = T_SHEAR,
-     .needs = T_SHEAR,
      .unit = "-",
+     .def_text = "this or shear_stress",
      .doc = "shear: simple shear strain of the cell, x displaced along y "
-            "(any size: the cell re-maps at 1/2, Lees-Edwards)"},
+            "(any size: the cell re-maps at 1/2, Lees-Edwards); strain "
+            "control of the tilt"},
+    {.name = "shear_stress",
+     .kind = K_DOUBLE,
+     STG(shear_stress),
+     .def = NAN,
+     .flags = F_UNSET_NAN,
+     .uses = T_SHEAR,
+     .unit = PRESSURE_UNIT,
+     .def_text = "this or shear_strain",
+     .doc = "shear: stress control of the tilt instead: its servo (walls' "
+            "mass and viscosity) holds tau = -sigma_xy at this value for "
+            "duration (a creep test), or with profile \"cyclic\" cycles it "
+            "0 -> shear_stress -> 0"},
     {.name = "mu",
      .kind = K_DOUBLE,
      STG(mu),

@@ -46,6 +46,7 @@ enum key_scope {
 /* Flags. */
 #define F_UNSET_ZERO 0x04u /* stored 0 means "not given"; range otherwise */
 #define F_UNSET_NEG 0x08u  /* stored < 0 means "not given"; range otherwise */
+#define F_UNSET_NAN 0x40u  /* stored NaN means "not given" (any value else) */
 #define F_MU 0x10u         /* contact.mu: sets mu_s and mu_d together */
 #define F_MU_PAIR 0x20u    /* contact.mu_s, contact.mu_d */
 

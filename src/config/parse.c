@@ -281,7 +281,8 @@ static int check_sentinel(const struct ctx *x, const struct key *k,
 {
     const double v = dem__cfg_key_value(base, k);
     if (((k->flags & F_UNSET_ZERO) && v == 0) ||
-        ((k->flags & F_UNSET_NEG) && v < 0)) {
+        ((k->flags & F_UNSET_NEG) && v < 0) ||
+        ((k->flags & F_UNSET_NAN) && isnan(v))) {
         char r[96];
         dem__cfg_range_text(k, r, sizeof r);
         return dem__cfg_fail_at(x, s, kname, err,
@@ -340,6 +341,23 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
             return dem__cfg_fail_key(x, i, dem__cfg_keys[k].name, err,
                                      "required by a %s stage",
                                      dem__cfg_stage_names[st->type]);
+    if (st->type == DEM_STAGE_SHEAR) {
+        /* the tilt is strain- or stress-controlled: one target */
+        const config_setting_t *
+            strain = x->stage_at[i][dem__cfg_find_key("shear_strain", S_STAGE)],
+           *stress = x->stage_at[i][dem__cfg_find_key("shear_stress", S_STAGE)];
+        if (strain && stress) {
+            snprintf(kname, sizeof kname, "stages.%d.shear_stress", i);
+            return dem__cfg_fail_at(x, stress, kname, err,
+                                    "given with shear_strain: the tilt is "
+                                    "either strain- or stress-controlled");
+        }
+        if (!strain && !stress)
+            return dem__cfg_fail_key(x, i, "shear_strain", err,
+                                     "a shear stage needs shear_strain "
+                                     "(strain control) or shear_stress "
+                                     "(stress control)");
+    }
     return 0;
 }
 

@@ -59,6 +59,8 @@ static int check_key(const struct ctx *x, const struct key *k, const void *base,
     if ((k->flags & F_MU) && !x->at[k - dem__cfg_keys])
         return 0;
     double v = dem__cfg_key_value(base, k);
+    if ((k->flags & F_UNSET_NAN) && isnan(v))
+        return 0; /* not given */
     if (!isfinite(v))
         return dem__cfg_fail_key(x, stage, k->name, err,
                                  "must be finite (got %g)", v);

@@ -135,7 +135,9 @@ static void write_stages(const struct dem_config *c, FILE *f)
             if (dem__cfg_keys[k].scope != S_STAGE ||
                 !(dem__cfg_keys[k].uses & bit) ||
                 ((dem__cfg_keys[k].flags & F_UNSET_NEG) &&
-                 dem__cfg_key_value(st, &dem__cfg_keys[k]) < 0))
+                 dem__cfg_key_value(st, &dem__cfg_keys[k]) < 0) ||
+                ((dem__cfg_keys[k].flags & F_UNSET_NAN) &&
+                 isnan(dem__cfg_key_value(st, &dem__cfg_keys[k]))))
                 continue;
             value_text(&dem__cfg_keys[k], st, v, sizeof v);
             write_line(f, 2, dem__cfg_keys[k].name, v, &dem__cfg_keys[k], 0);

@@ -283,6 +283,12 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
     dem_sim_box(s, L, 0);
     for (int w = 0; w < s->nwall; w++)
         s->wall[w].force = W[4 * s->wall[w].axis] / L[s->wall[w].axis];
+    /* a tilt (a along b) feels tau A = -sigma_ab V / L_b */
+    for (int k = 0; k < 3; k++) {
+        const int a = dem_tilt_axes[k][0], b = dem_tilt_axes[k][1];
+        s->cell.tilt[k].force =
+            b < s->dim ? -0.5 * (W[3 * a + b] + W[3 * b + a]) / L[b] : 0.0;
+    }
 }
 
 static int forces(struct dem_sim *s, const struct kick K)

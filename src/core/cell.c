@@ -11,8 +11,8 @@
 /* h as a full matrix. */
 static void matrix_of(const double v[6], double h[3][3])
 {
-    const double m[3][3] = {{v[0], v[1], v[2]}, {0.0, v[3], v[4]},
-                            {0.0, 0.0, v[5]}};
+    const double m[3][3] = {
+        {v[0], v[1], v[2]}, {0.0, v[3], v[4]}, {0.0, 0.0, v[5]}};
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++)
             h[a][b] = m[a][b];
@@ -107,8 +107,7 @@ static void map_set(double *restrict X, double *restrict Y, double *restrict Z,
 }
 
 static void map_range(const struct dem_particles *p, int i0, int i1,
-                      double M[3][3], const double lf[3],
-                      const double lt[3])
+                      double M[3][3], const double lf[3], const double lt[3])
 {
     map_set(p->x, p->y, p->z, i0, i1, M, lf, lt);
     map_set(p->x0, p->y0, p->z0, i0, i1, M, lf, lt);

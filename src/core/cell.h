@@ -37,6 +37,9 @@
 #include "wall/wall.h"
 
 enum { DEM_TILT_XY = 0, DEM_TILT_XZ = 1, DEM_TILT_YZ = 2 };
+/* Tilt k displaces the edge along axis dem_tilt_axes[k][1] in the
+ * direction dem_tilt_axes[k][0]: xy = (x, y), xz = (x, z), yz = (y, z). */
+static const int dem_tilt_axes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
 
 /* The lattice of one moment: the corner and h as
  * v = {Lx, txy, txz, Ly, tyz, Lz}. */
@@ -48,7 +51,11 @@ struct dem_lattice {
 struct dem_cell {
     int on;                   /* 1: periodic cell, 0: walls */
     struct dem_wall tilt[3];  /* txy, txz, tyz as controlled coordinates
-                                 (pos, vel; fixed or strain mode) */
+                                 (pos, vel; fixed, strain or stress mode;
+                                 in stress mode force is the sample's
+                                 resistance tau A, tau = -sigma_ab, A =
+                                 V / L_b (dem_sim_tilt_area), and the
+                                 servo drives tau to the wall's target) */
     double remapped[3];       /* m; the tilt removed by re-maps so far:
                                  the shear displacement is tilt + remapped */
     struct dem_lattice built; /* the lattice at the last list build */

@@ -148,6 +148,13 @@ double dem_sim_wall_area(const struct dem_sim *s, int w)
     return L[(a + 1) % 3] * L[(a + 2) % 3];
 }
 
+double dem_sim_tilt_area(const struct dem_sim *s, int k)
+{
+    double L[3], V;
+    dem_sim_box(s, L, &V);
+    return V / L[dem_tilt_axes[k][1]];
+}
+
 int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
 {
     struct dem_particles *p = &s->p;
@@ -251,16 +258,32 @@ static double wall_acc(const struct dem_sim *s, int w)
     return (out * (W->force - sigma * A) - W->gamma * W->vel) / W->mass;
 }
 
+/* A stress-controlled tilt: the target tau A against the sample's
+ * resistance (struct dem_cell.tilt). */
+static double tilt_acc(const struct dem_sim *s, int k)
+{
+    const struct dem_wall *W = &s->cell.tilt[k];
+    const double A = dem_sim_tilt_area(s, k);
+    return (dem_wall_target_stress(W, s->t) * A - W->force -
+            W->gamma * W->vel) /
+           W->mass;
+}
+
+static void kick_wall(struct dem_wall *W, double dv)
+{
+    W->vel += dv;
+    if (W->vmax > 0.0 && fabs(W->vel) > W->vmax)
+        W->vel = W->vel > 0.0 ? W->vmax : -W->vmax;
+}
+
 static void walls_kick(struct dem_sim *s, double h)
 {
-    for (int w = 0; w < s->nwall; w++) {
-        struct dem_wall *W = &s->wall[w];
-        if (W->mode != DEM_WALL_STRESS)
-            continue;
-        W->vel += h * wall_acc(s, w);
-        if (W->vmax > 0.0 && fabs(W->vel) > W->vmax)
-            W->vel = W->vel > 0.0 ? W->vmax : -W->vmax;
-    }
+    for (int w = 0; w < s->nwall; w++)
+        if (s->wall[w].mode == DEM_WALL_STRESS)
+            kick_wall(&s->wall[w], h * wall_acc(s, w));
+    for (int k = 0; s->cell.on && k < 3; k++)
+        if (s->cell.tilt[k].mode == DEM_WALL_STRESS)
+            kick_wall(&s->cell.tilt[k], h * tilt_acc(s, k));
 }
 
 static void wall_drift(struct dem_sim *s, struct dem_wall *W, double t_new)

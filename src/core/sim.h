@@ -168,5 +168,8 @@ int dem_sim_cell_strained(const struct dem_sim *s, double range);
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume);
 /* Area of the face that wall w bounds (2D: the other side's length). */
 double dem_sim_wall_area(const struct dem_sim *s, int w);
+/* The area conjugate to tilt k of the cell, V / L_b (2D: a length): its
+ * stress servo's force is tau times this. */
+double dem_sim_tilt_area(const struct dem_sim *s, int k);
 
 #endif

@@ -84,8 +84,8 @@ static int list_reserve(struct dem_contact_list *l, int cap)
 static int grow_records(struct dem_contact_force **v, int have, int cap)
 {
     void *q = NULL;
-    if (posix_memalign(&q, DEM_CONTACT_FORCE_ALIGN,
-                       (size_t)cap * sizeof **v) != 0)
+    if (posix_memalign(&q, DEM_CONTACT_FORCE_ALIGN, (size_t)cap * sizeof **v) !=
+        0)
         return -1;
     if (*v && have > 0)
         memcpy(q, *v, (size_t)have * sizeof **v);

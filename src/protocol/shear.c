@@ -1,11 +1,17 @@
 /* shear: simple shear of a periodic cell at constant normal stress. The
- * cell's x edges tilt along y, txy = x0 + shear_strain Ly g(t) with the
- * profile g over `duration` (cyclic: `cycles` periods of 0 -> strain -> 0
- * within it); the y faces are stress-controlled at `pressure` (the
- * normal stress), the x faces (and the z faces in 3D) are fixed, so the
- * sample dilates or contracts only in y, as in a simple shear apparatus
- * with a free top plate. Beyond half a cell the tilt re-maps
- * (Lees-Edwards, core/cell.h): any strain can be reached. */
+ * cell's x edges tilt along y. Strain control: txy = x0 + shear_strain
+ * Ly g(t) with the profile g over `duration` (cyclic: `cycles` periods of
+ * 0 -> strain -> 0 within it). Stress control (shear_stress): the tilt
+ * is a servo like a wall's (walls.mass, walls.gamma, walls.max_speed)
+ * that drives tau = -sigma_xy to shear_stress (profile cyclic: to
+ * shear_stress (1 - cos 2 pi t/T)/2, T = duration/cycles). The y faces
+ * are stress-controlled at `pressure` (the normal stress), the x faces
+ * (and the z faces in 3D) are fixed, so the sample dilates or contracts
+ * only in y, as in a simple shear apparatus with a free top plate.
+ * Beyond half a cell the tilt re-maps (Lees-Edwards, core/cell.h): any
+ * strain can be reached. */
+#include <math.h>
+
 #include "protocol/stage.h"
 
 static int begin(struct dem_sim *s, struct dem_stage_state *st,
@@ -30,8 +36,15 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
     const double T = c->profile == DEM_PROFILE_CYCLIC && c->cycles > 0
                          ? c->duration / c->cycles
                          : c->duration;
-    dem_wall_set_strain(&s->cell.tilt[DEM_TILT_XY], c->profile,
-                        c->shear_strain * L[1], T, s->t);
+    struct dem_wall *txy = &s->cell.tilt[DEM_TILT_XY];
+    if (isnan(c->shear_stress)) {
+        dem_wall_set_strain(txy, c->profile, c->shear_strain * L[1], T, s->t);
+    } else {
+        const int cyc = c->profile == DEM_PROFILE_CYCLIC;
+        dem_wall_set_stress(txy, s->cfg.walls.mass, s->cfg.walls.gamma,
+                            s->cfg.walls.max_speed, cyc ? 0.0 : c->shear_stress,
+                            cyc ? c->shear_stress : 0.0, cyc ? T : 0.0, s->t);
+    }
     st->t_end = s->t + c->duration;
     st->sets_reference = 1;
     return DEM_OK;
