@@ -138,7 +138,8 @@ static const char *const usage_bench =
     "walls, compressed slowly along z (2D: y) by one strain-controlled wall\n"
     "while the lateral walls hold the initial stress: the workload of the\n"
     "LAMMPS and LIGGGHTS comparison (bench/peers.sh, docs/performance.md).\n"
-    "3D: seed 000 material (k = 5000 N/m, radii 5 +- 0.7 mm), dt = 2e-5 s;\n"
+    "3D: David et al. material (k = 5000 N/m, radii 5 +- 0.7 mm), dt = 2e-5 "
+    "s;\n"
     "2D: radii U[0.5, 1.5] mm, k = 1e5 N/m, dt = 2e-7 s.\n"
     "\n"
     "  --dim 2|3         dimension (default 3)\n"
@@ -594,7 +595,15 @@ static int cmd_examples(void)
             t++;
             len--;
         }
-        printf("%-22s %.*s\n", dem_examples[k].name, len, t);
+        /* "# NAME -- what it is": the name is in the first column */
+        const char *name = dem_examples[k].name;
+        const int nlen = (int)strlen(name);
+        if (len > nlen + 4 && !strncmp(t, name, (size_t)nlen) &&
+            !strncmp(t + nlen, " -- ", 4)) {
+            t += nlen + 4;
+            len -= nlen + 4;
+        }
+        printf("%-22s %.*s\n", name, len, t);
     }
     return 0;
 }

@@ -83,8 +83,8 @@ enum dem_radius_dist {
 
 enum dem_placement {
     DEM_PLACE_LATTICE =
-        0,                /* square/cubic lattice, spacing 2 r_max (seed 000) */
-    DEM_PLACE_RANDOM = 1, /* random, no overlap, in a large box (seed 001) */
+        0,                /* square/cubic lattice, spacing 2 r_max (David et al.) */
+    DEM_PLACE_RANDOM = 1, /* random, no overlap, in a large box (Luding et al.) */
     DEM_PLACE_FILE = 2    /* from a CSV file with particles_final.csv columns */
 };
 
@@ -95,7 +95,7 @@ enum dem_mass_model {
 };
 
 /* The normal laws, in the order of DEM_NORMAL_MODELS (dembox_models.h):
- * DEM_NORMAL_LINEAR (seed 000 Eq. 1), DEM_NORMAL_LUDING (seed 001 Fig. 2,
+ * DEM_NORMAL_LINEAR (David et al. Eq. 1), DEM_NORMAL_LUDING (Luding et al. Fig. 2,
  * hysteretic adhesive). */
 enum dem_normal_law {
 #define DEM_NORMAL_ENUM_(TAG, name, lanes) DEM_NORMAL_##TAG,
@@ -345,7 +345,7 @@ int dem_plot_run(const char *outdir, struct dem_error *err);
  * resolved config.cfg writer and `dembox help config` all use.
  */
 
-/* Fill c with every default (dimension 3, seed 000's material). */
+/* Fill c with every default (dimension 3, David et al.'s material). */
 void dem_config_defaults(struct dem_config *c);
 
 /* The library's version (DEM_VERSION of the header it was built with). */
@@ -537,10 +537,10 @@ int dem_sweep_collect(const struct dem_sweep_grid *g,
  * absolute damping, tangential spring with history, Coulomb friction,
  * background damping -gamma_b v on translation only.
  *
- *   3D (seed 000 material): k = 5000, kt = 1000 N/m, gamma_n = 0.05,
+ *   3D (David et al. material): k = 5000, kt = 1000 N/m, gamma_n = 0.05,
  *      gamma_t = 0.005 kg/s, mu = 0.5, gamma_b = 0.001 kg/s, dt = 2e-5 s,
  *      radii N(5, 0.7) mm cut at 3 mm, density 2000 kg/m^3.
- *   2D (seed 001 geometry, linear law as the peers): k = 1e5, kt = 2e4 N/m,
+ *   2D (Luding et al. geometry, linear law as the peers): k = 1e5, kt = 2e4 N/m,
  *      gamma_n = 0.0211, gamma_t = 0.00211 kg/s, mu = 0.5,
  *      gamma_b = 0.0004 kg/s, dt = 2e-7 s, radii U[0.5, 1.5] mm, sphere
  *      masses.

@@ -62,33 +62,33 @@ B=${DEMBOX:-./build/dembox} # DEMBOX: another dembox binary (tests)
 # about 5 CPU minutes per 0.5 s of 1950 discs at dt = 2e-7 s).
 quick_parts() {
     cat <<'EOF'
-pressure|4|001 Figs. 6, 7, 8, §3.3|biaxial2d --param stages.0.pressure,stages.1.pressure=250,500,1000
-cohesion|8|001 Figs. 4, 5, §3.1|biaxial2d-cohesive --param contact.kc=1.0e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=250,500,1000
-friction-dense|5|000 Fig. 3 left (dense), Fig. 2 left|biaxial2d --param contact.mu=0.1,0.3,0.5,1.0
-friction-loose|5|000 Fig. 3 left (loose)|biaxial2d --param contact.mu,stages.0.mu=0.1,0.3,0.5,1.0
-cyclic|5|000 Figs. 2 right, 3 right|cyclic3d --param contact.mu=0.1,0.3,1.0
+pressure|4|Luding et al. Figs. 6, 7, 8, §3.3|biaxial2d --param stages.0.pressure,stages.1.pressure=250,500,1000
+cohesion|8|Luding et al. Figs. 4, 5, §3.1|biaxial2d-cohesive --param contact.kc=1.0e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=250,500,1000
+friction-dense|5|David et al. Fig. 3 left (dense), Fig. 2 left|biaxial2d --param contact.mu=0.1,0.3,0.5,1.0
+friction-loose|5|David et al. Fig. 3 left (loose)|biaxial2d --param contact.mu,stages.0.mu=0.1,0.3,0.5,1.0
+cyclic|5|David et al. Figs. 2 right, 3 right|cyclic3d --param contact.mu=0.1,0.3,1.0
 EOF
 }
 paper_parts() {
     cat <<'EOF'
 cyclic-period|30|000: the period does not matter (t0 = 1, 2, 5 s)|cyclic3d-paper --set contact.mu=0.1 --set stages.1.cycles=10 --param stages.1.period=1,2,5 --param seed=1,2
-cyclic-mu|140|000 Figs. 2 right, 3 right (50 cycles, t0 = 1 s)|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --param contact.mu=0.01,0.1,0.3,0.5,1.0 --param seed=1,2,3
-biaxial-pressure|90|001 Figs. 6, 7, 8, §3.3 (40 % strain)|biaxial2d-paper --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
-peak-reference|8|001 Fig. 7 gap: reference (p = 500, 10 % strain)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param seed=1,2,3,4
-peak-kt|8|001 Fig. 7 gap: k_t = k2 instead of 0.2 k2|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --param seed=1,2,3,4
-peak-prep|7|001 Fig. 7 gap: prepared with mu = 0.5 (looser)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set stages.0.mu=0.5 --param seed=1,2,3,4
-peak-rate|12|001 Fig. 7 gap: half the strain rate|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.4 --param seed=1,2,3,4
-peak-damping|7|001 Fig. 7 gap: no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set damping.gamma_b=0.0 --param seed=1,2,3,4
-peak-size|20|001 Fig. 7 gap: twice the particles (N = 3900)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set particles.count=3900 --param seed=1,2,3,4
-peak-gammat|10|001 Fig. 7 gap: no tangential viscosity|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.gamma_t=0.0 --param seed=1,2,3,4
-peak-kt-damping|10|001 Fig. 7 gap: k_t = k2 and no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param seed=1,2,3,4
-friction-dense|105|000 Fig. 2 left, Fig. 3 left (dense)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
-friction-loose|180|000 Fig. 3 left (loose: prepared with mu)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu,stages.0.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
-biaxial-cohesion|240|001 Figs. 4, 5, §3.1|biaxial2d-paper --set contact.mu=0.0 --param contact.kc=0.0,2.5e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
-oc-cohesion|157|001 Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = k2|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=1.0e5 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500,1000 --param seed=1,2,3
-oc-kc|300|001 Fig. 5 bottom: over-consolidated at 1000 N/m, k_c/k2 = 0.25, 0.5|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500,1000 --param contact.kc=2.5e4,5.0e4 --param seed=1,2,3
-oc-reference|60|001 Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = 0 (p = 1000: biaxial-cohesion)|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500 --param seed=1,2
-peak-cell|51|001 Fig. 7 gap: the flow function at peak in a periodic cell (no walls)|biaxial2d-paper --set box.boundary=periodic --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2
+cyclic-mu|140|David et al. Figs. 2 right, 3 right (50 cycles, t0 = 1 s)|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --param contact.mu=0.01,0.1,0.3,0.5,1.0 --param seed=1,2,3
+biaxial-pressure|90|Luding et al. Figs. 6, 7, 8, §3.3 (40 % strain)|biaxial2d-paper --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
+peak-reference|8|Luding et al. Fig. 7 gap: reference (p = 500, 10 % strain)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param seed=1,2,3,4
+peak-kt|8|Luding et al. Fig. 7 gap: k_t = k2 instead of 0.2 k2|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --param seed=1,2,3,4
+peak-prep|7|Luding et al. Fig. 7 gap: prepared with mu = 0.5 (looser)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set stages.0.mu=0.5 --param seed=1,2,3,4
+peak-rate|12|Luding et al. Fig. 7 gap: half the strain rate|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.4 --param seed=1,2,3,4
+peak-damping|7|Luding et al. Fig. 7 gap: no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set damping.gamma_b=0.0 --param seed=1,2,3,4
+peak-size|20|Luding et al. Fig. 7 gap: twice the particles (N = 3900)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set particles.count=3900 --param seed=1,2,3,4
+peak-gammat|10|Luding et al. Fig. 7 gap: no tangential viscosity|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.gamma_t=0.0 --param seed=1,2,3,4
+peak-kt-damping|10|Luding et al. Fig. 7 gap: k_t = k2 and no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param seed=1,2,3,4
+friction-dense|105|David et al. Fig. 2 left, Fig. 3 left (dense)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
+friction-loose|180|David et al. Fig. 3 left (loose: prepared with mu)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu,stages.0.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
+biaxial-cohesion|240|Luding et al. Figs. 4, 5, §3.1|biaxial2d-paper --set contact.mu=0.0 --param contact.kc=0.0,2.5e4,5.0e4,1.0e5 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
+oc-cohesion|157|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = k2|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=1.0e5 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500,1000 --param seed=1,2,3
+oc-kc|300|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c/k2 = 0.25, 0.5|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500,1000 --param contact.kc=2.5e4,5.0e4 --param seed=1,2,3
+oc-reference|60|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = 0 (p = 1000: biaxial-cohesion)|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500 --param seed=1,2
+peak-cell|51|Luding et al. Fig. 7 gap: the flow function at peak in a periodic cell (no walls)|biaxial2d-paper --set box.boundary=periodic --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2
 EOF
 }
 parts() { if [ "$MODE" = paper ]; then paper_parts; else quick_parts; fi; }

@@ -144,7 +144,7 @@ static void smoothing_keeps_a_line_and_its_ends(void **state)
 }
 
 /* eps_v(eps): slope -0.59 up to 0.02, turning linearly to +0.8 by 0.04,
- * then +0.8: the seed 001 numbers with friction. */
+ * then +0.8: the Luding et al. numbers with friction. */
 static double eps_v_curve(double x)
 {
     const double s0 = -0.59, s1 = 0.8, a = 0.02, b = 0.04;

@@ -439,6 +439,18 @@ static const struct row rows[] = {
      0,
      {RUN_CFG, "--set", "contact.k=1\n2"},
      "--set contact.k"},
+    {"--set a file without placement file",
+     BASE2D,
+     0,
+     0,
+     {RUN_CFG, "--set", "particles.file=p.csv"},
+     "particles.file: given with particles.placement = \"lattice\""},
+    {"--set a number with two points",
+     BASE2D,
+     0,
+     0,
+     {RUN_CFG, "--set", "contact.mu=0.3.5"},
+     "--set contact.mu=0.3.5: contact.mu: must be a number"},
     {"nonexistent config",
      0,
      0,
@@ -647,9 +659,18 @@ static void base_configs_run(void **state)
     (void)state;
     const char *bin = getenv("DEMBOX_BIN");
     assert_non_null(bin);
-    static const char *const args[] = {RUN_CFG, 0};
-    const char *cfgs[] = {BASE2D, BASEFILE};
-    for (int k = 0; k < 2; k++) {
+    static const char *const plain[] = {RUN_CFG, 0};
+    /* a file name on the command line needs no quotes */
+    static const char *const from_file[] = {RUN_CFG,
+                                            "--set",
+                                            "particles.placement=file",
+                                            "--set",
+                                            "particles.file=p.csv",
+                                            0};
+    const char *cfgs[] = {BASE2D, BASEFILE, BASE2D};
+    const char *const *argsets[] = {plain, plain, from_file};
+    for (int k = 0; k < 3; k++) {
+        const char *const *args = argsets[k];
         char dir[] = "/tmp/dembox-cli-XXXXXX";
         assert_non_null(mkdtemp(dir));
         write_file(dir, "c.cfg", cfgs[k], strlen(cfgs[k]));

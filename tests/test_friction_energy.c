@@ -59,7 +59,7 @@ static double leapfrog_energy(const struct dem_sim *s, double z_ref)
     return e;
 }
 
-/* Seed 000's material at the papers' time step, friction on, no
+/* David et al.'s material at the papers' time step, friction on, no
  * background damping. */
 static void papers_material(struct dem_config *c, double gamma_t)
 {

@@ -119,7 +119,7 @@ static void isotropic_stage_reaches_target_pressure(void **state)
     dem__csv_table_free(&t);
 }
 
-/* Seed 001 Fig. 3: the left and bottom walls are fixed, the top wall closes
+/* Luding et al. Fig. 3: the left and bottom walls are fixed, the top wall closes
  * on the cosine profile, the right wall keeps the side stress; a dense
  * sample first compacts and then dilates. */
 static void biaxial_fixed_walls_and_dilatancy(void **state)

@@ -40,7 +40,7 @@ static void strain_profiles_start_and_end_at_rest(void **state)
     assert_close(v, 0.0, 1e-15);
 }
 
-/* 2 sigma = 2 p0 + Dsigma [1 - cos(2 pi t/t0)] (seed 000) at sampled times. */
+/* 2 sigma = 2 p0 + Dsigma [1 - cos(2 pi t/t0)] (David et al.) at sampled times. */
 static void cyclic_target_follows_formula(void **state)
 {
     (void)state;

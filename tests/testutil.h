@@ -34,7 +34,7 @@
                      #b, b_, fabs(a_ - b_) / fabs(b_), r_);                    \
     } while (0)
 
-/* Seed 000's material, no damping, no gravity, one hold stage. */
+/* David et al.'s material, no damping, no gravity, one hold stage. */
 static inline void test_config(struct dem_config *c, int dim)
 {
     memset(c, 0, sizeof *c);

@@ -164,7 +164,7 @@ struct dem_voidfit {
     char reason[DEM_REASON_MAX];
 };
 
-/* Fit e = e0 - (p/hs)^n (seed 001 Eq. 6) to m points by least squares in
+/* Fit e = e0 - (p/hs)^n (Luding et al. Eq. 6) to m points by least squares in
  * e: for a given n the best e0 is mean(e + (p/hs)^n), which leaves a 1D
  * minimisation over n (log grid, then golden section). */
 int dem_voidfit(const double *p, const double *e, long m, double hs,

@@ -281,7 +281,7 @@ static int analyze_monotonic(const struct curves *cv, int dim, struct result *R)
     return DEM_OK;
 }
 
-/* Granular hardness hs of e = e0 - (p/hs)^n: seed 001 sets hs = k2 (2D,
+/* Granular hardness hs of e = e0 - (p/hs)^n: Luding et al. sets hs = k2 (2D,
  * where p and k2 are both N/m). In 3D p is in Pa, so k2 is divided by the
  * mean diameter to keep p/hs dimensionless (our extension). */
 static double hardness(const struct dem_config *cfg)
@@ -297,7 +297,7 @@ static double hardness(const struct dem_config *cfg)
 }
 
 /* e(p) at the end of every isotropic stage: with three or more different
- * pressures in one run, the fit of seed 001 Eq. 6. */
+ * pressures in one run, the fit of Luding et al. Eq. 6. */
 static int analyze_void_fit(const struct dem_config *cfg,
                             const struct columns *c, long nrow,
                             struct result *R)
@@ -343,7 +343,7 @@ static int analyze_cyclic(const struct dem_config *cfg, const struct columns *c,
         curves_free(&cv);
         return DEM_ENOMEM;
     }
-    /* eps_D and sigma_D of seed 000, the loaded axis against the mean
+    /* eps_D and sigma_D of David et al., the loaded axis against the mean
      * of the others; the arrays of the curves are reused in place */
     for (long i = 0; i < cv.n; i++) {
         cv.ea[i] -= cv.el[i];

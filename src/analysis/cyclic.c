@@ -1,4 +1,4 @@
-/* Cycles of a stress-controlled cyclic test (seed 000 Figs. 2 right and
+/* Cycles of a stress-controlled cyclic test (David et al. Figs. 2 right and
  * 3 right): deviatoric strain accumulated per cycle, the work of each
  * hysteresis loop, and the verdict ratcheting (the accumulation goes on)
  * or shakedown (it dies out; see verdict()).

@@ -1,4 +1,4 @@
-/* Mohr circles and the flow function (seed 001 Figs. 5 and 7).
+/* Mohr circles and the flow function (Luding et al. Figs. 5 and 7).
  *
  * A circle of principal stresses sigma1 >= sigma3 (compression positive)
  * has centre s = (s1 + s3)/2 and radius t = (s1 - s3)/2. The straight

@@ -1,5 +1,5 @@
-/* Peak and critical state of a noisy stress-ratio curve (seed 000 Fig. 3
- * left, seed 001 Figs. 6-8).
+/* Peak and critical state of a noisy stress-ratio curve (David et al. Fig. 3
+ * left, Luding et al. Figs. 6-8).
  *
  * Peak: the maximum of the curve after a light centred moving average, so
  * that one noisy sample does not make the peak. A maximum within the last
@@ -107,7 +107,7 @@ int dem_critical_find(const double *strain, const double *y, long n,
     out->drift = f.b * span / fabs(out->value);
     /* a trend smaller than the fluctuations themselves (twice the scatter
      * about the line) is not a trend: critical-state flow fluctuates
-     * strongly in small samples (seed 001 Sec. 3.2) */
+     * strongly in small samples (Luding et al. Sec. 3.2) */
     const double noise = 2.0 * f.rms / fabs(out->value);
     if (fabs(out->drift) > tolerance && fabs(out->drift) > noise) {
         snprintf(out->reason, sizeof out->reason,

@@ -1,5 +1,5 @@
 /* Volumetric-strain slopes and the elastic and dilatancy parameters
- * derived from them (seed 001 Sec. 3.3 (i)-(iii), Figs. 4 and 6 top).
+ * derived from them (Luding et al. Sec. 3.3 (i)-(iii), Figs. 4 and 6 top).
  *
  * With s = d eps_v / d eps_a (eps_v dilation positive, eps_a compression
  * positive) of a test at constant lateral stress, isotropic linear

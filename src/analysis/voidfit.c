@@ -1,5 +1,5 @@
-/* Void ratio against pressure: e = e0 - (p/hs)^n (seed 001 Eq. 6, Fig. 8
- * top), with the granular hardness hs given (seed 001: hs = k2).
+/* Void ratio against pressure: e = e0 - (p/hs)^n (Luding et al. Eq. 6, Fig. 8
+ * top), with the granular hardness hs given (Luding et al.: hs = k2).
  *
  * Least squares in e itself, not in a linearised form, so that every
  * point counts with its error in e. For a fixed n the best e0 is

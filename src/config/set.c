@@ -25,12 +25,16 @@ static int is_index(const char *s)
     return 1;
 }
 
+/* Text that reads as one string when quoted: a word or a file name
+ * (placement=file, particles.file=a.csv, ../p.csv), nothing libconfig
+ * would give a meaning to (quotes, groups, lists, separators, comments,
+ * escapes, white space). */
 static int is_bare_word(const char *s)
 {
-    if (!isalpha((unsigned char)*s) && *s != '_')
+    if (!*s)
         return 0;
     for (; *s; s++)
-        if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-')
+        if (isspace((unsigned char)*s) || strchr("\"'{}[]();,=#\\", *s))
             return 0;
     return 1;
 }

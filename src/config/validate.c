@@ -207,11 +207,18 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
                     "a periodic cell must be wider than two interaction "
                     "ranges (2 x 2.2 x the largest radius = %g m) along %c "
                     "(got %g)",
-                    4.4 * a, "xyz"[d], c->box.size[d]);
+                    4.4 * a, "xyz"[d], c -> box.size[d]);
     }
     if (c->particles.placement == DEM_PLACE_FILE && !c->particles.file[0])
         return dem__cfg_fail_key(x, -1, "particles.placement", err,
                                  "\"file\" needs particles.file");
+    if (c->particles.placement != DEM_PLACE_FILE && c->particles.file[0])
+        return dem__cfg_fail_key(
+            x, -1, "particles.file", err,
+            "given with particles.placement = \"%s\": "
+            "the file is read only with placement = "
+            "\"file\"",
+            c->particles.placement == DEM_PLACE_LATTICE ? "lattice" : "random");
     if (check_radii(x, c, err) || check_box(x, c, err) ||
         check_stages(x, c, err))
         return DEM_ECONFIG;

@@ -2,7 +2,7 @@
  *
  * Sources
  *   [S1] Luding, Tykhoniuk, Tomas, Heim, Kappl, Butt, "Flow behavior of
- *        cohesive and frictional fine powders" (seed 001, Fig. 2 and the
+ *        cohesive and frictional fine powders" (Luding et al., Fig. 2 and the
  *        equation of Sect. 2.1).
  *   [L8] S. Luding, "Cohesive, frictional powders: contact models for
  *        tension", Granular Matter 10 (2008) 235-246, Eqs. (6)-(8).

@@ -1,5 +1,5 @@
 /* Normal model "linear": the linear spring-dashpot of David et al.,
- * "Powder flow testing with biaxial and triaxial devices" (seed 000,
+ * "Powder flow testing with biaxial and triaxial devices" (David et al.,
  * Eq. 1):
  *   f_n = k delta + gamma_n ddelta/dt,  force on i is f_n n.
  * No clipping of the attractive dashpot force at the end of a contact, so

@@ -1,6 +1,6 @@
 /* Normal model "luding": the hysteretic elasto-plastic adhesive law of
  * Luding et al., "Flow behavior of cohesive and frictional fine powders"
- * (seed 001, Fig. 2), with the plasticity depth phi_f of Luding (2008);
+ * (Luding et al., Fig. 2), with the plasticity depth phi_f of Luding (2008);
  * the law itself, its sources and its analytic results are in
  * contact/luding.h. Spring plus the dashpot gamma_n ddelta/dt; the
  * Coulomb limit uses max(f_n + kc delta, 0), so an adhesive contact keeps

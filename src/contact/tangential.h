@@ -1,15 +1,15 @@
 /* Tangential contact law with static and dynamic friction.
  *
  * Luding et al., "Flow behavior of cohesive and frictional fine powders"
- * (seed 001, Eqs. 1-3) and David et al., "Powder flow testing with biaxial
- * and triaxial devices" (seed 000, Eqs. 2-4). The sequence, per step:
+ * (Luding et al., Eqs. 1-3) and David et al., "Powder flow testing with biaxial
+ * and triaxial devices" (David et al., Eqs. 2-4). The sequence, per step:
  *
  *   v_t     = v_ij - n (n . v_ij)               tangential velocity
  *   xi      = xi' - n (n . xi') + v_t dt        project the stored spring
  *                                               and stretch it to now
  *   f0      = -k_t xi - gamma_t v_t             test force
  *   sticking contact: static  if |f0| <= mu_s f_C
- *   sliding  contact: sliding while |f0| >  mu_d f_C  (seed 000)
+ *   sliding  contact: sliding while |f0| >  mu_d f_C  (David et al.)
  *   static:  xi' = xi,                               force f0
  *   sliding: xi' = -(1/k_t)(mu_d f_C t + gamma_t v_t), t = f0/|f0|,
  *            force mu_d f_C t

@@ -1,6 +1,6 @@
 /* Initial particle placement: radii from the configured distribution, then
- * positions on a lattice (seed 000), by random sequential insertion
- * (seed 001) or from a CSV file, and the initial box the walls go on.
+ * positions on a lattice (David et al.), by random sequential insertion
+ * (Luding et al.) or from a CSV file, and the initial box the walls go on.
  */
 #ifndef DEM_CORE_PLACEMENT_H
 #define DEM_CORE_PLACEMENT_H

@@ -1,6 +1,6 @@
 /* particles.png: the final packing drawn with cairo.
  *
- * Like seed 000 Fig. 1, every particle is a filled circle of its true
+ * Like David et al. Fig. 1, every particle is a filled circle of its true
  * radius coloured blue/green/red for weak/medium/strong. The colour scale
  * ends at the 95th percentile of the values, not at their maximum, so
  * that a few extreme particles do not push all others into blue. In 3D
@@ -154,7 +154,7 @@ static int draw_discs(cairo_t *cr, const struct dem__plot_packing *pk,
 
 /* 2D: every pair contact in compression as a black line between the
  * centres, its width growing with the normal force (1 px at the mean,
- * at most 6 px): the force chains of seed 000 Fig. 1. Returns the mean
+ * at most 6 px): the force chains of David et al. Fig. 1. Returns the mean
  * normal force (0: nothing drawn). */
 static double draw_chains(cairo_t *cr, const struct dem__plot_packing *pk,
                           const struct frame *fr)

@@ -266,14 +266,14 @@ static double q_sig_ax(const struct series *s, size_t i)
 {
     return sig(s, s->axis, i);
 }
-/* seed 001 Eq. 7 with the loading axis as 1 and the lateral walls as 3;
+/* Luding et al. Eq. 7 with the loading axis as 1 and the lateral walls as 3;
  * signed, so an extension (cyclic unloading) shows as negative */
 static double q_sin_psi(const struct series *s, size_t i)
 {
     double a = sig(s, s->axis, i), l = sig_lateral(s, i);
     return a + l != 0.0 ? (a - l) / (a + l) : NAN;
 }
-/* seed 000: eps_D = eps_xx - eps_yy, sigma_D = 2 (sigma_xx - sigma_yy)/3 */
+/* David et al.: eps_D = eps_xx - eps_yy, sigma_D = 2 (sigma_xx - sigma_yy)/3 */
 static double q_eps_d(const struct series *s, size_t i)
 {
     return eps(s, 0, i) - eps(s, 1, i);

@@ -74,7 +74,7 @@ int dem__plot_run_particles(const char *outdir, const char *plotdir,
                             struct dem_error *err);
 
 /* The colour of t in [0, 1]: blue (0) -> green (0.5) -> red (1), as in
- * seed 000 Fig. 1. Values outside are clamped. */
+ * David et al. Fig. 1. Values outside are clamped. */
 void dem__plot_colormap(double t, double rgb[3]);
 
 #endif

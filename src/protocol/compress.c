@@ -1,8 +1,8 @@
-/* compress: strain-controlled compression along `axis` (seed 001 Fig. 3).
+/* compress: strain-controlled compression along `axis` (Luding et al. Fig. 3).
  * The max-side wall of the axis moves inwards by strain * L0 over
  * `duration` with `profile`; the min-side wall is fixed. The lateral walls
  * are stress-controlled at `pressure`; in 2D the min-side lateral wall is
- * fixed too, so the left and bottom walls do not move (seed 001). */
+ * fixed too, so the left and bottom walls do not move (Luding et al.). */
 #include "protocol/stage.h"
 
 static int begin(struct dem_sim *s, struct dem_stage_state *st,

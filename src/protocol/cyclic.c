@@ -1,4 +1,4 @@
-/* cyclic: stress-controlled cyclic loading (seed 000). Both walls of
+/* cyclic: stress-controlled cyclic loading (David et al.). Both walls of
  * `axis` follow sigma(t) = p0 + (Dsigma/2)(1 - cos(2 pi t/t0)), i.e.
  * 2 sigma = 2 p0 + Dsigma [1 - cos(2 pi t/t0)]; every other wall is
  * stress-controlled at p0, so the centre of mass can move. */

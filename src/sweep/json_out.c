@@ -227,7 +227,7 @@ static void write_cohesion(struct dem__json *j, const struct dem__sweep *s)
     }
     dem__json_object(j, "cohesion_vs_kc", 0);
     dem__json_string(j, "f_min",
-                     "f_min = -kc (k2 - k1) delta_max/(k2 + kc) (seed 001 "
+                     "f_min = -kc (k2 - k1) delta_max/(k2 + kc) (Luding et al. "
                      "Fig. 2); f_min_norm = |f_min|/(k2 delta_max) = "
                      "(kc/k2)(1 - k1/k2)/(1 + kc/k2); the plotted curve is "
                      "scale * f_min_norm, scale fitted to the cohesions by "

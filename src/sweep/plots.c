@@ -363,7 +363,7 @@ static long read_loading(const struct dem__sweep *s,
     return rows;
 }
 
-/* Seed 001 Fig. 8 bottom: sin(psi) = (s1 - s3)/(s1 + s3) against the void
+/* Luding et al. Fig. 8 bottom: sin(psi) = (s1 - s3)/(s1 + s3) against the void
  * ratio during the loading stage of every run, from its timeseries.csv
  * (at most 400 points per run). A run whose file cannot be read is left
  * out with a comment in the data file. */
@@ -432,7 +432,7 @@ static int compressed(const struct dem__sweep_run *r)
            r->axis < r->dim;
 }
 
-/* Seed 001 Figs. 4 and 6, seed 000 Fig. 2 left: volumetric strain (top)
+/* Luding et al. Figs. 4 and 6, David et al. Fig. 2 left: volumetric strain (top)
  * and deviatoric stress sigma_axial - sigma_lateral (bottom) against the
  * axial strain during the loading stage of every compressed run, from its
  * timeseries.csv (at most 400 points per run). Runs that differ only in

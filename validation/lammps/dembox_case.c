@@ -19,7 +19,7 @@
  *                    [--gamma-b G] [--gravity GZ] [--hold N] [--steps N]
  *                    [--strain S] [--duration D] [--every M] [--track ID]
  *                    [--dump STEP FILE] [--threads T]
- * Defaults: seed 000's material at the papers' step (k = 5000, k_t =
+ * Defaults: David et al.'s material at the papers' step (k = 5000, k_t =
  * 1000 N/m, gamma_n = 0.05, gamma_t = 0.005, gamma_b = 0.001 kg/s,
  * dt = 2e-5 s), frictionless walls, no gravity.
  */

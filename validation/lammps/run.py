@@ -21,7 +21,7 @@ prints the agreement as Markdown (docs/validation.md records it):
             and against granular. Isolates the definitions in which the
             two LAMMPS styles differ (docs/validation.md).
 
-The law (seed 000's material at the papers' time step): linear spring
+The law (David et al.'s material at the papers' time step): linear spring
 k = 5000 N/m with dashpot gamma_n = 0.05 kg/s, tangential spring k_t =
 1000 N/m with history and dashpot gamma_t = 0.005 kg/s, Coulomb friction
 mu, background damping gamma_b = 0.001 kg/s on translation only, dt =
