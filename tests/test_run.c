@@ -119,8 +119,8 @@ static void isotropic_stage_reaches_target_pressure(void **state)
     dem__csv_table_free(&t);
 }
 
-/* Luding et al. Fig. 3: the left and bottom walls are fixed, the top wall closes
- * on the cosine profile, the right wall keeps the side stress; a dense
+/* Luding et al. Fig. 3: the left and bottom walls are fixed, the top wall
+ * closes on the cosine profile, the right wall keeps the side stress; a dense
  * sample first compacts and then dilates. */
 static void biaxial_fixed_walls_and_dilatancy(void **state)
 {
@@ -363,6 +363,47 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     }
     free(sum);
     free(cnt);
+    /* dump_local.lammpstrj: the same 4 frames, and its last one is
+     * contacts_final.csv (ids 1-based as in dump.lammpstrj) */
+    snprintf(path, sizeof path, "%s/dump_local.lammpstrj", out);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    int lframes = 0, entries = -1, row = -1;
+    long lfirst = -1;
+    while (fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "ITEM: TIMESTEP", 14)) {
+            assert_non_null(fgets(line, sizeof line, f));
+            lfirst = lframes++ ? lfirst : atol(line);
+            row = -1;
+        } else if (!strncmp(line, "ITEM: NUMBER OF ENTRIES", 23)) {
+            assert_non_null(fgets(line, sizeof line, f));
+            entries = atoi(line);
+        } else if (!strncmp(line,
+                            "ITEM: ENTRIES id1 id2 x y z nx ny nz "
+                            "delta fn",
+                            45)) {
+            row = 0;
+        } else if (row >= 0 && lframes == 4) {
+            int id1, id2;
+            double v[8];
+            assert_int_equal(sscanf(line,
+                                    "%d %d %lf %lf %lf %lf %lf %lf "
+                                    "%lf %lf",
+                                    &id1, &id2, &v[0], &v[1], &v[2], &v[3],
+                                    &v[4], &v[5], &v[6], &v[7]),
+                             10);
+            assert_true((size_t)row < ct.nrow);
+            assert_int_equal(id1 - 1, (int)ct.col[0][row]);
+            assert_int_equal(id2 > 0 ? id2 - 1 : id2, (int)ct.col[1][row]);
+            assert_close(v[7], ct.col[2][row], 1e-9 * fabs(ct.col[2][row]));
+            row++;
+        }
+    }
+    fclose(f);
+    assert_int_equal(lfirst, 0);
+    assert_int_equal(lframes, 4);
+    assert_int_equal(entries, (int)ct.nrow);
+    assert_int_equal(row, (int)ct.nrow);
     dem__csv_table_free(&ct);
     dem__csv_table_free(&ft);
     /* the contact pictures' data are densities: P(f/<f>) over its bins of

@@ -292,8 +292,9 @@ const struct key dem__cfg_keys[] = {
      .def = 0,
      GE(0),
      .unit = "s",
-     .doc = "time between frames of dump.lammpstrj, a LAMMPS-style text "
-            "dump that OVITO reads (0 = none)"},
+     .doc = "time between frames of dump.lammpstrj and "
+            "dump_local.lammpstrj, LAMMPS-style text dumps of the particles "
+            "and of the contacts that OVITO reads (0 = none)"},
     {.name = "output.checkpoint_interval",
      .kind = K_DOUBLE,
      TOP(output.checkpoint_interval),

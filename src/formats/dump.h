@@ -6,10 +6,20 @@
 #include <stdio.h>
 
 #include "core/particles.h"
+#include "measure/network.h"
 
 /* Append one frame (step number, box [lo, hi], particles) to f. Columns:
  * id type x y z vx vy vz radius fsum coordination. */
 void dem_dump_frame(FILE *f, long step, const double lo[3], const double hi[3],
                     const struct dem_particles *p);
+
+/* Append one "dump local" frame of the closed contacts of net to f.
+ * Columns: id1 id2 x y z nx ny nz delta fn ft_x ft_y ft_z sliding image
+ * bx by bz (ids as dem_dump_frame's, 1-based; a wall is id2 = -1 xmin,
+ * -2 xmax, ..., -6 zmax; the rest as contacts_final.csv, with b the
+ * branch vector from the partner (its image) to id1's centre). */
+void dem_dump_local_frame(FILE *f, long step, const double lo[3],
+                          const double hi[3], const struct dem_particles *p,
+                          const struct dem_network *net);
 
 #endif

@@ -1,16 +1,23 @@
-/* dump.lammpstrj: LAMMPS-style text frames (read by OVITO) of the initial
- * state, then every output.dump_interval of simulated time, and of the
- * final state, when output.dump_interval > 0. st.times[0] (count 1)
- * keeps the time of the last frame, so that the end adds a frame only
- * when the last one is older. */
+/* dump.lammpstrj and dump_local.lammpstrj: LAMMPS-style text frames
+ * (read by OVITO and pizza.py) of the particles ("dump custom") and of
+ * the contacts ("dump local"), each of the initial state, then every
+ * output.dump_interval of simulated time, and of the final state, when
+ * output.dump_interval > 0. st.times[0] (count 1) keeps the time of the
+ * last frame, so that the end adds a frame only when the last one is
+ * older. The two kinds share everything but the frame; files[0] is the
+ * kind's file. */
 #include <errno.h>
 #include <stdlib.h>
 
 #include "formats/dump.h"
+#include "measure/network.h"
 #include "output/output.h"
 
 static const char *const files[] = {"dump.lammpstrj", "dump.lammpstrj.part",
                                     NULL};
+static const char *const local_files[] = {"dump_local.lammpstrj",
+                                          "dump_local.lammpstrj.part", NULL};
+extern const struct dem_output_kind dem_output_dump_local;
 
 static int dump_on(const struct dem_output_run *r)
 {
@@ -30,8 +37,18 @@ static int frame(struct dem_output *o, const struct dem_output_run *r,
     o->st.times[0] = s->t;
     double lo[3], hi[3];
     dem__output_box(s, lo, hi);
-    errno = 0;
-    dem_dump_frame(o->f, s->step, lo, hi, &s->p);
+    if (o->kind == &dem_output_dump_local) {
+        struct dem_network net;
+        int rc = dem_network_build(s, &net, err);
+        if (rc)
+            return rc;
+        errno = 0;
+        dem_dump_local_frame(o->f, s->step, lo, hi, &s->p, &net);
+        dem_network_free(&net);
+    } else {
+        errno = 0;
+        dem_dump_frame(o->f, s->step, lo, hi, &s->p);
+    }
     return dem__part_check(o, err);
 }
 
@@ -41,14 +58,14 @@ static int dump_open(struct dem_output *o, const struct dem_output_run *r,
     if (!dump_on(r))
         return DEM_OK;
     o->st.next = r->s->cfg.output.dump_interval;
-    int rc = dem__part_create(o, r->outdir, "dump.lammpstrj", err);
+    int rc = dem__part_create(o, r->outdir, o->kind->files[0], err);
     return rc ? rc : frame(o, r, err);
 }
 
 static int dump_resume(struct dem_output *o, const struct dem_output_run *r,
                        struct dem_error *err)
 {
-    return dump_on(r) ? dem__part_reopen(o, r->outdir, "dump.lammpstrj", err)
+    return dump_on(r) ? dem__part_reopen(o, r->outdir, o->kind->files[0], err)
                       : DEM_OK;
 }
 
@@ -75,6 +92,16 @@ static int dump_finish(struct dem_output *o, const struct dem_output_run *r,
 const struct dem_output_kind dem_output_dump = {
     .name = "dump",
     .files = files,
+    .open = dump_open,
+    .resume = dump_resume,
+    .sample = dump_sample,
+    .sync = dem__part_sync,
+    .finish = dump_finish,
+};
+
+const struct dem_output_kind dem_output_dump_local = {
+    .name = "dump_local",
+    .files = local_files,
     .open = dump_open,
     .resume = dump_resume,
     .sample = dump_sample,

@@ -6,13 +6,17 @@
 extern const struct dem_output_kind dem_output_config;
 extern const struct dem_output_kind dem_output_snapshots;
 extern const struct dem_output_kind dem_output_dump;
+extern const struct dem_output_kind dem_output_dump_local;
 extern const struct dem_output_kind dem_output_final;
 extern const struct dem_output_kind dem_output_timeseries;
 
 const struct dem_output_kind *const dem_output_kinds[] = {
-    &dem_output_config, &dem_output_snapshots,  &dem_output_dump,
-    &dem_output_final,  &dem_output_timeseries, /* last: its final name marks a
-                                                   finished run */
+    &dem_output_config,
+    &dem_output_snapshots,
+    &dem_output_dump,
+    &dem_output_dump_local,
+    &dem_output_final,
+    &dem_output_timeseries, /* last: its final name marks a finished run */
 };
 const int dem_output_nkinds =
     (int)(sizeof dem_output_kinds / sizeof dem_output_kinds[0]);
