@@ -606,6 +606,10 @@ struct dem_bench_result {
     long nbuild;               /* neighbour-list builds in the timed loop */
     char pass[160];            /* the force pass's compilation at the end
                                   and its last timing trial */
+    char cpu[160];             /* the CPU's model name, family and model
+                                  (Linux /proc/cpuinfo; "unknown") */
+    char simd[64];             /* the vector instructions and width the
+                                  build uses */
     double pairs_per_particle; /* listed pairs / N at the end */
     double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N */
     double p_start, p_end;     /* Pa (2D: N/m); mean wall stress */
