@@ -457,6 +457,9 @@ struct dem_sweep_grid {
 int dem_sweep_param_add(struct dem_sweep_grid *g, const char *arg,
                         struct dem_error *err);
 void dem_sweep_grid_free(struct dem_sweep_grid *g);
+/* sizeof(struct dem_sweep_grid), for bindings that hold one as bytes (a
+ * zeroed grid has no parameters). */
+size_t dem_sweep_grid_bytes(void);
 /* Number of points (1 with no parameters). */
 long dem_sweep_grid_size(const struct dem_sweep_grid *g);
 /* The value index of every parameter at point i (idx[0..nparams-1]). */

@@ -11,6 +11,9 @@ library search.
     ts = dembox.timeseries(out)          # column name -> list of floats
     summary = dembox.summary(out)        # summary.json as a dict
     print(summary["peak"]["phi_deg"])
+    c = dembox.contacts(out)             # contacts_final.csv, by column
+    sw = dembox.sweep("biaxial2d", "sw", ["contact.mu=0.1,0.3"])
+    print(dembox.sweep_summary(sw)["friction_vs_mu"])
 
 Every failure raises dembox.Error with the library's one-line message
 (naming the key, the file and the line for a bad config).
@@ -22,7 +25,8 @@ import json
 import os
 
 __all__ = ["Error", "version", "examples", "example_text", "run", "analyze",
-           "plot", "timeseries", "summary"]
+           "plot", "timeseries", "summary", "particles", "contacts",
+           "dump_local", "sweep", "sweep_summary"]
 
 
 class Error(Exception):
@@ -72,6 +76,26 @@ class _RunOptions(ctypes.Structure):
                 ("stop_after_steps", ctypes.c_long)]
 
 
+class _SweepOptions(ctypes.Structure):
+    # struct dem_sweep_options (include/dembox.h)
+    _fields_ = [("target", ctypes.c_char_p),
+                ("outdir", ctypes.c_char_p),
+                ("sets", ctypes.POINTER(ctypes.c_char_p)),
+                ("nsets", ctypes.c_int),
+                ("jobs", ctypes.c_int),
+                ("threads", ctypes.c_int),
+                ("quiet", ctypes.c_int),
+                ("max_steps", ctypes.c_long),
+                ("stop", ctypes.c_void_p)]
+
+
+class _SweepReport(ctypes.Structure):
+    # struct dem_sweep_report (include/dembox.h)
+    _fields_ = [("points", ctypes.c_long), ("skipped", ctypes.c_long),
+                ("ran", ctypes.c_long), ("resumed", ctypes.c_long),
+                ("failed", ctypes.c_long)]
+
+
 class _Example(ctypes.Structure):
     _fields_ = [("name", ctypes.c_char_p), ("text", ctypes.c_char_p)]
 
@@ -90,6 +114,13 @@ _lib.dem_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_RunOptions),
                          ctypes.POINTER(_ErrorStruct)]
 _lib.dem_analyze.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
 _lib.dem_plot_run.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
+_lib.dem_sweep_grid_bytes.restype = ctypes.c_size_t
+_lib.dem_sweep_param_add.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+                                     ctypes.POINTER(_ErrorStruct)]
+_lib.dem_sweep_grid_free.argtypes = [ctypes.c_void_p]
+_lib.dem_sweep_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_SweepOptions),
+                               ctypes.POINTER(_SweepReport),
+                               ctypes.POINTER(_ErrorStruct)]
 
 
 def _error(warnings):
@@ -177,14 +208,87 @@ def plot(outdir):
 def timeseries(outdir):
     """outdir/timeseries.csv as a dict: column name -> list of floats (an
     empty field is None). With numpy, numpy.asarray(ts["t"]) etc."""
-    with open(os.path.join(outdir, "timeseries.csv"), newline="") as f:
-        rows = list(csv.reader(f))
-    head, body = rows[0], rows[1:]
-    return {name: [float(r[k]) if r[k] != "" else None for r in body]
-            for k, name in enumerate(head)}
+    return _csv(os.path.join(outdir, "timeseries.csv"))
 
 
 def summary(outdir):
     """outdir/summary.json as a dict."""
     with open(os.path.join(outdir, "summary.json")) as f:
+        return json.load(f)
+
+
+def _number(text):
+    """A CSV field: a float, None when empty."""
+    return float(text) if text != "" else None
+
+
+def _csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    head, body = rows[0], rows[1:]
+    return {name: [_number(r[k]) for r in body] for k, name in enumerate(head)}
+
+
+def particles(outdir):
+    """outdir/particles_final.csv (the final state) as a dict: column ->
+    list of floats."""
+    return _csv(os.path.join(outdir, "particles_final.csv"))
+
+
+def contacts(outdir):
+    """outdir/contacts_final.csv (every closed contact at the end: ids,
+    contact point, normal, overlap, normal and tangential force, sliding)
+    as a dict: column -> list of floats."""
+    return _csv(os.path.join(outdir, "contacts_final.csv"))
+
+
+def dump_local(outdir):
+    """outdir/dump_local.lammpstrj (written with output.dump_interval > 0):
+    a list of frames, each (step, dict column -> list of floats) of the
+    closed contacts at that step."""
+    frames = []
+    with open(os.path.join(outdir, "dump_local.lammpstrj")) as f:
+        lines = f.read().splitlines()
+    k = 0
+    while k < len(lines):
+        if lines[k].startswith("ITEM: TIMESTEP"):
+            step = int(lines[k + 1])
+            n = int(lines[k + 3])
+            head = lines[k + 8].split()[2:]
+            rows = [lines[k + 9 + r].split() for r in range(n)]
+            frames.append((step, {name: [float(r[c]) for r in rows]
+                                  for c, name in enumerate(head)}))
+            k += 9 + n
+        else:
+            k += 1
+    return frames
+
+
+def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
+          quiet=True):
+    """What `dembox sweep` does: the runs of every combination of params
+    ("KEY[,KEY...]=V1,V2,..." as --param) with the overrides sets, jobs
+    at once, then outdir/sweep.json and outdir/plots/; finished runs are
+    skipped, so calling it again resumes. Returns outdir."""
+    err = _error([])
+    grid = ctypes.create_string_buffer(_lib.dem_sweep_grid_bytes())
+    try:
+        for p in params:
+            _check(_lib.dem_sweep_param_add(grid, p.encode(),
+                                            ctypes.byref(err)), err)
+        enc = [s.encode() for s in sets]
+        arr = (ctypes.c_char_p * max(len(enc), 1))(*enc)
+        o = _SweepOptions(target.encode(), outdir.encode(), arr, len(enc),
+                          jobs, threads, int(quiet), max_steps, None)
+        rep = _SweepReport()
+        _check(_lib.dem_sweep_run(grid, ctypes.byref(o), ctypes.byref(rep),
+                                  ctypes.byref(err)), err)
+    finally:
+        _lib.dem_sweep_grid_free(grid)
+    return outdir
+
+
+def sweep_summary(outdir):
+    """outdir/sweep.json (a sweep's cross-run analysis) as a dict."""
+    with open(os.path.join(outdir, "sweep.json")) as f:
         return json.load(f)

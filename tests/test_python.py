@@ -33,6 +33,45 @@ assert "sigma_xx" in ts
 summary = dembox.summary(out_py)
 assert summary["dimension"] == 2, summary.get("dimension")
 
+# a packed state (60000 steps: 119 contacts, 0.5 s): the final state and
+# the contacts; each particle's coordination is its number of contacts,
+# and the dump_local frames end with contacts_final.csv
+out_d = dembox.run("biaxial2d", os.path.join(tmp, "dump"),
+                   sets=["particles.count=60", "output.interval=1.0e-4",
+                         "output.dump_interval=1.0e-3"], max_steps=60000)
+parts = dembox.particles(out_d)
+cons = dembox.contacts(out_d)
+assert len(parts["x"]) == 60, len(parts["x"])
+assert len(cons["id_i"]) > 50, len(cons["id_i"])
+forces = dembox._csv(os.path.join(out_d, "forces_final.csv"))
+count = [0] * 60
+for i, j in zip(cons["id_i"], cons["id_j"]):
+    count[int(i)] += 1
+    if j >= 0:
+        count[int(j)] += 1
+assert count == [int(c) for c in forces["coordination"]], \
+    (count, forces["coordination"])
+
+frames = dembox.dump_local(out_d)
+assert frames[0][0] == 0 and len(frames) >= 3, [f[0] for f in frames]
+assert [int(v) - 1 for v in frames[-1][1]["id1"]] == \
+    [int(v) for v in cons["id_i"]], "the last dump_local frame differs"
+assert frames[-1][1]["fn"] == cons["fn"] or all(
+    abs(a - b) <= 1e-9 * abs(b) for a, b in
+    zip(frames[-1][1]["fn"], cons["fn"])), "normal forces differ"
+
+# a sweep of two runs: sweep.json lists both, finished
+sw = dembox.sweep("biaxial2d", os.path.join(tmp, "sw"),
+                  ["contact.mu=0.1,0.3"], sets=sets, max_steps=200)
+doc = dembox.sweep_summary(sw)
+assert doc["runs_finished"] == 2, doc["runs_finished"]
+try:
+    dembox.sweep("biaxial2d", os.path.join(tmp, "sw2"), ["contact.mu"])
+except dembox.Error as e:
+    assert "contact.mu" in str(e), str(e)
+else:
+    raise AssertionError("a --param without values was accepted")
+
 try:
     dembox.run("biaxial2d", os.path.join(tmp, "bad"), sets=["contact.mu=-1"])
 except dembox.Error as e:

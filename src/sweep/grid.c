@@ -169,6 +169,11 @@ void dem_sweep_grid_free(struct dem_sweep_grid *g)
     memset(g, 0, sizeof *g);
 }
 
+size_t dem_sweep_grid_bytes(void)
+{
+    return sizeof(struct dem_sweep_grid);
+}
+
 long dem_sweep_grid_size(const struct dem_sweep_grid *g)
 {
     long n = 1;
