@@ -151,7 +151,8 @@ enum dem_stage_type {
 enum dem_profile {
     DEM_PROFILE_COSINE = 0, /* x0 + D (1 - cos(pi t/T))/2 */
     DEM_PROFILE_LINEAR = 1, /* x0 + D t/T */
-    DEM_PROFILE_CYCLIC = 2  /* x0 + D (1 - cos(2 pi t/T))/2 */
+    DEM_PROFILE_CYCLIC = 2, /* x0 + D (1 - cos(2 pi t/T))/2 */
+    DEM_PROFILE_SINE = 3    /* x0 + D sin(2 pi t/T): both ways, +D and -D */
 };
 
 #define DEM_MAX_STAGES 32

@@ -5,6 +5,7 @@
 
 #include <stdlib.h>
 
+#include "config/keys.h"
 #include "core/rng.h"
 #include "protocol/stage.h"
 
@@ -401,6 +402,58 @@ static void tilt_servo_holds_the_shear_stress(void **state)
     dem_sim_destroy(&s);
 }
 
+/* The shear stage's targets for the tilt: stress control with profile
+ * sine follows tau sin(2 pi t/T), cyclic tau (1 - cos(2 pi t/T))/2, a
+ * monotonic profile tau from the start; strain control with sine reaches
+ * +gamma Ly at T/4 and -gamma Ly at 3T/4. */
+static void shear_stage_targets(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0};
+    cell_sim(&s, &c, 2, 10, 0.2, t0);
+    const double f[3] = {0.5, 0.5, 0.0};
+    add_frac(&s, f, 1e-3);
+    test_ready(&s);
+    struct dem_stage_config sc;
+    dem__cfg_stage_defaults(&sc);
+    sc.type = DEM_STAGE_SHEAR;
+    sc.pressure = 100.0;
+    sc.duration = 4.0;
+    sc.cycles = 2; /* T = 2 s */
+    sc.shear_stress = 30.0;
+    const struct dem_stage_ops *ops = dem_stage_lookup(DEM_STAGE_SHEAR);
+    struct dem_error err = {0};
+    const int profiles[3] = {DEM_PROFILE_SINE, DEM_PROFILE_CYCLIC,
+                             DEM_PROFILE_COSINE};
+    /* targets at t = 0, T/4, T/2, 3T/4 */
+    const double want[3][4] = {
+        {0.0, 30.0, 0.0, -30.0}, {0.0, 15.0, 30.0, 15.0}, {30, 30, 30, 30}};
+    for (int q = 0; q < 3; q++) {
+        sc.profile = profiles[q];
+        struct dem_stage_state st = {&sc, 1, s.t, s.t, 0, 0};
+        assert_int_equal(ops->begin(&s, &st, &err), 0);
+        const struct dem_wall *W = &s.cell.tilt[DEM_TILT_XY];
+        assert_int_equal(W->mode, DEM_WALL_STRESS);
+        for (int k = 0; k < 4; k++)
+            assert_close(dem_wall_target_stress(W, s.t + 0.5 * k), want[q][k],
+                         1e-12 * 30.0);
+    }
+    sc.shear_stress = NAN;
+    sc.shear_strain = 0.1;
+    sc.profile = DEM_PROFILE_SINE;
+    struct dem_stage_state st = {&sc, 1, s.t, s.t, 0, 0};
+    assert_int_equal(ops->begin(&s, &st, &err), 0);
+    double x, v, L[3];
+    dem_sim_box(&s, L, 0);
+    dem_wall_strain_state(&s.cell.tilt[DEM_TILT_XY], s.t + 0.5, &x, &v);
+    assert_close(x, 0.1 * L[1], 1e-12);
+    dem_wall_strain_state(&s.cell.tilt[DEM_TILT_XY], s.t + 1.5, &x, &v);
+    assert_close(x, -0.1 * L[1], 1e-12);
+    dem_sim_destroy(&s);
+}
+
 /* constant_volume: while the z faces close by 10 % the x and y faces
  * follow so that the volume stays what it was, to round-off (a dilute
  * gas: nothing else moves the cell). */
@@ -485,6 +538,7 @@ int main(void)
         cmocka_unit_test(servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_holds_the_shear_stress),
+        cmocka_unit_test(shear_stage_targets),
         cmocka_unit_test(constant_volume_keeps_the_volume),
         cmocka_unit_test(constant_p_targets_hold_p_and_b),
     };

@@ -38,9 +38,22 @@ static void strain_profiles_start_and_end_at_rest(void **state)
     dem_wall_strain_state(&w, 2.0, &x, &v);
     assert_close(x, 1.0, 1e-15);
     assert_close(v, 0.0, 1e-15);
+    /* sine: both ways, +D at T/4, -D at 3T/4, back at T with the speed
+     * it started with, 2 pi D/T */
+    dem_wall_set_strain(&w, DEM_PROFILE_SINE, D, T, 0.0);
+    dem_wall_strain_state(&w, 0.0, &x, &v);
+    assert_close(v, 2.0 * M_PI * D / T, 1e-15);
+    dem_wall_strain_state(&w, 0.5, &x, &v);
+    assert_close(x, 1.0 + D, 1e-15);
+    dem_wall_strain_state(&w, 1.5, &x, &v);
+    assert_close(x, 1.0 - D, 1e-15);
+    dem_wall_strain_state(&w, 2.0, &x, &v);
+    assert_close(x, 1.0, 1e-15);
+    assert_close(v, 2.0 * M_PI * D / T, 1e-15);
 }
 
-/* 2 sigma = 2 p0 + Dsigma [1 - cos(2 pi t/t0)] (David et al.) at sampled times. */
+/* 2 sigma = 2 p0 + Dsigma [1 - cos(2 pi t/t0)] (David et al.) at sampled times.
+ */
 static void cyclic_target_follows_formula(void **state)
 {
     (void)state;

@@ -30,7 +30,8 @@ const char *const dem__cfg_stage_names[] = {
     "isotropic", "compress",   "cyclic",          "hold",
     "shear",     "constant_p", "constant_volume", 0};
 static const char *const axis_names[] = {"x", "y", "z", 0};
-static const char *const profile_names[] = {"cosine", "linear", "cyclic", 0};
+static const char *const profile_names[] = {"cosine", "linear", "cyclic",
+                                            "sine", 0};
 
 #define TOP(f) .scope = S_TOP, .off = offsetof(struct dem_config, f)
 #define STG(f) .scope = S_STAGE, .off = offsetof(struct dem_stage_config, f)
@@ -374,7 +375,8 @@ const struct key dem__cfg_keys[] = {
      .names = profile_names,
      .uses = T_AXIAL | T_SHEAR,
      .unit = "-",
-     .doc = "wall (shear: tilt) motion in time: cosine, linear or cyclic"},
+     .doc = "wall (shear: tilt) motion in time: cosine, linear, cyclic (0 -> "
+            "D -> 0) or sine (0 -> D -> -D -> 0)"},
     {.name = "amplitude",
      .kind = K_DOUBLE,
      STG(amplitude),
@@ -402,7 +404,9 @@ const struct key dem__cfg_keys[] = {
      .needs = T_CYC,
      .unit = "-",
      .doc = "cyclic: number of periods; shear with profile cyclic: cycles "
-            "of 0 -> shear_strain -> 0 within duration"},
+            "of 0 -> shear_strain -> 0 within duration, with profile sine: "
+            "0 -> shear_strain -> -shear_strain -> 0 (the same for "
+            "shear_stress)"},
     {.name = "b",
      .kind = K_DOUBLE,
      STG(b),

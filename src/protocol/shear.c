@@ -33,17 +33,30 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
     }
     for (int k = 0; k < 3; k++)
         dem_wall_set_fixed(&s->cell.tilt[k]);
-    const double T = c->profile == DEM_PROFILE_CYCLIC && c->cycles > 0
-                         ? c->duration / c->cycles
-                         : c->duration;
+    const int cyc = c->profile == DEM_PROFILE_CYCLIC,
+              sine = c->profile == DEM_PROFILE_SINE;
+    const double T =
+        (cyc || sine) && c->cycles > 0 ? c->duration / c->cycles : c->duration;
     struct dem_wall *txy = &s->cell.tilt[DEM_TILT_XY];
-    if (isnan(c->shear_stress)) {
-        dem_wall_set_strain(txy, c->profile, c->shear_strain * L[1], T, s->t);
-    } else {
-        const int cyc = c->profile == DEM_PROFILE_CYCLIC;
+    if (isnan(c->shear_strain)) {
+        /* the wall's target is p0 + amp (1 - cos(2 pi (t - t_start)/T))/2:
+         * cyclic with p0 = 0, amp = tau; sine, tau sin(2 pi t/T), with p0
+         * = -tau, amp = 2 tau and the cosine started a quarter period
+         * early */
+        const double tau = c->shear_stress;
         dem_wall_set_stress(txy, s->cfg.walls.mass, s->cfg.walls.gamma,
-                            s->cfg.walls.max_speed, cyc ? 0.0 : c->shear_stress,
-                            cyc ? c->shear_stress : 0.0, cyc ? T : 0.0, s->t);
+                            s->cfg.walls.max_speed,
+                            cyc    ? 0.0
+                            : sine ? -tau
+                                   : tau,
+                            cyc    ? tau
+                            : sine ? 2.0 * tau
+                                   : 0.0,
+                            cyc || sine ? T : 0.0, s->t);
+        if (sine)
+            txy->t_start = s->t - 0.25 * T;
+    } else {
+        dem_wall_set_strain(txy, c->profile, c->shear_strain * L[1], T, s->t);
     }
     st->t_end = s->t + c->duration;
     st->sets_reference = 1;

@@ -67,6 +67,10 @@ void dem_wall_strain_state(const struct dem_wall *w, double t, double *pos,
         g = 0.5 * (1.0 - cos(2.0 * M_PI * tau / T));
         dg = M_PI / T * sin(2.0 * M_PI * tau / T);
         break;
+    case DEM_PROFILE_SINE:
+        g = sin(2.0 * M_PI * tau / T);
+        dg = 2.0 * M_PI / T * cos(2.0 * M_PI * tau / T);
+        break;
     default: /* cosine */
         if (tau >= T) {
             g = 1.0;
