@@ -80,7 +80,7 @@ peak-prep|7|Luding et al. Fig. 7 gap: prepared with mu = 0.5 (looser)|biaxial2d-
 peak-rate|12|Luding et al. Fig. 7 gap: half the strain rate|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.4 --param seed=1,2,3,4
 peak-damping|7|Luding et al. Fig. 7 gap: no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set damping.gamma_b=0.0 --param seed=1,2,3,4
 peak-size|37|Luding et al. Fig. 7 gap: twice the particles (N = 3900)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set particles.count=3900 --param seed=1,2,3,4
-peak-gammat|10|Luding et al. Fig. 7 gap: no tangential viscosity|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.gamma_t=0.0 --param seed=1,2,3,4
+peak-gammat|20|Luding et al. Fig. 7 gap: no tangential viscosity|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.gamma_t=0.0 --param seed=1,2,3,4
 peak-kt-damping|10|Luding et al. Fig. 7 gap: k_t = k2 and no background damping|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param seed=1,2,3,4
 friction-dense|105|David et al. Fig. 2 left, Fig. 3 left (dense)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
 friction-loose|180|David et al. Fig. 3 left (loose: prepared with mu)|biaxial2d-paper --set stages.0.pressure=200 --set stages.1.pressure=200 --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param contact.mu,stages.0.mu=0.0,0.1,0.2,0.4,0.6,1.0 --param seed=1,2,3
