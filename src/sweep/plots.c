@@ -79,6 +79,12 @@ static int write_pair(const char *plotdir, const char *name, writer w,
 
 /* -------------------------------------------------------- Mohr circles */
 
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     dem__gp_head(gp, "mohr_circles",
@@ -100,6 +106,22 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 notitle\n");
         return DEM_OK;
     }
+    /* one colour and one key entry per side pressure, whichever group
+     * its circle belongs to (a group that lacks a pressure must not
+     * shift the colours of the others) */
+    double pres[DEM_SWEEP_MAX_POINTS];
+    int npres = 0;
+    for (int q = 0; q < s->ffg.n; q++)
+        for (long c = 0; c < s->ff[0][q].circles; c++) {
+            const double pc = s->runs[s->ff[0][q].members[c]].pressure;
+            int k = 0;
+            while (k < npres && pres[k] != pc)
+                k++;
+            if (k == npres && npres < DEM_SWEEP_MAX_POINTS)
+                pres[npres++] = pc;
+        }
+    qsort(pres, (size_t)npres, sizeof *pres, cmp_double);
+    char shown[DEM_SWEEP_MAX_POINTS] = {0};
     int block = 0;
     fprintf(gp,
             "set size ratio -1\nset xrange [0:%.6g]\nset yrange [0:%.6g]\n"
@@ -120,11 +142,21 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 fprintf(dat, "%.9g %.9g\n", m + rad * cos(M_PI * k / 180.0),
                         rad * sin(M_PI * k / 180.0));
             fprintf(dat, "\n\n");
-            fprintf(gp,
-                    "  \"mohr_circles.dat\" index %d with lines "
-                    "linewidth 2 linecolor %ld title \"p = %.4g%s\" "
-                    "noenhanced, \\\n",
-                    block++, c + 1, r->pressure, par);
+            int k = 0;
+            while (k < npres - 1 && pres[k] != r->pressure)
+                k++;
+            if (shown[k])
+                fprintf(gp,
+                        "  \"mohr_circles.dat\" index %d with lines "
+                        "linewidth 2 linecolor %d notitle, \\\n",
+                        block++, k + 1);
+            else
+                fprintf(gp,
+                        "  \"mohr_circles.dat\" index %d with lines "
+                        "linewidth 2 linecolor %d title \"p = %.4g\" "
+                        "noenhanced, \\\n",
+                        block++, k + 1, r->pressure);
+            shown[k] = 1;
         }
         if (f->fit.ok) {
             const double t = tan(f->fit.phi_deg / DEG);
@@ -432,8 +464,8 @@ static int compressed(const struct dem__sweep_run *r)
            r->axis < r->dim;
 }
 
-/* Luding et al. Figs. 4 and 6, David et al. Fig. 2 left: volumetric strain (top)
- * and deviatoric stress sigma_axial - sigma_lateral (bottom) against the
+/* Luding et al. Figs. 4 and 6, David et al. Fig. 2 left: volumetric strain
+ * (top) and deviatoric stress sigma_axial - sigma_lateral (bottom) against the
  * axial strain during the loading stage of every compressed run, from its
  * timeseries.csv (at most 400 points per run). Runs that differ only in
  * the seed share a colour and one key entry. */
