@@ -147,7 +147,7 @@ int dem__plot_run_particles(const char *outdir, const char *plotdir,
         packing_box(&pk);
     }
     struct dem__csv_table chains;
-    const int have = dim == 2 && read_chains(outdir, &chains, err);
+    const int have = read_chains(outdir, &chains, err);
     if (have) {
         pk.nchain = (int)chains.nrow;
         pk.chain_i = chains.col[0];

@@ -152,10 +152,12 @@ static int draw_discs(cairo_t *cr, const struct dem__plot_packing *pk,
     return shown;
 }
 
-/* 2D: every pair contact in compression as a black line between the
- * centres, its width growing with the normal force (1 px at the mean,
- * at most 6 px): the force chains of David et al. Fig. 1. Returns the mean
- * normal force (0: nothing drawn). */
+/* Every pair contact in compression as a black line between the centres,
+ * its width growing with the normal force (1 px at the mean of all
+ * contacts, at most 6 px): the force chains of David et al. Fig. 1. In 3D
+ * only the contacts between two spheres the mid plane cuts, projected on
+ * it: the chains of that slice. Returns the mean normal force (0:
+ * nothing drawn). */
 static double draw_chains(cairo_t *cr, const struct dem__plot_packing *pk,
                           const struct frame *fr)
 {
@@ -166,15 +168,18 @@ static double draw_chains(cairo_t *cr, const struct dem__plot_packing *pk,
             sum += pk->chain_fn[k];
             m++;
         }
-    if (pk->dim != 2 || m == 0)
+    if (m == 0)
         return 0.0;
-    const double mean = sum / m;
+    const double mean = sum / m, zmid = 0.5 * (pk->lo[2] + pk->hi[2]);
     cairo_set_source_rgba(cr, 0.0, 0.0, 0.0, 0.85);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     for (int k = 0; k < pk->nchain; k++) {
         const double fn = pk->chain_fn[k];
         const int i = (int)pk->chain_i[k], j = (int)pk->chain_j[k];
         if (fn <= 0.0 || j < 0 || i < 0 || i >= pk->n || j >= pk->n)
+            continue;
+        if (pk->dim == 3 && (shown_radius(pk, i, zmid) <= 0.0 ||
+                             shown_radius(pk, j, zmid) <= 0.0))
             continue;
         const double w = fn / mean;
         cairo_set_line_width(cr, w < 6.0 ? w : 6.0);
@@ -185,9 +190,8 @@ static double draw_chains(cairo_t *cr, const struct dem__plot_packing *pk,
         const double ux = pk->chain_cx[k] - pk->x[i],
                      uy = pk->chain_cy[k] - pk->y[i];
         const double u = sqrt(ux * ux + uy * uy);
-        const double reach = u > 0.0 ? (u + pk->r[j] -
-                                         0.5 * pk->chain_delta[k]) / u
-                                     : 1.0;
+        const double reach =
+            u > 0.0 ? (u + pk->r[j] - 0.5 * pk->chain_delta[k]) / u : 1.0;
         const double bx = ux * reach, by = uy * reach; /* x_j' - x_i */
         const double gx = pk->x[j] - pk->x[i] - bx,
                      gy = pk->y[j] - pk->y[i] - by;
@@ -327,9 +331,9 @@ int dem__plot_particles(const struct dem__plot_packing *pk,
     if (fmean > 0.0) {
         char line[160];
         snprintf(line, sizeof line,
-                 "black lines: contact normal forces, width 1 px at their "
+                 "black lines: contact normal forces%s, width 1 px at their "
                  "mean %.3g N",
-                 fmean);
+                 pk->dim == 3 ? " between cut spheres" : "", fmean);
         text_at(cr, MARGIN, 72.0, 12.0, line);
     }
     int rc =
