@@ -239,6 +239,13 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
         snprintf(set, sizeof set, "stages.1.pressure=%g", p[k]);
         snprintf(dir, sizeof dir, "%s/runs/%s", out, names[k]);
         fake_run(dir, cfg, set, summary);
+        /* the last run as the numbers kept of a sweep hold it, without
+         * its timeseries: still collected */
+        if (k == 3) {
+            snprintf(dir + strlen(dir), sizeof dir - strlen(dir),
+                     "/timeseries.csv");
+            assert_int_equal(remove(dir), 0);
+        }
     }
     free(names);
     struct dem_sweep_options o = {

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
@@ -57,14 +58,27 @@ static int read_cycles(struct dem__sweep_run *r, const struct dem__jval *cyc)
     return DEM_OK;
 }
 
-/* Fill r from rundir; a run that is not there is ok = 0 with a reason. */
+static int has_file(const char *dir, const char *leaf)
+{
+    char path[DEM_PATH_MAX];
+    struct dem_error e = {0};
+    return !dem_path_join(path, sizeof path, dir, leaf, &e) &&
+           access(path, F_OK) == 0;
+}
+
+/* Fill r from rundir; a run that is not there is ok = 0 with a reason.
+ * The analysis needs config.cfg and summary.json of a run that is not
+ * under way (no timeseries.csv.part): the numbers kept of a sweep
+ * (scripts/reproduce.sh --numbers, without the timeseries) are
+ * collected again too; only the loading-curve pictures then lack them. */
 static int read_run(struct dem__sweep_run *r, const char *rundir)
 {
     run_init(r);
-    if (!dem_sweep_run_finished(rundir)) {
+    if (!has_file(rundir, "config.cfg") || !has_file(rundir, "summary.json") ||
+        has_file(rundir, "timeseries.csv.part")) {
         snprintf(r->reason, sizeof r->reason,
-                 "the run did not finish (no timeseries.csv or summary.json; "
-                 "see runs/%s/run.log)",
+                 "the run did not finish (no config.cfg or summary.json, or "
+                 "timeseries.csv.part; see runs/%s/run.log)",
                  r->name);
         return DEM_OK;
     }
