@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "formats/csvtable.h"
+#include "formats/jsonread.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"
 #include "plot/plot.h"
@@ -95,6 +96,8 @@ struct series {
     int stage;                /* loading stage index */
     size_t lo, hi;            /* its rows [lo, hi) */
     size_t slo, shi;          /* the last shear stage's rows (none: equal) */
+    double peak_sin, peak_strain; /* summary.json's peak (smoothed, as the
+                                     analysis found it), NaN if none */
 };
 
 static const char axis_name[3] = {'x', 'y', 'z'};
@@ -325,7 +328,9 @@ static const struct quantity qtab[Q_COUNT] = {
     [Q_SYY] = {"sigma_yy", "σ_{yy}", 2, q_syy},
     [Q_SZZ] = {"sigma_zz", "σ_{zz}", 3, q_szz},
     [Q_SIG_AX] = {"sigma_axial", "σ_{$a}", 2, q_sig_ax},
-    [Q_SIN_PSI] = {"sin_psi", "sin ψ", 2, q_sin_psi},
+    /* the mobilised friction, sin phi_m (Luding et al. write sin psi; psi
+     * is the dilatancy angle in summary.json, docs/analysis.md) */
+    [Q_SIN_PSI] = {"sin_psi", "sin φ_m", 2, q_sin_psi},
     [Q_EPS_D] = {"eps_D", "deviatoric strain ε_D = ε_{xx} − ε_{yy}", 2,
                  q_eps_d},
     [Q_SIG_D] = {"sigma_D", "σ_D", 2, q_sig_d},
@@ -416,7 +421,7 @@ static const struct plot_spec plots[] = {
      NULL},
     {"stress_ratio",
      "Stress ratio during loading",
-     "sin ψ = (σ_{$a} − $l)/(σ_{$a} + $l)",
+     "sin φ_m = (σ_{$a} − $l)/(σ_{$a} + $l)",
      ROWS_LOADING,
      Q_EPS_AX,
      {Q_SIN_PSI, Q_NONE},
@@ -574,6 +579,15 @@ static void gp_peak(FILE *gp, const struct series *s, const struct plot_spec *p,
         }
     }
     double x = best < hi ? qtab[p->x].eval(s, best) : NAN;
+    const char *how = "";
+    if (p->peak == Q_SIN_PSI && isfinite(s->peak_sin) &&
+        isfinite(s->peak_strain)) {
+        /* the peak of summary.json, so that the picture and the numbers
+         * agree (the analysis smooths before it takes the maximum) */
+        vmax = s->peak_sin;
+        x = s->peak_strain;
+        how = " (summary.json)";
+    }
     if (!isfinite(x))
         return;
     /* the text goes on the side of the point that has room */
@@ -589,10 +603,11 @@ static void gp_peak(FILE *gp, const struct series *s, const struct plot_spec *p,
     char lab[64];
     expand(lab, sizeof lab, qtab[p->peak].label, s);
     fprintf(gp,
-            "set label 2 \"peak %s = %.4g\" at %.9g, %.9g %s point "
+            "set label 2 \"peak %s = %.4g%s\" at %.9g, %.9g %s point "
             "pointtype 7 pointsize 1.5 offset %s,0.8\n"
             "set offsets 0, 0, graph 0.08, 0\n",
-            lab, vmax, x, vmax, right ? "right" : "left", right ? "-1" : "1");
+            lab, vmax, how, x, vmax, right ? "right" : "left",
+            right ? "-1" : "1");
 }
 
 /* gnuplot reads '?' as a missing value (set datafile missing "?"). */
@@ -886,6 +901,16 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
                 : 3;
     if (!find_loading_from_config(&s, outdir))
         find_loading(&s);
+    s.peak_sin = s.peak_strain = NAN;
+    if (!dem_path_join(path, sizeof path, outdir, "summary.json", NULL)) {
+        struct dem__jval js;
+        struct dem_error jerr = {0};
+        if (!dem__jread_file(&js, path, &jerr)) {
+            s.peak_sin = dem__jread_number(&js, "peak.sin_phi");
+            s.peak_strain = dem__jread_number(&js, "peak.strain");
+            dem__jread_free(&js);
+        }
+    }
 
     if (!rc)
         rc = dem_path_join(plotdir, sizeof plotdir, outdir, "plots", err);

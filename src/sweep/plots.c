@@ -407,8 +407,9 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
     };
     dem__gp_head(gp, "stress_ratio_vs_void_ratio",
                  "Stress ratio versus void ratio during loading",
-                 "void ratio e", "sin ψ = (σ_1 - σ_3)/(σ_1 + σ_3)");
-    fprintf(dat, "# columns 1 void ratio  2 sin(psi); one block per run, "
+                 "void ratio e", "sin φ_m = (σ_1 - σ_3)/(σ_1 + σ_3)");
+    fprintf(dat, "# columns 1 void ratio  2 sin(phi_m), the mobilised "
+                 "friction (Luding et al.'s sin(psi)); one block per run, "
                  "its loading stage, in time order\n");
     fprintf(gp, "plot \\\n");
     int block = 0;
