@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
@@ -58,14 +57,6 @@ static int read_cycles(struct dem__sweep_run *r, const struct dem__jval *cyc)
     return DEM_OK;
 }
 
-static int has_file(const char *dir, const char *leaf)
-{
-    char path[DEM_PATH_MAX];
-    struct dem_error e = {0};
-    return !dem_path_join(path, sizeof path, dir, leaf, &e) &&
-           access(path, F_OK) == 0;
-}
-
 /* Fill r from rundir; a run that is not there is ok = 0 with a reason.
  * The analysis needs config.cfg and summary.json of a run that is not
  * under way (no timeseries.csv.part): the numbers kept of a sweep
@@ -74,8 +65,9 @@ static int has_file(const char *dir, const char *leaf)
 static int read_run(struct dem__sweep_run *r, const char *rundir)
 {
     run_init(r);
-    if (!has_file(rundir, "config.cfg") || !has_file(rundir, "summary.json") ||
-        has_file(rundir, "timeseries.csv.part")) {
+    if (!dem__sweep_exists(rundir, "config.cfg") ||
+        !dem__sweep_exists(rundir, "summary.json") ||
+        dem__sweep_exists(rundir, "timeseries.csv.part")) {
         snprintf(r->reason, sizeof r->reason,
                  "the run did not finish (no config.cfg or summary.json, or "
                  "timeseries.csv.part; see runs/%s/run.log)",

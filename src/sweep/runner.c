@@ -93,7 +93,7 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
     return rc;
 }
 
-static int exists(const char *dir, const char *name)
+int dem__sweep_exists(const char *dir, const char *name)
 {
     char path[DEM_PATH_MAX];
     if (dem_path_join(path, sizeof path, dir, name, NULL))
@@ -103,9 +103,10 @@ static int exists(const char *dir, const char *name)
 
 int dem_sweep_run_finished(const char *rundir)
 {
-    return exists(rundir, "config.cfg") && exists(rundir, "timeseries.csv") &&
-           exists(rundir, "summary.json") &&
-           !exists(rundir, "timeseries.csv.part");
+    return dem__sweep_exists(rundir, "config.cfg") &&
+           dem__sweep_exists(rundir, "timeseries.csv") &&
+           dem__sweep_exists(rundir, "summary.json") &&
+           !dem__sweep_exists(rundir, "timeseries.csv.part");
 }
 
 /* The resolved config as text, without the names of where it came from
@@ -158,7 +159,7 @@ static int finished_same(const struct dem_sweep_grid *g,
  * checkpoint. A resume that fails is followed by a rerun. */
 static int can_resume(const char *rundir)
 {
-    return exists(rundir, "checkpoint.bin");
+    return dem__sweep_exists(rundir, "checkpoint.bin");
 }
 
 static double now(void)

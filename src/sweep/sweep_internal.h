@@ -111,6 +111,9 @@ struct dem__sweep {
 double dem__sweep_fmin_norm(double kc, double k1, double k2);
 
 /* Write sweep.json of s (json_out.c). */
+/* 1 when dir/name exists. */
+int dem__sweep_exists(const char *dir, const char *name);
+
 void dem__sweep_write_json(FILE *f, const struct dem__sweep *s,
                            const struct dem_sweep_options *o);
 
