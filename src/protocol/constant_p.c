@@ -15,11 +15,8 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
                  struct dem_error *err)
 {
     (void)err;
-    const struct dem_stage_config *c = st->cfg;
     dem__stage_axial(s, st);
-    for (int w = 0; w < s->nwall; w++)
-        if (s->wall[w].axis != c->axis)
-            dem__stage_walls_stress(s, w, c->pressure, 0.0, 0.0);
+    dem__stage_lateral(s, st, st->cfg->pressure);
     return DEM_OK;
 }
 

@@ -13,11 +13,8 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
                  struct dem_error *err)
 {
     (void)err;
-    const struct dem_stage_config *c = st->cfg;
     dem__stage_axial(s, st);
-    for (int w = 0; w < s->nwall; w++)
-        if (s->wall[w].axis != c->axis)
-            dem_wall_set_fixed(&s->wall[w]);
+    dem__stage_lateral(s, st, 0.0);
     return DEM_OK;
 }
 

@@ -42,6 +42,19 @@ void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                         s->cfg.walls.max_speed, p0, amp, t0, s->t);
 }
 
+void dem__stage_lateral(struct dem_sim *s, const struct dem_stage_state *st,
+                        double pressure)
+{
+    for (int w = 0; w < s->nwall; w++) {
+        if (s->wall[w].axis == st->cfg->axis)
+            continue;
+        if (pressure > 0.0)
+            dem__stage_walls_stress(s, w, pressure, 0.0, 0.0);
+        else
+            dem_wall_set_fixed(&s->wall[w]);
+    }
+}
+
 void dem__stage_axial(struct dem_sim *s, struct dem_stage_state *st)
 {
     const struct dem_stage_config *c = st->cfg;

@@ -55,5 +55,9 @@ void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
  * profile, the min wall is fixed; the stage ends after duration and
  * refers the strains to its start. */
 void dem__stage_axial(struct dem_sim *s, struct dem_stage_state *st);
+/* The walls off the stage's axis: stress-controlled at pressure, or
+ * fixed when pressure is 0 (constant_p, constant_volume). */
+void dem__stage_lateral(struct dem_sim *s, const struct dem_stage_state *st,
+                        double pressure);
 
 #endif
