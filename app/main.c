@@ -28,6 +28,7 @@ static const char *const usage_main =
     "  sweep CONFIG|EXAMPLE --param KEY[,KEY...]=V1,V2,... [--param ...]\n"
     "        [--jobs N] -o DIR [--set KEY=VALUE]... [--quiet]\n"
     "                      run a parameter grid and the cross-run analysis\n"
+    "                      (also as mpirun -np K dembox sweep ...)\n"
     "  analyze OUTDIR      material parameters of a finished run -> "
     "OUTDIR/summary.json\n"
     "  plot OUTDIR         redraw the pictures of a run in OUTDIR/plots\n"
@@ -36,7 +37,7 @@ static const char *const usage_main =
     "  examples            list the built-in examples\n"
     "  example NAME        print a built-in example as a config file\n"
     "  help [COMMAND|config]  help on a command, or every config key\n"
-    "  --version           print the version\n";
+    "  --version           print the version (and the MPI library)\n";
 
 static const char *const usage_run =
     "usage: dembox run [CONFIG|EXAMPLE] [-o OUTDIR] [--set KEY=VALUE]... "
@@ -120,6 +121,13 @@ static const char *const usage_sweep =
     "resumed from their checkpoint.bin when they have one, else rerun. A\n"
     "failed run is reported and the others go on; the exit status is then 1.\n"
     "\n"
+    "Over MPI (a build with MPI, see dembox --version):\n"
+    "  mpirun -np K dembox sweep ...\n"
+    "spreads the runs over K ranks, each running --jobs at once; rank 0\n"
+    "hands out the next run as a rank becomes free and writes sweep.json,\n"
+    "the same as a local sweep. DIR must be on a file system all ranks\n"
+    "share. Details: docs/parallel.md.\n"
+    "\n"
     "DIR/sweep.json holds the grid, every run's key numbers (from its\n"
     "summary.json) and the cross-run analysis: the flow function\n"
     "tau = c + sigma tan phi from the Mohr circles at peak of runs differing\n"
@@ -181,9 +189,13 @@ static const char *const usage_example =
     "usage: dembox example NAME\n\nPrint a built-in example as a config "
     "file to start from.\n";
 
+/* 1 on MPI ranks other than 0: rank 0 says what all ranks would say. */
+static int quiet_rank;
+
 static int fail(const char *msg)
 {
-    fprintf(stderr, "dembox: %s\n", msg);
+    if (!quiet_rank)
+        fprintf(stderr, "dembox: %s\n", msg);
     return 1;
 }
 
@@ -422,7 +434,8 @@ static int cmd_sweep(int argc, char **argv)
             if (!more)
                 rc = fail("sweep: --param needs KEY[,KEY...]=V1,V2,...");
             else if (dem_sweep_param_add(&grid, argv[++k], &err))
-                rc = fprintf(stderr, "dembox: sweep: %s\n", err.msg) > 0;
+                rc = quiet_rank ||
+                     fprintf(stderr, "dembox: sweep: %s\n", err.msg) > 0;
         } else if (!strcmp(a, "--set")) {
             if (!more || o.nsets >= MAX_SETS)
                 rc = fail("sweep: --set needs KEY=VALUE (at most 256)");
@@ -442,10 +455,11 @@ static int cmd_sweep(int argc, char **argv)
         } else if (!strcmp(a, "--collect")) {
             collect = 1;
         } else if (a[0] == '-') {
-            fprintf(
-                stderr,
-                "dembox: sweep: unknown option %s (see dembox help sweep)\n",
-                a);
+            if (!quiet_rank)
+                fprintf(stderr,
+                        "dembox: sweep: unknown option %s (see dembox help "
+                        "sweep)\n",
+                        a);
             rc = 1;
         } else if (!o.target) {
             o.target = a;
@@ -477,13 +491,19 @@ static int cmd_sweep(int argc, char **argv)
         struct signals old;
         catch_signals(&old);
         o.stop = &stop_signal;
-        if (dem_sweep_run(&grid, &o, &rep, &err))
+        o.quiet |= quiet_rank;
+        if (dem_sweep_run(&grid, &o, &rep, &err)) {
+            /* a rank > 0 speaks only of its own failures (rank 0 reports
+             * the runs and the sweep) */
+            if (quiet_rank && err.msg[0])
+                fprintf(stderr, "dembox: %s\n", err.msg);
             rc = fail(err.msg);
+        }
         restore_signals(&old);
         if (stop_signal)
             rc = 128 + (int)stop_signal;
     }
-    if (!rc && !o.quiet)
+    if (!rc && !o.quiet && !quiet_rank)
         fprintf(stderr,
                 "dembox: sweep: %ld runs (%ld run now, %ld skipped as "
                 "finished); results in %s/sweep.json\n",
@@ -657,8 +677,47 @@ static int cmd_help(int argc, char **argv)
     return 0;
 }
 
+/* dembox started by an MPI launcher with several ranks: only `dembox
+ * sweep` runs over them (docs/parallel.md). Anything else is refused by
+ * rank 0 with one line, before MPI starts, so that no rank writes. */
+static int main_mpi(int argc, char **argv, int rank, int size)
+{
+    const char *c = argc > 1 ? argv[1] : "";
+    const char *why = NULL;
+    if (!dem_mpi_built())
+        why = "this dembox was built without MPI (install libopenmpi-dev "
+              "and build again), so its ranks would all do the same work";
+    else if (strcmp(c, "sweep"))
+        why = "only `dembox sweep` runs over MPI ranks (a single run is not "
+              "split over ranks yet): start other commands without mpirun";
+    if (why) {
+        if (rank == 0)
+            fprintf(stderr, "dembox: started by an MPI launcher with %s%d "
+                    "ranks, but %s\n", size < 0 ? "several " : "",
+                    size < 0 ? 0 : size, why);
+        return 1;
+    }
+    struct dem_error err = {0};
+    int rc = dem_mpi_init(&argc, &argv, &err);
+    if (rc) {
+        fprintf(stderr, "dembox: MPI: %s\n", err.msg);
+        dem_mpi_finalize();
+        return 1;
+    }
+    dem_mpi_world(&rank, &size);
+    if (rank > 0) /* progress and messages come from rank 0 */
+        quiet_rank = 1;
+    rc = cmd_sweep(argc - 2, argv + 2);
+    dem_mpi_finalize();
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
+    int rank, size;
+    dem_mpi_launch(&rank, &size);
+    if (size != 1 && !(size < 0 && rank == 0 && !dem_mpi_built()))
+        return main_mpi(argc, argv, rank, size);
     if (argc < 2) {
         fputs(usage_main, stderr);
         return 1;
@@ -683,7 +742,10 @@ int main(int argc, char **argv)
     if (!strcmp(c, "--help") || !strcmp(c, "-h"))
         return cmd_help(0, 0);
     if (!strcmp(c, "--version")) {
-        printf("dembox %s\n", DEM_VERSION);
+        if (dem_mpi_built())
+            printf("dembox %s (MPI: %s)\n", DEM_VERSION, dem_mpi_version());
+        else
+            printf("dembox %s (without MPI)\n", DEM_VERSION);
         return 0;
     }
     fprintf(stderr, "dembox: unknown command '%s' (see dembox --help)\n", c);

@@ -397,6 +397,30 @@ extern const int dem_n_examples;
 /* The example called name, or NULL. */
 const struct dem_example *dem_example_find(const char *name);
 
+/* ------------------------------------------------------------------ MPI */
+
+/* dembox over MPI (docs/parallel.md). Built with MPI when CMake found it
+ * (Debian: libopenmpi-dev); without it every function below still
+ * exists and MPI is simply never started. Today `dembox sweep` spreads
+ * its runs over the ranks (dem_sweep_run); one run is not decomposed. */
+
+/* 1 when this library was built with MPI. */
+int dem_mpi_built(void);
+/* The MPI library's name and version ("" without MPI). */
+const char *dem_mpi_version(void);
+/* The rank and the number of ranks an MPI launcher (mpirun, mpiexec,
+ * srun) gave this process, read from the environment before MPI starts:
+ * 0 and 1 when no launcher started it; size -1 when a launcher did but
+ * did not say how many ranks. */
+void dem_mpi_launch(int *rank, int *size);
+/* Start MPI (MPI_Init_thread, MPI_THREAD_SERIALIZED: the threads of a
+ * rank call MPI one at a time). DEM_EUSAGE without MPI. */
+int dem_mpi_init(int *argc, char ***argv, struct dem_error *err);
+/* End MPI if dem_mpi_init started it. */
+void dem_mpi_finalize(void);
+/* Rank and size of MPI_COMM_WORLD; 0 and 1 while MPI is not started. */
+void dem_mpi_world(int *rank, int *size);
+
 /* ---------------------------------------------------------------- sweep */
 
 /* Parameter sweeps (SPEC §7 `dembox sweep`): a grid of runs of one config
@@ -410,7 +434,10 @@ const struct dem_example *dem_example_find(const char *name);
  * Running (runner.c): every point is checked by the config parser before
  * anything runs; then each point runs as `dembox run` would run it (run,
  * analysis, pictures) in a thread of this process (up to `jobs` at once)
- * into DIR/runs/NAME, its warnings and failure in DIR/runs/NAME/run.log. A
+ * into DIR/runs/NAME, its warnings and failure in DIR/runs/NAME/run.log.
+ * Under MPI (dem_mpi_init, more than one rank; mpi_runner.c) every rank
+ * runs up to `jobs` points at once and rank 0 hands the points out as
+ * ranks become free; all ranks must see DIR at the same path. A
  * point whose folder already holds a finished run of the same config is
  * skipped, so a sweep can be restarted; an unfinished one is resumed from its
  * checkpoint when it has one, else rerun.

@@ -8,7 +8,7 @@ library search.
 
     import dembox
     out = dembox.run("biaxial2d", "out", sets=["contact.mu=0.3"])
-    ts = dembox.timeseries(out)          # column name -> list of floats
+    ts = dembox.timeseries(out)          # column name -> numpy array
     summary = dembox.summary(out)        # summary.json as a dict
     print(summary["peak"]["phi_deg"])
     c = dembox.contacts(out)             # contacts_final.csv, by column
@@ -17,12 +17,21 @@ library search.
 
 Every failure raises dembox.Error with the library's one-line message
 (naming the key, the file and the line for a bad config).
+
+The readers give each column as a numpy array of float64 (an empty field
+is NaN) when numpy is installed (Debian: python3-numpy), else as a list
+of floats (an empty field is None); dembox.numpy is the module or None.
 """
 import csv
 import ctypes
 import ctypes.util
 import json
 import os
+
+try:
+    import numpy
+except ImportError:  # the module works without it, with lists
+    numpy = None
 
 __all__ = ["Error", "version", "examples", "example_text", "run", "analyze",
            "plot", "timeseries", "summary", "particles", "contacts",
@@ -206,8 +215,8 @@ def plot(outdir):
 
 
 def timeseries(outdir):
-    """outdir/timeseries.csv as a dict: column name -> list of floats (an
-    empty field is None). With numpy, numpy.asarray(ts["t"]) etc."""
+    """outdir/timeseries.csv as a dict: column name -> its values (a numpy
+    array, or a list without numpy)."""
     return _csv(os.path.join(outdir, "timeseries.csv"))
 
 
@@ -222,30 +231,40 @@ def _number(text):
     return float(text) if text != "" else None
 
 
+def _column(values):
+    """A column: a float64 numpy array (None -> NaN), or the list itself
+    without numpy."""
+    if numpy is None:
+        return values
+    return numpy.array([numpy.nan if v is None else v for v in values],
+                       dtype=numpy.float64)
+
+
 def _csv(path):
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
     head, body = rows[0], rows[1:]
-    return {name: [_number(r[k]) for r in body] for k, name in enumerate(head)}
+    return {name: _column([_number(r[k]) for r in body])
+            for k, name in enumerate(head)}
 
 
 def particles(outdir):
     """outdir/particles_final.csv (the final state) as a dict: column ->
-    list of floats."""
+    its values (numpy array or list)."""
     return _csv(os.path.join(outdir, "particles_final.csv"))
 
 
 def contacts(outdir):
     """outdir/contacts_final.csv (every closed contact at the end: ids,
     contact point, normal, overlap, normal and tangential force, sliding)
-    as a dict: column -> list of floats."""
+    as a dict: column -> its values (numpy array or list)."""
     return _csv(os.path.join(outdir, "contacts_final.csv"))
 
 
 def dump_local(outdir):
     """outdir/dump_local.lammpstrj (written with output.dump_interval > 0):
-    a list of frames, each (step, dict column -> list of floats) of the
-    closed contacts at that step."""
+    a list of frames, each (step, dict column -> its values, numpy array
+    or list) of the closed contacts at that step."""
     frames = []
     with open(os.path.join(outdir, "dump_local.lammpstrj")) as f:
         lines = f.read().splitlines()
@@ -256,7 +275,7 @@ def dump_local(outdir):
             n = int(lines[k + 3])
             head = lines[k + 8].split()[2:]
             rows = [lines[k + 9 + r].split() for r in range(n)]
-            frames.append((step, {name: [float(r[c]) for r in rows]
+            frames.append((step, {name: _column([float(r[c]) for r in rows])
                                   for c, name in enumerate(head)}))
             k += 9 + n
         else:

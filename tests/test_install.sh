@@ -33,6 +33,6 @@ bash -n "$tmp/prefix/share/bash-completion/completions/dembox"
 if command -v python3 >/dev/null; then
     v=$(env -u DEMBOX_LIB PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" \
         python3 -c 'import dembox; print(dembox.version())')
-    [ "$v" = "$("$tmp/prefix/bin/dembox" --version | awk '{print $NF}')" ] ||
+    [ "$v" = "$("$tmp/prefix/bin/dembox" --version | awk '{print $2}')" ] ||
         { echo "test_install: python module says version '$v'" >&2; exit 1; }
 fi

@@ -14,7 +14,7 @@ assert "biaxial2d" in dembox.examples(), dembox.examples()
 assert "dimension = 2" in dembox.example_text("biaxial2d")
 assert dembox.version() == subprocess.run(
     [dembox_bin, "--version"], capture_output=True, text=True,
-    check=True).stdout.split()[-1], dembox.version()
+    check=True).stdout.split()[1], dembox.version()
 
 sets = ["particles.count=60", "output.interval=5.0e-6"]
 out_py = dembox.run("biaxial2d", os.path.join(tmp, "py"), sets=sets,
@@ -28,7 +28,18 @@ with open(os.path.join(out_py, "timeseries.csv")) as a, \
         open(os.path.join(tmp, "cli", "timeseries.csv")) as b:
     assert a.read() == b.read(), "timeseries differ"
 ts = dembox.timeseries(out_py)
-assert len(ts["t"]) > 10 and ts["t"] == sorted(ts["t"]), ts["t"][:5]
+assert len(ts["t"]) > 10 and list(ts["t"]) == sorted(ts["t"]), ts["t"][:5]
+# columns are numpy arrays where numpy is installed (python3-numpy, which
+# scripts/setup.sh installs), lists otherwise
+if dembox.numpy is not None:
+    np = dembox.numpy
+    assert isinstance(ts["t"], np.ndarray) and ts["t"].dtype == np.float64
+    assert np.all(np.diff(ts["t"]) > 0)
+    numpy_module, dembox.numpy = dembox.numpy, None
+    ts_list = dembox.timeseries(out_py)
+    dembox.numpy = numpy_module
+    assert isinstance(ts_list["t"], list)
+    assert ts_list["t"] == list(ts["t"]), "lists and arrays differ"
 assert "sigma_xx" in ts
 summary = dembox.summary(out_py)
 assert summary["dimension"] == 2, summary.get("dimension")
@@ -56,7 +67,7 @@ frames = dembox.dump_local(out_d)
 assert frames[0][0] == 0 and len(frames) >= 3, [f[0] for f in frames]
 assert [int(v) - 1 for v in frames[-1][1]["id1"]] == \
     [int(v) for v in cons["id_i"]], "the last dump_local frame differs"
-assert frames[-1][1]["fn"] == cons["fn"] or all(
+assert all(
     abs(a - b) <= 1e-9 * abs(b) for a, b in
     zip(frames[-1][1]["fn"], cons["fn"])), "normal forces differ"
 

@@ -122,11 +122,67 @@ static void isotropic_stage_reaches_target_pressure(void **state)
 /* Luding et al. Fig. 3: the left and bottom walls are fixed, the top wall
  * closes on the cosine profile, the right wall keeps the side stress; a dense
  * sample first compacts and then dilates. */
+/* The contact pictures' data of the run in out (suffix "": the end,
+ * "_peak": the peak) are densities: P(f/<f>) over its bins of 0.1 (and
+ * what lies beyond the last) and E(theta) over the circle integrate to
+ * 1, and the mean of f/<f> is 1. */
+static void contact_densities(const char *out, const char *suffix)
+{
+    char path[2048], line[512];
+    double integral[2] = {0, 0}, first_moment = 0.0;
+    long beyond = 0, pairs = 0;
+    for (int q = 0; q < 2; q++) {
+        snprintf(path, sizeof path, "%s/plots/%s%s.dat", out,
+                 q ? "contact_normals" : "force_distribution", suffix);
+        FILE *f = fopen(path, "r");
+        assert_non_null(f);
+        double last_theta = -1, x, y;
+        while (fgets(line, sizeof line, f)) {
+            if (line[0] == '#') {
+                const char *p = strstr(line, "over the ");
+                if (p)
+                    pairs = atol(p + 9);
+                p = strstr(line, "; ");
+                if (q == 0 && p && strstr(line, "beyond"))
+                    beyond = atol(p + 2);
+                continue;
+            }
+            if (sscanf(line, "%lf %lf", &x, &y) != 2)
+                continue; /* an empty bin ("?") */
+            if (q == 0) {
+                integral[0] += 0.1 * y;
+                first_moment += 0.1 * x * y;
+            } else if (last_theta >= 0 && x > last_theta) {
+                integral[1] += (x - last_theta) * M_PI / 180.0 * y;
+            }
+            last_theta = x;
+        }
+        fclose(f);
+    }
+    assert_true(pairs > 100);
+    assert_close(integral[0] + (double)beyond / pairs, 1.0, 1e-6);
+    assert_close(integral[1], 1.0, 1e-6);
+    assert_close(first_moment, 1.0, 0.05 + (double)beyond / pairs * 6.0);
+}
+
 static void biaxial_fixed_walls_and_dilatancy(void **state)
 {
     (void)state;
     char out[1024];
-    run_text(small_2d, "biaxial2d-small", 0, 0, 0, out, sizeof out);
+    const char *snap[] = {"output.snapshot_interval=0.01"};
+    run_text(small_2d, "biaxial2d-small", snap, 1, 0, out, sizeof out);
+    /* the contact pictures at the peak, from the snapshot nearest to it
+     * (and none in the isotropic run of snapshots_and_dump_cover_...) */
+    contact_densities(out, "_peak");
+    char gpath[2048], line[512];
+    snprintf(gpath, sizeof gpath, "%s/plots/force_distribution_peak.gp", out);
+    FILE *g = fopen(gpath, "r");
+    assert_non_null(g);
+    int titled = 0;
+    while (fgets(line, sizeof line, g))
+        titled |= strstr(line, "at the peak (snapshot at t = ") != NULL;
+    fclose(g);
+    assert_true(titled);
     static const struct dem__csv_want want[] = {
         {"stage", 1}, {"xmin_pos", 1}, {"ymin_pos", 1},
         {"eps_v", 1}, {"eps_yy", 1},   {"sigma_xx", 1}};
@@ -406,43 +462,8 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     assert_int_equal(row, (int)ct.nrow);
     dem__csv_table_free(&ct);
     dem__csv_table_free(&ft);
-    /* the contact pictures' data are densities: P(f/<f>) over its bins of
-     * 0.1 (and what lies beyond the last) and E(theta) over the circle
-     * integrate to 1, and the mean of f/<f> is 1 */
-    double integral[2] = {0, 0}, first_moment = 0.0;
-    long beyond = 0, pairs = 0;
-    for (int q = 0; q < 2; q++) {
-        snprintf(path, sizeof path, "%s/plots/%s.dat", out,
-                 q ? "contact_normals" : "force_distribution");
-        f = fopen(path, "r");
-        assert_non_null(f);
-        double last_theta = -1, x, y;
-        while (fgets(line, sizeof line, f)) {
-            if (line[0] == '#') {
-                const char *p = strstr(line, "over the ");
-                if (p)
-                    pairs = atol(p + 9);
-                p = strstr(line, "; ");
-                if (q == 0 && p && strstr(line, "beyond"))
-                    beyond = atol(p + 2);
-                continue;
-            }
-            if (sscanf(line, "%lf %lf", &x, &y) != 2)
-                continue; /* an empty bin ("?") */
-            if (q == 0) {
-                integral[0] += 0.1 * y;
-                first_moment += 0.1 * x * y;
-            } else if (last_theta >= 0 && x > last_theta) {
-                integral[1] += (x - last_theta) * M_PI / 180.0 * y;
-            }
-            last_theta = x;
-        }
-        fclose(f);
-    }
-    assert_true(pairs > 100);
-    assert_close(integral[0] + (double)beyond / pairs, 1.0, 1e-6);
-    assert_close(integral[1], 1.0, 1e-6);
-    assert_close(first_moment, 1.0, 0.05 + (double)beyond / pairs * 6.0);
+    contact_densities(out, "");
+    assert_false(exists(out, "plots/force_distribution_peak.dat"));
     /* a second run with fewer snapshots leaves none of the first's */
     const char *sets2[] = {sets[0], "output.snapshot_interval=0.01"};
     run_text(small_2d, "snapend", sets2, 2, 0, out, sizeof out);

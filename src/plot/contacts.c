@@ -1,13 +1,19 @@
-/* Two pictures of the final contact network (contacts_final.csv), particle
- * pairs only: force_distribution, the probability density of the normal
- * force f/<f> (log scale, with exp(-f/<f>) for comparison), and
- * contact_normals, the rose of the contact normals' directions in the
- * x-y plane (2D) or projected on the x-z plane (3D): the fabric. Each is
- * NAME.dat and NAME.gp run by gnuplot, as the other plots. A run without
- * contacts_final.csv (older runs) gets neither.
+/* Two pictures of a contact network, particle pairs only:
+ * force_distribution, the probability density of the normal force f/<f>
+ * (log scale, with exp(-f/<f>) for comparison), and contact_normals, the
+ * rose of the contact normals' directions in the x-y plane (2D) or
+ * projected on the x-z plane (3D): the fabric. Each is NAME.dat and
+ * NAME.gp run by gnuplot, as the other plots.
+ *
+ * Drawn for the final state (contacts_final.csv) and for the peak of the
+ * stress ratio (NAME_peak: the contacts snapshot of contacts.pvd nearest
+ * to the peak's time; its title gives both times). A run without
+ * contacts_final.csv (older runs) or without snapshots gets none of
+ * them.
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "io/fsutil.h"
@@ -50,21 +56,60 @@ static int write_pair(const char *plotdir, const char *name,
     return dem__outfile_commit(&gp, err);
 }
 
+/* The particle pairs of a contact network: normal force and the normal's
+ * two components in the plane of the rose (x and y in 2D, x and z in 3D;
+ * any length, either sense). */
 struct net {
-    const struct dem__csv_table *t;
     int dim;
-    double mean; /* N; mean normal force of the pairs in compression */
-    long n;      /* those pairs */
+    size_t m;           /* pairs */
+    double *fn, *a, *b; /* per pair (owned) */
+    double mean;        /* N; mean normal force of the pairs in compression */
+    long n;             /* those pairs */
+    char state[160];    /* "the final state", "the peak (...)" */
+    const char *name[2]; /* the pictures: forces, normals */
 };
+
+static void net_free(struct net *c)
+{
+    free(c->fn);
+    free(c->a);
+    free(c->b);
+    c->fn = c->a = c->b = NULL;
+}
+
+static int net_alloc(struct net *c, size_t m, struct dem_error *err)
+{
+    c->m = m;
+    c->fn = malloc((m ? m : 1) * sizeof *c->fn);
+    c->a = malloc((m ? m : 1) * sizeof *c->a);
+    c->b = malloc((m ? m : 1) * sizeof *c->b);
+    if (c->fn && c->a && c->b)
+        return DEM_OK;
+    net_free(c);
+    return dem_error_set(err, DEM_ENOMEM, "out of memory");
+}
+
+static void net_mean(struct net *c)
+{
+    c->mean = 0.0;
+    c->n = 0;
+    for (size_t k = 0; k < c->m; k++)
+        if (c->fn[k] > 0.0) {
+            c->mean += c->fn[k];
+            c->n++;
+        }
+    if (c->n > 0)
+        c->mean /= (double)c->n;
+}
 
 static void fill_forces(FILE *dat, FILE *gp, const void *ctx)
 {
     const struct net *c = ctx;
     enum { NB = NBIN };
     long count[NB] = {0}, beyond = 0;
-    for (size_t k = 0; k < c->t->nrow; k++) {
-        const double f = c->t->col[C_FN][k];
-        if (c->t->col[C_J][k] < 0 || f <= 0.0)
+    for (size_t k = 0; k < c->m; k++) {
+        const double f = c->fn[k];
+        if (f <= 0.0)
             continue;
         const int b = (int)(f / c->mean / FBIN);
         if (b < NB)
@@ -73,10 +118,10 @@ static void fill_forces(FILE *dat, FILE *gp, const void *ctx)
             beyond++;
     }
     fprintf(dat,
-            "# force_distribution: probability density of f_n/<f_n> over "
+            "# %s: probability density of f_n/<f_n> over "
             "the %ld particle pairs in compression (<f_n> = %.6g N), bins "
             "of %g; %ld beyond %g\n# f/<f>  P(f/<f>)  exp(-f/<f>)\n",
-            c->n, c->mean, FBIN, beyond, FMAX);
+            c->name[0], c->n, c->mean, FBIN, beyond, FMAX);
     for (int b = 0; b < NB; b++) {
         const double x = (b + 0.5) * FBIN;
         const double p = (double)count[b] / ((double)c->n * FBIN);
@@ -85,29 +130,27 @@ static void fill_forces(FILE *dat, FILE *gp, const void *ctx)
         else
             fprintf(dat, "%.3f ? %.6g\n", x, exp(-x));
     }
-    char sub[160];
+    char sub[320];
     snprintf(sub, sizeof sub,
-             "Normal forces of the final state (%ld pairs, <f_n> = %.3g N)",
+             "Normal forces at %s (%ld pairs, <f_n> = %.3g N)", c->state,
              c->n, c->mean);
-    dem__gp_head(gp, "force_distribution", sub, "f_n / <f_n>",
+    dem__gp_head(gp, c->name[0], sub, "f_n / <f_n>",
                  "probability density P(f_n/<f_n>)");
-    fputs("set logscale y\n"
-          "set xrange [0:*]\n"
-          "plot 'force_distribution.dat' using 1:2 with points pt 7 "
-          "title 'this run', \\\n"
-          "     '' using 1:3 with lines dt 2 lw 2 title 'exp(-f/<f>)'\n",
-          gp);
+    fprintf(gp,
+            "set logscale y\n"
+            "set xrange [0:*]\n"
+            "plot '%s.dat' using 1:2 with points pt 7 "
+            "title 'this run', \\\n"
+            "     '' using 1:3 with lines dt 2 lw 2 title 'exp(-f/<f>)'\n",
+            c->name[0]);
 }
 
 static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
 {
     const struct net *c = ctx;
-    const int b = c->dim == 2 ? C_NY : C_NZ; /* the second axis */
     long count[NROSE] = {0}, n = 0;
-    for (size_t k = 0; k < c->t->nrow; k++) {
-        if (c->t->col[C_J][k] < 0)
-            continue;
-        const double a = c->t->col[C_NX][k], v = c->t->col[b][k];
+    for (size_t k = 0; k < c->m; k++) {
+        const double a = c->a[k], v = c->b[k];
         if (a == 0.0 && v == 0.0)
             continue;
         /* n and -n: the same contact seen from either particle */
@@ -122,10 +165,10 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
     }
     const char *ax = c->dim == 2 ? "y" : "z";
     fprintf(dat,
-            "# contact_normals: density E(theta) of the contact normals' "
+            "# %s: density E(theta) of the contact normals' "
             "angle theta from x towards %s (%s), both senses, %d sectors; "
             "isotropic: 1/(2 pi) = 0.159\n# theta_deg  E(theta)\n",
-            ax, c->dim == 2 ? "2D" : "3D normals projected on x-z", NROSE);
+            c->name[1], ax, c->dim == 2 ? "2D" : "3D normals projected on x-z", NROSE);
     for (int k = 0; k <= NROSE; k++) {
         const int q = k % NROSE;
         const double e =
@@ -135,31 +178,31 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
         if (k < NROSE)
             fprintf(dat, "%.1f %.6g\n", 360.0 * (k + 1) / NROSE, e);
     }
-    char title[160];
-    snprintf(title, sizeof title,
-             "Contact normals of the final state (%ld pairs)%s", c->n,
+    char title[320];
+    snprintf(title, sizeof title, "Contact normals at %s (%zu pairs)%s",
+             c->state, c->m,
              c->dim == 2 ? "" : ", projected on the x-z plane");
     char xl[64];
     snprintf(xl, sizeof xl, "x; up: %s", ax);
-    dem__gp_head(gp, "contact_normals", title, xl, "");
-    fputs("set polar\n"
-          "set angles degrees\n"
-          "set size square\n"
-          "unset xtics\n"
-          "unset ytics\n"
-          "set grid polar 30\n"
-          "set border 0\n"
-          "set rtics\n"
-          "plot 'contact_normals.dat' using 1:2 with lines lw 2 "
-          "title 'E(θ)', \\\n"
-          "     1/(2*pi) with lines dt 2 title 'isotropic 1/(2π)'\n",
-          gp);
+    dem__gp_head(gp, c->name[1], title, xl, "");
+    fprintf(gp,
+            "set polar\n"
+            "set angles degrees\n"
+            "set size square\n"
+            "unset xtics\n"
+            "unset ytics\n"
+            "set grid polar 30\n"
+            "set border 0\n"
+            "set rtics\n"
+            "plot '%s.dat' using 1:2 with lines lw 2 "
+            "title 'E(θ)', \\\n"
+            "     1/(2*pi) with lines dt 2 title 'isotropic 1/(2π)'\n",
+            c->name[1]);
 }
 
-int dem__plot_contacts(const char *outdir, const char *plotdir, int dim,
-                       const char **names, int *count, struct dem_error *err)
+/* The particle pairs of contacts_final.csv; 0 pairs when it is absent. */
+static int read_final(const char *outdir, struct net *c, struct dem_error *err)
 {
-    *count = 0;
     char path[DEM_PATH_MAX];
     int rc =
         dem_path_join(path, sizeof path, outdir, "contacts_final.csv", err);
@@ -178,23 +221,175 @@ int dem__plot_contacts(const char *outdir, const char *plotdir, int dim,
     rc = dem__csv_table_read(&t, path, want, C_NCOL, err);
     if (rc)
         return rc;
-    struct net c = {&t, dim, 0.0, 0};
-    for (size_t k = 0; k < t.nrow; k++)
-        if (t.col[C_J][k] >= 0 && t.col[C_FN][k] > 0.0) {
-            c.mean += t.col[C_FN][k];
-            c.n++;
+    rc = net_alloc(c, t.nrow, err);
+    size_t m = 0;
+    const int b = c->dim == 2 ? C_NY : C_NZ; /* the second axis */
+    for (size_t k = 0; !rc && k < t.nrow; k++)
+        if (t.col[C_J][k] >= 0) {
+            c->fn[m] = t.col[C_FN][k];
+            c->a[m] = t.col[C_NX][k];
+            c->b[m] = t.col[b][k];
+            m++;
         }
-    if (c.n > 0) {
-        c.mean /= (double)c.n;
-        rc = write_pair(plotdir, "force_distribution", fill_forces, &c, err);
-        if (!rc)
-            rc = write_pair(plotdir, "contact_normals", fill_rose, &c, err);
-        if (!rc) {
-            names[0] = "force_distribution";
-            names[1] = "contact_normals";
-            *count = 2;
+    c->m = m;
+    dem__csv_table_free(&t);
+    snprintf(c->state, sizeof c->state, "the end");
+    return rc;
+}
+
+/* The whole file path as a string (owned), or NULL. */
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    if (fseek(f, 0, SEEK_END) == 0) {
+        const long len = ftell(f);
+        if (len >= 0 && fseek(f, 0, SEEK_SET) == 0 &&
+            (buf = malloc((size_t)len + 1)) != NULL) {
+            if (fread(buf, 1, (size_t)len, f) != (size_t)len) {
+                free(buf);
+                buf = NULL;
+            } else {
+                buf[len] = '\0';
+            }
         }
     }
-    dem__csv_table_free(&t);
+    fclose(f);
+    return buf;
+}
+
+/* The values of DataArray name in text (a contacts VTU that dembox
+ * wrote): m * comps numbers into v; 0 when found and whole. */
+static int vtu_array(const char *text, const char *name, size_t m,
+                     int comps, double *v)
+{
+    char key[64];
+    snprintf(key, sizeof key, "Name=\"%s\"", name);
+    const char *p = strstr(text, key);
+    if (!p || !(p = strchr(p, '>')))
+        return -1;
+    p++;
+    for (size_t k = 0; k < m * (size_t)comps; k++) {
+        char *end;
+        v[k] = strtod(p, &end);
+        if (end == p)
+            return -1;
+        p = end;
+    }
+    return 0;
+}
+
+/* The pairs of the contacts snapshot nearest to time t (contacts.pvd);
+ * c->m = 0 when the run has none. */
+static int read_snapshot(const char *outdir, double t, double tpeak,
+                         struct net *c, struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    int rc = dem_path_join(path, sizeof path, outdir, "contacts.pvd", err);
+    if (rc)
+        return rc;
+    char *pvd = slurp(path);
+    if (!pvd)
+        return DEM_OK;
+    char best[256] = "";
+    double tbest = NAN;
+    for (const char *p = pvd; (p = strstr(p, "timestep=\"")) != NULL;) {
+        const double ts = strtod(p + 10, NULL);
+        const char *fq = strstr(p, "file=\"");
+        if (!fq)
+            break;
+        fq += 6;
+        const size_t len = strcspn(fq, "\"");
+        if (len < sizeof best &&
+            (!isfinite(tbest) || fabs(ts - t) < fabs(tbest - t))) {
+            memcpy(best, fq, len);
+            best[len] = '\0';
+            tbest = ts;
+        }
+        p = fq + len;
+    }
+    free(pvd);
+    if (!best[0] || strchr(best, '/'))
+        return DEM_OK;
+    rc = dem_path_join(path, sizeof path, outdir, best, err);
+    char *vtu = rc ? NULL : slurp(path);
+    if (!vtu)
+        return rc;
+    const char *cells = strstr(vtu, "NumberOfCells=\"");
+    const long nc = cells ? strtol(cells + 15, NULL, 10) : -1;
+    double *partner = NULL, *branch = NULL;
+    if (nc >= 0)
+        rc = net_alloc(c, (size_t)nc, err);
+    if (nc >= 0 && !rc) {
+        partner = malloc(((size_t)nc + 1) * sizeof *partner);
+        branch = malloc(((size_t)nc + 1) * 3 * sizeof *branch);
+        if (!partner || !branch)
+            rc = dem_error_set(err, DEM_ENOMEM, "out of memory");
+    }
+    if (nc >= 0 && !rc &&
+        (vtu_array(vtu, "normal_force", (size_t)nc, 1, c->fn) ||
+         vtu_array(vtu, "partner", (size_t)nc, 1, partner) ||
+         vtu_array(vtu, "branch", (size_t)nc, 3, branch)))
+        rc = dem_error_set(err, DEM_EIO,
+                           "%s: not a contacts snapshot of dembox", path);
+    size_t m = 0;
+    const int b = c->dim == 2 ? 1 : 2;
+    for (long k = 0; nc >= 0 && !rc && k < nc; k++)
+        if (partner[k] >= 0) { /* a particle pair (walls: -1 - w) */
+            c->fn[m] = c->fn[k];
+            c->a[m] = branch[3 * k];
+            c->b[m] = branch[3 * k + b];
+            m++;
+        }
+    if (nc >= 0)
+        c->m = m;
+    snprintf(c->state, sizeof c->state,
+             "the peak (snapshot at t = %.4g s, peak at %.4g s)", tbest,
+             tpeak);
+    free(partner);
+    free(branch);
+    free(vtu);
+    return rc;
+}
+
+/* The two pictures of c, under c->name; their names appended to names. */
+static int draw(const char *plotdir, struct net *c, const char **names,
+                int *count, struct dem_error *err)
+{
+    net_mean(c);
+    if (c->n == 0)
+        return DEM_OK;
+    int rc = write_pair(plotdir, c->name[0], fill_forces, c, err);
+    if (!rc)
+        rc = write_pair(plotdir, c->name[1], fill_rose, c, err);
+    if (!rc) {
+        names[(*count)++] = c->name[0];
+        names[(*count)++] = c->name[1];
+    }
+    return rc;
+}
+
+int dem__plot_contacts(const char *outdir, const char *plotdir, int dim,
+                       double tpeak, const char **names, int *count,
+                       struct dem_error *err)
+{
+    *count = 0;
+    struct net c = {.dim = dim, .name = {"force_distribution",
+                                         "contact_normals"}};
+    int rc = read_final(outdir, &c, err);
+    if (!rc && c.m > 0)
+        rc = draw(plotdir, &c, names, count, err);
+    net_free(&c);
+    const int final = *count > 0;
+    if (!rc && final && isfinite(tpeak)) {
+        struct net pk = {.dim = dim, .name = {"force_distribution_peak",
+                                              "contact_normals_peak"}};
+        rc = read_snapshot(outdir, tpeak, tpeak, &pk, err);
+        if (!rc && pk.m > 0)
+            rc = draw(plotdir, &pk, names, count, err);
+        net_free(&pk);
+    }
     return rc;
 }

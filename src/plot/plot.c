@@ -566,6 +566,22 @@ static void gp_stage_lines(FILE *gp, const struct series *s)
     }
 }
 
+/* The time of summary.json's peak of the stress ratio: of the loading
+ * stage's row nearest to its strain; NaN when the analysis found none. */
+static double peak_time(const struct series *s)
+{
+    size_t best = s->hi;
+    double score = INFINITY;
+    for (size_t i = s->lo; isfinite(s->peak_strain) && i < s->hi; i++) {
+        const double v = fabs(qtab[Q_EPS_AX].eval(s, i) - s->peak_strain);
+        if (isfinite(v) && v < score) {
+            score = v;
+            best = i;
+        }
+    }
+    return best < s->hi ? s->c[TS_T][best] : NAN;
+}
+
 static void gp_peak(FILE *gp, const struct series *s, const struct plot_spec *p,
                     size_t lo, size_t hi)
 {
@@ -921,10 +937,11 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     for (size_t k = 0; !rc && k < NPLOTS; k++)
         if (plot_wanted(&s, (int)k))
             rc = write_plot(&s, &plots[k], plotdir, err);
-    const char *extra[2];
+    const char *extra[4];
     int nextra = 0;
     if (!rc) /* the contact network's pictures (plot/contacts.c) */
-        rc = dem__plot_contacts(outdir, plotdir, s.dim, extra, &nextra, err);
+        rc = dem__plot_contacts(outdir, plotdir, s.dim, peak_time(&s), extra,
+                                &nextra, err);
     if (!rc)
         rc = run_gnuplot_all(&s, plotdir, extra, nextra, err);
     if (!rc && prc)

@@ -54,10 +54,12 @@ int dem__plot_particles(const struct dem__plot_packing *pk,
 
 /* force_distribution and contact_normals (plot/contacts.c): their .dat
  * and .gp in plotdir from OUTDIR/contacts_final.csv, when it exists and
- * has pairs in compression; names[0..*count) get their names (at most
- * 2) for gnuplot to draw. */
+ * has pairs in compression, and the same with _peak from the contacts
+ * snapshot nearest to time tpeak (s; NaN: none); names[0..*count) get
+ * their names (at most 4) for gnuplot to draw. */
 int dem__plot_contacts(const char *outdir, const char *plotdir, int dim,
-                       const char **names, int *count, struct dem_error *err);
+                       double tpeak, const char **names, int *count,
+                       struct dem_error *err);
 
 /* particles.png of a run (plot/packing.c). */
 /* Read OUTDIR/particles_final.csv with the columns the picture needs. */

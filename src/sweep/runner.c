@@ -8,7 +8,8 @@
  * runs are independent; a failed run ends with its status and the others
  * go on. (Child processes forked from this one could not use OpenMP if
  * the caller had used it before: GNU libgomp's thread pool does not
- * survive a fork.)
+ * survive a fork.) Under MPI the other ranks take points from the same
+ * pool through rank 0 (mpi_runner.c).
  */
 #include "dembox.h"
 #include <errno.h>
@@ -22,12 +23,11 @@
 #include <unistd.h>
 
 #include "io/fsutil.h"
+#include "sweep/sweep_internal.h"
 
 #define SET_LEN (DEM_NAME_MAX + DEM_SWEEP_VALUE_MAX)
 #define MAX_POINT_SETS (DEM_SWEEP_MAX_PARAMS * DEM_SWEEP_MAX_KEYS)
 #define MAX_USER_SETS 256
-
-typedef char run_name[DEM_SWEEP_RUNNAME_MAX + 8];
 
 /* The config of the target with the user's --set and then extra. */
 static int parse_with(const struct dem_sweep_options *o, char (*extra)[SET_LEN],
@@ -162,7 +162,7 @@ static int can_resume(const char *rundir)
     return dem__sweep_exists(rundir, "checkpoint.bin");
 }
 
-static double now(void)
+double dem__sweep_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -179,9 +179,10 @@ static void log_warning(const char *line, void *user)
 /* Point i in rundir, as `dembox run` would do it: the run (or its resume
  * from the checkpoint), the analysis, the pictures; warnings and the
  * failure to rundir/run.log. Returns the status; err gets the failure. */
-static int run_point(const struct dem_sweep_grid *g,
-                     const struct dem_sweep_options *o, long i,
-                     const char *rundir, int resume, struct dem_error *err)
+int dem__sweep_run_point(const struct dem_sweep_grid *g,
+                         const struct dem_sweep_options *o, long i,
+                         const char *rundir, int resume,
+                         struct dem_error *err)
 {
     char log[DEM_PATH_MAX];
     int rc = dem_mkdir_p(rundir, err);
@@ -223,28 +224,10 @@ static int run_point(const struct dem_sweep_grid *g,
     return rc;
 }
 
-/* What the workers of run_points share; lock guards every field below
- * it. */
-struct pool {
-    const struct dem_sweep_grid *g;
-    const struct dem_sweep_options *o;
-    const char *runs;
-    run_name *names;
-    pthread_mutex_t lock;
-    char *todo;         /* points still to run */
-    char *resume_tried; /* points whose checkpoint was tried */
-    long next;          /* no point before this one is to do */
-    long total, done;
-    struct dem_sweep_report *rep;
-    int rc; /* an error of the sweep itself (not of a run) */
-    struct dem_error err;
-};
-
-/* The next point to run, or -1 (none left, a stop was asked for, or the
- * sweep failed); under p->lock. */
-static long take_point(struct pool *p, int *resume, char *rundir)
+long dem__sweep_take(struct dem__sweep_pool *p, int rank, int *resume,
+                     char *rundir)
 {
-    if (p->rc || (p->o->stop && *p->o->stop))
+    if (p->rc || p->halt || (p->o->stop && *p->o->stop))
         return -1;
     const long n = dem_sweep_grid_size(p->g);
     while (p->next < n && !p->todo[p->next])
@@ -258,19 +241,26 @@ static long take_point(struct pool *p, int *resume, char *rundir)
     *resume = !p->resume_tried[i] && can_resume(rundir);
     p->resume_tried[i] |= (char)*resume;
     p->todo[i] = 0;
-    if (!p->o->quiet)
+    if (!p->o->quiet && rank > 0)
+        fprintf(stderr, "dembox: sweep: %s %s on rank %d\n",
+                *resume ? "resuming" : "started", p->names[i], rank);
+    else if (!p->o->quiet)
         fprintf(stderr, "dembox: sweep: %s %s\n",
                 *resume ? "resuming" : "started", p->names[i]);
     return i;
 }
 
-/* After point i ran; under p->lock. */
-static void point_done(struct pool *p, long i, int resume, const char *rundir,
-                       int rc, const char *msg, double seconds)
+void dem__sweep_done(struct dem__sweep_pool *p, long i, int resume,
+                     int stopped, int rc, const char *msg, double seconds)
 {
+    char rundir[DEM_PATH_MAX];
+    if (dem_path_join(rundir, sizeof rundir, p->runs, p->names[i], NULL))
+        rundir[0] = '\0';
     const int ok = rc == DEM_OK && dem_sweep_run_finished(rundir);
-    if (rc == DEM_EINTERRUPTED && p->o->stop && *p->o->stop)
+    if (rc == DEM_EINTERRUPTED && stopped) {
+        p->halt = 1; /* the sweep stops where one of its runs was stopped */
         return; /* stopped with a checkpoint: neither done nor failed */
+    }
     if (!ok && resume) {
         /* the resume did not work: run the point again from the start */
         if (!p->o->quiet)
@@ -301,20 +291,22 @@ static void point_done(struct pool *p, long i, int resume, const char *rundir,
 
 static void *worker(void *arg)
 {
-    struct pool *p = arg;
+    struct dem__sweep_pool *p = arg;
     for (;;) {
         char rundir[DEM_PATH_MAX];
         int resume = 0;
         pthread_mutex_lock(&p->lock);
-        const long i = take_point(p, &resume, rundir);
+        const long i = dem__sweep_take(p, 0, &resume, rundir);
         pthread_mutex_unlock(&p->lock);
         if (i < 0)
             break;
-        const double t0 = now();
+        const double t0 = dem__sweep_now();
         struct dem_error e = {0};
-        const int rc = run_point(p->g, p->o, i, rundir, resume, &e);
+        const int rc = dem__sweep_run_point(p->g, p->o, i, rundir, resume, &e);
+        const int stopped = p->o->stop && *p->o->stop;
         pthread_mutex_lock(&p->lock);
-        point_done(p, i, resume, rundir, rc, e.msg, now() - t0);
+        dem__sweep_done(p, i, resume, stopped, rc, e.msg,
+                        dem__sweep_now() - t0);
         pthread_mutex_unlock(&p->lock);
     }
     return NULL;
@@ -322,7 +314,7 @@ static void *worker(void *arg)
 
 /* Write DIR/runs/index: one line per point, "NAME<TAB>KEY=VALUE ...". */
 static int write_index(const struct dem_sweep_grid *g, const char *runs,
-                       run_name *names, struct dem_error *err)
+                       dem__sweep_runname *names, struct dem_error *err)
 {
     char path[DEM_PATH_MAX];
     int rc = dem_path_join(path, sizeof path, runs, "index", err);
@@ -345,19 +337,20 @@ static int write_index(const struct dem_sweep_grid *g, const char *runs,
     return DEM_OK;
 }
 
-/* Run the points flagged in todo[], at most o->jobs at once: each job is
- * a thread of this process that takes the next point and runs it with its
- * own OpenMP threads (the library keeps no global state: the runs are as
- * independent as separate processes, and their results the same bit for
- * bit). */
+/* Run the points flagged in todo[], at most o->jobs at once here: each
+ * job is a thread of this process that takes the next point and runs it
+ * with its own OpenMP threads (the library keeps no global state: the
+ * runs are as independent as separate processes, and their results the
+ * same bit for bit). Under MPI this thread meanwhile hands points to the
+ * other ranks (mpi_runner.c). */
 static int run_points(const struct dem_sweep_grid *g,
                       const struct dem_sweep_options *o, const char *runs,
-                      run_name *names, char *todo, struct dem_sweep_report *rep,
-                      struct dem_error *err)
+                      dem__sweep_runname *names, char *todo,
+                      struct dem_sweep_report *rep, struct dem_error *err)
 {
     const long n = dem_sweep_grid_size(g);
     int jobs = o->jobs > 0 ? o->jobs : 1;
-    struct pool p = {
+    struct dem__sweep_pool p = {
         .g = g, .o = o, .runs = runs, .names = names, .todo = todo, .rep = rep};
     p.resume_tried = calloc((size_t)n, 1);
     pthread_t *tid = calloc((size_t)jobs, sizeof *tid);
@@ -377,6 +370,7 @@ static int run_points(const struct dem_sweep_grid *g,
         p.rc =
             dem_error_set(&p.err, DEM_EINTERNAL,
                           "sweep: cannot start a thread: %s", strerror(errno));
+    dem__sweep_mpi_serve(&p);
     for (int k = 0; k < started; k++)
         pthread_join(tid[k], NULL);
     pthread_mutex_destroy(&p.lock);
@@ -384,7 +378,7 @@ static int run_points(const struct dem_sweep_grid *g,
     free(tid);
     if (p.rc)
         return dem_error_set(err, p.rc, "%s", p.err.msg);
-    if (o->stop && *o->stop)
+    if (p.halt || (o->stop && *o->stop))
         return dem_error_set(err, DEM_EINTERRUPTED,
                              "sweep: stopped; the runs under way saved "
                              "checkpoints: run the same command again to "
@@ -392,31 +386,20 @@ static int run_points(const struct dem_sweep_grid *g,
     return DEM_OK;
 }
 
-int dem_sweep_run(const struct dem_sweep_grid *g,
-                  const struct dem_sweep_options *o,
-                  struct dem_sweep_report *rep, struct dem_error *err)
+/* The check, DIR/runs and its index, and which points are to run. */
+static int prepare(const struct dem_sweep_grid *g,
+                   const struct dem_sweep_options *o, char *runs,
+                   dem__sweep_runname *names, char *todo,
+                   struct dem_sweep_report *rep, struct dem_error *err)
 {
-    memset(rep, 0, sizeof *rep);
-    int rc = dem_sweep_validate(g, o, err);
-    if (rc)
-        return rc;
     const long n = dem_sweep_grid_size(g);
-    rep->points = n;
-    char runs[DEM_PATH_MAX];
-    rc = dem_path_join(runs, sizeof runs, o->outdir, "runs", err);
+    int rc = dem_sweep_validate(g, o, err);
+    if (!rc)
+        rc = dem_path_join(runs, DEM_PATH_MAX, o->outdir, "runs", err);
     if (!rc)
         rc = dem_mkdir_p(runs, err);
-    if (rc)
-        return rc;
-    run_name *names = malloc((size_t)n * sizeof *names);
-    char *todo = malloc((size_t)n);
-    if (!names || !todo) {
-        free(names);
-        free(todo);
-        return dem_error_set(err, DEM_ENOMEM, "out of memory");
-    }
-    dem_sweep_point_names(g, names);
-    rc = write_index(g, runs, names, err);
+    if (!rc)
+        rc = write_index(g, runs, names, err);
     for (long i = 0; !rc && i < n; i++) {
         char rundir[DEM_PATH_MAX];
         rc = dem_path_join(rundir, sizeof rundir, runs, names[i], err);
@@ -428,6 +411,30 @@ int dem_sweep_run(const struct dem_sweep_grid *g,
                 "dembox: sweep: %ld of %ld runs already finished, "
                 "skipped\n",
                 rep->skipped, n);
+    return rc;
+}
+
+int dem_sweep_run(const struct dem_sweep_grid *g,
+                  const struct dem_sweep_options *o,
+                  struct dem_sweep_report *rep, struct dem_error *err)
+{
+    memset(rep, 0, sizeof *rep);
+    int rank, size;
+    dem_mpi_world(&rank, &size);
+    if (rank > 0)
+        return dem__sweep_mpi_work(g, o, err);
+    const long n = dem_sweep_grid_size(g);
+    rep->points = n;
+    char runs[DEM_PATH_MAX];
+    dem__sweep_runname *names = malloc((size_t)n * sizeof *names);
+    char *todo = malloc((size_t)n);
+    int rc = names && todo ? DEM_OK
+                           : dem_error_set(err, DEM_ENOMEM, "out of memory");
+    if (!rc) {
+        dem_sweep_point_names(g, names);
+        rc = prepare(g, o, runs, names, todo, rep, err);
+    }
+    dem__sweep_mpi_start(rc); /* the other ranks go on or end with rc */
     if (!rc)
         rc = run_points(g, o, runs, names, todo, rep, err);
     free(names);

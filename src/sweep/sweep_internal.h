@@ -4,6 +4,7 @@
 
 #include "analysis/analysis.h"
 #include "dembox.h"
+#include <pthread.h>
 
 /* One grid point's run: its parameters, config and summary numbers.
  * Numbers that the summary does not have are NaN. */
@@ -110,9 +111,70 @@ struct dem__sweep {
 /* |f_min|/(k2 delta_max) = (kc/k2)(1 - k1/k2)/(1 + kc/k2) (SPEC 2.2). */
 double dem__sweep_fmin_norm(double kc, double k1, double k2);
 
-/* Write sweep.json of s (json_out.c). */
 /* 1 when dir/name exists. */
 int dem__sweep_exists(const char *dir, const char *name);
+
+/* ------------------------------------------------ running (runner.c) */
+
+typedef char dem__sweep_runname[DEM_SWEEP_RUNNAME_MAX + 8];
+
+/* The points of a sweep and who runs which: the jobs of rank 0 take
+ * them directly, the other ranks through rank 0's serving thread. lock
+ * guards every field below it. */
+struct dem__sweep_pool {
+    const struct dem_sweep_grid *g;
+    const struct dem_sweep_options *o;
+    const char *runs; /* DIR/runs */
+    dem__sweep_runname *names;
+    pthread_mutex_t lock;
+    char *todo;         /* points still to run */
+    char *resume_tried; /* points whose checkpoint was tried */
+    long next;          /* no point before this one is to do */
+    long total, done;
+    struct dem_sweep_report *rep;
+    int halt; /* a run was stopped by a signal: start no other */
+    int rc;   /* an error of the sweep itself (not of a run) */
+    struct dem_error err;
+};
+
+/* The next point for a job of rank `rank`, or -1 (none left, a stop was
+ * asked for, or the sweep failed); *resume: resume it from its
+ * checkpoint; rundir (DEM_PATH_MAX) gets its folder. Under p->lock. */
+long dem__sweep_take(struct dem__sweep_pool *p, int rank, int *resume,
+                     char *rundir);
+/* After point i ran (resumed or not) with status rc and message msg, in
+ * seconds; stopped: its rank was asked to stop (a signal). Counts it,
+ * reports it, and puts it back when a resume failed. Under p->lock. */
+void dem__sweep_done(struct dem__sweep_pool *p, long i, int resume,
+                     int stopped, int rc, const char *msg, double seconds);
+/* Point i in rundir, as `dembox run` would do it (run or resume,
+ * analysis, pictures), its warnings and failure to rundir/run.log. */
+int dem__sweep_run_point(const struct dem_sweep_grid *g,
+                         const struct dem_sweep_options *o, long i,
+                         const char *rundir, int resume,
+                         struct dem_error *err);
+/* Seconds on a monotonic clock. */
+double dem__sweep_now(void);
+
+/* ------------------------------------- over MPI ranks (mpi_runner.c) */
+
+/* Rank 0: tell the other ranks whether the sweep goes on (rc = DEM_OK)
+ * or ends with rc. Nothing without MPI or with one rank. */
+void dem__sweep_mpi_start(int rc);
+/* Rank 0, in the thread that started the sweep's jobs: give points to
+ * the jobs of the other ranks until every one of them was told that
+ * none is left. Returns at once with one rank. */
+void dem__sweep_mpi_serve(struct dem__sweep_pool *p);
+/* Ranks > 0: wait for rank 0's start, then run the points it gives, up
+ * to o->jobs at once. Returns rank 0's status (its message is printed
+ * there; err.msg is then empty) or an error of this rank. */
+int dem__sweep_mpi_work(const struct dem_sweep_grid *g,
+                        const struct dem_sweep_options *o,
+                        struct dem_error *err);
+
+/* ------------------------------------------ collecting and plotting */
+
+/* Write sweep.json of s (json_out.c). */
 
 void dem__sweep_write_json(FILE *f, const struct dem__sweep *s,
                            const struct dem_sweep_options *o);

@@ -1,0 +1,115 @@
+/* MPI: how this process was launched, and the world once MPI started
+ * (include/dembox.h, docs/parallel.md). Built with MPI when DEM_HAVE_MPI
+ * is defined (CMake found an MPI library); otherwise MPI never starts and
+ * the world is one rank. */
+#include "dembox.h"
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef DEM_HAVE_MPI
+#include <mpi.h>
+#endif
+
+/* A non-negative integer environment variable, or -1. */
+static long env_int(const char *name)
+{
+    const char *s = getenv(name);
+    if (!s || !*s)
+        return -1;
+    char *end;
+    const long v = strtol(s, &end, 10);
+    return *end || v < 0 ? -1 : v;
+}
+
+void dem_mpi_launch(int *rank, int *size)
+{
+    /* Open MPI's mpirun; MPICH's hydra and Slurm's PMI-1/2 (srun); PMIx
+     * launchers give the rank only */
+    static const char *const names[][2] = {
+        {"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"},
+        {"PMI_RANK", "PMI_SIZE"},
+        {"PMIX_RANK", NULL},
+    };
+    *rank = 0;
+    *size = 1;
+    for (size_t k = 0; k < sizeof names / sizeof *names; k++) {
+        const long r = env_int(names[k][0]);
+        if (r < 0)
+            continue;
+        const long n = names[k][1] ? env_int(names[k][1]) : -1;
+        *rank = r > 1000000 ? 1000000 : (int)r;
+        *size = n < 1 || n > 1000000 ? -1 : (int)n;
+        return;
+    }
+}
+
+#ifdef DEM_HAVE_MPI
+static int started; /* dem_mpi_init called MPI_Init_thread */
+
+int dem_mpi_built(void) { return 1; }
+
+const char *dem_mpi_version(void)
+{
+    static char v[MPI_MAX_LIBRARY_VERSION_STRING];
+    int len = 0;
+    if (!v[0] && MPI_Get_library_version(v, &len) == MPI_SUCCESS) {
+        /* the first line, without its details */
+        v[strcspn(v, "\n,")] = '\0';
+    }
+    return v;
+}
+
+int dem_mpi_init(int *argc, char ***argv, struct dem_error *err)
+{
+    int provided = 0;
+    if (MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided) !=
+        MPI_SUCCESS)
+        return dem_error_set(err, DEM_EINTERNAL, "MPI did not start");
+    started = 1;
+    if (provided < MPI_THREAD_SERIALIZED)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "the MPI library gives no thread support "
+                             "(MPI_THREAD_SERIALIZED), which dembox needs");
+    return DEM_OK;
+}
+
+void dem_mpi_finalize(void)
+{
+    int fin = 0;
+    if (started && MPI_Finalized(&fin) == MPI_SUCCESS && !fin)
+        MPI_Finalize();
+}
+
+void dem_mpi_world(int *rank, int *size)
+{
+    int init = 0, fin = 0;
+    *rank = 0;
+    *size = 1;
+    if (MPI_Initialized(&init) != MPI_SUCCESS || !init ||
+        MPI_Finalized(&fin) != MPI_SUCCESS || fin)
+        return;
+    MPI_Comm_rank(MPI_COMM_WORLD, rank);
+    MPI_Comm_size(MPI_COMM_WORLD, size);
+}
+#else
+int dem_mpi_built(void) { return 0; }
+
+const char *dem_mpi_version(void) { return ""; }
+
+int dem_mpi_init(int *argc, char ***argv, struct dem_error *err)
+{
+    (void)argc;
+    (void)argv;
+    return dem_error_set(err, DEM_EUSAGE,
+                         "this dembox was built without MPI (install "
+                         "libopenmpi-dev and build again)");
+}
+
+void dem_mpi_finalize(void) {}
+
+void dem_mpi_world(int *rank, int *size)
+{
+    *rank = 0;
+    *size = 1;
+}
+#endif
