@@ -36,3 +36,11 @@ if command -v python3 >/dev/null; then
     [ "$v" = "$("$tmp/prefix/bin/dembox" --version | awk '{print $2}')" ] ||
         { echo "test_install: python module says version '$v'" >&2; exit 1; }
 fi
+# a prefix that cannot be written (below a plain file: root cannot either)
+# fails with a non-zero status naming the path
+touch "$tmp/plainfile"
+if cmake --install "$build" --prefix "$tmp/plainfile/p" > "$tmp/bad.log" 2>&1; then
+    echo "test_install: installing below a file succeeded" >&2; exit 1
+fi
+grep -q "$tmp/plainfile/p" "$tmp/bad.log" ||
+    { echo "test_install: the failure does not name the prefix: $(cat "$tmp/bad.log")" >&2; exit 1; }
