@@ -424,7 +424,8 @@ static int cmd_sweep(int argc, char **argv)
         const char *a = argv[k];
         const int more = k + 1 < argc;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(usage_sweep, stdout);
+            if (!quiet_rank)
+                fputs(usage_sweep, stdout);
             dem_sweep_grid_free(&grid);
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
@@ -478,6 +479,11 @@ static int cmd_sweep(int argc, char **argv)
         o.outdir = outbuf;
     }
     struct dem_sweep_report rep;
+    if (!rc && collect && quiet_rank) {
+        /* over MPI, rank 0 alone collects (one writer of sweep.json) */
+        dem_sweep_grid_free(&grid);
+        return 0;
+    }
     if (!rc && collect) {
         if (dem_sweep_collect(&grid, &o, &err))
             rc = fail(err.msg);

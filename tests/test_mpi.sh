@@ -62,6 +62,11 @@ grep -q "5 of 6 runs already finished" log2b || fail "restart: $(cat log2b)"
 grep -q "1 run now" log2b || fail "restart ran more than one: $(cat log2b)"
 same np2
 
+# --collect over ranks: rank 0 alone writes the same sweep.json
+rm np4/sweep.json
+"$MPIRUN" -np 4 "$BIN" $S --collect -o np4 > logc 2>&1 || fail "--collect: $(tail -5 logc)"
+cmp local/sweep.json np4/sweep.json || fail "--collect over 4 ranks: sweep.json differs"
+
 # refused: a single run over ranks, a bad --param (one line, from rank 0)
 set +e
 "$MPIRUN" -np 2 "$BIN" run biaxial2d -o run > logr 2>&1; rc=$?
