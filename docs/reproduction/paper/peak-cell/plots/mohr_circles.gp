@@ -15,14 +15,19 @@ set size ratio -1
 set xrange [0:3032.87]
 set yrange [0:1819.72]
 plot \
-  "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 2 with lines linewidth 2 linecolor 3 title "p = 500 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 3 with lines linewidth 2 linecolor 4 title "p = 1000 (seed=1)" noenhanced, \
+  "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100" noenhanced, \
+  "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250" noenhanced, \
+  "mohr_circles.dat" index 2 with lines linewidth 2 linecolor 3 title "p = 500" noenhanced, \
+  "mohr_circles.dat" index 3 with lines linewidth 2 linecolor 4 title "p = 1000" noenhanced, \
   "mohr_circles.dat" index 4 with lines dashtype 2 linewidth 2 linecolor "black" title "flow function φ = 28.0°, c = 9.36, R² = 0.997 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 5 with lines linewidth 2 linecolor 1 title "p = 100 (seed=2)" noenhanced, \
-  "mohr_circles.dat" index 6 with lines linewidth 2 linecolor 2 title "p = 250 (seed=2)" noenhanced, \
-  "mohr_circles.dat" index 7 with lines linewidth 2 linecolor 3 title "p = 500 (seed=2)" noenhanced, \
-  "mohr_circles.dat" index 8 with lines linewidth 2 linecolor 4 title "p = 1000 (seed=2)" noenhanced, \
+  "mohr_circles.dat" index 5 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 6 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 7 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 8 with lines linewidth 2 linecolor 4 notitle, \
   "mohr_circles.dat" index 9 with lines dashtype 3 linewidth 2 linecolor "black" title "flow function φ = 27.3°, c = 9.2, R² = 1.000 (seed=2)" noenhanced, \
+  "mohr_circles.dat" index 10 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 11 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 12 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 13 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 14 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 27.7°, c = 3.71, R² = 1.000 (seed=3)" noenhanced, \
   0 linetype -3 notitle
