@@ -8,6 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <omp.h>
+
 #include "dembox.h"
 
 #define DEFAULT_EXAMPLE "biaxial2d"
@@ -199,6 +201,30 @@ static int fail(const char *msg)
     return 1;
 }
 
+/* Whether jobs x threads OpenMP threads (times the MPI ranks on this
+ * node) are more than this machine's cores; if so, one warning line.
+ * Waiting OpenMP threads spin, so an oversubscribed machine runs every
+ * one of them many times slower (10-100x seen on 2 cores). */
+static void warn_oversubscribed(long jobs, long threads)
+{
+    const char *local = getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+    const long ranks = local && atol(local) > 0 ? atol(local) : 1;
+    const long cores = omp_get_num_procs(), total = ranks * jobs * threads;
+    if (threads < 2 || total <= cores || quiet_rank)
+        return;
+    char what[96] = "";
+    if (ranks > 1)
+        snprintf(what, sizeof what, "%ld ranks x ", ranks);
+    if (jobs > 1)
+        snprintf(what + strlen(what), sizeof what - strlen(what),
+                 "%ld jobs x ", jobs);
+    fprintf(stderr,
+            "dembox: warning: %s%ld threads = %ld OpenMP threads on %ld "
+            "cores: waiting threads spin, so this can run 10-100 times "
+            "slower; use fewer threads\n",
+            what, threads, total, cores);
+}
+
 /* Option opt of command cmd: the whole string v as an integer in
  * [lo, hi] into *out (0), or one line on stderr and 1. */
 static int parse_int(const char *cmd, const char *opt, const char *v, long lo,
@@ -380,6 +406,7 @@ static int cmd_run(int argc, char **argv)
         if (target || outdir || nsets || opt.max_steps)
             return fail("run: --resume takes only OUTDIR, --threads and "
                         "--quiet (the run keeps its config)");
+        warn_oversubscribed(1, opt.threads);
         return run_with_signals(0, resume, &opt, quiet);
     }
     if (!target)
@@ -409,6 +436,7 @@ static int cmd_run(int argc, char **argv)
         outdir = outbuf;
     }
     opt.outdir = outdir;
+    warn_oversubscribed(1, opt.threads);
     return run_with_signals(&cfg, 0, &opt, quiet);
 }
 
@@ -498,6 +526,11 @@ static int cmd_sweep(int argc, char **argv)
         catch_signals(&old);
         o.stop = &stop_signal;
         o.quiet |= quiet_rank;
+        /* the warning only for a grid that passes the check, so that bad
+         * input still gives one line */
+        struct dem_error verr = {0};
+        if (o.threads > 1 && !dem_sweep_validate(&grid, &o, &verr))
+            warn_oversubscribed(o.jobs, o.threads);
         if (dem_sweep_run(&grid, &o, &rep, &err)) {
             /* a rank > 0 speaks only of its own failures (rank 0 reports
              * the runs and the sweep) */
@@ -605,6 +638,7 @@ static int cmd_bench(int argc, char **argv)
     }
     struct dem_bench_result r;
     struct dem_error err = {0, "", cli_warning, NULL};
+    warn_oversubscribed(1, o.threads);
     if (dem_bench_run(&o, &r, &err))
         return fail(err.msg);
     dem_bench_print(stdout, &r);
