@@ -717,9 +717,10 @@ static int cmd_help(int argc, char **argv)
     return 0;
 }
 
-/* dembox started by an MPI launcher with several ranks: only `dembox
- * sweep` runs over them (docs/parallel.md). Anything else is refused by
- * rank 0 with one line, before MPI starts, so that no rank writes. */
+/* dembox started by an MPI launcher with several ranks (MPI started if
+ * this build has it): only `dembox sweep` runs over them
+ * (docs/parallel.md). Anything else is refused by rank 0 with one line,
+ * before anything is written. */
 static int main_mpi(int argc, char **argv, int rank, int size)
 {
     const char *c = argc > 1 ? argv[1] : "";
@@ -731,33 +732,62 @@ static int main_mpi(int argc, char **argv, int rank, int size)
         why = "only `dembox sweep` runs over MPI ranks (a single run is not "
               "split over ranks yet): start other commands without mpirun";
     if (why) {
+        char n[32] = "several";
+        if (size > 0)
+            snprintf(n, sizeof n, "%d", size);
         if (rank == 0)
-            fprintf(stderr, "dembox: started by an MPI launcher with %s%d "
-                    "ranks, but %s\n", size < 0 ? "several " : "",
-                    size < 0 ? 0 : size, why);
+            fprintf(stderr,
+                    "dembox: started by an MPI launcher with %s ranks, but "
+                    "%s\n",
+                    n, why);
         return 1;
     }
-    struct dem_error err = {0};
-    int rc = dem_mpi_init(&argc, &argv, &err);
-    if (rc) {
-        fprintf(stderr, "dembox: MPI: %s\n", err.msg);
-        dem_mpi_finalize();
-        return 1;
-    }
-    dem_mpi_world(&rank, &size);
     if (rank > 0) /* progress and messages come from rank 0 */
         quiet_rank = 1;
-    rc = cmd_sweep(argc - 2, argv + 2);
+    const int rc = cmd_sweep(argc - 2, argv + 2);
     dem_mpi_finalize();
     return rc;
 }
+
+static int dispatch(int argc, char **argv);
 
 int main(int argc, char **argv)
 {
     int rank, size;
     dem_mpi_launch(&rank, &size);
-    if (size != 1 && !(size < 0 && rank == 0 && !dem_mpi_built()))
+    if (size < 0 && dem_mpi_built()) {
+        /* a launcher that does not say how many ranks (PMIx): ask MPI */
+        struct dem_error err = {0};
+        if (dem_mpi_init(&argc, &argv, &err)) {
+            fprintf(stderr, "dembox: MPI: %s\n", err.msg);
+            dem_mpi_finalize();
+            return 1;
+        }
+        dem_mpi_world(&rank, &size);
+        const int rc = size == 1 ? dispatch(argc, argv)
+                                 : main_mpi(argc, argv, rank, size);
+        dem_mpi_finalize();
+        return rc;
+    }
+    if (size > 1 && dem_mpi_built()) {
+        struct dem_error err = {0};
+        if (dem_mpi_init(&argc, &argv, &err)) {
+            fprintf(stderr, "dembox: MPI: %s\n", err.msg);
+            dem_mpi_finalize();
+            return 1;
+        }
+        const int rc = main_mpi(argc, argv, rank, size);
+        dem_mpi_finalize();
+        return rc;
+    }
+    if (size > 1 || (size < 0 && rank > 0)) /* without MPI: refused */
         return main_mpi(argc, argv, rank, size);
+    return dispatch(argc, argv);
+}
+
+/* The command of argv[1]. */
+static int dispatch(int argc, char **argv)
+{
     if (argc < 2) {
         fputs(usage_main, stderr);
         return 1;
