@@ -1,6 +1,8 @@
 /* Recursive-descent JSON parser (RFC 8259), depth limited. */
 #include "formats/jsonread.h"
 
+#include "io/fsutil.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -232,33 +234,9 @@ int dem__jread_file(struct dem__jval *v, const char *path,
                     struct dem_error *err)
 {
     memset(v, 0, sizeof *v);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open", path);
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (n < cap - 1)
-            break;
-        char *b = realloc(buf, 2 * cap);
-        if (!b) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = b;
-        cap *= 2;
-    }
-    const int bad = ferror(f);
-    fclose(f);
+    char *buf = dem_read_text(path, err);
     if (!buf)
-        return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
-    if (bad) {
-        free(buf);
-        return dem_error_set(err, DEM_EIO, "%s: read failed", path);
-    }
-    buf[n] = '\0';
+        return err ? err->code : DEM_EIO;
     int rc = dem__jread_text(v, buf, path, err);
     free(buf);
     return rc;

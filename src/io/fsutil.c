@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -35,4 +36,38 @@ int dem_path_join(char *out, size_t n, const char *dir, const char *name,
     if (k < 0 || (size_t)k >= n)
         return dem_error_set(err, DEM_EIO, "%s/%s: path too long", dir, name);
     return DEM_OK;
+}
+
+char *dem_read_text(const char *path, struct dem_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        dem_error_set(err, DEM_EIO, "%s: cannot open", path);
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n - 1, f);
+        if (n < cap - 1)
+            break;
+        char *b = realloc(buf, 2 * cap);
+        if (!b)
+            free(buf);
+        buf = b;
+        cap *= 2;
+    }
+    const int bad = ferror(f);
+    fclose(f);
+    if (!buf) {
+        dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+        return NULL;
+    }
+    if (bad) {
+        free(buf);
+        dem_error_set(err, DEM_EIO, "%s: read failed", path);
+        return NULL;
+    }
+    buf[n] = '\0';
+    return buf;
 }

@@ -11,4 +11,8 @@ int dem_mkdir_p(const char *path, struct dem_error *err);
 int dem_path_join(char *out, size_t n, const char *dir, const char *name,
                   struct dem_error *err);
 
+/* The whole of a text file, NUL-terminated (owned by the caller), or
+ * NULL with err set (cannot open, read failed, out of memory). */
+char *dem_read_text(const char *path, struct dem_error *err);
+
 #endif

@@ -237,29 +237,6 @@ static int read_final(const char *outdir, struct net *c, struct dem_error *err)
     return rc;
 }
 
-/* The whole file path as a string (owned), or NULL. */
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = NULL;
-    if (fseek(f, 0, SEEK_END) == 0) {
-        const long len = ftell(f);
-        if (len >= 0 && fseek(f, 0, SEEK_SET) == 0 &&
-            (buf = malloc((size_t)len + 1)) != NULL) {
-            if (fread(buf, 1, (size_t)len, f) != (size_t)len) {
-                free(buf);
-                buf = NULL;
-            } else {
-                buf[len] = '\0';
-            }
-        }
-    }
-    fclose(f);
-    return buf;
-}
-
 /* The values of DataArray name in text (a contacts VTU that dembox
  * wrote): m * comps numbers into v; 0 when found and whole. */
 static int vtu_array(const char *text, const char *name, size_t m,
@@ -281,16 +258,16 @@ static int vtu_array(const char *text, const char *name, size_t m,
     return 0;
 }
 
-/* The pairs of the contacts snapshot nearest to time t (contacts.pvd);
- * c->m = 0 when the run has none. */
-static int read_snapshot(const char *outdir, double t, double tpeak,
-                         struct net *c, struct dem_error *err)
+/* The pairs of the contacts snapshot nearest to the peak's time t
+ * (contacts.pvd); c->m = 0 when the run has none. */
+static int read_snapshot(const char *outdir, double t, struct net *c,
+                         struct dem_error *err)
 {
     char path[DEM_PATH_MAX];
     int rc = dem_path_join(path, sizeof path, outdir, "contacts.pvd", err);
     if (rc)
         return rc;
-    char *pvd = slurp(path);
+    char *pvd = dem_read_text(path, NULL);
     if (!pvd)
         return DEM_OK;
     char best[256] = "";
@@ -314,7 +291,7 @@ static int read_snapshot(const char *outdir, double t, double tpeak,
     if (!best[0] || strchr(best, '/'))
         return DEM_OK;
     rc = dem_path_join(path, sizeof path, outdir, best, err);
-    char *vtu = rc ? NULL : slurp(path);
+    char *vtu = rc ? NULL : dem_read_text(path, NULL);
     if (!vtu)
         return rc;
     const char *cells = strstr(vtu, "NumberOfCells=\"");
@@ -346,8 +323,7 @@ static int read_snapshot(const char *outdir, double t, double tpeak,
     if (nc >= 0)
         c->m = m;
     snprintf(c->state, sizeof c->state,
-             "the peak (snapshot at t = %.4g s, peak at %.4g s)", tbest,
-             tpeak);
+             "the peak (snapshot at t = %.4g s, peak at %.4g s)", tbest, t);
     free(partner);
     free(branch);
     free(vtu);
@@ -386,7 +362,7 @@ int dem__plot_contacts(const char *outdir, const char *plotdir, int dim,
     if (!rc && final && isfinite(tpeak)) {
         struct net pk = {.dim = dim, .name = {"force_distribution_peak",
                                               "contact_normals_peak"}};
-        rc = read_snapshot(outdir, tpeak, tpeak, &pk, err);
+        rc = read_snapshot(outdir, tpeak, &pk, err);
         if (!rc && pk.m > 0)
             rc = draw(plotdir, &pk, names, count, err);
         net_free(&pk);

@@ -511,33 +511,6 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     return run_and_finish(&r, rc, 0, 0, err);
 }
 
-/* The whole of a small text file, or NULL. */
-static char *read_text(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return 0;
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n - 1, f);
-        if (n < cap - 1)
-            break;
-        char *b = realloc(buf, cap *= 2);
-        if (!b)
-            free(buf);
-        buf = b;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (!buf || bad) {
-        free(buf);
-        return 0;
-    }
-    buf[n] = '\0';
-    return buf;
-}
-
 static int file_exists(const char *path)
 {
     struct stat sb;
@@ -590,7 +563,7 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
     if (!rc)
         rc = dem_path_join(path, sizeof path, outdir, "config.cfg", err);
     if (!rc) {
-        char *text = read_text(path);
+        char *text = dem_read_text(path, NULL);
         if (!text || strcmp(text, r.config_text) != 0)
             rc = dem_error_set(err, DEM_ECONFIG,
                                "%s: %s; a resumed run keeps the config of "
