@@ -8,8 +8,6 @@
 #include <string.h>
 #include <unistd.h>
 
-#include <omp.h>
-
 #include "dembox.h"
 
 #define DEFAULT_EXAMPLE "biaxial2d"
@@ -201,30 +199,6 @@ static int fail(const char *msg)
     return 1;
 }
 
-/* Whether jobs x threads OpenMP threads (times the MPI ranks on this
- * node) are more than this machine's cores; if so, one warning line.
- * Waiting OpenMP threads spin, so an oversubscribed machine runs every
- * one of them many times slower (10-100x seen on 2 cores). */
-static void warn_oversubscribed(long jobs, long threads)
-{
-    const char *local = getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
-    const long ranks = local && atol(local) > 0 ? atol(local) : 1;
-    const long cores = omp_get_num_procs(), total = ranks * jobs * threads;
-    if (threads < 2 || total <= cores || quiet_rank)
-        return;
-    char what[96] = "";
-    if (ranks > 1)
-        snprintf(what, sizeof what, "%ld ranks x ", ranks);
-    if (jobs > 1)
-        snprintf(what + strlen(what), sizeof what - strlen(what),
-                 "%ld jobs x ", jobs);
-    fprintf(stderr,
-            "dembox: warning: %s%ld threads = %ld OpenMP threads on %ld "
-            "cores: waiting threads spin, so this can run 10-100 times "
-            "slower; use fewer threads\n",
-            what, threads, total, cores);
-}
-
 /* Option opt of command cmd: the whole string v as an integer in
  * [lo, hi] into *out (0), or one line on stderr and 1. */
 static int parse_int(const char *cmd, const char *opt, const char *v, long lo,
@@ -302,6 +276,15 @@ static void cli_warning(const char *line, void *user)
         fputc('\n', stderr);
     progress_shown = 0;
     fprintf(stderr, "dembox: warning: %s\n", line);
+}
+
+/* The library's warning on more threads than cores (not on ranks > 0:
+ * rank 0 says it). */
+static void warn_oversubscribed(long jobs, long threads)
+{
+    const struct dem_error err = {0, "", cli_warning, NULL};
+    if (!quiet_rank)
+        dem_warn_oversubscribed(jobs, threads, &err);
 }
 
 /* A run's progress, redrawn in place on a terminal. */
@@ -526,11 +509,6 @@ static int cmd_sweep(int argc, char **argv)
         catch_signals(&old);
         o.stop = &stop_signal;
         o.quiet |= quiet_rank;
-        /* the warning only for a grid that passes the check, so that bad
-         * input still gives one line */
-        struct dem_error verr = {0};
-        if (o.threads > 1 && !dem_sweep_validate(&grid, &o, &verr))
-            warn_oversubscribed(o.jobs, o.threads);
         if (dem_sweep_run(&grid, &o, &rep, &err)) {
             /* a rank > 0 speaks only of its own failures (rank 0 reports
              * the runs and the sweep) */
@@ -755,8 +733,9 @@ int main(int argc, char **argv)
 {
     int rank, size;
     dem_mpi_launch(&rank, &size);
-    if (size < 0 && dem_mpi_built()) {
-        /* a launcher that does not say how many ranks (PMIx): ask MPI */
+    if (size != 1 && dem_mpi_built()) {
+        /* launched with several ranks, or a launcher that does not say
+         * how many (PMIx): MPI knows */
         struct dem_error err = {0};
         if (dem_mpi_init(&argc, &argv, &err)) {
             fprintf(stderr, "dembox: MPI: %s\n", err.msg);
@@ -766,17 +745,6 @@ int main(int argc, char **argv)
         dem_mpi_world(&rank, &size);
         const int rc = size == 1 ? dispatch(argc, argv)
                                  : main_mpi(argc, argv, rank, size);
-        dem_mpi_finalize();
-        return rc;
-    }
-    if (size > 1 && dem_mpi_built()) {
-        struct dem_error err = {0};
-        if (dem_mpi_init(&argc, &argv, &err)) {
-            fprintf(stderr, "dembox: MPI: %s\n", err.msg);
-            dem_mpi_finalize();
-            return 1;
-        }
-        const int rc = main_mpi(argc, argv, rank, size);
         dem_mpi_finalize();
         return rc;
     }

@@ -420,6 +420,13 @@ int dem_mpi_init(int *argc, char ***argv, struct dem_error *err);
 void dem_mpi_finalize(void);
 /* Rank and size of MPI_COMM_WORLD; 0 and 1 while MPI is not started. */
 void dem_mpi_world(int *rank, int *size);
+/* When jobs x threads OpenMP threads, times the MPI ranks on this node
+ * (OMPI_COMM_WORLD_LOCAL_SIZE), are more than this machine's cores and
+ * threads > 1: one warning through err (waiting OpenMP threads spin, so
+ * an oversubscribed machine runs every one of them many times slower;
+ * 10-100x seen on 2 cores). */
+void dem_warn_oversubscribed(long jobs, long threads,
+                             const struct dem_error *err);
 
 /* ---------------------------------------------------------------- sweep */
 

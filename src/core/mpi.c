@@ -3,6 +3,8 @@
  * is defined (CMake found an MPI library); otherwise MPI never starts and
  * the world is one rank. */
 #include "dembox.h"
+#include <omp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -41,6 +43,27 @@ void dem_mpi_launch(int *rank, int *size)
         *size = n < 1 || n > 1000000 ? -1 : (int)n;
         return;
     }
+}
+
+void dem_warn_oversubscribed(long jobs, long threads,
+                             const struct dem_error *err)
+{
+    const long local = env_int("OMPI_COMM_WORLD_LOCAL_SIZE");
+    const long ranks = local > 0 ? local : 1;
+    const long cores = omp_get_num_procs(), total = ranks * jobs * threads;
+    if (threads < 2 || total <= cores)
+        return;
+    char what[96] = "";
+    if (ranks > 1)
+        snprintf(what, sizeof what, "%ld ranks x ", ranks);
+    if (jobs > 1)
+        snprintf(what + strlen(what), sizeof what - strlen(what),
+                 "%ld jobs x ", jobs);
+    dem_warn(err,
+             "%s%ld threads = %ld OpenMP threads on %ld cores: waiting "
+             "threads spin, so this can run 10-100 times slower; use fewer "
+             "threads",
+             what, threads, total, cores);
 }
 
 #ifdef DEM_HAVE_MPI

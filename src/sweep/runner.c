@@ -411,6 +411,8 @@ static int prepare(const struct dem_sweep_grid *g,
                 "dembox: sweep: %ld of %ld runs already finished, "
                 "skipped\n",
                 rep->skipped, n);
+    if (!rc) /* after the check: bad input still gives one line */
+        dem_warn_oversubscribed(o->jobs, o->threads, err);
     return rc;
 }
 
