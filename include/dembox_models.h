@@ -39,7 +39,7 @@
  * values of a resistance carry its TAG in their MODEL column; a key
  * given while its resistance is off is refused. */
 #define DEM_CONTACT_RESISTANCES(X)                                             \
-    X(ROLLING, rolling, "rolling resistance: torque against rolling")         \
+    X(ROLLING, rolling, "rolling resistance: torque against rolling")          \
     X(TORSION, torsion, "torsion resistance: torque against twisting (3D)")
 
 /* Contact keys, in the order of the resolved config:
@@ -59,17 +59,17 @@
     P(LUDING, phi_f, "-", 0,                                                   \
       "luding 2008 plasticity depth in (0, 1]; not given = constant k2",       \
       GT(0), LE(1), .flags = F_UNSET_ZERO, .def_text = "not given")            \
-    P(HERTZ, E, "Pa", 1e7, "hertz Young's modulus (particles and walls)",     \
+    P(HERTZ, E, "Pa", 1e7, "hertz Young's modulus (particles and walls)",      \
       GT(0))                                                                   \
     P(HERTZ, nu, "-", 0.25, "hertz Poisson ratio", GT(-1), LT(0.5))            \
     P(HERTZ, restitution, "-", 0.8,                                            \
-      "hertz normal restitution coefficient, any impact velocity", GT(0),     \
+      "hertz normal restitution coefficient, any impact velocity", GT(0),      \
       LE(1))                                                                   \
     P(HERTZ, v_impact, "m/s", 1,                                               \
-      "hertz: the fastest impact expected (sets the time step)", GT(0))       \
+      "hertz: the fastest impact expected (sets the time step)", GT(0))        \
     P(SPRINGS, gamma_n, "kg/s", 0.05, "normal viscosity", GE(0))               \
     P(SPRINGS, kt, "N/m", 1000,                                                \
-      "tangential stiffness (0 only without friction)", GE(0))                \
+      "tangential stiffness (0 only without friction)", GE(0))                 \
     P(SPRINGS, gamma_t, "kg/s", 0.01, "tangential viscosity", GE(0))           \
     A(ANY, mu, mu_s, "-", 0.5, "friction coefficient: sets mu_s = mu_d",       \
       GE(0), .flags = F_MU)                                                    \
@@ -80,18 +80,16 @@
       .flags = F_MU_PAIR, .def_text = "= mu")                                  \
     P(ANY, wall_mu, "-", 0, "particle-wall friction (static = dynamic)",       \
       GE(0))                                                                   \
-    P(ANY, wall_kc, "N/m", 0, "particle-wall adhesive stiffness", GE(0))      \
-    P(ROLLING, kr, "N/m", 500, "rolling spring stiffness", GT(0))             \
-    P(ROLLING, gamma_r, "kg/s", 0.005, "rolling viscosity", GE(0))            \
+    P(ANY, wall_kc, "N/m", 0, "particle-wall adhesive stiffness", GE(0))       \
+    P(ROLLING, kr, "N/m", 500, "rolling spring stiffness", GT(0))              \
+    P(ROLLING, gamma_r, "kg/s", 0.005, "rolling viscosity", GE(0))             \
     P(ROLLING, mu_r, "-", 0.1,                                                 \
-      "rolling friction: torque at most mu_r f_n a_i a_j/(a_i + a_j)",        \
-      GE(0))                                                                   \
-    P(ROLLING, wall_mu_r, "-", 0, "particle-wall rolling friction", GE(0))    \
-    P(TORSION, ko, "N/m", 500, "torsion spring stiffness", GT(0))             \
-    P(TORSION, gamma_o, "kg/s", 0.005, "torsion viscosity", GE(0))            \
+      "rolling friction: torque at most mu_r f_n a_i a_j/(a_i + a_j)", GE(0))  \
+    P(ROLLING, wall_mu_r, "-", 0, "particle-wall rolling friction", GE(0))     \
+    P(TORSION, ko, "N/m", 500, "torsion spring stiffness", GT(0))              \
+    P(TORSION, gamma_o, "kg/s", 0.005, "torsion viscosity", GE(0))             \
     P(TORSION, mu_o, "-", 0.1,                                                 \
-      "torsion friction: torque at most mu_o f_n a_i a_j/(a_i + a_j)",        \
-      GE(0))                                                                   \
+      "torsion friction: torque at most mu_o f_n a_i a_j/(a_i + a_j)", GE(0))  \
     P(TORSION, wall_mu_o, "-", 0, "particle-wall torsion friction", GE(0))
 
 /* Parameters a particle-wall contact takes from another field:
@@ -112,20 +110,25 @@
       "viscous damping of the restitution (contact/model_hertz.h)")
 
 /* History values every contact carries from step to step:
- * H(MODEL, name, unit, doc); kept (computed, carried across list
+ * H(MODEL, name, unit, swap, doc); kept (computed, carried across list
  * rebuilds, checkpointed) only while MODEL is the normal model or the
- * resistance in force (ANY: always). The contact's state bits
- * (contact/state.h) are carried with them. */
+ * resistance in force (ANY: always). swap is the value's factor when the
+ * pair's particles i and j change roles (a re-ordering can turn i < j
+ * into j < i): -1 for a spring stretched by a velocity of i relative to
+ * j that changes sign with it (tangential: v_ij; torsion: a (n . dw) n),
+ * +1 for one that does not (rolling: -a n x dw, both factors change
+ * sign; dmax). The contact's state bits (contact/state.h) are carried
+ * with them. */
 #define DEM_CONTACT_HISTORY(H)                                                 \
-    H(ANY, xi_x, "m", "tangential spring, x")                                  \
-    H(ANY, xi_y, "m", "tangential spring, y")                                  \
-    H(ANY, xi_z, "m", "tangential spring, z")                                  \
-    H(LUDING, dmax, "m", "largest overlap reached")                            \
-    H(ROLLING, xr_x, "m", "rolling spring, x")                                 \
-    H(ROLLING, xr_y, "m", "rolling spring, y")                                 \
-    H(ROLLING, xr_z, "m", "rolling spring, z")                                 \
-    H(TORSION, xo_x, "m", "torsion spring, x")                                 \
-    H(TORSION, xo_y, "m", "torsion spring, y")                                 \
-    H(TORSION, xo_z, "m", "torsion spring, z")
+    H(ANY, xi_x, "m", -1, "tangential spring, x")                              \
+    H(ANY, xi_y, "m", -1, "tangential spring, y")                              \
+    H(ANY, xi_z, "m", -1, "tangential spring, z")                              \
+    H(LUDING, dmax, "m", 1, "largest overlap reached")                         \
+    H(ROLLING, xr_x, "m", 1, "rolling spring, x")                              \
+    H(ROLLING, xr_y, "m", 1, "rolling spring, y")                              \
+    H(ROLLING, xr_z, "m", 1, "rolling spring, z")                              \
+    H(TORSION, xo_x, "m", -1, "torsion spring, x")                             \
+    H(TORSION, xo_y, "m", -1, "torsion spring, y")                             \
+    H(TORSION, xo_z, "m", -1, "torsion spring, z")
 
 #endif /* DEMBOX_MODELS_H */

@@ -252,7 +252,7 @@ static void assert_same_list(const struct dem_contact_list *a,
     SAME_ARRAY(a->j, b->j, a->n);
     unsigned bit = 1;
     int kept = 0;
-#define HIST_SAME_(MODEL, name, unit, doc)                                     \
+#define HIST_SAME_(MODEL, name, unit, swap, doc)                               \
     if (pl->hist & bit) {                                                      \
         SAME_ARRAY(a->name, b->name, a->n);                                    \
         kept++;                                                                \

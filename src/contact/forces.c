@@ -23,7 +23,7 @@ static struct pass pass_of(const struct dem_particles *P,
         .vz = P->vz, .wx = P->wx, .wy = P->wy, .wz = P->wz, .r = P->r,
         .m = P->m,
         .ci = L->i, .cj = L->j, .img = L->img, .state = L->state, .F = F->v, .M = F->m,
-#define HIST_OF_(MODEL, name, unit, doc) .name = L->name,
+#define HIST_OF_(MODEL, name, unit, swap, doc) .name = L->name,
         DEM_CONTACT_HISTORY(HIST_OF_)
 #undef HIST_OF_
     };
@@ -37,7 +37,7 @@ static struct dem_history list_history(const struct dem_contact_list *L, int k,
                                        int set)
 {
     struct dem_history h;
-#define HIST_GET_(MODEL, name, unit, doc)                                      \
+#define HIST_GET_(MODEL, name, unit, swap, doc)                                \
     h.name = DEM_MODEL_USES(set, MODEL) ? L->name[k] : 0.0;
     DEM_CONTACT_HISTORY(HIST_GET_)
 #undef HIST_GET_

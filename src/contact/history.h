@@ -8,7 +8,7 @@
 #include "dembox.h"
 
 struct dem_history {
-#define DEM_HISTORY_FIELD_(MODEL, name, unit, doc) double name;
+#define DEM_HISTORY_FIELD_(MODEL, name, unit, swap, doc) double name;
     DEM_CONTACT_HISTORY(DEM_HISTORY_FIELD_)
 #undef DEM_HISTORY_FIELD_
 };

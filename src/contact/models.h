@@ -98,7 +98,7 @@ static inline int dem_owner_used(int set, int owner)
 static inline unsigned dem_contact_history_mask(int set)
 {
     unsigned mask = 0, bit = 1;
-#define DEM_HIST_BIT_(MODEL, name, unit, doc)                                  \
+#define DEM_HIST_BIT_(MODEL, name, unit, swap, doc)                            \
     if (DEM_MODEL_USES(set, MODEL))                                            \
         mask |= bit;                                                           \
     bit <<= 1;

@@ -51,7 +51,7 @@ DEM_INLINE struct dem_history load_history(const int law, const struct pass *q,
                                            int k)
 {
     struct dem_history h;
-#define HIST_LOAD_(MODEL, name, unit, doc)                                     \
+#define HIST_LOAD_(MODEL, name, unit, swap, doc)                               \
     h.name = DEM_MODEL_USES(law, MODEL) ? q->name[k] : 0.0;
     DEM_CONTACT_HISTORY(HIST_LOAD_)
 #undef HIST_LOAD_
@@ -115,7 +115,7 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     h.xi_x = xi.x;
     h.xi_y = xi.y;
     h.xi_z = xi.z;
-#define HIST_STORE_(MODEL, name, unit, doc)                                    \
+#define HIST_STORE_(MODEL, name, unit, swap, doc)                              \
     if (DEM_MODEL_USES(law, MODEL))                                            \
         q->name[k] = touch ? h.name : 0.0;
     DEM_CONTACT_HISTORY(HIST_STORE_)
@@ -134,7 +134,7 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
 /* Contact k is open: no force, no torque, no history. */
 DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
 {
-#define HIST_ZERO_(MODEL, name, unit, doc)                                     \
+#define HIST_ZERO_(MODEL, name, unit, swap, doc)                               \
     if (DEM_MODEL_USES(law, MODEL))                                            \
         q->name[k] = 0.0;
     DEM_CONTACT_HISTORY(HIST_ZERO_)

@@ -21,7 +21,7 @@ struct pass {
     const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *m;
     const int *ci, *cj;
     const int *img; /* periodic cell: the image of j (core/cell.h) */
-#define HIST_ARRAY_(MODEL, name, unit, doc) double *name;
+#define HIST_ARRAY_(MODEL, name, unit, swap, doc) double *name;
     DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
 #undef HIST_ARRAY_
     int *state;

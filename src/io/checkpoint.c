@@ -212,7 +212,7 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
     io_i32s(io, L->i, n);
     io_i32s(io, L->j, n);
     unsigned bit = 1;
-#define HIST_IO_(MODEL, name, unit, doc)                                       \
+#define HIST_IO_(MODEL, name, unit, swap, doc)                                 \
     if (hist & bit)                                                            \
         io_f64s(io, L->name, n);                                               \
     bit <<= 1;
@@ -233,7 +233,7 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
 #define BYTES_PER_PARTICLE (23 * 8 + 2 * 4 + 3 * 4)
 /* at least the history values every model keeps (the file holds those
  * of the models in force) */
-#define HIST_COUNT_(MODEL, name, unit, doc)                                    \
+#define HIST_COUNT_(MODEL, name, unit, swap, doc)                              \
     +(DEM_OWNER_##MODEL == DEM_OWNER_ANY)
 #define NHISTORY (0 DEM_CONTACT_HISTORY(HIST_COUNT_))
 #define BYTES_PER_PAIR (2 * 4 + NHISTORY * 8 + 1 + 6 * 8 + 4)

@@ -15,7 +15,7 @@ static void list_free(struct dem_contact_list *l)
     free(l->i);
     free(l->j);
     free(l->img);
-#define HIST_FREE_(MODEL, name, unit, doc) free(l->name);
+#define HIST_FREE_(MODEL, name, unit, swap, doc) free(l->name);
     DEM_CONTACT_HISTORY(HIST_FREE_)
 #undef HIST_FREE_
     free(l->state);
@@ -70,7 +70,7 @@ static int list_reserve(struct dem_contact_list *l, int cap)
         c += c / 2;
     if (GROW(l->i, c) || GROW(l->j, c) || GROW(l->img, c) || GROW(l->state, c))
         return -1;
-#define HIST_GROW_(MODEL, name, unit, doc)                                     \
+#define HIST_GROW_(MODEL, name, unit, swap, doc)                               \
     if (GROW(l->name, c))                                                      \
         return -1;
     DEM_CONTACT_HISTORY(HIST_GROW_)
@@ -264,15 +264,17 @@ static int old_find(const struct dem_contact_list *o, int a, int b)
 }
 
 /* Entry k of L takes the history of entry o of O (none: o < 0), the
- * values of mask hist (struct dem_pairs.hist) only. */
+ * values of mask hist (struct dem_pairs.hist) only; flip: the pair's
+ * particles have changed roles (old i is new j), so each value is
+ * multiplied by its swap factor (DEM_CONTACT_HISTORY). */
 static void carry_history(struct dem_contact_list *L, int k,
-                          const struct dem_contact_list *O, int o,
+                          const struct dem_contact_list *O, int o, int flip,
                           unsigned hist)
 {
     unsigned bit = 1;
-#define HIST_CARRY_(MODEL, name, unit, doc)                                    \
+#define HIST_CARRY_(MODEL, name, unit, swap, doc)                              \
     if (hist & bit)                                                            \
-        L->name[k] = o >= 0 ? O->name[o] : 0.0;                                \
+        L->name[k] = o < 0 ? 0.0 : flip ? (swap)*O->name[o] : O->name[o];      \
     bit <<= 1;
     DEM_CONTACT_HISTORY(HIST_CARRY_)
 #undef HIST_CARRY_
@@ -466,7 +468,7 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
     for (int k = 0; k < np; k++) {
         int a = pl->old_of[L->i[k]], b = pl->old_of[L->j[k]];
         int o = O->n ? (a < b ? old_find(O, a, b) : old_find(O, b, a)) : -1;
-        carry_history(L, k, O, o, pl->hist);
+        carry_history(L, k, O, o, a > b, pl->hist);
     }
     return DEM_OK;
 }
@@ -492,7 +494,7 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
             L->i[L->n] = i;
             L->j[L->n] = k;
             int o = O->n ? old_find(O, pl->old_of[i], k) : -1;
-            carry_history(L, L->n, O, o, pl->hist);
+            carry_history(L, L->n, O, o, 0, pl->hist);
             L->n++;
         }
     }

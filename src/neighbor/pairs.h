@@ -35,7 +35,7 @@ struct dem_contact_list {
     int *j;  /* partner: particle (> i) or wall index */
     int *img; /* in a periodic cell: the image of j the pair touches
                  (dem_img_code, core/cell.h); not kept otherwise */
-#define DEM_LIST_HISTORY_(MODEL, name, unit, doc) double *name;
+#define DEM_LIST_HISTORY_(MODEL, name, unit, swap, doc) double *name;
     DEM_CONTACT_HISTORY(DEM_LIST_HISTORY_) /* the history values
                                               (dembox_models.h) */
 #undef DEM_LIST_HISTORY_
