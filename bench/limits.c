@@ -1,0 +1,140 @@
+/* What one core of this machine can do, for the limit of the contact law
+ * (docs/performance.md, "The limit on one core"): the throughput of fused
+ * multiply-adds, square roots and divisions in the vector width the
+ * compiler picks, and the bandwidth of a triad a = b + s c from the L2
+ * cache, the L3 cache and main memory. Not part of the build:
+ *
+ *     cc -O3 -march=native -fno-math-errno -o limits bench/limits.c
+ *     ./limits            (one thread; stop other work first)
+ *
+ * Each kernel is timed 5 times; the fastest is printed. The loops work on
+ * independent lanes, so that they measure throughput, not latency; check
+ * with objdump -d that they use the vector instructions named. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#define LANES 64 /* independent values: enough to hide every latency */
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static double sink; /* keeps results alive */
+
+/* GCC's vectors of 4 doubles (256 bits, AVX2; one AVX-512 register holds
+ * two): the kernels keep them in registers. */
+typedef double v4 __attribute__((vector_size(32)));
+#define NACC 12 /* independent accumulators: more than latency x pipes */
+
+/* acc = acc * b + c on NACC vectors, reps times: 8 flops per vector. */
+static double fma_rate(long reps)
+{
+    v4 acc[NACC], b = {0.999999999, 0.999999999, 0.999999999, 0.999999999},
+                  c = {1e-9, 1e-9, 1e-9, 1e-9};
+    for (int k = 0; k < NACC; k++)
+        acc[k] = (v4){1.0 + k, 1.0, 1.0, 1.0};
+    double t = now();
+    for (long r = 0; r < reps; r++) {
+#pragma GCC unroll 12
+        for (int k = 0; k < NACC; k++)
+            acc[k] = acc[k] * b + c;
+    }
+    t = now() - t;
+    for (int k = 0; k < NACC; k++)
+        sink += acc[k][0] + acc[k][3];
+    return 8.0 * NACC * reps / t;
+}
+
+/* Square roots (op 0) or divisions (op 1) of LANES values, reps times,
+ * each lane depending on its last result (the lanes are independent);
+ * returns lanes per second. */
+static double divider_rate(int op, long reps)
+{
+    double a[LANES], b[LANES];
+    for (int k = 0; k < LANES; k++) {
+        a[k] = 2.0 + 1e-3 * k;
+        b[k] = 1.0;
+    }
+    double t = now();
+    for (long r = 0; r < reps; r++) {
+        if (op == 0)
+            for (int k = 0; k < LANES; k++)
+                b[k] = sqrt(b[k] + a[k]);
+        else
+            for (int k = 0; k < LANES; k++)
+                b[k] = a[k] / (b[k] + 1.0);
+    }
+    t = now() - t;
+    for (int k = 0; k < LANES; k++)
+        sink += b[k];
+    return (double)LANES * reps / t;
+}
+
+/* Triad over three arrays of n doubles: bytes moved per second (24 per
+ * element: two reads, one write; the write's read for ownership is not
+ * counted, as in STREAM). */
+static double triad(size_t n, int reps)
+{
+    double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b),
+           *c = malloc(n * sizeof *c);
+    if (!a || !b || !c) {
+        fprintf(stderr, "limits: out of memory\n");
+        exit(1);
+    }
+    for (size_t k = 0; k < n; k++) {
+        a[k] = 0.0;
+        b[k] = 1.0;
+        c[k] = 2.0;
+    }
+    double t = now();
+    for (int r = 0; r < reps; r++) {
+        for (size_t k = 0; k < n; k++)
+            a[k] = b[k] + 0.5 * c[k];
+        sink += a[r % n];
+    }
+    t = now() - t;
+    free(a);
+    free(b);
+    free(c);
+    return 24.0 * n * reps / t;
+}
+
+static double best(double (*f)(long), long reps)
+{
+    double m = 0.0;
+    for (int k = 0; k < 5; k++) {
+        double v = f(reps);
+        m = v > m ? v : m;
+    }
+    return m;
+}
+
+static double sqrt_rate(long reps) { return divider_rate(0, reps); }
+static double div_rate(long reps) { return divider_rate(1, reps); }
+
+int main(void)
+{
+    printf("fma:    %.1f Gflop/s\n", 1e-9 * best(fma_rate, 2000000));
+    printf("sqrt:   %.3f G lanes/s (%.2f ns each)\n",
+           1e-9 * best(sqrt_rate, 500000), 1e9 / best(sqrt_rate, 500000));
+    printf("divide: %.3f G lanes/s (%.2f ns each)\n",
+           1e-9 * best(div_rate, 500000), 1e9 / best(div_rate, 500000));
+    const size_t sizes[3] = {8192, 262144, 33554432}; /* 192 KB, 6 MB, 768 MB */
+    const char *where[3] = {"L2", "L3", "memory"};
+    for (int s = 0; s < 3; s++) {
+        double m = 0.0;
+        for (int k = 0; k < 5; k++) {
+            double v = triad(sizes[s], (int)(2e8 / sizes[s]) + 1);
+            m = v > m ? v : m;
+        }
+        printf("triad %-6s (%5.0f KB): %.1f GB/s\n", where[s],
+               24.0 * sizes[s] / 1024, 1e-9 * m);
+    }
+    return sink == 42.0;
+}
