@@ -2,10 +2,10 @@
  * (docs/performance.md, "The limit on one core"): the throughput of fused
  * multiply-adds, square roots and divisions in the vector width the
  * compiler picks, and the bandwidth of a triad a = b + s c from the L2
- * cache, the L3 cache and main memory. Not part of the build:
+ * cache, the L3 cache and main memory. Built with the project (not run
+ * by CTest, it is a timing):
  *
- *     cc -O3 -march=native -fno-math-errno -o limits bench/limits.c
- *     ./limits            (one thread; stop other work first)
+ *     build/dembox_limits      (one thread; stop other work first)
  *
  * Each kernel is timed 5 times; the fastest is printed. The loops work on
  * independent lanes, so that they measure throughput, not latency; check
