@@ -177,6 +177,11 @@ static const char *const usage_bench =
     "walls), the force pass in use, the coordination and the memory per\n"
     "particle; the last line is particle_steps_per_second=<number>.\n"
     "\n"
+    "Under mpirun (a build with MPI) the sample of the timed loop is split\n"
+    "over the ranks by domain decomposition (docs/parallel.md): rank 0\n"
+    "prepares the packing and prints the summary; the neighbours phase then\n"
+    "includes the exchanges between ranks.\n"
+    "\n"
     "The force pass is built twice, with and without the CPU's gather\n"
     "instructions (slow on some CPUs, fast on others; same results bit for\n"
     "bit). Every run times both now and then and uses the faster; the\n"
@@ -207,8 +212,9 @@ static int parse_int(const char *cmd, const char *opt, const char *v, long lo,
     char *end;
     long n = v ? strtol(v, &end, 10) : 0;
     if (!v || !*v || *end || n < lo || n > hi) {
-        fprintf(stderr, "dembox: %s: %s needs an integer in [%ld, %ld]\n", cmd,
-                opt, lo, hi);
+        if (!quiet_rank)
+            fprintf(stderr, "dembox: %s: %s needs an integer in [%ld, %ld]\n",
+                    cmd, opt, lo, hi);
         return 1;
     }
     *out = n;
@@ -573,7 +579,8 @@ static int cmd_bench(int argc, char **argv)
                    !strcmp(a, "--data") || !strcmp(a, "--cache-dir") ||
                    !strcmp(a, "--boundary")) {
             if (++k >= argc) {
-                fprintf(stderr, "dembox: bench: %s needs a value\n", a);
+                if (!quiet_rank)
+                    fprintf(stderr, "dembox: bench: %s needs a value\n", a);
                 return 1;
             }
             const char *val = argv[k];
@@ -596,7 +603,8 @@ static int cmd_bench(int argc, char **argv)
                 o.data = val;
             } else if (!strcmp(a, "--boundary")) {
                 if (strcmp(val, "walls") && strcmp(val, "periodic")) {
-                    fprintf(stderr,
+                    if (!quiet_rank)
+                        fprintf(stderr,
                             "dembox: bench: --boundary must be walls or "
                             "periodic, not %s\n",
                             val);
@@ -607,10 +615,11 @@ static int cmd_bench(int argc, char **argv)
                 o.cache_dir = val;
             }
         } else {
-            fprintf(stderr,
-                    "dembox: bench: unknown argument %s (see dembox help "
-                    "bench)\n",
-                    a);
+            if (!quiet_rank)
+                fprintf(stderr,
+                        "dembox: bench: unknown argument %s (see dembox help "
+                        "bench)\n",
+                        a);
             return 1;
         }
     }
@@ -619,7 +628,8 @@ static int cmd_bench(int argc, char **argv)
     warn_oversubscribed(1, o.threads);
     if (dem_bench_run(&o, &r, &err))
         return fail(err.msg);
-    dem_bench_print(stdout, &r);
+    if (!quiet_rank) /* under MPI: rank 0 speaks for the split run */
+        dem_bench_print(stdout, &r);
     return 0;
 }
 
@@ -706,9 +716,10 @@ static int main_mpi(int argc, char **argv, int rank, int size)
     if (!dem_mpi_built())
         why = "this dembox was built without MPI (install libopenmpi-dev "
               "and build again), so its ranks would all do the same work";
-    else if (strcmp(c, "sweep"))
-        why = "only `dembox sweep` runs over MPI ranks (a single run is not "
-              "split over ranks yet): start other commands without mpirun";
+    else if (strcmp(c, "sweep") && strcmp(c, "bench"))
+        why = "only `dembox sweep` and `dembox bench` run over MPI ranks (a "
+              "single run is not split over ranks yet): start other "
+              "commands without mpirun";
     if (why) {
         char n[32] = "several";
         if (size > 0)
@@ -722,7 +733,8 @@ static int main_mpi(int argc, char **argv, int rank, int size)
     }
     if (rank > 0) /* progress and messages come from rank 0 */
         quiet_rank = 1;
-    const int rc = cmd_sweep(argc - 2, argv + 2);
+    const int rc = !strcmp(c, "bench") ? cmd_bench(argc - 2, argv + 2)
+                                       : cmd_sweep(argc - 2, argv + 2);
     dem_mpi_finalize();
     return rc;
 }

@@ -23,6 +23,14 @@ global sum of the wall forces and the stress (about 30 doubles): an
 allreduce of 2 log2(P) latencies. Packing and unpacking a ghost: 10 ns.
 Migration and neighbour rebuilds (every 10-50 steps) are left out: a few
 per cent of the ghost traffic.
+
+--shell full models what src/decomp/halo.c does now instead ("newton
+off"): ghosts from all around (a full shell, about twice the volume),
+9 doubles out and nothing back, a pair across a cut computed by both
+ranks (counted as 0.3 c per half-shell ghost: about two pairs each at the
+pair loop's share of c), and the ghosts sent in one all-to-all (P - 1
+messages, of which only the 26 neighbours' carry data; the empty ones
+cost a latency each).
 """
 import argparse
 import math
@@ -31,6 +39,7 @@ p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
 p.add_argument("--c", type=float, default=150.0)
 p.add_argument("--alpha", type=float, default=1.5)
 p.add_argument("--beta", type=float, default=0.4)
+p.add_argument("--shell", choices=("half", "full"), default="half")
 a = p.parse_args()
 c, alpha, beta = a.c * 1e-9, a.alpha * 1e-6, a.beta * 1e9
 n_d3, rc = 1.15, 1.2  # particles per d^3, interaction range in d
@@ -43,8 +52,14 @@ def step(N, P):
     if P == 1:
         return comp, comp, 0.0, 0.0, 0.0
     L = (local / n_d3) ** (1.0 / 3.0)  # subdomain side, in d
-    ghosts = n_d3 * ((L + rc) ** 3 - L ** 3)  # half shell
-    comm = 12 * alpha + ghosts * (9 + 6) * 8 / beta + 2 * 10e-9 * ghosts
+    half = n_d3 * ((L + rc) ** 3 - L ** 3)  # half shell
+    if a.shell == "half":
+        ghosts = half
+        comm = 12 * alpha + ghosts * (9 + 6) * 8 / beta + 2 * 10e-9 * ghosts
+    else:
+        ghosts = n_d3 * ((L + 2 * rc) ** 3 - L ** 3)
+        comm = (P - 1) * alpha + ghosts * 9 * 8 / beta + 10e-9 * ghosts
+        comp += 0.3 * c * half
     red = 2 * alpha * math.log2(P)
     return comp + comm + red, comp, comm, red, ghosts
 
@@ -60,8 +75,8 @@ def row(N, P, ref):
 head = ("|        N |     P | N/P       | ghosts  | compute  | ghosts   | reduce   | step     | eff.   |\n"
         "|          |       |           | per rank| us       | us       | us       | us       |        |\n"
         "|---|---|---|---|---|---|---|---|---|")
-print("c = %.0f ns, alpha = %.1f us, beta = %.2f GB/s per rank\n"
-      % (a.c, a.alpha, a.beta))
+print("c = %.0f ns, alpha = %.1f us, beta = %.2f GB/s per rank, %s shell\n"
+      % (a.c, a.alpha, a.beta, a.shell))
 print("Strong scaling (parallel efficiency against one rank)\n")
 print(head)
 for N in (1e6, 1e7):

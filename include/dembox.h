@@ -633,6 +633,8 @@ struct dem_bench_result {
     int periodic;              /* 1: timed in a periodic cell */
     long steps;                /* timed steps */
     int threads;               /* OpenMP threads in force */
+    int ranks;                 /* MPI ranks the sample was split over (1:
+                                  not split; docs/parallel.md) */
     char source[DEM_PATH_MAX]; /* where the particles came from */
     char cache[DEM_PATH_MAX];  /* the cached packing the run started from */
     int cache_hit;             /* 1 if the cache was used as it was */
@@ -649,7 +651,9 @@ struct dem_bench_result {
     char simd[64];             /* the vector instructions and width the
                                   build uses */
     double pairs_per_particle; /* listed pairs / N at the end */
-    double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N */
+    double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N
+                                  (z_end and pairs_per_particle: NaN when
+                                  split over ranks, not summed yet) */
     double p_start, p_end;     /* Pa (2D: N/m); mean wall stress */
     double strain;             /* axial strain applied over the run */
     double rss_start;          /* bytes; resident set before anything */

@@ -79,7 +79,7 @@ set +e
 "$MPIRUN" -np 2 "$BIN" run biaxial2d -o run > logr 2>&1; rc=$?
 set -e
 [ $rc -ne 0 ] || fail "mpirun dembox run: status 0"
-[ "$(grep -c "only \`dembox sweep\` runs over MPI ranks" logr)" -eq 1 ] ||
+[ "$(grep -c "only \`dembox sweep\` and \`dembox bench\` run over MPI ranks" logr)" -eq 1 ] ||
     fail "mpirun dembox run: $(cat logr)"
 [ ! -e run ] || fail "mpirun dembox run wrote outputs"
 set +e

@@ -15,6 +15,7 @@
 
 #include "formats/lammps_data.h"
 #include "io/fsutil.h"
+#include "decomp/halo.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"
 
@@ -483,14 +484,24 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
         return rc;
     snprintf(r->source, sizeof r->source, "%s",
              data ? data : "random placement, seed 1");
+    /* under MPI the sample is split over the ranks (decomp/halo.h):
+     * rank 0 prepares the packing, every rank loads it */
+    int rank = 0, ranks = 1;
+    dem_mpi_world(&rank, &ranks);
     r->cache_hit = !o->no_cache && file_exists(r->cache);
-    if (!r->cache_hit) {
+    if (!r->cache_hit && rank == 0) {
         double t0 = wall_clock();
         rc = prepare(&cfg, w, data, r->cache, o, err);
-        if (rc)
-            return rc;
         r->prep_seconds = wall_clock() - t0;
     }
+    if (ranks > 1) {
+        dem_halo_barrier();
+        if (rank > 0 && !file_exists(r->cache))
+            rc = dem_error_set(err, DEM_EIO, "%s: rank 0 did not prepare it",
+                               r->cache);
+    }
+    if (rc)
+        return rc;
 
     struct dem_sim s;
     rc = load_cache(&s, &cfg, r->cache, err);
@@ -523,6 +534,11 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     r->dim = dim;
     r->periodic = o->periodic;
     r->n = s.p.n;
+    r->ranks = ranks;
+    if (ranks > 1 && (rc = dem_halo_start(&s, err))) {
+        dem_sim_destroy(&s);
+        return rc;
+    }
     r->steps = steps;
     r->threads = omp_get_max_threads();
 
@@ -546,13 +562,17 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     if (!rc) {
         sample_now(&s, &smp);
         r->z_end = smp.coordination;
-        r->p_end = smp.p;
+        r->p_end = smp.p; /* from the walls: the same on every rank */
+        if (ranks > 1) /* one subdomain's: not summed over ranks yet */
+            r->z_end = r->pairs_per_particle = NAN;
         if (!isfinite(smp.e_kin) || !isfinite(smp.p))
             rc = dem_error_set(err, DEM_EUNSTABLE,
                                "bench: the timed run became unstable");
     }
     r->rss_end = rss_now();
     r->rss_peak = rss_peak();
+    if (s.halo)
+        dem_halo_stop(&s);
     dem_sim_destroy(&s);
     if (rc)
         return rc;
@@ -569,9 +589,13 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     const double phases = T->neighbor + T->force + T->integrate + T->walls;
     const double other = r->seconds > phases ? r->seconds - phases : 0.0;
     const char *unit = r->dim == 2 ? "N/m" : "Pa";
-    fprintf(f, "dembox bench: %dD, N = %d, %ld steps, %d thread%s, %s\n",
+    char split[96] = "";
+    if (r->ranks > 1)
+        snprintf(split, sizeof split,
+                 " per rank, %d MPI ranks (domain decomposition)", r->ranks);
+    fprintf(f, "dembox bench: %dD, N = %d, %ld steps, %d thread%s%s, %s\n",
             r->dim, r->n, r->steps, r->threads, r->threads == 1 ? "" : "s",
-            r->periodic ? "periodic cell" : "walls");
+            split, r->periodic ? "periodic cell" : "walls");
     fprintf(f, "machine: %s; %s\n", r->cpu, r->simd);
     fprintf(f, "packing: %s\n", r->source);
     fprintf(f, "cache:   %s (%s)\n", r->cache,
@@ -601,14 +625,22 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++)
         fprintf(f, "  %-12s %9.3f s %6.1f %%\n", rows[k].name, rows[k].t,
                 r->seconds > 0 ? 100.0 * rows[k].t / r->seconds : 0.0);
-    fprintf(f,
-            "neighbour list: %.2f pairs per particle at the end, %.2f "
-            "of them in contact (Z/2)\n",
-            r->pairs_per_particle, 0.5 * r->z_end);
-    fprintf(f,
-            "coordination Z: %.2f -> %.2f; mean wall stress: %.4g -> "
-            "%.4g %s\n",
-            r->z_start, r->z_end, r->p_start, r->p_end, unit);
+    if (r->ranks > 1)
+        fprintf(f, "neighbour list and coordination at the end: not summed "
+                   "over ranks yet\n");
+    else
+        fprintf(f,
+                "neighbour list: %.2f pairs per particle at the end, %.2f "
+                "of them in contact (Z/2)\n",
+                r->pairs_per_particle, 0.5 * r->z_end);
+    if (r->ranks > 1)
+        fprintf(f, "mean wall stress: %.4g -> %.4g %s\n", r->p_start,
+                r->p_end, unit);
+    else
+        fprintf(f,
+                "coordination Z: %.2f -> %.2f; mean wall stress: %.4g -> "
+                "%.4g %s\n",
+                r->z_start, r->z_end, r->p_start, r->p_end, unit);
     fprintf(f,
             "memory: peak RSS %.1f MB; %.0f bytes per particle (RSS "
             "after the run minus RSS before the benchmark)\n",

@@ -13,4 +13,8 @@ struct dem_history {
 #undef DEM_HISTORY_FIELD_
 };
 
+/* How many values DEM_CONTACT_HISTORY lists. */
+#define DEM_HIST_COUNT_(MODEL, name, unit, swap, doc) +1
+#define DEM_NHISTORY (0 DEM_CONTACT_HISTORY(DEM_HIST_COUNT_))
+
 #endif

@@ -53,6 +53,19 @@ void dem_particles_free(struct dem_particles *p)
     p->cap = 0;
 }
 
+int dem_particles_append_copy(struct dem_particles *dst,
+                              const struct dem_particles *src, int i)
+{
+    if (dst->n >= dst->cap)
+        return DEM_ENOMEM;
+    const int k = dst->n++;
+#define DEM_COPY_(f) dst->f[k] = src->f[i];
+    DEM_PARTICLE_DOUBLE_ARRAYS(DEM_COPY_)
+    DEM_PARTICLE_INT_ARRAYS(DEM_COPY_)
+#undef DEM_COPY_
+    return k;
+}
+
 void dem_particle_mass(double a, double density, int mass_model, int dim,
                        double *mass, double *inertia)
 {

@@ -48,6 +48,10 @@ void dem_particles_free(struct dem_particles *p);
  * mass model. Returns its index or a negative status when full. */
 int dem_particles_add(struct dem_particles *p, double x, double y, double z,
                       double radius, double density, int mass_model, int dim);
+/* Append a copy of particle i of src (every array, id included) to dst;
+ * returns its index in dst, or a negative status when dst is full. */
+int dem_particles_append_copy(struct dem_particles *dst,
+                              const struct dem_particles *src, int i);
 /* Re-order: particle k takes the data of particle old_of[k], for every
  * array. scratch points to a spare array of cap doubles; the permutation
  * swaps it with the arrays, so it points to another spare one after. */

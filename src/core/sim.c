@@ -217,7 +217,9 @@ static int kick_drift_range(int i0, int i1, double h, double dt,
  * particles call for a list rebuild. */
 static int kick_drift(struct dem_sim *s, double h)
 {
-    const int n = s->p.n;
+    /* a subdomain moves its own particles; the ghosts are the owners'
+     * business (dem_halo_ops.sync) */
+    const int n = s->p.n - s->pairs.nghost;
     const double half = s->drift_lim;
     int moved = 0;
 #pragma omp parallel reduction(| : moved)
@@ -329,7 +331,8 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
 {
     const double h = 0.5 * s->dt;
     struct dem_timers *T = &s->timers;
-    const int chain = s->chain;
+    /* a chained pass drifts before the ghosts could follow */
+    const int chain = s->halo ? 0 : s->chain;
     s->chain = 0;
     double t0 = lap(s);
     const int moved = s->drifted ? s->moved : kick_drift(s, h);
@@ -340,14 +343,22 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     double t2 = lap(s);
     s->t += s->dt;
     s->step++;
-    if (moved || walls_need_rebuild(s)) {
-        int rc = dem_sim_rebuild(s, err);
+    int rebuild = moved || walls_need_rebuild(s);
+    if (s->halo) {
+        rebuild = s->halo->sync(s, rebuild, err);
+        if (rebuild < 0)
+            return rebuild;
+    }
+    if (rebuild) {
+        int rc = s->halo ? s->halo->rebuild(s, err) : dem_sim_rebuild(s, err);
         if (rc)
             return rc;
     }
     double t3 = lap(s);
     s->moved = dem_sim_forces_kick(s, h, chain);
     s->drifted = chain;
+    if (s->halo)
+        s->halo->reduce(s);
     double t4 = lap(s);
     walls_kick(s, h);
     double t5 = lap(s);

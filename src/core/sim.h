@@ -43,6 +43,27 @@ struct dem_pass_choice {
                                     trial */
 };
 
+struct dem_sim;
+
+/* The exchanges of a domain decomposition (src/decomp/halo.h), which the
+ * step calls when a sample is split over MPI ranks; each rank's struct
+ * dem_sim then holds its own particles first and copies of its
+ * neighbours' particles within the ghost range after (the last
+ * s->pairs.nghost). */
+struct dem_halo_ops {
+    /* After the drift, with this rank's answer to whether the list must
+     * be rebuilt: the answer of all ranks (1 or 0), or a negative status.
+     * Without a rebuild the ghosts take their owners' new positions,
+     * velocities and spins. */
+    int (*sync)(struct dem_sim *s, int rebuild, struct dem_error *err);
+    /* Instead of dem_sim_rebuild: the particles move to the subdomains
+     * they are now in, with their contacts' history, each rank takes its
+     * new ghosts, and the lists are built. */
+    int (*rebuild)(struct dem_sim *s, struct dem_error *err);
+    /* After a force pass: the walls' forces summed over the ranks. */
+    void (*reduce)(struct dem_sim *s);
+};
+
 struct dem_sim {
     struct dem_config cfg; /* the validated config this run started from */
     int dim;               /* 2 or 3 */
@@ -79,7 +100,10 @@ struct dem_sim {
     int moved;   /* for drifted: whether the drift calls for a rebuild */
     struct dem_contact_sums sums;
     struct dem_pass_choice pass; /* the force pass's compilation */
-    int timing;                  /* 1: accumulate timers */
+    const struct dem_halo_ops *halo; /* a domain decomposition's
+                                        exchanges, or NULL */
+    void *halo_ctx;                  /* their state */
+    int timing;                      /* 1: accumulate timers */
     struct dem_timers timers;    /* s; time per phase */
 };
 

@@ -426,8 +426,10 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
                 }
                 buf = b2;
             }
-            int cnt = pl->periodic ? row_of_cell(pl, p, zr, skin, i, buf + m)
-                                   : row_of(pl, p, zr, skin, i, buf + m);
+            /* a ghost's partners j > i are ghosts too: no row */
+            int cnt = i >= n - pl->nghost ? 0
+                      : pl->periodic ? row_of_cell(pl, p, zr, skin, i, buf + m)
+                                     : row_of(pl, p, zr, skin, i, buf + m);
             start[i + 1] = cnt;
             m += (size_t)cnt;
         }
@@ -480,8 +482,11 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
     struct dem_contact_list *L = &pl->wcur;
     const struct dem_contact_list *O = &pl->wold;
     L->n = 0;
+    const int nown = p->n - pl->nghost;
     for (int i = 0; i < p->n; i++) {
         L->start[i] = L->n;
+        if (i >= nown)
+            continue;
         const double pos[3] = {p->x[i], p->y[i], p->z[i]};
         for (int k = 0; k < nwall; k++) {
             double sgn = w[k].side ? -1.0 : 1.0;
@@ -549,6 +554,9 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     struct dem_error *err)
 {
     const int n = p->n;
+    if (reorder && pl->nghost > 0)
+        return dem_error_set(err, DEM_EINTERNAL,
+                             "neighbours: re-ordering a subdomain with ghosts");
     if (particles_reserve(pl, n, p->cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
     int rc = setup_grid(pl, p, dim, skin, lo, hi, cell, err);

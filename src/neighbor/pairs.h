@@ -101,6 +101,11 @@ struct dem_pairs {
     double wall_pos0[6]; /* m; wall positions at the last build */
     /* what the contact models in force keep (set by the force pass's
      * setup, contact/forces.c) */
+    int nghost; /* domain decomposition (src/decomp): the last nghost
+                   particles are ghosts, copies of neighbouring subdomains'
+                   particles, the others this subdomain's own; a build
+                   lists no pair of two ghosts and no wall contact of a
+                   ghost. 0: no ghosts */
     unsigned hist; /* bit k: the k-th value of DEM_CONTACT_HISTORY is
                       kept (carried at a rebuild); the others are never
                       read or written */
@@ -119,7 +124,8 @@ void dem_pairs_free(struct dem_pairs *pl);
  * NULL) the grid covers the cell instead of [lo, hi], the particles must
  * be inside it, and pairs are found across its faces, each with the
  * image of j it touches; the cell must be wider than two interaction
- * ranges (else DEM_ERANGE). */
+ * ranges (else DEM_ERANGE). With ghosts (pl->nghost), the re-ordering is
+ * refused (it would mix own particles and ghosts). */
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     double skin, const double lo[3], const double hi[3],
                     const struct dem_wall *w, int nwall,

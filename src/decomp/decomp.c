@@ -1,0 +1,161 @@
+/* Domain decomposition: the grid of subdomains (decomp/decomp.h). */
+#include "decomp/decomp.h"
+
+#include <math.h>
+
+#include "core/particles.h"
+
+/* The narrowest subdomain of grid np over edges L. */
+static double narrowest(const int np[3], const double L[3], int dim)
+{
+    double w = INFINITY;
+    for (int a = 0; a < dim; a++)
+        if (np[a] > 1 && L[a] / np[a] < w)
+            w = L[a] / np[a];
+    return w;
+}
+
+int dem_decomp_grid(struct dem_decomp *d, int nranks, int dim,
+                    const double lo[3], const double hi[3], double range,
+                    struct dem_error *err)
+{
+    if (nranks < 1)
+        return dem_error_set(err, DEM_EUSAGE, "decomposition: %d ranks",
+                             nranks);
+    double L[3];
+    for (int a = 0; a < 3; a++)
+        L[a] = hi[a] - lo[a];
+    int best[3] = {0, 0, 0};
+    double best_cut = INFINITY, widest = 0.0;
+    /* more cuts along x first: among grids of equal cut area the one
+     * with fewer neighbours per subdomain */
+    for (int px = nranks; px >= 1; px--) {
+        if (nranks % px)
+            continue;
+        for (int py = nranks / px; py >= 1; py--) {
+            if ((nranks / px) % py)
+                continue;
+            const int pz = nranks / px / py;
+            if (dim == 2 && pz != 1)
+                continue;
+            const int np[3] = {px, py, pz};
+            const double w = narrowest(np, L, dim);
+            if (w > widest)
+                widest = w;
+            if (w < range)
+                continue;
+            /* area of the cuts: (np_a - 1) faces across axis a */
+            double cut = (px - 1) * L[1] * (dim == 3 ? L[2] : 1.0) +
+                         (py - 1) * L[0] * (dim == 3 ? L[2] : 1.0) +
+                         (pz - 1) * L[0] * L[1];
+            if (cut < best_cut * (1.0 - 1e-12)) {
+                best_cut = cut;
+                best[0] = px;
+                best[1] = py;
+                best[2] = pz;
+            }
+        }
+    }
+    if (best[0] == 0)
+        return dem_error_set(
+            err, DEM_EUSAGE,
+            "decomposition: %d ranks cut the box into subdomains at most "
+            "%.4g m wide, narrower than the ghost range %.4g m (largest "
+            "diameter plus skin); use fewer ranks",
+            nranks, widest, range);
+    d->nranks = nranks;
+    d->dim = dim;
+    for (int a = 0; a < 3; a++) {
+        d->np[a] = best[a];
+        d->lo[a] = lo[a];
+        d->hi[a] = hi[a];
+    }
+    d->range = range;
+    return DEM_OK;
+}
+
+int dem_decomp_resize(struct dem_decomp *d, const double lo[3],
+                      const double hi[3], struct dem_error *err)
+{
+    double L[3];
+    for (int a = 0; a < 3; a++)
+        L[a] = hi[a] - lo[a];
+    const double w = narrowest(d->np, L, d->dim);
+    if (w < d->range)
+        return dem_error_set(
+            err, DEM_EUSAGE,
+            "decomposition: the box has shrunk so that a subdomain is "
+            "%.4g m wide, narrower than the ghost range %.4g m; use fewer "
+            "ranks",
+            w, d->range);
+    for (int a = 0; a < 3; a++) {
+        d->lo[a] = lo[a];
+        d->hi[a] = hi[a];
+    }
+    return DEM_OK;
+}
+
+/* Index along axis a of the slab holding coordinate x. */
+static int slab(const struct dem_decomp *d, int a, double x)
+{
+    const double L = d->hi[a] - d->lo[a];
+    if (d->np[a] == 1 || !(L > 0.0))
+        return 0;
+    const int k = (int)floor((x - d->lo[a]) / L * d->np[a]);
+    return k < 0 ? 0 : k >= d->np[a] ? d->np[a] - 1 : k;
+}
+
+int dem_decomp_owner(const struct dem_decomp *d, const double x[3])
+{
+    return slab(d, 0, x[0]) +
+           d->np[0] * (slab(d, 1, x[1]) + d->np[1] * slab(d, 2, x[2]));
+}
+
+void dem_decomp_bounds(const struct dem_decomp *d, int rank, double lo[3],
+                       double hi[3])
+{
+    const int c[3] = {rank % d->np[0], (rank / d->np[0]) % d->np[1],
+                      rank / (d->np[0] * d->np[1])};
+    for (int a = 0; a < 3; a++) {
+        const double L = d->hi[a] - d->lo[a];
+        /* the same arithmetic as slab(): a point is inside exactly the
+         * bounds of the slab it is assigned to (up to the rounding of
+         * the division, covered by the ghost range) */
+        lo[a] = c[a] == 0 ? -INFINITY : d->lo[a] + L * c[a] / d->np[a];
+        hi[a] = c[a] == d->np[a] - 1 ? INFINITY
+                                     : d->lo[a] + L * (c[a] + 1) / d->np[a];
+    }
+}
+
+int dem_decomp_is_ghost(const struct dem_decomp *d, int rank, const double x[3])
+{
+    double lo[3], hi[3];
+    dem_decomp_bounds(d, rank, lo, hi);
+    double s = 0.0; /* squared distance from the subdomain */
+    for (int a = 0; a < 3; a++) {
+        const double g = x[a] < lo[a]   ? lo[a] - x[a]
+                         : x[a] > hi[a] ? x[a] - hi[a]
+                                        : 0.0;
+        s += g * g;
+    }
+    return s < d->range * d->range;
+}
+
+void dem_decomp_select(const struct dem_decomp *d, int rank,
+                       const struct dem_particles *p, int *list, int *nown,
+                       int *nghost)
+{
+    int m = 0;
+    for (int i = 0; i < p->n; i++) {
+        const double x[3] = {p->x[i], p->y[i], p->z[i]};
+        if (dem_decomp_owner(d, x) == rank)
+            list[m++] = i;
+    }
+    *nown = m;
+    for (int i = 0; i < p->n; i++) {
+        const double x[3] = {p->x[i], p->y[i], p->z[i]};
+        if (dem_decomp_owner(d, x) != rank && dem_decomp_is_ghost(d, rank, x))
+            list[m++] = i;
+    }
+    *nghost = m - *nown;
+}

@@ -1,0 +1,48 @@
+/* A sample split over MPI ranks by domain decomposition (issue 19,
+ * docs/parallel.md "Domain decomposition").
+ *
+ * Each rank keeps the particles of its subdomain (decomp/decomp.h) and
+ * copies of the particles of the others within the ghost range. A pair
+ * across a cut is computed by both ranks, each for its own particle
+ * (LAMMPS's "newton off"): no forces travel back, and each rank sums
+ * its particles' forces alone. Per step the ranks agree on whether to
+ * rebuild the lists (one allreduce) and, without a rebuild, send the
+ * ghosts' positions, velocities and spins to the ranks that hold them
+ * (one all-to-all); after the force pass the walls' forces are summed
+ * (one allreduce), so that every rank moves the walls alike. At a
+ * rebuild the subdomains follow the walls, particles move to their new
+ * subdomain with the records of their contacts (neighbor/records.h), and
+ * each rank takes its ghosts anew.
+ *
+ * Not yet: the measurements of a decomposed run (stresses from the
+ * contacts count a pair across a cut on both sides), its outputs and
+ * checkpoints, a periodic cell, and the re-ordering of particles in
+ * cell order within a subdomain.
+ */
+#ifndef DEM_DECOMP_HALO_H
+#define DEM_DECOMP_HALO_H
+
+#include "core/sim.h"
+
+/* Split s, the same whole sample on every rank of the MPI world, over
+ * the ranks: each keeps its subdomain's particles and takes its ghosts;
+ * the step then exchanges what it must (s->halo). MPI must have been
+ * started (dem_mpi_init). A grid whose subdomains are narrower than the
+ * ghost range, a periodic cell, or a build without MPI: an error, the
+ * same on every rank, and s unchanged. */
+int dem_halo_start(struct dem_sim *s, struct dem_error *err);
+
+/* The own particles of every rank, gathered on rank 0 in the order of
+ * their ids into out (initialised here, free with dem_particles_free;
+ * empty on the other ranks). */
+int dem_halo_gather(const struct dem_sim *s, struct dem_particles *out,
+                    struct dem_error *err);
+
+/* Wait for every rank of the MPI world (nothing without MPI or before
+ * it started). */
+void dem_halo_barrier(void);
+
+/* Free what dem_halo_start allocated; s->halo becomes NULL. */
+void dem_halo_stop(struct dem_sim *s);
+
+#endif

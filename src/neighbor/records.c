@@ -1,0 +1,147 @@
+/* Contact histories keyed by particle ids (neighbor/records.h). */
+#include "neighbor/records.h"
+
+#include <stdlib.h>
+
+#include "core/particles.h"
+
+static int reserve(struct dem_records *r, int n)
+{
+    if (n <= r->cap)
+        return 0;
+    int cap = r->cap > 0 ? r->cap : 64;
+    while (cap < n)
+        cap *= 2;
+    struct dem_contact_record *v = realloc(r->v, (size_t)cap * sizeof *v);
+    if (!v)
+        return DEM_ENOMEM;
+    r->v = v;
+    r->cap = cap;
+    return 0;
+}
+
+/* Entry k of list L as a record of particle id self; flip: self is the
+ * entry's j (values times their swap factors). */
+static void put(struct dem_contact_record *o, const struct dem_contact_list *L,
+                int k, unsigned hist, int self, int wall, int other, int flip)
+{
+    o->self = self;
+    o->wall = wall;
+    o->other = other;
+    o->state = L->state[k];
+    int q = 0;
+    unsigned bit = 1;
+#define REC_PUT_(MODEL, name, unit, swap, doc)                                 \
+    o->h[q++] = !(hist & bit) ? 0.0 : flip ? (swap)*L->name[k] : L->name[k];   \
+    bit <<= 1;
+    DEM_CONTACT_HISTORY(REC_PUT_)
+#undef REC_PUT_
+}
+
+int dem_records_export(struct dem_records *r, const struct dem_pairs *pl,
+                       const struct dem_particles *p, int nself)
+{
+    const struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
+    for (int k = 0; k < L->n; k++) {
+        if (!L->state[k])
+            continue;
+        const int i = L->i[k], j = L->j[k];
+        if (i < nself) {
+            if (reserve(r, r->n + 1))
+                return DEM_ENOMEM;
+            put(&r->v[r->n++], L, k, pl->hist, p->id[i], 0, p->id[j], 0);
+        }
+        if (j < nself) {
+            if (reserve(r, r->n + 1))
+                return DEM_ENOMEM;
+            put(&r->v[r->n++], L, k, pl->hist, p->id[j], 0, p->id[i], 1);
+        }
+    }
+    for (int k = 0; k < W->n; k++) {
+        if (!W->state[k] || W->i[k] >= nself)
+            continue;
+        if (reserve(r, r->n + 1))
+            return DEM_ENOMEM;
+        put(&r->v[r->n++], W, k, pl->hist, p->id[W->i[k]], 1, W->j[k], 0);
+    }
+    return 0;
+}
+
+static int cmp_key(int self, int wall, int other,
+                   const struct dem_contact_record *b)
+{
+    if (self != b->self)
+        return self < b->self ? -1 : 1;
+    if (wall != b->wall)
+        return wall < b->wall ? -1 : 1;
+    return (other > b->other) - (other < b->other);
+}
+
+static int cmp_record(const void *a, const void *b)
+{
+    const struct dem_contact_record *x = a;
+    return cmp_key(x->self, x->wall, x->other, b);
+}
+
+void dem_records_sort(struct dem_records *r)
+{
+    if (r->n > 1)
+        qsort(r->v, (size_t)r->n, sizeof *r->v, cmp_record);
+}
+
+static const struct dem_contact_record *find(const struct dem_records *r,
+                                             int self, int wall, int other)
+{
+    int lo = 0, hi = r->n - 1;
+    while (lo <= hi) {
+        const int mid = lo + (hi - lo) / 2;
+        const int c = cmp_key(self, wall, other, &r->v[mid]);
+        if (c == 0)
+            return &r->v[mid];
+        if (c < 0)
+            hi = mid - 1;
+        else
+            lo = mid + 1;
+    }
+    return NULL;
+}
+
+/* Entry k of L takes record o (none: NULL); flip: o is seen from the
+ * entry's j. */
+static void take(struct dem_contact_list *L, int k, unsigned hist,
+                 const struct dem_contact_record *o, int flip)
+{
+    int q = 0;
+    unsigned bit = 1;
+#define REC_TAKE_(MODEL, name, unit, swap, doc)                                \
+    if (hist & bit)                                                            \
+        L->name[k] = !o ? 0.0 : flip ? (swap)*o->h[q] : o->h[q];               \
+    q++;                                                                       \
+    bit <<= 1;
+    DEM_CONTACT_HISTORY(REC_TAKE_)
+#undef REC_TAKE_
+    L->state[k] = o ? o->state : 0;
+}
+
+void dem_records_import(const struct dem_records *r, struct dem_pairs *pl,
+                        const struct dem_particles *p)
+{
+    struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
+    for (int k = 0; k < L->n; k++) {
+        const int a = p->id[L->i[k]], b = p->id[L->j[k]];
+        const struct dem_contact_record *o = find(r, a, 0, b);
+        if (o)
+            take(L, k, pl->hist, o, 0);
+        else
+            take(L, k, pl->hist, find(r, b, 0, a), 1);
+    }
+    for (int k = 0; k < W->n; k++)
+        take(W, k, pl->hist, find(r, p->id[W->i[k]], 1, W->j[k]), 0);
+}
+
+void dem_records_free(struct dem_records *r)
+{
+    free(r->v);
+    r->v = NULL;
+    r->n = r->cap = 0;
+}

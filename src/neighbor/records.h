@@ -1,0 +1,50 @@
+/* Contact histories keyed by particle ids.
+ *
+ * A rebuild finds a contact's history again through the map from new to
+ * old particle indices (neighbor/pairs.h). Where particles change places
+ * beyond that map, as when they move between the subdomains of a domain
+ * decomposition (src/decomp), each contact's history travels as records:
+ * one contact seen from one of its particles ("self" as i). A pair gives
+ * a record for each of its particles, the second with its values times
+ * their swap factors (DEM_CONTACT_HISTORY), so that the record of either
+ * particle restores the pair whatever the order of the two in memory; a
+ * wall contact gives one.
+ */
+#ifndef DEM_NEIGHBOR_RECORDS_H
+#define DEM_NEIGHBOR_RECORDS_H
+
+#include "contact/history.h"
+#include "neighbor/pairs.h"
+
+struct dem_particles;
+
+struct dem_contact_record {
+    int self;               /* id of the particle */
+    int wall;               /* 1: other is a wall index, 0: a particle's id */
+    int other;              /* the partner */
+    int state;              /* DEM_CONTACT_* bits */
+    double h[DEM_NHISTORY]; /* the history values as seen from self (the
+                               values pl->hist does not keep are 0) */
+};
+
+struct dem_records {
+    int n, cap;
+    struct dem_contact_record *v;
+};
+
+/* Append the records of every contact of pl's current lists that has a
+ * state (an active contact) and whose particle is among the first nself
+ * of p (a pair: a record for each of its particles among them). 0, or
+ * DEM_ENOMEM. */
+int dem_records_export(struct dem_records *r, const struct dem_pairs *pl,
+                       const struct dem_particles *p, int nself);
+/* Sort by (self, wall, other), as dem_records_import needs. */
+void dem_records_sort(struct dem_records *r);
+/* Every entry of pl's current lists takes the history of its record in r
+ * (sorted): a pair (i, j) that of self = id i as it is, or else that of
+ * self = id j times the swap factors; none (all zero) without a record. */
+void dem_records_import(const struct dem_records *r, struct dem_pairs *pl,
+                        const struct dem_particles *p);
+void dem_records_free(struct dem_records *r);
+
+#endif
