@@ -133,8 +133,13 @@ else
 fi
 
 if [ "$NP" -gt 1 ]; then
-  LAUNCH=(mpirun -np "$NP" --bind-to core)
-  [ "$(id -u)" = 0 ] && LAUNCH=(mpirun --allow-run-as-root -np "$NP" --bind-to core)
+  # more ranks than cores: oversubscribed, unbound, and waiting ranks
+  # yield their core (state it with the figures)
+  BIND=(--bind-to core)
+  [ "$NP" -gt "$(env -u OMP_NUM_THREADS nproc)" ] &&
+    BIND=(--oversubscribe --bind-to none --mca mpi_yield_when_idle 1)
+  LAUNCH=(mpirun -np "$NP" "${BIND[@]}")
+  [ "$(id -u)" = 0 ] && LAUNCH=(mpirun --allow-run-as-root -np "$NP" "${BIND[@]}")
 else
   LAUNCH=()
 fi
