@@ -652,8 +652,8 @@ struct dem_bench_result {
                                   build uses */
     double pairs_per_particle; /* listed pairs / N at the end */
     double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N
-                                  (z_end and pairs_per_particle: NaN when
-                                  split over ranks, not summed yet) */
+                                  (pairs_per_particle: NaN when split over
+                                  ranks) */
     double p_start, p_end;     /* Pa (2D: N/m); mean wall stress */
     double strain;             /* axial strain applied over the run */
     double rss_start;          /* bytes; resident set before anything */

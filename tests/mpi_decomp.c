@@ -20,6 +20,7 @@
 #include "core/rng.h"
 #include "core/sim.h"
 #include "decomp/halo.h"
+#include "measure/measure.h"
 
 static void die(const struct dem_error *err)
 {
@@ -109,7 +110,9 @@ int main(int argc, char **argv)
     if (rank == 0) {
         sample(&ref, dim, n);
         steps(&ref, warm);
-        steps(&ref, run);
+        steps(&ref, run - 1);
+        ref.measure = 1; /* the last pass fills the contact sums */
+        steps(&ref, 1);
     }
     const long b0 = s.nbuild;
     if (dem_halo_start(&s, &err))
@@ -118,8 +121,15 @@ int main(int argc, char **argv)
     char *mine = calloc((size_t)n, 1);
     for (int i = 0; i < s.p.n - s.pairs.nghost; i++)
         mine[s.p.id[i]] = 1;
-    steps(&s, run);
+    steps(&s, run - 1);
+    s.measure = 1;
+    steps(&s, 1);
     const long builds = s.nbuild - b0;
+    /* the measurements: collective on a split sample */
+    double L0[3], V0;
+    dem_sim_box(&s, L0, &V0);
+    struct dem_sample ms, mr;
+    dem_measure(&s, L0, V0, 0, &ms);
     int moved = 0;
     for (int i = 0; i < s.p.n - s.pairs.nghost; i++)
         moved += !mine[s.p.id[i]];
@@ -147,6 +157,25 @@ int main(int argc, char **argv)
             dforce = fmax(dforce, fabs(s.wall[w].force - ref.wall[w].force));
             fscale = fmax(fscale, fabs(ref.wall[w].force));
         }
+        dem_measure(&ref, L0, V0, 0, &mr);
+        /* the contact sums: a pair across a cut counted once */
+        double dsig = 0.0, ssig = 0.0;
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++) {
+                dsig = fmax(dsig, fabs(ms.sigma_lw[a][c] - mr.sigma_lw[a][c]));
+                ssig = fmax(ssig, fabs(mr.sigma_lw[a][c]));
+            }
+        printf("  contacts: %ld pairs and %ld wall contacts split, %ld and "
+               "%ld whole; Love-Weber stress %.3g of the largest apart, "
+               "energies %.3g and %.3g, Z %.6g and %.6g\n",
+               s.sums.n_pp, s.sums.n_pw, ref.sums.n_pp, ref.sums.n_pw,
+               dsig / ssig, fabs(ms.e_pot - mr.e_pot) / mr.e_pot,
+               fabs(ms.e_kin - mr.e_kin) / mr.e_kin, ms.coordination,
+               mr.coordination);
+        failed |= s.sums.n_pp != ref.sums.n_pp || s.sums.n_pw != ref.sums.n_pw;
+        failed |= !(dsig / ssig < 1e-6 &&
+                    fabs(ms.e_pot - mr.e_pot) / mr.e_pot < 1e-6 &&
+                    fabs(ms.e_kin - mr.e_kin) / mr.e_kin < 1e-6);
         const double d = 8e-3; /* a mean diameter */
         printf("%dD, %d ranks, %ld steps split: %ld list builds, largest "
                "differences: positions %.3g d, velocities %.3g m/s, walls "

@@ -81,10 +81,25 @@ static void measure_contacts(struct dem_sim *s)
         dem_sim_lattice(s, &c);
         memcpy(cv, c.v, sizeof cv);
     }
+    /* split over ranks (decomp/halo.h): a pair across a cut is listed
+     * by both ranks; it joins the sums of the one whose particle has the
+     * smaller id (the other one, a ghost, has the larger) */
+    const int nown = P->n - pl->nghost;
     for (int k = 0; k < L->n; k++) {
         if (!(L->state[k] & DEM_CONTACT_ACTIVE))
             continue;
         const int i = L->i[k], j = L->j[k];
+        if (j >= nown && P->id[i] > P->id[j]) {
+            /* the other rank's to sum; i still feels it */
+            const double *f = F->v[k].f;
+            const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
+                                 P->z[i] - P->z[j]};
+            const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+            const double n[3] = {b[0] / d, b[1] / d, b[2] / d};
+            P->fsum[i] += fabs(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
+            P->ncontact[i]++;
+            continue;
+        }
         double sh[3] = {0.0, 0.0, 0.0}; /* to j's image */
         if (s->cell.on)
             dem_img_shift(cv, L->img[k], sh);
@@ -151,6 +166,37 @@ static void measure_contacts(struct dem_sim *s)
         }
         P->fsum[i] += fabs(f[a]);
         P->ncontact[i]++;
+    }
+    if (s->halo) { /* the sums of all ranks */
+        double v[24];
+        int q = 0;
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++) {
+                v[q++] = S->fabric_stress[a][c];
+                v[q++] = S->fabric[a][c];
+            }
+        v[q++] = S->e_pot;
+        v[q++] = (double)S->n_pp;
+        v[q++] = (double)S->n_pw;
+        v[q++] = (double)S->n_sliding;
+        s->halo->sum(s, v, q, 0);
+        q = 0;
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++) {
+                S->fabric_stress[a][c] = v[q++];
+                S->fabric[a][c] = v[q++];
+            }
+        S->e_pot = v[q++];
+        S->n_pp = (long)v[q++];
+        S->n_pw = (long)v[q++];
+        S->n_sliding = (long)v[q++];
+        /* the largest overlap; its particles are named on its rank only */
+        double m = S->max_overlap_ratio;
+        s->halo->sum(s, &m, 1, 1);
+        if (m != S->max_overlap_ratio) {
+            S->max_overlap_ratio = m;
+            S->max_overlap_i = S->max_overlap_j = -1;
+        }
     }
 }
 

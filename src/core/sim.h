@@ -62,6 +62,9 @@ struct dem_halo_ops {
     int (*rebuild)(struct dem_sim *s, struct dem_error *err);
     /* After a force pass: the walls' forces summed over the ranks. */
     void (*reduce)(struct dem_sim *s);
+    /* v[0..n) summed over the ranks, in place (measurements); max: the
+     * largest instead of the sum. */
+    void (*sum)(const struct dem_sim *s, double *v, int n, int max);
 };
 
 struct dem_sim {

@@ -491,7 +491,15 @@ static void halo_reduce(struct dem_sim *s)
         s->wall[w].force = sum[w];
 }
 
-static const struct dem_halo_ops ops = {halo_sync, halo_rebuild, halo_reduce};
+static void halo_sum(const struct dem_sim *s, double *v, int n, int max)
+{
+    (void)s;
+    MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, max ? MPI_MAX : MPI_SUM,
+                  MPI_COMM_WORLD);
+}
+
+static const struct dem_halo_ops ops = {halo_sync, halo_rebuild, halo_reduce,
+                                        halo_sum};
 
 static void halo_free(struct halo *H)
 {

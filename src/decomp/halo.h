@@ -14,10 +14,12 @@
  * subdomain with the records of their contacts (neighbor/records.h), and
  * each rank takes its ghosts anew.
  *
- * Not yet: the measurements of a decomposed run (stresses from the
- * contacts count a pair across a cut on both sides), its outputs and
- * checkpoints, a periodic cell, and the re-ordering of particles in
- * cell order within a subdomain.
+ * A measured pass sums over all ranks (a pair across a cut joins the
+ * sums of the rank whose particle has the smaller id), and so does
+ * dem_measure over the particles; the rattlers are not found across
+ * cuts yet (NaN). Not yet: the outputs and checkpoints of a split run, a
+ * periodic cell, and the re-ordering of particles in cell order within
+ * a subdomain.
  */
 #ifndef DEM_DECOMP_HALO_H
 #define DEM_DECOMP_HALO_H

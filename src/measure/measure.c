@@ -43,8 +43,11 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
         o->q = 0.5 * fabs(o->sigma[1] - o->sigma[0]);
     }
 
-    double vs = 0.0;
-    for (int i = 0; i < P->n; i++) {
+    /* split over ranks (decomp/halo.h): each sums its own particles,
+     * then the sums of all ranks are added */
+    const int nown = P->n - s->pairs.nghost;
+    double vs = 0.0, msum = 0.0, dsum = 0.0;
+    for (int i = 0; i < nown; i++) {
         const double m = P->m[i], I = 1.0 / P->inv_I[i];
         const double v[3] = {P->vx[i], P->vy[i], P->vz[i]};
         o->e_kin += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -56,6 +59,23 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
                 o->sigma_kin[a][c] += m * v[a] * v[c];
         const double r = P->r[i];
         vs += dim == 3 ? 4.0 / 3.0 * M_PI * r * r * r : M_PI * r * r;
+        msum += m;
+        dsum += 2.0 * r;
+    }
+    double N = nown;
+    if (s->halo) {
+        double v[15] = {o->e_kin, o->e_rot, vs, msum, dsum, N};
+        for (int a = 0; a < 9; a++)
+            v[6 + a] = o->sigma_kin[a / 3][a % 3];
+        s->halo->sum(s, v, 15, 0);
+        o->e_kin = v[0];
+        o->e_rot = v[1];
+        vs = v[2];
+        msum = v[3];
+        dsum = v[4];
+        N = v[5];
+        for (int a = 0; a < 9; a++)
+            o->sigma_kin[a / 3][a % 3] = v[6 + a];
     }
     for (int a = 0; a < 3; a++)
         for (int c = 0; c < 3; c++) {
@@ -67,14 +87,21 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     o->e_pot = S->e_pot;
     o->n_pp = (double)S->n_pp;
     o->n_pw = (double)S->n_pw;
-    o->coordination = P->n ? 2.0 * (double)S->n_pp / P->n : 0.0;
+    o->coordination = N > 0 ? 2.0 * (double)S->n_pp / N : 0.0;
     long nc = S->n_pp + S->n_pw;
     o->sliding_fraction = nc ? (double)S->n_sliding / (double)nc : 0.0;
     o->solid_fraction = vs / o->V;
     o->void_ratio = (o->V - vs) / vs;
     o->max_overlap = S->max_overlap_ratio;
 
-    int *scratch = malloc((size_t)(P->n ? P->n : 1) * sizeof *scratch);
+    /* rattlers: their removal cascades across the cuts of a split
+     * sample, not done there yet */
+    int *scratch = s->halo ? NULL
+                           : malloc((size_t)(P->n ? P->n : 1) * sizeof *scratch);
+    if (s->halo) {
+        o->rattler_fraction = NAN;
+        o->coordination_nr = NAN;
+    }
     if (scratch) {
         long c_nr = 0;
         long nr = dem_measure_rattlers(s, scratch, &c_nr);
@@ -91,13 +118,8 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
         double r = fabs(Ld) / o->L[a];
         rate = r > rate ? r : rate;
     }
-    double msum = 0.0, dsum = 0.0;
-    for (int i = 0; i < P->n; i++) {
-        msum += P->m[i];
-        dsum += 2.0 * P->r[i];
-    }
-    if (P->n && o->p > 0.0) {
-        double m = msum / P->n, d = dsum / P->n;
+    if (N > 0 && o->p > 0.0) {
+        double m = msum / N, d = dsum / N;
         double F = o->p * (dim == 3 ? d * d : d);
         o->inertial_number = rate * sqrt(m * d / F);
     }
