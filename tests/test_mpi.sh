@@ -6,7 +6,8 @@
 # the same runs byte for byte as the local sweep; a second call under MPI
 # skips what is finished and reruns a run whose summary is gone, again
 # with the same result; `mpirun dembox run` and a bad --param are refused
-# by rank 0 alone, with one line and a non-zero status.
+# by rank 0 alone, with one line and a non-zero status, and so is a
+# benchmark split into subdomains narrower than the ghost range.
 # Built without MPI: a launch by mpirun (its environment) is refused with
 # one line from rank 0, and nothing runs.
 set -eu
@@ -88,4 +89,14 @@ set -e
 [ $rc -ne 0 ] || fail "bad --param: status 0"
 [ "$(grep -c "bogus.key" logb)" -eq 1 ] || fail "bad --param: $(cat logb)"
 [ ! -e bad/runs ] || fail "bad --param: runs started"
+# a benchmark split over more ranks than its box has room for: one line
+# from rank 0 naming the ghost range, status 1
+set +e
+"$MPIRUN" -np 16 --oversubscribe --mca mpi_yield_when_idle 1 "$BIN" bench \
+    --dim 2 --n 20 --steps 2 --threads 1 --quiet --cache-dir cache \
+    > logd 2>&1; rc=$?
+set -e
+[ $rc -ne 0 ] || fail "bench over 16 ranks: status 0"
+[ "$(grep -c "narrower than the ghost range" logd)" -eq 1 ] ||
+    fail "bench over 16 ranks: $(cat logd)"
 echo "MPI sweeps: 2 and 4 ranks as local; restart; refusals"
