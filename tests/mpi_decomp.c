@@ -80,6 +80,7 @@ static void sample(struct dem_sim *s, int dim, int n)
     for (int w = 0; w < 2 * dim; w++)
         dem_wall_set_stress(&s->wall[w], c.walls.mass, c.walls.gamma, 0.0,
                             dim == 3 ? 200.0 : 20.0, 0.0, 0.0, 0.0);
+    s->reorder = 1; /* as in a run: particles in cell order */
     if (dem_sim_ready(s, &err))
         die(&err);
 }

@@ -393,11 +393,27 @@ static int build(struct dem_sim *s, struct halo *H, struct dem_error *err)
     s->pairs.cur.n = 0;
     s->pairs.wcur.n = 0;
     int rc = dem_sim_rebuild(s, err);
-    if (!all_ok(rc))
+    const int nown = s->p.n - s->pairs.nghost;
+    int *new_of = NULL;
+    if (!rc && s->reorder &&
+        !(new_of = malloc((size_t)(nown > 0 ? nown : 1) * sizeof *new_of)))
+        rc = dem_error_set(err, DEM_ENOMEM, "out of memory (halo)");
+    if (!all_ok(rc)) {
+        free(new_of);
         return rc ? rc
                   : dem_error_set(err, DEM_EINTERNAL,
                                   "domain decomposition: a rank failed to "
                                   "build its lists");
+    }
+    if (new_of) {
+        /* the build put the own particles in cell order: the ghosts this
+         * rank sends are found at their new places */
+        for (int k = 0; k < nown; k++)
+            new_of[s->pairs.old_of[k]] = k;
+        for (int k = 0; k < H->nsend; k++)
+            H->send[k] = new_of[H->send[k]];
+        free(new_of);
+    }
     dem_records_import(&H->rec, &s->pairs, &s->p);
     return 0;
 }
@@ -573,7 +589,6 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
         }
         m++;
     }
-    s->reorder = 0; /* not within a subdomain yet */
     s->halo = &ops;
     s->halo_ctx = H;
     rc = ghosts(s, H, m);

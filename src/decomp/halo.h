@@ -17,9 +17,9 @@
  * A measured pass sums over all ranks (a pair across a cut joins the
  * sums of the rank whose particle has the smaller id), and so does
  * dem_measure over the particles; the rattlers are not found across
- * cuts yet (NaN). Not yet: the outputs and checkpoints of a split run, a
- * periodic cell, and the re-ordering of particles in cell order within
- * a subdomain.
+ * cuts yet (NaN). A rebuild re-orders each rank's own particles in cell
+ * order (the ghosts keep their places). Not yet: the outputs and
+ * checkpoints of a split run, and a periodic cell.
  */
 #ifndef DEM_DECOMP_HALO_H
 #define DEM_DECOMP_HALO_H

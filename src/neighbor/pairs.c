@@ -554,25 +554,41 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     struct dem_error *err)
 {
     const int n = p->n;
-    if (reorder && pl->nghost > 0)
-        return dem_error_set(err, DEM_EINTERNAL,
-                             "neighbours: re-ordering a subdomain with ghosts");
     if (particles_reserve(pl, n, p->cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
     int rc = setup_grid(pl, p, dim, skin, lo, hi, cell, err);
     if (rc)
         return rc;
     sort_by_cell(pl, p);
-    if (reorder) {
+    const int ncell = pl->nc[0] * pl->nc[1] * pl->nc[2];
+    if (reorder && pl->nghost == 0) {
         /* particles in cell order: neighbours are close in memory */
         memcpy(pl->old_of, pl->cell_list, (size_t)n * sizeof *pl->old_of);
         dem_particles_permute(p, pl->old_of, &pl->scratch);
         for (int k = 0; k < n; k++)
             pl->cell_list[k] = k;
-        const int ncell = pl->nc[0] * pl->nc[1] * pl->nc[2];
         for (int c = 0; c < ncell; c++)
             for (int q = pl->cell_start[c]; q < pl->cell_start[c + 1]; q++)
                 pl->cell_of[q] = c;
+    } else if (reorder) {
+        /* a subdomain: its own particles in cell order, the ghosts stay
+         * where they are (the exchanges address them by index) */
+        const int nown = n - pl->nghost;
+        int m = 0;
+        for (int q = 0; q < n; q++)
+            if (pl->cell_list[q] < nown)
+                pl->old_of[m++] = pl->cell_list[q];
+        for (int k = nown; k < n; k++)
+            pl->old_of[k] = k;
+        dem_particles_permute(p, pl->old_of, &pl->scratch);
+        int *new_of = pl->rstart; /* scratch: build_reverse fills it */
+        for (int k = 0; k < n; k++)
+            new_of[pl->old_of[k]] = k;
+        for (int q = 0; q < n; q++)
+            pl->cell_list[q] = new_of[pl->cell_list[q]];
+        for (int c = 0; c < ncell; c++)
+            for (int q = pl->cell_start[c]; q < pl->cell_start[c + 1]; q++)
+                pl->cell_of[pl->cell_list[q]] = c;
     } else {
         for (int k = 0; k < n; k++)
             pl->old_of[k] = k;

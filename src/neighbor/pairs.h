@@ -124,8 +124,9 @@ void dem_pairs_free(struct dem_pairs *pl);
  * NULL) the grid covers the cell instead of [lo, hi], the particles must
  * be inside it, and pairs are found across its faces, each with the
  * image of j it touches; the cell must be wider than two interaction
- * ranges (else DEM_ERANGE). With ghosts (pl->nghost), the re-ordering is
- * refused (it would mix own particles and ghosts). */
+ * ranges (else DEM_ERANGE). With ghosts (pl->nghost) only the own
+ * particles are re-ordered (among themselves); the ghosts keep their
+ * places. */
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     double skin, const double lo[3], const double hi[3],
                     const struct dem_wall *w, int nwall,
