@@ -604,6 +604,10 @@ struct dem_timers {
                          next half kick and drift */
     double integrate; /* first half kick and drift of an unchained step */
     double walls;     /* wall motion */
+    double exchange;  /* a sample split over MPI ranks: the exchanges
+                         between ranks of each step (decomp/halo.h; at a
+                         rebuild the neighbour time includes moving the
+                         particles between ranks) */
 };
 
 #define DEM_BENCH_DEFAULT_STEPS 20000

@@ -586,7 +586,8 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
 {
     const double ps = (double)r->n * (double)r->steps;
     const struct dem_timers *T = &r->timers;
-    const double phases = T->neighbor + T->force + T->integrate + T->walls;
+    const double phases =
+        T->neighbor + T->force + T->integrate + T->walls + T->exchange;
     const double other = r->seconds > phases ? r->seconds - phases : 0.0;
     const char *unit = r->dim == 2 ? "N/m" : "Pa";
     char split[96] = "";
@@ -621,6 +622,7 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
                 {"forces", T->force},
                 {"integration", T->integrate},
                 {"walls", T->walls},
+                {"exchange", T->exchange},
                 {"other", other}};
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++)
         fprintf(f, "  %-12s %9.3f s %6.1f %%\n", rows[k].name, rows[k].t,

@@ -344,8 +344,11 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     s->t += s->dt;
     s->step++;
     int rebuild = moved || walls_need_rebuild(s);
+    double ts = 0.0, tr = 0.0; /* the exchanges between ranks */
     if (s->halo) {
+        const double a = lap(s);
         rebuild = s->halo->sync(s, rebuild, err);
+        ts = lap(s) - a;
         if (rebuild < 0)
             return rebuild;
     }
@@ -357,14 +360,17 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     double t3 = lap(s);
     s->moved = dem_sim_forces_kick(s, h, chain);
     s->drifted = chain;
-    if (s->halo)
-        s->halo->reduce(s);
     double t4 = lap(s);
+    if (s->halo) {
+        s->halo->reduce(s);
+        tr = lap(s) - t4;
+    }
     walls_kick(s, h);
     double t5 = lap(s);
     T->integrate += t1 - t0;
-    T->walls += (t2 - t1) + (t5 - t4);
-    T->neighbor += t3 - t2;
+    T->walls += (t2 - t1) + (t5 - t4 - tr);
+    T->neighbor += t3 - t2 - ts;
     T->force += t4 - t3;
+    T->exchange += ts + tr;
     return DEM_OK;
 }
