@@ -354,7 +354,9 @@ static int forces(struct dem_sim *s, const struct kick K)
         .gr = s->cfg.damping.gamma_br,
         .np = pl->cur.n,
         .nw = pl->wcur.n,
-        .n = s->p.n,
+        /* a subdomain sums, kicks and moves its own particles only: its
+         * ghosts' state comes from their owners (decomp/halo.h) */
+        .n = s->p.n - pl->nghost,
         .periodic = s->cell.on,
         .vir = s->cell.vir,
     };

@@ -331,8 +331,9 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
 {
     const double h = 0.5 * s->dt;
     struct dem_timers *T = &s->timers;
-    /* a chained pass drifts before the ghosts could follow */
-    const int chain = s->halo ? 0 : s->chain;
+    /* split over ranks, a chained pass moves the own particles; the
+     * ghosts follow at the sync below, before the next forces */
+    const int chain = s->chain;
     s->chain = 0;
     double t0 = lap(s);
     const int moved = s->drifted ? s->moved : kick_drift(s, h);
