@@ -11,6 +11,6 @@ set xlabel "k_c/k_2"
 set ylabel "cohesion c"
 set grid
 set key below box
-set xrange [0:0.275]
+set xrange [0:0.55]
 plot "cohesion_vs_kc.dat" index 0 using 1:2:3 with yerrorbars pointtype 7 pointsize 1.5 title "flow functions, mean ± s.e. over the seeds", \
   "" index 1 with lines linewidth 2 title "A |f_{min}|/(k_2 δ_{max}) (A fitted)"

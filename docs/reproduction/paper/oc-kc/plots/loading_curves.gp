@@ -18,29 +18,29 @@ set key outside right top
 set tmargin 5
 set multiplot layout 2,1 title "Loading curves: the loading stage of every run"
 set ylabel "volumetric strain ε_v (expansion > 0)"
-plot 'loading_curves.dat' index 0 using 1:2 with lines lc 1 noenhanced title "contact.kc=2.5e4, stages.1.pressure=100", \
-  'loading_curves.dat' index 1 using 1:2 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 2 using 1:2 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 3 using 1:2 with lines lc 2 noenhanced title "contact.kc=2.5e4, stages.1.pressure=250", \
-  'loading_curves.dat' index 4 using 1:2 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 5 using 1:2 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 6 using 1:2 with lines lc 3 noenhanced title "contact.kc=2.5e4, stages.1.pressure=500", \
-  'loading_curves.dat' index 7 using 1:2 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 8 using 1:2 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 9 using 1:2 with lines lc 4 noenhanced title "contact.kc=2.5e4, stages.1.pressure=1000", \
-  'loading_curves.dat' index 10 using 1:2 with lines lc 4 noenhanced notitle, \
-  'loading_curves.dat' index 11 using 1:2 with lines lc 4 noenhanced notitle
+plot 'loading_curves.dat' index 0 using 1:2 with lines lc 5 noenhanced title "contact.kc=5.0e4, stages.1.pressure=100", \
+  'loading_curves.dat' index 1 using 1:2 with lines lc 5 noenhanced notitle, \
+  'loading_curves.dat' index 2 using 1:2 with lines lc 5 noenhanced notitle, \
+  'loading_curves.dat' index 3 using 1:2 with lines lc 6 noenhanced title "contact.kc=5.0e4, stages.1.pressure=250", \
+  'loading_curves.dat' index 4 using 1:2 with lines lc 6 noenhanced notitle, \
+  'loading_curves.dat' index 5 using 1:2 with lines lc 6 noenhanced notitle, \
+  'loading_curves.dat' index 6 using 1:2 with lines lc 7 noenhanced title "contact.kc=5.0e4, stages.1.pressure=500", \
+  'loading_curves.dat' index 7 using 1:2 with lines lc 7 noenhanced notitle, \
+  'loading_curves.dat' index 8 using 1:2 with lines lc 7 noenhanced notitle, \
+  'loading_curves.dat' index 9 using 1:2 with lines lc 8 noenhanced title "contact.kc=5.0e4, stages.1.pressure=1000", \
+  'loading_curves.dat' index 10 using 1:2 with lines lc 8 noenhanced notitle, \
+  'loading_curves.dat' index 11 using 1:2 with lines lc 8 noenhanced notitle
 set ylabel "σ_{axial} - σ_{lateral} (Pa; 2D: N/m)"
-plot 'loading_curves.dat' index 0 using 1:3 with lines lc 1 noenhanced title "contact.kc=2.5e4, stages.1.pressure=100", \
-  'loading_curves.dat' index 1 using 1:3 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 2 using 1:3 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 3 using 1:3 with lines lc 2 noenhanced title "contact.kc=2.5e4, stages.1.pressure=250", \
-  'loading_curves.dat' index 4 using 1:3 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 5 using 1:3 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 6 using 1:3 with lines lc 3 noenhanced title "contact.kc=2.5e4, stages.1.pressure=500", \
-  'loading_curves.dat' index 7 using 1:3 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 8 using 1:3 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 9 using 1:3 with lines lc 4 noenhanced title "contact.kc=2.5e4, stages.1.pressure=1000", \
-  'loading_curves.dat' index 10 using 1:3 with lines lc 4 noenhanced notitle, \
-  'loading_curves.dat' index 11 using 1:3 with lines lc 4 noenhanced notitle
+plot 'loading_curves.dat' index 0 using 1:3 with lines lc 5 noenhanced title "contact.kc=5.0e4, stages.1.pressure=100", \
+  'loading_curves.dat' index 1 using 1:3 with lines lc 5 noenhanced notitle, \
+  'loading_curves.dat' index 2 using 1:3 with lines lc 5 noenhanced notitle, \
+  'loading_curves.dat' index 3 using 1:3 with lines lc 6 noenhanced title "contact.kc=5.0e4, stages.1.pressure=250", \
+  'loading_curves.dat' index 4 using 1:3 with lines lc 6 noenhanced notitle, \
+  'loading_curves.dat' index 5 using 1:3 with lines lc 6 noenhanced notitle, \
+  'loading_curves.dat' index 6 using 1:3 with lines lc 7 noenhanced title "contact.kc=5.0e4, stages.1.pressure=500", \
+  'loading_curves.dat' index 7 using 1:3 with lines lc 7 noenhanced notitle, \
+  'loading_curves.dat' index 8 using 1:3 with lines lc 7 noenhanced notitle, \
+  'loading_curves.dat' index 9 using 1:3 with lines lc 8 noenhanced title "contact.kc=5.0e4, stages.1.pressure=1000", \
+  'loading_curves.dat' index 10 using 1:3 with lines lc 8 noenhanced notitle, \
+  'loading_curves.dat' index 11 using 1:3 with lines lc 8 noenhanced notitle
 unset multiplot

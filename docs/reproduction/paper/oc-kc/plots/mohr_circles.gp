@@ -12,8 +12,8 @@ set ylabel "shear stress τ"
 set grid
 set key below box
 set size ratio -1
-set xrange [0:1657.14]
-set yrange [0:994.285]
+set xrange [0:1734.07]
+set yrange [0:1040.44]
 plot \
   "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100" noenhanced, \
   "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250" noenhanced, \
@@ -29,4 +29,19 @@ plot \
   "mohr_circles.dat" index 11 with lines linewidth 2 linecolor 3 notitle, \
   "mohr_circles.dat" index 12 with lines linewidth 2 linecolor 4 notitle, \
   "mohr_circles.dat" index 13 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 9.9°, c = 20.7, R² = 0.999 (contact.kc=2.5e4, seed=3)" noenhanced, \
+  "mohr_circles.dat" index 14 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 15 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 16 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 17 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 18 with lines dashtype 5 linewidth 2 linecolor "black" title "flow function φ = 11.7°, c = 18.5, R² = 0.982 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "mohr_circles.dat" index 19 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 20 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 21 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 22 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 23 with lines dashtype 6 linewidth 2 linecolor "black" title "flow function φ = 10.6°, c = 32.2, R² = 0.994 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "mohr_circles.dat" index 24 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 25 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 26 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 27 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 28 with lines dashtype 7 linewidth 2 linecolor "black" title "flow function φ = 10.3°, c = 37.3, R² = 1.000 (contact.kc=5.0e4, seed=3)" noenhanced, \
   0 linetype -3 notitle

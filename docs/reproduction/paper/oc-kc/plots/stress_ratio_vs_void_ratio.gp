@@ -12,16 +12,28 @@ set ylabel "sin φ_m = (σ_1 - σ_3)/(σ_1 + σ_3)"
 set grid
 set key below box
 plot \
-  "stress_ratio_vs_void_ratio.dat" index 0 with lines title "p = 100 (contact.kc=2.5e4, seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 1 with lines title "p = 100 (contact.kc=2.5e4, seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 2 with lines title "p = 100 (contact.kc=2.5e4, seed=3)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 3 with lines title "p = 250 (contact.kc=2.5e4, seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 4 with lines title "p = 250 (contact.kc=2.5e4, seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 5 with lines title "p = 250 (contact.kc=2.5e4, seed=3)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 6 with lines title "p = 500 (contact.kc=2.5e4, seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 7 with lines title "p = 500 (contact.kc=2.5e4, seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 8 with lines title "p = 500 (contact.kc=2.5e4, seed=3)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 9 with lines title "p = 1000 (contact.kc=2.5e4, seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 10 with lines title "p = 1000 (contact.kc=2.5e4, seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 11 with lines title "p = 1000 (contact.kc=2.5e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 0 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 1 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 2 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 3 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 4 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 5 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 6 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 7 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 8 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 9 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 10 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 11 with lines notitle, \
+  "stress_ratio_vs_void_ratio.dat" index 12 with lines title "p = 100 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 13 with lines title "p = 100 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 14 with lines title "p = 100 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 15 with lines title "p = 250 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 16 with lines title "p = 250 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 17 with lines title "p = 250 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 18 with lines title "p = 500 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 19 with lines title "p = 500 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 20 with lines title "p = 500 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 21 with lines title "p = 1000 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 22 with lines title "p = 1000 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 23 with lines title "p = 1000 (contact.kc=5.0e4, seed=3)" noenhanced, \
   0 linetype -3 notitle

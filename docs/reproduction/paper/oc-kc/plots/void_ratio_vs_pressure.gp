@@ -23,4 +23,16 @@ plot \
   "void_ratio_vs_pressure.dat" index 9 with points pointtype 7 pointsize 1.5 linecolor 6 title "critical (contact.kc=2.5e4, seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 10 with lines linewidth 2 linecolor 5 title "fit initial: e0 = 0.1591, n = 0.751, h_s = 1e+05, R² = 0.998 (contact.kc=2.5e4, seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 11 with lines linewidth 2 linecolor 6 title "fit critical: e0 = 0.2177, n = 0.508, h_s = 1e+05, R² = 0.997 (contact.kc=2.5e4, seed=3)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 12 with points pointtype 6 pointsize 1.5 linecolor 7 title "initial (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 13 with points pointtype 7 pointsize 1.5 linecolor 8 title "critical (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 14 with lines linewidth 2 linecolor 7 title "fit initial: e0 = 0.1636, n = 0.746, h_s = 1e+05, R² = 0.999 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 15 with lines linewidth 2 linecolor 8 title "fit critical: e0 = 0.2500, n = 0.442, h_s = 1e+05, R² = 1.000 (contact.kc=5.0e4, seed=1)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 16 with points pointtype 6 pointsize 1.5 linecolor 9 title "initial (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 17 with points pointtype 7 pointsize 1.5 linecolor 10 title "critical (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 18 with lines linewidth 2 linecolor 9 title "fit initial: e0 = 0.1611, n = 0.751, h_s = 1e+05, R² = 0.998 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 19 with lines linewidth 2 linecolor 10 title "fit critical: e0 = 0.2482, n = 0.447, h_s = 1e+05, R² = 0.999 (contact.kc=5.0e4, seed=2)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 20 with points pointtype 6 pointsize 1.5 linecolor 11 title "initial (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 21 with points pointtype 7 pointsize 1.5 linecolor 12 title "critical (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 22 with lines linewidth 2 linecolor 11 title "fit initial: e0 = 0.1634, n = 0.744, h_s = 1e+05, R² = 0.999 (contact.kc=5.0e4, seed=3)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 23 with lines linewidth 2 linecolor 12 title "fit critical: e0 = 0.2563, n = 0.432, h_s = 1e+05, R² = 0.995 (contact.kc=5.0e4, seed=3)" noenhanced, \
   0 linetype -3 notitle
