@@ -56,6 +56,7 @@ struct halo {
     int *scount, *sdispl, *rcount, *rdispl; /* per rank, in particles
                                                (ghost lists) */
     int *cnt, *dsp, *cnt2, *dsp2;           /* scratch per rank */
+    int *xc;                                /* 4 per rank: exchange()'s */
     double *sbuf, *rbuf;
     size_t sbuf_cap, rbuf_cap;
     struct dem_records rec; /* the own particles' contact records */
@@ -119,19 +120,28 @@ static int displs(const int *count, int *displ, int n)
     return t;
 }
 
+/* Whether every rank succeeded (rc == 0 on all). */
+static int all_ok(int rc)
+{
+    int bad = rc != 0, any = 0;
+    MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+    return !any;
+}
+
 /* An all-to-all of doubles: cnt[r] items of width w to rank r from
  * H->sbuf (grouped by rank); the items received land in H->rbuf, their
- * counts per rank in cnt2. Returns the number received, or < 0. */
-static int exchange(struct halo *H, const int *cnt, int w)
+ * counts per rank in cnt2. Returns the number received, or < 0 on every
+ * rank. grow: H->rbuf may have to grow (at a rebuild; the steps between
+ * receive fewer doubles than the rebuild's ghosts did, no check). */
+static int exchange(struct halo *H, const int *cnt, int w, int grow)
 {
     MPI_Alltoall(cnt, 1, MPI_INT, H->cnt2, 1, MPI_INT, MPI_COMM_WORLD);
     const int nin = displs(H->cnt2, H->dsp2, H->size);
-    if (rbuf_reserve(H, (size_t)nin * w))
+    /* every rank must reach the all-to-all below or none */
+    if (grow && !all_ok(rbuf_reserve(H, (size_t)nin * w)))
         return DEM_ENOMEM;
-    int *sc = malloc(4 * (size_t)H->size * sizeof *sc);
-    if (!sc)
-        return DEM_ENOMEM;
-    int *sd = sc + H->size, *rc = sd + H->size, *rd = rc + H->size;
+    int *sc = H->xc, *sd = sc + H->size, *rc = sd + H->size,
+        *rd = rc + H->size;
     int t = 0;
     for (int r = 0; r < H->size; r++) {
         sc[r] = cnt[r] * w;
@@ -142,16 +152,7 @@ static int exchange(struct halo *H, const int *cnt, int w)
     }
     MPI_Alltoallv(H->sbuf, sc, sd, MPI_DOUBLE, H->rbuf, rc, rd, MPI_DOUBLE,
                   MPI_COMM_WORLD);
-    free(sc);
     return nin;
-}
-
-/* Whether every rank succeeded (rc == 0 on all). */
-static int all_ok(int rc)
-{
-    int bad = rc != 0, any = 0;
-    MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
-    return !any;
 }
 
 static int records_reserve(struct dem_records *r, int n)
@@ -273,7 +274,7 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
         }
     free(dest);
     p->n = m;
-    const int nin = exchange(H, H->cnt, NPACK);
+    const int nin = exchange(H, H->cnt, NPACK, 1);
     if (nin < 0 || m + nin > p->cap)
         rc = nin < 0 ? nin : DEM_EINTERNAL;
     if (!all_ok(rc)) {
@@ -372,7 +373,7 @@ static int ghosts(struct dem_sim *s, struct halo *H, int nown)
     displs(H->scount, H->sdispl, size);
     for (int k = 0; k < H->nsend; k++)
         pack(p, H->send[k], H->sbuf + (size_t)k * NPACK);
-    const int nin = exchange(H, H->scount, NPACK);
+    const int nin = exchange(H, H->scount, NPACK, 1);
     if (nin < 0 || nown + nin > p->cap)
         rc = nin < 0 ? nin : DEM_EINTERNAL;
     if (!all_ok(rc))
@@ -447,7 +448,7 @@ static int halo_sync(struct dem_sim *s, int rebuild, struct dem_error *err)
         o[7] = p->wy[i];
         o[8] = p->wz[i];
     }
-    const int nin = exchange(H, H->scount, NSTATE);
+    const int nin = exchange(H, H->scount, NSTATE, 0);
     if (nin != s->pairs.nghost)
         return dem_error_set(err, DEM_EINTERNAL,
                              "domain decomposition: %d ghosts arrived, %d "
@@ -546,7 +547,7 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
     MPI_Comm_rank(MPI_COMM_WORLD, &H->rank);
     MPI_Comm_size(MPI_COMM_WORLD, &H->size);
     const size_t sz = (size_t)H->size;
-    H->scount = malloc(8 * sz * sizeof *H->scount);
+    H->scount = malloc(12 * sz * sizeof *H->scount);
     if (!H->scount) {
         halo_free(H);
         return dem_error_set(err, DEM_ENOMEM, "out of memory (halo)");
@@ -558,6 +559,7 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
     H->dsp = H->cnt + sz;
     H->cnt2 = H->dsp + sz;
     H->dsp2 = H->cnt2 + sz;
+    H->xc = H->dsp2 + sz;
     double lo[3], hi[3], rmax = 0.0;
     box_of(s, lo, hi);
     for (int i = 0; i < s->p.n; i++)
