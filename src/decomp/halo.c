@@ -140,8 +140,7 @@ static int exchange(struct halo *H, const int *cnt, int w, int grow)
     /* every rank must reach the all-to-all below or none */
     if (grow && !all_ok(rbuf_reserve(H, (size_t)nin * w)))
         return DEM_ENOMEM;
-    int *sc = H->xc, *sd = sc + H->size, *rc = sd + H->size,
-        *rd = rc + H->size;
+    int *sc = H->xc, *sd = sc + H->size, *rc = sd + H->size, *rd = rc + H->size;
     int t = 0;
     for (int r = 0; r < H->size; r++) {
         sc[r] = cnt[r] * w;
