@@ -1,8 +1,8 @@
 /* A sample split over MPI ranks (decomp/halo.h) follows the undivided
  * one: run by test_decomp_mpi.sh under mpirun with 1, 2 and 4 ranks.
  *
- * Every rank builds the same frictional gas of spheres (or discs: argv[1]
- * = 2) with rolling resistance in a box of six stress-controlled walls,
+ * Every rank builds the same frictional gas of 2000 spheres (or 1500 discs:
+ * argv[1] = 2) with rolling resistance in a box of six stress-controlled walls,
  * and steps it undivided for a while so that its contacts carry history.
  * Rank 0 then goes on alone (the reference), while all ranks step a copy
  * split over the world: compression, list rebuilds and particles moving
@@ -58,7 +58,7 @@ static void sample(struct dem_sim *s, int dim, int n)
     c.stages[0].duration = 1.0;
     c.stages[0].mu = -1.0;
     c.output.interval = 1.0;
-    const double L = dim == 3 ? 0.2 : 0.7;
+    const double L = dim == 3 ? 0.175 : 0.6;
     const double lo[3] = {0, 0, 0}, hi[3] = {L, L, dim == 3 ? L : 0.0};
     struct dem_error err;
     if (dem_sim_create_empty(s, &c, n, lo, hi, &err))
@@ -102,8 +102,8 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     const int dim = argc > 1 ? atoi(argv[1]) : 3;
-    const int n = dim == 3 ? 3000 : 2000;
-    const long warm = 2000, run = 3000;
+    const int n = dim == 3 ? 2000 : 1500;
+    const long warm = 1500, run = 2000;
     struct dem_sim ref, s;
     struct dem_error err;
     sample(&s, dim, n);
