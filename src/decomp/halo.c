@@ -191,9 +191,16 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
 {
     struct dem_particles *p = &s->p;
     const int size = H->size;
+    /* a failure before the collectives below must reach them: every
+     * rank learns of it there (all_ok) */
     int *dest = malloc((size_t)(nown > 0 ? nown : 1) * sizeof *dest);
-    if (!dest)
-        return DEM_ENOMEM;
+    int *at = malloc((size_t)size * sizeof *at);
+    int rc = dest && at ? sbuf_reserve(H, (size_t)nown * NPACK) : DEM_ENOMEM;
+    if (!all_ok(rc)) {
+        free(dest);
+        free(at);
+        return rc ? rc : DEM_ENOMEM;
+    }
     memset(H->cnt, 0, (size_t)size * sizeof *H->cnt);
     for (int i = 0; i < nown; i++) {
         const double x[3] = {p->x[i], p->y[i], p->z[i]};
@@ -202,17 +209,7 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
             H->cnt[dest[i]]++;
     }
     displs(H->cnt, H->dsp, size);
-    int rc = sbuf_reserve(H, (size_t)nown * NPACK);
-    if (rc) {
-        free(dest);
-        return rc;
-    }
     /* particles */
-    int *at = malloc((size_t)size * sizeof *at);
-    if (!at) {
-        free(dest);
-        return DEM_ENOMEM;
-    }
     memcpy(at, H->dsp, (size_t)size * sizeof *at);
     for (int i = 0; i < nown; i++)
         if (dest[i] != H->rank)
