@@ -89,17 +89,6 @@ static void measure_contacts(struct dem_sim *s)
         if (!(L->state[k] & DEM_CONTACT_ACTIVE))
             continue;
         const int i = L->i[k], j = L->j[k];
-        if (j >= nown && P->id[i] > P->id[j]) {
-            /* the other rank's to sum; i still feels it */
-            const double *f = F->v[k].f;
-            const double b[3] = {P->x[i] - P->x[j], P->y[i] - P->y[j],
-                                 P->z[i] - P->z[j]};
-            const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-            const double n[3] = {b[0] / d, b[1] / d, b[2] / d};
-            P->fsum[i] += fabs(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
-            P->ncontact[i]++;
-            continue;
-        }
         double sh[3] = {0.0, 0.0, 0.0}; /* to j's image */
         if (s->cell.on)
             dem_img_shift(cv, L->img[k], sh);
@@ -109,6 +98,13 @@ static void measure_contacts(struct dem_sim *s)
         const double *f = F->v[k].f;
         const double d = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
         const double n[3] = {b[0] / d, b[1] / d, b[2] / d};
+        const double fa = fabs(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
+        P->fsum[i] += fa;
+        P->fsum[j] += fa;
+        P->ncontact[i]++;
+        P->ncontact[j]++;
+        if (j >= nown && P->id[i] > P->id[j])
+            continue; /* the other rank's to sum; i still feels it */
         const double R = P->r[i] + P->r[j], delta = R - d;
         /* Love-Weber: the two particles' -l (x) f add up to b (x) f */
         for (int a = 0; a < 3; a++)
@@ -131,11 +127,6 @@ static void measure_contacts(struct dem_sim *s)
             S->max_overlap_i = P->id[i];
             S->max_overlap_j = P->id[j];
         }
-        const double fa = fabs(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
-        P->fsum[i] += fa;
-        P->fsum[j] += fa;
-        P->ncontact[i]++;
-        P->ncontact[j]++;
     }
     for (int k = 0; k < WL->n; k++) {
         if (!(WL->state[k] & DEM_CONTACT_ACTIVE))

@@ -109,6 +109,27 @@ static void unpack(struct dem_particles *p, int i, const double *o)
 #undef UNPACK_I_
 }
 
+/* The particles [0, n) of p in this rank's subdomain close up at the
+ * front, in order; the others are dropped (p->n becomes their number,
+ * which is returned). */
+static int keep_own(const struct halo *H, struct dem_particles *p, int n)
+{
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        const double x[3] = {p->x[i], p->y[i], p->z[i]};
+        if (dem_decomp_owner(&H->d, x) != H->rank)
+            continue;
+        if (m != i) {
+            double tmp[NPACK];
+            pack(p, i, tmp);
+            unpack(p, m, tmp);
+        }
+        m++;
+    }
+    p->n = m;
+    return m;
+}
+
 /* Displacements from counts; returns the total. */
 static int displs(const int *count, int *displ, int n)
 {
@@ -257,19 +278,8 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
         dem_records_free(&keep);
         return rc ? rc : DEM_ENOMEM;
     }
-    /* the kept particles close up */
-    int m = 0;
-    for (int i = 0; i < nown; i++)
-        if (dest[i] == H->rank) {
-            if (m != i) {
-                double tmp[NPACK];
-                pack(p, i, tmp);
-                unpack(p, m, tmp);
-            }
-            m++;
-        }
     free(dest);
-    p->n = m;
+    const int m = keep_own(H, p, nown);
     const int nin = exchange(H, H->cnt, NPACK, 1);
     if (nin < 0 || m + nin > p->cap)
         rc = nin < 0 ? nin : DEM_EINTERNAL;
@@ -574,19 +584,7 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
         return dem_error_set(err, rc, "out of memory (records)");
     }
     dem_records_sort(&H->rec);
-    struct dem_particles *p = &s->p;
-    int m = 0;
-    for (int i = 0; i < p->n; i++) {
-        const double x[3] = {p->x[i], p->y[i], p->z[i]};
-        if (dem_decomp_owner(&H->d, x) != H->rank)
-            continue;
-        if (m != i) {
-            double tmp[NPACK];
-            pack(p, i, tmp);
-            unpack(p, m, tmp);
-        }
-        m++;
-    }
+    const int m = keep_own(H, &s->p, s->p.n);
     s->halo = &ops;
     s->halo_ctx = H;
     rc = ghosts(s, H, m);
