@@ -66,7 +66,14 @@ static const char *const usage_run =
     "(SIGINT) or SIGTERM the run saves OUTDIR/checkpoint.bin; after a signal\n"
     "it stops (exit status 130 or 143) and says how to resume. A second\n"
     "Ctrl-C stops at once, without a checkpoint. A finished run removes its\n"
-    "checkpoint; resuming it is refused (exit status 1).\n";
+    "checkpoint; resuming it is refused (exit status 1).\n"
+    "\n"
+    "Under mpirun (a build with MPI) the sample is split over the ranks by\n"
+    "domain decomposition (docs/parallel.md): the same outputs, written by\n"
+    "rank 0, which gathers the particles for snapshots, dumps, the final\n"
+    "state and checkpoints; a checkpoint resumes at any number of ranks\n"
+    "(to round-off, not byte for byte). OUTDIR must be on a file system\n"
+    "every rank sees.\n";
 
 static const char *const usage_plot =
     "usage: dembox plot OUTDIR\n\nRedraw the pictures of the run in OUTDIR "
@@ -197,6 +204,8 @@ static const char *const usage_example =
 
 /* 1 on MPI ranks other than 0: rank 0 says what all ranks would say. */
 static int quiet_rank;
+/* 1: started by an MPI launcher with several ranks (main_mpi) */
+static int mpi_world;
 
 static int fail(const char *msg)
 {
@@ -315,20 +324,32 @@ static void cli_progress(const struct dem_progress *p, void *user)
 static int run_with_signals(const struct dem_config *cfg, const char *resume,
                             struct dem_run_options *opt, int quiet)
 {
+    /* under MPI (main_mpi) the ranks split the sample; rank 0 speaks,
+     * and writes */
+    opt->split = mpi_world;
+    quiet |= quiet_rank;
     if (!quiet && isatty(STDERR_FILENO))
         opt->progress = cli_progress;
     struct signals old;
     catch_signals(&old);
     opt->stop = &stop_signal;
+    /* for tests of resuming: stop as if interrupted at the first sample
+     * after this step */
+    const char *stop_after = getenv("DEMBOX_STOP_AFTER_STEP");
+    if (stop_after && *stop_after)
+        opt->stop_after_steps = atol(stop_after);
     struct dem_error err = {0, "", cli_warning, NULL};
     int rc =
         resume ? dem_run_resume(resume, opt, &err) : dem_run(cfg, opt, &err);
     restore_signals(&old);
     const char *dir = resume ? resume : opt->outdir;
     if (rc == DEM_EINTERRUPTED) {
-        fprintf(stderr, "dembox: %s\n", err.msg);
+        if (!quiet_rank)
+            fprintf(stderr, "dembox: %s\n", err.msg);
         return 128 + (stop_signal ? (int)stop_signal : SIGINT);
     }
+    if (quiet_rank) /* the analysis and the pictures are rank 0's */
+        return rc ? 1 : 0;
     if (!rc)
         rc = dem_analyze(dir, &err);
     if (!rc)
@@ -707,7 +728,7 @@ static int cmd_help(int argc, char **argv)
 }
 
 /* dembox started by an MPI launcher with several ranks (MPI started if
- * this build has it): only `dembox sweep` runs over them
+ * this build has it): `dembox run`, `sweep` and `bench` run over them
  * (docs/parallel.md). Anything else is refused by rank 0 with one line,
  * before anything is written. */
 static int main_mpi(int argc, char **argv, int rank, int size)
@@ -717,10 +738,9 @@ static int main_mpi(int argc, char **argv, int rank, int size)
     if (!dem_mpi_built())
         why = "this dembox was built without MPI (install libopenmpi-dev "
               "and build again), so its ranks would all do the same work";
-    else if (strcmp(c, "sweep") && strcmp(c, "bench"))
-        why = "only `dembox sweep` and `dembox bench` run over MPI ranks (a "
-              "single run is not split over ranks yet): start other "
-              "commands without mpirun";
+    else if (strcmp(c, "sweep") && strcmp(c, "bench") && strcmp(c, "run"))
+        why = "only `dembox run`, `dembox sweep` and `dembox bench` run "
+              "over MPI ranks: start other commands without mpirun";
     if (why) {
         char n[32] = "several";
         if (size > 0)
@@ -734,7 +754,9 @@ static int main_mpi(int argc, char **argv, int rank, int size)
     }
     if (rank > 0) /* progress and messages come from rank 0 */
         quiet_rank = 1;
+    mpi_world = 1;
     const int rc = !strcmp(c, "bench") ? cmd_bench(argc - 2, argv + 2)
+                   : !strcmp(c, "run") ? cmd_run(argc - 2, argv + 2)
                                        : cmd_sweep(argc - 2, argv + 2);
     dem_mpi_finalize();
     return rc;

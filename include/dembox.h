@@ -280,6 +280,10 @@ struct dem_run_options {
                            returns DEM_EINTERRUPTED */
     long stop_after_steps;       /* > 0 (tests): behave as if *stop were set
                                  once this many steps are done */
+    int split; /* 1: every rank of the MPI world calls this with the same
+                  arguments, and the sample is split over them by domain
+                  decomposition (docs/parallel.md); rank 0 writes the
+                  outputs. 0: this process runs the whole sample. */
 };
 
 /* Run every stage of cfg (validated) and write the outputs of SPEC §7 to

@@ -5,7 +5,7 @@
 # (oversubscribing this machine's cores), gives the same sweep.json and
 # the same runs byte for byte as the local sweep; a second call under MPI
 # skips what is finished and reruns a run whose summary is gone, again
-# with the same result; `mpirun dembox run` and a bad --param are refused
+# with the same result; `mpirun dembox analyze` and a bad --param are refused
 # by rank 0 alone, with one line and a non-zero status, and so is a
 # benchmark split into subdomains narrower than the ghost range.
 # Built without MPI: a launch by mpirun (its environment) is refused with
@@ -75,14 +75,14 @@ rm np4/sweep.json
 "$MPIRUN" -np 4 "$BIN" $S --collect -o np4 > logc 2>&1 || fail "--collect: $(tail -5 logc)"
 cmp local/sweep.json np4/sweep.json || fail "--collect over 4 ranks: sweep.json differs"
 
-# refused: a single run over ranks, a bad --param (one line, from rank 0)
+# refused: a command that does not run over ranks, a bad --param (one
+# line, from rank 0)
 set +e
-"$MPIRUN" -np 2 "$BIN" run biaxial2d -o run > logr 2>&1; rc=$?
+"$MPIRUN" -np 2 "$BIN" analyze np2/runs > logr 2>&1; rc=$?
 set -e
-[ $rc -ne 0 ] || fail "mpirun dembox run: status 0"
-[ "$(grep -c "only \`dembox sweep\` and \`dembox bench\` run over MPI ranks" logr)" -eq 1 ] ||
-    fail "mpirun dembox run: $(cat logr)"
-[ ! -e run ] || fail "mpirun dembox run wrote outputs"
+[ $rc -ne 0 ] || fail "mpirun dembox analyze: status 0"
+[ "$(grep -c "only \`dembox run\`, \`dembox sweep\` and \`dembox bench\` run over MPI ranks" logr)" -eq 1 ] ||
+    fail "mpirun dembox analyze: $(cat logr)"
 set +e
 "$MPIRUN" -np 2 "$BIN" sweep biaxial2d --param bogus.key=1,2 -o bad > logb 2>&1; rc=$?
 set -e

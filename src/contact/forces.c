@@ -181,13 +181,20 @@ static void measure_contacts(struct dem_sim *s)
         S->n_pp = (long)v[q++];
         S->n_pw = (long)v[q++];
         S->n_sliding = (long)v[q++];
-        /* the largest overlap; its particles are named on its rank only */
+        /* the largest overlap, and its particles (ids) from the rank
+         * that found it (on a tie, the larger id) */
         double m = S->max_overlap_ratio;
         s->halo->sum(s, &m, 1, 1);
-        if (m != S->max_overlap_ratio) {
-            S->max_overlap_ratio = m;
-            S->max_overlap_i = S->max_overlap_j = -1;
-        }
+        const int mine = S->max_overlap_ratio == m;
+        double ki = mine ? (double)S->max_overlap_i : -1.0;
+        s->halo->sum(s, &ki, 1, 1);
+        double kj = mine && S->max_overlap_i == (int)ki
+                        ? (double)S->max_overlap_j + 2.0 /* a wall: -1 */
+                        : 0.0;
+        s->halo->sum(s, &kj, 1, 1);
+        S->max_overlap_ratio = m;
+        S->max_overlap_i = (int)ki;
+        S->max_overlap_j = (int)kj - 2;
     }
 }
 

@@ -65,6 +65,9 @@ struct dem_halo_ops {
     /* v[0..n) summed over the ranks, in place (measurements); max: the
      * largest instead of the sum. */
     void (*sum)(const struct dem_sim *s, double *v, int n, int max);
+    /* v (one entry per particle, ghosts included): each own particle's
+     * value copied to its ghosts on the other ranks (measurements) */
+    void (*to_ghosts)(const struct dem_sim *s, int *v);
 };
 
 struct dem_sim {

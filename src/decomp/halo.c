@@ -35,6 +35,26 @@ void dem_halo_barrier(void)
 {
 }
 
+int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
+                     struct dem_error *err)
+{
+    (void)s;
+    memset(whole, 0, sizeof *whole);
+    return dem_error_set(err, DEM_EUSAGE,
+                         "domain decomposition: built without MPI");
+}
+
+void dem_halo_bcast(int *v, int n)
+{
+    (void)v;
+    (void)n;
+}
+
+int dem_halo_any(int flag)
+{
+    return flag != 0;
+}
+
 #else
 
 #include <mpi.h>
@@ -521,8 +541,19 @@ static void halo_sum(const struct dem_sim *s, double *v, int n, int max)
                   MPI_COMM_WORLD);
 }
 
+static void halo_to_ghosts(const struct dem_sim *s, int *v)
+{
+    struct halo *H = s->halo_ctx;
+    for (int k = 0; k < H->nsend; k++)
+        H->sbuf[k] = (double)v[H->send[k]];
+    const int nin = exchange(H, H->scount, 1, 0);
+    const int g0 = s->p.n - s->pairs.nghost;
+    for (int k = 0; k < nin; k++)
+        v[g0 + k] = (int)H->rbuf[k];
+}
+
 static const struct dem_halo_ops ops = {halo_sync, halo_rebuild, halo_reduce,
-                                        halo_sum};
+                                        halo_sum, halo_to_ghosts};
 
 static void halo_free(struct halo *H)
 {
@@ -659,6 +690,156 @@ int dem_halo_gather(const struct dem_sim *s, struct dem_particles *out,
     }
     free(all);
     return rc;
+}
+
+/* The records of every rank's own particles, gathered on rank 0 into
+ * out (sorted; empty elsewhere). The same status on every rank. */
+static int gather_records(const struct dem_sim *s, const struct halo *H,
+                          struct dem_records *out)
+{
+    struct dem_records mine = {0};
+    const int nown = s->p.n - s->pairs.nghost;
+    int rc = dem_records_export(&mine, &s->pairs, &s->p, nown);
+    int *cnt = calloc(2 * (size_t)H->size, sizeof *cnt);
+    if (!cnt)
+        rc = DEM_ENOMEM;
+    if (!all_ok(rc)) {
+        dem_records_free(&mine);
+        free(cnt);
+        return rc ? rc : DEM_ENOMEM;
+    }
+    MPI_Datatype rec;
+    MPI_Type_contiguous((int)sizeof *mine.v, MPI_BYTE, &rec);
+    MPI_Type_commit(&rec);
+    MPI_Gather(&mine.n, 1, MPI_INT, cnt, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    const int total = H->rank == 0 ? displs(cnt, cnt + H->size, H->size) : 0;
+    rc = records_reserve(out, total > 0 ? total : 1);
+    if (all_ok(rc)) {
+        MPI_Gatherv(mine.v, mine.n, rec, out->v, cnt, cnt + H->size, rec, 0,
+                    MPI_COMM_WORLD);
+        out->n = total;
+        dem_records_sort(out);
+    } else {
+        rc = rc ? rc : DEM_ENOMEM;
+    }
+    MPI_Type_free(&rec);
+    dem_records_free(&mine);
+    free(cnt);
+    return rc;
+}
+
+/* The forces of w's contacts (outputs show them), as the last pass of
+ * the split run s found them: that pass saw the velocities before the
+ * step's closing half kick, so w's particles are kicked back by half a
+ * step for a pass and then take their velocities and forces again (a
+ * pass at the end-of-step velocities would give other damping forces,
+ * and a resumed run its first half kick from them). */
+static int contact_forces(struct dem_sim *w, const struct dem_sim *s)
+{
+    struct dem_particles *p = &w->p;
+    const size_t n = (size_t)p->n;
+    double *const keep[] = {p->vx, p->vy, p->vz, p->wx, p->wy, p->wz,
+                            p->fx, p->fy, p->fz, p->tx, p->ty, p->tz,
+                            p->fsum};
+    enum { NKEEP = sizeof keep / sizeof keep[0] };
+    double *copy = malloc((n ? n : 1) * NKEEP * sizeof *copy);
+    int *ncontact = malloc((n ? n : 1) * sizeof *ncontact);
+    if (!copy || !ncontact) {
+        free(copy);
+        free(ncontact);
+        return DEM_ENOMEM;
+    }
+    for (int c = 0; c < NKEEP; c++)
+        memcpy(copy + c * n, keep[c], n * sizeof *copy);
+    memcpy(ncontact, p->ncontact, n * sizeof *ncontact);
+    const double h = 0.5 * w->dt;
+    const double hg[3] = {-h * w->cfg.gravity[0], -h * w->cfg.gravity[1],
+                          -h * w->cfg.gravity[2]};
+    for (int i = 0; i < p->n; i++)
+        dem_particle_kick(p, i, -h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
+                          p->ty[i], p->tz[i]);
+    dem_sim_forces(w);
+    for (int c = 0; c < NKEEP; c++)
+        memcpy(keep[c], copy + c * n, n * sizeof *copy);
+    memcpy(p->ncontact, ncontact, n * sizeof *ncontact);
+    memcpy(w->wall, s->wall, sizeof w->wall); /* their forces, summed */
+    free(copy);
+    free(ncontact);
+    return 0;
+}
+
+int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
+                     struct dem_error *err)
+{
+    memset(whole, 0, sizeof *whole);
+    const struct halo *H = s->halo_ctx;
+    if (!H)
+        return dem_error_set(err, DEM_EUSAGE, "dem_halo_collect: not split");
+    struct dem_particles all = {0};
+    int rc = dem_halo_gather(s, &all, err);
+    if (!all_ok(rc)) {
+        dem_particles_free(&all);
+        return rc ? rc
+                  : dem_error_set(err, DEM_EINTERNAL,
+                                  "domain decomposition: gathering the "
+                                  "particles on rank 0 failed");
+    }
+    struct dem_records rec = {0};
+    rc = gather_records(s, H, &rec);
+    if (rc) {
+        dem_particles_free(&all);
+        return dem_error_set(err, rc,
+                             "domain decomposition: out of memory (records)");
+    }
+    if (H->rank == 0) {
+        /* the same state, undivided, particles in the order of their ids */
+        *whole = *s;
+        whole->p = all;
+        memset(&whole->pairs, 0, sizeof whole->pairs);
+        whole->pairs.hist = s->pairs.hist;
+        whole->pairs.torques = s->pairs.torques;
+        whole->halo = NULL;
+        whole->halo_ctx = NULL;
+        whole->cell.vir = NULL;
+        whole->reorder = 0;
+        whole->measure = whole->chain = whole->drifted = whole->moved = 0;
+        whole->timing = 0;
+        rc = dem_sim_derive(whole, err);
+        if (!rc)
+            rc = dem_sim_rebuild(whole, err);
+        if (!rc) {
+            dem_records_import(&rec, &whole->pairs, &whole->p);
+            rc = contact_forces(whole, s);
+            whole->nbuild = s->nbuild;
+        }
+        if (rc) {
+            if (rc == DEM_ENOMEM)
+                dem_error_set(err, rc, "out of memory (gathering)");
+            dem_sim_destroy(whole);
+            memset(whole, 0, sizeof *whole);
+        }
+    } else {
+        dem_particles_free(&all);
+    }
+    dem_records_free(&rec);
+    return rc;
+}
+
+void dem_halo_bcast(int *v, int n)
+{
+    int started = 0;
+    MPI_Initialized(&started);
+    if (started)
+        MPI_Bcast(v, n, MPI_INT, 0, MPI_COMM_WORLD);
+}
+
+int dem_halo_any(int flag)
+{
+    int started = 0, any = flag != 0;
+    MPI_Initialized(&started);
+    if (started)
+        MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+    return any;
 }
 
 void dem_halo_barrier(void)

@@ -16,10 +16,11 @@
  *
  * A measured pass sums over all ranks (a pair across a cut joins the
  * sums of the rank whose particle has the smaller id), and so does
- * dem_measure over the particles; the rattlers are not found across
- * cuts yet (NaN). A rebuild re-orders each rank's own particles in cell
- * order (the ghosts keep their places). Not yet: the outputs and
- * checkpoints of a split run, and a periodic cell.
+ * dem_measure over the particles, the rattlers' cascade included (a
+ * round's removals reach the ghosts before the next round). A rebuild
+ * re-orders each rank's own particles in cell order (the ghosts keep
+ * their places). Outputs and checkpoints see the whole sample gathered
+ * on rank 0 (dem_halo_collect). Not yet: a periodic cell.
  */
 #ifndef DEM_DECOMP_HALO_H
 #define DEM_DECOMP_HALO_H
@@ -39,6 +40,21 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err);
  * empty on the other ranks). */
 int dem_halo_gather(const struct dem_sim *s, struct dem_particles *out,
                     struct dem_error *err);
+
+/* The whole sample, gathered on rank 0 into whole as one undivided
+ * simulation at the same step, for outputs and checkpoints: particles in
+ * the order of their ids, the contacts with their history, the lists
+ * built anew, the contacts' forces computed again (equal to the split
+ * run's to round-off; the particles' and walls' forces are the run's).
+ * Free with dem_sim_destroy. On the other ranks whole is zeroed. Collective: every rank calls it; the status is
+ * rank 0's (out of memory on another rank: the same status there). */
+int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
+                     struct dem_error *err);
+
+/* Rank 0's v[0..n) on every rank (nothing without MPI). */
+void dem_halo_bcast(int *v, int n);
+/* 1 on every rank when flag is set on some rank (flag without MPI). */
+int dem_halo_any(int flag);
 
 /* Wait for every rank of the MPI world (nothing without MPI or before
  * it started). */

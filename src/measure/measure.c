@@ -94,20 +94,13 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     o->void_ratio = (o->V - vs) / vs;
     o->max_overlap = S->max_overlap_ratio;
 
-    /* rattlers: their removal cascades across the cuts of a split
-     * sample, not done there yet */
-    int *scratch = s->halo ? NULL
-                           : malloc((size_t)(P->n ? P->n : 1) * sizeof *scratch);
-    if (s->halo) {
-        o->rattler_fraction = NAN;
-        o->coordination_nr = NAN;
-    }
+    int *scratch = malloc((size_t)(P->n ? P->n : 1) * sizeof *scratch);
+    o->rattler_fraction = o->coordination_nr = NAN; /* out of memory */
     if (scratch) {
         long c_nr = 0;
         long nr = dem_measure_rattlers(s, scratch, &c_nr);
-        o->rattler_fraction = P->n ? (double)nr / P->n : 0.0;
-        o->coordination_nr =
-            P->n > nr ? 2.0 * (double)c_nr / (double)(P->n - nr) : 0.0;
+        o->rattler_fraction = N > 0 ? (double)nr / N : 0.0;
+        o->coordination_nr = N > nr ? 2.0 * (double)c_nr / (N - nr) : 0.0;
         free(scratch);
     }
 
@@ -150,6 +143,10 @@ long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
     const struct dem_particles *P = &s->p;
     const struct dem_contact_list *L = &s->pairs.cur;
     const int need = s->dim == 3 ? 4 : 2;
+    /* split over ranks, each decides for its own particles, all of whose
+     * contacts it lists; the ghosts take their owners' verdicts before
+     * the next round */
+    const int nown = P->n - s->pairs.nghost;
     memset(cnt, 0, (size_t)P->n * sizeof *cnt);
     count_contacts(s, cnt);
     /* a removed rattler no longer supports its neighbours: repeat until
@@ -157,21 +154,40 @@ long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
     long removed = 0;
     for (;;) {
         int changed = 0;
-        for (int i = 0; i < P->n; i++)
+        for (int i = 0; i < nown; i++)
             if (cnt[i] >= 0 && cnt[i] < need) {
                 cnt[i] = -1;
                 removed++;
                 changed = 1;
             }
+        if (s->halo) {
+            double any = changed;
+            s->halo->sum(s, &any, 1, 1);
+            changed = any > 0.0;
+            if (changed)
+                s->halo->to_ghosts(s, cnt);
+        }
         if (!changed)
             break;
         count_contacts(s, cnt);
     }
     long c = 0;
-    for (int k = 0; k < L->n; k++)
-        if ((L->state[k] & DEM_CONTACT_ACTIVE) && cnt[L->i[k]] >= 0 &&
-            cnt[L->j[k]] >= 0)
-            c++;
+    for (int k = 0; k < L->n; k++) {
+        const int i = L->i[k], j = L->j[k];
+        if (!(L->state[k] & DEM_CONTACT_ACTIVE) || cnt[i] < 0 || cnt[j] < 0)
+            continue;
+        /* a pair across a cut: counted by the rank of the smaller id */
+        if ((i >= nown || j >= nown) &&
+            P->id[i >= nown ? j : i] > P->id[i >= nown ? i : j])
+            continue;
+        c++;
+    }
+    if (s->halo) {
+        double v[2] = {(double)removed, (double)c};
+        s->halo->sum(s, v, 2, 0);
+        removed = (long)v[0];
+        c = (long)v[1];
+    }
     *contacts_nr = c;
     return removed;
 }

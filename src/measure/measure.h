@@ -61,7 +61,8 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
                  int stage, struct dem_sample *out);
 
 /* Number of rattlers (see coordination_nr) and the contacts between the
- * remaining particles; scratch holds n ints. */
+ * remaining particles; scratch holds n ints. Split over ranks: the
+ * numbers of the whole sample, on every rank (collective). */
 long dem_measure_rattlers(const struct dem_sim *s, int *scratch,
                           long *contacts_nr);
 

@@ -69,13 +69,17 @@ static int dump_resume(struct dem_output *o, const struct dem_output_run *r,
                       : DEM_OK;
 }
 
+static int dump_due(const struct dem_output *o, const struct dem_output_run *r)
+{
+    return o->f && r->s->t + 0.5 * r->s->dt >= o->st.next;
+}
+
 static int dump_sample(struct dem_output *o, const struct dem_output_run *r,
                        struct dem_error *err)
 {
-    const struct dem_sim *s = r->s;
-    if (!o->f || s->t + 0.5 * s->dt < o->st.next)
+    if (!dump_due(o, r))
         return DEM_OK;
-    o->st.next += s->cfg.output.dump_interval;
+    o->st.next += r->s->cfg.output.dump_interval;
     return frame(o, r, err);
 }
 
@@ -94,6 +98,7 @@ const struct dem_output_kind dem_output_dump = {
     .files = files,
     .open = dump_open,
     .resume = dump_resume,
+    .looks = dump_due,
     .sample = dump_sample,
     .sync = dem__part_sync,
     .finish = dump_finish,
@@ -104,6 +109,7 @@ const struct dem_output_kind dem_output_dump_local = {
     .files = local_files,
     .open = dump_open,
     .resume = dump_resume,
+    .looks = dump_due,
     .sample = dump_sample,
     .sync = dem__part_sync,
     .finish = dump_finish,

@@ -42,6 +42,10 @@ struct dem_output_kind {
     /* a resumed run, o->st restored from the checkpoint; NULL: nothing */
     int (*resume)(struct dem_output *o, const struct dem_output_run *r,
                   struct dem_error *err);
+    /* at a timeseries sample, before sample: whether sample will read
+     * the particles or the contacts this time (a run split over MPI
+     * ranks gathers them on rank 0 only then); NULL: never */
+    int (*looks)(const struct dem_output *o, const struct dem_output_run *r);
     /* at a timeseries sample; NULL: nothing */
     int (*sample)(struct dem_output *o, const struct dem_output_run *r,
                   struct dem_error *err);

@@ -110,15 +110,20 @@ static int snap_open(struct dem_output *o, const struct dem_output_run *r,
     return every > 0 ? write_snapshot(o, r, err) : DEM_OK;
 }
 
+static int snap_due(const struct dem_output *o, const struct dem_output_run *r)
+{
+    const struct dem_sim *s = r->s;
+    return s->cfg.output.snapshot_interval > 0 &&
+           s->t + 0.5 * s->dt >= o->st.next;
+}
+
 static int snap_sample(struct dem_output *o, const struct dem_output_run *r,
                        struct dem_error *err)
 {
-    const struct dem_sim *s = r->s;
-    const double every = s->cfg.output.snapshot_interval;
-    if (every <= 0 || s->t + 0.5 * s->dt < o->st.next)
+    if (!snap_due(o, r))
         return DEM_OK;
     int rc = write_snapshot(o, r, err);
-    o->st.next += every;
+    o->st.next += r->s->cfg.output.snapshot_interval;
     return rc;
 }
 
@@ -138,6 +143,7 @@ const struct dem_output_kind dem_output_snapshots = {
     .name = "snapshots",
     .files = files,
     .open = snap_open,
+    .looks = snap_due,
     .sample = snap_sample,
     .finish = snap_finish,
 };

@@ -12,6 +12,17 @@
  * exactly (no neighbour-list rebuild, no force pass), cuts the .part files
  * back to the recorded lengths and re-enters the stage loop at its top,
  * so the run continues as if it had never stopped.
+ *
+ * Under MPI with several ranks (`mpirun -np K dembox run`) every rank
+ * runs this loop on its part of the sample (decomp/halo.h): the stages
+ * decide from the walls and the measured sums, which are the same on
+ * every rank, and rank 0 alone writes files. For an output that looks
+ * at the particles, and for a checkpoint, the whole sample is gathered
+ * on rank 0 (r->whole) at that sample only; what rank 0 will do there
+ * (gather, stop, checkpoint) and how its writing went reach the others
+ * by broadcast, so that all ranks stop together. A checkpoint is the
+ * serial one of the whole sample: it resumes at any number of ranks
+ * (then to round-off: the lists are built anew).
  */
 #include "dembox.h"
 #include <errno.h>
@@ -26,6 +37,7 @@
 #include <unistd.h>
 
 #include "core/sim.h"
+#include "decomp/halo.h"
 #include "formats/particles_csv.h"
 #include "io/checkpoint.h"
 #include "io/fsutil.h"
@@ -44,6 +56,13 @@ struct run_ctx {
      * saved in checkpoints as st.out */
     struct dem_output out[DEM_CKPT_MAX_OUTPUTS];
     char ckpt_path[DEM_PATH_MAX]; /* checkpoint.bin */
+    /* MPI: this process's rank and the number of ranks (0 and 1 without);
+     * several ranks split the sample once it is built */
+    int rank, nranks;
+    int n_all;             /* particles of the whole sample */
+    struct dem_sim whole;  /* rank 0 of a split run: the whole sample at
+                              this sample, when gathered */
+    int have_whole;
     double last_ckpt;             /* wall clock of the last checkpoint */
     /* progress */
     double wall_t0, last_show;
@@ -70,7 +89,8 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
     r->last_show = now;
     const struct dem_sim *s = &r->sim;
     double el = now - r->wall_t0;
-    double speed = el > 0 ? (double)(s->step - r->step0) * s->p.n / el : 0.0;
+    const int n = r->n_all;
+    double speed = el > 0 ? (double)(s->step - r->step0) * n / el : 0.0;
     double span = st->t_end - st->t_start;
     double frac = span > 0 ? (s->t - st->t_start) / span : 1.0;
     if (frac > 1.0)
@@ -84,7 +104,7 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
         .stage_type = dem_stage_lookup(st->cfg->type)->name,
         .t = s->t,
         .fraction = frac,
-        .eta = speed > 0 ? steps_left * s->p.n / speed : 0.0,
+        .eta = speed > 0 ? steps_left * n / speed : 0.0,
         .eta_is_bound = st->cfg->type == DEM_STAGE_ISOTROPIC,
         .speed = speed,
         .stage_done = done,
@@ -110,19 +130,26 @@ static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
 {
     const struct dem_sim *s = &r->sim;
     const struct dem_particles *P = &s->p;
-    for (int i = 0; i < P->n; i++) {
+    /* the first bad quantity of the own particles, as 2 id + (0 position,
+     * 1 velocity); split over ranks, the largest any rank found */
+    double bad = -1.0;
+    for (int i = 0; i < P->n - s->pairs.nghost && bad < 0.0; i++) {
         const double q[6] = {P->x[i],  P->y[i],  P->z[i],
                              P->vx[i], P->vy[i], P->vz[i]};
-        for (int c = 0; c < 6; c++)
+        for (int c = 0; c < 6 && bad < 0.0; c++)
             if (!isfinite(q[c]))
-                return dem_error_set(
-                    err, DEM_EUNSTABLE,
-                    "t = %.6g s (step %ld): particle %d has a non-finite %s; "
-                    "the time step %.3g s is probably too large for the "
-                    "contact stiffness (try time_step = \"auto\")",
-                    s->t, s->step, P->id[i], c < 3 ? "position" : "velocity",
-                    s->dt);
+                bad = 2.0 * P->id[i] + c / 3;
     }
+    if (s->halo)
+        s->halo->sum(s, &bad, 1, 1);
+    if (bad >= 0.0)
+        return dem_error_set(
+            err, DEM_EUNSTABLE,
+            "t = %.6g s (step %ld): particle %d has a non-finite %s; the "
+            "time step %.3g s is probably too large for the contact "
+            "stiffness (try time_step = \"auto\")",
+            s->t, s->step, (int)(bad / 2.0),
+            (long)bad % 2 ? "velocity" : "position", s->dt);
     if (!isfinite(smp->e_kin) || !isfinite(smp->e_pot) || !isfinite(smp->p))
         return dem_error_set(
             err, DEM_EUNSTABLE,
@@ -165,15 +192,65 @@ static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
     return DEM_OK;
 }
 
+/* ---- several MPI ranks (see the top) */
+
+/* 1 on the rank that writes the files. */
+static int writer(const struct run_ctx *r)
+{
+    return r->rank == 0;
+}
+
+/* The simulation the outputs and checkpoints see: the whole sample
+ * gathered on rank 0 when split, else the run's own. */
+static const struct dem_sim *view(const struct run_ctx *r)
+{
+    return r->have_whole ? &r->whole : &r->sim;
+}
+
+/* rc of rank 0 (what it wrote, or failed to) on every rank: the others
+ * then stop with the same status; rank 0's err says why. */
+static int rank0_status(const struct run_ctx *r, int rc,
+                        struct dem_error *err)
+{
+    if (r->nranks < 2)
+        return rc;
+    int v = rc;
+    dem_halo_bcast(&v, 1);
+    if (v && !rc)
+        return dem_error_set(err, v, "stopped with rank 0 (see its message)");
+    return v ? rc : DEM_OK;
+}
+
+/* Split: the whole sample gathered on rank 0 (collective). */
+static int gather_whole(struct run_ctx *r, struct dem_error *err)
+{
+    int rc = dem_halo_collect(&r->sim, &r->whole, err);
+    r->have_whole = !rc && writer(r);
+    return rank0_status(r, rc, err);
+}
+
+static void drop_whole(struct run_ctx *r)
+{
+    if (r->have_whole)
+        dem_sim_destroy(&r->whole);
+    r->have_whole = 0;
+}
+
 static void set_reference(struct run_ctx *r)
 {
     dem_sim_box(&r->sim, r->st.L0, &r->st.V0);
 }
 
 /* Save the state at this step boundary: the .part files first, so that
- * the lengths the checkpoint records are on disk before it is. */
+ * the lengths the checkpoint records are on disk before it is. Split
+ * over ranks: rank 0 writes the whole sample (gathered), the status
+ * reaches every rank. */
 static int write_checkpoint(struct run_ctx *r, struct dem_error *err)
 {
+    if (!writer(r)) {
+        r->last_ckpt = wall_clock();
+        return rank0_status(r, DEM_OK, err);
+    }
     int rc = DEM_OK;
     for (int k = 0; !rc && k < dem_output_nkinds; k++) {
         struct dem_output *o = &r->out[k];
@@ -182,16 +259,15 @@ static int write_checkpoint(struct run_ctx *r, struct dem_error *err)
         r->st.out[k] = o->st;
     }
     r->st.noutputs = dem_output_nkinds;
-    if (rc)
-        return rc;
     r->st.stage = r->stage.index;
     r->st.stage_t_start = r->stage.t_start;
     r->st.stage_t_end = r->stage.t_end;
     r->st.sets_reference = r->stage.sets_reference;
-    rc = dem_checkpoint_write(r->ckpt_path, r->config_text, &r->sim, &r->st,
-                              err);
+    if (!rc)
+        rc = dem_checkpoint_write(r->ckpt_path, r->config_text, view(r),
+                                  &r->st, err);
     r->last_ckpt = wall_clock();
-    return rc;
+    return rank0_status(r, rc, err);
 }
 
 /* 1 when the caller asked the run to stop (signal or test hook). */
@@ -227,6 +303,78 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     return DEM_OK;
 }
 
+/* A sample of the stage under way: the measurement, the outputs, the
+ * checks; then, unless it is the stage's last (*end set), a stop or a
+ * checkpoint. Split over ranks, rank 0 says first what it will do, and
+ * the whole sample is gathered if that needs it (r->whole, dropped by
+ * the caller). */
+static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
+                       struct dem_error *err)
+{
+    struct dem_sim *s = &r->sim;
+    struct dem_stage_state *st = &r->stage;
+    const struct dem_stage_ops *ops = dem_stage_lookup(st->cfg->type);
+    const double ckpt = s->cfg.output.checkpoint_interval;
+    struct dem_sample smp;
+    dem_measure(s, r->st.L0, r->st.V0, st->index, &smp);
+    struct dem_output_run orun = {s, r->outdir, r->config_text, &smp};
+    /* rank 0's plan: an output looks at the particles, stop, checkpoint */
+    int plan[3] = {0, 0, 0};
+    if (writer(r)) {
+        for (int k = 0; k < dem_output_nkinds; k++) {
+            const struct dem_output *o = &r->out[k];
+            plan[0] |= o->kind->looks && o->kind->looks(o, &orun);
+        }
+        plan[1] = stop_requested(r);
+        plan[2] = ckpt > 0 && wall_clock() - r->last_ckpt >= ckpt;
+    }
+    int rc = DEM_OK;
+    if (s->halo) {
+        dem_halo_bcast(plan, 3);
+        if (plan[0] || plan[1] || plan[2])
+            rc = gather_whole(r, err);
+    }
+    orun.s = view(r);
+    for (int k = 0; !rc && writer(r) && k < dem_output_nkinds; k++) {
+        struct dem_output *o = &r->out[k];
+        rc = o->kind->sample ? o->kind->sample(o, &orun, err) : DEM_OK;
+    }
+    rc = rank0_status(r, rc, err);
+    if (!rc)
+        rc = check_stable(r, &smp, err);
+    if (rc)
+        return rc;
+    if (ops->loading && !r->st.warned_inertia && smp.inertial_number > 1e-3) {
+        r->st.warned_inertia = 1;
+        dem_warn(err,
+                 "stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
+                 "the loading is not quasi-static; load more slowly "
+                 "(longer duration or period)",
+                 st->index, smp.inertial_number, s->t);
+    }
+    show_progress(r, st, 0);
+    if (last) {
+        st->timed_out = by_time;
+        *end = 1;
+        return DEM_OK;
+    }
+    if (ops->done && ops->done(s, st, &smp)) {
+        *end = 1;
+        return DEM_OK;
+    }
+    if (plan[1]) {
+        rc = write_checkpoint(r, err);
+        show_progress(r, st, 1);
+        if (rc)
+            return rc;
+        return dem_error_set(err, DEM_EINTERRUPTED,
+                             "interrupted at t = %.6g s (step %ld); "
+                             "resume with: dembox run --resume %s",
+                             s->t, s->step, r->outdir);
+    }
+    return plan[2] ? write_checkpoint(r, err) : DEM_OK;
+}
+
 /* The steps of the stage under way, from wherever it stands, to its end.
  * A checkpoint is taken only after a sample that does not end the stage,
  * so that resuming re-enters this loop at its top. */
@@ -238,9 +386,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
     const int index = st->index;
     const double dt = s->dt, out = s->cfg.output.interval;
-    const double ckpt = s->cfg.output.checkpoint_interval;
     const long max_steps = r->st.max_steps;
-    const int loading = ops->loading;
     int rc;
     for (;;) {
         const int by_time = s->t + 1.5 * dt > st->t_end;
@@ -260,48 +406,13 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             continue;
         }
         r->st.next_out += out;
-        struct dem_sample smp;
-        dem_measure(s, r->st.L0, r->st.V0, index, &smp);
-        const struct dem_output_run orun = {s, r->outdir, r->config_text, &smp};
-        for (int k = 0; k < dem_output_nkinds; k++) {
-            struct dem_output *o = &r->out[k];
-            rc = o->kind->sample ? o->kind->sample(o, &orun, err) : DEM_OK;
-            if (rc)
-                return rc;
-        }
-        rc = check_stable(r, &smp, err);
+        int end = 0;
+        rc = take_sample(r, last, by_time, &end, err);
+        drop_whole(r);
         if (rc)
             return rc;
-        if (loading && !r->st.warned_inertia && smp.inertial_number > 1e-3) {
-            r->st.warned_inertia = 1;
-            dem_warn(err,
-                     "stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
-                     "the loading is not quasi-static; load more slowly "
-                     "(longer duration or period)",
-                     index, smp.inertial_number, s->t);
-        }
-        show_progress(r, st, 0);
-        if (last) {
-            st->timed_out = by_time;
+        if (end)
             break;
-        }
-        if (ops->done && ops->done(s, st, &smp))
-            break;
-        if (stop_requested(r)) {
-            rc = write_checkpoint(r, err);
-            show_progress(r, st, 1);
-            if (rc)
-                return rc;
-            return dem_error_set(err, DEM_EINTERRUPTED,
-                                 "interrupted at t = %.6g s (step %ld); "
-                                 "resume with: dembox run --resume %s",
-                                 s->t, s->step, r->outdir);
-        }
-        if (ckpt > 0 && wall_clock() - r->last_ckpt >= ckpt) {
-            rc = write_checkpoint(r, err);
-            if (rc)
-                return rc;
-        }
     }
     show_progress(r, st, 1);
     if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
@@ -360,7 +471,6 @@ static void bind_outputs(struct run_ctx *r)
         r->out[k].kind = dem_output_kinds[k];
 }
 
-/* Remove path (outdir/leaf), which belongs to an earlier run. */
 /* Remove dir/leaf; a leaf with a '*' is a pattern (glob(3)) and every
  * file it matches goes. */
 static int remove_stale(const char *dir, const char *leaf,
@@ -382,7 +492,7 @@ static int remove_stale(const char *dir, const char *leaf,
     return DEM_OK;
 }
 
-static int open_outputs(struct run_ctx *r, struct dem_error *err)
+static int create_outputs(struct run_ctx *r, struct dem_error *err)
 {
     const char *dir = r->outdir;
     int rc = dem_mkdir_p(dir, err);
@@ -399,7 +509,7 @@ static int open_outputs(struct run_ctx *r, struct dem_error *err)
         for (const char *const *f = dem_output_kinds[k]->files; !rc && f && *f;
              f++)
             rc = remove_stale(dir, *f, err);
-    const struct dem_output_run orun = {&r->sim, dir, r->config_text, NULL};
+    const struct dem_output_run orun = {view(r), dir, r->config_text, NULL};
     for (int k = 0; !rc && k < dem_output_nkinds; k++) {
         struct dem_output *o = &r->out[k];
         if (o->kind->open)
@@ -408,18 +518,30 @@ static int open_outputs(struct run_ctx *r, struct dem_error *err)
     return rc;
 }
 
-/* Every output's last writes, in order (the timeseries last). */
+/* Rank 0 starts the outputs, from the whole sample (gathered if split). */
+static int open_outputs(struct run_ctx *r, struct dem_error *err)
+{
+    int rc = r->sim.halo ? gather_whole(r, err) : DEM_OK;
+    if (!rc && writer(r))
+        rc = create_outputs(r, err);
+    drop_whole(r);
+    return rank0_status(r, rc, err);
+}
+
+/* Every output's last writes, in order (the timeseries last); split,
+ * by rank 0 from the whole sample gathered. */
 static int finish_outputs(struct run_ctx *r, struct dem_error *err)
 {
-    const struct dem_output_run orun = {&r->sim, r->outdir, r->config_text,
+    int rc = r->sim.halo ? gather_whole(r, err) : DEM_OK;
+    const struct dem_output_run orun = {view(r), r->outdir, r->config_text,
                                         NULL};
-    int rc = DEM_OK;
-    for (int k = 0; !rc && k < dem_output_nkinds; k++) {
+    for (int k = 0; !rc && writer(r) && k < dem_output_nkinds; k++) {
         struct dem_output *o = &r->out[k];
         if (o->kind->finish)
             rc = o->kind->finish(o, &orun, err);
     }
-    return rc;
+    drop_whole(r);
+    return rank0_status(r, rc, err);
 }
 
 /* Close what is open (a failed or interrupted run keeps its .part files)
@@ -453,26 +575,46 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
         rc = run_stages(r, first, resumed, err);
     if (!rc)
         rc = finish_outputs(r, err);
-    if (!rc) {
+    if (!rc && writer(r)) {
         /* finished: the outputs are complete, nothing to resume */
         char tmp[DEM_PATH_MAX + 8];
         remove(r->ckpt_path);
         snprintf(tmp, sizeof tmp, "%s.tmp", r->ckpt_path);
         remove(tmp);
     }
-    if (rc == DEM_EUNSTABLE) {
+    /* an unstable state is found by all ranks together (check_stable) */
+    if (rc == DEM_EUNSTABLE && (!r->sim.halo || !gather_whole(r, err))) {
         /* keep the state for inspection, named so it is not mistaken for
          * a finished run's */
         char path[DEM_PATH_MAX];
         struct dem_error e2;
-        if (!dem_path_join(path, sizeof path, r->outdir,
-                           "particles_unstable.csv", &e2))
-            dem_particles_write_csv(&r->sim.p, path, &e2);
+        if (writer(r) && !dem_path_join(path, sizeof path, r->outdir,
+                                        "particles_unstable.csv", &e2))
+            dem_particles_write_csv(&view(r)->p, path, &e2);
     }
+    drop_whole(r);
     close_outputs(r);
     free(r->config_text);
+    dem_halo_stop(&r->sim);
     dem_sim_destroy(&r->sim);
     return rc;
+}
+
+/* Several ranks: the sample, the same on every rank, is split over them
+ * (an error is the same on every rank). */
+static int split(struct run_ctx *r, int rc, struct dem_error *err)
+{
+    if (rc || r->nranks < 2)
+        return rc;
+    return dem_halo_start(&r->sim, err);
+}
+
+static void start_ranks(struct run_ctx *r)
+{
+    r->rank = 0;
+    r->nranks = 1;
+    if (r->opt->split)
+        dem_mpi_world(&r->rank, &r->nranks);
 }
 
 int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
@@ -482,10 +624,11 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     memset(&r, 0, sizeof r);
     r.opt = opt;
     r.outdir = opt->outdir;
+    start_ranks(&r);
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
     /* build the simulation first: a bad particle file must fail before
-     * any output exists */
+     * any output exists (under MPI every rank builds the same sample) */
     struct dem_particles given = {0};
     int rc = cfg->particles.placement == DEM_PLACE_FILE
                  ? dem_particles_load(&given, cfg, err)
@@ -497,12 +640,17 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     dem_particles_free(&given);
     if (rc)
         return rc;
+    r.n_all = r.sim.p.n;
     bind_outputs(&r);
+    rc = split(&r, rc, err);
     rc = config_text(cfg, &r.config_text, err);
-    if (!rc) {
+    if (!rc)
         set_reference(&r);
+    /* split before any output exists: a grid the box has no room for
+     * must fail first */
+    rc = split(&r, rc, err);
+    if (!rc)
         rc = open_outputs(&r, err);
-    }
     if (!rc) {
         start_progress(&r);
         r.st.max_steps = opt->max_steps;
@@ -517,17 +665,12 @@ static int file_exists(const char *path)
     return stat(path, &sb) == 0;
 }
 
-int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
-                   struct dem_error *err)
+/* The checkpoint of r->outdir read into r (every rank reads it). */
+static int read_checkpoint(struct run_ctx *r, struct dem_error *err)
 {
-    struct run_ctx r;
-    memset(&r, 0, sizeof r);
-    r.opt = opt;
-    r.outdir = outdir;
-    if (opt->threads > 0)
-        omp_set_num_threads(opt->threads);
+    const char *outdir = r->outdir;
     char path[DEM_PATH_MAX], part[DEM_PATH_MAX];
-    int rc = ckpt_path(&r, err);
+    int rc = ckpt_path(r, err);
     if (!rc)
         rc = dem_path_join(path, sizeof path, outdir, "timeseries.csv", err);
     if (!rc)
@@ -540,16 +683,41 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
                              "%s: the run has already finished (%s exists); "
                              "nothing to resume",
                              outdir, path);
-    if (!file_exists(r.ckpt_path))
+    if (!file_exists(r->ckpt_path))
         return dem_error_set(err, DEM_EIO,
                              "%s: no checkpoint (%s is missing); nothing to "
                              "resume",
-                             outdir, r.ckpt_path);
-    rc = dem_checkpoint_read(r.ckpt_path, &r.sim, &r.config_text, &r.st, err);
+                             outdir, r->ckpt_path);
+    return dem_checkpoint_read(r->ckpt_path, &r->sim, &r->config_text, &r->st,
+                               err);
+}
+
+int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
+                   struct dem_error *err)
+{
+    struct run_ctx r;
+    memset(&r, 0, sizeof r);
+    r.opt = opt;
+    r.outdir = outdir;
+    start_ranks(&r);
+    if (opt->threads > 0)
+        omp_set_num_threads(opt->threads);
+    int rc = read_checkpoint(&r, err);
+    if (r.nranks > 1 && dem_halo_any(rc) && !rc) {
+        rc = dem_error_set(err, DEM_EIO,
+                           "%s: another rank could not read the checkpoint "
+                           "(every rank must see the folder)",
+                           outdir);
+        free(r.config_text);
+        dem_ckpt_run_free(&r.st);
+        dem_sim_destroy(&r.sim);
+    }
     if (rc)
         return rc;
+    r.n_all = r.sim.p.n;
     bind_outputs(&r);
-    if (r.st.noutputs != dem_output_nkinds)
+    rc = split(&r, rc, err);
+    if (!rc && r.st.noutputs != dem_output_nkinds)
         rc = dem_error_set(err, DEM_EIO,
                            "%s: written for %d outputs, this dembox has %d; "
                            "cannot resume",
@@ -559,10 +727,11 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
         r.st.out[k].times = NULL;
     }
     /* the outputs and the analysis follow config.cfg: it must be the
-     * config the checkpoint continues */
-    if (!rc)
+     * config the checkpoint continues (rank 0 checks and writes) */
+    char path[DEM_PATH_MAX];
+    if (!rc && writer(&r))
         rc = dem_path_join(path, sizeof path, outdir, "config.cfg", err);
-    if (!rc) {
+    if (!rc && writer(&r)) {
         char *text = dem_read_text(path, NULL);
         if (!text || strcmp(text, r.config_text) != 0)
             rc = dem_error_set(err, DEM_ECONFIG,
@@ -576,11 +745,12 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
         free(text);
     }
     const struct dem_output_run orun = {&r.sim, outdir, r.config_text, NULL};
-    for (int k = 0; !rc && k < dem_output_nkinds; k++) {
+    for (int k = 0; !rc && writer(&r) && k < dem_output_nkinds; k++) {
         struct dem_output *o = &r.out[k];
         if (o->kind->resume)
             rc = o->kind->resume(o, &orun, err);
     }
+    rc = rank0_status(&r, rc, err);
     int first = r.st.stage;
     if (!rc) {
         struct dem_stage_state st = {&r.sim.cfg.stages[first], first,

@@ -1,0 +1,84 @@
+#!/bin/sh
+# `mpirun dembox run`: a run split over 2 and 4 ranks (4 oversubscribe two
+# cores) by domain decomposition (docs/parallel.md) gives the serial
+# run's outputs to round-off: the same files, every timeseries column and
+# every final particle within 1e-8 of the column's scale over 3000 steps
+# (biaxial2d, 500 discs, walls servo-controlled). A split run stopped at
+# step 1500 leaves a checkpoint that resumes at 4 ranks and without MPI,
+# each to the same outputs. Too many ranks for the box: one line from
+# rank 0, status 1, no outputs.
+# Status 77 (skipped): no mpirun, or it cannot start two ranks here.
+set -eu
+BIN=${DEMBOX_BIN:?run through ctest}
+MPIRUN=${MPIEXEC:-mpirun}
+command -v "$MPIRUN" > /dev/null || { echo "no $MPIRUN: skipped"; exit 77; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none OMP_NUM_THREADS=1
+"$MPIRUN" -np 2 --oversubscribe true > /dev/null 2>&1 ||
+    { echo "mpirun cannot start 2 ranks here: skipped"; exit 77; }
+T=$(mktemp -d "${TMPDIR:-/tmp}/dembox-test-run-mpi.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+cd "$T"
+# ranks waiting in MPI yield their core (4 ranks on 2 cores)
+mpi() { np=$1; shift; "$MPIRUN" -np "$np" --oversubscribe --mca mpi_yield_when_idle 1 "$BIN" "$@"; }
+
+R="biaxial2d --max-steps 3000 --threads 1 --quiet --set output.snapshot_interval=0.001"
+"$BIN" run $R -o serial > log 2>&1 || fail "serial: $(tail -3 log)"
+mpi 2 run $R -o np2 > log2 2>&1 || fail "2 ranks: $(tail -3 log2)"
+mpi 4 run $R -o np4 > log4 2>&1 || fail "4 ranks: $(tail -3 log4)"
+[ ! -s log2 ] || fail "2 ranks, --quiet, said: $(cat log2)"
+
+# a file against the serial run's: the same rows and columns, every value
+# within tol of the largest magnitude in its column (NaN only where NaN)
+close() {
+    awk -F, -v tol=1e-8 -v what="$2" '
+        NR == FNR { if (FNR > 1) for (k = 1; k <= NF; k++) {
+                        a[FNR, k] = $k; v = $k < 0 ? -$k : $k
+                        if (v > m[k]) m[k] = v }
+                    n = FNR; nf = NF; next }
+        FNR == 1 { next }
+        { if (NF != nf) { print what ": " NF " columns"; bad = 1; exit }
+          for (k = 1; k <= NF; k++) {
+              if (($k "") == (a[FNR, k] "")) continue
+              d = $k - a[FNR, k]; d = d < 0 ? -d : d
+              if (d > tol * m[k] || ($k "" ~ /nan/) != (a[FNR, k] "" ~ /nan/)) {
+                  print what ": row " FNR " column " k ": " $k " against " a[FNR, k]
+                  bad = 1; exit } } }
+        END { if (!bad && FNR != n) { print what ": " FNR " rows, " n " serial"; bad = 1 }
+              exit bad }' "serial/$1" "$3/$1"
+}
+same() {
+    (cd serial && ls | grep -v '^plots$' | sort) > files.serial
+    (cd "$1" && ls | grep -v '^plots$' | sort) > "files.$1"
+    cmp -s files.serial "files.$1" || fail "$1: other files: $(diff files.serial "files.$1" | head -5)"
+    for f in timeseries.csv particles_final.csv forces_final.csv; do
+        close "$f" "$1/$f" "$1" || fail "$1/$f differs"
+    done
+    [ "$(wc -l < "$1/contacts_final.csv")" -eq "$(wc -l < serial/contacts_final.csv)" ] ||
+        fail "$1: other number of contacts"
+}
+same np2
+same np4
+
+# stopped at step 1500 over 2 ranks, resumed over 4 and without MPI
+set +e
+DEMBOX_STOP_AFTER_STEP=1500 mpi 2 run $R -o cut > logc 2>&1; rc=$?
+set -e
+[ $rc -eq 130 ] || fail "stop: status $rc: $(cat logc)"
+[ -f cut/checkpoint.bin ] && [ -f cut/timeseries.csv.part ] && [ ! -e cut/timeseries.csv ] ||
+    fail "stop: no checkpoint, or a complete-looking timeseries"
+cp -r cut cut1
+mpi 4 run --resume cut --threads 1 --quiet > logr 2>&1 || fail "resume over 4 ranks: $(cat logr)"
+same cut
+"$BIN" run --resume cut1 --threads 1 --quiet > logr1 2>&1 || fail "resume without MPI: $(cat logr1)"
+same cut1
+
+# too many ranks for the box: refused before any output
+set +e
+mpi 16 run biaxial2d --set particles.count=8 --max-steps 10 --quiet -o many > logm 2>&1; rc=$?
+set -e
+[ $rc -ne 0 ] || fail "16 ranks: status 0"
+[ "$(grep -c "narrower than the ghost range" logm)" -eq 1 ] || fail "16 ranks: $(cat logm)"
+[ ! -e many ] || fail "16 ranks: outputs written: $(ls many)"
+echo "split runs over 2 and 4 ranks as serial; stop and resume across rank counts; refusal"
