@@ -58,10 +58,27 @@ static void grid_follows_the_box(void **state)
     assert_int_equal(dem_decomp_grid(&d, 64, 3, lo, small, 0.2, &err),
                      DEM_EUSAGE);
     assert_non_null(strstr(err.msg, "ghost range 0.2 m"));
-    /* a box that shrinks under its grid */
+    /* a box that shrinks under its grid: 4 slabs of 0.4 would be
+     * narrower than the range, 2 x 2 fits; shrunk further, none fits */
     assert_int_equal(dem_decomp_grid(&d, 4, 3, lo, rod, 0.5, &err), 0);
-    const double shrunk[3] = {1.6, 1, 1};
-    assert_int_equal(dem_decomp_resize(&d, lo, shrunk, &err), DEM_EUSAGE);
+    const double shrunk[3] = {1.6, 1, 1}, tiny[3] = {0.9, 0.9, 0.9};
+    assert_int_equal(dem_decomp_resize(&d, lo, shrunk, &err), 1);
+    assert_int_equal(d.np[0] * 10 + d.np[1] * 100 + d.np[2], 2 * 10 + 200 + 1);
+    assert_int_equal(dem_decomp_resize(&d, lo, tiny, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "ghost range 0.5 m"));
+    /* a box whose shape changes: the grid follows only when another one
+     * cuts 10 % less (2 ranks in 2D: one cut across the longer side) */
+    const double square[3] = {1, 1, 0}, taller[3] = {1, 1.05, 0},
+                 tall[3] = {1, 1.2, 0};
+    assert_int_equal(dem_decomp_grid(&d, 2, 2, lo, square, 0.1, &err), 0);
+    assert_int_equal(d.np[0], 2);
+    assert_int_equal(dem_decomp_resize(&d, lo, taller, &err), 0);
+    assert_int_equal(d.np[0], 2);
+    assert_int_equal(dem_decomp_resize(&d, lo, tall, &err), 1);
+    assert_int_equal(d.np[1], 2);
+    assert_int_equal(dem_decomp_resize(&d, lo, square, &err), 0);
+    assert_int_equal(d.np[1], 2);
+    assert_true(fabs(d.hi[1] - 1.0) < 1e-15);
 }
 
 /* A frictional sample with rolling and torsion resistance, stepped so

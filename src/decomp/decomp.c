@@ -15,20 +15,24 @@ static double narrowest(const int np[3], const double L[3], int dim)
     return w;
 }
 
-int dem_decomp_grid(struct dem_decomp *d, int nranks, int dim,
-                    const double lo[3], const double hi[3], double range,
-                    struct dem_error *err)
+/* Area of the cuts of grid np over edges L: np_a - 1 faces across axis a
+ * (2D: lengths). */
+static double cut_area(const int np[3], const double L[3], int dim)
 {
-    if (nranks < 1)
-        return dem_error_set(err, DEM_EUSAGE, "decomposition: %d ranks",
-                             nranks);
-    double L[3];
-    for (int a = 0; a < 3; a++)
-        L[a] = hi[a] - lo[a];
-    int best[3] = {0, 0, 0};
+    const double z = dim == 3 ? L[2] : 1.0;
+    return (np[0] - 1) * L[1] * z + (np[1] - 1) * L[0] * z +
+           (np[2] - 1) * L[0] * L[1];
+}
+
+/* Of the factorisations of nranks whose subdomains are at least range
+ * wide over edges L, the one with the least cut area (ties: more cuts
+ * along x, fewer neighbours per subdomain) into best (all 0: none);
+ * returns the widest narrowest subdomain of any factorisation. */
+static double choose(int nranks, int dim, const double L[3], double range,
+                     int best[3])
+{
     double best_cut = INFINITY, widest = 0.0;
-    /* more cuts along x first: among grids of equal cut area the one
-     * with fewer neighbours per subdomain */
+    best[0] = best[1] = best[2] = 0;
     for (int px = nranks; px >= 1; px--) {
         if (nranks % px)
             continue;
@@ -44,10 +48,7 @@ int dem_decomp_grid(struct dem_decomp *d, int nranks, int dim,
                 widest = w;
             if (w < range)
                 continue;
-            /* area of the cuts: (np_a - 1) faces across axis a */
-            double cut = (px - 1) * L[1] * (dim == 3 ? L[2] : 1.0) +
-                         (py - 1) * L[0] * (dim == 3 ? L[2] : 1.0) +
-                         (pz - 1) * L[0] * L[1];
+            const double cut = cut_area(np, L, dim);
             if (cut < best_cut * (1.0 - 1e-12)) {
                 best_cut = cut;
                 best[0] = px;
@@ -56,6 +57,26 @@ int dem_decomp_grid(struct dem_decomp *d, int nranks, int dim,
             }
         }
     }
+    return widest;
+}
+
+static void edges(const double lo[3], const double hi[3], double L[3])
+{
+    for (int a = 0; a < 3; a++)
+        L[a] = hi[a] - lo[a];
+}
+
+int dem_decomp_grid(struct dem_decomp *d, int nranks, int dim,
+                    const double lo[3], const double hi[3], double range,
+                    struct dem_error *err)
+{
+    if (nranks < 1)
+        return dem_error_set(err, DEM_EUSAGE, "decomposition: %d ranks",
+                             nranks);
+    double L[3];
+    edges(lo, hi, L);
+    int best[3];
+    const double widest = choose(nranks, dim, L, range, best);
     if (best[0] == 0)
         return dem_error_set(
             err, DEM_EUSAGE,
@@ -78,21 +99,30 @@ int dem_decomp_resize(struct dem_decomp *d, const double lo[3],
                       const double hi[3], struct dem_error *err)
 {
     double L[3];
-    for (int a = 0; a < 3; a++)
-        L[a] = hi[a] - lo[a];
-    const double w = narrowest(d->np, L, d->dim);
-    if (w < d->range)
+    edges(lo, hi, L);
+    int best[3];
+    const double widest = choose(d->nranks, d->dim, L, d->range, best);
+    if (best[0] == 0)
         return dem_error_set(
             err, DEM_EUSAGE,
-            "decomposition: the box has shrunk so that a subdomain is "
-            "%.4g m wide, narrower than the ghost range %.4g m; use fewer "
-            "ranks",
-            w, d->range);
+            "decomposition: the box has shrunk so that %d ranks cut it "
+            "into subdomains at most %.4g m wide, narrower than the ghost "
+            "range %.4g m; use fewer ranks",
+            d->nranks, widest, d->range);
+    /* another grid when the box's shape calls for it: the present one
+     * no longer fits, or the best cuts 10 % less (no flip-flopping
+     * between two grids of nearly the same cut) */
+    const double now = narrowest(d->np, L, d->dim) >= d->range
+                           ? cut_area(d->np, L, d->dim)
+                           : INFINITY;
+    const int regrid = cut_area(best, L, d->dim) < DEM_DECOMP_REGRID * now;
     for (int a = 0; a < 3; a++) {
+        if (regrid)
+            d->np[a] = best[a];
         d->lo[a] = lo[a];
         d->hi[a] = hi[a];
     }
-    return DEM_OK;
+    return regrid;
 }
 
 /* Index along axis a of the slab holding coordinate x. */

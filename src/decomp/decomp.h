@@ -4,7 +4,8 @@
  * The grid divides the box between the walls into np[0] x np[1] x np[2]
  * equal subdomains (np[2] = 1 in 2D); as the walls move, the same
  * fractions of the box are taken again at every neighbour-list build, so
- * the subdomains deform with the sample. A particle belongs to the
+ * the subdomains deform with the sample, and when the box's shape has
+ * changed enough another grid is chosen (dem_decomp_resize). A particle belongs to the
  * subdomain its centre is in (beyond a wall: the subdomain at that
  * wall). A subdomain's ghosts are the particles of the others whose
  * centres lie within the ghost range of it: the largest diameter plus
@@ -39,8 +40,16 @@ int dem_decomp_grid(struct dem_decomp *d, int nranks, int dim,
                     const double lo[3], const double hi[3], double range,
                     struct dem_error *err);
 
-/* The same grid over a new box (the walls have moved); 0, or DEM_EUSAGE
- * when a subdomain has become narrower than the ghost range. */
+/* A grid whose cut area is below this share of the present one's
+ * replaces it at a resize. */
+#define DEM_DECOMP_REGRID 0.9
+
+/* The grid over a new box (the walls have moved): the same one, unless
+ * it no longer fits (a subdomain narrower than the ghost range) or the
+ * box's shape has changed so that another factorisation cuts less than
+ * DEM_DECOMP_REGRID of its area; then that one (the particles move to
+ * their new subdomains at the rebuild that follows). Returns 1 when the
+ * grid changed, 0 when not, or DEM_EUSAGE when no grid fits the box. */
 int dem_decomp_resize(struct dem_decomp *d, const double lo[3],
                       const double hi[3], struct dem_error *err);
 

@@ -502,9 +502,12 @@ static int halo_rebuild(struct dem_sim *s, struct dem_error *err)
     struct halo *H = s->halo_ctx;
     double lo[3], hi[3];
     box_of(s, lo, hi);
+    /* the walls are the same on every rank, and so is the grid (a new
+     * one, if the box's shape calls for it: migrate() below moves the
+     * particles to it) */
     int rc = dem_decomp_resize(&H->d, lo, hi, err);
-    if (rc)
-        return rc; /* the walls are the same on every rank */
+    if (rc < 0)
+        return rc;
     const int nown = s->p.n - s->pairs.nghost;
     H->rec.n = 0;
     rc = dem_records_export(&H->rec, &s->pairs, &s->p, nown);
