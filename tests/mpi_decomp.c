@@ -9,8 +9,12 @@
  * between subdomains. At the end the positions of every particle and of
  * the walls must agree with the reference to round-off grown by the
  * chaos of the packing (the force sums run in another order), and the
- * list must have been rebuilt with particles crossing the cuts. Prints
- * the largest differences; exit 1 on failure. */
+ * list must have been rebuilt with particles crossing the cuts; the
+ * measurements (the rattlers' cascade across cuts included) must agree,
+ * and so must the whole sample gathered on rank 0 (dem_halo_collect, what
+ * outputs and checkpoints see): its contacts with their history and
+ * forces, and the particles' forces. Prints the largest differences;
+ * exit 1 on failure. */
 #include <math.h>
 #include <mpi.h>
 #include <stdio.h>
@@ -21,6 +25,7 @@
 #include "core/sim.h"
 #include "decomp/halo.h"
 #include "measure/measure.h"
+#include "measure/network.h"
 
 static void die(const struct dem_error *err)
 {
@@ -28,7 +33,7 @@ static void die(const struct dem_error *err)
     MPI_Abort(MPI_COMM_WORLD, 1);
 }
 
-static void sample(struct dem_sim *s, int dim, int n)
+static void config(struct dem_config *cfg, int dim, int n)
 {
     struct dem_config c;
     memset(&c, 0, sizeof c);
@@ -58,6 +63,13 @@ static void sample(struct dem_sim *s, int dim, int n)
     c.stages[0].duration = 1.0;
     c.stages[0].mu = -1.0;
     c.output.interval = 1.0;
+    *cfg = c;
+}
+
+static void sample(struct dem_sim *s, int dim, int n)
+{
+    struct dem_config c;
+    config(&c, dim, n);
     const double L = dim == 3 ? 0.175 : 0.6;
     const double lo[3] = {0, 0, 0}, hi[3] = {L, L, dim == 3 ? L : 0.0};
     struct dem_error err;
@@ -93,6 +105,69 @@ static void steps(struct dem_sim *s, long n)
         if (dem_sim_step(s, &err))
             die(&err);
     }
+}
+
+/* A lattice with holes: spheres (discs) overlapping their lattice
+ * neighbours and the walls, a tenth of the sites empty (2D: 40 %), so
+ * that many have fewer than d + 1 contacts and their removal cascades.
+ * Split over the ranks, the rattlers and the contacts between the others
+ * must be those of the undivided sample. Returns 1 on failure. */
+static int rattlers(int dim, int rank)
+{
+    const int m = dim == 3 ? 12 : 40;
+    const double r = 5e-3, a = 1.9 * r;
+    struct dem_config c;
+    config(&c, dim, dim == 3 ? m * m * m : m * m);
+    const double lo[3] = {-0.95 * r, -0.95 * r, dim == 3 ? -0.95 * r : 0.0};
+    const double e = (m - 1) * a + 0.95 * r;
+    const double hi[3] = {e, e, dim == 3 ? e : 0.0};
+    struct dem_sim sims[2];
+    struct dem_error err;
+    for (int k = 0; k < 2; k++) {
+        struct dem_sim *s = &sims[k];
+        if (dem_sim_create_empty(s, &c, c.particles.count, lo, hi, &err))
+            die(&err);
+        struct dem_rng g;
+        dem_rng_seed(&g, 7);
+        for (int i = 0; i < c.particles.count; i++) {
+            const int ix = i % m, iy = (i / m) % m, iz = i / (m * m);
+            if (dem_rng_uniform(&g) < (dim == 3 ? 0.1 : 0.4))
+                continue;
+            dem_particles_add(&s->p, ix * a, iy * a, iz * a, r,
+                              c.particles.density, c.particles.mass_model,
+                              dim);
+        }
+        s->reorder = 1;
+        if (dem_sim_ready(s, &err))
+            die(&err);
+    }
+    struct dem_sim *s = &sims[0], *ref = &sims[1];
+    if (dem_halo_start(s, &err))
+        die(&err);
+    double L0[3], V0;
+    dem_sim_box(ref, L0, &V0);
+    struct dem_sample ms, mr;
+    /* a step marks the contacts that are closed */
+    s->measure = 1;
+    steps(s, 1);
+    dem_measure(s, L0, V0, 0, &ms);
+    ref->measure = 1;
+    steps(ref, 1);
+    dem_measure(ref, L0, V0, 0, &mr);
+    int failed = 0;
+    if (rank == 0) {
+        printf("  %dD lattice with holes, %d particles: rattlers %.6g split, "
+               "%.6g whole; Z without them %.9g and %.9g\n",
+               dim, ref->p.n, ms.rattler_fraction, mr.rattler_fraction,
+               ms.coordination_nr, mr.coordination_nr);
+        failed = !(mr.rattler_fraction > 0.01 && mr.rattler_fraction < 0.99 &&
+                   ms.rattler_fraction == mr.rattler_fraction &&
+                   fabs(ms.coordination_nr - mr.coordination_nr) < 1e-12);
+    }
+    dem_halo_stop(s);
+    dem_sim_destroy(s);
+    dem_sim_destroy(ref);
+    return failed;
 }
 
 int main(int argc, char **argv)
@@ -138,6 +213,9 @@ int main(int argc, char **argv)
     struct dem_particles all;
     if (dem_halo_gather(&s, &all, &err))
         die(&err);
+    struct dem_sim whole;
+    if (dem_halo_collect(&s, &whole, &err))
+        die(&err);
     int failed = 0;
     if (rank == 0) {
         double dx = 0.0, dv = 0.0, dwall = 0.0, dforce = 0.0, fscale = 0.0;
@@ -174,6 +252,31 @@ int main(int argc, char **argv)
                fabs(ms.e_kin - mr.e_kin) / mr.e_kin, ms.coordination,
                mr.coordination);
         failed |= s.sums.n_pp != ref.sums.n_pp || s.sums.n_pw != ref.sums.n_pw;
+        /* the gathered sample: the same contacts, springs and forces */
+        struct dem_network nw, nr;
+        if (dem_network_build(&whole, &nw, &err) ||
+            dem_network_build(&ref, &nr, &err))
+            die(&err);
+        double fw = 0.0, fr = 0.0, dfp = 0.0, fps = 0.0;
+        for (int k = 0; k < nw.n; k++)
+            fw += fabs(nw.c[k].fn) + fabs(nw.c[k].ft[0]) +
+                  fabs(nw.c[k].ft[1]) + fabs(nw.c[k].ft[2]);
+        for (int k = 0; k < nr.n; k++)
+            fr += fabs(nr.c[k].fn) + fabs(nr.c[k].ft[0]) +
+                  fabs(nr.c[k].ft[1]) + fabs(nr.c[k].ft[2]);
+        for (int i = 0; i < n; i++) {
+            const int q = ref.p.id[i]; /* whole: id q at q */
+            dfp = fmax(dfp, fabs(whole.p.fx[q] - ref.p.fx[i]));
+            dfp = fmax(dfp, fabs(whole.p.fy[q] - ref.p.fy[i]));
+            fps = fmax(fps, fabs(ref.p.fx[i]));
+        }
+        printf("  gathered: %d and %d contacts (network), sum of |f| %.3g "
+               "apart, particle forces %.3g of the largest\n",
+               nw.n, nr.n, fabs(fw - fr) / fr, dfp / fps);
+        failed |= nw.n != nr.n || !(fabs(fw - fr) / fr < 1e-6) ||
+                  !(dfp / fps < 1e-6);
+        dem_network_free(&nw);
+        dem_network_free(&nr);
         failed |= !(dsig / ssig < 1e-6 &&
                     fabs(ms.e_pot - mr.e_pot) / mr.e_pot < 1e-6 &&
                     fabs(ms.e_kin - mr.e_kin) / mr.e_kin < 1e-6);
@@ -199,8 +302,10 @@ int main(int argc, char **argv)
             fprintf(stderr, "no particle changed subdomain\n");
         failed = 1;
     }
+    failed |= rattlers(dim, rank);
     MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
     dem_particles_free(&all);
+    dem_sim_destroy(&whole);
     dem_halo_stop(&s);
     dem_sim_destroy(&s);
     MPI_Finalize();

@@ -731,46 +731,6 @@ static int gather_records(const struct dem_sim *s, const struct halo *H,
     return rc;
 }
 
-/* The forces of w's contacts (outputs show them), as the last pass of
- * the split run s found them: that pass saw the velocities before the
- * step's closing half kick, so w's particles are kicked back by half a
- * step for a pass and then take their velocities and forces again (a
- * pass at the end-of-step velocities would give other damping forces,
- * and a resumed run its first half kick from them). */
-static int contact_forces(struct dem_sim *w, const struct dem_sim *s)
-{
-    struct dem_particles *p = &w->p;
-    const size_t n = (size_t)p->n;
-    double *const keep[] = {p->vx, p->vy, p->vz, p->wx, p->wy, p->wz,
-                            p->fx, p->fy, p->fz, p->tx, p->ty, p->tz,
-                            p->fsum};
-    enum { NKEEP = sizeof keep / sizeof keep[0] };
-    double *copy = malloc((n ? n : 1) * NKEEP * sizeof *copy);
-    int *ncontact = malloc((n ? n : 1) * sizeof *ncontact);
-    if (!copy || !ncontact) {
-        free(copy);
-        free(ncontact);
-        return DEM_ENOMEM;
-    }
-    for (int c = 0; c < NKEEP; c++)
-        memcpy(copy + c * n, keep[c], n * sizeof *copy);
-    memcpy(ncontact, p->ncontact, n * sizeof *ncontact);
-    const double h = 0.5 * w->dt;
-    const double hg[3] = {-h * w->cfg.gravity[0], -h * w->cfg.gravity[1],
-                          -h * w->cfg.gravity[2]};
-    for (int i = 0; i < p->n; i++)
-        dem_particle_kick(p, i, -h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
-                          p->ty[i], p->tz[i]);
-    dem_sim_forces(w);
-    for (int c = 0; c < NKEEP; c++)
-        memcpy(keep[c], copy + c * n, n * sizeof *copy);
-    memcpy(p->ncontact, ncontact, n * sizeof *ncontact);
-    memcpy(w->wall, s->wall, sizeof w->wall); /* their forces, summed */
-    free(copy);
-    free(ncontact);
-    return 0;
-}
-
 int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
                      struct dem_error *err)
 {
@@ -811,13 +771,10 @@ int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
         if (!rc)
             rc = dem_sim_rebuild(whole, err);
         if (!rc) {
+            /* the contacts' history and forces of the run's last pass */
             dem_records_import(&rec, &whole->pairs, &whole->p);
-            rc = contact_forces(whole, s);
             whole->nbuild = s->nbuild;
-        }
-        if (rc) {
-            if (rc == DEM_ENOMEM)
-                dem_error_set(err, rc, "out of memory (gathering)");
+        } else {
             dem_sim_destroy(whole);
             memset(whole, 0, sizeof *whole);
         }

@@ -44,8 +44,8 @@ int dem_halo_gather(const struct dem_sim *s, struct dem_particles *out,
 /* The whole sample, gathered on rank 0 into whole as one undivided
  * simulation at the same step, for outputs and checkpoints: particles in
  * the order of their ids, the contacts with their history, the lists
- * built anew, the contacts' forces computed again (equal to the split
- * run's to round-off; the particles' and walls' forces are the run's).
+ * built anew, the contacts' forces those of the run's last pass, like
+ * the particles' and the walls'.
  * Free with dem_sim_destroy. On the other ranks whole is zeroed. Collective: every rank calls it; the status is
  * rank 0's (out of memory on another rank: the same status there). */
 int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,

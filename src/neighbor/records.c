@@ -23,8 +23,17 @@ static int reserve(struct dem_records *r, int n)
 /* Entry k of list L as a record of particle id self; flip: self is the
  * entry's j (values times their swap factors). */
 static void put(struct dem_contact_record *o, const struct dem_contact_list *L,
-                int k, unsigned hist, int self, int wall, int other, int flip)
+                const struct dem_contact_forces *F, int torques, int k,
+                unsigned hist, int self, int wall, int other, int flip)
 {
+    /* seen from j: the force and the torque on it are the opposite ones,
+     * n x f_t is the same (both factors change sign) */
+    const double sf = flip ? -1.0 : 1.0;
+    for (int a = 0; a < 3; a++) {
+        o->f[a] = sf * F->v[k].f[a];
+        o->c[a] = F->v[k].c[a];
+        o->m[a] = torques ? sf * F->m[3 * k + a] : 0.0;
+    }
     o->self = self;
     o->wall = wall;
     o->other = other;
@@ -49,12 +58,14 @@ int dem_records_export(struct dem_records *r, const struct dem_pairs *pl,
         if (i < nself) {
             if (reserve(r, r->n + 1))
                 return DEM_ENOMEM;
-            put(&r->v[r->n++], L, k, pl->hist, p->id[i], 0, p->id[j], 0);
+            put(&r->v[r->n++], L, &pl->f, pl->torques, k, pl->hist, p->id[i],
+                0, p->id[j], 0);
         }
         if (j < nself) {
             if (reserve(r, r->n + 1))
                 return DEM_ENOMEM;
-            put(&r->v[r->n++], L, k, pl->hist, p->id[j], 0, p->id[i], 1);
+            put(&r->v[r->n++], L, &pl->f, pl->torques, k, pl->hist, p->id[j],
+                0, p->id[i], 1);
         }
     }
     for (int k = 0; k < W->n; k++) {
@@ -62,7 +73,8 @@ int dem_records_export(struct dem_records *r, const struct dem_pairs *pl,
             continue;
         if (reserve(r, r->n + 1))
             return DEM_ENOMEM;
-        put(&r->v[r->n++], W, k, pl->hist, p->id[W->i[k]], 1, W->j[k], 0);
+        put(&r->v[r->n++], W, &pl->wf, pl->torques, k, pl->hist,
+            p->id[W->i[k]], 1, W->j[k], 0);
     }
     return 0;
 }
@@ -106,11 +118,19 @@ static const struct dem_contact_record *find(const struct dem_records *r,
     return NULL;
 }
 
-/* Entry k of L takes record o (none: NULL); flip: o is seen from the
- * entry's j. */
-static void take(struct dem_contact_list *L, int k, unsigned hist,
+/* Entry k of L (forces F) takes record o (none: NULL); flip: o is seen
+ * from the entry's j. */
+static void take(struct dem_contact_list *L, struct dem_contact_forces *F,
+                 int torques, int k, unsigned hist,
                  const struct dem_contact_record *o, int flip)
 {
+    const double sf = flip ? -1.0 : 1.0;
+    for (int a = 0; a < 3; a++) {
+        F->v[k].f[a] = o ? sf * o->f[a] : 0.0;
+        F->v[k].c[a] = o ? o->c[a] : 0.0;
+        if (torques)
+            F->m[3 * k + a] = o ? sf * o->m[a] : 0.0;
+    }
     int q = 0;
     unsigned bit = 1;
 #define REC_TAKE_(MODEL, name, unit, swap, doc)                                \
@@ -131,12 +151,13 @@ void dem_records_import(const struct dem_records *r, struct dem_pairs *pl,
         const int a = p->id[L->i[k]], b = p->id[L->j[k]];
         const struct dem_contact_record *o = find(r, a, 0, b);
         if (o)
-            take(L, k, pl->hist, o, 0);
+            take(L, &pl->f, pl->torques, k, pl->hist, o, 0);
         else
-            take(L, k, pl->hist, find(r, b, 0, a), 1);
+            take(L, &pl->f, pl->torques, k, pl->hist, find(r, b, 0, a), 1);
     }
     for (int k = 0; k < W->n; k++)
-        take(W, k, pl->hist, find(r, p->id[W->i[k]], 1, W->j[k]), 0);
+        take(W, &pl->wf, pl->torques, k, pl->hist,
+             find(r, p->id[W->i[k]], 1, W->j[k]), 0);
 }
 
 void dem_records_free(struct dem_records *r)

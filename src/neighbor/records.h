@@ -8,7 +8,8 @@
  * a record for each of its particles, the second with its values times
  * their swap factors (DEM_CONTACT_HISTORY), so that the record of either
  * particle restores the pair whatever the order of the two in memory; a
- * wall contact gives one.
+ * wall contact gives one. A record also carries the contact's forces of
+ * the last pass, likewise as seen from self.
  */
 #ifndef DEM_NEIGHBOR_RECORDS_H
 #define DEM_NEIGHBOR_RECORDS_H
@@ -25,6 +26,11 @@ struct dem_contact_record {
     int state;              /* DEM_CONTACT_* bits */
     double h[DEM_NHISTORY]; /* the history values as seen from self (the
                                values pl->hist does not keep are 0) */
+    /* the contact's forces in the last force pass, as seen from self
+     * (struct dem_contact_force; outputs of a gathered sample show them) */
+    double f[3]; /* N; the force on self */
+    double c[3]; /* N; n x f_t, the same from either particle */
+    double m[3]; /* N m; the resistance torque on self (0 without) */
 };
 
 struct dem_records {
