@@ -4,13 +4,16 @@
 # usage: bench/peers.sh [--dim 2|3] [--n N] [--steps S] [--np P]
 #                       [--codes "dembox lammps-hh lammps-gr liggghts"]
 #                       [--replicate K] [--data DIR] [--dembox PATH]
-#                       [--work DIR]
+#                       [--work DIR] [--dembox-ranks]
 #
 #   --dim, --n      the packing DIR/pack{dim}d_{N}.data (LAMMPS data file,
 #                   atom_style sphere); default 3D N = 3375 (2D N = 1950)
 #   --steps         timed steps of every code (default 20000)
 #   --np            MPI ranks of the peers and OpenMP threads of dembox
 #                   (default 1; 1 = plain serial launch, no mpirun)
+#   --dembox-ranks  dembox as --np MPI ranks of one thread each (its
+#                   domain decomposition, `mpirun -np NP dembox bench`)
+#                   instead of --np threads: the same launch as the peers
 #   --codes         which codes to run (default: all four)
 #                     dembox     dembox bench --data <the same file>
 #                     lammps-hh  pair_style gran/hooke/history
@@ -47,7 +50,7 @@ DIM=3 N= STEPS=20000 NP=1 REP=1
 CODES="dembox lammps-hh lammps-gr liggghts"
 DATA=${DEMBOX_BENCH_DATA:-$here/../../shared/bench/data}
 DEMBOX=$here/../build/dembox
-WORK=
+WORK= DEMBOX_RANKS=0
 
 die() { echo "peers.sh: $*" >&2; exit 1; }
 while [ $# -gt 0 ]; do
@@ -61,6 +64,7 @@ while [ $# -gt 0 ]; do
     --data) DATA=${2:?}; shift 2 ;;
     --dembox) DEMBOX=${2:?}; shift 2 ;;
     --work) WORK=${2:?}; shift 2 ;;
+    --dembox-ranks) DEMBOX_RANKS=1; shift ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown argument $1 (see --help)" ;;
   esac
@@ -268,13 +272,19 @@ run_dembox() {
   local base=$WORK/$TAG.dembox
   local t=()
   [ ${#TIMEV[@]} -gt 0 ] && t=("${TIMEV[@]}" "$base.time")
-  # the packing is prepared once (untimed) and cached; the loop alone is timed
-  OMP_NUM_THREADS=$NP "${t[@]}" "$DEMBOX" bench --dim "$DIM" --n "$N" --steps "$STEPS" \
-    --threads "$NP" --data "$PACK" --quiet > "$base.log" 2>&1 \
+  # the packing is prepared once (untimed) and cached; the loop alone is
+  # timed (over ranks: rank 0's loop, which waits for the others)
+  local threads=$NP what="$NP threads" launch=()
+  if [ "$DEMBOX_RANKS" = 1 ] && [ "$NP" -gt 1 ]; then
+    threads=1 what="$NP ranks" launch=("${LAUNCH[@]}")
+  fi
+  OMP_NUM_THREADS=$threads "${t[@]}" "${launch[@]}" "$DEMBOX" bench --dim "$DIM" \
+    --n "$N" --steps "$STEPS" --threads "$threads" --data "$PACK" --quiet \
+    > "$base.log" 2>&1 \
     || { echo "peers.sh: dembox failed, see $base.log" >&2; cat "$base.log" >&2; return; }
   local secs
   secs=$(awk '/^loop:/ {print $2}' "$base.log")
-  add_row "dembox|linear + tangential history (walls)|$NP threads|$secs|$(peak_mb "$base.time")|$(awk '/^cpu:/ {print $4}' "$base.log")"
+  add_row "dembox|linear + tangential history (walls)|$what|$secs|$(peak_mb "$base.time")|$(awk '/^cpu:/ {print $4}' "$base.log")"
 }
 
 for c in $CODES; do
