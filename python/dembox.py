@@ -82,7 +82,8 @@ class _RunOptions(ctypes.Structure):
                 ("threads", ctypes.c_int),
                 ("max_steps", ctypes.c_long),
                 ("stop", ctypes.c_void_p),
-                ("stop_after_steps", ctypes.c_long)]
+                ("stop_after_steps", ctypes.c_long),
+                ("split", ctypes.c_int)]
 
 
 class _SweepOptions(ctypes.Structure):
@@ -123,6 +124,9 @@ _lib.dem_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_RunOptions),
                          ctypes.POINTER(_ErrorStruct)]
 _lib.dem_analyze.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
 _lib.dem_plot_run.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
+_lib.dem_mpi_world.argtypes = [ctypes.POINTER(ctypes.c_int),
+                               ctypes.POINTER(ctypes.c_int)]
+_lib.dem_mpi_world.restype = None
 _lib.dem_sweep_grid_bytes.restype = ctypes.c_size_t
 _lib.dem_sweep_param_add.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
                                      ctypes.POINTER(_ErrorStruct)]
@@ -183,21 +187,27 @@ def _config(target, sets, err):
 
 
 def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
-        plot=False, warnings=None):
+        plot=False, warnings=None, split=False):
     """Run a built-in example or a config file into outdir, as `dembox run`
     does: then the analysis (summary.json) and, with plot=True, the
     pictures. sets are "KEY=VALUE" overrides; max_steps > 0 ends the run
-    early. Warnings are appended to the list warnings when given. Returns
-    outdir."""
+    early. Warnings are appended to the list warnings when given.
+    split=True: every rank of the MPI world (a script under mpirun that
+    imported mpi4py) calls run with the same arguments, the sample is
+    split over the ranks (docs/parallel.md), and rank 0 writes the
+    outputs, the analysis and the pictures. Returns outdir."""
     warnings = [] if warnings is None else warnings
     err = _error(warnings)
     cfg = _config(target, list(sets), err)
     opt = _RunOptions(outdir=outdir.encode(), threads=threads,
-                      max_steps=max_steps)
+                      max_steps=max_steps, split=int(bool(split)))
     _check(_lib.dem_run(cfg, ctypes.byref(opt), ctypes.byref(err)), err)
-    if analyze:
+    rank, size = ctypes.c_int(0), ctypes.c_int(1)
+    if split:
+        _lib.dem_mpi_world(ctypes.byref(rank), ctypes.byref(size))
+    if analyze and rank.value == 0:
         _check(_lib.dem_analyze(outdir.encode(), ctypes.byref(err)), err)
-    if plot:
+    if plot and rank.value == 0:
         _check(_lib.dem_plot_run(outdir.encode(), ctypes.byref(err)), err)
     return outdir
 
