@@ -4,12 +4,7 @@
 # Status 77 (skipped): no mpirun, or it cannot start two ranks here.
 set -eu
 PROG=${1:?usage: test_decomp_mpi.sh MPI_DECOMP}
-MPIRUN=${MPIEXEC:-mpirun}
-command -v "$MPIRUN" > /dev/null || { echo "no $MPIRUN: skipped"; exit 77; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_btl_vader_single_copy_mechanism=none OMP_NUM_THREADS=1
-"$MPIRUN" -np 2 --oversubscribe true > /dev/null 2>&1 ||
-    { echo "mpirun cannot start 2 ranks here: skipped"; exit 77; }
+. "$(dirname "$0")/mpi_env.sh"
 for dim in 3 2; do
     for np in 1 2 4; do
         # ranks waiting in MPI yield their core (4 ranks on 2 cores)
