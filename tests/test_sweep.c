@@ -523,6 +523,31 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
         fail_msg("%s", err.msg);
     assert_int_equal(rep.ran, 1);
     assert_int_equal(rep.skipped, 2);
+
+    /* a run's timeseries gone: the loading curves say so, naming the file
+     * within the sweep folder (the .dat travels with it), not where the
+     * folder was */
+    snprintf(path, sizeof path,
+             "%s/runs/stages.0.pressure=500_stages.1.pressure=500/"
+             "timeseries.csv",
+             out);
+    assert_int_equal(remove(path), 0);
+    if (dem_sweep_collect(&g, &o, &err))
+        fail_msg("%s", err.msg);
+    snprintf(path, sizeof path, "%s/plots/loading_curves.dat", out);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    int notes = 0;
+    while (fgets(line, sizeof line, f))
+        if (strstr(line, "not read")) {
+            notes++;
+            assert_non_null(
+                strstr(line, "not read: runs/stages.0.pressure=500_stages.1."
+                             "pressure=500/timeseries.csv: "));
+            assert_null(strstr(line, tmpdir));
+        }
+    fclose(f);
+    assert_int_equal(notes, 1);
     dem_sweep_grid_free(&g);
 }
 

@@ -385,7 +385,13 @@ static long read_loading(const struct dem__sweep *s,
     memset(t, 0, sizeof *t);
     if (dem_path_join(path, sizeof path, s->outdir, leaf, &e) ||
         dem__csv_table_read(t, path, want, n, &e)) {
-        fprintf(dat, "# %s: not read: %s\n", r->name, e.msg);
+        /* the file named within the sweep folder: the .dat files are
+         * kept with it, wherever it moves */
+        const char *why = e.msg;
+        const size_t k = strlen(s->outdir);
+        if (!strncmp(why, s->outdir, k) && why[k] == '/')
+            why += k + 1;
+        fprintf(dat, "# %s: not read: %s\n", r->name, why);
         dem__csv_table_free(t);
         return -1;
     }
