@@ -28,9 +28,9 @@ per cent of the ghost traffic.
 off"): ghosts from all around (a full shell, about twice the volume),
 9 doubles out and nothing back, a pair across a cut computed by both
 ranks (counted as 0.3 c per half-shell ghost: about two pairs each at the
-pair loop's share of c), and the ghosts sent in one all-to-all (P - 1
-messages, of which only the 26 neighbours' carry data; the empty ones
-cost a latency each).
+pair loop's share of c), and the ghosts sent to and received from the
+neighbours that hold them (26 messages each way at most, all under way at
+once; counted as one latency each).
 """
 import argparse
 import math
@@ -58,7 +58,7 @@ def step(N, P):
         comm = 12 * alpha + ghosts * (9 + 6) * 8 / beta + 2 * 10e-9 * ghosts
     else:
         ghosts = n_d3 * ((L + 2 * rc) ** 3 - L ** 3)
-        comm = (P - 1) * alpha + ghosts * 9 * 8 / beta + 10e-9 * ghosts
+        comm = min(P - 1, 26) * alpha + ghosts * 9 * 8 / beta + 10e-9 * ghosts
         comp += 0.3 * c * half
     red = 2 * alpha * math.log2(P)
     return comp + comm + red, comp, comm, red, ghosts

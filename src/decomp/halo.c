@@ -79,6 +79,7 @@ struct halo {
     int *xc;                                /* 4 per rank: exchange()'s */
     double *sbuf, *rbuf;
     size_t sbuf_cap, rbuf_cap;
+    MPI_Request *req; /* 2 per rank: to_holders()'s */
     struct dem_records rec; /* the own particles' contact records */
 };
 
@@ -169,17 +170,17 @@ static int all_ok(int rc)
     return !any;
 }
 
-/* An all-to-all of doubles: cnt[r] items of width w to rank r from
- * H->sbuf (grouped by rank); the items received land in H->rbuf, their
- * counts per rank in cnt2. Returns the number received, or < 0 on every
- * rank. grow: H->rbuf may have to grow (at a rebuild; the steps between
- * receive fewer doubles than the rebuild's ghosts did, no check). */
-static int exchange(struct halo *H, const int *cnt, int w, int grow)
+/* At a rebuild, an all-to-all of doubles: cnt[r] items of width w to
+ * rank r from H->sbuf (grouped by rank); the items received land in
+ * H->rbuf, their counts per rank in cnt2. Returns the number received,
+ * or < 0 on every rank. (Between rebuilds the ghosts' state goes to the
+ * neighbours only: to_holders.) */
+static int exchange(struct halo *H, const int *cnt, int w)
 {
     MPI_Alltoall(cnt, 1, MPI_INT, H->cnt2, 1, MPI_INT, MPI_COMM_WORLD);
     const int nin = displs(H->cnt2, H->dsp2, H->size);
     /* every rank must reach the all-to-all below or none */
-    if (grow && !all_ok(rbuf_reserve(H, (size_t)nin * w)))
+    if (!all_ok(rbuf_reserve(H, (size_t)nin * w)))
         return DEM_ENOMEM;
     int *sc = H->xc, *sd = sc + H->size, *rc = sd + H->size, *rd = rc + H->size;
     int t = 0;
@@ -300,7 +301,7 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
     }
     free(dest);
     const int m = keep_own(H, p, nown);
-    const int nin = exchange(H, H->cnt, NPACK, 1);
+    const int nin = exchange(H, H->cnt, NPACK);
     if (nin < 0 || m + nin > p->cap)
         rc = nin < 0 ? nin : DEM_EINTERNAL;
     if (!all_ok(rc)) {
@@ -399,7 +400,7 @@ static int ghosts(struct dem_sim *s, struct halo *H, int nown)
     displs(H->scount, H->sdispl, size);
     for (int k = 0; k < H->nsend; k++)
         pack(p, H->send[k], H->sbuf + (size_t)k * NPACK);
-    const int nin = exchange(H, H->scount, NPACK, 1);
+    const int nin = exchange(H, H->scount, NPACK);
     if (nin < 0 || nown + nin > p->cap)
         rc = nin < 0 ? nin : DEM_EINTERNAL;
     if (!all_ok(rc))
@@ -453,6 +454,25 @@ static void box_of(const struct dem_sim *s, double lo[3], double hi[3])
     }
 }
 
+/* Between rebuilds: the w doubles per ghost packed in H->sbuf (in the
+ * order of the send lists) go to the ranks that hold those ghosts, and
+ * the w doubles of this rank's ghosts land in H->rbuf (in the order of
+ * their places), by messages to and from those ranks only (the
+ * neighbours: the counts are the last rebuild's, so no count travels). */
+static void to_holders(struct halo *H, int w)
+{
+    int n = 0;
+    for (int r = 0; r < H->size; r++)
+        if (H->rcount[r] > 0)
+            MPI_Irecv(H->rbuf + (size_t)H->rdispl[r] * w, H->rcount[r] * w,
+                      MPI_DOUBLE, r, 0, MPI_COMM_WORLD, &H->req[n++]);
+    for (int r = 0; r < H->size; r++)
+        if (H->scount[r] > 0)
+            MPI_Isend(H->sbuf + (size_t)H->sdispl[r] * w, H->scount[r] * w,
+                      MPI_DOUBLE, r, 0, MPI_COMM_WORLD, &H->req[n++]);
+    MPI_Waitall(n, H->req, MPI_STATUSES_IGNORE);
+}
+
 static int halo_sync(struct dem_sim *s, int rebuild, struct dem_error *err)
 {
     struct halo *H = s->halo_ctx;
@@ -474,13 +494,9 @@ static int halo_sync(struct dem_sim *s, int rebuild, struct dem_error *err)
         o[7] = p->wy[i];
         o[8] = p->wz[i];
     }
-    const int nin = exchange(H, H->scount, NSTATE, 0);
-    if (nin != s->pairs.nghost)
-        return dem_error_set(err, DEM_EINTERNAL,
-                             "domain decomposition: %d ghosts arrived, %d "
-                             "expected",
-                             nin, s->pairs.nghost);
-    const int g0 = p->n - s->pairs.nghost;
+    (void)err;
+    to_holders(H, NSTATE);
+    const int nin = s->pairs.nghost, g0 = p->n - nin;
     for (int k = 0; k < nin; k++) {
         const double *o = H->rbuf + (size_t)k * NSTATE;
         const int i = g0 + k;
@@ -549,8 +565,8 @@ static void halo_to_ghosts(const struct dem_sim *s, int *v)
     struct halo *H = s->halo_ctx;
     for (int k = 0; k < H->nsend; k++)
         H->sbuf[k] = (double)v[H->send[k]];
-    const int nin = exchange(H, H->scount, 1, 0);
-    const int g0 = s->p.n - s->pairs.nghost;
+    to_holders(H, 1);
+    const int nin = s->pairs.nghost, g0 = s->p.n - nin;
     for (int k = 0; k < nin; k++)
         v[g0 + k] = (int)H->rbuf[k];
 }
@@ -566,6 +582,7 @@ static void halo_free(struct halo *H)
     free(H->scount);
     free(H->sbuf);
     free(H->rbuf);
+    free(H->req);
     dem_records_free(&H->rec);
     free(H);
 }
@@ -588,7 +605,8 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
     MPI_Comm_size(MPI_COMM_WORLD, &H->size);
     const size_t sz = (size_t)H->size;
     H->scount = malloc(12 * sz * sizeof *H->scount);
-    if (!H->scount) {
+    H->req = malloc(2 * sz * sizeof *H->req);
+    if (!H->scount || !H->req) {
         halo_free(H);
         return dem_error_set(err, DEM_ENOMEM, "out of memory (halo)");
     }

@@ -8,7 +8,8 @@
  * its particles' forces alone. Per step the ranks agree on whether to
  * rebuild the lists (one allreduce) and, without a rebuild, send the
  * ghosts' positions, velocities and spins to the ranks that hold them
- * (one all-to-all); after the force pass the walls' forces are summed
+ * (messages to and from the neighbours only, the counts known from the
+ * rebuild); after the force pass the walls' forces are summed
  * (one allreduce), so that every rank moves the walls alike. At a
  * rebuild the subdomains follow the walls, particles move to their new
  * subdomain with the records of their contacts (neighbor/records.h), and
