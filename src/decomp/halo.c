@@ -629,8 +629,16 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
         return rc;
     }
     /* every rank holds the whole sample: each keeps its own particles
-     * (no message), with the records of all contacts, then ghosts */
-    rc = dem_records_export(&H->rec, &s->pairs, &s->p, s->p.n);
+     * (no message), with their contacts' records, then ghosts */
+    unsigned char *own = malloc((size_t)(s->p.n > 0 ? s->p.n : 1));
+    rc = own ? 0 : DEM_ENOMEM;
+    for (int i = 0; !rc && i < s->p.n; i++) {
+        const double x[3] = {s->p.x[i], s->p.y[i], s->p.z[i]};
+        own[i] = dem_decomp_owner(&H->d, x) == H->rank;
+    }
+    if (!rc)
+        rc = dem_records_export_marked(&H->rec, &s->pairs, &s->p, s->p.n, own);
+    free(own);
     if (rc) {
         halo_free(H);
         return dem_error_set(err, rc, "out of memory (records)");
@@ -648,6 +656,8 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
         dem_halo_stop(s);
         return rc;
     }
+    /* the records are exported anew at each rebuild */
+    dem_records_free(&H->rec);
     /* the particles brought their forces of the last step, and the walls
      * theirs (every rank had the whole sample): a pass now would see the
      * velocities a half step later and change them */

@@ -50,18 +50,27 @@ static void put(struct dem_contact_record *o, const struct dem_contact_list *L,
 int dem_records_export(struct dem_records *r, const struct dem_pairs *pl,
                        const struct dem_particles *p, int nself)
 {
+    return dem_records_export_marked(r, pl, p, nself, NULL);
+}
+
+int dem_records_export_marked(struct dem_records *r,
+                              const struct dem_pairs *pl,
+                              const struct dem_particles *p, int nself,
+                              const unsigned char *mark)
+{
     const struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
+#define SELF_(i) ((i) < nself && (!mark || mark[i]))
     for (int k = 0; k < L->n; k++) {
         if (!L->state[k])
             continue;
         const int i = L->i[k], j = L->j[k];
-        if (i < nself) {
+        if (SELF_(i)) {
             if (reserve(r, r->n + 1))
                 return DEM_ENOMEM;
             put(&r->v[r->n++], L, &pl->f, pl->torques, k, pl->hist, p->id[i],
                 0, p->id[j], 0);
         }
-        if (j < nself) {
+        if (SELF_(j)) {
             if (reserve(r, r->n + 1))
                 return DEM_ENOMEM;
             put(&r->v[r->n++], L, &pl->f, pl->torques, k, pl->hist, p->id[j],
@@ -69,13 +78,14 @@ int dem_records_export(struct dem_records *r, const struct dem_pairs *pl,
         }
     }
     for (int k = 0; k < W->n; k++) {
-        if (!W->state[k] || W->i[k] >= nself)
+        if (!W->state[k] || !SELF_(W->i[k]))
             continue;
         if (reserve(r, r->n + 1))
             return DEM_ENOMEM;
         put(&r->v[r->n++], W, &pl->wf, pl->torques, k, pl->hist,
             p->id[W->i[k]], 1, W->j[k], 0);
     }
+#undef SELF_
     return 0;
 }
 

@@ -44,6 +44,12 @@ struct dem_records {
  * DEM_ENOMEM. */
 int dem_records_export(struct dem_records *r, const struct dem_pairs *pl,
                        const struct dem_particles *p, int nself);
+/* The same for the particles among the first nself whose mark is set
+ * (mark NULL: all of them). */
+int dem_records_export_marked(struct dem_records *r,
+                              const struct dem_pairs *pl,
+                              const struct dem_particles *p, int nself,
+                              const unsigned char *mark);
 /* Sort by (self, wall, other), as dem_records_import needs. */
 void dem_records_sort(struct dem_records *r);
 /* Every entry of pl's current lists takes the history of its record in r
