@@ -165,9 +165,7 @@ static int displs(const int *count, int *displ, int n)
 /* Whether every rank succeeded (rc == 0 on all). */
 static int all_ok(int rc)
 {
-    int bad = rc != 0, any = 0;
-    MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
-    return !any;
+    return !dem_halo_any(rc != 0);
 }
 
 /* At a rebuild, an all-to-all of doubles: cnt[r] items of width w to
