@@ -1,11 +1,8 @@
 /* Contact forces: one force pass (contact/pass.c) in whichever of its
- * variants is faster on this CPU (two compilations, each with chained
- * steps fused or not), the walls' reaction, and the sums for the
- * measurements.
+ * compilations is faster on this CPU, the walls' reaction, and the sums
+ * for the measurements.
  */
-#include <limits.h>
 #include <math.h>
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +11,6 @@
 #include "contact/models.h"
 #include "contact/pass.h"
 #include "contact/tangential.h"
-#include "core/parallel.h"
 #include "core/sim.h"
 
 static struct pass pass_of(const struct dem_particles *P,
@@ -202,22 +198,16 @@ static void measure_contacts(struct dem_sim *s)
     }
 }
 
-/* The variants of the force pass, in the order of struct
- * dem_pass_choice's indices: each compilation with chained steps fused
- * (pass.c, fused_thread) or not. */
+/* The compilations of the force pass, in the order of
+ * struct dem_pass_choice's indices. */
 typedef int (*pass_fn)(const struct contacts *, struct kick);
 static const struct {
     const char *name;
     pass_fn run;
-    int fused;
 } passes[] = {
-    {"gathers", dem__pass_gathers, 0},
+    {"gathers", dem__pass_gathers},
 #if DEM_PASS_LOADS
-    {"loads", dem__pass_loads, 0},
-#endif
-    {"gathers-fused", dem__pass_gathers, 1},
-#if DEM_PASS_LOADS
-    {"loads-fused", dem__pass_loads, 1},
+    {"loads", dem__pass_loads},
 #endif
 };
 enum { NPASS = sizeof passes / sizeof passes[0] };
@@ -246,96 +236,10 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
             C->trial = 0;
             return DEM_OK;
         }
-    char names[128] = "auto";
-    for (int v = 0; v < NPASS; v++)
-        snprintf(names + strlen(names), sizeof names - strlen(names), ", %s",
-                 passes[v].name);
     return dem_error_set(err, DEM_EUSAGE,
                          "environment variable DEMBOX_PASS: '%s' is not a "
-                         "force pass of this build (%s)",
-                         want, names);
-}
-
-/* The largest ring of a fused pass, in records per block (64 B each):
- * beyond it the forces would not stay in cache anyway. */
-enum { FUSED_RING_MAX = 1 << 20 };
-
-/* Make (once per list and thread count) the fused pass's plan for nb
- * blocks of the n own particles: each block's tail (its first pair whose
- * partner is in a later block: from there on its pairs are done before
- * any particle moves) and the ring size, the largest distance in the
- * list between the chunk after which a particle is finished and its
- * first pair kept in the ring. Returns whether the fused pass can run. */
-static int fused_plan(struct dem_pairs *pl, int n, int nb)
-{
-    struct dem_fused *fu = &pl->fused;
-    if (fu->made && fu->nb == nb && fu->n == n)
-        return fu->ok;
-    fu->made = 1;
-    fu->ok = 0;
-    fu->nb = nb;
-    fu->n = n;
-    if (nb > fu->tail_cap) {
-        int *t = realloc(fu->tail, (size_t)nb * sizeof *t);
-        if (!t)
-            return 0;
-        fu->tail = t;
-        fu->tail_cap = nb;
-    }
-    const struct dem_contact_list *L = &pl->cur;
-    const int *start = L->start, *rs = pl->rstart, *rp = pl->rpair;
-    const long C = DEM_FUSED_CHUNK;
-    long need = C;
-    for (int b = 0; b < nb; b++) {
-        const int i0 = dem_block(n, b, nb), i1 = dem_block(n, b + 1, nb);
-        const int k0 = start[i0], ke = start[i1];
-        int tail = ke;
-        for (int k = k0; k < ke && b < nb - 1; k++)
-            if (L->j[k] >= i1 && L->j[k] < n) { /* not a ghost */
-                tail = k;
-                break;
-            }
-        fu->tail[b] = tail;
-        for (int i = i0; i < i1; i++) {
-            /* the chunk's end when i is finished, at most */
-            long done = (start[i + 1] + C - 1) / C * C;
-            done = done < tail ? done : tail;
-            long first = LONG_MAX; /* its first pair in the ring */
-            if (start[i] < start[i + 1] && start[i] < tail)
-                first = start[i];
-            for (int q = rs[i]; q < rs[i + 1]; q++)
-                if (rp[q] >= k0 && rp[q] < tail) {
-                    first = rp[q] < first ? rp[q] : first;
-                    break;
-                }
-            if (first != LONG_MAX && done - first > need)
-                need = done - first;
-        }
-    }
-    long W = C;
-    while (W < need)
-        W *= 2;
-    if (W > FUSED_RING_MAX)
-        return 0;
-    const long cap = W * nb;
-    if (cap > fu->ring_cap) {
-        free(fu->ring);
-        free(fu->ringm);
-        fu->ringm = NULL;
-        fu->ring_cap = 0;
-        void *q = NULL;
-        if (posix_memalign(&q, DEM_CONTACT_FORCE_ALIGN,
-                           (size_t)cap * sizeof *fu->ring) != 0)
-            return 0;
-        fu->ring = q;
-        fu->ring_cap = cap;
-    }
-    if (pl->torques && !fu->ringm &&
-        !(fu->ringm = malloc(3 * (size_t)fu->ring_cap * sizeof *fu->ringm)))
-        return 0;
-    fu->mask = (int)W - 1;
-    fu->ok = 1;
-    return 1;
+                         "force pass of this build (auto, gathers%s)",
+                         want, NPASS > 1 ? ", loads" : "");
 }
 
 void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size)
@@ -365,28 +269,18 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Variant v of the pass; a fused one fuses a chained step when the plan
- * allows (fusable: the step is chained, no cell, no measurement). */
-static int pass_variant(struct dem_pairs *pl, int v, struct contacts *c,
-                        const struct kick K, int fusable)
-{
-    c->fused = passes[v].fused && fusable &&
-               fused_plan(pl, c->n, omp_get_max_threads());
-    return passes[v].run(c, K);
-}
-
 /* One pass in the variant chosen. After TRIAL_FIRST and then every
  * TRIAL_EVERY time steps the variants take turns for TRIAL_ROUNDS steps
  * each, and the one with the fastest single pass runs until the next
  * trial (the results do not depend on which runs: see contact/pass.h). */
-static int run_pass(struct dem_pass_choice *C, struct dem_pairs *pl,
-                    struct contacts *c, const struct kick K, int fusable)
+static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
+                    const struct kick K)
 {
     if (!K.on || C->forced >= 0)
-        return pass_variant(pl, C->current, c, K, fusable);
+        return passes[C->current].run(c, K);
     if (!C->trial) {
         if (++C->since < TRIAL_EVERY || NPASS < 2)
-            return pass_variant(pl, C->current, c, K, fusable);
+            return passes[C->current].run(c, K);
         C->since = 0;
         C->trial = NPASS * TRIAL_ROUNDS;
     }
@@ -395,7 +289,7 @@ static int run_pass(struct dem_pass_choice *C, struct dem_pairs *pl,
         for (int u = 0; u < NPASS; u++)
             C->best[u] = INFINITY;
     const double t0 = seconds_now();
-    const int moved = pass_variant(pl, v, c, K, fusable);
+    const int moved = passes[v].run(c, K);
     const double t = seconds_now() - t0;
     if (t < C->best[v])
         C->best[v] = t;
@@ -471,8 +365,7 @@ static int forces(struct dem_sim *s, const struct kick K)
         memcpy(c.cv, lat.v, sizeof c.cv);
         dem_sim_cell_grad(s, c.grad);
     }
-    const int moved =
-        run_pass(&s->pass, pl, &c, K, K.chain && !s->cell.on && !s->measure);
+    const int moved = run_pass(&s->pass, &c, K);
     if (s->cell.on) {
         cell_stress(s, &c);
     } else {

@@ -93,10 +93,9 @@ DEM_INLINE void resist_contact(const int law, const struct pass *q, int k,
         m.y += mo.y;
         m.z += mo.z;
     }
-    double *o = &q->M[3 * (k - q->fbase)];
-    o[0] = touch ? m.x : 0.0;
-    o[1] = touch ? m.y : 0.0;
-    o[2] = touch ? m.z : 0.0;
+    q->M[3 * k] = touch ? m.x : 0.0;
+    q->M[3 * k + 1] = touch ? m.y : 0.0;
+    q->M[3 * k + 2] = touch ? m.z : 0.0;
 }
 
 /* Tangential force and history update of contact k, stored with it; with
@@ -122,7 +121,7 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     DEM_CONTACT_HISTORY(HIST_STORE_)
 #undef HIST_STORE_
     q->state[k] = touch ? st : 0;
-    struct dem_contact_force *o = &q->F[k - q->fbase];
+    struct dem_contact_force *o = &q->F[k];
     o->f[0] = touch ? fn * n.x + ft.x : 0.0;
     o->f[1] = touch ? fn * n.y + ft.y : 0.0;
     o->f[2] = touch ? fn * n.z + ft.z : 0.0;
@@ -141,14 +140,12 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
     DEM_CONTACT_HISTORY(HIST_ZERO_)
 #undef HIST_ZERO_
     q->state[k] = 0;
-    struct dem_contact_force *o = &q->F[k - q->fbase];
+    struct dem_contact_force *o = &q->F[k];
     o->f[0] = o->f[1] = o->f[2] = 0.0;
     o->c[0] = o->c[1] = o->c[2] = 0.0;
     o->pad[0] = o->pad[1] = 0.0;
-    if (DEM_SET_TORQUES(law)) {
-        double *m = &q->M[3 * (k - q->fbase)];
-        m[0] = m[1] = m[2] = 0.0;
-    }
+    if (DEM_SET_TORQUES(law))
+        q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
 }
 
 /* Force and history update of pair k. With scalar = 0 (SIMD lanes) there
@@ -282,34 +279,6 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     }
 }
 
-/* Where the fused pass keeps a block's pair forces: pairs lo <= k < hi
- * in a ring of mask + 1 records, at k & mask; the others at k in the
- * list's records. */
-struct ring {
-    const struct dem_contact_force *f;
-    const double *m; /* 3 per record, with a resistance on */
-    int lo, hi, mask;
-};
-
-/* The force record of pair k (fused: a literal). */
-DEM_INLINE const struct dem_contact_force *
-record_at(const int fused, const struct dem_contact_force *F,
-          const struct ring *R, int k)
-{
-    if (fused && (unsigned)(k - R->lo) < (unsigned)(R->hi - R->lo))
-        return &R->f[k & R->mask];
-    return &F[k];
-}
-
-/* The resistances' torque on i of pair k (fused: a literal). */
-DEM_INLINE const double *torque_at(const int fused, const double *M,
-                                   const struct ring *R, int k)
-{
-    if (fused && (unsigned)(k - R->lo) < (unsigned)(R->hi - R->lo))
-        return &R->m[3 * (k & R->mask)];
-    return &M[3 * k];
-}
-
 /* Particles i0 <= i < i1: background damping plus the forces of the
  * pairs as i (the particle's row), as j (its reverse row) and of the wall
  * contacts; then the torques, and the half kick if asked for. With
@@ -319,13 +288,11 @@ DEM_INLINE const double *torque_at(const int fused, const double *M,
  * them before they are computed again). Returns
  * then whether a particle has moved more than half the skin since the
  * last list build. K.on and K.chain are literals in each caller, so they
- * cost no branch; so is fused, with which the pairs' forces are read
- * through the ring R where it holds them. */
-DEM_INLINE int particle_range(const int law, const int fused, int i0, int i1,
+ * cost no branch. */
+DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl, double gb, double gr,
-                              const struct kick K, double *vir,
-                              const struct ring *R)
+                              const struct kick K, double *vir)
 {
     const int cell = (law & DEM_SET_PERIODIC) != 0;
     double w[9] = {0.0}; /* the virial of the current block (cell) */
@@ -350,16 +317,15 @@ DEM_INLINE int particle_range(const int law, const int fused, int i0, int i1,
                fz = cell ? 0.0 : -gb * vz[i];
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
         for (int k = start[i]; k < start[i + 1]; k++) {
-            const struct dem_contact_force *o = record_at(fused, F, R, k);
-            fx += o->f[0];
-            fy += o->f[1];
-            fz += o->f[2];
-            cx += o->c[0];
-            cy += o->c[1];
-            cz += o->c[2];
+            fx += F[k].f[0];
+            fy += F[k].f[1];
+            fz += F[k].f[2];
+            cx += F[k].c[0];
+            cy += F[k].c[1];
+            cz += F[k].c[2];
         }
         for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-            const struct dem_contact_force *o = record_at(fused, F, R, rpair[q]);
+            const struct dem_contact_force *o = &F[rpair[q]];
             fx -= o->f[0];
             fy -= o->f[1];
             fz -= o->f[2];
@@ -402,16 +368,14 @@ DEM_INLINE int particle_range(const int law, const int fused, int i0, int i1,
             /* the resistances' torques: on i as i, the opposite as j */
             double mx = 0.0, my = 0.0, mz = 0.0;
             for (int k = start[i]; k < start[i + 1]; k++) {
-                const double *o = torque_at(fused, M, R, k);
-                mx += o[0];
-                my += o[1];
-                mz += o[2];
+                mx += M[3 * k];
+                my += M[3 * k + 1];
+                mz += M[3 * k + 2];
             }
             for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-                const double *o = torque_at(fused, M, R, rpair[q]);
-                mx -= o[0];
-                my -= o[1];
-                mz -= o[2];
+                mx -= M[3 * rpair[q]];
+                my -= M[3 * rpair[q] + 1];
+                mz -= M[3 * rpair[q] + 2];
             }
             for (int k = wstart[i]; k < wstart[i + 1]; k++) {
                 mx += WM[3 * k];
@@ -452,67 +416,13 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
     if (law & DEM_SET_PERIODIC) /* no virial block across two threads */
-        return particle_range(
-            law, 0, dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
-            dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK), c->P, c->pl,
-            c->gb, c->gr, K, c->vir, NULL);
-    return particle_range(law, 0, dem_block(c->n, t, nt),
+        return particle_range(law,
+                              dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
+                              dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK),
+                              c->P, c->pl, c->gb, c->gr, K, c->vir);
+    return particle_range(law, dem_block(c->n, t, nt),
                           dem_block(c->n, t + 1, nt), c->P, c->pl, c->gb, c->gr,
-                          K, c->vir, NULL);
-}
-
-/* Thread t's share of a fused pass (a chained step; no periodic cell):
- * the particles in the plan's nb blocks, the pairs in their rows. First
- * (as the whole list in the other pass) the pairs from each block's tail
- * on, whose partners another thread may move, and the wall contacts;
- * after a barrier each block goes down its rows in chunks, the forces
- * into its ring, and finishes each particle (sums, kicks, drift, as
- * particle_range) once its last pair is done: its pairs as j are in the
- * rows of particles before it (j > i in every row), so nothing of this
- * pass reads it again. The forces are never written to the list's
- * records and read back from memory; they stay in the ring, which the
- * plan makes large enough that a particle's forces are still there when
- * it is finished. Same pair forces, same sums in the same order: the
- * same results as contacts_thread bit for bit. */
-DEM_INLINE int fused_thread(const int law, const struct contacts *c,
-                            const struct kick K, int t, int nt)
-{
-    const struct dem_fused *fu = &c->pl->fused;
-    const int *start = c->pl->cur.start;
-    const int nb = fu->nb;
-    for (int b = t; b < nb; b += nt)
-        pair_range(law, c->q, fu->tail[b], start[dem_block(c->n, b + 1, nb)],
-                   &c->cp, c->dt, c->cv, c->grad);
-    wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
-               &c->cpw, c->dt, c->walls);
-#pragma omp barrier
-    int moved = 0;
-    for (int b = t; b < nb; b += nt) {
-        const int i0 = dem_block(c->n, b, nb), i1 = dem_block(c->n, b + 1, nb);
-        const int tail = fu->tail[b];
-        const long W = fu->mask + 1L;
-        struct pass q = c->q;
-        q.F = fu->ring + b * W;
-        q.M = fu->ringm ? fu->ringm + 3 * b * W : NULL;
-        const struct ring R = {q.F, q.M, start[i0], tail, fu->mask};
-        int next = i0;
-        for (int k0 = start[i0]; k0 < tail;) {
-            int k1 = (k0 / DEM_FUSED_CHUNK + 1) * DEM_FUSED_CHUNK;
-            k1 = k1 < tail ? k1 : tail;
-            q.fbase = k0 & ~fu->mask;
-            pair_range(law, q, k0, k1, &c->cp, c->dt, c->cv, c->grad);
-            int upto = next;
-            while (upto < i1 && start[upto + 1] <= k1)
-                upto++;
-            moved |= particle_range(law, 1, next, upto, c->P, c->pl, c->gb,
-                                    c->gr, K, c->vir, &R);
-            next = upto;
-            k0 = k1;
-        }
-        moved |= particle_range(law, 1, next, i1, c->P, c->pl, c->gb, c->gr, K,
-                                c->vir, &R);
-    }
-    return moved;
+                          K, c->vir);
 }
 
 /* One instance per model set and kind of kick (literals), so that each
@@ -528,34 +438,9 @@ DEM_INLINE int fused_thread(const int law, const struct contacts *c,
         }                                                                      \
     } while (0)
 
-/* A chained step, fused (no periodic cell: its virial's blocks and the
- * pairs through an image read the list's records). */
-#define FUSED(LAW)                                                             \
-    do {                                                                       \
-        const struct kick k_ = {1,    1,     K.h,                              \
-                                K.dt, K.lim, {K.g[0], K.g[1], K.g[2]}};        \
-        _Pragma("omp parallel reduction(| : moved)")                           \
-        {                                                                      \
-            moved = fused_thread(LAW, c, k_, omp_get_thread_num(),             \
-                                 omp_get_num_threads());                       \
-        }                                                                      \
-    } while (0)
-
-#define CONTACTS_KICKS_CELL(SET)                                               \
-    case SET:                                                                  \
-        if (K.chain)                                                           \
-            CONTACTS(SET, 1, 1);                                               \
-        else if (K.on)                                                         \
-            CONTACTS(SET, 1, 0);                                               \
-        else                                                                   \
-            CONTACTS(SET, 0, 0);                                               \
-        break;
-
 #define CONTACTS_KICKS(SET)                                                    \
     case SET:                                                                  \
-        if (K.chain && c->fused)                                               \
-            FUSED(SET);                                                        \
-        else if (K.chain)                                                      \
+        if (K.chain)                                                           \
             CONTACTS(SET, 1, 1);                                               \
         else if (K.on)                                                         \
             CONTACTS(SET, 1, 0);                                               \
@@ -578,11 +463,11 @@ int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING)                         \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_TORSION)                         \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION)       \
-    CONTACTS_KICKS_CELL(DEM_NORMAL_##TAG | DEM_SET_PERIODIC)                   \
-    CONTACTS_KICKS_CELL(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_PERIODIC) \
-    CONTACTS_KICKS_CELL(DEM_NORMAL_##TAG | DEM_SET_TORSION | DEM_SET_PERIODIC) \
-    CONTACTS_KICKS_CELL(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION | \
-                        DEM_SET_PERIODIC)
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_PERIODIC)                        \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_PERIODIC)      \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_TORSION | DEM_SET_PERIODIC)      \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION |      \
+                   DEM_SET_PERIODIC)
         DEM_NORMAL_MODELS(CONTACTS_OF_)
 #undef CONTACTS_OF_
     }

@@ -25,15 +25,10 @@ struct pass {
     DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
 #undef HIST_ARRAY_
     int *state;
-    struct dem_contact_force *F; /* stored forces: entry k's at k - fbase */
+    struct dem_contact_force *F; /* stored forces, at each entry's index */
     double *M; /* the resistances' torques on i, 3 per entry (only with a
-                  resistance on), entry k's at 3 (k - fbase) */
-    int fbase; /* 0, or where a ring of records starts (the fused pass) */
+                  resistance on) */
 };
-
-/* Pairs per SIMD loop of the fused pass; a power of two that divides
- * its rings' size (contact/forces.c makes the plan). */
-#define DEM_FUSED_CHUNK 512
 
 /* The closing half kick of a step (h = dt/2, g gravity), or none. */
 struct kick {
@@ -58,17 +53,11 @@ struct contacts {
     double grad[6]; /* 1/s; the affine velocity gradient, upper triangle */
     double *vir;    /* N m; the virial sum x (x) f + m v (x) v of each
                        block of DEM_VIR_BLOCK particles, 9 values each */
-    /* 1: a chained step runs fused (see contact/pass.c) with the plan
-     * pl->fused; 0: pairs, then particles */
-    int fused;
 };
 
 /* One force pass: forces and history of every pair and wall contact,
  * then every particle's sums (and kicks, per K). Returns whether a
- * particle has moved more than half the skin (chained steps), else 0.
- * With c->fused (chained steps, no periodic cell) the pairs and the
- * particles go down the list together: the same forces, the same sums in
- * the same order, so the same results bit for bit. */
+ * particle has moved more than half the skin (chained steps), else 0. */
 int dem__pass_gathers(const struct contacts *c, struct kick K);
 #if DEM_PASS_LOADS
 /* The same code without hardware gathers (contact/pass_loads.c). */

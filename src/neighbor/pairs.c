@@ -46,9 +46,6 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->cell_of);
     free(pl->old_of);
     free(pl->scratch);
-    free(pl->fused.tail);
-    free(pl->fused.ring);
-    free(pl->fused.ringm);
     memset(pl, 0, sizeof *pl);
 }
 
@@ -557,7 +554,6 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
                     struct dem_error *err)
 {
     const int n = p->n;
-    pl->fused.made = 0;
     if (particles_reserve(pl, n, p->cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
     int rc = setup_grid(pl, p, dim, skin, lo, hi, cell, err);
@@ -619,7 +615,6 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
 
 int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc)
 {
-    pl->fused.made = 0;
     npair = npair > 0 ? npair : 1;
     nwc = nwc > 0 ? nwc : 1;
     if (particles_reserve(pl, n, cap) || list_reserve(&pl->cur, npair) ||

@@ -70,24 +70,6 @@ struct dem_contact_forces {
                   only with a resistance on (struct dem_pairs.torques) */
 };
 
-/* The fused force pass's plan for the current list (contact/forces.c,
- * contact/pass.c): the pairs split in nb blocks of particles, each
- * block's first pair whose partner belongs to a later block, and a ring
- * of force records per block that a pass reuses while it goes down the
- * list. A build or a reserve drops it (made = 0). */
-struct dem_fused {
-    int made;   /* 1: made for the current list, nb and n below */
-    int ok;     /* 1: the fused pass can run on this list */
-    int nb, n;  /* blocks (threads) and own particles it was made for */
-    int mask;   /* ring entries per block - 1 (a power of two - 1) */
-    int *tail;  /* nb: each block's first pair with a partner in a later
-                   block, the block's end if none */
-    int tail_cap;
-    struct dem_contact_force *ring; /* nb x (mask + 1) records */
-    double *ringm;                  /* the same x 3, with torques */
-    long ring_cap;                  /* records allocated */
-};
-
 struct dem_pairs {
     struct dem_contact_list cur;  /* particle pairs the force loop uses */
     struct dem_contact_list old;  /* the previous pairs, for the history */
@@ -128,7 +110,6 @@ struct dem_pairs {
                       kept (carried at a rebuild); the others are never
                       read or written */
     int torques;   /* 1: the entries' resistance torques (forces.m) */
-    struct dem_fused fused; /* the fused pass's plan for cur */
 };
 
 struct dem_wall;
