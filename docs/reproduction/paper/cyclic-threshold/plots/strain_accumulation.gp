@@ -19,12 +19,12 @@ set key inside top left box opaque font ",10"
 set ylabel "ε_D at the end of cycle c"
 plot \
   "strain_accumulation.dat" index 0 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.02, 3 runs (2 ratcheting)" noenhanced, \
-  "strain_accumulation.dat" index 1 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 2 title "μ = 0.05, 1 runs (0 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 1 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 2 title "μ = 0.05, 3 runs (0 ratcheting)" noenhanced, \
   1/0 notitle
 unset key
 set ylabel "Δε_D gained in cycle c"
 plot \
   "strain_accumulation.dat" index 0 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.02, 3 runs (2 ratcheting)" noenhanced, \
-  "strain_accumulation.dat" index 1 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 2 title "μ = 0.05, 1 runs (0 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 1 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 2 title "μ = 0.05, 3 runs (0 ratcheting)" noenhanced, \
   1/0 notitle
 unset multiplot
