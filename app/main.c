@@ -319,6 +319,27 @@ static void cli_progress(const struct dem_progress *p, void *user)
     fflush(stderr);
 }
 
+/* One line: how fast the stage loops ran and where their time went. */
+static void print_timing(const struct dem_run_timing *T)
+{
+    if (T->steps <= 0 || T->seconds <= 0.0)
+        return;
+    const struct dem_timers *P = &T->step;
+    const double rest = T->seconds - P->force - P->neighbor - P->walls -
+                        P->integrate - P->exchange;
+    const double pc = 100.0 / T->seconds;
+    fprintf(stderr,
+            "dembox: %ld steps of %d particles in %.3g s, %.4g ns per "
+            "particle-step: force pass %.1f %%, neighbour lists %.1f %%, "
+            "walls %.1f %%, unchained kicks and drifts %.1f %%, ",
+            T->steps, T->particles, T->seconds,
+            1e9 * T->seconds / ((double)T->steps * T->particles),
+            pc * P->force, pc * P->neighbor, pc * P->walls, pc * P->integrate);
+    if (P->exchange > 0.0)
+        fprintf(stderr, "MPI exchanges %.1f %%, ", pc * P->exchange);
+    fprintf(stderr, "stages, samples and outputs %.1f %%\n", pc * rest);
+}
+
 /* dem_run or dem_run_resume with SIGINT and SIGTERM turned into a
  * checkpoint and a clean stop (the previous handlers are restored after),
  * then the analysis and the pictures. Returns the exit status. */
@@ -340,8 +361,12 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
     if (stop_after && *stop_after)
         opt->stop_after_steps = atol(stop_after);
     struct dem_error err = {0, "", cli_warning, NULL};
+    struct dem_run_timing timing = {0};
+    opt->timing = &timing;
     int rc =
         resume ? dem_run_resume(resume, opt, &err) : dem_run(cfg, opt, &err);
+    if ((!rc || rc == DEM_EINTERRUPTED) && !quiet)
+        print_timing(&timing);
     restore_signals(&old);
     const char *dir = resume ? resume : opt->outdir;
     if (rc == DEM_EINTERRUPTED) {

@@ -284,6 +284,8 @@ struct dem_run_options {
                   arguments, and the sample is split over them by domain
                   decomposition (docs/parallel.md); rank 0 writes the
                   outputs. 0: this process runs the whole sample. */
+    struct dem_run_timing *timing; /* may be NULL; filled when the run
+                                      ends, finished or not */
 };
 
 /* Run every stage of cfg (validated) and write the outputs of SPEC §7 to
@@ -359,6 +361,12 @@ const char *dem_version(void);
 /* sizeof(struct dem_config), for bindings that cannot see the struct
  * (python/dembox.py allocates one of this size). */
 size_t dem_config_size(void);
+
+/* sizeof(struct NAME) for the structs a binding mirrors field by field
+ * ("dem_error", "dem_run_options", "dem_sweep_options",
+ * "dem_sweep_report", "dem_example"), 0 for another name: python/dembox.py
+ * checks its copies against them when it loads. */
+size_t dem_struct_size(const char *name);
 
 /* Parse config text. source names the text in messages (a file path or
  * "example NAME"). sets are "KEY=VALUE" overrides (dotted paths, list
@@ -612,6 +620,18 @@ struct dem_timers {
                          between ranks of each step (decomp/halo.h; at a
                          rebuild the neighbour time includes moving the
                          particles between ranks) */
+};
+
+/* Where a run's time went (this process; wall clock, s), from its start
+ * or resumption to its end. */
+struct dem_run_timing {
+    long steps;             /* time steps taken */
+    int particles;          /* of the whole sample */
+    double seconds;         /* the stages' loops */
+    struct dem_timers step; /* the time steps' phases (struct dem_timers);
+                               the rest of seconds went to the stages'
+                               control, the samples' measurements, the
+                               outputs and the checkpoints */
 };
 
 #define DEM_BENCH_DEFAULT_STEPS 20000

@@ -83,7 +83,8 @@ class _RunOptions(ctypes.Structure):
                 ("max_steps", ctypes.c_long),
                 ("stop", ctypes.c_void_p),
                 ("stop_after_steps", ctypes.c_long),
-                ("split", ctypes.c_int)]
+                ("split", ctypes.c_int),
+                ("timing", ctypes.c_void_p)]
 
 
 class _SweepOptions(ctypes.Structure):
@@ -111,6 +112,20 @@ class _Example(ctypes.Structure):
 
 
 _lib.dem_config_size.restype = ctypes.c_size_t
+_lib.dem_struct_size.restype = ctypes.c_size_t
+_lib.dem_struct_size.argtypes = [ctypes.c_char_p]
+# the structs mirrored above must be the library's, field for field: a
+# size that differs means this module and libdembox.so do not match
+for _name, _mirror in (("dem_error", _ErrorStruct),
+                       ("dem_run_options", _RunOptions),
+                       ("dem_sweep_options", _SweepOptions),
+                       ("dem_sweep_report", _SweepReport),
+                       ("dem_example", _Example)):
+    if _lib.dem_struct_size(_name.encode()) != ctypes.sizeof(_mirror):
+        raise ImportError("dembox: struct %s of %s has %d bytes, this module's "
+                          "copy %d: the module and the library do not match"
+                          % (_name, _lib._name, _lib.dem_struct_size(
+                              _name.encode()), ctypes.sizeof(_mirror)))
 _lib.dem_version.restype = ctypes.c_char_p
 _lib.dem_example_find.restype = ctypes.POINTER(_Example)
 _lib.dem_example_find.argtypes = [ctypes.c_char_p]

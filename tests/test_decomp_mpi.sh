@@ -7,8 +7,6 @@ PROG=${1:?usage: test_decomp_mpi.sh MPI_DECOMP}
 . "$(dirname "$0")/mpi_env.sh"
 for dim in 3 2; do
     for np in 1 2 4; do
-        # ranks waiting in MPI yield their core (4 ranks on 2 cores)
-        "$MPIRUN" -np "$np" --oversubscribe --mca mpi_yield_when_idle 1 \
-            "$PROG" "$dim"
+        "$MPIRUN" -np "$np" $(mpi_opts "$np") "$PROG" "$dim"
     done
 done

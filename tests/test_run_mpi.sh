@@ -15,8 +15,7 @@ T=$(mktemp -d "${TMPDIR:-/tmp}/dembox-test-run-mpi.XXXXXX")
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 cd "$T"
-# ranks waiting in MPI yield their core (4 ranks on 2 cores)
-mpi() { np=$1; shift; "$MPIRUN" -np "$np" --oversubscribe --mca mpi_yield_when_idle 1 "$BIN" "$@"; }
+mpi() { np=$1; shift; "$MPIRUN" -np "$np" $(mpi_opts "$np") "$BIN" "$@"; }
 
 R="biaxial2d --max-steps 3000 --threads 1 --quiet --set output.snapshot_interval=0.001"
 "$BIN" run $R -o serial > log 2>&1 || fail "serial: $(tail -3 log)"

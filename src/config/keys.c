@@ -550,6 +550,24 @@ size_t dem_config_size(void)
     return sizeof(struct dem_config);
 }
 
+size_t dem_struct_size(const char *name)
+{
+    static const struct {
+        const char *name;
+        size_t size;
+    } sizes[] = {
+        {"dem_error", sizeof(struct dem_error)},
+        {"dem_run_options", sizeof(struct dem_run_options)},
+        {"dem_sweep_options", sizeof(struct dem_sweep_options)},
+        {"dem_sweep_report", sizeof(struct dem_sweep_report)},
+        {"dem_example", sizeof(struct dem_example)},
+    };
+    for (size_t k = 0; name && k < sizeof sizes / sizeof sizes[0]; k++)
+        if (!strcmp(name, sizes[k].name))
+            return sizes[k].size;
+    return 0;
+}
+
 void dem_config_defaults(struct dem_config *c)
 {
     /* memset first so that padding and unused stages compare equal. */
