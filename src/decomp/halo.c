@@ -596,6 +596,11 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
         return dem_error_set(err, DEM_EUSAGE,
                              "domain decomposition: a periodic cell is not "
                              "decomposed yet");
+    /* a second start would take the subdomain for the whole sample */
+    if (s->halo)
+        return dem_error_set(err, DEM_EINTERNAL,
+                             "domain decomposition: the sample is split "
+                             "already");
     struct halo *H = calloc(1, sizeof *H);
     if (!H)
         return dem_error_set(err, DEM_ENOMEM, "out of memory (halo)");
