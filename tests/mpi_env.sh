@@ -2,8 +2,8 @@
 # in containers without a shared-memory single copy, one thread per rank;
 # exit 77 (skipped) when there is no mpirun or it cannot start two ranks.
 # mpi_opts NP: the options for NP ranks: ranks waiting in MPI yield their
-# core only when there are more ranks than cores (with a core each,
-# yielding made a 3000-step biaxial2d run on 2 ranks 100x slower here).
+# core only when there are more ranks than cores (2 ranks on 2 cores
+# beside another busy process ran 100x slower yielding: docs/parallel.md).
 MPIRUN=${MPIEXEC:-mpirun}
 command -v "$MPIRUN" > /dev/null || { echo "no $MPIRUN: skipped"; exit 77; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
