@@ -559,7 +559,7 @@ static void close_outputs(struct run_ctx *r)
 }
 
 /* The stage loops start: progress, and the timers of the run's phases
- * (two clock reads per phase and step: nothing against a force pass). */
+ * (a few clock reads per step: nothing against a force pass). */
 static void start_progress(struct run_ctx *r)
 {
     r->wall_t0 = wall_clock();

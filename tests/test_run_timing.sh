@@ -1,0 +1,48 @@
+#!/bin/sh
+# `dembox run` ends with one line on where its time went
+# (docs/outputs.md): the steps it took, the particles, ns per
+# particle-step and the phases' shares, each in [0, 100] %. A run stopped
+# and resumed reports each part's own steps, which add up to the whole;
+# --quiet says nothing.
+set -eu
+BIN=${DEMBOX_BIN:?run through ctest}
+T=$(mktemp -d "${TMPDIR:-/tmp}/dembox-test-timing.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+cd "$T"
+line() { grep "steps of .* particles in" "$1" || true; }
+# the steps of a log's line, after checking it: one line, 500 particles,
+# five shares (no MPI) each in [0, 100] % (prints "bad" otherwise)
+check() {
+    l=$(line "$1")
+    n=$(printf '%s\n' "$l" | grep -c .)
+    good=$(printf '%s\n' "$l" | grep -o '[0-9.]* %' |
+        awk '$1 >= 0 && $1 <= 100 { k++ } END { print k + 0 }')
+    if [ "$n" -eq 1 ] && [ "$good" -eq 5 ] &&
+        printf '%s\n' "$l" | grep -q "of 500 particles"; then
+        printf '%s\n' "$l" | sed 's/^dembox: \([0-9]*\) steps.*/\1/'
+    else
+        echo bad
+    fi
+}
+"$BIN" run biaxial2d --max-steps 3000 --threads 1 -o a > /dev/null 2> a.log ||
+    fail "run: $(tail -3 a.log)"
+[ "$(check a.log)" = 3000 ] || fail "a.log: $(line a.log)"
+set +e
+DEMBOX_STOP_AFTER_STEP=1500 "$BIN" run biaxial2d --max-steps 3000 --threads 1 \
+    -o b > /dev/null 2> b.log
+rc=$?
+set -e
+[ $rc -eq 130 ] || fail "stop: status $rc: $(tail -3 b.log)"
+"$BIN" run --resume b --threads 1 > /dev/null 2> b2.log ||
+    fail "resume: $(tail -3 b2.log)"
+s1=$(check b.log)
+s2=$(check b2.log)
+[ "$s1" != bad ] || fail "b.log: $(line b.log)"
+[ "$s2" != bad ] || fail "b2.log: $(line b2.log)"
+[ "$s1" -ge 1500 ] && [ $((s1 + s2)) -eq 3000 ] ||
+    fail "stopped $s1 + resumed $s2 steps, not 3000"
+"$BIN" run biaxial2d --max-steps 50 --threads 1 --quiet -o c 2> c.log ||
+    fail "quiet run failed"
+[ -z "$(line c.log)" ] || fail "--quiet printed: $(line c.log)"
+echo "ok: 3000 steps; stopped $s1 + resumed $s2"
