@@ -540,7 +540,14 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
                       (s->eng.gid ? s->eng.gid[j] : j) == grp);
         char lab[512], title[600];
         label(s, i, DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
-        if (first)
+        long members = 0; /* the group's curves */
+        for (long j = 0; j < s->n; j++)
+            members += compressed(&s->runs[j]) &&
+                       (s->eng.gid ? s->eng.gid[j] : j) == grp;
+        if (first && members > 1)
+            snprintf(title, sizeof title, "title \"%s (%ld runs)\"",
+                     lab[0] ? lab : "every run", members);
+        else if (first)
             snprintf(title, sizeof title, "title \"%s\"",
                      lab[0] ? lab : r->name);
         else
