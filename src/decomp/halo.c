@@ -130,15 +130,17 @@ static void unpack(struct dem_particles *p, int i, const double *o)
 #undef UNPACK_I_
 }
 
-/* The particles [0, n) of p in this rank's subdomain close up at the
- * front, in order; the others are dropped (p->n becomes their number,
- * which is returned). */
-static int keep_own(const struct halo *H, struct dem_particles *p, int n)
+/* The particles [0, n) of p in this rank's subdomain (own[i] set, or
+ * found from the positions when own is NULL) close up at the front, in
+ * order; the others are dropped (p->n becomes their number, which is
+ * returned). */
+static int keep_own(const struct halo *H, struct dem_particles *p, int n,
+                    const unsigned char *own)
 {
     int m = 0;
     for (int i = 0; i < n; i++) {
         const double x[3] = {p->x[i], p->y[i], p->z[i]};
-        if (dem_decomp_owner(&H->d, x) != H->rank)
+        if (own ? !own[i] : dem_decomp_owner(&H->d, x) != H->rank)
             continue;
         if (m != i) {
             double tmp[NPACK];
@@ -298,7 +300,7 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
         return rc ? rc : DEM_ENOMEM;
     }
     free(dest);
-    const int m = keep_own(H, p, nown);
+    const int m = keep_own(H, p, nown, NULL);
     const int nin = exchange(H, H->cnt, NPACK);
     if (nin < 0 || m + nin > p->cap)
         rc = nin < 0 ? nin : DEM_EINTERNAL;
@@ -641,13 +643,14 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
     }
     if (!rc)
         rc = dem_records_export_marked(&H->rec, &s->pairs, &s->p, s->p.n, own);
-    free(own);
     if (rc) {
+        free(own);
         halo_free(H);
         return dem_error_set(err, rc, "out of memory (records)");
     }
     dem_records_sort(&H->rec);
-    const int m = keep_own(H, &s->p, s->p.n);
+    const int m = keep_own(H, &s->p, s->p.n, own);
+    free(own);
     s->halo = &ops;
     s->halo_ctx = H;
     rc = ghosts(s, H, m);
