@@ -532,18 +532,19 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
         }
         fprintf(dat, "\n\n");
         dem__csv_table_free(&t);
-        /* one colour and one key entry per group of seeds */
+        /* one colour and one key entry per group of seeds, on its first
+         * curve, naming how many curves it has */
         const long grp = s->eng.gid ? s->eng.gid[i] : i;
         int first = 1;
-        for (long j = 0; j < i && first; j++)
-            first = !(compressed(&s->runs[j]) &&
-                      (s->eng.gid ? s->eng.gid[j] : j) == grp);
+        long members = 0;
+        for (long j = 0; j < s->n; j++)
+            if (compressed(&s->runs[j]) &&
+                (s->eng.gid ? s->eng.gid[j] : j) == grp) {
+                members++;
+                first &= j >= i;
+            }
         char lab[512], title[600];
         label(s, i, DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
-        long members = 0; /* the group's curves */
-        for (long j = 0; j < s->n; j++)
-            members += compressed(&s->runs[j]) &&
-                       (s->eng.gid ? s->eng.gid[j] : j) == grp;
         if (first && members > 1)
             snprintf(title, sizeof title, "title \"%s (%ld runs)\"",
                      lab[0] ? lab : "every run", members);
