@@ -632,6 +632,9 @@ struct dem_run_timing {
                                the rest of seconds went to the stages'
                                control, the samples' measurements, the
                                outputs and the checkpoints */
+    long builds;            /* neighbour-list builds in these steps */
+    double skin_share;      /* the list's skin at the end over its largest
+                               (the skin adapts, docs/physics.md) */
 };
 
 #define DEM_BENCH_DEFAULT_STEPS 20000
@@ -679,6 +682,8 @@ struct dem_bench_result {
     char simd[64];             /* the vector instructions and width the
                                   build uses */
     double pairs_per_particle; /* listed pairs / N at the end */
+    double skin_share;         /* the list's skin at the end over its
+                                  largest (it adapts, docs/physics.md) */
     double z_start, z_end;     /* pair contacts per particle, 2 N_pp / N
                                   (pairs_per_particle: NaN when split over
                                   ranks) */

@@ -3,6 +3,7 @@
 #include "testutil.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "contact/tangential.h"
 #include "core/rng.h"
@@ -180,6 +181,74 @@ static void history_survives_rebuild(void **state)
     dem_sim_destroy(&s);
 }
 
+/* Every touching pair (brute force) is in the list; returns how many. */
+static int touching_listed(const struct dem_sim *s, char *in)
+{
+    const int n = s->p.n;
+    const struct dem_contact_list *L = &s->pairs.cur;
+    memset(in, 0, (size_t)n * n);
+    for (int k = 0; k < L->n; k++)
+        in[(size_t)L->i[k] * n + L->j[k]] = in[(size_t)L->j[k] * n + L->i[k]] =
+            1;
+    int *bi, *bj;
+    const int nb = dem_pairs_brute(&s->p, s->dim, 0.0, NULL, &bi, &bj, NULL);
+    for (int k = 0; k < nb; k++)
+        if (!in[(size_t)bi[k] * n + bj[k]])
+            fail_msg("step %ld: touching pair (%d, %d) not listed (skin %g)",
+                     s->step, bi[k], bj[k], s->skin);
+    free(bi);
+    free(bj);
+    return nb;
+}
+
+/* The skin adapts (core/sim.h): a packing at rest is rebuilt after
+ * DEM_SKIN_STALE build intervals until its skin is the smallest allowed,
+ * then not at all; once the particles move the skin grows again, and at
+ * every step every touching pair is listed. */
+static void skin_adapts_and_misses_no_contact(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_sim s;
+    const int m = 7, n = m * m * m;
+    const double r = 5e-3, a = 2.04 * r; /* lattice with gaps of 0.04 r */
+    test_sim(&s, &c, n, 0.0, 0.1);
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            for (int k = 0; k < m; k++)
+                test_add(&s, 0.01 + a * i, 0.01 + a * j, 0.01 + a * k, r);
+    test_ready(&s);
+    const double max = s.skin_max;
+    assert_true(s.skin == max && max > 0.0);
+    /* at rest: builds at 1000, 2000, 3000 steps shrink the skin by the
+     * ratio of the build interval to the steps since the last build */
+    test_step(&s, 3 * DEM_SKIN_STALE * DEM_BUILD_INTERVAL);
+    assert_int_equal(s.nbuild, 1 + 3);
+    assert_true(s.skin == DEM_SKIN_MIN * max);
+    test_step(&s, 2 * DEM_SKIN_STALE * DEM_BUILD_INTERVAL);
+    assert_int_equal(s.nbuild, 4);
+    /* moving: 1 m/s, a skin's half in about 250 steps at the largest */
+    struct dem_rng g;
+    dem_rng_seed(&g, 11);
+    for (int i = 0; i < n; i++) {
+        s.p.vx[i] = 2.0 * (dem_rng_uniform(&g) - 0.5);
+        s.p.vy[i] = 2.0 * (dem_rng_uniform(&g) - 0.5);
+        s.p.vz[i] = 2.0 * (dem_rng_uniform(&g) - 0.5);
+    }
+    char *in = malloc((size_t)n * n);
+    long touching = 0;
+    for (int k = 0; k < 3000; k++) {
+        test_step(&s, 1);
+        touching += touching_listed(&s, in);
+    }
+    free(in);
+    assert_true(touching > 10000); /* contacts formed and were found */
+    assert_true(s.skin >= 4.0 * DEM_SKIN_MIN * max && s.skin <= max);
+    assert_true(s.nbuild > 4 + 5);
+    dem_sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -187,6 +256,7 @@ int main(void)
         cmocka_unit_test(cells_find_brute_force_pairs_2d),
         cmocka_unit_test(history_survives_rebuild),
         cmocka_unit_test(forces_survive_reordering),
+        cmocka_unit_test(skin_adapts_and_misses_no_contact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -559,6 +559,7 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     r->nbuild = s.nbuild - nbuild0;
     dem_sim_pass_report(&s, r->pass, sizeof r->pass);
     r->pairs_per_particle = (double)s.pairs.cur.n / (double)s.p.n;
+    r->skin_share = s.skin_max > 0 ? s.skin / s.skin_max : 1.0;
     if (!rc) {
         sample_now(&s, &smp);
         r->z_end = smp.coordination;
@@ -633,9 +634,9 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
                 0.5 * r->z_end);
     else
         fprintf(f,
-                "neighbour list: %.2f pairs per particle at the end, %.2f "
-                "of them in contact (Z/2)\n",
-                r->pairs_per_particle, 0.5 * r->z_end);
+                "neighbour list: %.2f pairs per particle at the end (skin "
+                "%.3g of its largest), %.2f of them in contact (Z/2)\n",
+                r->pairs_per_particle, r->skin_share, 0.5 * r->z_end);
     fprintf(f,
                 "coordination Z: %.2f -> %.2f; mean wall stress: %.4g -> "
                 "%.4g %s\n",

@@ -80,12 +80,15 @@ int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
 
 int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
 {
-    /* Verlet skin: a tenth of the mean diameter (the peers' benchmark
-     * settings use 1 mm for 10 mm spheres) */
+    /* the largest Verlet skin and the first: a tenth of the mean
+     * diameter (the peers' benchmark settings use 1 mm for 10 mm
+     * spheres); it adapts at each build (adapt_skin) */
     double rsum = 0.0;
     for (int i = 0; i < s->p.n; i++)
         rsum += s->p.r[i];
-    s->skin = s->p.n ? 0.2 * rsum / s->p.n : 0.0;
+    s->skin_max = s->p.n ? 0.2 * rsum / s->p.n : 0.0;
+    s->skin = s->skin_max;
+    s->build_step = s->step;
     int rc = dem_sim_derive(s, err);
     if (!rc)
         rc = dem_sim_pass_setup(s, err);
@@ -98,15 +101,22 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
     return DEM_OK;
 }
 
-int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
+/* The displacement since the last build that calls for a rebuild, for
+ * the skin now. */
+static void set_drift_lim(struct dem_sim *s)
 {
     s->drift_lim = (s->cell.on ? 0.4 : 0.5) * s->skin;
+}
+
+int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
+{
+    set_drift_lim(s);
     if (!s->cell.on)
         return DEM_OK;
     double rmax = 0.0;
     for (int i = 0; i < s->p.n; i++)
         rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
-    s->cell.range = 2.0 * rmax + s->skin;
+    s->cell.range = 2.0 * rmax + s->skin_max;
     const size_t nb = (size_t)(s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
     free(s->cell.vir);
     s->cell.vir = calloc(9 * (nb ? nb : 1), sizeof *s->cell.vir);
@@ -327,6 +337,33 @@ static double lap(const struct dem_sim *s)
     return s->timing ? now() : 0.0;
 }
 
+/* The skin of the list about to be built: scaled by the ratio of
+ * DEM_BUILD_INTERVAL to the steps since the last build (the displacement
+ * that triggers a build is proportional to the skin), growing by at most
+ * DEM_SKIN_STEP per build, within the limits of sim.h. Depends only on
+ * step counts, so runs stay deterministic and the same for any number of
+ * threads or ranks (every rank rebuilds at the same step). */
+static void adapt_skin(struct dem_sim *s)
+{
+    const long n = s->step - s->build_step;
+    s->build_step = s->step;
+    double skin = n > 0 ? s->skin * DEM_BUILD_INTERVAL / (double)n
+                        : DEM_SKIN_STEP * s->skin;
+    if (skin > DEM_SKIN_STEP * s->skin)
+        skin = DEM_SKIN_STEP * s->skin;
+    const double lo = DEM_SKIN_MIN * s->skin_max;
+    s->skin = skin < lo ? lo : (skin > s->skin_max ? s->skin_max : skin);
+    set_drift_lim(s);
+}
+
+/* Whether a quiet packing's list is due for a build that shrinks its
+ * skin: nothing has called for one in DEM_SKIN_STALE build intervals. */
+static int skin_stale(const struct dem_sim *s)
+{
+    return s->skin > DEM_SKIN_MIN * s->skin_max &&
+           s->step - s->build_step >= DEM_SKIN_STALE * DEM_BUILD_INTERVAL;
+}
+
 int dem_sim_step(struct dem_sim *s, struct dem_error *err)
 {
     const double h = 0.5 * s->dt;
@@ -344,7 +381,7 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     double t2 = lap(s);
     s->t += s->dt;
     s->step++;
-    int rebuild = moved || walls_need_rebuild(s);
+    int rebuild = moved || walls_need_rebuild(s) || skin_stale(s);
     double ts = 0.0, tr = 0.0; /* the exchanges between ranks */
     if (s->halo) {
         const double a = lap(s);
@@ -354,6 +391,7 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
             return rebuild;
     }
     if (rebuild) {
+        adapt_skin(s);
         int rc = s->halo ? s->halo->rebuild(s, err) : dem_sim_rebuild(s, err);
         if (rc)
             return rc;

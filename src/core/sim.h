@@ -90,7 +90,12 @@ struct dem_sim {
                                             of its faces (core/cell.h) */
     struct dem_cell cell;                /* the periodic cell, if on */
 
-    double skin;      /* m; Verlet skin */
+    double skin;      /* m; Verlet skin of the current list (adapted at
+                         each build, see dem_sim_step) */
+    double skin_max;  /* m; its largest value and the first (the
+                         interaction range of the cell and of the domain
+                         decomposition assume it) */
+    long build_step;  /* step of the last list build */
     double drift_lim; /* m; a particle's displacement since the last list
                          build that calls for a rebuild: half the skin,
                          in a periodic cell 0.4 of it (the cell's own
@@ -171,6 +176,17 @@ void dem_sim_forces(struct dem_sim *s);
  * some particle has moved more than half the skin since the last list
  * build (else 0). */
 int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
+
+/* The skin adapts at each list build so that builds come about every
+ * DEM_BUILD_INTERVAL steps: a quiet packing lists little more than its
+ * contacts, a moving one keeps the skin it needs (docs/physics.md). It
+ * grows by at most a factor DEM_SKIN_STEP per build and stays within
+ * DEM_SKIN_MIN..1 of skin_max (0.1 mean diameter); a list that nothing
+ * has rebuilt for DEM_SKIN_STALE intervals is rebuilt to shrink it. */
+#define DEM_BUILD_INTERVAL 250
+#define DEM_SKIN_STEP 2.0
+#define DEM_SKIN_MIN 0.05
+#define DEM_SKIN_STALE 4
 
 /* The periodic cell (core/cell.c). */
 /* Share of the skin the cell's deformation may use up between two list

@@ -628,7 +628,7 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
     for (int i = 0; i < s->p.n; i++)
         rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
     int rc = dem_decomp_grid(&H->d, H->size, s->dim, lo, hi,
-                             2.0 * rmax + s->skin, err);
+                             2.0 * rmax + s->skin_max, err);
     if (rc) {
         halo_free(H);
         return rc;
@@ -808,6 +808,7 @@ int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
             /* the contacts' history and forces of the run's last pass */
             dem_records_import(&rec, &whole->pairs, &whole->p);
             whole->nbuild = s->nbuild;
+            whole->build_step = s->build_step;
         } else {
             dem_sim_destroy(whole);
             memset(whole, 0, sizeof *whole);

@@ -351,6 +351,8 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_f64(io, &s->t);
     io_i64(io, &s->step);
     io_f64(io, &s->skin);
+    io_f64(io, &s->skin_max);
+    io_i64(io, &s->build_step);
     io_i64(io, &s->nbuild);
     io_i32(io, &s->reorder);
     io_i32(io, &s->measure);
@@ -452,6 +454,9 @@ static const char *check_restored(const struct dem_sim *s,
         return "corrupt (wall count or dimension)";
     if (!(s->dt > 0.0) || run->stage < 0 || run->stage >= s->cfg.nstages)
         return "corrupt (time step or stage index)";
+    if (!(s->skin >= 0.0 && s->skin <= s->skin_max) ||
+        s->build_step < 0 || s->build_step > s->step)
+        return "corrupt (neighbour skin)";
     for (int i = 0; i < N; i++)
         if (p->id[i] < 0 || p->id[i] >= N)
             return "corrupt (particle ids)";

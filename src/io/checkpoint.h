@@ -13,7 +13,8 @@
  *   sections, each a u32 tag followed by its fields in a fixed order:
  *     CONF  run name, config source, time_step_auto, resolved config text
  *     RUN   the run loop's state (struct dem_ckpt_run)
- *     SIM   time, step, time step, skin, builds, contact law in force,
+ *     SIM   time, step, time step, skin (now, largest, step of the last
+ *           build), builds, contact law in force,
  *           RNG state, last measured sums, walls, the periodic cell
  *           (on, tilts, re-mapped tilt, lattice at the last build,
  *           virial)
@@ -35,7 +36,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 7u
+#define DEM_CKPT_VERSION 8u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {

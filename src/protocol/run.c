@@ -66,7 +66,7 @@ struct run_ctx {
     double last_ckpt;             /* wall clock of the last checkpoint */
     /* progress */
     double wall_t0, last_show;
-    long step0;
+    long step0, nbuild0;
 };
 
 static double wall_clock(void)
@@ -565,6 +565,7 @@ static void start_progress(struct run_ctx *r)
     r->wall_t0 = wall_clock();
     r->last_ckpt = r->wall_t0;
     r->step0 = r->sim.step;
+    r->nbuild0 = r->sim.nbuild;
     r->sim.timing = 1;
     memset(&r->sim.timers, 0, sizeof r->sim.timers);
 }
@@ -579,6 +580,8 @@ static void report_timing(const struct run_ctx *r)
     T->particles = r->n_all;
     T->seconds = wall_clock() - r->wall_t0;
     T->step = r->sim.timers;
+    T->builds = r->sim.nbuild - r->nbuild0;
+    T->skin_share = r->sim.skin_max > 0 ? r->sim.skin / r->sim.skin_max : 1.0;
 }
 
 /* The stages from first on, then the final outputs; releases everything
