@@ -12,15 +12,19 @@ set ylabel "shear stress τ"
 set grid
 set key below box
 set size ratio -1
-set xrange [0:767.922]
-set yrange [0:460.753]
+set xrange [0:777.228]
+set yrange [0:466.337]
 plot \
-  "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 2 with lines linewidth 2 linecolor 3 title "p = 500 (seed=1)" noenhanced, \
+  "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100" noenhanced, \
+  "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250" noenhanced, \
+  "mohr_circles.dat" index 2 with lines linewidth 2 linecolor 3 title "p = 500" noenhanced, \
   "mohr_circles.dat" index 3 with lines dashtype 2 linewidth 2 linecolor "black" title "flow function φ = 9.0°, c = 4.58, R² = 0.995 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 4 with lines linewidth 2 linecolor 1 title "p = 100 (seed=2)" noenhanced, \
-  "mohr_circles.dat" index 5 with lines linewidth 2 linecolor 2 title "p = 250 (seed=2)" noenhanced, \
-  "mohr_circles.dat" index 6 with lines linewidth 2 linecolor 3 title "p = 500 (seed=2)" noenhanced, \
+  "mohr_circles.dat" index 4 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 5 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 6 with lines linewidth 2 linecolor 3 notitle, \
   "mohr_circles.dat" index 7 with lines dashtype 3 linewidth 2 linecolor "black" title "flow function φ = 8.9°, c = 7.64, R² = 0.989 (seed=2)" noenhanced, \
+  "mohr_circles.dat" index 8 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 9 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 10 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 11 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 9.6°, c = 1.52, R² = 0.999 (seed=3)" noenhanced, \
   0 linetype -3 notitle

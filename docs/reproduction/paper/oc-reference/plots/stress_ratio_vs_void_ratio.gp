@@ -8,14 +8,17 @@ set output outfile
 set datafile missing "?"
 set title "Stress ratio versus void ratio during loading"
 set xlabel "void ratio e"
-set ylabel "sin ψ = (σ_1 - σ_3)/(σ_1 + σ_3)"
+set ylabel "sin φ_m = (σ_1 - σ_3)/(σ_1 + σ_3)"
 set grid
 set key below box
 plot \
   "stress_ratio_vs_void_ratio.dat" index 0 with lines title "p = 100 (seed=1)" noenhanced, \
   "stress_ratio_vs_void_ratio.dat" index 1 with lines title "p = 100 (seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 2 with lines title "p = 250 (seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 3 with lines title "p = 250 (seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 4 with lines title "p = 500 (seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 5 with lines title "p = 500 (seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 2 with lines title "p = 100 (seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 3 with lines title "p = 250 (seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 4 with lines title "p = 250 (seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 5 with lines title "p = 250 (seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 6 with lines title "p = 500 (seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 7 with lines title "p = 500 (seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 8 with lines title "p = 500 (seed=3)" noenhanced, \
   0 linetype -3 notitle

@@ -20,4 +20,7 @@ plot \
   "void_ratio_vs_pressure.dat" index 5 with points pointtype 7 pointsize 1.5 linecolor 4 title "critical (seed=2)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 6 with lines linewidth 2 linecolor 3 title "fit initial: e0 = 1.0730, n = 0.013, h_s = 1e+05, R² = 1.000 (seed=2)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 7 with lines linewidth 2 linecolor 4 title "fit critical: e0 = 0.2029, n = 0.567, h_s = 1e+05, R² = 0.998 (seed=2)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 8 with points pointtype 6 pointsize 1.5 linecolor 5 title "initial (seed=3)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 9 with points pointtype 7 pointsize 1.5 linecolor 6 title "critical (seed=3)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 10 with lines linewidth 2 linecolor 5 title "fit initial: e0 = 1.0730, n = 0.014, h_s = 1e+05, R² = 1.000 (seed=3)" noenhanced, \
   0 linetype -3 notitle
