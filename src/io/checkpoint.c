@@ -17,6 +17,7 @@
 #include "dembox.h"
 
 #include <errno.h>
+#include <math.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -454,8 +455,15 @@ static const char *check_restored(const struct dem_sim *s,
         return "corrupt (wall count or dimension)";
     if (!(s->dt > 0.0) || run->stage < 0 || run->stage >= s->cfg.nstages)
         return "corrupt (time step or stage index)";
-    if (!(s->skin >= 0.0 && s->skin <= s->skin_max) ||
-        s->build_step < 0 || s->build_step > s->step)
+    /* the largest skin is a tenth of the mean diameter (dem_sim_ready),
+     * up to the order of the sum */
+    double rsum = 0.0;
+    for (int i = 0; i < N; i++)
+        rsum += p->r[i];
+    const double skin_max = N ? 0.2 * rsum / N : 0.0;
+    if (!(fabs(s->skin_max - skin_max) <= 1e-9 * skin_max) ||
+        !(s->skin >= 0.0 && s->skin <= s->skin_max) || s->build_step < 0 ||
+        s->build_step > s->step)
         return "corrupt (neighbour skin)";
     for (int i = 0; i < N; i++)
         if (p->id[i] < 0 || p->id[i] >= N)
