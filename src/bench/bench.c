@@ -559,7 +559,7 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     r->nbuild = s.nbuild - nbuild0;
     dem_sim_pass_report(&s, r->pass, sizeof r->pass);
     r->pairs_per_particle = (double)s.pairs.cur.n / (double)s.p.n;
-    r->skin_share = s.skin_max > 0 ? s.skin / s.skin_max : 1.0;
+    r->skin_share = dem_sim_skin_share(&s);
     if (!rc) {
         sample_now(&s, &smp);
         r->z_end = smp.coordination;

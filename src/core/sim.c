@@ -78,15 +78,23 @@ int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
     return dem_particles_init(&s->p, cap, err);
 }
 
+double dem_sim_skin_largest(const struct dem_particles *p)
+{
+    double rsum = 0.0;
+    for (int i = 0; i < p->n; i++)
+        rsum += p->r[i];
+    return p->n ? 0.2 * rsum / p->n : 0.0;
+}
+
+double dem_sim_skin_share(const struct dem_sim *s)
+{
+    return s->skin_max > 0.0 ? s->skin / s->skin_max : 1.0;
+}
+
 int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
 {
-    /* the largest Verlet skin and the first: a tenth of the mean
-     * diameter (the peers' benchmark settings use 1 mm for 10 mm
-     * spheres); it adapts at each build (adapt_skin) */
-    double rsum = 0.0;
-    for (int i = 0; i < s->p.n; i++)
-        rsum += s->p.r[i];
-    s->skin_max = s->p.n ? 0.2 * rsum / s->p.n : 0.0;
+    /* the skin adapts at each build (adapt_skin) from its largest */
+    s->skin_max = dem_sim_skin_largest(&s->p);
     s->skin = s->skin_max;
     s->build_step = s->step;
     int rc = dem_sim_derive(s, err);

@@ -455,12 +455,9 @@ static const char *check_restored(const struct dem_sim *s,
         return "corrupt (wall count or dimension)";
     if (!(s->dt > 0.0) || run->stage < 0 || run->stage >= s->cfg.nstages)
         return "corrupt (time step or stage index)";
-    /* the largest skin is a tenth of the mean diameter (dem_sim_ready),
-     * up to the order of the sum */
-    double rsum = 0.0;
-    for (int i = 0; i < N; i++)
-        rsum += p->r[i];
-    const double skin_max = N ? 0.2 * rsum / N : 0.0;
+    /* the largest skin, up to the order of the sum (the particles were
+     * re-ordered since dem_sim_ready) */
+    const double skin_max = dem_sim_skin_largest(p);
     if (!(fabs(s->skin_max - skin_max) <= 1e-9 * skin_max) ||
         !(s->skin >= 0.0 && s->skin <= s->skin_max) || s->build_step < 0 ||
         s->build_step > s->step)

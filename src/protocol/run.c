@@ -581,7 +581,7 @@ static void report_timing(const struct run_ctx *r)
     T->seconds = wall_clock() - r->wall_t0;
     T->step = r->sim.timers;
     T->builds = r->sim.nbuild - r->nbuild0;
-    T->skin_share = r->sim.skin_max > 0 ? r->sim.skin / r->sim.skin_max : 1.0;
+    T->skin_share = dem_sim_skin_share(&r->sim);
 }
 
 /* The stages from first on, then the final outputs; releases everything
