@@ -38,6 +38,9 @@
 #include "core/cell.h"
 #include "core/parallel.h"
 
+/* particles summed before their kicks and drifts run (particle_range) */
+#define DEM_KICK_BLOCK 32
+
 /* the name of this compilation's entry point (contact/pass_loads.c
  * compiles this file again under another) */
 #ifndef DEM_PASS_ENTRY
@@ -297,7 +300,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     const int cell = (law & DEM_SET_PERIODIC) != 0;
     double w[9] = {0.0}; /* the virial of the current block (cell) */
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
-    int moved = 0;
+    double far = 0.0; /* the largest squared distance moved (chained) */
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
     /* the kicks write these through P: no restrict */
     const double *vx = P->vx, *vy = P->vy, *vz = P->vz;
@@ -309,6 +312,16 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
     const struct dem_contact_force *restrict F = pl->f.v, *restrict WF =
                                                               pl->wf.v;
+    /* Each particle's sums are one chain of dependent operations from its
+     * force records to its check after the drift; the sums of a block of
+     * particles first, then the block's kicks and drifts in SIMD lanes,
+     * let the core overlap the chains (each particle's arithmetic is the
+     * same, so the results are the same bits). */
+    double bf[6][DEM_KICK_BLOCK]; /* the block's forces and torques */
+    /* a local copy of the arrays' pointers: the kicks' stores cannot
+     * change them, so the lanes' accesses are consecutive, not scatters */
+    const struct dem_particles Q = *P;
+    int ib = i0, ie = i0 + DEM_KICK_BLOCK < i1 ? i0 + DEM_KICK_BLOCK : i1;
     for (int i = i0; i < i1; i++) {
         const double a = r[i];
         /* in a cell the damping comes after the contacts' sum (the
@@ -394,14 +407,39 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             oty[i] = ty;
             otz[i] = tz;
         }
-        if (K.on)
-            dem_particle_kick(P, i, K.h, hg, fx, fy, fz, tx, ty, tz);
-        if (K.chain) {
-            dem_particle_kick(P, i, K.h, hg, fx, fy, fz, tx, ty, tz);
-            moved |= dem_particle_drift(P, i, K.dt, K.lim);
+        const int b = i - ib;
+        bf[0][b] = fx;
+        bf[1][b] = fy;
+        bf[2][b] = fz;
+        bf[3][b] = tx;
+        bf[4][b] = ty;
+        bf[5][b] = tz;
+        if (i + 1 < ie)
+            continue;
+        /* the block's kicks and drifts, in SIMD lanes */
+        if (K.on && !K.chain) {
+#pragma omp simd
+            for (int k = ib; k <= i; k++)
+                dem_particle_kick(&Q, k, K.h, hg, bf[0][k - ib], bf[1][k - ib],
+                                  bf[2][k - ib], bf[3][k - ib], bf[4][k - ib],
+                                  bf[5][k - ib]);
         }
+        if (K.chain) {
+#pragma omp simd reduction(max : far)
+            for (int k = ib; k <= i; k++) {
+                const int u = k - ib;
+                dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
+                                  bf[3][u], bf[4][u], bf[5][u]);
+                dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
+                                  bf[3][u], bf[4][u], bf[5][u]);
+                const double d2 = dem_particle_drift(&Q, k, K.dt);
+                far = d2 > far ? d2 : far;
+            }
+        }
+        ib = i + 1;
+        ie = ib + DEM_KICK_BLOCK < i1 ? ib + DEM_KICK_BLOCK : i1;
     }
-    return moved;
+    return K.chain && far > K.lim;
 }
 
 /* Thread t's share of a pass, in one parallel region: equal blocks of
@@ -429,10 +467,11 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
  * outlined parallel region is compiled for them alone. */
 #define CONTACTS(LAW, ON, CHAIN)                                               \
     do {                                                                       \
-        const struct kick k_ = {ON,   CHAIN, K.h,                              \
-                                K.dt, K.lim, {K.g[0], K.g[1], K.g[2]}};        \
         _Pragma("omp parallel reduction(| : moved)")                           \
         {                                                                      \
+            /* ON and CHAIN literal inside the outlined region */              \
+            const struct kick k_ = {ON,   CHAIN, K.h,                          \
+                                    K.dt, K.lim, {K.g[0], K.g[1], K.g[2]}};    \
             moved = contacts_thread(LAW, c, k_, omp_get_thread_num(),          \
                                     omp_get_num_threads());                    \
         }                                                                      \

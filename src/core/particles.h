@@ -74,17 +74,17 @@ static inline void dem_particle_kick(const struct dem_particles *p, int i,
     p->wz[i] += h * p->inv_I[i] * tz;
 }
 
-/* Drift r += dt v of particle i; returns whether its squared distance
- * from its position at the last list build (x0) exceeds lim. */
-static inline int dem_particle_drift(const struct dem_particles *p, int i,
-                                     double dt, double lim)
+/* Drift r += dt v of particle i; returns its squared distance from its
+ * position at the last list build (x0). */
+static inline double dem_particle_drift(const struct dem_particles *p, int i,
+                                        double dt)
 {
     p->x[i] += dt * p->vx[i];
     p->y[i] += dt * p->vy[i];
     p->z[i] += dt * p->vz[i];
     const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
                  dz = p->z[i] - p->z0[i];
-    return dx * dx + dy * dy + dz * dz > lim;
+    return dx * dx + dy * dy + dz * dz;
 }
 
 /* Mass and moment of inertia of a particle of radius a (see dem_mass_model). */

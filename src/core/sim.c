@@ -222,13 +222,14 @@ static int kick_drift_range(int i0, int i1, double h, double dt,
                             const struct dem_particles *p)
 {
     const double hg[3] = {h * g[0], h * g[1], h * g[2]};
-    int moved = 0;
+    double far = 0.0; /* the largest squared distance moved */
     for (int i = i0; i < i1; i++) {
         dem_particle_kick(p, i, h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
                           p->ty[i], p->tz[i]);
-        moved |= dem_particle_drift(p, i, dt, lim);
+        const double d2 = dem_particle_drift(p, i, dt);
+        far = d2 > far ? d2 : far;
     }
-    return moved;
+    return far > lim;
 }
 
 /* The first half of a step for every particle; returns whether the
