@@ -77,6 +77,7 @@ cyclic-threshold|60|David et al. Fig. 3 right: the threshold friction (mu = 0.02
 cyclic-floor-gb0|30|David et al. Fig. 3 right: the creep floor at mu = 1 without background damping|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --set contact.mu=1.0 --set damping.gamma_b=0.0 --param seed=1,2,3
 cyclic-floor-t2|60|David et al. Fig. 3 right: the creep floor at mu = 1 with twice the period|cyclic3d-paper --set stages.1.period=2 --set stages.1.cycles=50 --set contact.mu=1.0 --param seed=1,2,3
 biaxial-pressure|90|Luding et al. Figs. 6, 7, 8, §3.3 (40 % strain)|biaxial2d-paper --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
+biaxial-pressure-fixed|120|Luding et al. Figs. 6, 7, 8, §3.3 (40 % strain) again after the re-ordering fix, seeds 1-4|biaxial2d-paper --set stages.1.strain=0.4 --set stages.1.duration=0.8 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3,4
 peak-reference|8|Luding et al. Fig. 7 gap: reference (p = 500, 10 % strain)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param seed=1,2,3,4
 peak-kt|8|Luding et al. Fig. 7 gap: k_t = k2 instead of 0.2 k2|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set contact.kt=1.0e5 --param seed=1,2,3,4
 peak-prep|7|Luding et al. Fig. 7 gap: prepared with mu = 0.5 (looser)|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set stages.0.mu=0.5 --param seed=1,2,3,4
