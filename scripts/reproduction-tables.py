@@ -6,7 +6,8 @@ usage: scripts/reproduction-tables.py DIR
 DIR holds one folder per part of `scripts/reproduce.sh --paper`, as
 written by its --numbers option (docs/reproduction/paper/): PART/sweep.json
 and PART/runs/NAME/summary.json. Prints Markdown, one section per part
-found; means are given with their standard error over the seeds
+found (cyclic parts: strain per cycle; the others: flow functions and
+the peak, critical and volumetric numbers per confining pressure); means are given with their standard error over the seeds
 (mean ± s.e., n samples). Python 3 standard library only.
 """
 import json
@@ -68,8 +69,8 @@ def cyclic_period(part):
 def cyclic_mu(part):
     s = load(os.path.join(part, "sweep.json"))
     ens = s.get("ensembles") or []
-    print("\n### cyclic-mu: strain gained per cycle (1e-6), mean ± s.e. "
-          "over the seeds\n")
+    print("\n### %s: strain gained per cycle (1e-6), mean ± s.e. "
+          "over the seeds\n" % os.path.basename(part))
     pick = [1, 2, 3, 5, 10, 20, 30, 40, 50]
     print("| μ | runs | verdicts (ratcheting/shakedown) | " +
           " | ".join("c = %d" % c for c in pick) + " | ε_D after the last "
@@ -152,18 +153,28 @@ def biaxial_pressure(part):
             pm(slope0), pm(slope1)))
 
 
+def table_of(part):
+    """The table for a part, chosen by what its sweep.json holds."""
+    s = load(os.path.join(part, "sweep.json"))
+    if os.path.basename(part) == "cyclic-period":
+        return cyclic_period
+    if s.get("strain_accumulation") and s.get("ensembles"):
+        return cyclic_mu
+    if s.get("ensembles"):
+        return biaxial_pressure
+    return None
+
+
 def main():
     if len(sys.argv) != 2 or not os.path.isdir(sys.argv[1]):
         sys.exit(__doc__.strip().split("\n\n")[1])
     d = sys.argv[1]
-    for name, fn in (("cyclic-period", cyclic_period),
-                     ("cyclic-mu", cyclic_mu),
-                     ("biaxial-pressure", biaxial_pressure),
-                     ("biaxial-cohesion", biaxial_pressure),
-                     ("friction-dense", biaxial_pressure),
-                     ("friction-loose", biaxial_pressure)):
-        if os.path.exists(os.path.join(d, name, "sweep.json")):
-            fn(os.path.join(d, name))
+    for name in sorted(os.listdir(d)):
+        part = os.path.join(d, name)
+        if os.path.exists(os.path.join(part, "sweep.json")):
+            fn = table_of(part)
+            if fn:
+                fn(part)
 
 
 if __name__ == "__main__":
