@@ -116,19 +116,23 @@ def cyclic_mu(part):
 
 def biaxial_pressure(part):
     s = load(os.path.join(part, "sweep.json"))
-    print("\n### %s: flow functions (mean ± s.e. over the seeds)\n"
-          % os.path.basename(part))
-    print("| group | state | seeds fitted | φ (deg) | tan φ | c (N/m) | "
-          "e0 | n |")
-    print("|---|---|---|---|---|---|---|---|")
-    for key, state in (("flow_function_ensemble", "peak"),
-                       ("flow_function_critical_ensemble", "critical")):
-        for f in s.get(key) or []:
+    print("\n### %s (mean ± s.e. over the seeds)\n" % os.path.basename(part))
+    fits = [(f, state) for key, state in
+            (("flow_function_ensemble", "peak"),
+             ("flow_function_critical_ensemble", "critical"))
+            for f in s.get(key) or []]
+    if fits:  # a flow function needs more than one confining pressure
+        print("Flow functions:\n")
+        print("| group | state | seeds fitted | φ (deg) | tan φ | c (N/m) | "
+              "e0 | n |")
+        print("|---|---|---|---|---|---|---|---|")
+        for f, state in fits:
             print("| %s | %s | %d | %s | %s | %s | %s | %s |" % (
                 json.dumps(f["group"]), state, f["fits"], pm(f["phi_deg"]),
                 pm(f["tan_phi"]), pm(f["cohesion"]), pm(f["void_ratio_e0"]),
                 pm(f["void_ratio_n"])))
-    print("\nPer confining pressure (mean ± s.e. over the seeds):\n")
+        print()
+    print("Per confining pressure:\n")
     print("| group | runs | peak sin φ | critical sin φ (runs on a plateau) "
           "| e initial | e critical | initial slope of ε_v | dilatant "
           "slope |")
