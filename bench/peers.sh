@@ -33,6 +33,9 @@
 #   --dembox        the dembox binary (default build/dembox of this tree)
 #   --work          folder for the inputs and logs (default: a new
 #                   temporary folder, kept and printed)
+#   --peer-skin S   the peers' neighbour skin in m (default 0.1 mean
+#                   diameter, as in ../shared/bench: 0.001 in 3D, 0.0002
+#                   in 2D); dembox adapts its own skin (docs/physics.md)
 #
 # The LAMMPS and LIGGGHTS inputs are written here (they follow the
 # workload of ../shared/bench/run{2,3}d.{lmp,lgt} next to this repository,
@@ -50,7 +53,7 @@ DIM=3 N= STEPS=20000 NP=1 REP=1
 CODES="dembox lammps-hh lammps-gr liggghts"
 DATA=${DEMBOX_BENCH_DATA:-$here/../../shared/bench/data}
 DEMBOX=$here/../build/dembox
-WORK= DEMBOX_RANKS=0
+WORK= DEMBOX_RANKS=0 PEER_SKIN=
 
 die() { echo "peers.sh: $*" >&2; exit 1; }
 while [ $# -gt 0 ]; do
@@ -65,6 +68,7 @@ while [ $# -gt 0 ]; do
     --dembox) DEMBOX=${2:?}; shift 2 ;;
     --work) WORK=${2:?}; shift 2 ;;
     --dembox-ranks) DEMBOX_RANKS=1; shift ;;
+    --peer-skin) PEER_SKIN=${2:?}; shift 2 ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown argument $1 (see --help)" ;;
   esac
@@ -75,6 +79,8 @@ case $DIM in 2|3) ;; *) die "--dim must be 2 or 3" ;; esac
 [[ $STEPS =~ ^[1-9][0-9]*$ ]] || die "--steps must be a positive integer"
 [[ $NP =~ ^[1-9][0-9]*$ ]] || die "--np must be a positive integer"
 [[ $REP =~ ^[1-9][0-9]*$ ]] || die "--replicate must be a positive integer"
+[ -z "$PEER_SKIN" ] || [[ $PEER_SKIN =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$ ]] ||
+  die "--peer-skin must be a positive number (m)"
 PACK=$DATA/pack${DIM}d_${N}.data
 [ -f "$PACK" ] || die "$PACK: no such packing (prepare it as in ../shared/bench/README.md)"
 PACK=$(cd "$(dirname "$PACK")" && pwd)/$(basename "$PACK")
@@ -135,6 +141,7 @@ else
   DEFORM="y erate -2.5 x volume remap x"
   DIMLINE="dimension       2" ENFORCE="fix             e2d all enforce2d"
 fi
+SKIN=${PEER_SKIN:-$SKIN}
 
 if [ "$NP" -gt 1 ]; then
   # more ranks than cores: oversubscribed, unbound, and waiting ranks
