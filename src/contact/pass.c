@@ -312,11 +312,10 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
     const struct dem_contact_force *restrict F = pl->f.v, *restrict WF =
                                                               pl->wf.v;
-    /* Each particle's sums are one chain of dependent operations from its
-     * force records to its check after the drift; the sums of a block of
-     * particles first, then the block's kicks and drifts in SIMD lanes,
-     * let the core overlap the chains (each particle's arithmetic is the
-     * same, so the results are the same bits). */
+    /* The sums of a block of particles first, then the block's kicks and
+     * drifts in SIMD lanes (as scalar code, one particle after the other,
+     * they took a quarter of a chained step); each particle's arithmetic
+     * is the same either way, so the results are the same bits. */
     double bf[6][DEM_KICK_BLOCK]; /* the block's forces and torques */
     /* a local copy of the arrays' pointers: the kicks' stores cannot
      * change them, so the lanes' accesses are consecutive, not scatters */
