@@ -29,7 +29,10 @@ void dem__gp_head(FILE *f, const char *name, const char *title,
             "set xlabel \"%s\"\n"
             "set ylabel \"%s\"\n"
             "set grid\n"
-            "set key below box\n",
+            "set key below box\n"
+            /* draw a segment whose both ends lie outside the ranges (a
+             * flow function from a negative c to the edge) */
+            "set clip two\n",
             name, name, name, name, title, xlabel, ylabel);
 }
 

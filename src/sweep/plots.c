@@ -124,7 +124,7 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
     char shown[DEM_SWEEP_MAX_POINTS] = {0};
     int block = 0;
     fprintf(gp,
-            "set size ratio -1\nset xrange [0:%.6g]\nset yrange [0:%.6g]\n"
+            "set size ratio -1\nset xrange [0:%.9g]\nset yrange [0:%.9g]\n"
             "plot \\\n",
             xmax, 0.6 * xmax);
     for (int q = 0; q < s->ffg.n; q++) {
