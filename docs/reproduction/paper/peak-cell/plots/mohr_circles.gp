@@ -11,9 +11,10 @@ set xlabel "normal stress σ"
 set ylabel "shear stress τ"
 set grid
 set key below box
+set clip two
 set size ratio -1
-set xrange [0:3032.87]
-set yrange [0:1819.72]
+set xrange [0:3032.87276]
+set yrange [0:1819.72365]
 plot \
   "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100" noenhanced, \
   "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250" noenhanced, \
