@@ -30,7 +30,9 @@ plot 'loading_curves.dat' index 0 using 1:2 with lines lc 1 noenhanced title "st
   'loading_curves.dat' index 8 using 1:2 with lines lc 3 noenhanced title "stages.0.pressure=500 (4 runs)", \
   'loading_curves.dat' index 9 using 1:2 with lines lc 3 noenhanced notitle, \
   'loading_curves.dat' index 10 using 1:2 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 11 using 1:2 with lines lc 3 noenhanced notitle
+  'loading_curves.dat' index 11 using 1:2 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 12 using 1:2 with lines lc 4 noenhanced title "stages.0.pressure=1000 (2 runs)", \
+  'loading_curves.dat' index 13 using 1:2 with lines lc 4 noenhanced notitle
 set ylabel "σ_{axial} - σ_{lateral} (Pa; 2D: N/m)"
 plot 'loading_curves.dat' index 0 using 1:3 with lines lc 1 noenhanced title "stages.0.pressure=100 (4 runs)", \
   'loading_curves.dat' index 1 using 1:3 with lines lc 1 noenhanced notitle, \
@@ -43,5 +45,7 @@ plot 'loading_curves.dat' index 0 using 1:3 with lines lc 1 noenhanced title "st
   'loading_curves.dat' index 8 using 1:3 with lines lc 3 noenhanced title "stages.0.pressure=500 (4 runs)", \
   'loading_curves.dat' index 9 using 1:3 with lines lc 3 noenhanced notitle, \
   'loading_curves.dat' index 10 using 1:3 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 11 using 1:3 with lines lc 3 noenhanced notitle
+  'loading_curves.dat' index 11 using 1:3 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 12 using 1:3 with lines lc 4 noenhanced title "stages.0.pressure=1000 (2 runs)", \
+  'loading_curves.dat' index 13 using 1:3 with lines lc 4 noenhanced notitle
 unset multiplot

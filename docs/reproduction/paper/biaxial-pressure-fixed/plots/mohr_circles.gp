@@ -13,23 +13,25 @@ set grid
 set key below box
 set clip two
 set size ratio -1
-set xrange [0:1575.68099]
-set yrange [0:945.408592]
+set xrange [0:3098.52168]
+set yrange [0:1859.11301]
 plot \
   "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100" noenhanced, \
   "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250" noenhanced, \
   "mohr_circles.dat" index 2 with lines linewidth 2 linecolor 3 title "p = 500" noenhanced, \
-  "mohr_circles.dat" index 3 with lines dashtype 2 linewidth 2 linecolor "black" title "flow function φ = 28.3°, c = -5.44, R² = 1.000 (seed=1)" noenhanced, \
-  "mohr_circles.dat" index 4 with lines linewidth 2 linecolor 1 notitle, \
-  "mohr_circles.dat" index 5 with lines linewidth 2 linecolor 2 notitle, \
-  "mohr_circles.dat" index 6 with lines linewidth 2 linecolor 3 notitle, \
-  "mohr_circles.dat" index 7 with lines dashtype 3 linewidth 2 linecolor "black" title "flow function φ = 27.9°, c = -10.2, R² = 0.999 (seed=2)" noenhanced, \
-  "mohr_circles.dat" index 8 with lines linewidth 2 linecolor 1 notitle, \
-  "mohr_circles.dat" index 9 with lines linewidth 2 linecolor 2 notitle, \
-  "mohr_circles.dat" index 10 with lines linewidth 2 linecolor 3 notitle, \
-  "mohr_circles.dat" index 11 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 28.0°, c = -7.54, R² = 1.000 (seed=3)" noenhanced, \
-  "mohr_circles.dat" index 12 with lines linewidth 2 linecolor 1 notitle, \
-  "mohr_circles.dat" index 13 with lines linewidth 2 linecolor 2 notitle, \
-  "mohr_circles.dat" index 14 with lines linewidth 2 linecolor 3 notitle, \
-  "mohr_circles.dat" index 15 with lines dashtype 5 linewidth 2 linecolor "black" title "flow function φ = 29.2°, c = -8.24, R² = 1.000 (seed=4)" noenhanced, \
+  "mohr_circles.dat" index 3 with lines linewidth 2 linecolor 4 title "p = 1000" noenhanced, \
+  "mohr_circles.dat" index 4 with lines dashtype 2 linewidth 2 linecolor "black" title "flow function φ = 28.2°, c = -4.53, R² = 1.000 (seed=1)" noenhanced, \
+  "mohr_circles.dat" index 5 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 6 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 7 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 8 with lines dashtype 3 linewidth 2 linecolor "black" title "flow function φ = 27.9°, c = -10.2, R² = 0.999 (seed=2)" noenhanced, \
+  "mohr_circles.dat" index 9 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 10 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 11 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 12 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 13 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 28.7°, c = -13.4, R² = 1.000 (seed=3)" noenhanced, \
+  "mohr_circles.dat" index 14 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 15 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 16 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 17 with lines dashtype 5 linewidth 2 linecolor "black" title "flow function φ = 29.2°, c = -8.24, R² = 1.000 (seed=4)" noenhanced, \
   0 linetype -3 notitle

@@ -25,4 +25,6 @@ plot \
   "stress_ratio_vs_void_ratio.dat" index 9 with lines title "p = 500 (seed=2)" noenhanced, \
   "stress_ratio_vs_void_ratio.dat" index 10 with lines title "p = 500 (seed=3)" noenhanced, \
   "stress_ratio_vs_void_ratio.dat" index 11 with lines title "p = 500 (seed=4)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 12 with lines title "p = 1000 (seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 13 with lines title "p = 1000 (seed=3)" noenhanced, \
   0 linetype -3 notitle
