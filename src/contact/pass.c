@@ -320,7 +320,6 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     /* a local copy of the arrays' pointers: the kicks' stores cannot
      * change them, so the lanes' accesses are consecutive, not scatters */
     const struct dem_particles Q = *P;
-    int ib = i0, ie = i0 + DEM_KICK_BLOCK < i1 ? i0 + DEM_KICK_BLOCK : i1;
     for (int i = i0; i < i1; i++) {
         const double a = r[i];
         /* in a cell the damping comes after the contacts' sum (the
@@ -406,27 +405,26 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             oty[i] = ty;
             otz[i] = tz;
         }
-        const int b = i - ib;
+        const int b = (i - i0) % DEM_KICK_BLOCK, ib = i - b;
         bf[0][b] = fx;
         bf[1][b] = fy;
         bf[2][b] = fz;
         bf[3][b] = tx;
         bf[4][b] = ty;
         bf[5][b] = tz;
-        if (i + 1 < ie)
+        if (b + 1 < DEM_KICK_BLOCK && i + 1 < i1)
             continue;
         /* the block's kicks and drifts, in SIMD lanes */
         if (K.on && !K.chain) {
 #pragma omp simd
-            for (int k = ib; k <= i; k++)
-                dem_particle_kick(&Q, k, K.h, hg, bf[0][k - ib], bf[1][k - ib],
-                                  bf[2][k - ib], bf[3][k - ib], bf[4][k - ib],
-                                  bf[5][k - ib]);
+            for (int u = 0; u <= b; u++)
+                dem_particle_kick(&Q, ib + u, K.h, hg, bf[0][u], bf[1][u],
+                                  bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
         }
         if (K.chain) {
 #pragma omp simd reduction(max : far)
-            for (int k = ib; k <= i; k++) {
-                const int u = k - ib;
+            for (int u = 0; u <= b; u++) {
+                const int k = ib + u;
                 dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
                                   bf[3][u], bf[4][u], bf[5][u]);
                 dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
@@ -435,8 +433,6 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                 far = d2 > far ? d2 : far;
             }
         }
-        ib = i + 1;
-        ie = ib + DEM_KICK_BLOCK < i1 ? ib + DEM_KICK_BLOCK : i1;
     }
     return K.chain && far > K.lim;
 }

@@ -183,15 +183,15 @@ int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
  * grows by at most a factor DEM_SKIN_STEP per build and stays within
  * DEM_SKIN_MIN..1 of skin_max (0.1 mean diameter); a list that nothing
  * has rebuilt for DEM_SKIN_STALE intervals is rebuilt to shrink it. */
+#define DEM_BUILD_INTERVAL 250
+#define DEM_SKIN_STEP 2.0
+#define DEM_SKIN_MIN 0.05
+#define DEM_SKIN_STALE 4
 /* The largest skin: a tenth of the particles' mean diameter (the
  * peers' benchmark settings use 1 mm for 10 mm spheres). */
 double dem_sim_skin_largest(const struct dem_particles *p);
 /* The skin now over its largest. */
 double dem_sim_skin_share(const struct dem_sim *s);
-#define DEM_BUILD_INTERVAL 250
-#define DEM_SKIN_STEP 2.0
-#define DEM_SKIN_MIN 0.05
-#define DEM_SKIN_STALE 4
 
 /* The periodic cell (core/cell.c). */
 /* Share of the skin the cell's deformation may use up between two list
