@@ -24,14 +24,16 @@ plot \
   "mohr_circles.dat" index 5 with lines linewidth 2 linecolor 1 notitle, \
   "mohr_circles.dat" index 6 with lines linewidth 2 linecolor 2 notitle, \
   "mohr_circles.dat" index 7 with lines linewidth 2 linecolor 3 notitle, \
-  "mohr_circles.dat" index 8 with lines dashtype 3 linewidth 2 linecolor "black" title "flow function φ = 27.9°, c = -10.2, R² = 0.999 (seed=2)" noenhanced, \
-  "mohr_circles.dat" index 9 with lines linewidth 2 linecolor 1 notitle, \
-  "mohr_circles.dat" index 10 with lines linewidth 2 linecolor 2 notitle, \
-  "mohr_circles.dat" index 11 with lines linewidth 2 linecolor 3 notitle, \
-  "mohr_circles.dat" index 12 with lines linewidth 2 linecolor 4 notitle, \
-  "mohr_circles.dat" index 13 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 28.7°, c = -13.4, R² = 1.000 (seed=3)" noenhanced, \
-  "mohr_circles.dat" index 14 with lines linewidth 2 linecolor 1 notitle, \
-  "mohr_circles.dat" index 15 with lines linewidth 2 linecolor 2 notitle, \
-  "mohr_circles.dat" index 16 with lines linewidth 2 linecolor 3 notitle, \
-  "mohr_circles.dat" index 17 with lines dashtype 5 linewidth 2 linecolor "black" title "flow function φ = 29.2°, c = -8.24, R² = 1.000 (seed=4)" noenhanced, \
+  "mohr_circles.dat" index 8 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 9 with lines dashtype 3 linewidth 2 linecolor "black" title "flow function φ = 28.4°, c = -14, R² = 1.000 (seed=2)" noenhanced, \
+  "mohr_circles.dat" index 10 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 11 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 12 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 13 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 14 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 28.7°, c = -13.4, R² = 1.000 (seed=3)" noenhanced, \
+  "mohr_circles.dat" index 15 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 16 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 17 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 18 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 19 with lines dashtype 5 linewidth 2 linecolor "black" title "flow function φ = 27.2°, c = 7.42, R² = 0.999 (seed=4)" noenhanced, \
   0 linetype -3 notitle

@@ -19,14 +19,14 @@ plot \
   "void_ratio_vs_pressure.dat" index 3 with lines linewidth 2 linecolor 2 title "fit critical: e0 = 0.2875, n = 0.447, h_s = 1e+05, R² = 0.987 (seed=1)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 4 with points pointtype 6 pointsize 1.5 linecolor 3 title "initial (seed=2)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 5 with points pointtype 7 pointsize 1.5 linecolor 4 title "critical (seed=2)" noenhanced, \
-  "void_ratio_vs_pressure.dat" index 6 with lines linewidth 2 linecolor 3 title "fit initial: e0 = 0.2022, n = 0.579, h_s = 1e+05, R² = 0.986 (seed=2)" noenhanced, \
-  "void_ratio_vs_pressure.dat" index 7 with lines linewidth 2 linecolor 4 title "fit critical: e0 = 0.2693, n = 0.511, h_s = 1e+05, R² = 0.999 (seed=2)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 6 with lines linewidth 2 linecolor 3 title "fit initial: e0 = 0.2057, n = 0.559, h_s = 1e+05, R² = 0.994 (seed=2)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 7 with lines linewidth 2 linecolor 4 title "fit critical: e0 = 0.2907, n = 0.449, h_s = 1e+05, R² = 0.981 (seed=2)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 8 with points pointtype 6 pointsize 1.5 linecolor 5 title "initial (seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 9 with points pointtype 7 pointsize 1.5 linecolor 6 title "critical (seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 10 with lines linewidth 2 linecolor 5 title "fit initial: e0 = 0.2052, n = 0.557, h_s = 1e+05, R² = 0.992 (seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 11 with lines linewidth 2 linecolor 6 title "fit critical: e0 = 0.3548, n = 0.353, h_s = 1e+05, R² = 0.988 (seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 12 with points pointtype 6 pointsize 1.5 linecolor 7 title "initial (seed=4)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 13 with points pointtype 7 pointsize 1.5 linecolor 8 title "critical (seed=4)" noenhanced, \
-  "void_ratio_vs_pressure.dat" index 14 with lines linewidth 2 linecolor 7 title "fit initial: e0 = 0.2019, n = 0.581, h_s = 1e+05, R² = 1.000 (seed=4)" noenhanced, \
-  "void_ratio_vs_pressure.dat" index 15 with lines linewidth 2 linecolor 8 title "fit critical: e0 = 0.2605, n = 0.529, h_s = 1e+05, R² = 0.997 (seed=4)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 14 with lines linewidth 2 linecolor 7 title "fit initial: e0 = 0.2063, n = 0.556, h_s = 1e+05, R² = 0.996 (seed=4)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 15 with lines linewidth 2 linecolor 8 title "fit critical: e0 = 0.2800, n = 0.466, h_s = 1e+05, R² = 0.979 (seed=4)" noenhanced, \
   0 linetype -3 notitle
