@@ -191,11 +191,13 @@ static const char *const usage_bench =
     "the time spent in the exchanges between ranks (waiting for the\n"
     "slowest rank included).\n"
     "\n"
-    "The force pass is built twice, with and without the CPU's gather\n"
-    "instructions (slow on some CPUs, fast on others; same results bit for\n"
-    "bit). Every run times both now and then and uses the faster; the\n"
-    "environment variable DEMBOX_PASS=gathers|loads|auto forces one\n"
-    "(also for dembox run).\n";
+    "The force pass is built up to three times: with and without the\n"
+    "CPU's gather instructions (slow on some CPUs, fast on others), and,\n"
+    "where the CPU has AVX, reading the particles from 96-byte records\n"
+    "by transposes; same results bit for bit. Every run times them now\n"
+    "and then and uses the fastest; the environment variable\n"
+    "DEMBOX_PASS=gathers|loads|records|auto forces one (also for dembox\n"
+    "run).\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";

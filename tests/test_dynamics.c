@@ -189,8 +189,9 @@ static void chained_steps_give_identical_results(void **state)
     assert_same_runs(1, 1, NULL, 1, 0, NULL);
 }
 
-/* The force pass compiled with and without hardware gathers computes the
- * same operations (contact/pass.h): each alone, and both by turns as the
+/* The force pass compiled with and without hardware gathers, and with
+ * the pairs' particle values from records, computes the same operations
+ * (contact/pass.h): each alone, and both by turns as the
  * timing trials run them (3000 steps: two trials), give the same run bit
  * for bit. An unknown DEMBOX_PASS is refused. */
 static void force_passes_give_identical_results(void **state)
@@ -200,6 +201,12 @@ static void force_passes_give_identical_results(void **state)
 #if DEM_PASS_LOADS
     assert_same_runs(1, 1, "gathers", 1, 1, "loads");
     assert_same_runs(2, 1, "loads", 1, 1, NULL);
+#endif
+#if DEM_HAVE_PASS_RECORDS
+    /* chained: the records written at the drift are read by the next
+     * pass; one by one: filled at every pass */
+    assert_same_runs(1, 1, "gathers", 1, 1, "records");
+    assert_same_runs(2, 1, "records", 1, 0, "records");
 #endif
     struct dem_config c;
     test_config(&c, 3);

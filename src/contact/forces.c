@@ -204,10 +204,14 @@ typedef int (*pass_fn)(const struct contacts *, struct kick);
 static const struct {
     const char *name;
     pass_fn run;
+    int rec; /* a chained pass writes the particle records (contact/pass.c) */
 } passes[] = {
-    {"gathers", dem__pass_gathers},
+    {"gathers", dem__pass_gathers, 0},
 #if DEM_PASS_LOADS
-    {"loads", dem__pass_loads},
+    {"loads", dem__pass_loads, 0},
+#endif
+#if DEM_HAVE_PASS_RECORDS
+    {"records", dem__pass_records, 1},
 #endif
 };
 enum { NPASS = sizeof passes / sizeof passes[0] };
@@ -236,10 +240,15 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
             C->trial = 0;
             return DEM_OK;
         }
+    char names[64] = "auto";
+    for (int v = 0; v < NPASS; v++) {
+        const size_t len = strlen(names);
+        snprintf(names + len, sizeof names - len, ", %s", passes[v].name);
+    }
     return dem_error_set(err, DEM_EUSAGE,
                          "environment variable DEMBOX_PASS: '%s' is not a "
-                         "force pass of this build (auto, gathers%s)",
-                         want, NPASS > 1 ? ", loads" : "");
+                         "force pass of this build (%s)",
+                         want, names);
 }
 
 void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size)
@@ -276,6 +285,7 @@ static double seconds_now(void)
 static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
                     const struct kick K)
 {
+    C->ran = C->current;
     if (!K.on || C->forced >= 0)
         return passes[C->current].run(c, K);
     if (!C->trial) {
@@ -288,6 +298,7 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
     if (C->trial == NPASS * TRIAL_ROUNDS)
         for (int u = 0; u < NPASS; u++)
             C->best[u] = INFINITY;
+    C->ran = v;
     const double t0 = seconds_now();
     const int moved = passes[v].run(c, K);
     const double t = seconds_now() - t0;
@@ -365,7 +376,11 @@ static int forces(struct dem_sim *s, const struct kick K)
         memcpy(c.cv, lat.v, sizeof c.cv);
         dem_sim_cell_grad(s, c.grad);
     }
+    c.rec = pl->rec;
+    c.rec_fresh = pl->rec_fresh && pl->rec_written;
+    pl->rec_fresh = 0;
     const int moved = run_pass(&s->pass, &c, K);
+    pl->rec_written = K.chain && passes[s->pass.ran].rec;
     if (s->cell.on) {
         cell_stress(s, &c);
     } else {

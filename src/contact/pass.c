@@ -21,6 +21,12 @@
  *     contacts, each in list order; then the torques and, in a time step,
  *     the closing half kick (and in a chained step the next half kick and
  *     drift, see dem_sim_step).
+ * The records compilation (contact/pass.h) reads the pairs' particle
+ * values from a copy of the particles in records: each thread first
+ * writes its share of them, then a barrier; a chained pass writes its
+ * particles' records right after their drift instead, and the next pass
+ * (dem_sim_step: no rebuild, no cell map, no ghosts in between) skips
+ * the copy and the barrier.
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
  * once as always-inline functions and instantiated per normal law of
@@ -37,6 +43,9 @@
 #include "contact/tangential.h"
 #include "core/cell.h"
 #include "core/parallel.h"
+#if DEM_PASS_RECORDS
+#include <immintrin.h>
+#endif
 
 /* particles summed before their kicks and drifts run (particle_range) */
 #define DEM_KICK_BLOCK 32
@@ -151,18 +160,34 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
         q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
 }
 
-/* Force and history update of pair k. With scalar = 0 (SIMD lanes) there
- * is no branch: the pair computes the closed-contact force, and if its
- * gap is open it gets a zero force and loses its history instead; scalar
- * code (scalar = 1) skips an open pair at once. */
-DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
-                         int k, const struct dem_contact_params *cp, double dt,
-                         const struct dem_tangential *T, const double *cv,
-                         const double *grad)
+/* What a pair reads of each of its particles. */
+struct pv {
+    double x, y, z, r, vx, vy, vz, m, wx, wy, wz;
+};
+
+/* Particle i's values for a pair, from the arrays. */
+DEM_INLINE struct pv load_pv(const struct pass *q, int i)
+{
+    const struct pv p = {q->x[i],  q->y[i],  q->z[i],  q->r[i],
+                         q->vx[i], q->vy[i], q->vz[i], q->m[i],
+                         q->wx[i], q->wy[i], q->wz[i]};
+    return p;
+}
+
+/* Force and history update of pair k between particles with values pi and
+ * pj. With scalar = 0 (SIMD lanes) there is no branch: the pair computes
+ * the closed-contact force, and if its gap is open it gets a zero force
+ * and loses its history instead; scalar code (scalar = 1) skips an open
+ * pair at once. */
+DEM_INLINE void pair_vals(const int law, const int scalar,
+                          const struct pass *qp, int k, const struct pv pi,
+                          const struct pv pj,
+                          const struct dem_contact_params *cp, double dt,
+                          const struct dem_tangential *T, const double *cv,
+                          const double *grad)
 {
     const struct pass q = *qp;
-    const int i = q.ci[k], j = q.cj[k];
-    double dx = q.x[i] - q.x[j], dy = q.y[i] - q.y[j], dz = q.z[i] - q.z[j];
+    double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
     if (law & DEM_SET_PERIODIC) { /* j's image: x_j + h s */
         double S[3];
         dem_img_shift(cv, q.img[k], S);
@@ -171,7 +196,7 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
         dz -= S[2];
     }
     const double d2 = dx * dx + dy * dy + dz * dz;
-    const double ai = q.r[i], aj = q.r[j], R = ai + aj;
+    const double ai = pi.r, aj = pj.r, R = ai + aj;
     const int touch = d2 < R * R;
     if (scalar && !touch) {
         open_contact(law, &q, k);
@@ -181,12 +206,12 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
     const double id = 1.0 / d;
     const struct dem_vec3 n = {dx * id, dy * id, dz * id};
     /* a_i n x w_i + a_j n x w_j */
-    const double cwx = ai * q.wx[i] + aj * q.wx[j];
-    const double cwy = ai * q.wy[i] + aj * q.wy[j];
-    const double cwz = ai * q.wz[i] + aj * q.wz[j];
-    struct dem_vec3 vij = {q.vx[i] - q.vx[j] + n.y * cwz - n.z * cwy,
-                           q.vy[i] - q.vy[j] + n.z * cwx - n.x * cwz,
-                           q.vz[i] - q.vz[j] + n.x * cwy - n.y * cwx};
+    const double cwx = ai * pi.wx + aj * pj.wx;
+    const double cwy = ai * pi.wy + aj * pj.wy;
+    const double cwz = ai * pi.wz + aj * pj.wz;
+    struct dem_vec3 vij = {pi.vx - pj.vx + n.y * cwz - n.z * cwy,
+                           pi.vy - pj.vy + n.z * cwx - n.x * cwz,
+                           pi.vz - pj.vz + n.x * cwy - n.y * cwx};
     if (law & DEM_SET_PERIODIC) { /* the cell's affine velocity, grad b */
         vij.x += grad[0] * dx + grad[1] * dy + grad[2] * dz;
         vij.y += grad[3] * dy + grad[4] * dz;
@@ -196,16 +221,97 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
     struct dem_history h = load_history(law, &q, k);
     double fc;
     const double a12 = ai * aj / R;
-    const double m12 = q.m[i] * q.m[j] / (q.m[i] + q.m[j]); /* if used */
+    const double m12 = pi.m * pj.m / (pi.m + pj.m); /* if used */
     const double fn = dem_normal_force(law, cp, R - d, ddot, a12, m12, &h, &fc);
     int st = q.state[k] | DEM_CONTACT_ACTIVE;
-    const struct dem_vec3 dw = {q.wx[i] - q.wx[j], q.wy[i] - q.wy[j],
-                                q.wz[i] - q.wz[j]};
+    const struct dem_vec3 dw = {pi.wx - pj.wx, pi.wy - pj.wy, pi.wz - pj.wz};
     resist_contact(law, &q, k, touch, n, dw, a12, fc, dt, cp, &h, &st);
     struct dem_tangential Tc = *T;
     dem_normal_shear(law, cp, R - d, a12, m12, &Tc);
     finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
 }
+
+/* Pair k, its particles' values read from the arrays. */
+DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
+                         int k, const struct dem_contact_params *cp, double dt,
+                         const struct dem_tangential *T, const double *cv,
+                         const double *grad)
+{
+    pair_vals(law, scalar, qp, k, load_pv(qp, qp->ci[k]),
+              load_pv(qp, qp->cj[k]), cp, dt, T, cv, grad);
+}
+
+#if DEM_PASS_RECORDS
+/* Particle records (struct contacts.rec): x y z r | vx vy vz m | wx wy wz 0,
+ * 32-byte aligned, so that a pair's particle loads three vectors and four
+ * pairs' values reach their SIMD lanes by 4 x 4 transposes. */
+#define DEM_REC 12
+
+/* Four values of four consecutive particles (rows a, b, c, d: one value
+ * each) as the same block of their four records at o, 12 doubles apart. */
+DEM_INLINE void records_block(double *o, __m256d a, __m256d b, __m256d c,
+                              __m256d d)
+{
+    const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b),
+                  t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
+    _mm256_store_pd(o, _mm256_permute2f128_pd(t0, t2, 0x20));
+    _mm256_store_pd(o + DEM_REC, _mm256_permute2f128_pd(t1, t3, 0x20));
+    _mm256_store_pd(o + 2 * DEM_REC, _mm256_permute2f128_pd(t0, t2, 0x31));
+    _mm256_store_pd(o + 3 * DEM_REC, _mm256_permute2f128_pd(t1, t3, 0x31));
+}
+
+/* Particles i0 <= i < i1 into their records, four at a time by
+ * transposes. */
+DEM_INLINE void records_fill(double *restrict rec,
+                             const struct dem_particles *P, int i0, int i1)
+{
+    int i = i0;
+    for (; i + 4 <= i1; i += 4) {
+        double *o = rec + DEM_REC * (size_t)i;
+        records_block(o, _mm256_loadu_pd(P->x + i), _mm256_loadu_pd(P->y + i),
+                      _mm256_loadu_pd(P->z + i), _mm256_loadu_pd(P->r + i));
+        records_block(o + 4, _mm256_loadu_pd(P->vx + i),
+                      _mm256_loadu_pd(P->vy + i), _mm256_loadu_pd(P->vz + i),
+                      _mm256_loadu_pd(P->m + i));
+        records_block(o + 8, _mm256_loadu_pd(P->wx + i),
+                      _mm256_loadu_pd(P->wy + i), _mm256_loadu_pd(P->wz + i),
+                      _mm256_setzero_pd());
+    }
+    for (; i < i1; i++) {
+        double *o = rec + DEM_REC * (size_t)i;
+        const double v[DEM_REC] = {P->x[i],  P->y[i],  P->z[i],  P->r[i],
+                                   P->vx[i], P->vy[i], P->vz[i], P->m[i],
+                                   P->wx[i], P->wy[i], P->wz[i], 0.0};
+        for (int u = 0; u < DEM_REC; u++)
+            o[u] = v[u];
+    }
+}
+
+/* The records of particles idx[0..7] as 12 rows of 8 lanes. */
+DEM_INLINE void records_lanes(const double *rec, const int *idx, double (*o)[8])
+{
+    for (int g = 0; g < 8; g += 4) {
+        const double *r0 = rec + DEM_REC * (size_t)idx[g],
+                     *r1 = rec + DEM_REC * (size_t)idx[g + 1],
+                     *r2 = rec + DEM_REC * (size_t)idx[g + 2],
+                     *r3 = rec + DEM_REC * (size_t)idx[g + 3];
+        for (int b = 0; b < DEM_REC; b += 4) {
+            const __m256d a = _mm256_load_pd(r0 + b),
+                          c = _mm256_load_pd(r1 + b),
+                          e = _mm256_load_pd(r2 + b),
+                          f = _mm256_load_pd(r3 + b);
+            const __m256d t0 = _mm256_unpacklo_pd(a, c),
+                          t1 = _mm256_unpackhi_pd(a, c),
+                          t2 = _mm256_unpacklo_pd(e, f),
+                          t3 = _mm256_unpackhi_pd(e, f);
+            _mm256_store_pd(&o[b][g], _mm256_permute2f128_pd(t0, t2, 0x20));
+            _mm256_store_pd(&o[b + 1][g], _mm256_permute2f128_pd(t1, t3, 0x20));
+            _mm256_store_pd(&o[b + 2][g], _mm256_permute2f128_pd(t0, t2, 0x31));
+            _mm256_store_pd(&o[b + 3][g], _mm256_permute2f128_pd(t1, t3, 0x31));
+        }
+    }
+}
+#endif
 
 /* Forces and history updates of pairs k0 <= k < k1, in SIMD lanes or as
  * scalar code as the law's lanes column says (the luding law's branches
@@ -213,16 +319,36 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
  * computed in every lane made it slower than scalar code with branches). */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
-                           const double *cv, const double *grad)
+                           const double *cv, const double *grad,
+                           const double *rec)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
     if (!dem_normal_simd(law)) {
         for (int k = k0; k < k1; k++)
             pair_one(law, 1, &q, k, cp, dt, &T, cv, grad);
     } else {
+        int k = k0;
+        (void)rec;
+#if DEM_PASS_RECORDS
+        for (; k + 8 <= k1; k += 8) {
+            _Alignas(32) double A[DEM_REC][8], B[DEM_REC][8];
+            records_lanes(rec, q.ci + k, A);
+            records_lanes(rec, q.cj + k, B);
 #pragma omp simd
-        for (int k = k0; k < k1; k++)
-            pair_one(law, 0, &q, k, cp, dt, &T, cv, grad);
+            for (int l = 0; l < 8; l++) {
+                const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
+                                      A[4][l], A[5][l], A[6][l], A[7][l],
+                                      A[8][l], A[9][l], A[10][l]};
+                const struct pv pj = {B[0][l], B[1][l], B[2][l], B[3][l],
+                                      B[4][l], B[5][l], B[6][l], B[7][l],
+                                      B[8][l], B[9][l], B[10][l]};
+                pair_vals(law, 0, &q, k + l, pi, pj, cp, dt, &T, cv, grad);
+            }
+        }
+#endif
+#pragma omp simd
+        for (int kk = k; kk < k1; kk++)
+            pair_one(law, 0, &q, kk, cp, dt, &T, cv, grad);
     }
 }
 
@@ -295,8 +421,9 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl, double gb, double gr,
-                              const struct kick K, double *vir)
+                              const struct kick K, double *vir, double *rec)
 {
+    (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
     double w[9] = {0.0}; /* the virial of the current block (cell) */
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
@@ -432,6 +559,10 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                 const double d2 = dem_particle_drift(&Q, k, K.dt);
                 far = d2 > far ? d2 : far;
             }
+#if DEM_PASS_RECORDS
+            /* the next pass reads the block's records as they are now */
+            records_fill(rec, &Q, ib, ib + b + 1);
+#endif
         }
     }
     return K.chain && far > K.lim;
@@ -443,8 +574,15 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                                const struct kick K, int t, int nt)
 {
+#if DEM_PASS_RECORDS
+    if (!c->rec_fresh) {
+        records_fill(c->rec, c->P, dem_block(c->P->n, t, nt),
+                     dem_block(c->P->n, t + 1, nt));
+#pragma omp barrier
+    }
+#endif
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
-               &c->cp, c->dt, c->cv, c->grad);
+               &c->cp, c->dt, c->cv, c->grad, c->rec);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
@@ -452,10 +590,10 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
         return particle_range(law,
                               dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
                               dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK),
-                              c->P, c->pl, c->gb, c->gr, K, c->vir);
+                              c->P, c->pl, c->gb, c->gr, K, c->vir, c->rec);
     return particle_range(law, dem_block(c->n, t, nt),
                           dem_block(c->n, t + 1, nt), c->P, c->pl, c->gb, c->gr,
-                          K, c->vir);
+                          K, c->vir, c->rec);
 }
 
 /* One instance per model set and kind of kick (literals), so that each

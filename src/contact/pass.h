@@ -1,13 +1,16 @@
 /* The force pass (contact/pass.c): what it reads and its entry points.
  *
- * The pass is compiled twice (CMakeLists.txt): once as the compiler
- * likes it, which on CPUs with AVX2 or AVX-512 loads each SIMD lane's
- * particle data with hardware gathers, and once with gathers switched
- * off (each lane's values from scalar loads). Both compute the same
+ * The pass is compiled up to three times (CMakeLists.txt): once as the
+ * compiler likes it, which on CPUs with AVX2 or AVX-512 loads each SIMD
+ * lane's particle data with hardware gathers; once with gathers switched
+ * off (each lane's values from scalar loads); and, where the target has
+ * AVX, once reading the pairs' particle values from records of 12
+ * doubles (x y z r, v m, w) by 4 x 4 transposes, neither gathers nor one
+ * load per lane (contact/pass_records.c). All compute the same
  * operations in the same order, so their results are the same bit for
  * bit; on some CPUs (Intel Skylake to Ice Lake with the Gather Data
  * Sampling mitigation) gathers are several times slower, on others
- * faster. contact/forces.c times both now and then and runs the faster.
+ * faster. contact/forces.c times them now and then and runs the fastest.
  */
 #ifndef DEM_CONTACT_PASS_H
 #define DEM_CONTACT_PASS_H
@@ -51,6 +54,11 @@ struct contacts {
     int periodic;   /* 1: run the pass of the set with DEM_SET_PERIODIC */
     double cv[6];   /* m; the lattice, struct dem_lattice.v */
     double grad[6]; /* 1/s; the affine velocity gradient, upper triangle */
+    double *rec;    /* the records pass's particle records (contact/pass.c),
+                       12 doubles per particle, 32-byte aligned */
+    int rec_fresh;  /* 1: rec holds every particle's present state (the
+                       records pass of the chained step before wrote
+                       them, and nothing has moved a particle since) */
     double *vir;    /* N m; the virial sum x (x) f + m v (x) v of each
                        block of DEM_VIR_BLOCK particles, 9 values each */
 };
@@ -62,6 +70,11 @@ int dem__pass_gathers(const struct contacts *c, struct kick K);
 #if DEM_PASS_LOADS
 /* The same code without hardware gathers (contact/pass_loads.c). */
 int dem__pass_loads(const struct contacts *c, struct kick K);
+#endif
+#if DEM_HAVE_PASS_RECORDS
+/* The same code with the pairs' particle values from records
+ * (contact/pass_records.c). */
+int dem__pass_records(const struct contacts *c, struct kick K);
 #endif
 
 #endif

@@ -381,6 +381,7 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
      * ghosts follow at the sync below, before the next forces */
     const int chain = s->chain;
     s->chain = 0;
+    const int drifted = s->drifted;
     double t0 = lap(s);
     const int moved = s->drifted ? s->moved : kick_drift(s, h);
     s->drifted = 0;
@@ -406,6 +407,9 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
             return rc;
     }
     double t3 = lap(s);
+    /* the particles are where the chained pass before left them, so
+     * the particle records it wrote are still theirs (contact/pass.c) */
+    s->pairs.rec_fresh = drifted && !rebuild && !s->halo && !s->cell.on;
     s->moved = dem_sim_forces_kick(s, h, chain);
     s->drifted = chain;
     double t4 = lap(s);

@@ -16,7 +16,7 @@
 #include "wall/wall.h"
 
 #define DEM_MAX_WALLS 6
-#define DEM_MAX_PASSES 2 /* compilations of the force pass */
+#define DEM_MAX_PASSES 3 /* compilations of the force pass */
 
 /* Sums gathered by the force loop when measurement is requested. */
 struct dem_contact_sums {
@@ -37,6 +37,7 @@ struct dem_contact_sums {
 struct dem_pass_choice {
     int forced;  /* -1: chosen by timing, else DEMBOX_PASS's index */
     int current; /* the variant in use */
+    int ran;     /* the variant of the last pass */
     int trial;   /* passes of the running trial left, 0: none */
     long since;  /* time steps since the last trial */
     double best[DEM_MAX_PASSES]; /* s; each variant's fastest pass in the

@@ -46,6 +46,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->cell_of);
     free(pl->old_of);
     free(pl->scratch);
+    free(pl->rec);
     memset(pl, 0, sizeof *pl);
 }
 
@@ -137,6 +138,13 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
     free(pl->scratch);
     pl->scratch = malloc((size_t)(cap > c ? cap : c) * sizeof *pl->scratch);
     if (!pl->scratch)
+        return -1;
+    /* the force pass's particle records (contact/pass.c): 12 doubles
+     * each, aligned for whole-vector loads */
+    free(pl->rec);
+    pl->rec =
+        aligned_alloc(64, ((size_t)c * 12 * sizeof(double) + 63) / 64 * 64);
+    if (!pl->rec)
         return -1;
     pl->nalloc = c;
     return 0;
