@@ -419,6 +419,56 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* A cyclic sweep of one seed: an ensemble of one run has no standard
+ * error, and the strain-accumulation table writes 0 for it (gnuplot
+ * drops a point whose error bar is missing: the picture was empty). */
+static void one_seed_cyclic_sweep_draws_its_cycles(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/one-seed", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "seed=1");
+    snprintf(dir, sizeof dir, "%s/runs/seed=1", out);
+    fake_run(dir, cfg, "seed=1",
+             "{\"dimension\": 2, \"loading_stage\": 1, "
+             "\"confining_pressure\": 100, \"peak\": {\"sin_phi\": 0.4}, "
+             "\"critical\": {\"sin_phi\": null}, \"cyclic_stage\": 1, "
+             "\"verdict\": \"shakedown\", \"cycles\": [{\"cycle\": 1, "
+             "\"strain_end\": 2e-3, \"strain_increment\": 2e-3}, "
+             "{\"cycle\": 2, \"strain_end\": 2.5e-3, "
+             "\"strain_increment\": 5e-4}]}\n");
+    struct dem_sweep_options o = {
+        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
+    struct dem_error err = {0};
+    if (dem_sweep_collect(&g, &o, &err))
+        fail_msg("%s", err.msg);
+    snprintf(dir, sizeof dir, "%s/plots/strain_accumulation.dat", out);
+    FILE *f = fopen(dir, "r");
+    assert_non_null(f);
+    char line[512];
+    int rows = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#' || line[0] == '\n')
+            continue;
+        int c, n;
+        double inc, se, end, se2;
+        assert_int_equal(sscanf(line, "%d %lf %lf %lf %lf %d", &c, &inc, &se,
+                                &end, &se2, &n),
+                         6);
+        assert_close(se, 0.0, 0.0);
+        assert_close(se2, 0.0, 0.0);
+        assert_int_equal(n, 1);
+        assert_rel(inc, c == 1 ? 2e-3 : 5e-4, 1e-9);
+        rows++;
+    }
+    fclose(f);
+    assert_int_equal(rows, 2);
+    dem_sweep_grid_free(&g);
+}
+
 static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
 {
     (void)state;
@@ -583,6 +633,7 @@ int main(void)
         cmocka_unit_test(bad_grid_point_is_refused_before_running),
         cmocka_unit_test(flow_function_and_void_fit_recover_known_values),
         cmocka_unit_test(seed_ensembles_give_mean_and_standard_error),
+        cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
     };
     return cmocka_run_group_tests(tests, setup, NULL);

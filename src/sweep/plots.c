@@ -579,13 +579,18 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
 /* ------------------------------------------------ strain accumulation */
 
 /* One block of strain_accumulation.dat: cycle, eps_D gained in it and its
- * standard error, eps_D at its end and its standard error, runs. */
+ * standard error, eps_D at its end and its standard error, runs. A cycle
+ * of one run has no standard error: 0 is written (as for a sweep without
+ * seeds), since gnuplot skips a point whose error bar is missing and an
+ * ensemble of one seed would draw nothing. */
 static void cyclic_block(FILE *dat, int ncyc, const double *inc,
                          const double *inc_se, const double *end,
                          const double *end_se, const int *runs)
 {
     for (int c = 0; c < ncyc; c++) {
-        const double v[4] = {inc[c], inc_se[c], end[c], end_se[c]};
+        const int one = runs[c] < 2;
+        const double v[4] = {inc[c], one ? 0.0 : inc_se[c], end[c],
+                             one ? 0.0 : end_se[c]};
         fprintf(dat, "%d", c + 1);
         for (int k = 0; k < 4; k++)
             isfinite(v[k]) ? fprintf(dat, " %.9g", v[k]) : fprintf(dat, " ?");
