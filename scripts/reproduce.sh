@@ -10,7 +10,8 @@
 #   --quick       the scaled built-in examples, one sample per point
 #                 (default; about 25 CPU minutes)
 #   --paper       the papers' sizes and parameters with 3 seeds per point
-#                 (about 11 CPU hours: run it over several sessions)
+#                 (about 40 CPU hours, --list gives each part's: run it
+#                 over several sessions)
 #   --jobs N      runs at once (default: the number of cores)
 #   --only NAMES  only these parts (comma-separated; see --list)
 #   --numbers DIR after each part, copy its sweep.json, its pictures
