@@ -207,6 +207,18 @@ static void fake_run(const char *dir, const char *cfgpath, const char *set,
     write_file(path, summary);
 }
 
+/* Collect the (fake) runs of grid g for config cfg in out, as
+ * `dembox sweep --collect` does. */
+static void collect_runs(const struct dem_sweep_grid *g, const char *cfg,
+                         const char *out)
+{
+    struct dem_sweep_options o = {
+        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
+    struct dem_error err = {0};
+    if (dem_sweep_collect(g, &o, &err))
+        fail_msg("%s", err.msg);
+}
+
 /* Circles touching tau = c + sigma tan(phi) at confining pressures p:
  * sigma_1 = p (1 + s)/(1 - s) + 2 c cos(phi)/(1 - s), s = sin(phi). The
  * initial void ratios follow e = e0 - (p/hs)^n with hs = k2. */
@@ -248,11 +260,8 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
         }
     }
     free(names);
-    struct dem_sweep_options o = {
-        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
+    collect_runs(&g, cfg, out);
     struct dem_error err = {0};
-    if (dem_sweep_collect(&g, &o, &err))
-        fail_msg("%s", err.msg);
 
     struct dem__jval js;
     snprintf(dir, sizeof dir, "%s/sweep.json", out);
@@ -359,11 +368,8 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
         fake_run(dir, cfg, set[0], summary);
     }
     free(names);
-    struct dem_sweep_options o = {
-        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
+    collect_runs(&g, cfg, out);
     struct dem_error err = {0};
-    if (dem_sweep_collect(&g, &o, &err))
-        fail_msg("%s", err.msg);
     struct dem__jval js;
     snprintf(dir, sizeof dir, "%s/sweep.json", out);
     if (dem__jread_file(&js, dir, &err))
@@ -440,11 +446,7 @@ static void one_seed_cyclic_sweep_draws_its_cycles(void **state)
              "\"strain_end\": 2e-3, \"strain_increment\": 2e-3}, "
              "{\"cycle\": 2, \"strain_end\": 2.5e-3, "
              "\"strain_increment\": 5e-4}]}\n");
-    struct dem_sweep_options o = {
-        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
-    struct dem_error err = {0};
-    if (dem_sweep_collect(&g, &o, &err))
-        fail_msg("%s", err.msg);
+    collect_runs(&g, cfg, out);
     snprintf(dir, sizeof dir, "%s/plots/strain_accumulation.dat", out);
     FILE *f = fopen(dir, "r");
     assert_non_null(f);
