@@ -243,6 +243,50 @@ static void affine_motion_is_followed_exactly(void **state)
     dem_sim_destroy(&s);
 }
 
+/* The worst case of the rule: two particles head-on along x, their gap
+ * just wider than the skin at the build, while the cell shrinks along x
+ * and closes it further. The pair is listed before it touches: each
+ * particle may drift only half of what the deformation leaves of the
+ * skin (with half the skin, as with walls, it touches first). */
+static void closing_pair_in_shrinking_cell_is_listed(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.0, 0.0, 0.0}, a = 5e-3;
+    cell_sim(&s, &c, 2, 2, 0.1, t0);
+    const double skin = 0.2 * a; /* dem_sim_skin_largest */
+    const double g0 = 1.02 * skin, v = 0.05;
+    const int i = test_add(&s, 0.05 - a - 0.5 * g0, 0.05, 0.0, a);
+    const int j = test_add(&s, 0.05 + a + 0.5 * g0, 0.05, 0.0, a);
+    s.p.vx[i] = v;
+    s.p.vx[j] = -v;
+    s.cfg.damping.gamma_b = s.cfg.damping.gamma_br = 0.0;
+    test_ready(&s);
+    assert_close(s.skin, skin, 1e-15);
+    assert_int_equal(s.pairs.cur.n, 0);
+    /* each drifts half the skin in 0.01 s; by then the cell has
+     * shrunk by 4 % and closed the pair by 0.44 of the skin */
+    const double T = 0.01;
+    dem_wall_set_strain(&s.wall[1], DEM_PROFILE_LINEAR, -0.004, T, s.t);
+    s.dt = 1e-5;
+    struct dem_error err;
+    int touched = 0;
+    for (long k = 0; k < (long)(T / s.dt); k++) {
+        assert_int_equal(dem_sim_step(&s, &err), 0);
+        const double d = fabs(s.p.x[1] - s.p.x[0]);
+        if (d < 2.0 * a) {
+            touched = 1;
+            if (s.pairs.cur.n != 1)
+                fail_msg("step %ld: the pair touches (gap %.3g of the skin) "
+                         "but is not listed",
+                         s.step, (d - 2.0 * a) / skin);
+        }
+    }
+    assert_true(touched);
+    dem_sim_destroy(&s);
+}
+
 /* An elastic gas (no dissipation) sheared by the tilt: its energy (peculiar
  * kinetic plus elastic) changes by the work of the boundary, dE/dt =
  * - sum_ab grad_ab W_ba, W = sum over contacts of b (x) f (the equations
@@ -534,6 +578,7 @@ int main(void)
         cmocka_unit_test(sheared_cell_list_3d),
         cmocka_unit_test(pair_across_every_face_edge_corner),
         cmocka_unit_test(affine_motion_is_followed_exactly),
+        cmocka_unit_test(closing_pair_in_shrinking_cell_is_listed),
         cmocka_unit_test(sheared_elastic_gas_energy_balance),
         cmocka_unit_test(servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_relaxes_with_its_mass_and_viscosity),

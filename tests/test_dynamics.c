@@ -109,8 +109,12 @@ static void two_d_stays_in_plane(void **state)
     dem_sim_destroy(&s);
 }
 
+/* Whether run_threads runs in a periodic cell (1) or between walls (0). */
+static int run_cell;
+
 /* Positions and velocities by particle id after a frictional, damped run
- * with walls and re-ordering, on the given number of threads; the steps
+ * with re-ordering, between walls or (run_cell) in a periodic cell
+ * compressed and sheared, on the given number of threads; the steps
  * chained (test_step) or one by one; with the force pass pass (the
  * environment variable DEMBOX_PASS; NULL: unset, chosen by timing). */
 static void run_threads(int threads, int chained, const char *pass, double *out,
@@ -127,15 +131,23 @@ static void run_threads(int threads, int chained, const char *pass, double *out,
     c.contact.gamma_t = 0.01;
     c.contact.wall_mu = 0.2;
     c.damping.gamma_b = 0.01;
-    c.gravity[2] = -9.81;
+    c.gravity[2] = run_cell ? 0.0 : -9.81;
     c.time_step = 2e-5;
+    if (run_cell)
+        c.box.boundary = DEM_BOUNDARY_PERIODIC;
     struct dem_sim s;
-    const int nside = 8;
+    /* in the cell 729 particles: two threads split a virial block
+     * unless they keep to its bounds, and 729 % 8 particles are left
+     * over after the SIMD lanes */
+    const int nside = run_cell ? 9 : 8;
     test_sim(&s, &c, nside * nside * nside, 0.0, 0.1);
     s.reorder = 1;
-    gas(&s, 3, nside, 6e-3, 0.3, 9);
+    gas(&s, 3, nside, run_cell ? 5e-3 : 6e-3, 0.3, 9);
     test_ready(&s);
     dem_wall_set_stress(&s.wall[5], 0.05, 5.0, 0.0, 200.0, 0.0, 0.0, 0.0);
+    if (run_cell) /* shear along x by a fifth of the cell */
+        dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XZ], DEM_PROFILE_LINEAR,
+                            0.02, 0.06, s.t);
     if (chained) {
         test_step(&s, 3000);
     } else {
@@ -178,6 +190,9 @@ static void threads_give_identical_results(void **state)
 {
     (void)state;
     assert_same_runs(1, 1, NULL, 2, 1, NULL);
+    run_cell = 1; /* the cell's stress too (its virial, contact/pass.c) */
+    assert_same_runs(1, 1, NULL, 2, 1, NULL);
+    run_cell = 0;
 }
 
 /* A chained step does the next step's half kick and drift in its force
@@ -187,6 +202,9 @@ static void chained_steps_give_identical_results(void **state)
 {
     (void)state;
     assert_same_runs(1, 1, NULL, 1, 0, NULL);
+    run_cell = 1;
+    assert_same_runs(1, 1, NULL, 1, 0, NULL);
+    run_cell = 0;
 }
 
 /* The force pass compiled with and without hardware gathers, and with
@@ -207,6 +225,9 @@ static void force_passes_give_identical_results(void **state)
      * pass; one by one: filled at every pass */
     assert_same_runs(1, 1, "gathers", 1, 1, "records");
     assert_same_runs(2, 1, "records", 1, 0, "records");
+    run_cell = 1;
+    assert_same_runs(2, 1, "gathers", 1, 1, "records");
+    run_cell = 0;
 #endif
     struct dem_config c;
     test_config(&c, 3);

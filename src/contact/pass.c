@@ -408,6 +408,54 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     }
 }
 
+/* The periodic cell's virial (contact/forces.c) of particles
+ * ib <= i < ib + nb, with contact forces f (the sums of their pairs and
+ * no damping): sum_contacts b (x) f, b = x_i - x_j', is sum_i x_i (x) f_i
+ * minus the images' shifts (summed after the pass), plus the kinetic part
+ * m u (x) u. Particle i adds to lane i % 8 of w (ib is a multiple of 8);
+ * at the end of a virial block (or with last, of the thread's range) the
+ * lanes are summed in order into vir and cleared. */
+DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
+                             double (*f)[DEM_KICK_BLOCK], double (*w)[8],
+                             double *vir, int last)
+{
+    const double *restrict X[3] = {P->x, P->y, P->z},
+                           *restrict U[3] = {P->vx, P->vy, P->vz};
+    const double *restrict m = P->m;
+    int u = 0;
+    for (; u + 8 <= nb; u += 8) {
+#pragma omp simd
+        for (int l = 0; l < 8; l++) {
+            const int i = ib + u + l;
+            for (int a = 0; a < 3; a++) {
+                const double mu = m[i] * U[a][i];
+                for (int c = 0; c < 3; c++)
+                    w[3 * a + c][l] += X[a][i] * f[c][u + l] + mu * U[c][i];
+            }
+        }
+    }
+    for (; u < nb; u++) { /* a range's last particles */
+        const int i = ib + u, l = i % 8;
+        for (int a = 0; a < 3; a++) {
+            const double mu = m[i] * U[a][i];
+            for (int c = 0; c < 3; c++)
+                w[3 * a + c][l] += X[a][i] * f[c][u] + mu * U[c][i];
+        }
+    }
+    const int end = ib + nb;
+    if (end % DEM_VIR_BLOCK && !last)
+        return;
+    double *o = vir + 9 * ((end - 1) / DEM_VIR_BLOCK);
+    for (int c = 0; c < 9; c++) {
+        double t = 0.0;
+        for (int l = 0; l < 8; l++) {
+            t += w[c][l];
+            w[c][l] = 0.0;
+        }
+        o[c] = t;
+    }
+}
+
 /* Particles i0 <= i < i1: background damping plus the forces of the
  * pairs as i (the particle's row), as j (its reverse row) and of the wall
  * contacts; then the torques, and the half kick if asked for. With
@@ -425,7 +473,10 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 {
     (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
-    double w[9] = {0.0}; /* the virial of the current block (cell) */
+    /* the virial of the current virial block (cell), in 8 lanes of
+     * partial sums: particle i adds to lane i % 8, in particle order, so
+     * the bits do not depend on how the loop is compiled */
+    _Alignas(64) double w[9][8] = {{0.0}};
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
     double far = 0.0; /* the largest squared distance moved (chained) */
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
@@ -444,6 +495,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
      * they took a quarter of a chained step); each particle's arithmetic
      * is the same either way, so the results are the same bits. */
     double bf[6][DEM_KICK_BLOCK]; /* the block's forces and torques */
+    double bc[3][DEM_KICK_BLOCK]; /* its contacts' forces (cell) */
     /* a local copy of the arrays' pointers: the kicks' stores cannot
      * change them, so the lanes' accesses are consecutive, not scatters */
     const struct dem_particles Q = *P;
@@ -479,22 +531,12 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             cy += WF[k].c[1];
             cz += WF[k].c[2];
         }
+        const int b = (i - i0) % DEM_KICK_BLOCK, ib = i - b;
         if (cell) {
-            /* sum over contacts of b (x) f, b = x_i - x_j', is
-             * sum_i x_i (x) f_i minus the images' shifts (contact/
-             * forces.c); plus the kinetic part m v (x) v */
-            const double xi[3] = {P->x[i], P->y[i], P->z[i]};
-            const double ui[3] = {vx[i], vy[i], vz[i]}, fi[3] = {fx, fy, fz};
-            const double mi = P->m[i];
-            for (int u = 0; u < 3; u++)
-                for (int v = 0; v < 3; v++)
-                    w[3 * u + v] += xi[u] * fi[v] + mi * ui[u] * ui[v];
-            if ((i + 1) % DEM_VIR_BLOCK == 0 || i + 1 == i1) {
-                for (int u = 0; u < 9; u++) {
-                    vir[9 * (i / DEM_VIR_BLOCK) + u] = w[u];
-                    w[u] = 0.0;
-                }
-            }
+            /* the contacts' sum for the virial, then the damping */
+            bc[0][b] = fx;
+            bc[1][b] = fy;
+            bc[2][b] = fz;
             fx -= gb * vx[i];
             fy -= gb * vy[i];
             fz -= gb * vz[i];
@@ -532,7 +574,6 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             oty[i] = ty;
             otz[i] = tz;
         }
-        const int b = (i - i0) % DEM_KICK_BLOCK, ib = i - b;
         bf[0][b] = fx;
         bf[1][b] = fy;
         bf[2][b] = fz;
@@ -541,6 +582,8 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         bf[5][b] = tz;
         if (b + 1 < DEM_KICK_BLOCK && i + 1 < i1)
             continue;
+        if (cell) /* before the kicks: the velocities of the pass */
+            virial_block(&Q, ib, b + 1, bc, w, vir, i + 1 == i1);
         /* the block's kicks and drifts, in SIMD lanes */
         if (K.on && !K.chain) {
 #pragma omp simd

@@ -179,11 +179,13 @@ int dem_sim_cell_remap(struct dem_sim *s)
     return changed;
 }
 
-int dem_sim_cell_strained(const struct dem_sim *s, double range)
+double dem_sim_cell_closure(const struct dem_sim *s)
 {
+    const struct dem_lattice *b = &s->cell.built;
+    if (!(b->v[0] > 0.0)) /* no list built yet */
+        return 0.0;
     struct dem_lattice c;
     dem_sim_lattice(s, &c);
-    const struct dem_lattice *b = &s->cell.built;
     /* the map since the build, h h_b^-1, minus the identity: a pair at
      * distance <= range has moved by at most |M - 1| range relative to
      * its partner (Frobenius norm bounds the operator norm) */
@@ -197,5 +199,5 @@ int dem_sim_cell_strained(const struct dem_sim *s, double range)
                 m += h[a][k] * g[k][bb];
             n2 += m * m;
         }
-    return sqrt(n2) * range > DEM_CELL_AFFINE_SKIN * s->skin;
+    return sqrt(n2) * s->cell.range;
 }

@@ -63,6 +63,11 @@ struct dem_cell {
                                  sum over contacts of l (x) f plus
                                  sum m v (x) v, of the last force pass */
     double range;             /* m; interaction range, 2 a_max + skin */
+    double closure;           /* m; how much the cell's deformation may
+                                 have closed a listed pair since the last
+                                 build when the drift limit was last set
+                                 (dem_sim_cell_closure) plus the reserve
+                                 for one step (DEM_CELL_AFFINE_AHEAD) */
     double *vir;              /* the force pass's virial block sums */
 };
 
@@ -73,6 +78,7 @@ struct dem_cell {
 
 /* Image codes: 2 bits per axis, s + 1. */
 #define DEM_IMG_NONE 21 /* s = (0, 0, 0) */
+#define DEM_IMG_CODES 43 /* codes 0 .. 42 (s = (1, 1, 1)) */
 static inline int dem_img_code(int sx, int sy, int sz)
 {
     return (sx + 1) | (sy + 1) << 2 | (sz + 1) << 4;

@@ -110,21 +110,30 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
 }
 
 /* The displacement since the last build that calls for a rebuild, for
- * the skin now. */
+ * the skin now (and in a cell its deformation since the build, see
+ * DEM_CELL_AFFINE_AHEAD). Depends only on the state a checkpoint keeps. */
 static void set_drift_lim(struct dem_sim *s)
 {
-    s->drift_lim = (s->cell.on ? 0.4 : 0.5) * s->skin;
+    if (!s->cell.on) {
+        s->drift_lim = 0.5 * s->skin;
+        return;
+    }
+    s->cell.closure =
+        dem_sim_cell_closure(s) + DEM_CELL_AFFINE_AHEAD * s->skin;
+    s->drift_lim = 0.5 * (s->skin - s->cell.closure);
 }
 
 int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
 {
-    set_drift_lim(s);
-    if (!s->cell.on)
+    if (!s->cell.on) {
+        set_drift_lim(s);
         return DEM_OK;
+    }
     double rmax = 0.0;
     for (int i = 0; i < s->p.n; i++)
         rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
     s->cell.range = 2.0 * rmax + s->skin_max;
+    set_drift_lim(s); /* from the range and the lattice built */
     const size_t nb = (size_t)(s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
     free(s->cell.vir);
     s->cell.vir = calloc(9 * (nb ? nb : 1), sizeof *s->cell.vir);
@@ -258,9 +267,12 @@ static int walls_need_rebuild(const struct dem_sim *s)
     if (s->cell.on) {
         struct dem_lattice c;
         dem_sim_lattice(s, &c);
+        /* the drift limit of the pass that moved the particles assumed
+         * a closure of at most cell.closure */
+        const double e = dem_sim_cell_closure(s);
         return fabs(c.v[1]) > 0.5 * c.v[0] || fabs(c.v[2]) > 0.5 * c.v[0] ||
-               fabs(c.v[4]) > 0.5 * c.v[3] ||
-               dem_sim_cell_strained(s, s->cell.range);
+               fabs(c.v[4]) > 0.5 * c.v[3] || e > s->cell.closure ||
+               e > (DEM_CELL_AFFINE_MAX - DEM_CELL_AFFINE_AHEAD) * s->skin;
     }
     const double half = 0.5 * s->skin;
     for (int w = 0; w < s->nwall; w++)
@@ -406,6 +418,8 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
         if (rc)
             return rc;
     }
+    if (s->cell.on) /* for the deformation the cell has now */
+        set_drift_lim(s);
     double t3 = lap(s);
     /* the particles are where the chained pass before left them, so
      * the particle records it wrote are still theirs (contact/pass.c) */

@@ -99,8 +99,8 @@ struct dem_sim {
     long build_step;  /* step of the last list build */
     double drift_lim; /* m; a particle's displacement since the last list
                          build that calls for a rebuild: half the skin,
-                         in a periodic cell 0.4 of it (the cell's own
-                         deformation takes DEM_CELL_AFFINE_SKIN) */
+                         in a periodic cell half of what the cell's own
+                         deformation leaves of it (cell.closure) */
     long nbuild; /* neighbour-list builds so far */
     int reorder; /* 1: sort particles in cell order at each
                     rebuild (indices change; id does not) */
@@ -195,9 +195,14 @@ double dem_sim_skin_largest(const struct dem_particles *p);
 double dem_sim_skin_share(const struct dem_sim *s);
 
 /* The periodic cell (core/cell.c). */
-/* Share of the skin the cell's deformation may use up between two list
- * builds (the particles' own motion takes 2 x 0.4). */
-#define DEM_CELL_AFFINE_SKIN 0.2
+/* A listed pair closes by at most twice the drift limit plus what the
+ * cell's deformation since the build adds (dem_sim_cell_closure): the
+ * drift limit is set at every step to half the skin minus that closure
+ * and a reserve of DEM_CELL_AFFINE_AHEAD of the skin for the next step's
+ * deformation; a step that deforms the cell by more, or a closure beyond
+ * DEM_CELL_AFFINE_MAX of the skin, calls for a rebuild. */
+#define DEM_CELL_AFFINE_AHEAD 0.02
+#define DEM_CELL_AFFINE_MAX 0.5
 /* The lattice now, from the walls and the tilts. */
 void dem_sim_lattice(const struct dem_sim *s, struct dem_lattice *c);
 /* The velocity gradient of the cell's affine field, hdot h^-1, as
@@ -212,9 +217,10 @@ void dem_sim_cell_wrap(struct dem_sim *s);
 /* Re-map every tilt beyond half its shear length (Lees-Edwards); returns
  * whether one was. */
 int dem_sim_cell_remap(struct dem_sim *s);
-/* Whether the cell has deformed since the last build so much that pairs
- * at distance range may have closed by DEM_CELL_AFFINE_SKIN of the skin. */
-int dem_sim_cell_strained(const struct dem_sim *s, double range);
+/* How much the cell's deformation since the last build may have closed a
+ * listed pair (m): |h h_built^-1 - 1| times the interaction range; 0
+ * before the first build. */
+double dem_sim_cell_closure(const struct dem_sim *s);
 
 /* Box edge lengths and volume (area in 2D) from the wall positions. */
 void dem_sim_box(const struct dem_sim *s, double L[3], double *volume);
