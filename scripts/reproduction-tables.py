@@ -157,6 +157,70 @@ def biaxial_pressure(part):
             pm(slope0), pm(slope1)))
 
 
+def adhesion_strength(d):
+    """Luding et al. Fig. 5 bottom, read at fixed confining pressure: the
+    peak deviator q = sigma_axial - sigma_lateral of the over-consolidated
+    frictionless runs (parts oc-*), per k_c/k2 and pressure; what the
+    adhesion adds to it, q(k_c) - q(0); and that as a share of what
+    k_c = k2 adds, against the two candidate shapes: f_min (the largest
+    adhesive force, k_c (k2 - k1)/(k2 + k_c) per unit overlap, shares
+    0.40 and 0.67 at k_c/k2 = 0.25 and 0.5 with k1/k2 = 1/2) and k_c
+    itself (0.25, 0.5). Unlike the intercept c of a Mohr-Coulomb fit,
+    which extrapolates 3-4 circles to zero stress, q at each pressure is
+    measured directly."""
+    q = {}
+    for name in sorted(os.listdir(d)):
+        path = os.path.join(d, name, "sweep.json")
+        if not name.startswith("oc-") or not os.path.exists(path):
+            continue
+        for r in load(path)["runs"]:
+            pk = r.get("peak") or {}
+            if r.get("status") != "finished" or \
+                    pk.get("sigma_axial") is None or \
+                    pk.get("sigma_lateral") is None:
+                continue
+            key = (r["kc_over_k2"], r["confining_pressure"])
+            q.setdefault(key, []).append(
+                r["peak"]["sigma_axial"] - r["peak"]["sigma_lateral"])
+    kcs = sorted({k for k, _ in q})
+    ps = sorted({p for _, p in q})
+    if 0 not in kcs or 1 not in kcs:
+        return
+    print("\n## Fig. 5 bottom at fixed confining pressure (parts oc-*)\n")
+    print("| k_c/k2 | f_min share | k_c share | " + " | ".join(
+        "p = %g: q (n) | added | share" % p for p in ps) + " |")
+    print("|---|---|---|" + "---|---|---|" * len(ps))
+    stats = {k: mean_se(v) for k, v in q.items()}
+    for kc in kcs:
+        fmin = 2 * kc / (1 + kc)  # f_min(k_c) / f_min(k2)
+        cells = []
+        for p in ps:
+            a, z, one = stats.get((kc, p)), stats.get((0, p)), \
+                stats.get((1, p))
+            if not a:
+                cells += ["–", "–", "–"]
+                continue
+            cell = "%.1f ± %.1f (%d)" % (a["mean"], a["se"] or 0, a["n"])
+            if not z or not one or z["se"] is None or one["se"] is None \
+                    or a["se"] is None:
+                cells += [cell, "–", "–"]
+                continue
+            if kc == 0:
+                cells += [cell, "0", "0"]
+                continue
+            add = a["mean"] - z["mean"]
+            add_se = math.hypot(a["se"], z["se"])
+            full = one["mean"] - z["mean"]
+            share = add / full
+            # the two differences share q(0): propagate with it counted once
+            d_add = math.hypot(a["se"] / full, z["se"] * (add - full) /
+                               full ** 2)
+            share_se = math.hypot(d_add, one["se"] * add / full ** 2)
+            cells += [cell, "%.1f ± %.1f" % (add, add_se),
+                      "1" if kc == 1 else "%.3f ± %.3f" % (share, share_se)]
+        print("| %g | %.2f | %.2f | %s |" % (kc, fmin, kc, " | ".join(cells)))
+
+
 def table_of(part):
     """The table for a part, chosen by what its sweep.json holds."""
     s = load(os.path.join(part, "sweep.json"))
@@ -179,6 +243,7 @@ def main():
             fn = table_of(part)
             if fn:
                 fn(part)
+    adhesion_strength(d)
 
 
 if __name__ == "__main__":
