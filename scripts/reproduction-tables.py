@@ -13,6 +13,8 @@ the peak, critical and volumetric numbers per confining pressure); means are giv
 import json
 import math
 import os
+import shutil
+import subprocess
 import sys
 
 
@@ -219,6 +221,39 @@ def adhesion_strength(d):
             cells += [cell, "%.1f ± %.1f" % (add, add_se),
                       "1" if kc == 1 else "%.3f ± %.3f" % (share, share_se)]
         print("| %g | %.2f | %.2f | %s |" % (kc, fmin, kc, " | ".join(cells)))
+    plot_shares(d, stats, kcs, ps)
+
+
+def plot_shares(d, stats, kcs, ps):
+    """The shares of adhesion_strength as a picture: DIR/oc-fixed-pressure/
+    shares.dat (k_c/k2, then share and its s.e. per pressure) and
+    shares.png, drawn by the shares.gp kept there (if gnuplot is found)."""
+    out = os.path.join(d, "oc-fixed-pressure")
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "shares.dat"), "w") as f:
+        f.write("# written by scripts/reproduction-tables.py from the oc-* "
+                "parts\n# k_c/k2" + "".join(
+                    "  share(p=%g) se" % p for p in ps) + "\n")
+        for kc in kcs:
+            row = ["%g" % kc]
+            for p in ps:
+                a, z, one = (stats.get((kc, p)), stats.get((0, p)),
+                             stats.get((1, p)))
+                if not (a and z and one) or None in (
+                        a["se"], z["se"], one["se"]):
+                    row += ["?", "?"]
+                    continue
+                full = one["mean"] - z["mean"]
+                add = a["mean"] - z["mean"]
+                se = 0.0 if kc in (0, 1) else math.hypot(
+                    math.hypot(a["se"] / full,
+                               z["se"] * (add - full) / full ** 2),
+                    one["se"] * add / full ** 2)
+                row += ["%.5g" % (add / full), "%.3g" % se]
+            f.write(" ".join(row) + "\n")
+    gp = os.path.join(out, "shares.gp")
+    if os.path.exists(gp) and shutil.which("gnuplot"):
+        subprocess.run(["gnuplot", "shares.gp"], cwd=out, check=True)
 
 
 def table_of(part):

@@ -25,8 +25,9 @@
  * values from a copy of the particles in records: each thread first
  * writes its share of them, then a barrier; a chained pass writes its
  * particles' records right after their drift instead, and the next pass
- * (dem_sim_step: no rebuild, no cell map, no ghosts in between) skips
- * the copy and the barrier.
+ * (dem_sim_step: no rebuild and no ghosts in between; a periodic cell's
+ * map moves the records with the particles) skips the copy and the
+ * barrier.
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
  * once as always-inline functions and instantiated per normal law of
@@ -242,10 +243,10 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
 }
 
 #if DEM_PASS_RECORDS
-/* Particle records (struct contacts.rec): x y z r | vx vy vz m | wx wy wz 0,
- * 32-byte aligned, so that a pair's particle loads three vectors and four
- * pairs' values reach their SIMD lanes by 4 x 4 transposes. */
-#define DEM_REC 12
+/* Particle records (struct contacts.rec, DEM_REC doubles): x y z r |
+ * vx vy vz m | wx wy wz 0, 32-byte aligned, so that a pair's particle
+ * loads three vectors and four pairs' values reach their SIMD lanes by
+ * 4 x 4 transposes. */
 
 /* Four values of four consecutive particles (rows a, b, c, d: one value
  * each) as the same block of their four records at o, 12 doubles apart. */

@@ -106,11 +106,32 @@ static void map_set(double *restrict X, double *restrict Y, double *restrict Z,
     }
 }
 
-static void map_range(const struct dem_particles *p, int i0, int i1,
+/* The positions in the force pass's particle records (struct
+ * dem_pairs.rec), with the arithmetic of map_set: the same bits. */
+static void map_records(double *rec, int i0, int i1, double M[3][3],
+                        const double lf[3], const double lt[3])
+{
+    const double m00 = M[0][0], m01 = M[0][1], m02 = M[0][2], m11 = M[1][1],
+                 m12 = M[1][2], m22 = M[2][2];
+    for (int i = i0; i < i1; i++) {
+        double *o = rec + DEM_REC * (size_t)i;
+        const double dx = o[0] - lf[0], dy = o[1] - lf[1], dz = o[2] - lf[2];
+        o[0] = lt[0] + m00 * dx + m01 * dy + m02 * dz;
+        o[1] = lt[1] + m11 * dy + m12 * dz;
+        o[2] = lt[2] + m22 * dz;
+    }
+}
+
+static void map_range(const struct dem_sim *s, int i0, int i1,
                       double M[3][3], const double lf[3], const double lt[3])
 {
+    const struct dem_particles *p = &s->p;
     map_set(p->x, p->y, p->z, i0, i1, M, lf, lt);
     map_set(p->x0, p->y0, p->z0, i0, i1, M, lf, lt);
+    /* records a chained records pass wrote at the drift move with their
+     * particles, so that the next pass need not copy them again */
+    if (s->pairs.rec_written)
+        map_records(s->pairs.rec, i0, i1, M, lf, lt);
 }
 
 void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
@@ -130,7 +151,7 @@ void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
 #pragma omp parallel if (n > 50000)
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        map_range(&s->p, dem_block(n, t, nt), dem_block(n, t + 1, nt), M,
+        map_range(s, dem_block(n, t, nt), dem_block(n, t + 1, nt), M,
                   from->lo, to->lo);
     }
 }

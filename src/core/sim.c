@@ -421,9 +421,10 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     if (s->cell.on) /* for the deformation the cell has now */
         set_drift_lim(s);
     double t3 = lap(s);
-    /* the particles are where the chained pass before left them, so
-     * the particle records it wrote are still theirs (contact/pass.c) */
-    s->pairs.rec_fresh = drifted && !rebuild && !s->halo && !s->cell.on;
+    /* the particles are where the chained pass before left them (in a
+     * cell mapped with their records, dem_sim_cell_map), so the
+     * particle records it wrote are still theirs (contact/pass.c) */
+    s->pairs.rec_fresh = drifted && !rebuild && !s->halo;
     s->moved = dem_sim_forces_kick(s, h, chain);
     s->drifted = chain;
     double t4 = lap(s);

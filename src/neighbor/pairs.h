@@ -110,12 +110,16 @@ struct dem_pairs {
                       kept (carried at a rebuild); the others are never
                       read or written */
     int torques;   /* 1: the entries' resistance torques (forces.m) */
-    double *rec;   /* nalloc records of 12 doubles, 64-byte aligned: the
-                      force pass's copy of the particles (contact/pass.c) */
+    double *rec;   /* nalloc records of DEM_REC doubles, 64-byte aligned:
+                      the force pass's copy of the particles
+                      (contact/pass.c), x y z r | vx vy vz m | wx wy wz 0 */
     int rec_fresh;   /* set by dem_sim_step for its pass: no particle has
                         moved since the last pass, which was chained */
     int rec_written; /* the last pass was chained and wrote rec */
 };
+
+/* Doubles per particle record (struct dem_pairs.rec). */
+#define DEM_REC 12
 
 struct dem_wall;
 
