@@ -224,6 +224,76 @@ def adhesion_strength(d):
     plot_shares(d, stats, kcs, ps)
 
 
+def loading_blocks(path):
+    """The runs' loading curves of a plots/loading_curves.dat: {run name:
+    [(axial strain, volumetric strain, deviator), ...]}."""
+    blocks, cur = {}, None
+    with open(path) as f:
+        for line in f:
+            if line.startswith("# columns"):
+                continue
+            if line.startswith("# "):
+                cur = blocks.setdefault(line[2:].strip(), [])
+            elif line.strip() and cur is not None:
+                cur.append(tuple(float(x) for x in line.split()))
+    return blocks
+
+
+def adhesion_window(d, lo=0.01, hi=0.05):
+    """The shares of adhesion_strength from the mean deviator over axial
+    strains lo..hi instead of the peak (which, as the largest value of a
+    fluctuating curve, is biased up by about the fluctuation), from the
+    loading curves kept (oc-kc kept them for k_c/k2 = 0.5 only). Also
+    the fluctuation: the rms of q about its 21-point moving mean."""
+    q, rms = {}, {}
+    for name in sorted(os.listdir(d)):
+        part = os.path.join(d, name)
+        dat = os.path.join(part, "plots", "loading_curves.dat")
+        if not name.startswith("oc-") or not os.path.exists(dat):
+            continue
+        runs = {r["name"]: r for r in load(os.path.join(part, "sweep.json"))
+                ["runs"] if r.get("status") == "finished"}
+        for run, rows in loading_blocks(dat).items():
+            r = runs.get(run)
+            w = [x[2] for x in rows if lo <= x[0] <= hi]
+            if not r or len(w) < 10:
+                continue
+            key = (r["kc_over_k2"], r["confining_pressure"])
+            q.setdefault(key, []).append(sum(w) / len(w))
+            ys = [x[2] for x in rows if x[0] > lo]
+            dev = [ys[i] - sum(ys[max(0, i - 10):i + 11]) /
+                   len(ys[max(0, i - 10):i + 11]) for i in range(len(ys))]
+            rms.setdefault(key, []).append(
+                math.sqrt(sum(x * x for x in dev) / len(dev)))
+    stats = {k: mean_se(v) for k, v in q.items()}
+    ps = sorted({p for _, p in q})
+    print("\n## The same, mean deviator over %g-%g axial strain\n" % (lo, hi))
+    print("| k_c/k2 | " + " | ".join(
+        "p = %g: q (n), rms | share" % p for p in ps) + " |")
+    print("|---|" + "---|---|" * len(ps))
+    for kc in sorted({k for k, _ in q}):
+        cells = []
+        for p in ps:
+            a, z, one = stats.get((kc, p)), stats.get((0, p)), \
+                stats.get((1, p))
+            if not a:
+                cells += ["–", "–"]
+                continue
+            cells.append("%.1f ± %.1f (%d), %.1f" % (
+                a["mean"], a["se"] or 0, a["n"],
+                sum(rms[(kc, p)]) / len(rms[(kc, p)])))
+            if kc in (0, 1) or not (z and one) or None in (
+                    a["se"], z["se"], one["se"]):
+                cells.append("–" if kc not in (0, 1) else "%d" % kc)
+                continue
+            add, full = a["mean"] - z["mean"], one["mean"] - z["mean"]
+            se = math.hypot(math.hypot(a["se"] / full,
+                                       z["se"] * (add - full) / full ** 2),
+                            one["se"] * add / full ** 2)
+            cells.append("%.3f ± %.3f" % (add / full, se))
+        print("| %g | %s |" % (kc, " | ".join(cells)))
+
+
 def plot_shares(d, stats, kcs, ps):
     """The shares of adhesion_strength as a picture: DIR/oc-fixed-pressure/
     shares.dat (k_c/k2, then share and its s.e. per pressure) and
@@ -279,6 +349,7 @@ def main():
             if fn:
                 fn(part)
     adhesion_strength(d)
+    adhesion_window(d)
 
 
 if __name__ == "__main__":
