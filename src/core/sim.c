@@ -374,7 +374,6 @@ static void adapt_skin(struct dem_sim *s)
         skin = DEM_SKIN_STEP * s->skin;
     const double lo = DEM_SKIN_MIN * s->skin_max;
     s->skin = skin < lo ? lo : (skin > s->skin_max ? s->skin_max : skin);
-    set_drift_lim(s);
 }
 
 /* Whether a quiet packing's list is due for a build that shrinks its
@@ -418,8 +417,7 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
         if (rc)
             return rc;
     }
-    if (s->cell.on) /* for the deformation the cell has now */
-        set_drift_lim(s);
+    set_drift_lim(s); /* for the skin and the cell's deformation now */
     double t3 = lap(s);
     /* the particles are where the chained pass before left them (in a
      * cell mapped with their records, dem_sim_cell_map), so the
