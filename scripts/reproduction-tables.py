@@ -159,6 +159,23 @@ def biaxial_pressure(part):
             pm(slope0), pm(slope1)))
 
 
+def share_of(stats, kc, p):
+    """What k_c adds to q at pressure p as a share of what k_c = k2 adds,
+    (share, its s.e.), from stats {(k_c/k2, p): mean_se}; the two
+    differences share q(0), whose error is counted once. None where a
+    mean or an error is missing; exactly (kc, 0) at k_c = 0 and k2."""
+    a, z, one = stats.get((kc, p)), stats.get((0, p)), stats.get((1, p))
+    if not (a and z and one) or None in (a["se"], z["se"], one["se"]):
+        return None
+    if kc in (0, 1):
+        return kc, 0.0
+    add, full = a["mean"] - z["mean"], one["mean"] - z["mean"]
+    se = math.hypot(math.hypot(a["se"] / full,
+                               z["se"] * (add - full) / full ** 2),
+                    one["se"] * add / full ** 2)
+    return add / full, se
+
+
 def adhesion_strength(d):
     """Luding et al. Fig. 5 bottom, read at fixed confining pressure: the
     peak deviator q = sigma_axial - sigma_lateral of the over-consolidated
@@ -203,23 +220,16 @@ def adhesion_strength(d):
                 cells += ["–", "–", "–"]
                 continue
             cell = "%.1f ± %.1f (%d)" % (a["mean"], a["se"] or 0, a["n"])
-            if not z or not one or z["se"] is None or one["se"] is None \
-                    or a["se"] is None:
+            sh = share_of(stats, kc, p)
+            if sh is None:
                 cells += [cell, "–", "–"]
-                continue
-            if kc == 0:
+            elif kc == 0:
                 cells += [cell, "0", "0"]
-                continue
-            add = a["mean"] - z["mean"]
-            add_se = math.hypot(a["se"], z["se"])
-            full = one["mean"] - z["mean"]
-            share = add / full
-            # the two differences share q(0): propagate with it counted once
-            d_add = math.hypot(a["se"] / full, z["se"] * (add - full) /
-                               full ** 2)
-            share_se = math.hypot(d_add, one["se"] * add / full ** 2)
-            cells += [cell, "%.1f ± %.1f" % (add, add_se),
-                      "1" if kc == 1 else "%.3f ± %.3f" % (share, share_se)]
+            else:
+                add = a["mean"] - z["mean"]
+                cells += [cell, "%.1f ± %.1f" % (
+                    add, math.hypot(a["se"], z["se"])),
+                    "1" if kc == 1 else "%.3f ± %.3f" % sh]
         print("| %g | %.2f | %.2f | %s |" % (kc, fmin, kc, " | ".join(cells)))
     plot_shares(d, stats, kcs, ps)
 
@@ -274,23 +284,16 @@ def adhesion_window(d, lo=0.01, hi=0.05):
     for kc in sorted({k for k, _ in q}):
         cells = []
         for p in ps:
-            a, z, one = stats.get((kc, p)), stats.get((0, p)), \
-                stats.get((1, p))
+            a = stats.get((kc, p))
             if not a:
                 cells += ["–", "–"]
                 continue
             cells.append("%.1f ± %.1f (%d), %.1f" % (
                 a["mean"], a["se"] or 0, a["n"],
                 sum(rms[(kc, p)]) / len(rms[(kc, p)])))
-            if kc in (0, 1) or not (z and one) or None in (
-                    a["se"], z["se"], one["se"]):
-                cells.append("–" if kc not in (0, 1) else "%d" % kc)
-                continue
-            add, full = a["mean"] - z["mean"], one["mean"] - z["mean"]
-            se = math.hypot(math.hypot(a["se"] / full,
-                                       z["se"] * (add - full) / full ** 2),
-                            one["se"] * add / full ** 2)
-            cells.append("%.3f ± %.3f" % (add / full, se))
+            sh = share_of(stats, kc, p)
+            cells.append("%d" % kc if kc in (0, 1) else
+                         "–" if sh is None else "%.3f ± %.3f" % sh)
         print("| %g | %s |" % (kc, " | ".join(cells)))
 
 
@@ -307,19 +310,9 @@ def plot_shares(d, stats, kcs, ps):
         for kc in kcs:
             row = ["%g" % kc]
             for p in ps:
-                a, z, one = (stats.get((kc, p)), stats.get((0, p)),
-                             stats.get((1, p)))
-                if not (a and z and one) or None in (
-                        a["se"], z["se"], one["se"]):
-                    row += ["?", "?"]
-                    continue
-                full = one["mean"] - z["mean"]
-                add = a["mean"] - z["mean"]
-                se = 0.0 if kc in (0, 1) else math.hypot(
-                    math.hypot(a["se"] / full,
-                               z["se"] * (add - full) / full ** 2),
-                    one["se"] * add / full ** 2)
-                row += ["%.5g" % (add / full), "%.3g" % se]
+                sh = share_of(stats, kc, p)
+                row += ["?", "?"] if sh is None else \
+                    ["%.5g" % sh[0], "%.3g" % sh[1]]
             f.write(" ".join(row) + "\n")
     gp = os.path.join(out, "shares.gp")
     if os.path.exists(gp) and shutil.which("gnuplot"):
