@@ -341,7 +341,8 @@ static void print_timing(const struct dem_run_timing *T)
             pc * P->walls, pc * P->integrate);
     if (P->exchange > 0.0)
         fprintf(stderr, "MPI exchanges %.1f %%, ", pc * P->exchange);
-    fprintf(stderr, "stages, samples and outputs %.1f %%\n", pc * rest);
+    fprintf(stderr, "stages, samples and outputs %.1f %%; force pass %s\n",
+            pc * rest, T->pass);
 }
 
 /* dem_run or dem_run_resume with SIGINT and SIGTERM turned into a

@@ -635,6 +635,8 @@ struct dem_run_timing {
     long builds;            /* neighbour-list builds in these steps */
     double skin_share;      /* the list's skin at the end over its largest
                                (the skin adapts, docs/physics.md) */
+    char pass[96];          /* the force pass's compilations: which ran, or
+                               the trials each won (dem_sim_pass_tally) */
 };
 
 #define DEM_BENCH_DEFAULT_STEPS 20000

@@ -42,7 +42,25 @@ s2=$(check b2.log)
 [ "$s2" != bad ] || fail "b2.log: $(line b2.log)"
 [ "$s1" -ge 1500 ] && [ $((s1 + s2)) -eq 3000 ] ||
     fail "stopped $s1 + resumed $s2 steps, not 3000"
+# the line ends with the force pass's compilations: the trials each won,
+# adding up to the trials run, or the one forced by DEMBOX_PASS
+tally=$(line a.log | sed -n 's/.*; force pass \(.*\)$/\1/p')
+[ -n "$tally" ] || fail "no force pass in: $(line a.log)"
+case "$tally" in
+*" trials")
+    won=$(printf '%s\n' "$tally" | sed 's/ of [0-9]* trials$//' |
+        tr ',' '\n' | awk '{ k += $2 } END { print k + 0 }')
+    all=$(printf '%s\n' "$tally" | sed 's/.* of \([0-9]*\) trials$/\1/')
+    [ "$won" -ge 1 ] && [ "$won" -eq "$all" ] ||
+        fail "trials won ($won) do not add up to $all: $tally" ;;
+*) [ "$(printf '%s\n' "$tally" | wc -w)" -eq 1 ] ||
+    fail "force pass: $tally" ;;
+esac
+DEMBOX_PASS=gathers "$BIN" run biaxial2d --max-steps 300 --threads 1 -o f \
+    > /dev/null 2> f.log || fail "forced pass: $(tail -3 f.log)"
+line f.log | grep -q "; force pass gathers$" ||
+    fail "DEMBOX_PASS=gathers: $(line f.log)"
 "$BIN" run biaxial2d --max-steps 50 --threads 1 --quiet -o c 2> c.log ||
     fail "quiet run failed"
 [ -z "$(line c.log)" ] || fail "--quiet printed: $(line c.log)"
-echo "ok: 3000 steps; stopped $s1 + resumed $s2"
+echo "ok: 3000 steps; stopped $s1 + resumed $s2; force pass $tally"

@@ -271,6 +271,24 @@ void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size)
         snprintf(buf + len, size - (size_t)len, ")");
 }
 
+void dem_sim_pass_tally(const struct dem_sim *s, char *buf, size_t size)
+{
+    const struct dem_pass_choice *C = &s->pass;
+    long trials = 0;
+    for (int v = 0; v < NPASS; v++)
+        trials += C->won[v];
+    if (!trials) {
+        snprintf(buf, size, "%s", passes[C->current].name);
+        return;
+    }
+    int len = 0;
+    for (int v = 0; v < NPASS && len >= 0 && (size_t)len < size; v++)
+        len += snprintf(buf + len, size - (size_t)len, "%s%s %ld",
+                        v ? ", " : "", passes[v].name, C->won[v]);
+    if (len >= 0 && (size_t)len < size)
+        snprintf(buf + len, size - (size_t)len, " of %ld trials", trials);
+}
+
 static double seconds_now(void)
 {
     struct timespec t;
@@ -310,10 +328,12 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
     const double t = seconds_now() - t0;
     if (done % TRIAL_ROUNDS && t < C->best[v])
         C->best[v] = t;
-    if (--C->trial == 0)
+    if (--C->trial == 0) {
         for (int u = 0; u < NPASS; u++)
             if (C->best[u] < C->best[C->current])
                 C->current = u;
+        C->won[C->current]++;
+    }
     return moved;
 }
 

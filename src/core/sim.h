@@ -42,6 +42,7 @@ struct dem_pass_choice {
     long since;  /* time steps since the last trial */
     double best[DEM_MAX_PASSES]; /* s; each variant's fastest pass in the
                                     trial */
+    long won[DEM_MAX_PASSES]; /* trials each variant won since the set-up */
 };
 
 struct dem_sim;
@@ -165,6 +166,10 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err);
 /* The force pass's compilation in use and why, e.g. "loads (fastest
  * pass: gathers 0.151 ms, loads 0.144 ms)" after a timing trial. */
 void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size);
+/* Which compilations ran, for a run's time line: "records" when one ran
+ * throughout (forced or the only one built, or no trial yet), else each
+ * variant's won trials, e.g. "records 41, gathers 1 of 42 trials". */
+void dem_sim_pass_tally(const struct dem_sim *s, char *buf, size_t size);
 
 /* Recompute forces of the current state without moving anything
  * (fills s->sums when s->measure is set). The tangential springs take

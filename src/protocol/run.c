@@ -582,6 +582,7 @@ static void report_timing(const struct run_ctx *r)
     T->step = r->sim.timers;
     T->builds = r->sim.nbuild - r->nbuild0;
     T->skin_share = dem_sim_skin_share(&r->sim);
+    dem_sim_pass_tally(&r->sim, T->pass, sizeof T->pass);
 }
 
 /* The stages from first on, then the final outputs; releases everything
