@@ -168,7 +168,8 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err);
 void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size);
 /* Which compilations ran, for a run's time line: "records" when one ran
  * throughout (forced or the only one built, or no trial yet), else each
- * variant's won trials, e.g. "records 41, gathers 1 of 42 trials". */
+ * variant's won trials in the order of the build, e.g. "gathers 1,
+ * loads 0, records 41 of 42 trials". */
 void dem_sim_pass_tally(const struct dem_sim *s, char *buf, size_t size);
 
 /* Recompute forces of the current state without moving anything
