@@ -110,30 +110,31 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
 }
 
 /* The displacement since the last build that calls for a rebuild, for
- * the skin now (and in a cell its deformation since the build, see
- * DEM_CELL_AFFINE_AHEAD). Depends only on the state a checkpoint keeps. */
-static void set_drift_lim(struct dem_sim *s)
+ * the skin now (and in a cell its deformation since the build, e =
+ * dem_sim_cell_closure, see DEM_CELL_AFFINE_AHEAD; 0 without a cell).
+ * Depends only on the state a checkpoint keeps. */
+static void set_drift_lim(struct dem_sim *s, double e)
 {
     if (!s->cell.on) {
         s->drift_lim = 0.5 * s->skin;
         return;
     }
-    s->cell.closure =
-        dem_sim_cell_closure(s) + DEM_CELL_AFFINE_AHEAD * s->skin;
+    s->cell.closure = e + DEM_CELL_AFFINE_AHEAD * s->skin;
     s->drift_lim = 0.5 * (s->skin - s->cell.closure);
 }
 
 int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
 {
     if (!s->cell.on) {
-        set_drift_lim(s);
+        set_drift_lim(s, 0.0);
         return DEM_OK;
     }
     double rmax = 0.0;
     for (int i = 0; i < s->p.n; i++)
         rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
     s->cell.range = 2.0 * rmax + s->skin_max;
-    set_drift_lim(s); /* from the range and the lattice built */
+    set_drift_lim(s, dem_sim_cell_closure(s)); /* from the range and the
+                                                  lattice built */
     const size_t nb = (size_t)(s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
     free(s->cell.vir);
     s->cell.vir = calloc(9 * (nb ? nb : 1), sizeof *s->cell.vir);
@@ -260,16 +261,15 @@ static int kick_drift(struct dem_sim *s, double h)
 }
 
 /* Whether a wall has moved more than half the skin since the last build;
- * in a periodic cell, whether the cell has deformed too much or a tilt
- * calls for a re-map. */
-static int walls_need_rebuild(const struct dem_sim *s)
+ * in a periodic cell, whether the cell has deformed too much (e, its
+ * dem_sim_cell_closure now) or a tilt calls for a re-map. */
+static int walls_need_rebuild(const struct dem_sim *s, double e)
 {
     if (s->cell.on) {
         struct dem_lattice c;
         dem_sim_lattice(s, &c);
         /* the drift limit of the pass that moved the particles assumed
          * a closure of at most cell.closure */
-        const double e = dem_sim_cell_closure(s);
         return fabs(c.v[1]) > 0.5 * c.v[0] || fabs(c.v[2]) > 0.5 * c.v[0] ||
                fabs(c.v[4]) > 0.5 * c.v[3] || e > s->cell.closure ||
                e > (DEM_CELL_AFFINE_MAX - DEM_CELL_AFFINE_AHEAD) * s->skin;
@@ -402,7 +402,9 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     double t2 = lap(s);
     s->t += s->dt;
     s->step++;
-    int rebuild = moved || walls_need_rebuild(s) || skin_stale(s);
+    /* the cell's deformation since the build, once per step */
+    const double e = s->cell.on ? dem_sim_cell_closure(s) : 0.0;
+    int rebuild = moved || walls_need_rebuild(s, e) || skin_stale(s);
     double ts = 0.0, tr = 0.0; /* the exchanges between ranks */
     if (s->halo) {
         const double a = lap(s);
@@ -417,7 +419,9 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
         if (rc)
             return rc;
     }
-    set_drift_lim(s); /* for the skin and the cell's deformation now */
+    /* for the skin and the cell's deformation now (a build starts it
+     * again) */
+    set_drift_lim(s, rebuild && s->cell.on ? dem_sim_cell_closure(s) : e);
     double t3 = lap(s);
     /* the particles are where the chained pass before left them (in a
      * cell mapped with their records, dem_sim_cell_map), so the
