@@ -468,6 +468,56 @@ static void one_seed_cyclic_sweep_draws_its_cycles(void **state)
     }
     fclose(f);
     assert_int_equal(rows, 2);
+    /* nothing negative: no open circles in the key */
+    snprintf(dir, sizeof dir, "%s/plots/strain_accumulation.gp", out);
+    char *gp = dem_read_text(dir, NULL);
+    assert_non_null(gp);
+    assert_null(strstr(gp, "open: negative"));
+    free(gp);
+    dem_sweep_grid_free(&g);
+}
+
+/* A cycle in which the sample relaxed (eps_D fell) is drawn at its
+ * magnitude as an open circle on the logarithmic axes, and the key says
+ * so; before, a negative value was silently left out of the picture. */
+static void relaxing_cycle_is_drawn_as_an_open_circle(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/relaxing", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "seed=1");
+    snprintf(dir, sizeof dir, "%s/runs/seed=1", out);
+    fake_run(dir, cfg, "seed=1",
+             "{\"dimension\": 2, \"loading_stage\": 1, "
+             "\"confining_pressure\": 100, \"peak\": {\"sin_phi\": 0.4}, "
+             "\"critical\": {\"sin_phi\": null}, \"cyclic_stage\": 1, "
+             "\"verdict\": \"shakedown\", \"cycles\": [{\"cycle\": 1, "
+             "\"strain_end\": 2e-3, \"strain_increment\": 2e-3}, "
+             "{\"cycle\": 2, \"strain_end\": 1.9e-3, "
+             "\"strain_increment\": -1e-4}]}\n");
+    collect_runs(&g, cfg, out);
+    snprintf(dir, sizeof dir, "%s/plots/strain_accumulation.dat", out);
+    char *dat = dem_read_text(dir, NULL);
+    assert_non_null(dat);
+    const char *row = strstr(dat, "\n2 ");
+    assert_non_null(row);
+    double inc = 0.0;
+    assert_int_equal(sscanf(row + 3, "%lf", &inc), 1);
+    assert_rel(inc, -1e-4, 1e-9); /* the table keeps the sign */
+    free(dat);
+    snprintf(dir, sizeof dir, "%s/plots/strain_accumulation.gp", out);
+    char *gp = dem_read_text(dir, NULL);
+    assert_non_null(gp);
+    /* in both panels: the gains with filled points, the losses at their
+     * magnitude with open ones */
+    assert_non_null(strstr(gp, "using 1:($2 < 0 ? -$2 : 1/0):3"));
+    assert_non_null(strstr(gp, "using 1:($4 < 0 ? -$4 : 1/0):5"));
+    assert_non_null(strstr(gp, "pointtype 6"));
+    assert_non_null(strstr(gp, "open: negative, |value| drawn"));
+    free(gp);
     dem_sweep_grid_free(&g);
 }
 
@@ -636,6 +686,7 @@ int main(void)
         cmocka_unit_test(flow_function_and_void_fit_recover_known_values),
         cmocka_unit_test(seed_ensembles_give_mean_and_standard_error),
         cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
+        cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
     };
     return cmocka_run_group_tests(tests, setup, NULL);

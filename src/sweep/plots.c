@@ -602,8 +602,10 @@ static void cyclic_block(FILE *dat, int ncyc, const double *inc,
 /* Strain accumulation, one series per cyclic run or, with seeds, per
  * ensemble (means with their standard errors). Two panels on logarithmic
  * axes, as the increments span many decades: the strain accumulated since
- * the start of the stage, and the strain gained per cycle; non-positive
- * values are not drawn. */
+ * the start of the stage, and the strain gained per cycle. A negative
+ * value (the sample relaxed in that cycle) is drawn at its magnitude as
+ * an open circle, and the key says so; a line connects the positive
+ * values only. */
 static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
@@ -619,7 +621,7 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
     title_t *title = malloc(((size_t)s->n + 1) * sizeof *title);
     if (!title)
         return DEM_ENOMEM;
-    int m = 0;
+    int m = 0, negative = 0;
     for (long i = 0; i < s->n; i++) {
         const struct dem__sweep_run *r = &s->runs[i];
         const int q = s->eng.gid[i];
@@ -644,6 +646,7 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
             v[2 * nc + c] = e ? e->cyc_end[c].mean : r->cyc_end[c];
             v[3 * nc + c] = e ? e->cyc_end[c].se : 0.0;
             runs[c] = e ? e->cyc_inc[c].n : 1;
+            negative |= v[c] < 0.0 || v[2 * nc + c] < 0.0;
         }
         char lab[512], par[520];
         label(s, i, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
@@ -670,14 +673,20 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
         fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
                 panel ? "unset key\n" : "",
                 panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
+        const int y = panel ? 2 : 4; /* the column drawn */
         for (int b = 0; b < m; b++)
             fprintf(gp,
-                    "  \"strain_accumulation.dat\" index %d using 1:%s with "
-                    "yerrorlines pointtype 7 pointsize 0.6 linecolor %d "
-                    "title \"%s\" noenhanced, \\\n",
-                    b,
-                    panel ? "($2 > 0 ? $2 : 1/0):3" : "($4 > 0 ? $4 : 1/0):5",
-                    b + 1, title[b]);
+                    "  \"strain_accumulation.dat\" index %d using 1:($%d > 0 "
+                    "? $%d : 1/0):%d with yerrorlines pointtype 7 pointsize "
+                    "0.6 linecolor %d title \"%s\" noenhanced, \\\n"
+                    "  \"\" index %d using 1:($%d < 0 ? -$%d : 1/0):%d with "
+                    "yerrorbars pointtype 6 pointsize 0.9 linecolor %d "
+                    "notitle, \\\n",
+                    b, y, y, y + 1, b + 1, title[b], b, y, y, y + 1, b + 1);
+        if (negative)
+            fprintf(gp, "  1/0 with points pointtype 6 pointsize 0.9 "
+                        "linecolor \"black\" title \"open: negative, "
+                        "|value| drawn\" noenhanced, \\\n");
         fprintf(gp, "  1/0 notitle\n");
     }
     fprintf(gp, "unset multiplot\n");

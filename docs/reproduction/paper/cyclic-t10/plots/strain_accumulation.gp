@@ -20,10 +20,14 @@ set key inside top left box opaque font ",10"
 set ylabel "ε_D at the end of cycle c"
 plot \
   "strain_accumulation.dat" index 0 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.5, 1 runs (0 ratcheting)" noenhanced, \
+  "" index 0 using 1:($4 < 0 ? -$4 : 1/0):5 with yerrorbars pointtype 6 pointsize 0.9 linecolor 1 notitle, \
+  1/0 with points pointtype 6 pointsize 0.9 linecolor "black" title "open: negative, |value| drawn" noenhanced, \
   1/0 notitle
 unset key
 set ylabel "Δε_D gained in cycle c"
 plot \
   "strain_accumulation.dat" index 0 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.5, 1 runs (0 ratcheting)" noenhanced, \
+  "" index 0 using 1:($2 < 0 ? -$2 : 1/0):3 with yerrorbars pointtype 6 pointsize 0.9 linecolor 1 notitle, \
+  1/0 with points pointtype 6 pointsize 0.9 linecolor "black" title "open: negative, |value| drawn" noenhanced, \
   1/0 notitle
 unset multiplot
