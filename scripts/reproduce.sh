@@ -125,13 +125,32 @@ else
 fi
 selected() { parts | while IFS='|' read -r n m f a; do case "$CHOSEN" in *" $n "*) echo "$n|$m|$f|$a" ;; esac; done; }
 
-total=0
+# Wall minutes of a part of M CPU minutes and sweep arguments A with
+# --jobs JOBS: its runs (the product of the --param value counts) go
+# min(runs, JOBS) at once, each with its --threads (default 1).
+part_wall() {
+    local m=$1 runs=1 threads=1 prev="" w
+    shift
+    for w in "$@"; do
+        case $prev in
+            --param) local c=${w#*=}
+                     c=${c//[^,]/}; runs=$((runs * (${#c} + 1))) ;;
+            --threads) threads=$w ;;
+        esac
+        prev=$w
+    done
+    local at=$(( runs < JOBS ? runs : JOBS ))
+    echo $(( (m + at * threads - 1) / (at * threads) ))
+}
+
+total=0 wall=0
 printf '%-18s %8s  %s\n' part CPU-min figures
 while IFS='|' read -r n m f a; do
     printf '%-18s %8s  %s\n' "$n" "$m" "$f"
     total=$((total + m))
+    # shellcheck disable=SC2086 # the arguments are split on purpose
+    wall=$((wall + $(part_wall "$m" $a)))
 done < <(selected)
-wall=$(( (total + JOBS - 1) / JOBS ))
 echo "mode --$MODE: about $total CPU minutes in all, $wall minutes with $JOBS jobs" \
      "(finished runs are skipped)"
 [ -z "$LIST" ] || exit 0

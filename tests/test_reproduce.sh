@@ -1,6 +1,6 @@
 #!/bin/sh
 # scripts/reproduce.sh, checked without the long runs: --list adds up the
-# parts, bad input is refused with a message and status 2, two parts run
+# parts and their wall time, bad input is refused with a message and status 2, two parts run
 # in --smoke mode (300 steps per run) and give their sweep.json, the
 # numbers are copied, a second call skips the finished runs, `dembox sweep
 # --collect` analyses them again without running anything, and a folder
@@ -16,6 +16,13 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 "$R" --paper --list --jobs 2 > "$T/list" || fail "--list"
 grep -q "^cyclic-mu " "$T/list" || fail "--paper --list lacks cyclic-mu"
 grep -q "CPU minutes in all" "$T/list" || fail "--list gives no total"
+# the wall time: a part's runs go min(runs, jobs) at once, each with its
+# own threads (cyclic-t10: 65 CPU minutes in one run of one thread;
+# cyclic-t10-full: 200 in one run of two threads)
+"$R" --paper --list --jobs 2 --only cyclic-t10 | grep -q "65 minutes with 2 jobs" ||
+    fail "--list: one run does not go faster with more jobs"
+"$R" --paper --list --jobs 1 --only cyclic-t10-full | grep -q "100 minutes with 1 jobs" ||
+    fail "--list: a part's --threads are not counted"
 
 set +e
 "$R" --only bogus "$T/x" 2> "$T/err"; rc=$?
