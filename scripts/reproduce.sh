@@ -10,7 +10,7 @@
 #   --quick       the scaled built-in examples, one sample per point
 #                 (default; about 25 CPU minutes)
 #   --paper       the papers' sizes and parameters with 3 seeds per point
-#                 (about 40 CPU hours, --list gives each part's: run it
+#                 (about 45 CPU hours, --list gives each part's: run it
 #                 over several sessions)
 #   --jobs N      runs at once (default: the number of cores)
 #   --only NAMES  only these parts (comma-separated; see --list)
