@@ -157,6 +157,42 @@ def biaxial_pressure(part):
             pm(e["critical_sin_phi"]) + " (%d)" % e["critical_sin_phi"]["n"],
             pm(e["void_ratio_initial"]), pm(e["void_ratio_critical"]),
             pm(slope0), pm(slope1)))
+    single_sample_trend(s, sm)
+
+
+def single_sample_trend(s, sm):
+    """How often one sample per pressure, as a paper without seeds has,
+    shows the critical friction falling with the pressure: over every
+    choice of one run per pressure (runs on a critical plateau only), the
+    share whose critical sin phi at the highest pressure is below that at
+    the lowest, and the share that falls at every step."""
+    by_p = {}
+    for r in s.get("runs") or []:
+        if r["name"] not in sm:
+            continue
+        v = (sm[r["name"]].get("critical") or {}).get("sin_phi")
+        rest = json.dumps({k: x for k, x in r["params"].items()
+                           if k != "seed" and "pressure" not in k})
+        if v is not None:
+            by_p.setdefault(rest, {}).setdefault(
+                sm[r["name"]]["confining_pressure"], []).append(v)
+    for rest, d in sorted(by_p.items()):
+        ps = sorted(d)
+        if len(ps) < 2 or max(len(v) for v in d.values()) < 2:
+            continue
+        series = [[]]
+        for p in ps:
+            series = [x + [v] for x in series for v in d[p]]
+        ends = sum(1 for x in series if x[-1] < x[0])
+        steps = sum(1 for x in series
+                    if all(b < a for a, b in zip(x, x[1:])))
+        print("\nOne sample per pressure%s (%s N/m; %s runs on a plateau): "
+              "of the %d series, %d (%.0f %%) have the critical sin φ at "
+              "%g below that at %g, %d fall at every step." % (
+                  "" if rest == "{}" else " " + rest,
+                  ", ".join("%g" % p for p in ps),
+                  ", ".join(str(len(d[p])) for p in ps), len(series), ends,
+                  100.0 * ends / len(series), ps[-1], ps[0], steps))
 
 
 def share_of(stats, kc, p):
