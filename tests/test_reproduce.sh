@@ -1,10 +1,10 @@
 #!/bin/sh
 # scripts/reproduce.sh, checked without the long runs: --list adds up the
-# parts and their wall time, bad input is refused with a message and status 2, two parts run
-# in --smoke mode (300 steps per run) and give their sweep.json, the
-# numbers are copied, a second call skips the finished runs, `dembox sweep
-# --collect` analyses them again without running anything, and a folder
-# of another mode is refused.
+# parts and their wall time, bad input is refused with a message and
+# status 2, two parts run in --smoke mode (300 steps per run) and give
+# their sweep.json, the numbers are copied, a second call skips the
+# finished runs, `dembox sweep --collect` analyses them again without
+# running anything, and a folder of another mode is refused.
 set -eu
 SRC=${DEMBOX_SOURCE_DIR:?run through ctest}
 BIN=${DEMBOX_BIN:?run through ctest}
