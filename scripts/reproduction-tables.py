@@ -158,6 +158,7 @@ def biaxial_pressure(part):
             pm(e["void_ratio_initial"]), pm(e["void_ratio_critical"]),
             pm(slope0), pm(slope1)))
     single_sample_trend(s, sm)
+    end_window_trend(s, part)
 
 
 def single_sample_trend(s, sm):
@@ -193,6 +194,64 @@ def single_sample_trend(s, sm):
                   ", ".join("%g" % p for p in ps),
                   ", ".join(str(len(d[p])) for p in ps), len(series), ends,
                   100.0 * ends / len(series), ps[-1], ps[0], steps))
+
+
+def dat_blocks(path):
+    """The blocks of a sweep picture's .dat: [(run name, rows)]."""
+    out = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("# columns"):
+                continue
+            if line.startswith("#"):
+                out.append((line[2:].split(":")[0].strip(), []))
+            elif line.strip() and out:
+                out[-1][1].append([float(x) for x in line.split()])
+    return out
+
+
+def end_window_trend(s, part):
+    """The stress ratio of every run over the last quarter of its axial
+    strain, on a plateau or not (what a reader of the curves' ends sees),
+    from the pictures' tables (loading_curves.dat: the strain;
+    stress_ratio_vs_void_ratio.dat: sin phi_m, row for row), and how often
+    one run per pressure shows it falling with the pressure."""
+    lc = os.path.join(part, "plots", "loading_curves.dat")
+    sr = os.path.join(part, "plots", "stress_ratio_vs_void_ratio.dat")
+    if not (os.path.exists(lc) and os.path.exists(sr)):
+        return
+    sm, groups = summaries(part), {}
+    rest = {r["name"]: json.dumps({k: x for k, x in r["params"].items()
+                                   if k != "seed" and "pressure" not in k})
+            for r in s.get("runs") or []}
+    for (name, a), (name2, b) in zip(dat_blocks(lc), dat_blocks(sr)):
+        if name != name2 or len(a) != len(b) or name not in sm or not a:
+            return
+        top = max(r[0] for r in a)
+        w = [rb[1] for ra, rb in zip(a, b) if ra[0] >= 0.75 * top]
+        groups.setdefault(rest.get(name, "{}"), {}).setdefault(
+            sm[name]["confining_pressure"], []).append(sum(w) / len(w))
+    for g, by_p in sorted(groups.items()):
+        ps = sorted(by_p)
+        if len(ps) < 2 or min(len(v) for v in by_p.values()) < 2:
+            continue
+        series = [[]]
+        for p in ps:
+            series = [x + [v] for x in series for v in by_p[p]]
+        ends = sum(1 for x in series if x[-1] < x[0])
+        print("\nThe stress ratio over the last quarter of the strain, "
+              "every run (plateau or not)%s:\n" %
+              ("" if g == "{}" else ", " + g))
+        print("| p (N/m) | runs | sin φ_m, each run | mean ± s.e. |")
+        print("|---|---|---|---|")
+        for p in ps:
+            print("| %g | %d | %s | %s |" % (
+                p, len(by_p[p]), ", ".join("%.3f" % v for v in by_p[p]),
+                pm(mean_se(by_p[p]))))
+        print("\nOne run per pressure: of the %d series, %d (%.0f %%) fall "
+              "from %g to %g N/m." % (len(series), ends,
+                                      100.0 * ends / len(series), ps[0],
+                                      ps[-1]))
 
 
 def share_of(stats, kc, p):
