@@ -230,7 +230,8 @@ def end_window_trend(s, part):
         top = max(r[0] for r in a)
         w = [rb[1] for ra, rb in zip(a, b) if ra[0] >= 0.75 * top]
         groups.setdefault(rest.get(name, "{}"), {}).setdefault(
-            sm[name]["confining_pressure"], []).append(sum(w) / len(w))
+            sm[name]["confining_pressure"], []).append(
+                (sum(w) / len(w), b[-1][1]))
     for g, by_p in sorted(groups.items()):
         ps = sorted(by_p)
         if len(ps) < 2 or min(len(v) for v in by_p.values()) < 2:
@@ -238,7 +239,8 @@ def end_window_trend(s, part):
         series = [[]]
         for p in ps:
             series = [x + [v] for x in series for v in by_p[p]]
-        ends = sum(1 for x in series if x[-1] < x[0])
+        ends = sum(1 for x in series if x[-1][0] < x[0][0])
+        last = sum(1 for x in series if x[-1][1] < x[0][1])
         print("\nThe stress ratio over the last quarter of the strain, "
               "every run (plateau or not)%s:\n" %
               ("" if g == "{}" else ", " + g))
@@ -246,12 +248,13 @@ def end_window_trend(s, part):
         print("|---|---|---|---|")
         for p in ps:
             print("| %g | %d | %s | %s |" % (
-                p, len(by_p[p]), ", ".join("%.3f" % v for v in by_p[p]),
-                pm(mean_se(by_p[p]))))
+                p, len(by_p[p]), ", ".join("%.3f" % v for v, _ in by_p[p]),
+                pm(mean_se([v for v, _ in by_p[p]]))))
         print("\nOne run per pressure: of the %d series, %d (%.0f %%) fall "
-              "from %g to %g N/m." % (len(series), ends,
-                                      100.0 * ends / len(series), ps[0],
-                                      ps[-1]))
+              "from %g to %g N/m; read at the last point of each curve, "
+              "%d (%.0f %%)." % (len(series), ends, 100.0 * ends / len(series),
+                                 ps[0], ps[-1], last,
+                                 100.0 * last / len(series)))
 
 
 def share_of(stats, kc, p):
