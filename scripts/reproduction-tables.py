@@ -161,6 +161,15 @@ def biaxial_pressure(part):
     end_window_trend(s, part)
 
 
+def one_per_pressure(by_p):
+    """Every series of one value per pressure (in increasing pressure)
+    from by_p: pressure -> the values of its runs."""
+    series = [[]]
+    for p in sorted(by_p):
+        series = [x + [v] for x in series for v in by_p[p]]
+    return series
+
+
 def single_sample_trend(s, sm):
     """How often one sample per pressure, as a paper without seeds has,
     shows the critical friction falling with the pressure: over every
@@ -181,9 +190,7 @@ def single_sample_trend(s, sm):
         ps = sorted(d)
         if len(ps) < 2 or max(len(v) for v in d.values()) < 2:
             continue
-        series = [[]]
-        for p in ps:
-            series = [x + [v] for x in series for v in d[p]]
+        series = one_per_pressure(d)
         ends = sum(1 for x in series if x[-1] < x[0])
         steps = sum(1 for x in series
                     if all(b < a for a, b in zip(x, x[1:])))
@@ -236,9 +243,7 @@ def end_window_trend(s, part):
         ps = sorted(by_p)
         if len(ps) < 2 or min(len(v) for v in by_p.values()) < 2:
             continue
-        series = [[]]
-        for p in ps:
-            series = [x + [v] for x in series for v in by_p[p]]
+        series = one_per_pressure(by_p)
         ends = sum(1 for x in series if x[-1][0] < x[0][0])
         last = sum(1 for x in series if x[-1][1] < x[0][1])
         print("\nThe stress ratio over the last quarter of the strain, "

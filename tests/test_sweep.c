@@ -425,28 +425,41 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* A sweep of one cyclic run (seed=1) into tmpdir/NAME whose second cycle
+ * ends at end2 with the increment inc2 (the first gains 2e-3), collected;
+ * its folder in out. */
+static void one_cyclic_run(const char *name, const char *end2,
+                           const char *inc2, char *out, size_t len)
+{
+    char cfg[512], dir[1024], summary[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, len, "%s/%s", tmpdir, name);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "seed=1");
+    snprintf(dir, sizeof dir, "%s/runs/seed=1", out);
+    snprintf(summary, sizeof summary,
+             "{\"dimension\": 2, \"loading_stage\": 1, "
+             "\"confining_pressure\": 100, \"peak\": {\"sin_phi\": 0.4}, "
+             "\"critical\": {\"sin_phi\": null}, \"cyclic_stage\": 1, "
+             "\"verdict\": \"shakedown\", \"cycles\": [{\"cycle\": 1, "
+             "\"strain_end\": 2e-3, \"strain_increment\": 2e-3}, "
+             "{\"cycle\": 2, \"strain_end\": %s, "
+             "\"strain_increment\": %s}]}\n",
+             end2, inc2);
+    fake_run(dir, cfg, "seed=1", summary);
+    collect_runs(&g, cfg, out);
+    dem_sweep_grid_free(&g);
+}
+
 /* A cyclic sweep of one seed: an ensemble of one run has no standard
  * error, and the strain-accumulation table writes 0 for it (gnuplot
  * drops a point whose error bar is missing: the picture was empty). */
 static void one_seed_cyclic_sweep_draws_its_cycles(void **state)
 {
     (void)state;
-    char cfg[512], out[512], dir[1024];
-    tiny_config(cfg, sizeof cfg);
-    snprintf(out, sizeof out, "%s/one-seed", tmpdir);
-    struct dem_sweep_grid g;
-    memset(&g, 0, sizeof g);
-    add(&g, "seed=1");
-    snprintf(dir, sizeof dir, "%s/runs/seed=1", out);
-    fake_run(dir, cfg, "seed=1",
-             "{\"dimension\": 2, \"loading_stage\": 1, "
-             "\"confining_pressure\": 100, \"peak\": {\"sin_phi\": 0.4}, "
-             "\"critical\": {\"sin_phi\": null}, \"cyclic_stage\": 1, "
-             "\"verdict\": \"shakedown\", \"cycles\": [{\"cycle\": 1, "
-             "\"strain_end\": 2e-3, \"strain_increment\": 2e-3}, "
-             "{\"cycle\": 2, \"strain_end\": 2.5e-3, "
-             "\"strain_increment\": 5e-4}]}\n");
-    collect_runs(&g, cfg, out);
+    char out[512], dir[1024];
+    one_cyclic_run("one-seed", "2.5e-3", "5e-4", out, sizeof out);
     snprintf(dir, sizeof dir, "%s/plots/strain_accumulation.dat", out);
     FILE *f = fopen(dir, "r");
     assert_non_null(f);
@@ -474,7 +487,6 @@ static void one_seed_cyclic_sweep_draws_its_cycles(void **state)
     assert_non_null(gp);
     assert_null(strstr(gp, "open: negative"));
     free(gp);
-    dem_sweep_grid_free(&g);
 }
 
 /* A cycle in which the sample relaxed (eps_D fell) is drawn at its
@@ -483,22 +495,8 @@ static void one_seed_cyclic_sweep_draws_its_cycles(void **state)
 static void relaxing_cycle_is_drawn_as_an_open_circle(void **state)
 {
     (void)state;
-    char cfg[512], out[512], dir[1024];
-    tiny_config(cfg, sizeof cfg);
-    snprintf(out, sizeof out, "%s/relaxing", tmpdir);
-    struct dem_sweep_grid g;
-    memset(&g, 0, sizeof g);
-    add(&g, "seed=1");
-    snprintf(dir, sizeof dir, "%s/runs/seed=1", out);
-    fake_run(dir, cfg, "seed=1",
-             "{\"dimension\": 2, \"loading_stage\": 1, "
-             "\"confining_pressure\": 100, \"peak\": {\"sin_phi\": 0.4}, "
-             "\"critical\": {\"sin_phi\": null}, \"cyclic_stage\": 1, "
-             "\"verdict\": \"shakedown\", \"cycles\": [{\"cycle\": 1, "
-             "\"strain_end\": 2e-3, \"strain_increment\": 2e-3}, "
-             "{\"cycle\": 2, \"strain_end\": 1.9e-3, "
-             "\"strain_increment\": -1e-4}]}\n");
-    collect_runs(&g, cfg, out);
+    char out[512], dir[1024];
+    one_cyclic_run("relaxing", "1.9e-3", "-1e-4", out, sizeof out);
     snprintf(dir, sizeof dir, "%s/plots/strain_accumulation.dat", out);
     char *dat = dem_read_text(dir, NULL);
     assert_non_null(dat);
@@ -518,7 +516,6 @@ static void relaxing_cycle_is_drawn_as_an_open_circle(void **state)
     assert_non_null(strstr(gp, "pointtype 6"));
     assert_non_null(strstr(gp, "open: negative, |value| drawn"));
     free(gp);
-    dem_sweep_grid_free(&g);
 }
 
 static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
