@@ -72,7 +72,7 @@ EOF
 }
 paper_parts() {
     cat <<'EOF'
-cyclic-period|30|000: the period does not matter (t0 = 1, 2, 5 s)|cyclic3d-paper --set contact.mu=0.1 --set stages.1.cycles=10 --param stages.1.period=1,2,5 --param seed=1,2
+cyclic-period|30|David et al.: the period does not matter (t0 = 1, 2, 5 s)|cyclic3d-paper --set contact.mu=0.1 --set stages.1.cycles=10 --param stages.1.period=1,2,5 --param seed=1,2
 cyclic-mu|140|David et al. Figs. 2 right, 3 right (50 cycles, t0 = 1 s)|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --param contact.mu=0.01,0.1,0.3,0.5,1.0 --param seed=1,2,3
 cyclic-threshold|60|David et al. Fig. 3 right: the threshold friction (mu = 0.02, 0.05)|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --param contact.mu=0.02,0.05 --param seed=1,2,3
 cyclic-floor-gb0|30|David et al. Fig. 3 right: the creep floor at mu = 1 without background damping|cyclic3d-paper --set stages.1.period=1 --set stages.1.cycles=50 --set contact.mu=1.0 --set damping.gamma_b=0.0 --param seed=1,2,3
