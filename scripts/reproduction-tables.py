@@ -141,9 +141,7 @@ def biaxial_pressure(part):
     print("|---|---|---|---|---|---|---|---|")
     sm = summaries(part)
     for e in sorted(s.get("ensembles") or [],
-                    key=lambda e: (json.dumps({k: v for k, v in
-                                               e["params"].items()
-                                               if "pressure" not in k}),
+                    key=lambda e: (group_key(e["params"]),
                                    e["confining_pressure"])):
         names = [r["name"] for r in s["runs"]
                  if {k: v for k, v in r["params"].items() if k != "seed"}
@@ -159,6 +157,13 @@ def biaxial_pressure(part):
             pm(slope0), pm(slope1)))
     single_sample_trend(s, sm)
     end_window_trend(s, part)
+
+
+def group_key(params):
+    """What a run's parameters hold besides its seed and pressures: the
+    runs of one group differ only in these."""
+    return json.dumps({k: x for k, x in params.items()
+                       if k != "seed" and "pressure" not in k})
 
 
 def one_per_pressure(by_p):
@@ -181,8 +186,7 @@ def single_sample_trend(s, sm):
         if r["name"] not in sm:
             continue
         v = (sm[r["name"]].get("critical") or {}).get("sin_phi")
-        rest = json.dumps({k: x for k, x in r["params"].items()
-                           if k != "seed" and "pressure" not in k})
+        rest = group_key(r["params"])
         if v is not None:
             by_p.setdefault(rest, {}).setdefault(
                 sm[r["name"]]["confining_pressure"], []).append(v)
@@ -203,20 +207,6 @@ def single_sample_trend(s, sm):
                   100.0 * ends / len(series), ps[-1], ps[0], steps))
 
 
-def dat_blocks(path):
-    """The blocks of a sweep picture's .dat: [(run name, rows)]."""
-    out = []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("# columns"):
-                continue
-            if line.startswith("#"):
-                out.append((line[2:].split(":")[0].strip(), []))
-            elif line.strip() and out:
-                out[-1][1].append([float(x) for x in line.split()])
-    return out
-
-
 def end_window_trend(s, part):
     """The stress ratio of every run over the last quarter of its axial
     strain, on a plateau or not (what a reader of the curves' ends sees),
@@ -228,11 +218,11 @@ def end_window_trend(s, part):
     if not (os.path.exists(lc) and os.path.exists(sr)):
         return
     sm, groups = summaries(part), {}
-    rest = {r["name"]: json.dumps({k: x for k, x in r["params"].items()
-                                   if k != "seed" and "pressure" not in k})
-            for r in s.get("runs") or []}
-    for (name, a), (name2, b) in zip(dat_blocks(lc), dat_blocks(sr)):
-        if name != name2 or len(a) != len(b) or name not in sm or not a:
+    rest = {r["name"]: group_key(r["params"]) for r in s.get("runs") or []}
+    ratios = dat_blocks(sr)
+    for name, a in dat_blocks(lc).items():
+        b = ratios.get(name)
+        if not a or not b or len(a) != len(b) or name not in sm:
             return
         top = max(r[0] for r in a)
         w = [rb[1] for ra, rb in zip(a, b) if ra[0] >= 0.75 * top]
@@ -337,16 +327,17 @@ def adhesion_strength(d):
     plot_shares(d, stats, kcs, ps)
 
 
-def loading_blocks(path):
-    """The runs' loading curves of a plots/loading_curves.dat: {run name:
-    [(axial strain, volumetric strain, deviator), ...]}."""
+def dat_blocks(path):
+    """The runs' blocks of a sweep picture's table (plots/NAME.dat): {run
+    name: [rows of numbers]}, in the file's order (a block's heading is
+    "# NAME" or "# NAME: note")."""
     blocks, cur = {}, None
     with open(path) as f:
         for line in f:
             if line.startswith("# columns"):
                 continue
             if line.startswith("# "):
-                cur = blocks.setdefault(line[2:].strip(), [])
+                cur = blocks.setdefault(line[2:].split(":")[0].strip(), [])
             elif line.strip() and cur is not None:
                 cur.append(tuple(float(x) for x in line.split()))
     return blocks
@@ -366,7 +357,7 @@ def adhesion_window(d, lo=0.01, hi=0.05):
             continue
         runs = {r["name"]: r for r in load(os.path.join(part, "sweep.json"))
                 ["runs"] if r.get("status") == "finished"}
-        for run, rows in loading_blocks(dat).items():
+        for run, rows in dat_blocks(dat).items():
             r = runs.get(run)
             w = [x[2] for x in rows if lo <= x[0] <= hi]
             if not r or len(w) < 10:
