@@ -43,8 +43,8 @@ static void check_list(const struct dem_sim *s)
 {
     int *bi, *bj, *bg;
     const int n = s->p.n;
-    int nb =
-        dem_pairs_brute(&s->p, s->dim, s->skin, &s->cell.built, &bi, &bj, &bg);
+    int nb = dem_pairs_brute(&s->p, s->dim, 0.0, s->p.reach, &s->cell.built,
+                             &bi, &bj, &bg);
     assert_true(nb > 50);
     const struct dem_contact_list *L = &s->pairs.cur;
     assert_int_equal(L->n, nb);

@@ -137,8 +137,11 @@ static void part_of(struct dem_sim *t, const struct dem_sim *s, const int *list,
         assert_true(dem_particles_append_copy(&t->p, &s->p, list[k]) == k);
     t->pairs.nghost = n - nown;
     test_ready(t);
-    /* the skin of the whole sample, not of the part's mean radius */
+    /* the skin of the whole sample, not of the part's mean radius, and
+     * its particles' reaches (a subdomain's ghosts bring their owners') */
     t->skin = s->skin;
+    for (int k = 0; k < n; k++)
+        t->p.reach[k] = s->p.reach[list[k]];
     assert_int_equal(dem_sim_derive(t, &err), 0);
     assert_int_equal(dem_sim_rebuild(t, &err), 0);
 }

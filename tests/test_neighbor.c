@@ -35,7 +35,8 @@ static void check_same_pairs(int dim, int reorder)
     test_ready(&s);
     for (int round = 0; round < 2; round++) {
         int *bi, *bj;
-        int nb = dem_pairs_brute(&s.p, dim, s.skin, NULL, &bi, &bj, NULL);
+        int nb =
+            dem_pairs_brute(&s.p, dim, 0.0, s.p.reach, NULL, &bi, &bj, NULL);
         assert_true(nb > 100);
         const struct dem_contact_list *L = &s.pairs.cur;
         assert_int_equal(L->n, nb);
@@ -56,10 +57,33 @@ static void check_same_pairs(int dim, int reorder)
         free(b);
         free(bi);
         free(bj);
-        /* move everything a little and build again */
+        /* a wall contact is listed when the gap is below the particle's
+         * reach plus the wall's half of the skin */
+        const struct dem_contact_list *W = &s.pairs.wcur;
+        int nw = 0;
+        for (int i = 0; i < n; i++) {
+            const double x[3] = {s.p.x[i], s.p.y[i], s.p.z[i]};
+            int k = W->start[i];
+            for (int w = 0; w < s.nwall; w++) {
+                const double sgn = s.wall[w].side ? -1.0 : 1.0;
+                const double gap =
+                    sgn * (x[s.wall[w].axis] - s.wall[w].pos) - s.p.r[i];
+                if (gap >= s.p.reach[i] + 0.5 * s.skin)
+                    continue;
+                assert_true(k < W->start[i + 1] && W->j[k] == w);
+                k++;
+                nw++;
+            }
+            assert_int_equal(k, W->start[i + 1]);
+        }
+        assert_int_equal(W->n, nw);
+        assert_true(nw > 10);
+        /* move everything a little and build again, now with each
+         * particle's own reach (from 1/100 of half the skin to all of it) */
         for (int i = 0; i < n; i++) {
             s.p.x[i] += 2e-3 * (dem_rng_uniform(&g) - 0.5);
             s.p.y[i] += 2e-3 * (dem_rng_uniform(&g) - 0.5);
+            s.p.reach[i] = 0.5 * s.skin * (0.01 + 0.99 * dem_rng_uniform(&g));
         }
         struct dem_error err;
         assert_int_equal(dem_sim_rebuild(&s, &err), 0);
@@ -191,7 +215,8 @@ static int touching_listed(const struct dem_sim *s, char *in)
         in[(size_t)L->i[k] * n + L->j[k]] = in[(size_t)L->j[k] * n + L->i[k]] =
             1;
     int *bi, *bj;
-    const int nb = dem_pairs_brute(&s->p, s->dim, 0.0, NULL, &bi, &bj, NULL);
+    const int nb =
+        dem_pairs_brute(&s->p, s->dim, 0.0, NULL, NULL, &bi, &bj, NULL);
     for (int k = 0; k < nb; k++)
         if (!in[(size_t)bi[k] * n + bj[k]])
             fail_msg("step %ld: touching pair (%d, %d) not listed (skin %g)",
@@ -249,6 +274,92 @@ static void skin_adapts_and_misses_no_contact(void **state)
     dem_sim_destroy(&s);
 }
 
+/* Each particle's reach adapts to its own motion (core/sim.h): in a
+ * packing at rest but for a few fast particles, the resting ones list
+ * their pairs with the smallest reach and the fast ones with half the
+ * skin, and at every step every touching pair and wall contact is listed. */
+static void reaches_follow_motion_and_miss_no_contact(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_sim s;
+    const int m = 7, n = m * m * m;
+    /* a lattice with gaps of 0.16 r, more than the largest reach plus
+     * the smallest (0.15 r): a flying particle meets unlisted partners */
+    const double r = 5e-3, a = 2.16 * r;
+    test_sim(&s, &c, n, 0.0, 0.1);
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            for (int k = 0; k < m; k++)
+                /* the first layers 0.01 r from the walls at 0 */
+                test_add(&s, 1.01 * r + a * i, 1.01 * r + a * j,
+                         1.01 * r + a * k, r);
+    test_ready(&s);
+    /* every 16th particle (by id) flies at up to 17 m/s, the others rest
+     * (fast enough to keep the skin at its largest) */
+    struct dem_rng g;
+    dem_rng_seed(&g, 5);
+    for (int i = 0; i < n; i++)
+        if (s.p.id[i] % 16 == 0) {
+            s.p.vx[i] = 20.0 * (dem_rng_uniform(&g) - 0.5);
+            s.p.vy[i] = 20.0 * (dem_rng_uniform(&g) - 0.5);
+            s.p.vz[i] = 20.0 * (dem_rng_uniform(&g) - 0.5);
+        }
+    char *in = malloc((size_t)n * n);
+    long touching = 0, walls = 0;
+    for (int k = 0; k < 3000; k++) {
+        test_step(&s, 1);
+        touching += touching_listed(&s, in);
+        /* no particle has moved further than its reach since the build */
+        for (int i = 0; i < n; i++) {
+            const double dx = s.p.x[i] - s.p.x0[i], dy = s.p.y[i] - s.p.y0[i],
+                         dz = s.p.z[i] - s.p.z0[i];
+            if (dx * dx + dy * dy + dz * dz > s.p.reach[i] * s.p.reach[i])
+                fail_msg("step %ld: particle %d beyond its reach", s.step, i);
+        }
+        for (int i = 0; i < n; i++)
+            for (int w = 0; w < s.nwall; w++) {
+                const double sgn = s.wall[w].side ? -1.0 : 1.0;
+                const double x[3] = {s.p.x[i], s.p.y[i], s.p.z[i]};
+                if (sgn * (x[s.wall[w].axis] - s.wall[w].pos) >= s.p.r[i])
+                    continue;
+                int found = 0;
+                for (int q = s.pairs.wcur.start[i];
+                     q < s.pairs.wcur.start[i + 1]; q++)
+                    found |= s.pairs.wcur.j[q] == w;
+                if (!found)
+                    fail_msg("step %ld: particle %d touches wall %d unlisted",
+                             s.step, i, w);
+                walls++;
+            }
+    }
+    free(in);
+    assert_true(touching > 1000 && walls > 10);
+    assert_true(s.nbuild > 5);
+    /* a particle that has never moved has the smallest reach; nearly all
+     * that fly (and have not been stopped by a collision) more */
+    const double cap = 0.5 * s.skin, lo = fmax(DEM_REACH_MIN * cap,
+                                               0.5 * DEM_SKIN_MIN * s.skin_max);
+    int rest = 0, fly = 0, above = 0;
+    for (int i = 0; i < n; i++) {
+        const double v2 = s.p.vx[i] * s.p.vx[i] + s.p.vy[i] * s.p.vy[i] +
+                          s.p.vz[i] * s.p.vz[i];
+        if (v2 == 0.0 && s.p.x[i] == s.p.x0[i] && s.p.y[i] == s.p.y0[i] &&
+            s.p.z[i] == s.p.z0[i]) {
+            assert_true(s.p.reach[i] == lo);
+            rest++;
+        }
+        if (v2 > 25.0) {
+            fly++;
+            above += s.p.reach[i] > lo;
+        }
+        assert_true(s.p.reach[i] <= cap);
+    }
+    assert_true(rest > n / 4 && fly > 3 && 4 * above >= 3 * fly);
+    dem_sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -257,6 +368,7 @@ int main(void)
         cmocka_unit_test(history_survives_rebuild),
         cmocka_unit_test(forces_survive_reordering),
         cmocka_unit_test(skin_adapts_and_misses_no_contact),
+        cmocka_unit_test(reaches_follow_motion_and_miss_no_contact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -444,7 +444,7 @@ void dem_sim_forces(struct dem_sim *s)
 
 int dem_sim_forces_kick(struct dem_sim *s, double h, int chain)
 {
-    const double *g = s->cfg.gravity, lim = s->drift_lim;
+    const double *g = s->cfg.gravity;
     return forces(
-        s, (struct kick){1, chain, h, s->dt, lim * lim, {g[0], g[1], g[2]}});
+        s, (struct kick){1, chain, h, s->dt, s->drift_cut, {g[0], g[1], g[2]}});
 }

@@ -482,9 +482,9 @@ DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
  * and drift (dem_particle_kick and _drift, as the first pass of a step in
  * core/sim.c), and the force and torque are not stored (nothing reads
  * them before they are computed again). Returns
- * then whether a particle has moved more than half the skin since the
- * last list build. K.on and K.chain are literals in each caller, so they
- * cost no branch. */
+ * then whether a particle has moved further than its reach (less K.cut)
+ * since the last list build. K.on and K.chain are literals in each
+ * caller, so they cost no branch. */
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl, double gb, double gr,
@@ -497,7 +497,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
      * the bits do not depend on how the loop is compiled */
     _Alignas(64) double w[9][8] = {{0.0}};
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
-    double far = 0.0; /* the largest squared distance moved (chained) */
+    double far = 0.0; /* the largest overshoot (chained) */
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
     /* the kicks write these through P: no restrict */
     const double *vx = P->vx, *vy = P->vy, *vz = P->vz;
@@ -618,8 +618,9 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                                   bf[3][u], bf[4][u], bf[5][u]);
                 dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
                                   bf[3][u], bf[4][u], bf[5][u]);
-                const double d2 = dem_particle_drift(&Q, k, K.dt);
-                far = d2 > far ? d2 : far;
+                const double o = dem_particle_overshoot(
+                    &Q, k, dem_particle_drift(&Q, k, K.dt), K.cut);
+                far = o > far ? o : far;
             }
 #if DEM_PASS_RECORDS
             /* the next pass reads the block's records as they are now */
@@ -627,7 +628,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 #endif
         }
     }
-    return K.chain && far > K.lim;
+    return K.chain && far > 0.0;
 }
 
 /* Thread t's share of a pass, in one parallel region: equal blocks of
@@ -666,7 +667,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
         {                                                                      \
             /* ON and CHAIN literal inside the outlined region */              \
             const struct kick k_ = {ON,   CHAIN, K.h,                          \
-                                    K.dt, K.lim, {K.g[0], K.g[1], K.g[2]}};    \
+                                    K.dt, K.cut, {K.g[0], K.g[1], K.g[2]}};    \
             moved = contacts_thread(LAW, c, k_, omp_get_thread_num(),          \
                                     omp_get_num_threads());                    \
         }                                                                      \

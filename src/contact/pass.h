@@ -37,7 +37,7 @@ struct pass {
 struct kick {
     int on;                  /* the closing half kick */
     int chain;               /* then also the next step's half kick and drift */
-    double h, dt, lim, g[3]; /* s, s, m^2 (half the skin squared), m/s^2 */
+    double h, dt, cut, g[3]; /* s, s, m (dem_sim.drift_cut), m/s^2 */
 };
 
 /* What one force pass reads, gathered once. */
@@ -65,7 +65,8 @@ struct contacts {
 
 /* One force pass: forces and history of every pair and wall contact,
  * then every particle's sums (and kicks, per K). Returns whether a
- * particle has moved more than half the skin (chained steps), else 0. */
+ * particle has moved further than its reach less K.cut (chained steps),
+ * else 0. */
 int dem__pass_gathers(const struct contacts *c, struct kick K);
 #if DEM_PASS_LOADS
 /* The same code without hardware gathers (contact/pass_loads.c). */

@@ -23,6 +23,12 @@ struct dem_particles {
     double *inv_m;        /* 1/kg */
     double *inv_I;        /* 1/(kg m^2); moment of inertia inverse */
     double *x0, *y0, *z0; /* m; position at the last neighbour-list build */
+    double *reach;        /* m; the particle's share of the list's skin:
+                             a pair is listed when its gap is below the
+                             sum of its two reaches, and the particle calls
+                             for a rebuild when it has moved further than
+                             its reach (less what a periodic cell's
+                             deformation takes, core/sim.h) */
     int *id;              /* original index (stable across re-ordering) */
     int *ncontact;        /* contacts (particles and walls) of the last
                              measured force pass */
@@ -37,7 +43,7 @@ struct dem_particles {
     X(x)                                                                       \
     X(y)                                                                       \
     X(z) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy) X(fz) X(tx) X(ty)     \
-        X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(fsum)
+        X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(reach) X(fsum)
 
 #define DEM_PARTICLE_INT_ARRAYS(X) X(id) X(ncontact)
 
@@ -85,6 +91,17 @@ static inline double dem_particle_drift(const struct dem_particles *p, int i,
     const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
                  dz = p->z[i] - p->z0[i];
     return dx * dx + dy * dy + dz * dz;
+}
+
+/* Whether particle i, d2 its squared distance from x0, calls for a list
+ * rebuild: > 0 when it has moved further than its reach less cut (m;
+ * what a periodic cell's deformation takes), and always when that leaves
+ * nothing. The largest over the particles decides. */
+static inline double dem_particle_overshoot(const struct dem_particles *p,
+                                            int i, double d2, double cut)
+{
+    const double l = p->reach[i] - cut;
+    return l > 0.0 ? d2 - l * l : 1.0;
 }
 
 /* Mass and moment of inertia of a particle of radius a (see dem_mass_model). */

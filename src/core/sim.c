@@ -96,6 +96,8 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
     /* the skin adapts at each build (adapt_skin) from its largest */
     s->skin_max = dem_sim_skin_largest(&s->p);
     s->skin = s->skin_max;
+    for (int i = 0; i < s->p.n; i++)
+        s->p.reach[i] = 0.5 * s->skin;
     s->build_step = s->step;
     int rc = dem_sim_derive(s, err);
     if (!rc)
@@ -109,31 +111,30 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
     return DEM_OK;
 }
 
-/* The displacement since the last build that calls for a rebuild, for
- * the skin now (and in a cell its deformation since the build, e =
- * dem_sim_cell_closure, see DEM_CELL_AFFINE_AHEAD; 0 without a cell).
- * Depends only on the state a checkpoint keeps. */
-static void set_drift_lim(struct dem_sim *s, double e)
+/* What a cell's deformation since the build (e = dem_sim_cell_closure,
+ * see DEM_CELL_AFFINE_AHEAD) takes from every particle's reach; 0
+ * without a cell. Depends only on the state a checkpoint keeps. */
+static void set_drift_cut(struct dem_sim *s, double e)
 {
     if (!s->cell.on) {
-        s->drift_lim = 0.5 * s->skin;
+        s->drift_cut = 0.0;
         return;
     }
     s->cell.closure = e + DEM_CELL_AFFINE_AHEAD * s->skin;
-    s->drift_lim = 0.5 * (s->skin - s->cell.closure);
+    s->drift_cut = 0.5 * s->cell.closure;
 }
 
 int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
 {
     if (!s->cell.on) {
-        set_drift_lim(s, 0.0);
+        set_drift_cut(s, 0.0);
         return DEM_OK;
     }
     double rmax = 0.0;
     for (int i = 0; i < s->p.n; i++)
         rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
     s->cell.range = 2.0 * rmax + s->skin_max;
-    set_drift_lim(s, dem_sim_cell_closure(s)); /* from the range and the
+    set_drift_cut(s, dem_sim_cell_closure(s)); /* from the range and the
                                                   lattice built */
     const size_t nb = (size_t)(s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
     free(s->cell.vir);
@@ -221,25 +222,26 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
     return DEM_OK;
 }
 
-/* The list is rebuilt when some particle or wall has moved more than half
- * the skin since the last build: until then no contact can form that is
- * not listed. */
+/* The list is rebuilt when some particle has moved further than its
+ * reach (less the drift cut) or a wall more than half the skin since the
+ * last build: until then no contact can form that is not listed. */
 
 /* Particles i0 <= i < i1: half kick, then drift; returns whether one has
- * moved more than half the skin (squared: lim) since the last list build. */
+ * moved further than its reach less cut since the last list build. */
 static int kick_drift_range(int i0, int i1, double h, double dt,
-                            const double g[3], double lim,
+                            const double g[3], double cut,
                             const struct dem_particles *p)
 {
     const double hg[3] = {h * g[0], h * g[1], h * g[2]};
-    double far = 0.0; /* the largest squared distance moved */
+    double far = 0.0; /* the largest overshoot */
     for (int i = i0; i < i1; i++) {
         dem_particle_kick(p, i, h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
                           p->ty[i], p->tz[i]);
-        const double d2 = dem_particle_drift(p, i, dt);
-        far = d2 > far ? d2 : far;
+        const double o =
+            dem_particle_overshoot(p, i, dem_particle_drift(p, i, dt), cut);
+        far = o > far ? o : far;
     }
-    return far > lim;
+    return far > 0.0;
 }
 
 /* The first half of a step for every particle; returns whether the
@@ -249,13 +251,13 @@ static int kick_drift(struct dem_sim *s, double h)
     /* a subdomain moves its own particles; the ghosts are the owners'
      * business (dem_halo_ops.sync) */
     const int n = s->p.n - s->pairs.nghost;
-    const double half = s->drift_lim;
+    const double cut = s->drift_cut;
     int moved = 0;
 #pragma omp parallel reduction(| : moved)
     {
         int nt = omp_get_num_threads(), t = omp_get_thread_num();
         moved = kick_drift_range(dem_block(n, t, nt), dem_block(n, t + 1, nt),
-                                 h, s->dt, s->cfg.gravity, half * half, &s->p);
+                                 h, s->dt, s->cfg.gravity, cut, &s->p);
     }
     return moved;
 }
@@ -376,6 +378,34 @@ static void adapt_skin(struct dem_sim *s)
     s->skin = skin < lo ? lo : (skin > s->skin_max ? s->skin_max : skin);
 }
 
+/* Each own particle's reach for the list about to be built (see
+ * DEM_REACH_AHEAD), after adapt_skin; n steps since the last build, e the
+ * cell's deformation over them (dem_sim_cell_closure). Depends only on
+ * the particle's own positions and on step counts, so runs stay the same
+ * for any number of threads or ranks (the ghosts bring their owners'). */
+static void adapt_reach(struct dem_sim *s, long n, double e)
+{
+    struct dem_particles *p = &s->p;
+    const int own = p->n - s->pairs.nghost;
+    const double cap = 0.5 * s->skin,
+                 lo = fmax(DEM_REACH_MIN * cap,
+                           0.5 * DEM_SKIN_MIN * s->skin_max);
+    /* no interval to scale (a second build in one step): keep them */
+    const double scale =
+        n > 0 ? DEM_REACH_AHEAD * DEM_BUILD_INTERVAL / (double)n : 0.0;
+    const double aff =
+        s->cell.on ? 0.5 * (scale * e + DEM_CELL_AFFINE_AHEAD * s->skin) : 0.0;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < own; i++) {
+        const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
+                     dz = p->z[i] - p->z0[i];
+        const double d = sqrt(dx * dx + dy * dy + dz * dz);
+        double r =
+            n > 0 ? (scale * d > lo ? scale * d : lo) + aff : p->reach[i];
+        p->reach[i] = r < cap ? r : cap;
+    }
+}
+
 /* Whether a quiet packing's list is due for a build that shrinks its
  * skin: nothing has called for one in DEM_SKIN_STALE build intervals. */
 static int skin_stale(const struct dem_sim *s)
@@ -414,14 +444,16 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
             return rebuild;
     }
     if (rebuild) {
+        const long n = s->step - s->build_step;
         adapt_skin(s);
+        adapt_reach(s, n, e);
         int rc = s->halo ? s->halo->rebuild(s, err) : dem_sim_rebuild(s, err);
         if (rc)
             return rc;
     }
     /* for the skin and the cell's deformation now (a build starts it
      * again) */
-    set_drift_lim(s, rebuild && s->cell.on ? dem_sim_cell_closure(s) : e);
+    set_drift_cut(s, rebuild && s->cell.on ? dem_sim_cell_closure(s) : e);
     double t3 = lap(s);
     /* the particles are where the chained pass before left them (in a
      * cell mapped with their records, dem_sim_cell_map), so the

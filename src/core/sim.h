@@ -98,10 +98,11 @@ struct dem_sim {
                          interaction range of the cell and of the domain
                          decomposition assume it) */
     long build_step;  /* step of the last list build */
-    double drift_lim; /* m; a particle's displacement since the last list
-                         build that calls for a rebuild: half the skin,
-                         in a periodic cell half of what the cell's own
-                         deformation leaves of it (cell.closure) */
+    double drift_cut; /* m; what a periodic cell's deformation since the
+                         build takes from every particle's reach (half of
+                         cell.closure; 0 without a cell): a particle that
+                         has moved further than its reach less this calls
+                         for a rebuild */
     long nbuild; /* neighbour-list builds so far */
     int reorder; /* 1: sort particles in cell order at each
                     rebuild (indices change; id does not) */
@@ -149,7 +150,7 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err);
 int dem_sim_step(struct dem_sim *s, struct dem_error *err);
 
 /* What the engine derives from the state (for dem_sim_ready and a
- * restored checkpoint): the drift limit, and in a periodic cell its
+ * restored checkpoint): the drift cut, and in a periodic cell its
  * range, the virial blocks and the list of pairs through an image. */
 int dem_sim_derive(struct dem_sim *s, struct dem_error *err);
 
@@ -180,8 +181,8 @@ void dem_sim_forces(struct dem_sim *s);
 /* The same, then the closing half kick of a step in the same pass over
  * the particles: v += h (f/m + g), w += h t/I. With chain, also the next
  * step's half kick and drift (see dem_sim_step); returns then whether
- * some particle has moved more than half the skin since the last list
- * build (else 0). */
+ * some particle has moved further than its reach (less the drift cut)
+ * since the last list build (else 0). */
 int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
 
 /* The skin adapts at each list build so that builds come about every
@@ -194,6 +195,18 @@ int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
 #define DEM_SKIN_STEP 2.0
 #define DEM_SKIN_MIN 0.05
 #define DEM_SKIN_STALE 4
+/* Each particle's reach (struct dem_particles.reach) adapts at each build
+ * too: DEM_REACH_AHEAD times its displacement over the last interval,
+ * scaled to DEM_BUILD_INTERVAL steps (in a cell plus its half of the
+ * cell's deformation scaled the same way and of the reserve), at least
+ * DEM_REACH_MIN of half the skin and half the smallest skin, at most half
+ * the skin. A packing whose skin a few fast particles keep large
+ * (rattlers sliding along a wall) then lists little more than its
+ * contacts elsewhere; a particle at rest keeps a floor, since a resting
+ * one that a neighbour sets moving would otherwise call for builds at
+ * once (docs/physics.md). */
+#define DEM_REACH_AHEAD 2.0
+#define DEM_REACH_MIN 0.5
 /* The largest skin: a tenth of the particles' mean diameter (the
  * peers' benchmark settings use 1 mm for 10 mm spheres). */
 double dem_sim_skin_largest(const struct dem_particles *p);
@@ -201,11 +214,12 @@ double dem_sim_skin_largest(const struct dem_particles *p);
 double dem_sim_skin_share(const struct dem_sim *s);
 
 /* The periodic cell (core/cell.c). */
-/* A listed pair closes by at most twice the drift limit plus what the
- * cell's deformation since the build adds (dem_sim_cell_closure): the
- * drift limit is set at every step to half the skin minus that closure
- * and a reserve of DEM_CELL_AFFINE_AHEAD of the skin for the next step's
- * deformation; a step that deforms the cell by more, or a closure beyond
+/* A listed pair closes by at most its particles' own displacements plus
+ * what the cell's deformation since the build adds
+ * (dem_sim_cell_closure): the drift cut is set at every step to half of
+ * that closure and a reserve of DEM_CELL_AFFINE_AHEAD of the skin for the
+ * next step's deformation, and each particle may move its reach less the
+ * cut; a step that deforms the cell by more, or a closure beyond
  * DEM_CELL_AFFINE_MAX of the skin, calls for a rebuild. */
 #define DEM_CELL_AFFINE_AHEAD 0.02
 #define DEM_CELL_AFFINE_MAX 0.5

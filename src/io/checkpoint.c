@@ -465,6 +465,11 @@ static const char *check_restored(const struct dem_sim *s,
     for (int i = 0; i < N; i++)
         if (p->id[i] < 0 || p->id[i] >= N)
             return "corrupt (particle ids)";
+    /* a reach beyond half the skin would list pairs the grid's cells
+     * cannot hold */
+    for (int i = 0; i < N; i++)
+        if (!(p->reach[i] > 0.0 && p->reach[i] <= 0.5 * s->skin))
+            return "corrupt (neighbour reach)";
     const struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
     if (!rows_ok(L->start, N, L->n) || !rows_ok(W->start, N, W->n) ||
         !rows_ok(pl->rstart, N, L->n))

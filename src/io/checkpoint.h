@@ -18,7 +18,8 @@
  *           RNG state, last measured sums, walls, the periodic cell
  *           (on, tilts, re-mapped tilt, lattice at the last build,
  *           virial)
- *     PART  every particle array (DEM_PARTICLE_*_ARRAYS)
+ *     PART  every particle array (DEM_PARTICLE_*_ARRAYS; the reaches
+ *           since version 9)
  *     PAIR  the pair list with its history, row starts, stored forces,
  *           (periodic cell) the pairs' images, and the reverse rows
  *     WALC  the particle-wall list with its history and stored forces
@@ -36,7 +37,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 8u
+#define DEM_CKPT_VERSION 9u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {

@@ -307,10 +307,11 @@ static void row_insert(int *out, int m, int key)
     out[b + 1] = key;
 }
 
-/* The neighbours j > i of particle i closer than the skin, written to
- * out (when not NULL) sorted by j; returns how many there are. */
+/* The neighbours j > i of particle i closer than the sum of their
+ * reaches, written to out (when not NULL) sorted by j; returns how many
+ * there are. */
 static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
-                  int zr, double skin, int i, int *out)
+                  int zr, int i, int *out)
 {
     const int c = pl->cell_of[i];
     const int cx = c % pl->nc[0], cy = (c / pl->nc[0]) % pl->nc[1],
@@ -337,7 +338,8 @@ static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
                     double ddx = p->x[i] - p->x[j];
                     double ddy = p->y[i] - p->y[j];
                     double ddz = p->z[i] - p->z[j];
-                    double cut = p->r[i] + p->r[j] + skin;
+                    double cut =
+                        p->r[i] + p->r[j] + (p->reach[i] + p->reach[j]);
                     if (ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut)
                         continue;
                     if (out) /* a row holds a handful of pairs */
@@ -351,13 +353,13 @@ static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
 }
 
 /* In a periodic cell: the neighbours j > i of particle i closer than the
- * skin through any image, written to out (when not NULL) sorted, as
+ * sum of their reaches through any image, written to out (when not NULL)
+ * sorted, as
  * j << 6 | image code; returns how many there are. The grid is over the
  * fractional coordinates, so a neighbour cell beyond a face is the cell
  * at the other side, seen through the image one lattice vector away. */
 static int row_of_cell(const struct dem_pairs *pl,
-                       const struct dem_particles *p, int zr, double skin,
-                       int i, int *out)
+                       const struct dem_particles *p, int zr, int i, int *out)
 {
     const int c = pl->cell_of[i];
     const int cx = c % pl->nc[0], cy = (c / pl->nc[0]) % pl->nc[1],
@@ -386,7 +388,8 @@ static int row_of_cell(const struct dem_pairs *pl,
                     const double ddx = p->x[i] - p->x[j] - S[0];
                     const double ddy = p->y[i] - p->y[j] - S[1];
                     const double ddz = p->z[i] - p->z[j] - S[2];
-                    const double cut = p->r[i] + p->r[j] + skin;
+                    const double cut =
+                        p->r[i] + p->r[j] + (p->reach[i] + p->reach[j]);
                     if (ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut)
                         continue;
                     if (out)
@@ -402,7 +405,7 @@ static int row_of_cell(const struct dem_pairs *pl,
  * known, copies them into the list. The history of every pair is then
  * found in the old list. The list is the same for any number of threads. */
 static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
-                       int dim, double skin, struct dem_error *err)
+                       int dim, struct dem_error *err)
 {
     struct dem_contact_list *L = &pl->cur;
     const struct dem_contact_list *O = &pl->old;
@@ -436,8 +439,8 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
             }
             /* a ghost's partners j > i are ghosts too: no row */
             int cnt = i >= n - pl->nghost ? 0
-                      : pl->periodic ? row_of_cell(pl, p, zr, skin, i, buf + m)
-                                     : row_of(pl, p, zr, skin, i, buf + m);
+                      : pl->periodic      ? row_of_cell(pl, p, zr, i, buf + m)
+                                          : row_of(pl, p, zr, i, buf + m);
             start[i + 1] = cnt;
             m += (size_t)cnt;
         }
@@ -499,7 +502,8 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
         for (int k = 0; k < nwall; k++) {
             double sgn = w[k].side ? -1.0 : 1.0;
             double gap = sgn * (pos[w[k].axis] - w[k].pos) - p->r[i];
-            if (gap >= skin)
+            /* the wall's half of the skin, the particle's reach */
+            if (gap >= p->reach[i] + 0.5 * skin)
                 continue;
             if (L->n >= L->cap && list_reserve(L, L->n + 1))
                 return dem_error_set(err, DEM_ENOMEM,
@@ -605,7 +609,7 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
      * the particles' indices before the re-order */
     swap_lists(&pl->cur, &pl->old);
     swap_lists(&pl->wcur, &pl->wold);
-    rc = build_pairs(pl, p, dim, skin, err);
+    rc = build_pairs(pl, p, dim, err);
     if (!rc)
         rc = build_walls(pl, p, skin, w, nwall, err);
     if (rc)
@@ -638,8 +642,8 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc)
 }
 
 int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,
-                    const struct dem_lattice *cell, int **pi, int **pj,
-                    int **pimg)
+                    const double *reach, const struct dem_lattice *cell,
+                    int **pi, int **pj, int **pimg)
 {
     int cap = 1024, n = 0;
     int *a = malloc((size_t)cap * sizeof *a),
@@ -661,6 +665,8 @@ int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,
                                dy = p->y[i] - p->y[j] - S[1],
                                dz = p->z[i] - p->z[j] - S[2];
                         double cut = p->r[i] + p->r[j] + skin;
+                        if (reach)
+                            cut += reach[i] + reach[j];
                         if (dx * dx + dy * dy + dz * dz >= cut * cut)
                             continue;
                         if (n == cap) {

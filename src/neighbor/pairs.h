@@ -2,16 +2,19 @@
  * cell grid, each entry carrying its contact history.
  *
  * A pair (i, j), i < j, is listed when the gap |r_i - r_j| - a_i - a_j is
- * below the skin; a particle-wall contact (i, w) when the particle's gap to
- * the wall plane is below the skin. Both lists are sorted by i (then j or
- * w) and indexed by i (CSR), so that the history of a contact is found
- * again after a rebuild by a short scan of its particle's old row, without
- * hashing, also when the particles have been re-ordered in memory.
+ * below the sum of the two particles' reaches (struct dem_particles.reach,
+ * each at most half the skin); a particle-wall contact (i, w) when the
+ * particle's gap to the wall plane is below its reach plus half the skin.
+ * Both lists are sorted by i (then j or w) and indexed by i (CSR), so that
+ * the history of a contact is found again after a rebuild by a short scan
+ * of its particle's old row, without hashing, also when the particles
+ * have been re-ordered in memory.
  *
- * The lists are rebuilt when some particle or some wall has moved more
- * than half the skin since the last build, so no contact can be missed in
- * between. At a rebuild the particles may be re-ordered in cell order (see
- * dem_pairs_build) so that neighbours are close in memory.
+ * The lists are rebuilt when some particle has moved further than its
+ * reach or some wall more than half the skin since the last build, so no
+ * contact can be missed in between. At a rebuild the particles may be
+ * re-ordered in cell order (see dem_pairs_build) so that neighbours are close
+ * in memory.
  *
  * Each entry also has room for the force of the last pass (the force on
  * i and n x f_t), at the same index. A particle sums the forces of its
@@ -125,7 +128,8 @@ struct dem_wall;
 
 void dem_pairs_free(struct dem_pairs *pl);
 
-/* Build both lists for particles p with the given skin (m), grid over
+/* Build both lists for particles p with the given skin (m; the cells'
+ * size and the walls' half of it; every reach at most half of it), grid over
  * [lo, hi] (m), walls w[0..nwall), carrying the history of contacts that
  * were listed before. With reorder set, the particles are first sorted in
  * cell order (p's arrays are permuted; p->id keeps the original index).
@@ -153,12 +157,13 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
  * that fills cur calls it. 0 or -1 (out of memory). */
 int dem_pairs_cross(struct dem_pairs *pl);
 
-/* Reference: all pairs with gap below skin by brute force O(N^2); for tests.
- * Fills pi/pj (caller frees) and returns the count, or a negative status.
- * With a periodic lattice (else NULL) every image of j is tried, and
- * pimg (when not NULL; caller frees) gets the image of each pair. */
+/* Reference: all pairs with gap below skin plus, with reach (else NULL),
+ * the sum of the two reaches, by brute force O(N^2); for tests. Fills pi/pj
+ * (caller frees) and returns the count, or a negative status. With a periodic
+ * lattice (else NULL) every image of j is tried, and pimg (when not NULL;
+ * caller frees) gets the image of each pair. */
 int dem_pairs_brute(const struct dem_particles *p, int dim, double skin,
-                    const struct dem_lattice *cell, int **pi, int **pj,
-                    int **pimg);
+                    const double *reach, const struct dem_lattice *cell,
+                    int **pi, int **pj, int **pimg);
 
 #endif
