@@ -10,7 +10,7 @@
 #   --quick       the scaled built-in examples, one sample per point
 #                 (default; about 25 CPU minutes)
 #   --paper       the papers' sizes and parameters with 3 seeds per point
-#                 (about 45 CPU hours, --list gives each part's: run it
+#                 (about 48 CPU hours, --list gives each part's: run it
 #                 over several sessions)
 #   --jobs N      runs at once (default: the number of cores)
 #   --only NAMES  only these parts (comma-separated; see --list)
@@ -106,6 +106,8 @@ oc-reference|90|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c 
 oc-kc-half-seeds|49|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c/k2 = 0.5, seeds 4-6 at p = 100, 250|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=5.0e4 --param stages.1.pressure,stages.2.pressure=100,250 --param seed=4,5,6
 oc-kc-075|34|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c/k2 = 0.75, seeds 1-3 at p = 100, 250|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=7.5e4 --param stages.1.pressure,stages.2.pressure=100,250 --param seed=1,2,3
 oc-reference-1000|16|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c = 0 tested at 1000 N/m (seeds 1-3)|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=0.0 --param seed=1,2,3
+peak-best-flow|30|Luding et al. Fig. 7 gap: the flow function at peak of the closest variant (heavy walls, k_t = k2, no background damping) at the four pressures|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set walls.mass=0.1 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
+peak-best-cell|76|Luding et al. Fig. 7 gap: the same closest variant in a periodic cell (no walls)|biaxial2d-paper --set box.boundary=periodic --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set walls.mass=0.1 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
 peak-cell|76|Luding et al. Fig. 7 gap: the flow function at peak in a periodic cell (no walls)|biaxial2d-paper --set box.boundary=periodic --set stages.1.strain=0.1 --set stages.1.duration=0.2 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
 mu0-cell|35|Luding et al. Fig. 5 top gap: frictionless at p = 500 in a periodic cell (against biaxial-cohesion, k_c = 0)|biaxial2d-paper --set contact.mu=0.0 --set box.boundary=periodic --param seed=1,2,3
 mu0-damping|30|Luding et al. Fig. 5 top gap: frictionless at p = 500 without background damping (against biaxial-cohesion, k_c = 0)|biaxial2d-paper --set contact.mu=0.0 --set damping.gamma_b=0.0 --param seed=1,2,3
