@@ -275,9 +275,10 @@ static void skin_adapts_and_misses_no_contact(void **state)
 }
 
 /* Each particle's reach adapts to its own motion (core/sim.h): in a
- * packing at rest but for a few fast particles, the resting ones list
- * their pairs with the smallest reach and the fast ones with half the
- * skin, and at every step every touching pair and wall contact is listed. */
+ * packing at rest but for a few fast particles, the resting ones end with
+ * the smallest reach and nearly all fast ones with more; at every step no
+ * particle is beyond its reach and every touching pair and wall contact
+ * is listed. */
 static void reaches_follow_motion_and_miss_no_contact(void **state)
 {
     (void)state;
