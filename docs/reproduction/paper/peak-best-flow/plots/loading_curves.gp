@@ -19,29 +19,37 @@ set key outside right top
 set tmargin 5
 set multiplot layout 2,1 title "Loading curves: the loading stage of every run"
 set ylabel "volumetric strain ε_v (expansion > 0)"
-plot 'loading_curves.dat' index 0 using 1:2 with lines lc 1 noenhanced title "stages.0.pressure=100 (3 runs)", \
+plot 'loading_curves.dat' index 0 using 1:2 with lines lc 1 noenhanced title "stages.0.pressure=100 (4 runs)", \
   'loading_curves.dat' index 1 using 1:2 with lines lc 1 noenhanced notitle, \
   'loading_curves.dat' index 2 using 1:2 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 3 using 1:2 with lines lc 2 noenhanced title "stages.0.pressure=250 (3 runs)", \
-  'loading_curves.dat' index 4 using 1:2 with lines lc 2 noenhanced notitle, \
+  'loading_curves.dat' index 3 using 1:2 with lines lc 1 noenhanced notitle, \
+  'loading_curves.dat' index 4 using 1:2 with lines lc 2 noenhanced title "stages.0.pressure=250 (4 runs)", \
   'loading_curves.dat' index 5 using 1:2 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 6 using 1:2 with lines lc 3 noenhanced title "stages.0.pressure=500 (3 runs)", \
-  'loading_curves.dat' index 7 using 1:2 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 8 using 1:2 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 9 using 1:2 with lines lc 4 noenhanced title "stages.0.pressure=1000 (3 runs)", \
-  'loading_curves.dat' index 10 using 1:2 with lines lc 4 noenhanced notitle, \
-  'loading_curves.dat' index 11 using 1:2 with lines lc 4 noenhanced notitle
+  'loading_curves.dat' index 6 using 1:2 with lines lc 2 noenhanced notitle, \
+  'loading_curves.dat' index 7 using 1:2 with lines lc 2 noenhanced notitle, \
+  'loading_curves.dat' index 8 using 1:2 with lines lc 3 noenhanced title "stages.0.pressure=500 (4 runs)", \
+  'loading_curves.dat' index 9 using 1:2 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 10 using 1:2 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 11 using 1:2 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 12 using 1:2 with lines lc 4 noenhanced title "stages.0.pressure=1000 (4 runs)", \
+  'loading_curves.dat' index 13 using 1:2 with lines lc 4 noenhanced notitle, \
+  'loading_curves.dat' index 14 using 1:2 with lines lc 4 noenhanced notitle, \
+  'loading_curves.dat' index 15 using 1:2 with lines lc 4 noenhanced notitle
 set ylabel "σ_{axial} - σ_{lateral} (Pa; 2D: N/m)"
-plot 'loading_curves.dat' index 0 using 1:3 with lines lc 1 noenhanced title "stages.0.pressure=100 (3 runs)", \
+plot 'loading_curves.dat' index 0 using 1:3 with lines lc 1 noenhanced title "stages.0.pressure=100 (4 runs)", \
   'loading_curves.dat' index 1 using 1:3 with lines lc 1 noenhanced notitle, \
   'loading_curves.dat' index 2 using 1:3 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 3 using 1:3 with lines lc 2 noenhanced title "stages.0.pressure=250 (3 runs)", \
-  'loading_curves.dat' index 4 using 1:3 with lines lc 2 noenhanced notitle, \
+  'loading_curves.dat' index 3 using 1:3 with lines lc 1 noenhanced notitle, \
+  'loading_curves.dat' index 4 using 1:3 with lines lc 2 noenhanced title "stages.0.pressure=250 (4 runs)", \
   'loading_curves.dat' index 5 using 1:3 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 6 using 1:3 with lines lc 3 noenhanced title "stages.0.pressure=500 (3 runs)", \
-  'loading_curves.dat' index 7 using 1:3 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 8 using 1:3 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 9 using 1:3 with lines lc 4 noenhanced title "stages.0.pressure=1000 (3 runs)", \
-  'loading_curves.dat' index 10 using 1:3 with lines lc 4 noenhanced notitle, \
-  'loading_curves.dat' index 11 using 1:3 with lines lc 4 noenhanced notitle
+  'loading_curves.dat' index 6 using 1:3 with lines lc 2 noenhanced notitle, \
+  'loading_curves.dat' index 7 using 1:3 with lines lc 2 noenhanced notitle, \
+  'loading_curves.dat' index 8 using 1:3 with lines lc 3 noenhanced title "stages.0.pressure=500 (4 runs)", \
+  'loading_curves.dat' index 9 using 1:3 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 10 using 1:3 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 11 using 1:3 with lines lc 3 noenhanced notitle, \
+  'loading_curves.dat' index 12 using 1:3 with lines lc 4 noenhanced title "stages.0.pressure=1000 (4 runs)", \
+  'loading_curves.dat' index 13 using 1:3 with lines lc 4 noenhanced notitle, \
+  'loading_curves.dat' index 14 using 1:3 with lines lc 4 noenhanced notitle, \
+  'loading_curves.dat' index 15 using 1:3 with lines lc 4 noenhanced notitle
 unset multiplot

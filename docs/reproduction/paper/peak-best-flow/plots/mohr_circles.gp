@@ -13,8 +13,8 @@ set grid
 set key below box
 set clip two
 set size ratio -1
-set xrange [0:3340.55037]
-set yrange [0:2004.33022]
+set xrange [0:3366.91234]
+set yrange [0:2020.1474]
 plot \
   "mohr_circles.dat" index 0 with lines linewidth 2 linecolor 1 title "p = 100" noenhanced, \
   "mohr_circles.dat" index 1 with lines linewidth 2 linecolor 2 title "p = 250" noenhanced, \
@@ -31,4 +31,9 @@ plot \
   "mohr_circles.dat" index 12 with lines linewidth 2 linecolor 3 notitle, \
   "mohr_circles.dat" index 13 with lines linewidth 2 linecolor 4 notitle, \
   "mohr_circles.dat" index 14 with lines dashtype 4 linewidth 2 linecolor "black" title "flow function φ = 29.9°, c = -5.92, R² = 0.999 (seed=3)" noenhanced, \
+  "mohr_circles.dat" index 15 with lines linewidth 2 linecolor 1 notitle, \
+  "mohr_circles.dat" index 16 with lines linewidth 2 linecolor 2 notitle, \
+  "mohr_circles.dat" index 17 with lines linewidth 2 linecolor 3 notitle, \
+  "mohr_circles.dat" index 18 with lines linewidth 2 linecolor 4 notitle, \
+  "mohr_circles.dat" index 19 with lines dashtype 5 linewidth 2 linecolor "black" title "flow function φ = 30.6°, c = -14.2, R² = 1.000 (seed=4)" noenhanced, \
   0 linetype -3 notitle

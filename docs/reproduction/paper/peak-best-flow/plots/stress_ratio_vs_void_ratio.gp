@@ -16,13 +16,17 @@ plot \
   "stress_ratio_vs_void_ratio.dat" index 0 with lines title "p = 100 (seed=1)" noenhanced, \
   "stress_ratio_vs_void_ratio.dat" index 1 with lines title "p = 100 (seed=2)" noenhanced, \
   "stress_ratio_vs_void_ratio.dat" index 2 with lines title "p = 100 (seed=3)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 3 with lines title "p = 250 (seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 4 with lines title "p = 250 (seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 5 with lines title "p = 250 (seed=3)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 6 with lines title "p = 500 (seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 7 with lines title "p = 500 (seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 8 with lines title "p = 500 (seed=3)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 9 with lines title "p = 1000 (seed=1)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 10 with lines title "p = 1000 (seed=2)" noenhanced, \
-  "stress_ratio_vs_void_ratio.dat" index 11 with lines title "p = 1000 (seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 3 with lines title "p = 100 (seed=4)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 4 with lines title "p = 250 (seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 5 with lines title "p = 250 (seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 6 with lines title "p = 250 (seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 7 with lines title "p = 250 (seed=4)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 8 with lines title "p = 500 (seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 9 with lines title "p = 500 (seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 10 with lines title "p = 500 (seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 11 with lines title "p = 500 (seed=4)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 12 with lines title "p = 1000 (seed=1)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 13 with lines title "p = 1000 (seed=2)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 14 with lines title "p = 1000 (seed=3)" noenhanced, \
+  "stress_ratio_vs_void_ratio.dat" index 15 with lines title "p = 1000 (seed=4)" noenhanced, \
   0 linetype -3 notitle

@@ -23,4 +23,7 @@ plot \
   "void_ratio_vs_pressure.dat" index 8 with points pointtype 6 pointsize 1.5 linecolor 5 title "initial (seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 9 with points pointtype 7 pointsize 1.5 linecolor 6 title "critical (seed=3)" noenhanced, \
   "void_ratio_vs_pressure.dat" index 10 with lines linewidth 2 linecolor 5 title "fit initial: e0 = 0.2015, n = 0.550, h_s = 1e+05, R² = 0.992 (seed=3)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 12 with points pointtype 6 pointsize 1.5 linecolor 7 title "initial (seed=4)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 13 with points pointtype 7 pointsize 1.5 linecolor 8 title "critical (seed=4)" noenhanced, \
+  "void_ratio_vs_pressure.dat" index 14 with lines linewidth 2 linecolor 7 title "fit initial: e0 = 0.2007, n = 0.550, h_s = 1e+05, R² = 0.983 (seed=4)" noenhanced, \
   0 linetype -3 notitle
