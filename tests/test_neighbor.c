@@ -226,6 +226,20 @@ static int touching_listed(const struct dem_sim *s, char *in)
     return nb;
 }
 
+/* A ready 3D simulation in the box [0, 0.1]^3 holding a cubic lattice of
+ * m^3 spheres of radius r, spacing a, its first centre at x0 on each axis. */
+static void lattice(struct dem_sim *s, int m, double x0, double a, double r)
+{
+    struct dem_config c;
+    test_config(&c, 3);
+    test_sim(s, &c, m * m * m, 0.0, 0.1);
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            for (int k = 0; k < m; k++)
+                test_add(s, x0 + a * i, x0 + a * j, x0 + a * k, r);
+    test_ready(s);
+}
+
 /* The skin adapts (core/sim.h): a packing at rest is rebuilt after
  * DEM_SKIN_STALE build intervals until its skin is the smallest allowed,
  * then not at all; once the particles move the skin grows again, and at
@@ -233,17 +247,10 @@ static int touching_listed(const struct dem_sim *s, char *in)
 static void skin_adapts_and_misses_no_contact(void **state)
 {
     (void)state;
-    struct dem_config c;
-    test_config(&c, 3);
     struct dem_sim s;
     const int m = 7, n = m * m * m;
     const double r = 5e-3, a = 2.04 * r; /* lattice with gaps of 0.04 r */
-    test_sim(&s, &c, n, 0.0, 0.1);
-    for (int i = 0; i < m; i++)
-        for (int j = 0; j < m; j++)
-            for (int k = 0; k < m; k++)
-                test_add(&s, 0.01 + a * i, 0.01 + a * j, 0.01 + a * k, r);
-    test_ready(&s);
+    lattice(&s, m, 0.01, a, r);
     const double max = s.skin_max;
     assert_true(s.skin == max && max > 0.0);
     /* at rest: builds at 1000, 2000, 3000 steps shrink the skin by the
@@ -282,21 +289,13 @@ static void skin_adapts_and_misses_no_contact(void **state)
 static void reaches_follow_motion_and_miss_no_contact(void **state)
 {
     (void)state;
-    struct dem_config c;
-    test_config(&c, 3);
     struct dem_sim s;
     const int m = 7, n = m * m * m;
     /* a lattice with gaps of 0.16 r, more than the largest reach plus
-     * the smallest (0.15 r): a flying particle meets unlisted partners */
+     * the smallest (0.15 r): a flying particle meets unlisted partners;
+     * the first layers 0.01 r from the walls at 0 */
     const double r = 5e-3, a = 2.16 * r;
-    test_sim(&s, &c, n, 0.0, 0.1);
-    for (int i = 0; i < m; i++)
-        for (int j = 0; j < m; j++)
-            for (int k = 0; k < m; k++)
-                /* the first layers 0.01 r from the walls at 0 */
-                test_add(&s, 1.01 * r + a * i, 1.01 * r + a * j,
-                         1.01 * r + a * k, r);
-    test_ready(&s);
+    lattice(&s, m, 1.01 * r, a, r);
     /* every 16th particle (by id) flies at up to 17 m/s, the others rest
      * (fast enough to keep the skin at its largest) */
     struct dem_rng g;

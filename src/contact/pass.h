@@ -37,7 +37,7 @@ struct pass {
 struct kick {
     int on;                  /* the closing half kick */
     int chain;               /* then also the next step's half kick and drift */
-    double h, dt, cut, g[3]; /* s, s, m (dem_sim.drift_cut), m/s^2 */
+    double h, dt, cut, g[3]; /* s, s, m (dem_sim_drift_cut), m/s^2 */
 };
 
 /* What one force pass reads, gathered once. */

@@ -65,7 +65,7 @@ struct dem_cell {
     double range;             /* m; interaction range, 2 a_max + skin */
     double closure;           /* m; how much the cell's deformation may
                                  have closed a listed pair since the last
-                                 build when the drift limit was last set
+                                 build when the drift cut was last set
                                  (dem_sim_cell_closure) plus the reserve
                                  for one step (DEM_CELL_AFFINE_AHEAD) */
     double *vir;              /* the force pass's virial block sums */

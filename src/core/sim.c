@@ -111,31 +111,26 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err)
     return DEM_OK;
 }
 
-/* What a cell's deformation since the build (e = dem_sim_cell_closure,
- * see DEM_CELL_AFFINE_AHEAD) takes from every particle's reach; 0
- * without a cell. Depends only on the state a checkpoint keeps. */
-static void set_drift_cut(struct dem_sim *s, double e)
+/* In a cell, how far the cell's deformation may close a pair before the
+ * next check: its deformation since the build (e = dem_sim_cell_closure)
+ * and the reserve DEM_CELL_AFFINE_AHEAD. Depends only on the state a
+ * checkpoint keeps. */
+static void set_closure(struct dem_sim *s, double e)
 {
-    if (!s->cell.on) {
-        s->drift_cut = 0.0;
-        return;
-    }
-    s->cell.closure = e + DEM_CELL_AFFINE_AHEAD * s->skin;
-    s->drift_cut = 0.5 * s->cell.closure;
+    if (s->cell.on)
+        s->cell.closure = e + DEM_CELL_AFFINE_AHEAD * s->skin;
 }
 
 int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
 {
-    if (!s->cell.on) {
-        set_drift_cut(s, 0.0);
+    if (!s->cell.on)
         return DEM_OK;
-    }
     double rmax = 0.0;
     for (int i = 0; i < s->p.n; i++)
         rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
     s->cell.range = 2.0 * rmax + s->skin_max;
-    set_drift_cut(s, dem_sim_cell_closure(s)); /* from the range and the
-                                                  lattice built */
+    set_closure(s, dem_sim_cell_closure(s)); /* from the range and the
+                                                lattice built */
     const size_t nb = (size_t)(s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
     free(s->cell.vir);
     s->cell.vir = calloc(9 * (nb ? nb : 1), sizeof *s->cell.vir);
@@ -251,7 +246,7 @@ static int kick_drift(struct dem_sim *s, double h)
     /* a subdomain moves its own particles; the ghosts are the owners'
      * business (dem_halo_ops.sync) */
     const int n = s->p.n - s->pairs.nghost;
-    const double cut = s->drift_cut;
+    const double cut = dem_sim_drift_cut(s);
     int moved = 0;
 #pragma omp parallel reduction(| : moved)
     {
@@ -270,7 +265,7 @@ static int walls_need_rebuild(const struct dem_sim *s, double e)
     if (s->cell.on) {
         struct dem_lattice c;
         dem_sim_lattice(s, &c);
-        /* the drift limit of the pass that moved the particles assumed
+        /* the drift cut of the pass that moved the particles assumed
          * a closure of at most cell.closure */
         return fabs(c.v[1]) > 0.5 * c.v[0] || fabs(c.v[2]) > 0.5 * c.v[0] ||
                fabs(c.v[4]) > 0.5 * c.v[3] || e > s->cell.closure ||
@@ -453,7 +448,7 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     }
     /* for the skin and the cell's deformation now (a build starts it
      * again) */
-    set_drift_cut(s, rebuild && s->cell.on ? dem_sim_cell_closure(s) : e);
+    set_closure(s, rebuild && s->cell.on ? dem_sim_cell_closure(s) : e);
     double t3 = lap(s);
     /* the particles are where the chained pass before left them (in a
      * cell mapped with their records, dem_sim_cell_map), so the

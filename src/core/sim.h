@@ -98,11 +98,6 @@ struct dem_sim {
                          interaction range of the cell and of the domain
                          decomposition assume it) */
     long build_step;  /* step of the last list build */
-    double drift_cut; /* m; what a periodic cell's deformation since the
-                         build takes from every particle's reach (half of
-                         cell.closure; 0 without a cell): a particle that
-                         has moved further than its reach less this calls
-                         for a rebuild */
     long nbuild; /* neighbour-list builds so far */
     int reorder; /* 1: sort particles in cell order at each
                     rebuild (indices change; id does not) */
@@ -150,7 +145,7 @@ int dem_sim_ready(struct dem_sim *s, struct dem_error *err);
 int dem_sim_step(struct dem_sim *s, struct dem_error *err);
 
 /* What the engine derives from the state (for dem_sim_ready and a
- * restored checkpoint): the drift cut, and in a periodic cell its
+ * restored checkpoint): in a periodic cell its closure,
  * range, the virial blocks and the list of pairs through an image. */
 int dem_sim_derive(struct dem_sim *s, struct dem_error *err);
 
@@ -223,6 +218,13 @@ double dem_sim_skin_share(const struct dem_sim *s);
  * DEM_CELL_AFFINE_MAX of the skin, calls for a rebuild. */
 #define DEM_CELL_AFFINE_AHEAD 0.02
 #define DEM_CELL_AFFINE_MAX 0.5
+/* What a periodic cell's deformation since the build takes from every
+ * particle's reach: half of cell.closure (0 without a cell). A particle
+ * that has moved further than its reach less this calls for a rebuild. */
+static inline double dem_sim_drift_cut(const struct dem_sim *s)
+{
+    return s->cell.on ? 0.5 * s->cell.closure : 0.0;
+}
 /* The lattice now, from the walls and the tilts. */
 void dem_sim_lattice(const struct dem_sim *s, struct dem_lattice *c);
 /* The velocity gradient of the cell's affine field, hdot h^-1, as

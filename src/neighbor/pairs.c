@@ -439,8 +439,8 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
             }
             /* a ghost's partners j > i are ghosts too: no row */
             int cnt = i >= n - pl->nghost ? 0
-                      : pl->periodic      ? row_of_cell(pl, p, zr, i, buf + m)
-                                          : row_of(pl, p, zr, i, buf + m);
+                      : pl->periodic ? row_of_cell(pl, p, zr, i, buf + m)
+                                     : row_of(pl, p, zr, i, buf + m);
             start[i + 1] = cnt;
             m += (size_t)cnt;
         }

@@ -13,8 +13,8 @@
  * The lists are rebuilt when some particle has moved further than its
  * reach or some wall more than half the skin since the last build, so no
  * contact can be missed in between. At a rebuild the particles may be
- * re-ordered in cell order (see dem_pairs_build) so that neighbours are close
- * in memory.
+ * re-ordered in cell order (see dem_pairs_build) so that neighbours are
+ * close in memory.
  *
  * Each entry also has room for the force of the last pass (the force on
  * i and n x f_t), at the same index. A particle sums the forces of its
