@@ -44,8 +44,10 @@
 # the strain rate dembox's wall applies). dembox uses walls instead (see
 # docs/performance.md). Loop times come from each code's own timer
 # ("Loop time of ..."; dembox: its timed loop only), so preparation and
-# start-up are excluded everywhere. Prints a Markdown table; run one case at
-# a time on an otherwise idle machine. Never run by CTest.
+# start-up are excluded everywhere. Prints a Markdown table; a requested code
+# that is not installed or fails is a row "not run: why" of the table, and
+# the exit status is then 1. Run one case at a time on an otherwise idle
+# machine. Never run by CTest.
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -245,15 +247,22 @@ TIMEV=()
 # run_peer CODE -> prints "seconds" of the loop, or nothing
 rows=()
 add_row() { rows+=("$*"); }
+# a requested code that did not run is a row of its own (and exit status 1),
+# so that a table without it never passes for a complete comparison
+not_run=()
+skip() { # $1 = code, $2 = why
+  echo "peers.sh: $1: $2" >&2
+  not_run+=("$1|$2")
+}
 
 run_lammps() { # $1 = hh | gr
-  command -v lmp >/dev/null || { echo "peers.sh: lmp not installed, skipping lammps-$1" >&2; return; }
+  command -v lmp >/dev/null || { skip "lammps-$1" "lmp not installed"; return; }
   write_lammps "$1"
   local base=$WORK/$TAG.lammps-$1
   local t=()
   [ ${#TIMEV[@]} -gt 0 ] && t=("${TIMEV[@]}" "$base.time")
   (cd "$WORK" && OMP_NUM_THREADS=1 "${t[@]}" "${LAUNCH[@]}" lmp -in "in.$TAG.lammps-$1" -log "$base.log" -screen none) \
-    || { echo "peers.sh: lammps-$1 failed, see $base.log" >&2; return; }
+    || { skip "lammps-$1" "failed, see $base.log"; return; }
   local secs
   secs=$(awk '/^Loop time of/ {print $4}' "$base.log" | tail -1)
   local model=gran/hooke/history
@@ -262,20 +271,20 @@ run_lammps() { # $1 = hh | gr
 }
 
 run_liggghts() {
-  command -v liggghts >/dev/null || { echo "peers.sh: liggghts not installed, skipping" >&2; return; }
+  command -v liggghts >/dev/null || { skip liggghts "liggghts not installed"; return; }
   write_liggghts
   local base=$WORK/$TAG.liggghts
   local t=()
   [ ${#TIMEV[@]} -gt 0 ] && t=("${TIMEV[@]}" "$base.time")
   (cd "$WORK" && OMP_NUM_THREADS=1 "${t[@]}" "${LAUNCH[@]}" liggghts -in "in.$TAG.liggghts" -log "$base.log" -screen none) \
-    || { echo "peers.sh: liggghts failed, see $base.log" >&2; return; }
+    || { skip liggghts "failed, see $base.log"; return; }
   local secs
   secs=$(awk '/^Loop time of/ {print $4}' "$base.log" | tail -1)
   add_row "liggghts|hooke/stiffness (absolute damping)|$NP ranks|$secs|$(peak_mb "$base.time")|$(cpu_time_v "$base.time")"
 }
 
 run_dembox() {
-  [ -x "$DEMBOX" ] || { echo "peers.sh: $DEMBOX: not built, skipping dembox" >&2; return; }
+  [ -x "$DEMBOX" ] || { skip dembox "$DEMBOX not built"; return; }
   local base=$WORK/$TAG.dembox
   local t=()
   [ ${#TIMEV[@]} -gt 0 ] && t=("${TIMEV[@]}" "$base.time")
@@ -288,7 +297,7 @@ run_dembox() {
   OMP_NUM_THREADS=$threads "${t[@]}" "${launch[@]}" "$DEMBOX" bench --dim "$DIM" \
     --n "$N" --steps "$STEPS" --threads "$threads" --data "$PACK" --quiet \
     > "$base.log" 2>&1 \
-    || { echo "peers.sh: dembox failed, see $base.log" >&2; cat "$base.log" >&2; return; }
+    || { cat "$base.log" >&2; skip dembox "failed, see $base.log"; return; }
   local secs
   secs=$(awk '/^loop:/ {print $2}' "$base.log")
   add_row "dembox|linear + tangential history (walls)|$what|$secs|$(peak_mb "$base.time")|$(awk '/^cpu:/ {print $4}' "$base.log")"
@@ -336,3 +345,8 @@ for r in "${rows[@]}"; do
     printf "| %s | %s | %dD | %d | %d | %s | %.2f | %.3g | %s | %s | %s | %s | %s |\n",
            code, model, dim, n, s, par, t, pss, ratio, cpu, pcpu, rcpu, rss }'
 done
+for r in "${not_run[@]}"; do
+  IFS='|' read -r code why <<<"$r"
+  echo "| $code | not run: $why | ${DIM}D | $N | $STEPS | | | | | | | | |"
+done
+[ ${#not_run[@]} -eq 0 ] || exit 1
