@@ -445,6 +445,7 @@ void dem_sim_forces(struct dem_sim *s)
 int dem_sim_forces_kick(struct dem_sim *s, double h, int chain)
 {
     const double *g = s->cfg.gravity;
-    return forces(
-        s, (struct kick){1, chain, h, s->dt, dem_sim_drift_cut(s), {g[0], g[1], g[2]}});
+    const struct kick K = {1, chain, h, s->dt, dem_sim_drift_cut(s),
+                           {g[0], g[1], g[2]}};
+    return forces(s, K);
 }
