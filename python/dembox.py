@@ -281,7 +281,8 @@ def particles(outdir):
 
 def contacts(outdir):
     """outdir/contacts_final.csv (every closed contact at the end: ids,
-    contact point, normal, overlap, normal and tangential force, sliding)
+    contact point, normal, overlap, normal and tangential force, sliding,
+    the history values of the models in force: xi_x.., dmax, ...)
     as a dict: column -> its values (numpy array or list)."""
     return _csv(os.path.join(outdir, "contacts_final.csv"))
 

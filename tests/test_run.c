@@ -321,6 +321,48 @@ static void same_seed_same_output(void **state)
     }
 }
 
+/* contacts_final.csv ends with the history values of the models in
+ * force: in a relaxed adhesive packing each pair's normal force is
+ * Luding's law at its overlap and its dmax (the dashpot's share is below
+ * 1e-3 of the mean force there), and no dmax is below its overlap. */
+static void contact_history_columns_follow_the_law(void **state)
+{
+    (void)state;
+    char out[1024], path[2048];
+    const char *sets[] = {"stages=( { type = \"isotropic\"; pressure = 500.0;"
+                          " tolerance = 1.0e-5; max_time = 0.1; } )",
+                          "contact.kc=5.0e4"};
+    run_text(small_2d, "history-cols", sets, 2, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {{"id_j", 1},  {"delta", 1},
+                                                {"fn", 1},    {"dmax", 1},
+                                                {"xi_x", 1},  {"xi_y", 1}};
+    struct dem__csv_table t;
+    struct dem_error err = {0};
+    snprintf(path, sizeof path, "%s/contacts_final.csv", out);
+    if (dem__csv_table_read(&t, path, want, 6, &err))
+        fail_msg("%s", err.msg);
+    assert_true(t.nrow > 100);
+    const struct dem_luding L = {5.0e4, 1.0e5, 5.0e4, 0.0};
+    double mean = 0.0, worst = 0.0;
+    int pairs = 0, unloaded = 0;
+    for (size_t k = 0; k < t.nrow; k++) {
+        const double delta = t.col[1][k], dmax = t.col[3][k];
+        assert_true(dmax >= delta * (1.0 - 1e-12));
+        if (t.col[0][k] < 0) /* a wall: kc = contact.wall_kc (0) */
+            continue;
+        double h = dmax;
+        const double f = dem_luding_force(delta, &h, &L, 0.0);
+        worst = fmax(worst, fabs(t.col[2][k] - f));
+        mean += fabs(t.col[2][k]);
+        unloaded += delta < 0.99 * dmax;
+        pairs++;
+    }
+    mean /= pairs;
+    assert_true(worst < 1e-3 * mean);
+    assert_true(unloaded > 0); /* some contacts are off the k1 envelope */
+    dem__csv_table_free(&t);
+}
+
 /* The number of DataSet lines of a PVD file and the last one's time. */
 static int pvd_entries(const char *outdir, const char *name, double *last)
 {
@@ -481,6 +523,7 @@ int main(void)
         cmocka_unit_test(biaxial_fixed_walls_and_dilatancy),
         cmocka_unit_test(same_seed_same_output),
         cmocka_unit_test(snapshots_and_dump_cover_start_and_end),
+        cmocka_unit_test(contact_history_columns_follow_the_law),
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
     };

@@ -258,7 +258,7 @@ static void box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d(void **state)
 /* Three particles, two pair contacts and one wall contact: a point per
  * particle plus one per wall contact, a line per contact, the wall's line
  * ending on its own point, every cell array one value (3 for the branch)
- * per contact. */
+ * per contact, and an array for each history value kept. */
 static void contact_network_is_one_line_per_contact(void **state)
 {
     (void)state;
@@ -282,7 +282,14 @@ static void contact_network_is_one_line_per_contact(void **state)
          .delta = 1e-4,
          .fn = 2.0,
          .sliding = 1}};
-    const struct dem_network net = {4, 3, c};
+    /* with one history value kept (Luding's dmax): one more array */
+    int dmax = 0;
+    while (strcmp(dem_history_name(dmax), "dmax"))
+        dmax++;
+    for (int k = 0; k < 4; k++)
+        c[k].h[dmax] = 1e-4 * (k + 1);
+    const struct dem_network net = {
+        .n = 4, .npair = 3, .hist = 1u << dmax, .c = c};
     char path[128];
     snprintf(path, sizeof path, "%s/contacts.vtu", tmpdir);
     assert_int_equal(dem_vtu_write_contacts(&p, &net, path, &err), DEM_OK);
@@ -307,6 +314,8 @@ static void contact_network_is_one_line_per_contact(void **state)
     for (int q = 0; q < 5; q++)
         assert_int_equal(array_values(text, one[q]), 4);
     assert_int_equal(array_values(text, "branch"), 12);
+    assert_int_equal(array_values(text, "dmax"), 4);
+    assert_null(strstr(text, "Name=\"xi_x\""));
     free(text);
     dem_particles_free(&p);
 }

@@ -11,7 +11,8 @@ struct dem_network;
  * wall w: -1 xmin, -2 xmax, -3 ymin, -4 ymax, -5 zmin, -6 zmax), the
  * contact point x, y, z (m), the normal nx, ny, nz (from the partner to
  * i), the overlap delta (m), the normal force fn (N, > 0 repulsive) and
- * the tangential force ft_x, ft_y, ft_z (N) on i, sliding (0/1). */
+ * the tangential force ft_x, ft_y, ft_z (N) on i, sliding (0/1), then
+ * the history values net keeps, one column each (dem_history_name). */
 int dem_contacts_write_csv(const struct dem_particles *p,
                            const struct dem_network *net, const char *path,
                            struct dem_error *err);

@@ -17,7 +17,8 @@ void dem_dump_frame(FILE *f, long step, const double lo[3], const double hi[3],
  * Columns: id1 id2 x y z nx ny nz delta fn ft_x ft_y ft_z sliding image
  * bx by bz (ids as dem_dump_frame's, 1-based; a wall is id2 = -1 xmin,
  * -2 xmax, ..., -6 zmax; the rest as contacts_final.csv, with b the
- * branch vector from the partner (its image) to id1's centre). */
+ * branch vector from the partner (its image) to id1's centre), then the
+ * history values as contacts_final.csv. */
 void dem_dump_local_frame(FILE *f, long step, const double lo[3],
                           const double hi[3], const struct dem_particles *p,
                           const struct dem_network *net);

@@ -288,6 +288,17 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
         }
         fputs("        </DataArray>\n", f);
     }
+    for (int q = 0; q < DEM_NHISTORY; q++) { /* the history values */
+        if (!(net->hist >> q & 1u))
+            continue;
+        fprintf(f,
+                "        <DataArray type=\"Float64\" Name=\"%s\" "
+                "format=\"ascii\">\n",
+                dem_history_name(q));
+        for (int k = 0; k < nc; k++)
+            fprintf(f, "%.9g\n", net->c[k].h[q]);
+        fputs("        </DataArray>\n", f);
+    }
     fputs("      </CellData>\n"
           "    </Piece>\n"
           "  </UnstructuredGrid>\n"

@@ -13,12 +13,25 @@ static void split(struct dem_network_contact *c, const double f[3])
         c->ft[a] = f[a] - c->fn * c->n[a];
 }
 
+/* Entry k of list L's history values into c->h (those of hist, 0 else). */
+static void history(struct dem_network_contact *c,
+                    const struct dem_contact_list *L, int k, unsigned hist)
+{
+    int q = 0;
+#define HIST_TAKE_(MODEL, name, unit, swap, doc)                               \
+    c->h[q] = hist >> q & 1u ? L->name[k] : 0.0;                               \
+    q++;
+    DEM_CONTACT_HISTORY(HIST_TAKE_)
+#undef HIST_TAKE_
+}
+
 int dem_network_build(const struct dem_sim *s, struct dem_network *net,
                       struct dem_error *err)
 {
     const struct dem_particles *P = &s->p;
     const struct dem_contact_list *L = &s->pairs.cur, *W = &s->pairs.wcur;
     net->n = net->npair = 0;
+    net->hist = s->pairs.hist;
     net->c = malloc((size_t)(L->n + W->n + 1) * sizeof *net->c);
     if (!net->c)
         return dem_error_set(err, DEM_ENOMEM, "out of memory (contacts)");
@@ -49,6 +62,7 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         }
         split(c, s->pairs.f.v[k].f);
         c->sliding = (L->state[k] & DEM_CONTACT_SLIDING) != 0;
+        history(c, L, k, net->hist);
     }
     net->npair = net->n;
     for (int k = 0; k < W->n; k++) {
@@ -71,8 +85,28 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         }
         split(c, s->pairs.wf.v[k].f);
         c->sliding = (W->state[k] & DEM_CONTACT_SLIDING) != 0;
+        history(c, W, k, net->hist);
     }
     return DEM_OK;
+}
+
+void dem_network_history_header(FILE *f, const struct dem_network *net,
+                                 const char *sep)
+{
+    for (int q = 0; q < DEM_NHISTORY; q++)
+        if (net->hist >> q & 1u)
+            fprintf(f, "%s%s", sep, dem_history_name(q));
+}
+
+void dem_network_history_row(FILE *f, const struct dem_network *net,
+                             const struct dem_network_contact *c,
+                             const char *sep, const char *fmt)
+{
+    for (int q = 0; q < DEM_NHISTORY; q++)
+        if (net->hist >> q & 1u) {
+            fputs(sep, f);
+            fprintf(f, fmt, c->h[q]);
+        }
 }
 
 void dem_network_free(struct dem_network *net)

@@ -4,6 +4,9 @@
 #ifndef DEM_MEASURE_NETWORK_H
 #define DEM_MEASURE_NETWORK_H
 
+#include <stdio.h>
+
+#include "contact/history.h"
 #include "core/sim.h"
 
 struct dem_network_contact {
@@ -18,11 +21,15 @@ struct dem_network_contact {
     int image;    /* periodic cell: 1 when i touches an image of j */
     double b[3];  /* m; branch vector from the partner's centre (the
                      image's) to i's; a wall: from the contact point */
+    double h[DEM_NHISTORY]; /* the history values (DEM_CONTACT_HISTORY's
+                               lines) of the models in force (hist) */
 };
 
 struct dem_network {
     int n; /* closed contacts: the pairs first, then the wall contacts */
     int npair;
+    unsigned hist; /* bit k: the contacts' h[k] is kept by the models in
+                      force (struct dem_pairs.hist); the others are 0 */
     struct dem_network_contact *c;
 };
 
@@ -31,5 +38,14 @@ struct dem_network {
 int dem_network_build(const struct dem_sim *s, struct dem_network *net,
                       struct dem_error *err);
 void dem_network_free(struct dem_network *net);
+
+/* The columns of the history values net keeps, each as sep then its name
+ * (dem_history_name), and a contact's values, each as sep then fmt: the
+ * last columns of every contact output. */
+void dem_network_history_header(FILE *f, const struct dem_network *net,
+                                 const char *sep);
+void dem_network_history_row(FILE *f, const struct dem_network *net,
+                             const struct dem_network_contact *c,
+                             const char *sep, const char *fmt);
 
 #endif
