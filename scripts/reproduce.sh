@@ -17,7 +17,10 @@
 #   --numbers DIR after each part, copy its sweep.json, its pictures
 #                 (plots/: .png with the .dat and .gp that draw them) and
 #                 every run's summary.json and config.cfg to DIR/NAME/
-#                 (the numbers behind docs/reproduction.md)
+#                 (the numbers behind docs/reproduction.md); for
+#                 oc-contacts also what scripts/contact-adhesion.py
+#                 reads from the runs' contacts (table.md, contacts.json,
+#                 shares.dat and shares.png)
 #   --smoke       every run stops after 300 steps (checks the command, not
 #                 the physics; used by CTest)
 #   --list        print the parts with their CPU time and exit
@@ -105,6 +108,7 @@ oc-kc-seeds|150|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c/
 oc-reference|90|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = 0 (p = 1000: biaxial-cohesion)|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500 --param seed=1,2,3
 oc-kc-half-seeds|49|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c/k2 = 0.5, seeds 4-6 at p = 100, 250|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=5.0e4 --param stages.1.pressure,stages.2.pressure=100,250 --param seed=4,5,6
 oc-kc-075|34|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c/k2 = 0.75, seeds 1-3 at p = 100, 250|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=7.5e4 --param stages.1.pressure,stages.2.pressure=100,250 --param seed=1,2,3
+oc-contacts|100|Luding et al. Fig. 5 bottom: what the contacts hold (k_c/k2 = 0 to 1, seeds 1-2, over-consolidated at 1000 N/m and sheared at 100 N/m, the contacts every 5 ms; numbers by scripts/contact-adhesion.py)|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set stages.1.pressure=100 --set stages.2.pressure=100 --set output.dump_interval=0.005 --param contact.kc=0.0,2.5e4,5.0e4,7.5e4,1.0e5 --param seed=1,2
 oc-reference-1000|16|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c = 0 tested at 1000 N/m (seeds 1-3)|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=0.0 --param seed=1,2,3
 peak-best-flow|40|Luding et al. Fig. 7 gap: the flow function at peak of the closest variant (heavy walls, k_t = k2, no background damping) at the four pressures|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set walls.mass=0.1 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3,4
 peak-best-cell|76|Luding et al. Fig. 7 gap: the same closest variant in a periodic cell (no walls)|biaxial2d-paper --set box.boundary=periodic --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set walls.mass=0.1 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
@@ -188,6 +192,12 @@ while IFS='|' read -r n m f a; do
             mkdir -p "$d"
             cp "$r/summary.json" "$r/config.cfg" "$d/"
         done
+        if [ "$n" = oc-contacts ] && [ -z "$SMOKE" ]; then # from the contacts
+            [ -f "$NUMBERS/$n/shares.gp" ] ||
+                cp docs/reproduction/paper/oc-contacts/shares.gp "$NUMBERS/$n/"
+            python3 scripts/contact-adhesion.py "$OUT/$n" "$NUMBERS/$n" \
+                > "$NUMBERS/$n/table.md" || failed="$failed $n"
+        fi
         if [ -d "$OUT/$n/plots" ]; then
             mkdir -p "$NUMBERS/$n/plots"
             cp "$OUT/$n"/plots/*.png "$OUT/$n"/plots/*.dat "$OUT/$n"/plots/*.gp \
