@@ -348,23 +348,22 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
         for (int u = 0; u < 9; u++)
             W[u] += c->vir[9 * b + u];
     /* the pairs through an image: their forces summed per image first
-     * (in list order), then each image's shift times its sum */
+     * (in list order; the list groups them by image, so each sum runs in
+     * registers), then each image's shift times its sum */
     const struct dem_pairs *pl = &s->pairs;
-    double F[DEM_IMG_CODES][3] = {{0.0}};
-    for (int q = 0; q < pl->ncross; q++) {
-        const int k = pl->cross[q];
-        double *o = F[pl->cur.img[k]];
-        const double *f = pl->f.v[k].f;
-        o[0] += f[0];
-        o[1] += f[1];
-        o[2] += f[2];
-    }
     for (int g = 0; g < DEM_IMG_CODES; g++) {
+        double F[3] = {0.0, 0.0, 0.0};
+        for (int q = pl->cross_start[g]; q < pl->cross_start[g + 1]; q++) {
+            const double *f = pl->f.v[pl->cross[q]].f;
+            F[0] += f[0];
+            F[1] += f[1];
+            F[2] += f[2];
+        }
         double S[3];
         dem_img_shift(c->cv, g, S);
         for (int u = 0; u < 3; u++)
             for (int v = 0; v < 3; v++)
-                W[3 * u + v] -= S[u] * F[g][v];
+                W[3 * u + v] -= S[u] * F[v];
     }
     for (int u = 0; u < 3; u++)
         for (int v = 0; v < 3; v++)

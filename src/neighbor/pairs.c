@@ -522,6 +522,9 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
 int dem_pairs_cross(struct dem_pairs *pl)
 {
     const struct dem_contact_list *L = &pl->cur;
+    int *start = pl->cross_start;
+    for (int g = 0; g <= DEM_IMG_CODES; g++)
+        start[g] = 0;
     pl->ncross = 0;
     if (!pl->periodic)
         return 0;
@@ -530,9 +533,20 @@ int dem_pairs_cross(struct dem_pairs *pl)
             return -1;
         pl->cross_cap = L->cap;
     }
+    /* a counting sort by image, stable: each image's pairs in list order
+     * (so that the sum over them keeps its order, contact/forces.c) */
     for (int k = 0; k < L->n; k++)
         if (L->img[k] != DEM_IMG_NONE)
-            pl->cross[pl->ncross++] = k;
+            start[L->img[k] + 1]++;
+    for (int g = 0; g < DEM_IMG_CODES; g++)
+        start[g + 1] += start[g];
+    pl->ncross = start[DEM_IMG_CODES];
+    int next[DEM_IMG_CODES];
+    for (int g = 0; g < DEM_IMG_CODES; g++)
+        next[g] = start[g];
+    for (int k = 0; k < L->n; k++)
+        if (L->img[k] != DEM_IMG_NONE)
+            pl->cross[next[L->img[k]]++] = k;
     return 0;
 }
 

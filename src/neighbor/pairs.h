@@ -85,8 +85,11 @@ struct dem_pairs {
                    order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
     int rpair_cap;
     int *cross;  /* periodic cell: the pairs with an image of j other
-                    than j itself, in list order */
+                    than j itself, grouped by the image, each group in
+                    list order: image g's are cross[cross_start[g] ..
+                    cross_start[g + 1]) */
     int ncross, cross_cap;
+    int cross_start[DEM_IMG_CODES + 1];
     /* cell grid (periodic: over the fractional coordinates) */
     int nc[3];       /* cells per axis */
     double lo[3];    /* m; lower corner */
@@ -152,8 +155,8 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
  * The lists keep their counts; a later build works as usual. */
 int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
 
-/* The list of pairs through an image (cross), from cur's images; none
- * unless the grid is a periodic cell's. A build makes it; a checkpoint
+/* The list of pairs through an image (cross, grouped by the image), from
+ * cur's images; none unless the grid is a periodic cell's. A build makes it; a checkpoint
  * that fills cur calls it. 0 or -1 (out of memory). */
 int dem_pairs_cross(struct dem_pairs *pl);
 
