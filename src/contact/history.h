@@ -17,7 +17,7 @@ struct dem_history {
 #define DEM_HIST_COUNT_(MODEL, name, unit, swap, doc) +1
 #define DEM_NHISTORY (0 DEM_CONTACT_HISTORY(DEM_HIST_COUNT_))
 
-/* The k-th history value's name and unit (line k of DEM_CONTACT_HISTORY):
+/* The k-th history value's name (line k of DEM_CONTACT_HISTORY):
  * the column names of the contact outputs (docs/outputs.md). */
 static inline const char *dem_history_name(int k)
 {
