@@ -20,6 +20,14 @@ measures over the particle pairs:
               the network would have if every contact were pulled to f_min
   s_ten       the same sum over the pairs in tension, of their actual -fn
   tension     the share of the pairs in tension
+  q_ten       the deviator (axial minus lateral) of the Love-Weber stress of
+              the pairs in tension (N/m; compression positive, so their
+              share of the strength), q_comp that of the pairs in
+              compression: q = q_comp + q_ten for frictionless pairs
+  adhesive    the share of s_ten carried by pairs on the adhesive branch
+              (delta <= delta_min = (k2 - k1) dmax/(k2 + kc), f = -kc delta:
+              a tension proportional to kc at a given overlap), the rest
+              on the un-/re-loading line k2 (delta - delta_0)
 
 and writes OUT_DIR/contacts.json (every run's numbers), OUT_DIR/shares.dat
 (each measure's share of k_c = k2's, mean and standard error over the
@@ -82,14 +90,17 @@ def frames(path):
             yield step, [hi - lo for lo, hi in box], names, rows
 
 
-def measure(rows, names, L, k1, k2, kc, n_particles):
+def measure(rows, names, L, k1, k2, kc, n_particles, axis):
     col = {c: k for k, c in enumerate(names)}
     if "dmax" not in col:
         raise SystemExit("contact-adhesion.py: dump_local has no dmax column "
                          "(a dembox older than the history columns)")
     area = L[0] * L[1]
     npair = ten = 0
-    sum_dmax = s_cap = s_ten = 0.0
+    sum_dmax = s_cap = s_ten = s_adh = 0.0
+    ax = "xyz".index(axis)
+    lat = 1 - ax if ax < 2 else 0  # the lateral axis of the 2D sample
+    q = {"ten": 0.0, "comp": 0.0}
     for r in rows:
         if int(r[col["id2"]]) < 0:  # wall contact
             continue
@@ -100,9 +111,14 @@ def measure(rows, names, L, k1, k2, kc, n_particles):
         sum_dmax += dmax
         s_cap += fmin * b
         fn = float(r[col["fn"]])
+        nv = [float(r[col["n" + a]]) for a in "xyz"]
+        q["ten" if fn < 0 else "comp"] += fn * b * (nv[ax] ** 2 - nv[lat] ** 2)
         if fn < 0:
             ten += 1
             s_ten += -fn * b
+            dmin = (k2 - k1) * dmax / (k2 + kc)
+            if float(r[col["delta"]]) <= dmin * (1 + 1e-6):
+                s_adh += -fn * b
     return {
         "Z": 2.0 * npair / n_particles,
         "dmax": sum_dmax / npair,
@@ -110,6 +126,9 @@ def measure(rows, names, L, k1, k2, kc, n_particles):
         "s_cap": s_cap / (2 * area),
         "s_ten": s_ten / (2 * area),
         "tension": ten / npair,
+        "adhesive": s_adh / s_ten if s_ten > 0 else 0.0,
+        "q_ten": q["ten"] / area,
+        "q_comp": q["comp"] / area,
     }
 
 
@@ -150,7 +169,7 @@ def one_run(d):
            "sigma_lateral": peak.get("sigma_lateral")}
     for w in want:
         gap, (t, box, names, rows) = best[w]
-        m = measure(rows, names, box, k1, k2, kc, n_particles)
+        m = measure(rows, names, box, k1, k2, kc, n_particles, axis)
         m["t"] = t
         m["t_wanted"] = want[w]
         out[w] = m
@@ -211,8 +230,9 @@ def main():
         r["dq_peak"] = r["q_peak"] - ref[0]["q_peak"] if ref else math.nan
     rows = []
     print("| k_c/k2 | moment | Z | mean dmax (µm) | mean f_min (N) | s_cap (N/m) "
-          "| s_ten (N/m) | pairs in tension |")
-    print("|---|---|---|---|---|---|---|---|")
+          "| s_ten (N/m) | pairs in tension | s_ten on the adhesive branch "
+          "| q_comp (N/m) | q_ten (N/m) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for kc in kcs:
         for moment in ("start", "peak"):
             sel = [r[moment] for r in runs if r["kc_over_k2"] == kc]
@@ -222,9 +242,10 @@ def main():
                 m = statistics.mean(v)
                 se = statistics.stdev(v) / math.sqrt(len(v)) if len(v) > 1 else 0
                 return "%.4g ± %.2g" % (m, se)
-            print("| %g | %s | %s | %s | %s | %s | %s | %s |" % (
+            print("| %g | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 kc, moment, ms("Z"), ms("dmax", 1e6), ms("fmin"), ms("s_cap"),
-                ms("s_ten"), ms("tension")))
+                ms("s_ten"), ms("tension"), ms("adhesive"), ms("q_comp"),
+                ms("q_ten")))
     shares = {
         "dq_peak": share("dq_peak", None),
         "s_cap_start": share("s_cap", "start"),
@@ -232,6 +253,7 @@ def main():
         "s_ten_peak": share("s_ten", "peak"),
         "Z_peak": share("Z", "peak"),
         "fmin_peak": share("fmin", "peak"),
+        "q_ten_peak": share("q_ten", "peak"),
     }
     order = list(shares)
     with open(os.path.join(outdir, "shares.dat"), "w") as f:
