@@ -11,6 +11,7 @@ set xlabel "microscopic friction μ"
 set ylabel "sin φ = (σ_1 - σ_3)/(σ_1 + σ_3)"
 set grid
 set key below box
+set clip two
 set xrange [0:*]
 set yrange [0:*]
 plot \

@@ -11,6 +11,7 @@ set xlabel "axial strain"
 set ylabel ""
 set grid
 set key below box
+set clip two
 set terminal pngcairo size 1000,1100 enhanced font "Sans,12"
 set output outfile
 unset title
@@ -18,41 +19,41 @@ set key outside right top
 set tmargin 5
 set multiplot layout 2,1 title "Loading curves: the loading stage of every run"
 set ylabel "volumetric strain ε_v (expansion > 0)"
-plot 'loading_curves.dat' index 0 using 1:2 with lines lc 1 noenhanced title "contact.mu=0.0", \
+plot 'loading_curves.dat' index 0 using 1:2 with lines lc 1 noenhanced title "contact.mu=0.0 (3 runs)", \
   'loading_curves.dat' index 1 using 1:2 with lines lc 1 noenhanced notitle, \
   'loading_curves.dat' index 2 using 1:2 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 3 using 1:2 with lines lc 2 noenhanced title "contact.mu=0.1", \
+  'loading_curves.dat' index 3 using 1:2 with lines lc 2 noenhanced title "contact.mu=0.1 (3 runs)", \
   'loading_curves.dat' index 4 using 1:2 with lines lc 2 noenhanced notitle, \
   'loading_curves.dat' index 5 using 1:2 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 6 using 1:2 with lines lc 3 noenhanced title "contact.mu=0.2", \
+  'loading_curves.dat' index 6 using 1:2 with lines lc 3 noenhanced title "contact.mu=0.2 (3 runs)", \
   'loading_curves.dat' index 7 using 1:2 with lines lc 3 noenhanced notitle, \
   'loading_curves.dat' index 8 using 1:2 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 9 using 1:2 with lines lc 4 noenhanced title "contact.mu=0.4", \
+  'loading_curves.dat' index 9 using 1:2 with lines lc 4 noenhanced title "contact.mu=0.4 (3 runs)", \
   'loading_curves.dat' index 10 using 1:2 with lines lc 4 noenhanced notitle, \
   'loading_curves.dat' index 11 using 1:2 with lines lc 4 noenhanced notitle, \
-  'loading_curves.dat' index 12 using 1:2 with lines lc 5 noenhanced title "contact.mu=0.6", \
+  'loading_curves.dat' index 12 using 1:2 with lines lc 5 noenhanced title "contact.mu=0.6 (3 runs)", \
   'loading_curves.dat' index 13 using 1:2 with lines lc 5 noenhanced notitle, \
   'loading_curves.dat' index 14 using 1:2 with lines lc 5 noenhanced notitle, \
-  'loading_curves.dat' index 15 using 1:2 with lines lc 6 noenhanced title "contact.mu=1.0", \
+  'loading_curves.dat' index 15 using 1:2 with lines lc 6 noenhanced title "contact.mu=1.0 (3 runs)", \
   'loading_curves.dat' index 16 using 1:2 with lines lc 6 noenhanced notitle, \
   'loading_curves.dat' index 17 using 1:2 with lines lc 6 noenhanced notitle
 set ylabel "σ_{axial} - σ_{lateral} (Pa; 2D: N/m)"
-plot 'loading_curves.dat' index 0 using 1:3 with lines lc 1 noenhanced title "contact.mu=0.0", \
+plot 'loading_curves.dat' index 0 using 1:3 with lines lc 1 noenhanced title "contact.mu=0.0 (3 runs)", \
   'loading_curves.dat' index 1 using 1:3 with lines lc 1 noenhanced notitle, \
   'loading_curves.dat' index 2 using 1:3 with lines lc 1 noenhanced notitle, \
-  'loading_curves.dat' index 3 using 1:3 with lines lc 2 noenhanced title "contact.mu=0.1", \
+  'loading_curves.dat' index 3 using 1:3 with lines lc 2 noenhanced title "contact.mu=0.1 (3 runs)", \
   'loading_curves.dat' index 4 using 1:3 with lines lc 2 noenhanced notitle, \
   'loading_curves.dat' index 5 using 1:3 with lines lc 2 noenhanced notitle, \
-  'loading_curves.dat' index 6 using 1:3 with lines lc 3 noenhanced title "contact.mu=0.2", \
+  'loading_curves.dat' index 6 using 1:3 with lines lc 3 noenhanced title "contact.mu=0.2 (3 runs)", \
   'loading_curves.dat' index 7 using 1:3 with lines lc 3 noenhanced notitle, \
   'loading_curves.dat' index 8 using 1:3 with lines lc 3 noenhanced notitle, \
-  'loading_curves.dat' index 9 using 1:3 with lines lc 4 noenhanced title "contact.mu=0.4", \
+  'loading_curves.dat' index 9 using 1:3 with lines lc 4 noenhanced title "contact.mu=0.4 (3 runs)", \
   'loading_curves.dat' index 10 using 1:3 with lines lc 4 noenhanced notitle, \
   'loading_curves.dat' index 11 using 1:3 with lines lc 4 noenhanced notitle, \
-  'loading_curves.dat' index 12 using 1:3 with lines lc 5 noenhanced title "contact.mu=0.6", \
+  'loading_curves.dat' index 12 using 1:3 with lines lc 5 noenhanced title "contact.mu=0.6 (3 runs)", \
   'loading_curves.dat' index 13 using 1:3 with lines lc 5 noenhanced notitle, \
   'loading_curves.dat' index 14 using 1:3 with lines lc 5 noenhanced notitle, \
-  'loading_curves.dat' index 15 using 1:3 with lines lc 6 noenhanced title "contact.mu=1.0", \
+  'loading_curves.dat' index 15 using 1:3 with lines lc 6 noenhanced title "contact.mu=1.0 (3 runs)", \
   'loading_curves.dat' index 16 using 1:3 with lines lc 6 noenhanced notitle, \
   'loading_curves.dat' index 17 using 1:3 with lines lc 6 noenhanced notitle
 unset multiplot
