@@ -7,9 +7,10 @@ PART_DIR is a sweep of biaxial2d-paper runs with Luding's law over
 contact.kc (part `oc-contacts` of scripts/reproduce.sh: over-consolidated
 at 1000 N/m, sheared at 100 N/m, mu = 0, output.dump_interval > 0 so that
 every run has dump_local.lammpstrj with the contacts' dmax). For each run
-and two moments, the start of the loading stage and the peak of the
-stress ratio (the dump frame nearest to summary.json's peak strain), it
-measures over the particle pairs:
+and three moments, the end of the first stage (consolidated), the start
+of the loading stage and the peak of the stress ratio (the dump frames
+nearest to them; the peak from summary.json's peak strain), it measures
+over the particle pairs:
 
   Z           2 N_pairs/N, the coordination
   dmax        the mean largest overlap reached (m)
@@ -150,7 +151,9 @@ def one_run(d):
                if 1.0 - L[k] / L[k0] >= peak["strain"]), None)
     if tp is None:
         return None
-    want = {"start": t0, "peak": tp}
+    # the end of the consolidation: the last sample before stage 1
+    k1st = next((k for k, s_ in enumerate(ts["stage"]) if int(s_) >= 1), k0)
+    want = {"consolidated": ts["t"][max(k1st - 1, 0)], "start": t0, "peak": tp}
     best = {w: (math.inf, None) for w in want}
     n_particles = None
     for step, box, names, rows in frames(os.path.join(d, "dump_local.lammpstrj")):
@@ -234,7 +237,7 @@ def main():
           "| q_comp (N/m) | q_ten (N/m) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for kc in kcs:
-        for moment in ("start", "peak"):
+        for moment in ("consolidated", "start", "peak"):
             sel = [r[moment] for r in runs if r["kc_over_k2"] == kc]
 
             def ms(q, scale=1.0):
