@@ -151,14 +151,19 @@ def one_run(d):
                if 1.0 - L[k] / L[k0] >= peak["strain"]), None)
     if tp is None:
         return None
-    # the end of the consolidation: the last sample before stage 1
+    # the end of the consolidation: the last sample of stage 0
     k1st = next((k for k, s_ in enumerate(ts["stage"]) if int(s_) >= 1), k0)
-    want = {"consolidated": ts["t"][max(k1st - 1, 0)], "start": t0, "peak": tp}
+    want = {"consolidated": ts["t"][max(k1st - 1, 0)],
+            "start": ts["t"][max(k0 - 1, 0)], "peak": tp}
     best = {w: (math.inf, None) for w in want}
     n_particles = None
     for step, box, names, rows in frames(os.path.join(d, "dump_local.lammpstrj")):
         t = step * dt
         for w, tw in want.items():
+            # the peak: the nearest frame; the ends of the stages: the
+            # last frame not after them (the next stage changes the state)
+            if w != "peak" and t > tw + 0.5 * dt:
+                continue
             if abs(t - tw) < best[w][0]:
                 best[w] = (abs(t - tw), (t, box, names, rows))
     with open(os.path.join(d, "dump.lammpstrj")) as f:
