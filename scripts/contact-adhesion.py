@@ -32,7 +32,8 @@ over the particle pairs:
 
 and writes OUT_DIR/contacts.json (every run's numbers), OUT_DIR/shares.dat
 (each measure's share of k_c = k2's, mean and standard error over the
-seeds) and OUT_DIR/shares.png through the shares.gp kept there (gnuplot).
+seeds) and OUT_DIR/shares.png through OUT_DIR/shares.gp (gnuplot; copied
+from docs/reproduction/paper/oc-contacts/ when OUT_DIR has none).
 The numbers of docs/reproduction.md's "Fig. 5 bottom: what the contacts
 hold" come from this script.
 """
@@ -40,6 +41,7 @@ import json
 import math
 import os
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -280,6 +282,10 @@ def main():
         print("| %g | %.3f | %s |" % (kc, 2 * kc / (1 + kc), " | ".join(
             "%.3f ± %.3f" % shares[q][kc][:2] for q in order)))
     gp = os.path.join(outdir, "shares.gp")
+    kept = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs",
+                        "reproduction", "paper", "oc-contacts", "shares.gp")
+    if not os.path.exists(gp) and os.path.exists(kept):
+        shutil.copy(kept, gp)
     if os.path.exists(gp):
         try:
             subprocess.run(["gnuplot", "shares.gp"], cwd=outdir, check=True)

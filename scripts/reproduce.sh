@@ -17,10 +17,9 @@
 #   --numbers DIR after each part, copy its sweep.json, its pictures
 #                 (plots/: .png with the .dat and .gp that draw them) and
 #                 every run's summary.json and config.cfg to DIR/NAME/
-#                 (the numbers behind docs/reproduction.md); for
-#                 oc-contacts also what scripts/contact-adhesion.py
-#                 reads from the runs' contacts (table.md, contacts.json,
-#                 shares.dat and shares.png)
+#                 (the numbers behind docs/reproduction.md), and what a
+#                 part's own command reads from its runs (oc-contacts:
+#                 scripts/contact-adhesion.py, from the contacts)
 #   --smoke       every run stops after 300 steps (checks the command, not
 #                 the physics; used by CTest)
 #   --list        print the parts with their CPU time and exit
@@ -59,7 +58,9 @@ case $NUMBERS in /* | "") ;; *) NUMBERS=$HERE/$NUMBERS ;; esac
 case ${DEMBOX:-} in /* | "") ;; *) DEMBOX=$HERE/$DEMBOX ;; esac
 B=${DEMBOX:-./build/dembox} # DEMBOX: another dembox binary (tests)
 
-# The parts: NAME|CPU minutes|figures|sweep arguments. CPU minutes on
+# The parts: NAME|CPU minutes|figures|sweep arguments[|numbers], the
+# last an optional command that --numbers runs after the part with its
+# folder and its numbers folder (its output kept there as table.md). CPU minutes on
 # this project's machine (docs/reproduction.md gives the measured ones;
 # parts not yet run there are estimated from the runs' size, about 10
 # CPU seconds per simulated second of 3375 spheres at dt = 2e-5 s and
@@ -108,7 +109,7 @@ oc-kc-seeds|150|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c/
 oc-reference|90|Luding et al. Fig. 5 bottom: over-consolidated at 1000 N/m, k_c = 0 (p = 1000: biaxial-cohesion)|biaxial2d-paper --set contact.mu=0.0 --set contact.kc=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --param stages.1.pressure,stages.2.pressure=100,250,500 --param seed=1,2,3
 oc-kc-half-seeds|49|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c/k2 = 0.5, seeds 4-6 at p = 100, 250|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=5.0e4 --param stages.1.pressure,stages.2.pressure=100,250 --param seed=4,5,6
 oc-kc-075|34|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c/k2 = 0.75, seeds 1-3 at p = 100, 250|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=7.5e4 --param stages.1.pressure,stages.2.pressure=100,250 --param seed=1,2,3
-oc-contacts|60|Luding et al. Fig. 5 bottom: what the contacts hold (k_c/k2 = 0 to 1, seeds 1-2, over-consolidated at 1000 N/m and sheared at 100 N/m, the contacts every 5 ms; numbers by scripts/contact-adhesion.py)|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set stages.1.pressure=100 --set stages.2.pressure=100 --set output.dump_interval=0.005 --param contact.kc=0.0,2.5e4,5.0e4,7.5e4,1.0e5 --param seed=1,2
+oc-contacts|60|Luding et al. Fig. 5 bottom: what the contacts hold (k_c/k2 = 0 to 1, seeds 1-2, over-consolidated at 1000 N/m and sheared at 100 N/m, the contacts every 5 ms; numbers by scripts/contact-adhesion.py)|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set stages.1.pressure=100 --set stages.2.pressure=100 --set output.dump_interval=0.005 --param contact.kc=0.0,2.5e4,5.0e4,7.5e4,1.0e5 --param seed=1,2|python3 scripts/contact-adhesion.py
 oc-reference-1000|16|Luding et al. Fig. 5 bottom at fixed pressure: over-consolidated at 1000 N/m, k_c = 0 tested at 1000 N/m (seeds 1-3)|biaxial2d-paper --set contact.mu=0.0 --set stages=({type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;mu=0.0;},{type="isotropic";pressure=1000.0;tolerance=1.0e-4;max_time=0.1;},{type="compress";axis="y";strain=0.2;duration=0.4;profile="cosine";pressure=1000.0;}) --set contact.kc=0.0 --param seed=1,2,3
 peak-best-flow|40|Luding et al. Fig. 7 gap: the flow function at peak of the closest variant (heavy walls, k_t = k2, no background damping) at the four pressures|biaxial2d-paper --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set walls.mass=0.1 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3,4
 peak-best-cell|76|Luding et al. Fig. 7 gap: the same closest variant in a periodic cell (no walls)|biaxial2d-paper --set box.boundary=periodic --set stages.1.strain=0.1 --set stages.1.duration=0.2 --set walls.mass=0.1 --set contact.kt=1.0e5 --set damping.gamma_b=0.0 --param stages.0.pressure,stages.1.pressure=100,250,500,1000 --param seed=1,2,3
@@ -130,7 +131,7 @@ if [ -n "$ONLY" ]; then
 else
     CHOSEN=" $ALL "
 fi
-selected() { parts | while IFS='|' read -r n m f a; do case "$CHOSEN" in *" $n "*) echo "$n|$m|$f|$a" ;; esac; done; }
+selected() { parts | while IFS='|' read -r n m f a x; do case "$CHOSEN" in *" $n "*) echo "$n|$m|$f|$a|$x" ;; esac; done; }
 
 # Wall minutes of a part of M CPU minutes and sweep arguments A with
 # --jobs JOBS: its runs (the product of the --param value counts) go
@@ -152,7 +153,7 @@ part_wall() {
 
 total=0 wall=0
 printf '%-18s %8s  %s\n' part CPU-min figures
-while IFS='|' read -r n m f a; do
+while IFS='|' read -r n m f a x; do
     printf '%-18s %8s  %s\n' "$n" "$m" "$f"
     total=$((total + m))
     # shellcheck disable=SC2086 # the arguments are split on purpose
@@ -176,7 +177,7 @@ fi
 echo "$ID" > "$OUT/reproduce.id"
 
 failed=""
-while IFS='|' read -r n m f a; do
+while IFS='|' read -r n m f a x; do
     echo "== $n ($f; about $m CPU minutes) $(date -u +%H:%M:%S)"
     # shellcheck disable=SC2086 # the arguments are split on purpose
     if ! "$B" sweep $a -o "$OUT/$n" --jobs "$JOBS" \
@@ -192,11 +193,10 @@ while IFS='|' read -r n m f a; do
             mkdir -p "$d"
             cp "$r/summary.json" "$r/config.cfg" "$d/"
         done
-        if [ "$n" = oc-contacts ] && [ -z "$SMOKE" ]; then # from the contacts
-            [ -f "$NUMBERS/$n/shares.gp" ] ||
-                cp docs/reproduction/paper/oc-contacts/shares.gp "$NUMBERS/$n/"
-            python3 scripts/contact-adhesion.py "$OUT/$n" "$NUMBERS/$n" \
-                > "$NUMBERS/$n/table.md" || failed="$failed $n"
+        if [ -n "$x" ] && [ -z "$SMOKE" ]; then # the part's own numbers
+            # shellcheck disable=SC2086 # the command is split on purpose
+            $x "$OUT/$n" "$NUMBERS/$n" > "$NUMBERS/$n/table.md" ||
+                failed="$failed $n"
         fi
         if [ -d "$OUT/$n/plots" ]; then
             mkdir -p "$NUMBERS/$n/plots"
