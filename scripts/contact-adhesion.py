@@ -145,7 +145,6 @@ def one_run(d):
     axis = summ.get("axis", "y")
     L = ts["L" + axis]
     k0 = next(k for k, s in enumerate(ts["stage"]) if int(s) == stage)
-    t0 = ts["t"][k0]
     peak = summ.get("peak") or {}
     if peak.get("strain") is None:
         return None
@@ -178,7 +177,7 @@ def one_run(d):
            "sigma_axial": peak.get("sigma_axial"),
            "sigma_lateral": peak.get("sigma_lateral")}
     for w in want:
-        gap, (t, box, names, rows) = best[w]
+        _, (t, box, names, rows) = best[w]
         m = measure(rows, names, box, k1, k2, kc, n_particles, axis)
         m["t"] = t
         m["t_wanted"] = want[w]
@@ -238,7 +237,6 @@ def main():
     for r in runs:
         ref = [x for x in runs if x["seed"] == r["seed"] and x["kc_over_k2"] == 0]
         r["dq_peak"] = r["q_peak"] - ref[0]["q_peak"] if ref else math.nan
-    rows = []
     print("| k_c/k2 | moment | Z | mean dmax (µm) | mean f_min (N) | s_cap (N/m) "
           "| s_ten (N/m) | pairs in tension | s_ten on the adhesive branch "
           "| q_comp (N/m) | q_ten (N/m) |")
