@@ -269,6 +269,38 @@ def share_of(stats, kc, p):
     return add / full, se
 
 
+def part_rank(name):
+    """A part's place in the list of scripts/reproduce.sh (the order the
+    parts were added in; parts not listed come last, by name)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    try:
+        with open(os.path.join(here, "reproduce.sh")) as f:
+            names = [line.split("|")[0] for line in f if "|" in line and
+                     not line.startswith((" ", "#"))]
+    except OSError:
+        names = []
+    return (names.index(name) if name in names else len(names), name)
+
+
+def oc_samples(d):
+    """(part folder, run) of every finished run of the over-consolidated
+    parts (oc-*), each sample once: a part that ran a seed again at the
+    same k_c and pressure (oc-contacts, for the contacts' outputs) is not
+    a new sample, so the part first in reproduce.sh's list keeps it."""
+    seen = set()
+    for name in sorted(os.listdir(d), key=part_rank):
+        path = os.path.join(d, name, "sweep.json")
+        if not name.startswith("oc-") or not os.path.exists(path):
+            continue
+        for r in load(path)["runs"]:
+            sample = (r.get("kc_over_k2"), r.get("confining_pressure"),
+                      r["params"].get("seed"))
+            if r.get("status") != "finished" or sample in seen:
+                continue
+            seen.add(sample)
+            yield os.path.join(d, name), r
+
+
 def adhesion_strength(d):
     """Luding et al. Fig. 5 bottom, read at fixed confining pressure: the
     peak deviator q = sigma_axial - sigma_lateral of the over-consolidated
@@ -281,19 +313,13 @@ def adhesion_strength(d):
     which extrapolates 3-4 circles to zero stress, q at each pressure is
     measured directly."""
     q = {}
-    for name in sorted(os.listdir(d)):
-        path = os.path.join(d, name, "sweep.json")
-        if not name.startswith("oc-") or not os.path.exists(path):
+    for _, r in oc_samples(d):
+        pk = r.get("peak") or {}
+        if pk.get("sigma_axial") is None or pk.get("sigma_lateral") is None:
             continue
-        for r in load(path)["runs"]:
-            pk = r.get("peak") or {}
-            if r.get("status") != "finished" or \
-                    pk.get("sigma_axial") is None or \
-                    pk.get("sigma_lateral") is None:
-                continue
-            key = (r["kc_over_k2"], r["confining_pressure"])
-            q.setdefault(key, []).append(
-                r["peak"]["sigma_axial"] - r["peak"]["sigma_lateral"])
+        key = (r["kc_over_k2"], r["confining_pressure"])
+        q.setdefault(key, []).append(
+            r["peak"]["sigma_axial"] - r["peak"]["sigma_lateral"])
     kcs = sorted({k for k, _ in q})
     ps = sorted({p for _, p in q})
     if 0 not in kcs or 1 not in kcs:
@@ -307,8 +333,7 @@ def adhesion_strength(d):
         fmin = 2 * kc / (1 + kc)  # f_min(k_c) / f_min(k2)
         cells = []
         for p in ps:
-            a, z, one = stats.get((kc, p)), stats.get((0, p)), \
-                stats.get((1, p))
+            a, z = stats.get((kc, p)), stats.get((0, p))
             if not a:
                 cells += ["–", "–", "–"]
                 continue
@@ -349,18 +374,15 @@ def adhesion_window(d, lo=0.01, hi=0.05):
     fluctuating curve, is biased up by about the fluctuation), from the
     loading curves kept (oc-kc kept them for k_c/k2 = 0.5 only). Also
     the fluctuation: the rms of q about its 21-point moving mean."""
-    q, rms = {}, {}
-    for name in sorted(os.listdir(d)):
-        part = os.path.join(d, name)
+    q, rms, curves = {}, {}, {}
+    for part, r in oc_samples(d):
         dat = os.path.join(part, "plots", "loading_curves.dat")
-        if not name.startswith("oc-") or not os.path.exists(dat):
-            continue
-        runs = {r["name"]: r for r in load(os.path.join(part, "sweep.json"))
-                ["runs"] if r.get("status") == "finished"}
-        for run, rows in dat_blocks(dat).items():
-            r = runs.get(run)
+        if os.path.exists(dat) and dat not in curves:
+            curves[dat] = dat_blocks(dat)
+        rows = curves.get(dat, {}).get(r["name"])
+        if rows:
             w = [x[2] for x in rows if lo <= x[0] <= hi]
-            if not r or len(w) < 10:
+            if len(w) < 10:
                 continue
             key = (r["kc_over_k2"], r["confining_pressure"])
             q.setdefault(key, []).append(sum(w) / len(w))
