@@ -19,30 +19,30 @@ unset title
 set key inside top left box opaque font ",10"
 set ylabel "ε_D at the end of cycle c"
 plot \
-  "strain_accumulation.dat" index 0 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.01, 3 runs (2 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 0 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.01, 3 runs (3 ratcheting)" noenhanced, \
   "" index 0 using 1:($4 < 0 ? -$4 : 1/0):5 with yerrorbars pointtype 6 pointsize 0.9 linecolor 1 notitle, \
   "strain_accumulation.dat" index 1 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 2 title "μ = 0.1, 3 runs (0 ratcheting)" noenhanced, \
   "" index 1 using 1:($4 < 0 ? -$4 : 1/0):5 with yerrorbars pointtype 6 pointsize 0.9 linecolor 2 notitle, \
   "strain_accumulation.dat" index 2 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 3 title "μ = 0.3, 3 runs (0 ratcheting)" noenhanced, \
   "" index 2 using 1:($4 < 0 ? -$4 : 1/0):5 with yerrorbars pointtype 6 pointsize 0.9 linecolor 3 notitle, \
-  "strain_accumulation.dat" index 3 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 4 title "μ = 0.5, 3 runs (1 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 3 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 4 title "μ = 0.5, 3 runs (0 ratcheting)" noenhanced, \
   "" index 3 using 1:($4 < 0 ? -$4 : 1/0):5 with yerrorbars pointtype 6 pointsize 0.9 linecolor 4 notitle, \
-  "strain_accumulation.dat" index 4 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 5 title "μ = 1, 3 runs (2 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 4 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 5 title "μ = 1, 3 runs (1 ratcheting)" noenhanced, \
   "" index 4 using 1:($4 < 0 ? -$4 : 1/0):5 with yerrorbars pointtype 6 pointsize 0.9 linecolor 5 notitle, \
   1/0 with points pointtype 6 pointsize 0.9 linecolor "black" title "open: negative, |value| drawn" noenhanced, \
   1/0 notitle
 unset key
 set ylabel "Δε_D gained in cycle c"
 plot \
-  "strain_accumulation.dat" index 0 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.01, 3 runs (2 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 0 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.01, 3 runs (3 ratcheting)" noenhanced, \
   "" index 0 using 1:($2 < 0 ? -$2 : 1/0):3 with yerrorbars pointtype 6 pointsize 0.9 linecolor 1 notitle, \
   "strain_accumulation.dat" index 1 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 2 title "μ = 0.1, 3 runs (0 ratcheting)" noenhanced, \
   "" index 1 using 1:($2 < 0 ? -$2 : 1/0):3 with yerrorbars pointtype 6 pointsize 0.9 linecolor 2 notitle, \
   "strain_accumulation.dat" index 2 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 3 title "μ = 0.3, 3 runs (0 ratcheting)" noenhanced, \
   "" index 2 using 1:($2 < 0 ? -$2 : 1/0):3 with yerrorbars pointtype 6 pointsize 0.9 linecolor 3 notitle, \
-  "strain_accumulation.dat" index 3 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 4 title "μ = 0.5, 3 runs (1 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 3 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 4 title "μ = 0.5, 3 runs (0 ratcheting)" noenhanced, \
   "" index 3 using 1:($2 < 0 ? -$2 : 1/0):3 with yerrorbars pointtype 6 pointsize 0.9 linecolor 4 notitle, \
-  "strain_accumulation.dat" index 4 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 5 title "μ = 1, 3 runs (2 ratcheting)" noenhanced, \
+  "strain_accumulation.dat" index 4 using 1:($2 > 0 ? $2 : 1/0):3 with yerrorlines pointtype 7 pointsize 0.6 linecolor 5 title "μ = 1, 3 runs (1 ratcheting)" noenhanced, \
   "" index 4 using 1:($2 < 0 ? -$2 : 1/0):3 with yerrorbars pointtype 6 pointsize 0.9 linecolor 5 notitle, \
   1/0 with points pointtype 6 pointsize 0.9 linecolor "black" title "open: negative, |value| drawn" noenhanced, \
   1/0 notitle
