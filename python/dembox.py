@@ -4,7 +4,9 @@ A thin ctypes layer over libdembox.so (the C API of include/dembox.h);
 nothing to compile. The library is found through the environment
 variable DEMBOX_LIB (a path), next to this file in an installed tree
 (PREFIX/lib/python3/dist-packages -> PREFIX/lib), or by the system's
-library search.
+library search, and loaded at the first call that needs it: the readers
+of a run's files (timeseries, summary, particles, contacts, dump_local,
+sweep_summary) work without it.
 
     import dembox
     out = dembox.run("biaxial2d", "out", sets=["contact.mu=0.3"])
@@ -35,7 +37,7 @@ except ImportError:  # the module works without it, with lists
 
 __all__ = ["Error", "version", "examples", "example_text", "run", "analyze",
            "plot", "timeseries", "summary", "particles", "contacts",
-           "dump_local", "sweep", "sweep_summary"]
+           "dump_local", "DumpFrame", "sweep", "sweep_summary"]
 
 
 class Error(Exception):
@@ -60,8 +62,6 @@ def _find_library():
         raise OSError("libdembox.so not found: set DEMBOX_LIB to its path")
     return found
 
-
-_lib = ctypes.CDLL(_find_library())
 
 _WARN = ctypes.CFUNCTYPE(None, ctypes.c_char_p, ctypes.c_void_p)
 
@@ -111,44 +111,67 @@ class _Example(ctypes.Structure):
     _fields_ = [("name", ctypes.c_char_p), ("text", ctypes.c_char_p)]
 
 
-_lib.dem_config_size.restype = ctypes.c_size_t
-_lib.dem_struct_size.restype = ctypes.c_size_t
-_lib.dem_struct_size.argtypes = [ctypes.c_char_p]
-# the structs mirrored above must be the library's, field for field: a
-# size that differs means this module and libdembox.so do not match
-for _name, _mirror in (("dem_error", _ErrorStruct),
-                       ("dem_run_options", _RunOptions),
-                       ("dem_sweep_options", _SweepOptions),
-                       ("dem_sweep_report", _SweepReport),
-                       ("dem_example", _Example)):
-    if _lib.dem_struct_size(_name.encode()) != ctypes.sizeof(_mirror):
-        raise ImportError("dembox: struct %s of %s has %d bytes, this module's "
-                          "copy %d: the module and the library do not match"
-                          % (_name, _lib._name, _lib.dem_struct_size(
+_loaded = None
+
+
+def _library():
+    """libdembox.so, loaded and its prototypes set at the first call that
+    needs it: the readers of a run's files (timeseries, summary, particles,
+    contacts, dump_local, sweep_summary) work without the library."""
+    global _loaded
+    if _loaded is not None:
+        return _loaded
+    lib = ctypes.CDLL(_find_library())
+    lib.dem_config_size.restype = ctypes.c_size_t
+    lib.dem_struct_size.restype = ctypes.c_size_t
+    lib.dem_struct_size.argtypes = [ctypes.c_char_p]
+    # the structs mirrored above must be the library's, field for field: a
+    # size that differs means this module and libdembox.so do not match
+    for _name, _mirror in (("dem_error", _ErrorStruct),
+                           ("dem_run_options", _RunOptions),
+                           ("dem_sweep_options", _SweepOptions),
+                           ("dem_sweep_report", _SweepReport),
+                           ("dem_example", _Example)):
+        if lib.dem_struct_size(_name.encode()) != ctypes.sizeof(_mirror):
+            raise OSError("dembox: struct %s of %s has %d bytes, this "
+                          "module's copy %d: the module and the library do "
+                          "not match" % (_name, lib._name, lib.dem_struct_size(
                               _name.encode()), ctypes.sizeof(_mirror)))
-_lib.dem_version.restype = ctypes.c_char_p
-_lib.dem_example_find.restype = ctypes.POINTER(_Example)
-_lib.dem_example_find.argtypes = [ctypes.c_char_p]
-_lib.dem_config_parse.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
-                                  ctypes.c_char_p, ctypes.c_void_p,
-                                  ctypes.c_int, ctypes.POINTER(_ErrorStruct)]
-_lib.dem_config_load_file.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
-                                      ctypes.c_void_p, ctypes.c_int,
-                                      ctypes.POINTER(_ErrorStruct)]
-_lib.dem_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_RunOptions),
-                         ctypes.POINTER(_ErrorStruct)]
-_lib.dem_analyze.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
-_lib.dem_plot_run.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
-_lib.dem_mpi_world.argtypes = [ctypes.POINTER(ctypes.c_int),
-                               ctypes.POINTER(ctypes.c_int)]
-_lib.dem_mpi_world.restype = None
-_lib.dem_sweep_grid_bytes.restype = ctypes.c_size_t
-_lib.dem_sweep_param_add.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+    lib.dem_version.restype = ctypes.c_char_p
+    lib.dem_example_find.restype = ctypes.POINTER(_Example)
+    lib.dem_example_find.argtypes = [ctypes.c_char_p]
+    lib.dem_config_parse.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+                                     ctypes.c_char_p, ctypes.c_void_p,
+                                     ctypes.c_int,
                                      ctypes.POINTER(_ErrorStruct)]
-_lib.dem_sweep_grid_free.argtypes = [ctypes.c_void_p]
-_lib.dem_sweep_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_SweepOptions),
-                               ctypes.POINTER(_SweepReport),
-                               ctypes.POINTER(_ErrorStruct)]
+    lib.dem_config_load_file.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+                                         ctypes.c_void_p, ctypes.c_int,
+                                         ctypes.POINTER(_ErrorStruct)]
+    lib.dem_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_RunOptions),
+                            ctypes.POINTER(_ErrorStruct)]
+    lib.dem_analyze.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
+    lib.dem_plot_run.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
+    lib.dem_mpi_world.argtypes = [ctypes.POINTER(ctypes.c_int),
+                                  ctypes.POINTER(ctypes.c_int)]
+    lib.dem_mpi_world.restype = None
+    lib.dem_sweep_grid_bytes.restype = ctypes.c_size_t
+    lib.dem_sweep_param_add.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+                                        ctypes.POINTER(_ErrorStruct)]
+    lib.dem_sweep_grid_free.argtypes = [ctypes.c_void_p]
+    lib.dem_sweep_run.argtypes = [ctypes.c_void_p,
+                                  ctypes.POINTER(_SweepOptions),
+                                  ctypes.POINTER(_SweepReport),
+                                  ctypes.POINTER(_ErrorStruct)]
+    _loaded = lib
+    return lib
+
+
+class _LazyLibrary:
+    def __getattr__(self, name):
+        return getattr(_library(), name)
+
+
+_lib = _LazyLibrary()
 
 
 def _error(warnings):
@@ -173,8 +196,8 @@ def version():
 
 def examples():
     """The names of the built-in examples."""
-    n = ctypes.c_int.in_dll(_lib, "dem_n_examples").value
-    table = (_Example * n).in_dll(_lib, "dem_examples")
+    n = ctypes.c_int.in_dll(_library(), "dem_n_examples").value
+    table = (_Example * n).in_dll(_library(), "dem_examples")
     return [table[k].name.decode() for k in range(n)]
 
 
@@ -287,10 +310,29 @@ def contacts(outdir):
     return _csv(os.path.join(outdir, "contacts_final.csv"))
 
 
+class DumpFrame(tuple):
+    """A frame of dump_local: the pair (step, columns), with the box's
+    bounds at that step as .box, ((xlo, xhi), (ylo, yhi), (zlo, zhi))."""
+
+    def __new__(cls, step, columns, box):
+        frame = super().__new__(cls, (step, columns))
+        frame.box = box
+        return frame
+
+    @property
+    def step(self):
+        return self[0]
+
+    @property
+    def columns(self):
+        return self[1]
+
+
 def dump_local(outdir):
     """outdir/dump_local.lammpstrj (written with output.dump_interval > 0):
-    a list of frames, each (step, dict column -> its values, numpy array
-    or list) of the closed contacts at that step."""
+    a list of frames, each a DumpFrame (step, dict column -> its values,
+    numpy array or list) of the closed contacts at that step, with the
+    box's bounds as frame.box."""
     frames = []
     with open(os.path.join(outdir, "dump_local.lammpstrj")) as f:
         lines = f.read().splitlines()
@@ -299,10 +341,13 @@ def dump_local(outdir):
         if lines[k].startswith("ITEM: TIMESTEP"):
             step = int(lines[k + 1])
             n = int(lines[k + 3])
+            box = tuple(tuple(float(v) for v in lines[k + 5 + a].split()[:2])
+                        for a in range(3))
             head = lines[k + 8].split()[2:]
             rows = [lines[k + 9 + r].split() for r in range(n)]
-            frames.append((step, {name: _column([float(r[c]) for r in rows])
-                                  for c, name in enumerate(head)}))
+            frames.append(DumpFrame(step, {
+                name: _column([float(r[c]) for r in rows])
+                for c, name in enumerate(head)}, box))
             k += 9 + n
         else:
             k += 1

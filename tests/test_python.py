@@ -71,6 +71,29 @@ assert all(
     abs(a - b) <= 1e-9 * abs(b) for a, b in
     zip(frames[-1][1]["fn"], cons["fn"])), "normal forces differ"
 
+# the frame's box holds every particle's centre (the final state)
+box = frames[-1].box
+for a, col in enumerate("xy"):
+    lo, hi = box[a]
+    assert lo < hi and all(lo < v < hi for v in parts[col]), (col, box[a])
+assert frames[-1].step == frames[-1][0] and frames[-1].columns is frames[-1][1]
+
+# the readers need no library: a fresh interpreter whose DEMBOX_LIB names
+# no file reads the run's files, and the first call into the library
+# raises OSError naming the file
+code = ("import sys, dembox; d = sys.argv[1]\n"
+        "assert dembox.summary(d)['dimension'] == 2\n"
+        "assert len(dembox.timeseries(d)['t']) > 10\n"
+        "assert len(dembox.dump_local(d)) >= 3\n"
+        "try:\n    dembox.version()\n"
+        "except OSError as e:\n    print('no library:', e)\n"
+        "else:\n    sys.exit('version() ran without a library')\n")
+nolib = subprocess.run(
+    [sys.executable, "-c", code, out_d], capture_output=True, text=True,
+    env=dict(os.environ, DEMBOX_LIB=os.path.join(tmp, "no-such-lib.so")))
+assert nolib.returncode == 0 and "no-such-lib.so" in nolib.stdout, \
+    nolib.stdout + nolib.stderr
+
 # a sweep of two runs: sweep.json lists both, finished
 sw = dembox.sweep("biaxial2d", os.path.join(tmp, "sw"),
                   ["contact.mu=0.1,0.3"], sets=sets, max_steps=200)
