@@ -10,9 +10,11 @@ found (cyclic parts: strain per cycle; the others: flow functions and
 the peak, critical and volumetric numbers per confining pressure); means are given with their standard error over the seeds
 (mean ± s.e., n samples). Python 3 standard library only.
 """
+import functools
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -269,16 +271,22 @@ def share_of(stats, kc, p):
     return add / full, se
 
 
-def part_rank(name):
-    """A part's place in the list of scripts/reproduce.sh (the order the
-    parts were added in; parts not listed come last, by name)."""
+@functools.lru_cache(maxsize=None)
+def part_names():
+    """The parts of scripts/reproduce.sh, in its list's order."""
     here = os.path.dirname(os.path.abspath(__file__))
     try:
         with open(os.path.join(here, "reproduce.sh")) as f:
-            names = [line.split("|")[0] for line in f if "|" in line and
-                     not line.startswith((" ", "#"))]
+            return tuple(line.split("|")[0] for line in f
+                         if re.match(r"[a-z0-9-]+\|[0-9]+\|", line))
     except OSError:
-        names = []
+        return ()
+
+
+def part_rank(name):
+    """A part's place in reproduce.sh's list (parts not listed come last,
+    by name)."""
+    names = part_names()
     return (names.index(name) if name in names else len(names), name)
 
 
