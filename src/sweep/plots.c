@@ -664,11 +664,20 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
             snprintf(title[m++], sizeof *title, "μ = %.3g%s%s%s", r->mu, par,
                      r->verdict[0] ? ": " : "", r->verdict);
     }
+    /* the key sits in the left panel: longer titles (a parameter besides
+     * mu) take a smaller font, and a key narrower than gnuplot's estimate
+     * (made at the terminal's 12 points, a third too wide at 8), so that
+     * it does not reach into the right panel */
+    size_t widest = 0;
+    for (int b = 0; b < m; b++)
+        if (strlen(title[b]) > widest)
+            widest = strlen(title[b]);
     fprintf(gp,
             "set multiplot layout 1,2 title \"Strain accumulation%s\"\n"
             "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
-            "set key inside top left box opaque font \",10\"\n",
-            ens ? ", mean ± s.e. over the seeds" : "");
+            "set key inside top left box opaque font %s\n",
+            ens ? ", mean ± s.e. over the seeds" : "",
+            widest > 44 ? "\",8\" width -10" : "\",10\"");
     for (int panel = 0; panel < 2; panel++) {
         fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
                 panel ? "unset key\n" : "",

@@ -16,7 +16,7 @@ set multiplot layout 1,2 title "Strain accumulation, mean ± s.e. over the seeds
 set logscale xy
 set format y "%.0e"
 unset title
-set key inside top left box opaque font ",10"
+set key inside top left box opaque font ",8" width -10
 set ylabel "ε_D at the end of cycle c"
 plot \
   "strain_accumulation.dat" index 0 using 1:($4 > 0 ? $4 : 1/0):5 with yerrorlines pointtype 7 pointsize 0.6 linecolor 1 title "μ = 0.1 (stages.1.period=1), 2 runs (0 ratcheting)" noenhanced, \
