@@ -46,6 +46,13 @@ import statistics
 import subprocess
 import sys
 
+# the run's files through the project's Python module (it reads them
+# without loading libdembox.so); dump_local.lammpstrj is streamed below,
+# frame by frame, as each run's is some 80-90 MB
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "python"))
+import dembox  # noqa: E402
+
 
 def config_value(cfg, key):
     """The number of `key = value;` inside the contact group of config.cfg."""
@@ -62,16 +69,6 @@ def top_value(cfg, key):
     if not m:
         raise SystemExit("contact-adhesion.py: no %s in config.cfg" % key)
     return float(m.group(1))
-
-
-def timeseries(path):
-    with open(path) as f:
-        head = f.readline().strip().split(",")
-        cols = {h: [] for h in head}
-        for line in f:
-            for h, v in zip(head, line.split(",")):
-                cols[h].append(float(v))
-    return cols
 
 
 def frames(path):
@@ -140,7 +137,7 @@ def one_run(d):
     k1, k2, kc = (config_value(cfg, k) for k in ("k1", "k2", "kc"))
     dt = top_value(cfg, "time_step")
     summ = json.load(open(os.path.join(d, "summary.json")))
-    ts = timeseries(os.path.join(d, "timeseries.csv"))
+    ts = dembox.timeseries(d)
     stage = int(summ["loading_stage"])
     axis = summ.get("axis", "y")
     L = ts["L" + axis]
