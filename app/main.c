@@ -191,13 +191,15 @@ static const char *const usage_bench =
     "the time spent in the exchanges between ranks (waiting for the\n"
     "slowest rank included).\n"
     "\n"
-    "The force pass is built up to three times: with and without the\n"
+    "The force pass is built up to four times: with and without the\n"
     "CPU's gather instructions (slow on some CPUs, fast on others), and,\n"
     "where the CPU has AVX, reading the particles from 96-byte records\n"
-    "by transposes; same results bit for bit. Every run times them now\n"
-    "and then and uses the fastest; the environment variable\n"
-    "DEMBOX_PASS=gathers|loads|records|auto forces one (also for dembox\n"
-    "run).\n";
+    "by transposes, once storing every pair's force and once keeping\n"
+    "them in a ring per thread that stays in cache (faster for large\n"
+    "packings); same results bit for bit. Every run times them now and\n"
+    "then and uses the fastest; the environment variable\n"
+    "DEMBOX_PASS=gathers|loads|records|ring|auto forces one (also for\n"
+    "dembox run).\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";

@@ -225,8 +225,13 @@ static void force_passes_give_identical_results(void **state)
      * pass; one by one: filled at every pass */
     assert_same_runs(1, 1, "gathers", 1, 1, "records");
     assert_same_runs(2, 1, "records", 1, 0, "records");
+    /* the ring pass: chained, the forces in rings (with two threads the
+     * first particles of the second block wait for the barrier) */
+    assert_same_runs(1, 1, "ring", 1, 0, "records");
+    assert_same_runs(2, 1, "ring", 1, 1, "gathers");
     run_cell = 1;
     assert_same_runs(2, 1, "gathers", 1, 1, "records");
+    assert_same_runs(2, 1, "ring", 1, 1, "records");
     run_cell = 0;
 #endif
     struct dem_config c;

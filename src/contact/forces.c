@@ -3,6 +3,7 @@
  * for the measurements.
  */
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,7 +23,8 @@ static struct pass pass_of(const struct dem_particles *P,
         .x = P->x, .y = P->y, .z = P->z, .vx = P->vx, .vy = P->vy,
         .vz = P->vz, .wx = P->wx, .wy = P->wy, .wz = P->wz, .r = P->r,
         .m = P->m,
-        .ci = L->i, .cj = L->j, .img = L->img, .state = L->state, .F = F->v, .M = F->m,
+        .ci = L->i, .cj = L->j, .img = L->img, .state = L->state, .F = F->v,
+        .foff = 0, .M = F->m,
 #define HIST_OF_(MODEL, name, unit, swap, doc) .name = L->name,
         DEM_CONTACT_HISTORY(HIST_OF_)
 #undef HIST_OF_
@@ -212,6 +214,7 @@ static const struct {
 #endif
 #if DEM_HAVE_PASS_RECORDS
     {"records", dem__pass_records, 1},
+    {"ring", dem__pass_ring, 1},
 #endif
 };
 enum { NPASS = sizeof passes / sizeof passes[0] };
@@ -380,6 +383,26 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
     }
 }
 
+/* The ring pass's rings for a chained pass (contact/pass_ring.c): one per
+ * thread of a power of two entries, at least the list's reach plus a
+ * chunk; their size less 1 in *mask. NULL if out of memory (the pass
+ * then stores every force in the list's array). */
+static struct dem_contact_force *rings(struct dem_pairs *pl, int *mask)
+{
+    size_t size = 1;
+    while (size < (size_t)pl->reach + DEM_RING_CHUNK)
+        size *= 2;
+    const size_t need = size * (size_t)omp_get_max_threads();
+    if (need > pl->ring_cap) {
+        free(pl->ring);
+        pl->ring =
+            aligned_alloc(DEM_CONTACT_FORCE_ALIGN, need * sizeof *pl->ring);
+        pl->ring_cap = pl->ring ? need : 0;
+    }
+    *mask = (int)size - 1;
+    return pl->ring;
+}
+
 static int forces(struct dem_sim *s, const struct kick K)
 {
     struct dem_pairs *pl = &s->pairs;
@@ -411,6 +434,10 @@ static int forces(struct dem_sim *s, const struct kick K)
         dem_sim_cell_grad(s, c.grad);
     }
     c.rec = pl->rec;
+#if DEM_HAVE_PASS_RECORDS
+    if (K.chain)
+        c.ring = rings(pl, &c.ring_mask);
+#endif
     c.rec_fresh = pl->rec_fresh && pl->rec_written;
     pl->rec_fresh = 0;
     const int moved = run_pass(&s->pass, &c, K);

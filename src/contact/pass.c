@@ -142,7 +142,7 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     DEM_CONTACT_HISTORY(HIST_STORE_)
 #undef HIST_STORE_
     q->state[k] = touch ? st : 0;
-    struct dem_contact_force *o = &q->F[k];
+    struct dem_contact_force *o = &q->F[k - q->foff];
     o->f[0] = touch ? fn * n.x + ft.x : 0.0;
     o->f[1] = touch ? fn * n.y + ft.y : 0.0;
     o->f[2] = touch ? fn * n.z + ft.z : 0.0;
@@ -161,7 +161,7 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
     DEM_CONTACT_HISTORY(HIST_ZERO_)
 #undef HIST_ZERO_
     q->state[k] = 0;
-    struct dem_contact_force *o = &q->F[k];
+    struct dem_contact_force *o = &q->F[k - q->foff];
     o->f[0] = o->f[1] = o->f[2] = 0.0;
     o->c[0] = o->c[1] = o->c[2] = 0.0;
     o->pad[0] = o->pad[1] = 0.0;
@@ -322,13 +322,14 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx, double (*o)[8])
 }
 #endif
 
-/* Forces and history updates of pairs k0 <= k < k1, in SIMD lanes or as
+/* Forces and history updates of pairs k0 <= k < k1 (the thread's pairs
+ * go on to kend), in SIMD lanes or as
  * scalar code as the law's lanes column says (the luding law's branches
  * (loading, un-/re-loading, adhesive re-mapping with a square root) all
  * computed in every lane made it slower than scalar code with branches). */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
-                           const struct dem_contact_params *cp, double dt,
-                           const double *cv, const double *grad,
+                           int kend, const struct dem_contact_params *cp,
+                           double dt, const double *cv, const double *grad,
                            const double *rec)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
@@ -338,12 +339,14 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     } else {
         int k = k0;
         (void)rec;
+        (void)kend;
 #if DEM_PASS_RECORDS
         for (; k + 8 <= k1; k += 8) {
             _Alignas(32) double A[DEM_REC][8], B[DEM_REC][8];
-            /* the j records of the pairs DEM_PREFETCH_PAIRS ahead, both
-             * cache lines of each (the i records run in order) */
-            if (k + DEM_PREFETCH_PAIRS + 8 <= k1)
+            /* the j records of the pairs DEM_PREFETCH_PAIRS ahead (up
+             * to kend), both cache lines of each (the i records run in
+             * order) */
+            if (k + DEM_PREFETCH_PAIRS + 8 <= kend)
                 for (int l = 0; l < 8; l++) {
                     const double *r =
                         rec +
@@ -476,18 +479,21 @@ DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
 }
 
 /* Particles i0 <= i < i1: background damping plus the forces of the
- * pairs as i (the particle's row), as j (its reverse row) and of the wall
- * contacts; then the torques, and the half kick if asked for. With
- * K.chain the particle then goes on into the next step: its half kick
- * and drift (dem_particle_kick and _drift, as the first pass of a step in
+ * pairs as i (the particle's row), as j (its reverse row), pair k's
+ * read from F[(k - kb) & fmask], and of the wall contacts; then the
+ * torques, and the half kick if asked for. With K.chain the particle
+ * then goes on into the next step: its half kick and drift
+ * (dem_particle_kick and _drift, as the first pass of a step in
  * core/sim.c), and the force and torque are not stored (nothing reads
- * them before they are computed again). Returns
- * then whether a particle has moved further than its reach (less K.cut)
- * since the last list build. K.on and K.chain are literals in each
- * caller, so they cost no branch. */
+ * them before they are computed again). Returns then whether a particle
+ * has moved further than its reach (less K.cut) since the last list
+ * build. K.on and K.chain are literals in each caller, so they cost no
+ * branch. */
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
-                              const struct dem_pairs *pl, double gb, double gr,
+                              const struct dem_pairs *pl,
+                              const struct dem_contact_force *F, int kb,
+                              int fmask, double gb, double gr,
                               const struct kick K, double *vir, double *rec)
 {
     (void)rec;
@@ -507,8 +513,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
-    const struct dem_contact_force *restrict F = pl->f.v, *restrict WF =
-                                                              pl->wf.v;
+    const struct dem_contact_force *restrict WF = pl->wf.v;
     /* The sums of a block of particles first, then the block's kicks and
      * drifts in SIMD lanes (as scalar code, one particle after the other,
      * they took a quarter of a chained step); each particle's arithmetic
@@ -526,15 +531,16 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                fz = cell ? 0.0 : -gb * vz[i];
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
         for (int k = start[i]; k < start[i + 1]; k++) {
-            fx += F[k].f[0];
-            fy += F[k].f[1];
-            fz += F[k].f[2];
-            cx += F[k].c[0];
-            cy += F[k].c[1];
-            cz += F[k].c[2];
+            const struct dem_contact_force *o = &F[(k - kb) & fmask];
+            fx += o->f[0];
+            fy += o->f[1];
+            fz += o->f[2];
+            cx += o->c[0];
+            cy += o->c[1];
+            cz += o->c[2];
         }
         for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-            const struct dem_contact_force *o = &F[rpair[q]];
+            const struct dem_contact_force *o = &F[(rpair[q] - kb) & fmask];
             fx -= o->f[0];
             fy -= o->f[1];
             fz -= o->f[2];
@@ -631,6 +637,131 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     return K.chain && far > 0.0;
 }
 
+#if DEM_PASS_RING
+/* The first particle of thread t's block when the rows of particles
+ * 0 <= i < n (np pairs) are split in blocks of about equal pairs. */
+static int row_block(const int *start, int n, int np, int t, int nt)
+{
+    if (t >= nt)
+        return n;
+    const int k = dem_block(np, t, nt);
+    int lo = 0, hi = n; /* the first i with start[i] >= k */
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (start[mid] < k)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The first particle i0 of block t of the rows (row_block) and the end
+ * d of its particles that have a pair as j in an earlier block (they
+ * wait for the barrier). A particle's first pair as j (its reverse row
+ * is in list order) lies at most the reach before the end of its row, so
+ * only the block's particles whose rows end within the reach after its
+ * first pair can have one. */
+static int block_waiting(const struct contacts *c, int t, int nt, int *i0)
+{
+    const int *start = c->pl->cur.start, *rstart = c->pl->rstart,
+              *rpair = c->pl->rpair;
+    const int a = row_block(start, c->n, c->np, t, nt),
+              b = row_block(start, c->n, c->np, t + 1, nt), k0 = start[a];
+    int d = a;
+    for (int i = a; i < b && start[i + 1] < k0 + c->pl->reach; i++)
+        if (rstart[i] < rstart[i + 1] && rpair[rstart[i]] < k0)
+            d = i + 1;
+    *i0 = a;
+    return d;
+}
+
+/* Thread t's share of a chained pass with the pairs' forces in a ring
+ * (contacts.ring, ring_mask + 1 entries per thread, at least the list's
+ * reach (struct dem_pairs) plus a chunk): the thread takes the rows of a
+ * block of particles, DEM_RING_CHUNK pairs at a time, and after each
+ * chunk computes the wall contacts of the particles whose rows it
+ * completed and sums, kicks and moves them on. Every row holds j > i,
+ * so such a particle's pairs as j lie in rows before its own: all of
+ * them are done, within the ring's reach, and no pair still to come reads
+ * its record. Only a particle with a pair as j in another thread's rows
+ * (the block's first particles, up to d) must wait for the barrier,
+ * after which the threads share all blocks' waiting particles equally;
+ * the chunks holding their pairs (below start[d], or from kt on, the
+ * block's first pair with a j beyond it) are copied to the list's force
+ * array too, which they read from. The forces never leave the cache
+ * otherwise. Each sum runs over the same values in the same order as in
+ * the stored pass: the same bits. */
+DEM_INLINE int ring_thread(const int law, const struct contacts *c,
+                           const struct kick K, int t, int nt)
+{
+    const struct dem_pairs *pl = c->pl;
+    const int *start = pl->cur.start, *rstart = pl->rstart, *rpair = pl->rpair,
+              *wstart = pl->wcur.start;
+    int i0;
+    const int d = block_waiting(c, t, nt, &i0); /* before d: they wait */
+    const int i1 = row_block(start, c->n, c->np, t + 1, nt);
+    const int k0 = start[i0], k1 = start[i1], n = c->P->n;
+    int kt = k1; /* the block's first pair whose j is beyond it (as in
+                    block_waiting) */
+    for (int i = i1; i < n && start[i + 1] < k1 + pl->reach; i++)
+        for (int u = rstart[i]; u < rstart[i + 1]; u++)
+            if (rpair[u] >= k0) {
+                kt = rpair[u] < kt ? rpair[u] : kt;
+                break;
+            }
+    const int kd = start[d], mask = c->ring_mask;
+    /* pair k's force at ring[(k - k0) & mask]; a chunk never wraps (the
+     * size is a multiple of DEM_RING_CHUNK), so in the pair loop it is
+     * at q.F[k - q.foff], consecutive as in the list's array */
+    struct dem_contact_force *ring = c->ring + (size_t)t * ((size_t)mask + 1);
+    struct pass q = c->q;
+    q.F = ring;
+    int moved = 0;
+    int p = d, w = i0; /* next particle to finish, next one's walls */
+    for (int kc = k0;;) {
+        const int ke = k1 - kc > DEM_RING_CHUNK ? kc + DEM_RING_CHUNK : k1;
+        q.foff = kc - ((kc - k0) & mask);
+        pair_range(law, q, kc, ke, k1, &c->cp, c->dt, c->cv, c->grad, c->rec);
+        if (kc < kd || ke > kt) /* some of the chunk's forces wait */
+            for (int k = kc; k < ke; k++)
+                c->q.F[k] = q.F[k - q.foff];
+        int e = w; /* the particles whose rows end in the chunk */
+        while (e < i1 && start[e + 1] <= ke)
+            e++;
+        wall_range(law, c->wq, wstart[w], wstart[e], &c->cpw, c->dt, c->walls);
+        w = e;
+        if (e > p) {
+            moved |= particle_range(law, p, e, c->P, pl, ring, k0, mask, c->gb,
+                                    c->gr, K, c->vir, c->rec);
+            p = e;
+        }
+        if (ke == k1)
+            break;
+        kc = ke;
+    }
+#pragma omp barrier
+    /* the waiting particles of all blocks, shared out in equal parts */
+    int nwait = 0;
+    for (int b = 0; b < nt; b++) {
+        int a;
+        nwait += block_waiting(c, b, nt, &a) - a;
+    }
+    const int u0 = dem_block(nwait, t, nt), u1 = dem_block(nwait, t + 1, nt);
+    for (int b = 0, u = 0; b < nt && u < u1; b++) {
+        int a;
+        const int e = block_waiting(c, b, nt, &a);
+        const int lo = u0 > u ? a + (u0 - u) : a,
+                  hi = u1 < u + (e - a) ? a + (u1 - u) : e;
+        if (lo < hi)
+            moved |= particle_range(law, lo, hi, c->P, pl, c->q.F, 0, -1,
+                                    c->gb, c->gr, K, c->vir, c->rec);
+        u += e - a;
+    }
+    return moved;
+}
+#endif
+
 /* Thread t's share of a pass, in one parallel region: equal blocks of
  * the pairs and of the wall contacts, then (once every contact force is
  * stored) an equal block of the particles to sum, kick and move on. */
@@ -644,19 +775,25 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
 #pragma omp barrier
     }
 #endif
+#if DEM_PASS_RING
+    /* (the cell's virial blocks run in particle order: stored forces) */
+    if (K.chain && !(law & DEM_SET_PERIODIC) && c->ring)
+        return ring_thread(law, c, K, t, nt);
+#endif
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
-               &c->cp, c->dt, c->cv, c->grad, c->rec);
+               dem_block(c->np, t + 1, nt), &c->cp, c->dt, c->cv, c->grad,
+               c->rec);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
     if (law & DEM_SET_PERIODIC) /* no virial block across two threads */
-        return particle_range(law,
-                              dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
-                              dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK),
-                              c->P, c->pl, c->gb, c->gr, K, c->vir, c->rec);
+        return particle_range(
+            law, dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
+            dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK), c->P, c->pl,
+            c->q.F, 0, -1, c->gb, c->gr, K, c->vir, c->rec);
     return particle_range(law, dem_block(c->n, t, nt),
-                          dem_block(c->n, t + 1, nt), c->P, c->pl, c->gb, c->gr,
-                          K, c->vir, c->rec);
+                          dem_block(c->n, t + 1, nt), c->P, c->pl, c->q.F, 0,
+                          -1, c->gb, c->gr, K, c->vir, c->rec);
 }
 
 /* One instance per model set and kind of kick (literals), so that each

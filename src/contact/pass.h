@@ -1,12 +1,14 @@
 /* The force pass (contact/pass.c): what it reads and its entry points.
  *
- * The pass is compiled up to three times (CMakeLists.txt): once as the
+ * The pass is compiled up to four times (CMakeLists.txt): once as the
  * compiler likes it, which on CPUs with AVX2 or AVX-512 loads each SIMD
  * lane's particle data with hardware gathers; once with gathers switched
  * off (each lane's values from scalar loads); and, where the target has
- * AVX, once reading the pairs' particle values from records of 12
+ * AVX, twice reading the pairs' particle values from records of 12
  * doubles (x y z r, v m, w) by 4 x 4 transposes, neither gathers nor one
- * load per lane (contact/pass_records.c). All compute the same
+ * load per lane (contact/pass_records.c), the second of them keeping the
+ * pairs' forces of a chained step in a ring per thread in cache instead
+ * of the list's array (contact/pass_ring.c). All compute the same
  * operations in the same order, so their results are the same bit for
  * bit; on some CPUs (Intel Skylake to Ice Lake with the Gather Data
  * Sampling mitigation) gathers are several times slower, on others
@@ -16,6 +18,11 @@
 #define DEM_CONTACT_PASS_H
 
 #include "core/sim.h"
+
+/* Pairs the ring pass (contact/pass_ring.c) computes at a time before it
+ * finishes the particles whose rows they complete; its rings hold at
+ * least the list's reach (struct dem_pairs) plus this many. */
+#define DEM_RING_CHUNK 1024
 
 /* The arrays one pass works on, read into locals once, so that the
  * compiler need not reload an array pointer from its struct after a
@@ -28,7 +35,8 @@ struct pass {
     DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
 #undef HIST_ARRAY_
     int *state;
-    struct dem_contact_force *F; /* stored forces, at each entry's index */
+    struct dem_contact_force *F; /* stored forces, entry k's at F[k - foff] */
+    int foff;                    /* 0, or a ring's offset (contact/pass.c) */
     double *M; /* the resistances' torques on i, 3 per entry (only with a
                   resistance on) */
 };
@@ -61,6 +69,9 @@ struct contacts {
                        them, and nothing has moved a particle since) */
     double *vir;    /* N m; the virial sum x (x) f + m v (x) v of each
                        block of DEM_VIR_BLOCK particles, 9 values each */
+    struct dem_contact_force *ring; /* the ring pass's rings, ring_mask + 1
+                                       entries per thread, or NULL */
+    int ring_mask;
 };
 
 /* One force pass: forces and history of every pair and wall contact,
@@ -76,6 +87,9 @@ int dem__pass_loads(const struct contacts *c, struct kick K);
 /* The same code with the pairs' particle values from records
  * (contact/pass_records.c). */
 int dem__pass_records(const struct contacts *c, struct kick K);
+/* The records pass whose chained steps keep the pairs' forces in a ring
+ * per thread (contact/pass_ring.c). */
+int dem__pass_ring(const struct contacts *c, struct kick K);
 #endif
 
 #endif

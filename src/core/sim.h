@@ -16,7 +16,7 @@
 #include "wall/wall.h"
 
 #define DEM_MAX_WALLS 6
-#define DEM_MAX_PASSES 3 /* compilations of the force pass */
+#define DEM_MAX_PASSES 4 /* compilations of the force pass */
 
 /* Sums gathered by the force loop when measurement is requested. */
 struct dem_contact_sums {

@@ -47,6 +47,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->old_of);
     free(pl->scratch);
     free(pl->rec);
+    free(pl->ring);
     memset(pl, 0, sizeof *pl);
 }
 
@@ -570,6 +571,15 @@ static int build_reverse(struct dem_pairs *pl, int n)
     for (int i = n; i > 0; i--)
         rs[i] = rs[i - 1];
     rs[0] = 0;
+    /* the reach: every row holds j > i, so a particle's pairs as j lie
+     * in rows before its own and the first of them opens its span */
+    int reach = 0;
+    for (int i = 0; i < n; i++) {
+        const int first = rs[i] < rs[i + 1] ? pl->rpair[rs[i]] : L->start[i];
+        const int span = L->start[i + 1] - first;
+        reach = span > reach ? span : reach;
+    }
+    pl->reach = reach;
     return 0;
 }
 

@@ -84,6 +84,9 @@ struct dem_pairs {
     int *rpair; /* cur.n: the pairs grouped by their j particle, in list
                    order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
     int rpair_cap;
+    int reach; /* the largest span of pairs from a particle's first pair
+                  as j to the end of its row (the ring pass's window,
+                  contact/pass.c) */
     int *cross;  /* periodic cell: the pairs with an image of j other
                     than j itself, grouped by the image, each group in
                     list order: image g's are cross[cross_start[g] ..
@@ -122,6 +125,9 @@ struct dem_pairs {
     int rec_fresh;   /* set by dem_sim_step for its pass: no particle has
                         moved since the last pass, which was chained */
     int rec_written; /* the last pass was chained and wrote rec */
+    struct dem_contact_force *ring; /* the ring pass's force records, one
+                                       ring per thread (contact/forces.c) */
+    size_t ring_cap;                /* entries allocated in ring */
 };
 
 /* Doubles per particle record (struct dem_pairs.rec). */
