@@ -383,6 +383,7 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
     }
 }
 
+#if DEM_HAVE_PASS_RECORDS
 /* The ring pass's rings for a chained pass (contact/pass_ring.c): one per
  * thread of a power of two entries, at least the list's reach plus a
  * chunk; their size less 1 in *mask. NULL if out of memory (the pass
@@ -402,6 +403,7 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int *mask)
     *mask = (int)size - 1;
     return pl->ring;
 }
+#endif
 
 static int forces(struct dem_sim *s, const struct kick K)
 {
