@@ -413,6 +413,9 @@ static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
     assert_int_equal(a.pairs.torques, b.pairs.torques);
     SAME_ARRAY(a.pairs.rstart, b.pairs.rstart, a.p.n + 1);
     SAME_ARRAY(a.pairs.rpair, b.pairs.rpair, a.pairs.cur.n);
+    /* derived, not stored: the ring pass sizes its rings from it */
+    assert_true(a.pairs.reach > 0);
+    assert_int_equal(a.pairs.reach, b.pairs.reach);
     SAME_BITS(a.pairs.wall_pos0, b.pairs.wall_pos0);
 
     /* the restored state evolves exactly as the original */

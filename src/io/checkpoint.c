@@ -709,6 +709,8 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
             c.time_step_auto = s->cfg.time_step_auto;
             s->cfg = c;
             io.why = check_restored(s, run);
+            if (!io.why) /* derived from the lists, as a build does */
+                dem_pairs_reach(&s->pairs, s->p.n);
         }
     }
     /* what the engine derives, and the force pass as for a new run

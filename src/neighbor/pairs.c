@@ -571,16 +571,22 @@ static int build_reverse(struct dem_pairs *pl, int n)
     for (int i = n; i > 0; i--)
         rs[i] = rs[i - 1];
     rs[0] = 0;
-    /* the reach: every row holds j > i, so a particle's pairs as j lie
-     * in rows before its own and the first of them opens its span */
+    dem_pairs_reach(pl, n);
+    return 0;
+}
+
+void dem_pairs_reach(struct dem_pairs *pl, int n)
+{
+    /* every row holds j > i, so a particle's pairs as j lie in rows
+     * before its own and the first of them opens its span */
+    const int *rs = pl->rstart, *start = pl->cur.start;
     int reach = 0;
     for (int i = 0; i < n; i++) {
-        const int first = rs[i] < rs[i + 1] ? pl->rpair[rs[i]] : L->start[i];
-        const int span = L->start[i + 1] - first;
+        const int first = rs[i] < rs[i + 1] ? pl->rpair[rs[i]] : start[i];
+        const int span = start[i + 1] - first;
         reach = span > reach ? span : reach;
     }
     pl->reach = reach;
-    return 0;
 }
 
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,

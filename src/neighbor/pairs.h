@@ -166,6 +166,11 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
  * that fills cur calls it. 0 or -1 (out of memory). */
 int dem_pairs_cross(struct dem_pairs *pl);
 
+/* The list's reach (struct dem_pairs) from cur's rows and the reverse
+ * rows of particles 0 <= i < n. A build sets it; a checkpoint that fills
+ * the lists calls it. */
+void dem_pairs_reach(struct dem_pairs *pl, int n);
+
 /* Reference: all pairs with gap below skin plus, with reach (else NULL),
  * the sum of the two reaches, by brute force O(N^2); for tests. Fills pi/pj
  * (caller frees) and returns the count, or a negative status. With a periodic
