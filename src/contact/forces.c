@@ -386,22 +386,29 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
 #if DEM_HAVE_PASS_RECORDS
 /* The ring pass's rings for a chained pass (contact/pass_ring.c): one per
  * thread of a power of two entries, at least the list's reach plus a
- * chunk; their size less 1 in *mask. NULL if out of memory (the pass
- * then stores every force in the list's array). */
+ * chunk; their size less 1 in *mask; and the threads' waiting ranges
+ * (pl->ring_wait). NULL if out of memory (the pass then stores every
+ * force in the list's array). */
 static struct dem_contact_force *rings(struct dem_pairs *pl, int *mask)
 {
     size_t size = 1;
     while (size < (size_t)pl->reach + DEM_RING_CHUNK)
         size *= 2;
-    const size_t need = size * (size_t)omp_get_max_threads();
+    const int nt = omp_get_max_threads();
+    const size_t need = size * (size_t)nt;
     if (need > pl->ring_cap) {
         free(pl->ring);
         pl->ring =
             aligned_alloc(DEM_CONTACT_FORCE_ALIGN, need * sizeof *pl->ring);
         pl->ring_cap = pl->ring ? need : 0;
     }
+    if (nt > pl->ring_threads) {
+        free(pl->ring_wait);
+        pl->ring_wait = malloc(2 * (size_t)nt * sizeof *pl->ring_wait);
+        pl->ring_threads = pl->ring_wait ? nt : 0;
+    }
     *mask = (int)size - 1;
-    return pl->ring;
+    return pl->ring_wait ? pl->ring : NULL;
 }
 #endif
 
@@ -437,8 +444,10 @@ static int forces(struct dem_sim *s, const struct kick K)
     }
     c.rec = pl->rec;
 #if DEM_HAVE_PASS_RECORDS
-    if (K.chain)
+    if (K.chain) {
         c.ring = rings(pl, &c.ring_mask);
+        c.wait = pl->ring_wait;
+    }
 #endif
     c.rec_fresh = pl->rec_fresh && pl->rec_written;
     pl->rec_fresh = 0;

@@ -700,6 +700,8 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
               *wstart = pl->wcur.start;
     int i0;
     const int d = block_waiting(c, t, nt, &i0); /* before d: they wait */
+    c->wait[2 * t] = i0;
+    c->wait[2 * t + 1] = d;
     const int i1 = row_block(start, c->n, c->np, t + 1, nt);
     const int k0 = start[i0], k1 = start[i1], n = c->P->n;
     int kt = k1; /* the block's first pair whose j is beyond it (as in
@@ -743,14 +745,11 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
 #pragma omp barrier
     /* the waiting particles of all blocks, shared out in equal parts */
     int nwait = 0;
-    for (int b = 0; b < nt; b++) {
-        int a;
-        nwait += block_waiting(c, b, nt, &a) - a;
-    }
+    for (int b = 0; b < nt; b++)
+        nwait += c->wait[2 * b + 1] - c->wait[2 * b];
     const int u0 = dem_block(nwait, t, nt), u1 = dem_block(nwait, t + 1, nt);
     for (int b = 0, u = 0; b < nt && u < u1; b++) {
-        int a;
-        const int e = block_waiting(c, b, nt, &a);
+        const int a = c->wait[2 * b], e = c->wait[2 * b + 1];
         const int lo = u0 > u ? a + (u0 - u) : a,
                   hi = u1 < u + (e - a) ? a + (u1 - u) : e;
         if (lo < hi)

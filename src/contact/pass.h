@@ -72,6 +72,8 @@ struct contacts {
     struct dem_contact_force *ring; /* the ring pass's rings, ring_mask + 1
                                        entries per thread, or NULL */
     int ring_mask;
+    int *wait; /* the ring pass: each thread's particles that wait for the
+                  barrier, [wait[2t], wait[2t + 1]) */
 };
 
 /* One force pass: forces and history of every pair and wall contact,

@@ -48,6 +48,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->scratch);
     free(pl->rec);
     free(pl->ring);
+    free(pl->ring_wait);
     memset(pl, 0, sizeof *pl);
 }
 

@@ -128,6 +128,8 @@ struct dem_pairs {
     struct dem_contact_force *ring; /* the ring pass's force records, one
                                        ring per thread (contact/forces.c) */
     size_t ring_cap;                /* entries allocated in ring */
+    int *ring_wait;   /* 2 per thread: the ring pass's waiting particles */
+    int ring_threads; /* threads ring_wait has room for */
 };
 
 /* Doubles per particle record (struct dem_pairs.rec). */
