@@ -112,13 +112,17 @@ static void two_d_stays_in_plane(void **state)
 /* Whether run_threads runs in a periodic cell (1) or between walls (0). */
 static int run_cell;
 
-/* Positions and velocities by particle id after a frictional, damped run
- * with re-ordering, between walls or (run_cell) in a periodic cell
- * compressed and sheared, on the given number of threads; the steps
+/* Positions and spins by particle id (512 of them) after a frictional,
+ * damped run with re-ordering, between walls or (run_cell) in a periodic
+ * cell compressed and sheared, on the given number of threads; the steps
  * chained (test_step) or one by one; with the force pass pass (the
- * environment variable DEMBOX_PASS; NULL: unset, chosen by timing). */
-static void run_threads(int threads, int chained, const char *pass, double *out,
-                        int n_out)
+ * environment variable DEMBOX_PASS; NULL: unset, chosen by timing). Then,
+ * from out[RUN_PARTICLES], the walls' positions and the cell's stress
+ * (its virial, whose last bits the particles feel only through the
+ * servo). */
+#define RUN_PARTICLES (6 * 512)
+#define RUN_OUT (RUN_PARTICLES + 6 + 9)
+static void run_threads(int threads, int chained, const char *pass, double *out)
 {
     omp_set_num_threads(threads);
     if (pass)
@@ -144,6 +148,9 @@ static void run_threads(int threads, int chained, const char *pass, double *out,
     s.reorder = 1;
     gas(&s, 3, nside, run_cell ? 5e-3 : 6e-3, 0.3, 9);
     test_ready(&s);
+    /* the ring pass in chunks of 64 pairs (of some 1000): each thread
+     * finishes its particles in many pieces */
+    s.pairs.ring_chunk = 64;
     dem_wall_set_stress(&s.wall[5], 0.05, 5.0, 0.0, 200.0, 0.0, 0.0, 0.0);
     if (run_cell) /* shear along x by a fifth of the cell */
         dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XZ], DEM_PROFILE_LINEAR,
@@ -157,7 +164,7 @@ static void run_threads(int threads, int chained, const char *pass, double *out,
         }
     }
     assert_true(s.nbuild > 3);
-    for (int i = 0; i < s.p.n && 6 * s.p.id[i] + 5 < n_out; i++) {
+    for (int i = 0; i < s.p.n && 6 * s.p.id[i] + 5 < RUN_PARTICLES; i++) {
         double *o = out + 6 * s.p.id[i];
         o[0] = s.p.x[i];
         o[1] = s.p.y[i];
@@ -166,6 +173,10 @@ static void run_threads(int threads, int chained, const char *pass, double *out,
         o[4] = s.p.wy[i];
         o[5] = s.p.wz[i];
     }
+    for (int w = 0; w < 6; w++)
+        out[RUN_PARTICLES + w] = s.wall[w].pos;
+    for (int u = 0; u < 9; u++)
+        out[RUN_PARTICLES + 6 + u] = s.cell.stress[u / 3][u % 3];
     dem_sim_destroy(&s);
     omp_set_num_threads(1);
     unsetenv("DEMBOX_PASS");
@@ -175,10 +186,10 @@ static void run_threads(int threads, int chained, const char *pass, double *out,
 static void assert_same_runs(int threads_a, int chained_a, const char *pass_a,
                              int threads_b, int chained_b, const char *pass_b)
 {
-    const int n = 6 * 512;
+    const int n = RUN_OUT;
     double *a = calloc((size_t)n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
-    run_threads(threads_a, chained_a, pass_a, a, n);
-    run_threads(threads_b, chained_b, pass_b, b, n);
+    run_threads(threads_a, chained_a, pass_a, a);
+    run_threads(threads_b, chained_b, pass_b, b);
     assert_memory_equal(a, b, (size_t)n * sizeof *a);
     free(a);
     free(b);
@@ -231,6 +242,10 @@ static void force_passes_give_identical_results(void **state)
     assert_same_runs(2, 1, "ring", 1, 1, "gathers");
     run_cell = 1;
     assert_same_runs(2, 1, "gathers", 1, 1, "records");
+    /* in a cell the ring's pieces of particles cut the virial's blocks
+     * and lanes anywhere (one thread), and each block's waiting
+     * particles are one thread's (two) */
+    assert_same_runs(1, 1, "ring", 1, 0, "records");
     assert_same_runs(2, 1, "ring", 1, 1, "records");
     run_cell = 0;
 #endif

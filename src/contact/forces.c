@@ -386,13 +386,14 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
 #if DEM_HAVE_PASS_RECORDS
 /* The ring pass's rings for a chained pass (contact/pass_ring.c): one per
  * thread of a power of two entries, at least the list's reach plus a
- * chunk; their size less 1 in *mask; and the threads' waiting ranges
- * (pl->ring_wait). NULL if out of memory (the pass then stores every
- * force in the list's array). */
-static struct dem_contact_force *rings(struct dem_pairs *pl, int *mask)
+ * chunk of the given size; their size less 1 in *mask; and the threads'
+ * waiting ranges (pl->ring_wait). NULL if out of memory (the pass then
+ * stores every force in the list's array). */
+static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
+                                       int *mask)
 {
-    size_t size = 1;
-    while (size < (size_t)pl->reach + DEM_RING_CHUNK)
+    size_t size = (size_t)chunk;
+    while (size < (size_t)pl->reach + (size_t)chunk)
         size *= 2;
     const int nt = omp_get_max_threads();
     const size_t need = size * (size_t)nt;
@@ -445,7 +446,8 @@ static int forces(struct dem_sim *s, const struct kick K)
     c.rec = pl->rec;
 #if DEM_HAVE_PASS_RECORDS
     if (K.chain) {
-        c.ring = rings(pl, &c.ring_mask);
+        c.ring_chunk = pl->ring_chunk ? pl->ring_chunk : DEM_RING_CHUNK;
+        c.ring = rings(pl, c.ring_chunk, &c.ring_mask);
         c.wait = pl->ring_wait;
     }
 #endif

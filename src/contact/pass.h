@@ -20,8 +20,9 @@
 #include "core/sim.h"
 
 /* Pairs the ring pass (contact/pass_ring.c) computes at a time before it
- * finishes the particles whose rows they complete; its rings hold at
- * least the list's reach (struct dem_pairs) plus this many. */
+ * finishes the particles whose rows they complete (unless
+ * struct dem_pairs.ring_chunk says otherwise); its rings hold at least
+ * the list's reach (struct dem_pairs) plus this many. */
 #define DEM_RING_CHUNK 1024
 
 /* The arrays one pass works on, read into locals once, so that the
@@ -72,6 +73,7 @@ struct contacts {
     struct dem_contact_force *ring; /* the ring pass's rings, ring_mask + 1
                                        entries per thread, or NULL */
     int ring_mask;
+    int ring_chunk; /* pairs per chunk, a power of two */
     int *wait; /* the ring pass: each thread's particles that wait for the
                   barrier, [wait[2t], wait[2t + 1]) */
 };

@@ -130,6 +130,8 @@ struct dem_pairs {
     size_t ring_cap;                /* entries allocated in ring */
     int *ring_wait;   /* 2 per thread: the ring pass's waiting particles */
     int ring_threads; /* threads ring_wait has room for */
+    int ring_chunk;   /* the ring pass's pairs per chunk, a power of two;
+                         0: DEM_RING_CHUNK (the tests set fewer) */
 };
 
 /* Doubles per particle record (struct dem_pairs.rec). */
