@@ -430,70 +430,51 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     }
 }
 
-/* The periodic cell's virial as a pass sums it (virial_block): the
- * virial blocks' sums (struct contacts.vir), the current block's lanes,
- * and the end of the particles taken in pieces. */
-struct virial {
-    double *vir;
-    _Alignas(64) double w[9][8];
-    int end;
-};
-
-/* Particle i's share of the periodic cell's virial (virial_block),
- * added to lane l of w; f its contacts' sum. One function for the SIMD
- * lanes and the scalar ends, so a particle adds the same bits either way. */
-DEM_INLINE void virial_add(const struct dem_particles *P, int i, int l,
-                           double fx, double fy, double fz, double (*w)[8])
-{
-    const double X[3] = {P->x[i], P->y[i], P->z[i]},
-                 U[3] = {P->vx[i], P->vy[i], P->vz[i]}, f[3] = {fx, fy, fz};
-    for (int a = 0; a < 3; a++) {
-        const double mu = P->m[i] * U[a];
-        for (int c = 0; c < 3; c++)
-            w[3 * a + c][l] += X[a] * f[c] + mu * U[c];
-    }
-}
-
 /* The periodic cell's virial (contact/forces.c) of particles
  * ib <= i < ib + nb, with contact forces f (the sums of their pairs and
  * no damping): sum_contacts b (x) f, b = x_i - x_j', is sum_i x_i (x) f_i
  * minus the images' shifts (summed after the pass), plus the kinetic part
- * m u (x) u. Particle i adds to lane i % 8 of V->w, in particle order;
- * at the end of each virial block of DEM_VIR_BLOCK particles (or at
- * V->end) the lanes are summed in order into V->vir and cleared. A caller
- * that finishes its particles in pieces keeps V from one piece to the
- * next: the sums are the same bits however the particles are cut, as
- * long as one thread takes each virial block's particles in order. */
+ * m u (x) u. Particle i adds to lane i % 8 of w (ib is a multiple of 8);
+ * at the end of a virial block (or with last, of the thread's range) the
+ * lanes are summed in order into vir and cleared. */
 DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
-                             double (*f)[DEM_KICK_BLOCK], struct virial *V)
+                             double (*f)[DEM_KICK_BLOCK], double (*w)[8],
+                             double *vir, int last)
 {
-    double(*w)[8] = V->w;
-    for (int u = 0; u < nb;) {
-        /* up to the end of this virial block */
-        const int be = (ib + u) / DEM_VIR_BLOCK * DEM_VIR_BLOCK + DEM_VIR_BLOCK;
-        const int ue = be - ib < nb ? be - ib : nb;
-        for (; u < ue && (ib + u) % 8; u++) /* up to lane 0 */
-            virial_add(P, ib + u, (ib + u) % 8, f[0][u], f[1][u], f[2][u], w);
-        for (; u + 8 <= ue; u += 8) {
+    const double *restrict X[3] = {P->x, P->y, P->z},
+                           *restrict U[3] = {P->vx, P->vy, P->vz};
+    const double *restrict m = P->m;
+    int u = 0;
+    for (; u + 8 <= nb; u += 8) {
 #pragma omp simd
-            for (int l = 0; l < 8; l++)
-                virial_add(P, ib + u + l, l, f[0][u + l], f[1][u + l],
-                           f[2][u + l], w);
-        }
-        for (; u < ue; u++) /* a range's last particles */
-            virial_add(P, ib + u, (ib + u) % 8, f[0][u], f[1][u], f[2][u], w);
-        const int end = ib + u;
-        if (end % DEM_VIR_BLOCK && end != V->end)
-            continue;
-        double *o = V->vir + 9 * ((end - 1) / DEM_VIR_BLOCK);
-        for (int c = 0; c < 9; c++) {
-            double t = 0.0;
-            for (int l = 0; l < 8; l++) {
-                t += w[c][l];
-                w[c][l] = 0.0;
+        for (int l = 0; l < 8; l++) {
+            const int i = ib + u + l;
+            for (int a = 0; a < 3; a++) {
+                const double mu = m[i] * U[a][i];
+                for (int c = 0; c < 3; c++)
+                    w[3 * a + c][l] += X[a][i] * f[c][u + l] + mu * U[c][i];
             }
-            o[c] = t;
         }
+    }
+    for (; u < nb; u++) { /* a range's last particles */
+        const int i = ib + u, l = i % 8;
+        for (int a = 0; a < 3; a++) {
+            const double mu = m[i] * U[a][i];
+            for (int c = 0; c < 3; c++)
+                w[3 * a + c][l] += X[a][i] * f[c][u] + mu * U[c][i];
+        }
+    }
+    const int end = ib + nb;
+    if (end % DEM_VIR_BLOCK && !last)
+        return;
+    double *o = vir + 9 * ((end - 1) / DEM_VIR_BLOCK);
+    for (int c = 0; c < 9; c++) {
+        double t = 0.0;
+        for (int l = 0; l < 8; l++) {
+            t += w[c][l];
+            w[c][l] = 0.0;
+        }
+        o[c] = t;
     }
 }
 
@@ -506,18 +487,21 @@ DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
  * core/sim.c), and the force and torque are not stored (nothing reads
  * them before they are computed again). Returns then whether a particle
  * has moved further than its reach (less K.cut) since the last list
- * build. In a cell the particles' virial goes to V (virial_block). K.on
- * and K.chain are literals in each caller, so they cost no branch. */
+ * build. K.on and K.chain are literals in each caller, so they cost no
+ * branch. */
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl,
                               const struct dem_contact_force *F, int kb,
                               int fmask, double gb, double gr,
-                              const struct kick K, struct virial *V,
-                              double *rec)
+                              const struct kick K, double *vir, double *rec)
 {
     (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
+    /* the virial of the current virial block (cell), in 8 lanes of
+     * partial sums: particle i adds to lane i % 8, in particle order, so
+     * the bits do not depend on how the loop is compiled */
+    _Alignas(64) double w[9][8] = {{0.0}};
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
     double far = 0.0; /* the largest overshoot (chained) */
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
@@ -624,7 +608,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         if (b + 1 < DEM_KICK_BLOCK && i + 1 < i1)
             continue;
         if (cell) /* before the kicks: the velocities of the pass */
-            virial_block(&Q, ib, b + 1, bc, V);
+            virial_block(&Q, ib, b + 1, bc, w, vir, i + 1 == i1);
         /* the block's kicks and drifts, in SIMD lanes */
         if (K.on && !K.chain) {
 #pragma omp simd
@@ -655,10 +639,8 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 
 #if DEM_PASS_RING
 /* The first particle of thread t's block when the rows of particles
- * 0 <= i < n (np pairs) are split in blocks of about equal pairs, on a
- * multiple of g (in a cell DEM_VIR_BLOCK: no virial block straddles two
- * blocks). */
-static int row_block(const int *start, int n, int np, int t, int nt, int g)
+ * 0 <= i < n (np pairs) are split in blocks of about equal pairs. */
+static int row_block(const int *start, int n, int np, int t, int nt)
 {
     if (t >= nt)
         return n;
@@ -671,29 +653,27 @@ static int row_block(const int *start, int n, int np, int t, int nt, int g)
         else
             hi = mid;
     }
-    return lo / g * g;
+    return lo;
 }
 
 /* The first particle i0 of block t of the rows (row_block) and the end
  * d of its particles that have a pair as j in an earlier block (they
- * wait for the barrier), rounded up to a multiple of g. A particle's
- * first pair as j (its reverse row is in list order) lies at most the
- * reach before the end of its row, so only the block's particles whose
- * rows end within the reach after its first pair can have one. */
-static int block_waiting(const struct contacts *c, int t, int nt, int g,
-                         int *i0)
+ * wait for the barrier). A particle's first pair as j (its reverse row
+ * is in list order) lies at most the reach before the end of its row, so
+ * only the block's particles whose rows end within the reach after its
+ * first pair can have one. */
+static int block_waiting(const struct contacts *c, int t, int nt, int *i0)
 {
     const int *start = c->pl->cur.start, *rstart = c->pl->rstart,
               *rpair = c->pl->rpair;
-    const int a = row_block(start, c->n, c->np, t, nt, g),
-              b = row_block(start, c->n, c->np, t + 1, nt, g), k0 = start[a];
+    const int a = row_block(start, c->n, c->np, t, nt),
+              b = row_block(start, c->n, c->np, t + 1, nt), k0 = start[a];
     int d = a;
     for (int i = a; i < b && start[i + 1] < k0 + c->pl->reach; i++)
         if (rstart[i] < rstart[i + 1] && rpair[rstart[i]] < k0)
             d = i + 1;
-    d = (d + g - 1) / g * g;
     *i0 = a;
-    return d < b ? d : b;
+    return d;
 }
 
 /* Thread t's share of a chained pass with the pairs' forces in a ring
@@ -709,26 +689,20 @@ static int block_waiting(const struct contacts *c, int t, int nt, int g,
  * after which the threads share all blocks' waiting particles equally;
  * the chunks holding their pairs (below start[d], or from kt on, the
  * block's first pair with a j beyond it) are copied to the list's force
- * array too, which they read from. In a periodic cell the pairs through
- * an image are copied too (the cell's stress sums them after the pass,
- * contact/forces.c), and the blocks and the waiting particles are cut
- * at multiples of DEM_VIR_BLOCK, so each virial block is summed by one
- * thread in particle order (virial_block). The forces never leave the
- * cache otherwise. Each sum runs over the same values in the same order
- * as in the stored pass: the same bits. */
+ * array too, which they read from. The forces never leave the cache
+ * otherwise. Each sum runs over the same values in the same order as in
+ * the stored pass: the same bits. */
 DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                            const struct kick K, int t, int nt)
 {
     const struct dem_pairs *pl = c->pl;
     const int *start = pl->cur.start, *rstart = pl->rstart, *rpair = pl->rpair,
               *wstart = pl->wcur.start;
-    const int cell = (law & DEM_SET_PERIODIC) != 0,
-              g = cell ? DEM_VIR_BLOCK : 1;
     int i0;
-    const int d = block_waiting(c, t, nt, g, &i0); /* before d: they wait */
+    const int d = block_waiting(c, t, nt, &i0); /* before d: they wait */
     c->wait[2 * t] = i0;
     c->wait[2 * t + 1] = d;
-    const int i1 = row_block(start, c->n, c->np, t + 1, nt, g);
+    const int i1 = row_block(start, c->n, c->np, t + 1, nt);
     const int k0 = start[i0], k1 = start[i1], n = c->P->n;
     int kt = k1; /* the block's first pair whose j is beyond it (as in
                     block_waiting) */
@@ -745,21 +719,15 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
     struct dem_contact_force *ring = c->ring + (size_t)t * ((size_t)mask + 1);
     struct pass q = c->q;
     q.F = ring;
-    struct virial V = {c->vir, {{0.0}}, i1};
     int moved = 0;
     int p = d, w = i0; /* next particle to finish, next one's walls */
     for (int kc = k0;;) {
         const int ke = k1 - kc > c->ring_chunk ? kc + c->ring_chunk : k1;
         q.foff = kc - ((kc - k0) & mask);
         pair_range(law, q, kc, ke, k1, &c->cp, c->dt, c->cv, c->grad, c->rec);
-        if (kc < kd || ke > kt) { /* some of the chunk's forces wait */
+        if (kc < kd || ke > kt) /* some of the chunk's forces wait */
             for (int k = kc; k < ke; k++)
                 c->q.F[k] = q.F[k - q.foff];
-        } else if (cell) {
-            for (int k = kc; k < ke; k++)
-                if (q.img[k] != DEM_IMG_NONE)
-                    c->q.F[k] = q.F[k - q.foff];
-        }
         int e = w; /* the particles whose rows end in the chunk */
         while (e < i1 && start[e + 1] <= ke)
             e++;
@@ -767,7 +735,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         w = e;
         if (e > p) {
             moved |= particle_range(law, p, e, c->P, pl, ring, k0, mask, c->gb,
-                                    c->gr, K, &V, c->rec);
+                                    c->gr, K, c->vir, c->rec);
             p = e;
         }
         if (ke == k1)
@@ -775,23 +743,18 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         kc = ke;
     }
 #pragma omp barrier
-    /* the waiting particles of all blocks, shared out in equal parts (in
-     * a cell whole virial blocks: every range but the last is made of
-     * them) */
+    /* the waiting particles of all blocks, shared out in equal parts */
     int nwait = 0;
     for (int b = 0; b < nt; b++)
         nwait += c->wait[2 * b + 1] - c->wait[2 * b];
-    const int u0 = dem_block_aligned(nwait, t, nt, g),
-              u1 = dem_block_aligned(nwait, t + 1, nt, g);
+    const int u0 = dem_block(nwait, t, nt), u1 = dem_block(nwait, t + 1, nt);
     for (int b = 0, u = 0; b < nt && u < u1; b++) {
         const int a = c->wait[2 * b], e = c->wait[2 * b + 1];
         const int lo = u0 > u ? a + (u0 - u) : a,
                   hi = u1 < u + (e - a) ? a + (u1 - u) : e;
-        if (lo < hi) {
-            V.end = hi;
+        if (lo < hi)
             moved |= particle_range(law, lo, hi, c->P, pl, c->q.F, 0, -1,
-                                    c->gb, c->gr, K, &V, c->rec);
-        }
+                                    c->gb, c->gr, K, c->vir, c->rec);
         u += e - a;
     }
     return moved;
@@ -812,7 +775,8 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     }
 #endif
 #if DEM_PASS_RING
-    if (K.chain && c->ring)
+    /* (the cell's virial blocks run in particle order: stored forces) */
+    if (K.chain && !(law & DEM_SET_PERIODIC) && c->ring)
         return ring_thread(law, c, K, t, nt);
 #endif
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
@@ -821,13 +785,14 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
-    /* in a cell no virial block across two threads */
-    const int g = (law & DEM_SET_PERIODIC) ? DEM_VIR_BLOCK : 1;
-    const int i0 = dem_block_aligned(c->n, t, nt, g),
-              i1 = dem_block_aligned(c->n, t + 1, nt, g);
-    struct virial V = {c->vir, {{0.0}}, i1};
-    return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb,
-                          c->gr, K, &V, c->rec);
+    if (law & DEM_SET_PERIODIC) /* no virial block across two threads */
+        return particle_range(
+            law, dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
+            dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK), c->P, c->pl,
+            c->q.F, 0, -1, c->gb, c->gr, K, c->vir, c->rec);
+    return particle_range(law, dem_block(c->n, t, nt),
+                          dem_block(c->n, t + 1, nt), c->P, c->pl, c->q.F, 0,
+                          -1, c->gb, c->gr, K, c->vir, c->rec);
 }
 
 /* One instance per model set and kind of kick (literals), so that each
