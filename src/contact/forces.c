@@ -445,7 +445,9 @@ static int forces(struct dem_sim *s, const struct kick K)
     }
     c.rec = pl->rec;
 #if DEM_HAVE_PASS_RECORDS
-    if (K.chain) {
+    /* (a cell takes the stored path: its pairs through the z faces make
+     * the reach the whole list, docs/performance.md) */
+    if (K.chain && !s->cell.on) {
         c.ring_chunk = pl->ring_chunk ? pl->ring_chunk : DEM_RING_CHUNK;
         c.ring = rings(pl, c.ring_chunk, &c.ring_mask);
         c.wait = pl->ring_wait;
