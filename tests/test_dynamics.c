@@ -109,8 +109,10 @@ static void two_d_stays_in_plane(void **state)
     dem_sim_destroy(&s);
 }
 
-/* Whether run_threads runs in a periodic cell (1) or between walls (0). */
+/* Whether run_threads runs in a periodic cell (1) or between walls (0),
+ * and with rolling and torsion resistance (1) or without (0). */
 static int run_cell;
+static int run_resist;
 
 /* Positions and spins by particle id (512 of them) after a frictional,
  * damped run with re-ordering, between walls or (run_cell) in a periodic
@@ -139,6 +141,15 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     c.time_step = 2e-5;
     if (run_cell)
         c.box.boundary = DEM_BOUNDARY_PERIODIC;
+    if (run_resist) {
+        c.contact.rolling = c.contact.torsion = DEM_RESIST_LUDING;
+        c.contact.kr = 50.0;
+        c.contact.gamma_r = 0.01;
+        c.contact.mu_r = c.contact.wall_mu_r = 0.1;
+        c.contact.ko = 20.0;
+        c.contact.gamma_o = 0.01;
+        c.contact.mu_o = c.contact.wall_mu_o = 0.1;
+    }
     struct dem_sim s;
     /* in the cell 729 particles: two threads split a virial block
      * unless they keep to its bounds, and 729 % 8 particles are left
@@ -153,8 +164,8 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     s.pairs.ring_chunk = 64;
     dem_wall_set_stress(&s.wall[5], 0.05, 5.0, 0.0, 200.0, 0.0, 0.0, 0.0);
     if (run_cell) /* shear along x by a fifth of the cell */
-        dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XZ], DEM_PROFILE_LINEAR,
-                            0.02, 0.06, s.t);
+        dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XZ], DEM_PROFILE_LINEAR, 0.02,
+                            0.06, s.t);
     if (chained) {
         test_step(&s, 3000);
     } else {
@@ -204,6 +215,10 @@ static void threads_give_identical_results(void **state)
     run_cell = 1; /* the cell's stress too (its virial, contact/pass.c) */
     assert_same_runs(1, 1, NULL, 2, 1, NULL);
     run_cell = 0;
+    run_resist = 1; /* the resistances' torques too */
+    assert_same_runs(1, 1, NULL, 2, 1, NULL);
+    assert_same_runs(1, 1, "gathers", 2, 0, "gathers");
+    run_resist = 0;
 }
 
 /* A chained step does the next step's half kick and drift in its force
@@ -240,6 +255,12 @@ static void force_passes_give_identical_results(void **state)
      * first particles of the second block wait for the barrier) */
     assert_same_runs(1, 1, "ring", 1, 0, "records");
     assert_same_runs(2, 1, "ring", 1, 1, "gathers");
+    /* with the rolling and torsion resistances, whose torques the pairs
+     * keep beside their forces */
+    run_resist = 1;
+    assert_same_runs(1, 1, "ring", 1, 0, "records");
+    assert_same_runs(2, 1, "ring", 1, 1, "gathers");
+    run_resist = 0;
     run_cell = 1;
     assert_same_runs(2, 1, "gathers", 1, 1, "records");
     /* in a cell the ring pass takes the stored path (contact/pass.c) */
