@@ -165,6 +165,11 @@ static void malformed_files_name_file_and_line(void **state)
         {"t\n\n2 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
          "4 1 0.1 2000 0.5 0.5 0.5\n4 1 0.1 2000 0.2 0.5 0.5\n",
          "atom id 4 appears twice"},
+        /* further out than its diameter: a broken file (a periodic
+         * cell's particles leave the box by less than a skin) */
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 0.1 2000 0.5 1.2 0.5\n",
+         ":10: Atoms: atom 1 at y = 1.2 lies outside the box"},
     };
     char path[128];
     snprintf(path, sizeof path, "%s/bad.data", tmpdir);
@@ -180,6 +185,24 @@ static void malformed_files_name_file_and_line(void **state)
                      cases[k].expect);
         assert_null(d.x);
     }
+}
+
+/* A centre outside the box by less than its diameter is read as written
+ * (a periodic cell's particle between two wraps). */
+static void centres_just_outside_the_box_are_kept(void **state)
+{
+    (void)state;
+    char path[128];
+    snprintf(path, sizeof path, "%s/edge.data", tmpdir);
+    write_text(path, "t\n\n2 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo "
+                     "zhi\n\nAtoms\n\n1 1 0.1 2000 -0.09 0.5 0.5\n"
+                     "2 1 0.1 2000 0.5 0.5 1.09\n");
+    struct dem_lammps_data d;
+    struct dem_error err = {0};
+    assert_int_equal(dem_lammps_data_read(&d, path, &err), 0);
+    assert_true(same_bits(d.x[0], -0.09));
+    assert_true(same_bits(d.z[1], 1.09));
+    dem_lammps_data_free(&d);
 }
 
 /* The peers' prepared 2D packing, if this machine has it
@@ -224,6 +247,7 @@ int main(void)
         cmocka_unit_test(small_file_parses_to_its_numbers),
         cmocka_unit_test(write_then_read_is_bit_exact),
         cmocka_unit_test(malformed_files_name_file_and_line),
+        cmocka_unit_test(centres_just_outside_the_box_are_kept),
         cmocka_unit_test(peers_packing_reads_completely),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);

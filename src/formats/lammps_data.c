@@ -158,6 +158,18 @@ static int read_atoms(struct reader *r, int *seen)
             return fail(r, DEM_EIO, "Atoms: diameter must be > 0, got", f[2]);
         if (!(v[1] > 0.0))
             return fail(r, DEM_EIO, "Atoms: density must be > 0, got", f[3]);
+        /* write_data wraps every position into the box, and a periodic
+         * cell's particles leave it by less than a skin between wraps; a
+         * centre further out than the particle's diameter is a broken
+         * file (a box of walls built around it would be absurd) */
+        for (int a = 0; a < 3; a++)
+            if (!(v[2 + a] >= d->lo[a] - v[0] && v[2 + a] <= d->hi[a] + v[0]))
+                return dem_error_set(
+                    r->err, DEM_EIO,
+                    "%s:%d: Atoms: atom %ld at %c = %.17g lies outside the "
+                    "box (%clo %chi %.17g %.17g) by more than its diameter",
+                    r->path, r->lineno, id, "xyz"[a], v[2 + a], "xyz"[a],
+                    "xyz"[a], d->lo[a], d->hi[a]);
         d->id[k] = (int)id;
         d->diameter[k] = v[0];
         d->density[k] = v[1];
