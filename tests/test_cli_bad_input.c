@@ -57,6 +57,13 @@
 /* A run of c.cfg into out/, with fewer steps in case it is accepted. */
 #define RUN_CFG "run", "c.cfg", "-o", "out", "--quiet", "--max-steps", "5"
 
+/* `dembox bench` on p.csv as a LAMMPS data file of three atoms (the rows
+ * add them; Atoms from line 10), its cache in the row's folder. */
+#define BENCH_DATA_HEAD                                                        \
+    "t\n\n3 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+#define BENCH_DATA                                                             \
+    "bench", "--data", "p.csv", "--steps", "1", "--quiet", "--cache-dir", "."
+
 struct row {
     const char *name;      /* what is wrong */
     const char *config;    /* text of c.cfg, or NULL for none */
@@ -490,6 +497,21 @@ static const struct row rows[] = {
      "no example called 'nosuch'"},
     {"example without a name", 0, 0, 0, {"example"}, "example"},
     {"help nosuch", 0, 0, 0, {"help", "nosuch"}, "no command called 'nosuch'"},
+    /* ------------------------------------------ bench on a data file */
+    {"bench: a data file's atom far outside its box",
+     0,
+     0,
+     BENCH_DATA_HEAD "1 1 0.1 2000 0.5 0.5 0.5\n2 1 0.1 2000 0.5 0.5 0.8\n"
+                     "3 1 0.1 2000 5.0 0.5 0.2\n",
+     {BENCH_DATA},
+     "p.csv:12: Atoms: atom 3 at x = 5 lies outside the box"},
+    {"bench: two atoms of a data file on top of each other",
+     0,
+     0,
+     BENCH_DATA_HEAD "1 1 0.1 2000 0.5 0.5 0.5\n2 1 0.1 2000 0.5 0.5 0.8\n"
+                     "3 1 0.1 2000 0.5 0.5 0.5\n",
+     {BENCH_DATA},
+     "p.csv: atoms 1 and 3 overlap by 2 of the smaller radius"},
 };
 
 #define NROWS (sizeof rows / sizeof rows[0])

@@ -272,6 +272,20 @@ static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
         }
     }
     rc = dem_lammps_data_sim(s, cfg, &d, lo, hi, err);
+    if (!rc) {
+        /* a packing to start from: the preparation would blow up on two
+         * particles overlapping by half a radius or more (its limit) */
+        s->measure = 1;
+        dem_sim_forces(s);
+        const struct dem_contact_sums *S = &s->sums;
+        if (!(S->max_overlap_ratio <= 0.5) && S->max_overlap_j >= 0)
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "%s: atoms %d and %d overlap by %.3g of the "
+                               "smaller radius (at most 0.5 in a packing to "
+                               "start from)",
+                               path, d.id[S->max_overlap_i],
+                               d.id[S->max_overlap_j], S->max_overlap_ratio);
+    }
     dem_lammps_data_free(&d);
     return rc;
 }
