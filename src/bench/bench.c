@@ -357,10 +357,23 @@ static int relax(struct dem_sim *s, const struct workload *w,
         if (!sample)
             continue;
         dem_measure(s, L0, V0, 0, &smp);
-        if (!isfinite(smp.e_kin) || !isfinite(smp.p) || smp.max_overlap > 0.5)
+        if (!isfinite(smp.e_kin) || !isfinite(smp.p))
             return dem_error_set(err, DEM_EUNSTABLE,
-                                 "bench: preparation unstable at t = %.4g s",
+                                 "bench: preparation unstable at t = %.4g s: "
+                                 "non-finite energy or stress",
                                  s->t);
+        if (smp.max_overlap > 0.5) {
+            char partner[32] = "a wall";
+            if (s->sums.max_overlap_j >= 0)
+                snprintf(partner, sizeof partner, "particle %d",
+                         s->sums.max_overlap_j);
+            return dem_error_set(err, DEM_EUNSTABLE,
+                                 "bench: preparation unstable at t = %.4g s: "
+                                 "particle %d overlaps %s by %.2f of a radius "
+                                 "(at most 0.5)",
+                                 s->t, s->sums.max_overlap_i, partner,
+                                 smp.max_overlap);
+        }
         progress(o, "preparing", &smp, w->p0, 0, &last);
         if (ops->done(s, &st, &smp))
             break;
