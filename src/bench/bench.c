@@ -285,6 +285,8 @@ static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
                                "start from)",
                                path, d.id[S->max_overlap_i],
                                d.id[S->max_overlap_j], S->max_overlap_ratio);
+        if (rc) /* a failure leaves no sim, as dem_lammps_data_sim's */
+            dem_sim_destroy(s);
     }
     dem_lammps_data_free(&d);
     return rc;
