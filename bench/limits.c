@@ -9,12 +9,23 @@
  *
  * Each kernel is timed 5 times; the fastest is printed. The loops work on
  * independent lanes, so that they measure throughput, not latency; check
- * with objdump -d that they use the vector instructions named. */
-#define _POSIX_C_SOURCE 200809L
+ * with objdump -d that they use the vector instructions named.
+ *
+ * Last, with two CPUs or more, the time one cache line takes to pass from
+ * CPU 0 to CPU 1 and back (two threads pinned to them take turns writing
+ * it): tens of ns between cores that share an L3 cache, several times
+ * more between two of a virtual machine's vCPUs that the host has put on
+ * different L3 domains (docs/performance.md, "Why two threads gain so
+ * unevenly here"). */
+#define _GNU_SOURCE /* pthread_setaffinity_np */
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
+#include <unistd.h>
 
 #define LANES 64 /* independent values: enough to hide every latency */
 
@@ -118,6 +129,61 @@ static double best(double (*f)(long), long reps)
 static double sqrt_rate(long reps) { return divider_rate(0, reps); }
 static double div_rate(long reps) { return divider_rate(1, reps); }
 
+/* The ping-pong's line: its owner writes the next odd (CPU 0) or even
+ * (CPU 1) count when it sees the other's. */
+static _Alignas(64) _Atomic long pong;
+#define PONG_ROUNDS 1000000L
+
+static int pin(int cpu)
+{
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(cpu, &set);
+    return pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+}
+
+static void *pong_side(void *arg)
+{
+    (void)arg;
+    if (pin(1)) {
+        atomic_store(&pong, -1); /* tells the other side */
+        return NULL;
+    }
+    for (long i = 1; i < 2 * PONG_ROUNDS; i += 2) {
+        while (atomic_load_explicit(&pong, memory_order_acquire) != i)
+            ;
+        atomic_store_explicit(&pong, i + 1, memory_order_release);
+    }
+    return NULL;
+}
+
+/* ns per one-way pass of a cache line between CPUs 0 and 1, or a
+ * negative value if the threads cannot be pinned there. */
+static double pingpong(void)
+{
+    pthread_t t;
+    atomic_store(&pong, 0);
+    if (pin(0) || pthread_create(&t, NULL, pong_side, NULL))
+        return -1.0;
+    const double t0 = now();
+    for (long i = 0; i < 2 * PONG_ROUNDS; i += 2) {
+        long v = i;
+        if (atomic_compare_exchange_strong(&pong, &v, i + 1) == 0) {
+            pthread_join(t, NULL); /* only -1 can stand there */
+            return -1.0;
+        }
+        while ((v = atomic_load_explicit(&pong, memory_order_acquire)) !=
+               i + 2)
+            if (v < 0) {
+                pthread_join(t, NULL);
+                return -1.0;
+            }
+    }
+    const double t1 = now();
+    pthread_join(t, NULL);
+    return 1e9 * (t1 - t0) / (2.0 * PONG_ROUNDS);
+}
+
 int main(void)
 {
     printf("fma:    %.1f Gflop/s\n", 1e-9 * best(fma_rate, 2000000));
@@ -135,6 +201,19 @@ int main(void)
         }
         printf("triad %-6s (%5.0f KB): %.1f GB/s\n", where[s],
                24.0 * sizes[s] / 1024, 1e-9 * m);
+    }
+    if (sysconf(_SC_NPROCESSORS_ONLN) >= 2) {
+        /* each measured apart: the host may move the vCPUs in between */
+        printf("cache line CPU 0 <-> 1:");
+        for (int k = 0; k < 5; k++) {
+            const double ns = pingpong();
+            if (ns < 0.0) {
+                printf(" (cannot pin threads to CPUs 0 and 1)");
+                break;
+            }
+            printf(" %.0f", ns);
+        }
+        printf(" ns per one-way pass\n");
     }
     return sink == 42.0;
 }
