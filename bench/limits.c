@@ -129,26 +129,14 @@ static double best(double (*f)(long), long reps)
 static double sqrt_rate(long reps) { return divider_rate(0, reps); }
 static double div_rate(long reps) { return divider_rate(1, reps); }
 
-/* The ping-pong's line: its owner writes the next odd (CPU 0) or even
- * (CPU 1) count when it sees the other's. */
+/* The ping-pong's line: CPU 0 writes the odd counts, CPU 1 the even
+ * ones, each when it sees the other's. */
 static _Alignas(64) _Atomic long pong;
 #define PONG_ROUNDS 1000000L
-
-static int pin(int cpu)
-{
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(cpu, &set);
-    return pthread_setaffinity_np(pthread_self(), sizeof set, &set);
-}
 
 static void *pong_side(void *arg)
 {
     (void)arg;
-    if (pin(1)) {
-        atomic_store(&pong, -1); /* tells the other side */
-        return NULL;
-    }
     for (long i = 1; i < 2 * PONG_ROUNDS; i += 2) {
         while (atomic_load_explicit(&pong, memory_order_acquire) != i)
             ;
@@ -161,23 +149,28 @@ static void *pong_side(void *arg)
  * negative value if the threads cannot be pinned there. */
 static double pingpong(void)
 {
+    cpu_set_t set;
+    pthread_attr_t attr;
     pthread_t t;
     atomic_store(&pong, 0);
-    if (pin(0) || pthread_create(&t, NULL, pong_side, NULL))
+    CPU_ZERO(&set);
+    CPU_SET(0, &set);
+    if (pthread_setaffinity_np(pthread_self(), sizeof set, &set))
+        return -1.0;
+    CPU_ZERO(&set);
+    CPU_SET(1, &set);
+    /* the other side starts pinned to CPU 1, or not at all */
+    int bad = pthread_attr_init(&attr) ||
+              pthread_attr_setaffinity_np(&attr, sizeof set, &set) ||
+              pthread_create(&t, &attr, pong_side, NULL);
+    pthread_attr_destroy(&attr);
+    if (bad)
         return -1.0;
     const double t0 = now();
     for (long i = 0; i < 2 * PONG_ROUNDS; i += 2) {
-        long v = i;
-        if (atomic_compare_exchange_strong(&pong, &v, i + 1) == 0) {
-            pthread_join(t, NULL); /* only -1 can stand there */
-            return -1.0;
-        }
-        while ((v = atomic_load_explicit(&pong, memory_order_acquire)) !=
-               i + 2)
-            if (v < 0) {
-                pthread_join(t, NULL);
-                return -1.0;
-            }
+        atomic_store_explicit(&pong, i + 1, memory_order_release);
+        while (atomic_load_explicit(&pong, memory_order_acquire) != i + 2)
+            ;
     }
     const double t1 = now();
     pthread_join(t, NULL);

@@ -223,6 +223,10 @@ static int cache_path(const struct dem_bench_options *o, int dim, int n,
     return DEM_OK;
 }
 
+/* The largest overlap, over the smaller radius, that the preparation
+ * takes for stable: a packing to start from, and every state on the way. */
+#define PREP_MAX_OVERLAP 0.5
+
 /* The peers' periodic packing in walls: the box faces, each moved outward
  * until no particle overlaps it (positions are not changed); in a
  * periodic cell: the file's own box. */
@@ -273,18 +277,20 @@ static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
     }
     rc = dem_lammps_data_sim(s, cfg, &d, lo, hi, err);
     if (!rc) {
-        /* a packing to start from: the preparation would blow up on two
-         * particles overlapping by half a radius or more (its limit) */
+        /* a packing to start from: the preparation would stop on two
+         * particles overlapping more */
         s->measure = 1;
         dem_sim_forces(s);
         const struct dem_contact_sums *S = &s->sums;
-        if (!(S->max_overlap_ratio <= 0.5) && S->max_overlap_j >= 0)
+        if (!(S->max_overlap_ratio <= PREP_MAX_OVERLAP) &&
+            S->max_overlap_j >= 0)
             rc = dem_error_set(err, DEM_ECONFIG,
                                "%s: atoms %d and %d overlap by %.3g of the "
-                               "smaller radius (at most 0.5 in a packing to "
+                               "smaller radius (at most %.2g in a packing to "
                                "start from)",
                                path, d.id[S->max_overlap_i],
-                               d.id[S->max_overlap_j], S->max_overlap_ratio);
+                               d.id[S->max_overlap_j], S->max_overlap_ratio,
+                               PREP_MAX_OVERLAP);
         if (rc) /* a failure leaves no sim, as dem_lammps_data_sim's */
             dem_sim_destroy(s);
     }
@@ -364,7 +370,7 @@ static int relax(struct dem_sim *s, const struct workload *w,
                                  "bench: preparation unstable at t = %.4g s: "
                                  "non-finite energy or stress",
                                  s->t);
-        if (smp.max_overlap > 0.5) {
+        if (smp.max_overlap > PREP_MAX_OVERLAP) {
             char partner[32] = "a wall";
             if (s->sums.max_overlap_j >= 0)
                 snprintf(partner, sizeof partner, "particle %d",
@@ -372,9 +378,9 @@ static int relax(struct dem_sim *s, const struct workload *w,
             return dem_error_set(err, DEM_EUNSTABLE,
                                  "bench: preparation unstable at t = %.4g s: "
                                  "particle %d overlaps %s by %.2f of a radius "
-                                 "(at most 0.5)",
+                                 "(at most %.2g)",
                                  s->t, s->sums.max_overlap_i, partner,
-                                 smp.max_overlap);
+                                 smp.max_overlap, PREP_MAX_OVERLAP);
         }
         progress(o, "preparing", &smp, w->p0, 0, &last);
         if (ops->done(s, &st, &smp))
