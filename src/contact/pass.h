@@ -94,6 +94,12 @@ int dem__pass_records(const struct contacts *c, struct kick K);
 /* The records pass whose chained steps keep the pairs' forces in a ring
  * per thread (contact/pass_ring.c). */
 int dem__pass_ring(const struct contacts *c, struct kick K);
+/* The positions (and radii) in the records of particles i0 <= i < i1
+ * (struct dem_pairs.rec) as they are in P's arrays: after the periodic
+ * cell's affine map (core/cell.c) of the arrays, the same bits as the
+ * map applied to the records, which a chained records pass wrote. */
+void dem_records_positions(double *rec, const struct dem_particles *P, int i0,
+                           int i1);
 #endif
 
 #endif

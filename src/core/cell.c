@@ -5,6 +5,7 @@
 #include <math.h>
 #include <omp.h>
 
+#include "contact/pass.h"
 #include "core/parallel.h"
 #include "core/sim.h"
 
@@ -88,25 +89,19 @@ void dem_sim_cell_grad(const struct dem_sim *s, double grad[6])
 }
 
 /* x <- to.lo + M (x - from.lo) with M = h_to h_from^-1 (upper
- * triangular) for particles i0 <= i < i1, coordinates i * stride of X, Y
- * and Z: the positions and their copies at the last list build (stride
- * 1: distinct arrays, restrict lets the loop run in SIMD lanes), and the
- * force pass's particle records (struct dem_pairs.rec, stride DEM_REC),
- * with the same arithmetic, so the same bits. Inlined with a literal
- * stride at each call. */
+ * triangular) for particles i0 <= i < i1 of coordinate arrays X, Y, Z
+ * (distinct: restrict lets the loop run in SIMD lanes). */
 static inline void map_set(double *restrict X, double *restrict Y,
-                           double *restrict Z, size_t stride, int i0, int i1,
-                           double M[3][3], const double lf[3],
-                           const double lt[3])
+                           double *restrict Z, int i0, int i1, double M[3][3],
+                           const double lf[3], const double lt[3])
 {
     const double m00 = M[0][0], m01 = M[0][1], m02 = M[0][2], m11 = M[1][1],
                  m12 = M[1][2], m22 = M[2][2];
     for (int i = i0; i < i1; i++) {
-        const size_t k = stride * (size_t)i;
-        const double dx = X[k] - lf[0], dy = Y[k] - lf[1], dz = Z[k] - lf[2];
-        X[k] = lt[0] + m00 * dx + m01 * dy + m02 * dz;
-        Y[k] = lt[1] + m11 * dy + m12 * dz;
-        Z[k] = lt[2] + m22 * dz;
+        const double dx = X[i] - lf[0], dy = Y[i] - lf[1], dz = Z[i] - lf[2];
+        X[i] = lt[0] + m00 * dx + m01 * dy + m02 * dz;
+        Y[i] = lt[1] + m11 * dy + m12 * dz;
+        Z[i] = lt[2] + m22 * dz;
     }
 }
 
@@ -114,13 +109,16 @@ static void map_range(const struct dem_sim *s, int i0, int i1,
                       double M[3][3], const double lf[3], const double lt[3])
 {
     const struct dem_particles *p = &s->p;
-    map_set(p->x, p->y, p->z, 1, i0, i1, M, lf, lt);
-    map_set(p->x0, p->y0, p->z0, 1, i0, i1, M, lf, lt);
-    /* records a chained records pass wrote at the drift move with their
-     * particles, so that the next pass need not copy them again */
-    double *rec = s->pairs.rec;
+    map_set(p->x, p->y, p->z, i0, i1, M, lf, lt);
+    map_set(p->x0, p->y0, p->z0, i0, i1, M, lf, lt);
+#if DEM_HAVE_PASS_RECORDS
+    /* records a chained records pass wrote move with their particles, so
+     * that the next pass need not copy them again: their positions copied
+     * from the arrays, the same bits as mapped (mapped in place, strided,
+     * they took 2 % of a cell's step at N = 3375) */
     if (s->pairs.rec_written)
-        map_set(rec, rec + 1, rec + 2, DEM_REC, i0, i1, M, lf, lt);
+        dem_records_positions(s->pairs.rec, p, i0, i1);
+#endif
 }
 
 void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
