@@ -434,14 +434,9 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
 #if defined(__GNUC__)
 /* Eight doubles as one value of GCC's and clang's vector extension
  * (lowered to the widest vectors the target has), loaded and stored
- * unaligned. */
+ * unaligned with memcpy (never passed to or returned from a function:
+ * without AVX-512 that would change the ABI, -Wpsabi). */
 typedef double dem_lanes8 __attribute__((vector_size(64), aligned(8)));
-DEM_INLINE dem_lanes8 load_lanes8(const double *p)
-{
-    dem_lanes8 v;
-    memcpy(&v, p, sizeof v);
-    return v;
-}
 #endif
 
 /* The periodic cell's virial (contact/forces.c) of particles
@@ -468,15 +463,15 @@ DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
      * around it too (docs/performance.md). */
     dem_lanes8 s[9];
     for (int c = 0; c < 9; c++)
-        s[c] = load_lanes8(w[c]);
+        memcpy(&s[c], w[c], sizeof s[c]);
     for (; u + 8 <= nb; u += 8) {
         const int i = ib + u;
-        const dem_lanes8 mi = load_lanes8(m + i);
-        dem_lanes8 x[3], v[3], g[3];
+        dem_lanes8 mi, x[3], v[3], g[3];
+        memcpy(&mi, m + i, sizeof mi);
         for (int a = 0; a < 3; a++) {
-            x[a] = load_lanes8(X[a] + i);
-            v[a] = load_lanes8(U[a] + i);
-            g[a] = load_lanes8(f[a] + u);
+            memcpy(&x[a], X[a] + i, sizeof x[a]);
+            memcpy(&v[a], U[a] + i, sizeof v[a]);
+            memcpy(&g[a], f[a] + u, sizeof g[a]);
         }
         for (int a = 0; a < 3; a++) {
             const dem_lanes8 mu = mi * v[a];
