@@ -13,10 +13,13 @@ void dem_records_positions(double *rec, const struct dem_particles *P, int i0,
         records_block(rec + DEM_REC * (size_t)i, _mm256_loadu_pd(P->x + i),
                       _mm256_loadu_pd(P->y + i), _mm256_loadu_pd(P->z + i),
                       _mm256_loadu_pd(P->r + i));
-    for (; i < i1; i++)
-        for (int u = 0; u < 4; u++)
-            rec[DEM_REC * (size_t)i + u] =
-                (u == 0 ? P->x : u == 1 ? P->y : u == 2 ? P->z : P->r)[i];
+    for (; i < i1; i++) {
+        double *o = rec + DEM_REC * (size_t)i;
+        o[0] = P->x[i];
+        o[1] = P->y[i];
+        o[2] = P->z[i];
+        o[3] = P->r[i];
+    }
 }
 #else
 typedef int dem_pass_records_unused; /* ISO C: no empty translation unit */
