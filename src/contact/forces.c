@@ -23,7 +23,8 @@ static struct pass pass_of(const struct dem_particles *P,
         .x = P->x, .y = P->y, .z = P->z, .vx = P->vx, .vy = P->vy,
         .vz = P->vz, .wx = P->wx, .wy = P->wy, .wz = P->wz, .r = P->r,
         .m = P->m,
-        .ci = L->i, .cj = L->j, .img = L->img, .state = L->state, .F = F->v,
+        .ci = L->i, .cj = L->j, .img = L->img, .cjr = L->j,
+        .state = L->state, .F = F->v,
         .foff = 0, .M = F->m,
 #define HIST_OF_(MODEL, name, unit, swap, doc) .name = L->name,
         DEM_CONTACT_HISTORY(HIST_OF_)
@@ -442,6 +443,7 @@ static int forces(struct dem_sim *s, const struct kick K)
         dem_sim_lattice(s, &lat);
         memcpy(c.cv, lat.v, sizeof c.cv);
         dem_sim_cell_grad(s, c.grad);
+        c.q.cjr = pl->jrec;
     }
     c.rec = pl->rec;
 #if DEM_HAVE_PASS_RECORDS

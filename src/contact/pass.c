@@ -197,14 +197,9 @@ DEM_INLINE void pair_vals(const int law, const int scalar,
                           const double *grad)
 {
     const struct pass q = *qp;
-    double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
-    if (law & DEM_SET_PERIODIC) { /* j's image: x_j + h s */
-        double S[3];
-        dem_img_shift(cv, q.img[k], S);
-        dx -= S[0];
-        dy -= S[1];
-        dz -= S[2];
-    }
+    (void)cv;
+    /* (in a periodic cell pj is j's image, branch vector b = x_i - x_j') */
+    const double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
     const double d2 = dx * dx + dy * dy + dz * dz;
     const double ai = pi.r, aj = pj.r, R = ai + aj;
     const int touch = d2 < R * R;
@@ -247,8 +242,17 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
                          const struct dem_tangential *T, const double *cv,
                          const double *grad)
 {
-    pair_vals(law, scalar, qp, k, load_pv(qp, qp->ci[k]),
-              load_pv(qp, qp->cj[k]), cp, dt, T, cv, grad);
+    struct pv pj = load_pv(qp, qp->cj[k]);
+    if (law & DEM_SET_PERIODIC) { /* j's image: x_j + h s (as its image
+                                     record has it, image_records) */
+        double S[3];
+        dem_img_shift(cv, qp->img[k], S);
+        pj.x += S[0];
+        pj.y += S[1];
+        pj.z += S[2];
+    }
+    pair_vals(law, scalar, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T, cv,
+              grad);
 }
 
 #if DEM_PASS_RECORDS
@@ -294,6 +298,37 @@ DEM_INLINE void records_fill(double *restrict rec,
                                    P->wx[i], P->wy[i], P->wz[i], 0.0};
         for (int u = 0; u < DEM_REC; u++)
             o[u] = v[u];
+    }
+}
+
+/* In a periodic cell, the image records of the pairs k0 <= k < k1 that
+ * touch an image of j (struct dem_pairs.jrec): j's record, its position
+ * shifted to the image, so that the pair loop reads a record as for any
+ * other pair (a shift decoded and applied in every lane took 6 % of the
+ * pass, docs/performance.md). They are filled every pass from j's
+ * records, which must hold the present state. */
+DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
+{
+    const struct dem_pairs *pl = c->pl;
+    const int *imgk = pl->imgk;
+    int lo = 0, hi = pl->ncross; /* the first of imgk at or after k0 */
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (imgk[mid] < k0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (int m = lo; m < pl->ncross && imgk[m] < k1; m++) {
+        const int k = imgk[m];
+        const double *s = c->rec + DEM_REC * (size_t)c->q.cj[k];
+        double *o = c->rec + DEM_REC * (size_t)c->q.cjr[k];
+        double S[3];
+        dem_img_shift(c->cv, c->q.img[k], S);
+        memcpy(o, s, DEM_REC * sizeof *o);
+        o[0] = s[0] + S[0];
+        o[1] = s[1] + S[1];
+        o[2] = s[2] + S[2];
     }
 }
 
@@ -351,12 +386,12 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                 for (int l = 0; l < 8; l++) {
                     const double *r =
                         rec +
-                        DEM_REC * (size_t)q.cj[k + DEM_PREFETCH_PAIRS + l];
+                        DEM_REC * (size_t)q.cjr[k + DEM_PREFETCH_PAIRS + l];
                     __builtin_prefetch(r, 0, 3);
                     __builtin_prefetch(r + 8, 0, 3);
                 }
             records_lanes(rec, q.ci + k, A);
-            records_lanes(rec, q.cj + k, B);
+            records_lanes(rec, q.cjr + k, B);
 #pragma omp simd
             for (int l = 0; l < 8; l++) {
                 const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
@@ -816,6 +851,11 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     /* (the cell's virial blocks run in particle order: stored forces) */
     if (K.chain && !(law & DEM_SET_PERIODIC) && c->ring)
         return ring_thread(law, c, K, t, nt);
+#endif
+#if DEM_PASS_RECORDS
+    /* the images' records of the thread's own pairs */
+    if (law & DEM_SET_PERIODIC)
+        image_records(c, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt));
 #endif
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
                dem_block(c->np, t + 1, nt), &c->cp, c->dt, c->cv, c->grad,

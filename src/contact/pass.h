@@ -32,6 +32,8 @@ struct pass {
     const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *m;
     const int *ci, *cj;
     const int *img; /* periodic cell: the image of j (core/cell.h) */
+    const int *cjr; /* the record of j the records pass reads: cj, or in a
+                       periodic cell struct dem_pairs.jrec */
 #define HIST_ARRAY_(MODEL, name, unit, swap, doc) double *name;
     DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
 #undef HIST_ARRAY_

@@ -137,7 +137,7 @@ int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
     /* the list's lattice, as a build leaves it */
     s->pairs.periodic = 1;
     s->pairs.lat = s->cell.built;
-    if (!s->cell.vir || dem_pairs_cross(&s->pairs))
+    if (!s->cell.vir || dem_pairs_cross(&s->pairs, s->p.n))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (cell)");
     return DEM_OK;
 }

@@ -41,6 +41,8 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->rstart);
     free(pl->rpair);
     free(pl->cross);
+    free(pl->imgk);
+    free(pl->jrec);
     free(pl->cell_start);
     free(pl->cell_list);
     free(pl->cell_of);
@@ -117,6 +119,21 @@ static void forces_zero(struct dem_contact_forces *f, int n, int torques)
         memset(f->m, 0, 3 * (size_t)n * sizeof *f->m);
 }
 
+/* Room for nrec of the force pass's particle records (contact/pass.c),
+ * aligned for whole-vector loads. Growing them loses what they held. */
+static int records_reserve(struct dem_pairs *pl, int nrec)
+{
+    if (nrec <= pl->rec_cap)
+        return 0;
+    const int c = nrec + nrec / 4;
+    free(pl->rec);
+    pl->rec_written = 0;
+    pl->rec = aligned_alloc(
+        64, ((size_t)c * DEM_REC * sizeof(double) + 63) / 64 * 64);
+    pl->rec_cap = pl->rec ? c : 0;
+    return pl->rec ? 0 : -1;
+}
+
 /* Per-particle arrays for n particles (row offsets need n + 1). */
 static int particles_reserve(struct dem_pairs *pl, int n, int cap)
 {
@@ -141,12 +158,7 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
     pl->scratch = malloc((size_t)(cap > c ? cap : c) * sizeof *pl->scratch);
     if (!pl->scratch)
         return -1;
-    /* the force pass's particle records (contact/pass.c): 12 doubles
-     * each, aligned for whole-vector loads */
-    free(pl->rec);
-    pl->rec =
-        aligned_alloc(64, ((size_t)c * 12 * sizeof(double) + 63) / 64 * 64);
-    if (!pl->rec)
+    if (records_reserve(pl, c))
         return -1;
     pl->nalloc = c;
     return 0;
@@ -521,7 +533,7 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
     return DEM_OK;
 }
 
-int dem_pairs_cross(struct dem_pairs *pl)
+int dem_pairs_cross(struct dem_pairs *pl, int n)
 {
     const struct dem_contact_list *L = &pl->cur;
     int *start = pl->cross_start;
@@ -531,10 +543,21 @@ int dem_pairs_cross(struct dem_pairs *pl)
     if (!pl->periodic)
         return 0;
     if (L->n > pl->cross_cap) {
-        if (GROW(pl->cross, L->cap))
+        if (GROW(pl->cross, L->cap) || GROW(pl->imgk, L->cap) ||
+            GROW(pl->jrec, L->cap))
             return -1;
         pl->cross_cap = L->cap;
     }
+    /* j's record for each pair: the image records follow the particles' */
+    int m = 0;
+    for (int k = 0; k < L->n; k++) {
+        const int through = L->img[k] != DEM_IMG_NONE;
+        pl->jrec[k] = through ? n + m : L->j[k];
+        if (through)
+            pl->imgk[m++] = k;
+    }
+    if (records_reserve(pl, n + m))
+        return -1;
     /* a counting sort by image, stable: each image's pairs in list order
      * (so that the sum over them keeps its order, contact/forces.c) */
     for (int k = 0; k < L->n; k++)
@@ -645,7 +668,7 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
         rc = build_walls(pl, p, skin, w, nwall, err);
     if (rc)
         return rc;
-    if (build_reverse(pl, n) || dem_pairs_cross(pl) ||
+    if (build_reverse(pl, n) || dem_pairs_cross(pl, n) ||
         forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");

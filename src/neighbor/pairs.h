@@ -93,6 +93,11 @@ struct dem_pairs {
                     cross_start[g + 1]) */
     int ncross, cross_cap;
     int cross_start[DEM_IMG_CODES + 1];
+    int *imgk; /* periodic cell: the same ncross pairs in list order */
+    int *jrec; /* periodic cell, one per pair: the record the records pass
+                  reads for j (contact/pass.c), j itself or, for the m-th
+                  pair of imgk, n + m: an image record, j's record with
+                  its position shifted to the image */
     /* cell grid (periodic: over the fractional coordinates) */
     int nc[3];       /* cells per axis */
     double lo[3];    /* m; lower corner */
@@ -119,9 +124,11 @@ struct dem_pairs {
                       kept (carried at a rebuild); the others are never
                       read or written */
     int torques;   /* 1: the entries' resistance torques (forces.m) */
-    double *rec;   /* nalloc records of DEM_REC doubles, 64-byte aligned:
+    double *rec;   /* rec_cap records of DEM_REC doubles, 64-byte aligned:
                       the force pass's copy of the particles
-                      (contact/pass.c), x y z r | vx vy vz m | wx wy wz 0 */
+                      (contact/pass.c), x y z r | vx vy vz m | wx wy wz 0,
+                      then in a periodic cell the image records (jrec) */
+    int rec_cap;
     int rec_fresh;   /* set by dem_sim_step for its pass: no particle has
                         moved since the last pass, which was chained */
     int rec_written; /* the last pass was chained and wrote rec */
@@ -165,10 +172,12 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
  * The lists keep their counts; a later build works as usual. */
 int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
 
-/* The list of pairs through an image (cross, grouped by the image), from
- * cur's images; none unless the grid is a periodic cell's. A build makes it; a checkpoint
- * that fills cur calls it. 0 or -1 (out of memory). */
-int dem_pairs_cross(struct dem_pairs *pl);
+/* The list of pairs through an image (cross, grouped by the image; imgk,
+ * in list order) and each pair's record of j (jrec, with room in rec for
+ * the image records after those of the n particles), from cur's images;
+ * none unless the grid is a periodic cell's. A build makes them; a
+ * checkpoint that fills cur calls it. 0 or -1 (out of memory). */
+int dem_pairs_cross(struct dem_pairs *pl, int n);
 
 /* The list's reach (struct dem_pairs) from cur's rows and the reverse
  * rows of particles 0 <= i < n. A build sets it; a checkpoint that fills
