@@ -105,20 +105,27 @@ static inline void map_set(double *restrict X, double *restrict Y,
     }
 }
 
+/* particles mapped at a time, their positions then copied to their
+ * records while still in the L1 cache */
+#define DEM_MAP_BLOCK 256
+
 static void map_range(const struct dem_sim *s, int i0, int i1,
                       double M[3][3], const double lf[3], const double lt[3])
 {
     const struct dem_particles *p = &s->p;
-    map_set(p->x, p->y, p->z, i0, i1, M, lf, lt);
     map_set(p->x0, p->y0, p->z0, i0, i1, M, lf, lt);
+    for (int b = i0; b < i1; b += DEM_MAP_BLOCK) {
+        const int e = i1 - b > DEM_MAP_BLOCK ? b + DEM_MAP_BLOCK : i1;
+        map_set(p->x, p->y, p->z, b, e, M, lf, lt);
 #if DEM_HAVE_PASS_RECORDS
-    /* records a chained records pass wrote move with their particles, so
-     * that the next pass need not copy them again: their positions copied
-     * from the arrays, the same bits as mapped (mapped in place, strided,
-     * they took 2 % of a cell's step at N = 3375) */
-    if (s->pairs.rec_written)
-        dem_records_positions(s->pairs.rec, p, i0, i1);
+        /* records a chained records pass wrote move with their particles,
+         * so that the next pass need not copy them again: their positions
+         * copied from the arrays, the same bits as mapped (mapped in
+         * place, strided, they took 2 % of a cell's step at N = 3375) */
+        if (s->pairs.rec_written)
+            dem_records_positions(s->pairs.rec, p, b, e);
 #endif
+    }
 }
 
 void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
