@@ -679,6 +679,8 @@ struct dem_bench_result {
     long nbuild;               /* neighbour-list builds in the timed loop */
     char pass[160];            /* the force pass's compilation at the end
                                   and its last timing trial */
+    char trials[96];           /* the timing trials each compilation won
+                                  in the timed loop (dem_sim_pass_tally) */
     char cpu[160];             /* the CPU's model name, family and model
                                   (Linux /proc/cpuinfo; "unknown") */
     char simd[64];             /* the vector instructions and width the

@@ -593,6 +593,7 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     r->timers = s.timers;
     r->nbuild = s.nbuild - nbuild0;
     dem_sim_pass_report(&s, r->pass, sizeof r->pass);
+    dem_sim_pass_tally(&s, r->trials, sizeof r->trials);
     r->pairs_per_particle = (double)s.pairs.cur.n / (double)s.p.n;
     r->skin_share = dem_sim_skin_share(&s);
     if (!rc) {
@@ -651,6 +652,7 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
                 ? 100.0 * r->cpu_seconds / (r->seconds * r->threads)
                 : 0.0);
     fprintf(f, "force pass: %s\n", r->pass);
+    fprintf(f, "force pass trials won: %s\n", r->trials);
     struct {
         const char *name;
         double t;
