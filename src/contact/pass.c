@@ -185,20 +185,18 @@ DEM_INLINE struct pv load_pv(const struct pass *q, int i)
 }
 
 /* Force and history update of pair k between particles with values pi and
- * pj. With scalar = 0 (SIMD lanes) there is no branch: the pair computes
- * the closed-contact force, and if its gap is open it gets a zero force
- * and loses its history instead; scalar code (scalar = 1) skips an open
- * pair at once. */
+ * pj (in a periodic cell j's image: its position x_j + h n, so that
+ * b = x_i - x_j' below). With scalar = 0 (SIMD lanes) there is no branch:
+ * the pair computes the closed-contact force, and if its gap is open it
+ * gets a zero force and loses its history instead; scalar code (scalar =
+ * 1) skips an open pair at once. */
 DEM_INLINE void pair_vals(const int law, const int scalar,
                           const struct pass *qp, int k, const struct pv pi,
                           const struct pv pj,
                           const struct dem_contact_params *cp, double dt,
-                          const struct dem_tangential *T, const double *cv,
-                          const double *grad)
+                          const struct dem_tangential *T, const double *grad)
 {
     const struct pass q = *qp;
-    (void)cv;
-    /* (in a periodic cell pj is j's image, branch vector b = x_i - x_j') */
     const double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
     const double d2 = dx * dx + dy * dy + dz * dz;
     const double ai = pi.r, aj = pj.r, R = ai + aj;
@@ -251,7 +249,7 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
         pj.y += S[1];
         pj.z += S[2];
     }
-    pair_vals(law, scalar, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T, cv,
+    pair_vals(law, scalar, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T,
               grad);
 }
 
@@ -400,7 +398,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                 const struct pv pj = {B[0][l], B[1][l], B[2][l], B[3][l],
                                       B[4][l], B[5][l], B[6][l], B[7][l],
                                       B[8][l], B[9][l], B[10][l]};
-                pair_vals(law, 0, &q, k + l, pi, pj, cp, dt, &T, cv, grad);
+                pair_vals(law, 0, &q, k + l, pi, pj, cp, dt, &T, grad);
             }
         }
 #endif
