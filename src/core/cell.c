@@ -109,6 +109,9 @@ static inline void map_set(double *restrict X, double *restrict Y,
  * records while still in the L1 cache */
 #define DEM_MAP_BLOCK 256
 
+/* the fewest particles whose map runs over the threads */
+#define DEM_MAP_PARALLEL 2048
+
 static void map_range(const struct dem_sim *s, int i0, int i1,
                       double M[3][3], const double lf[3], const double lt[3])
 {
@@ -141,12 +144,18 @@ void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
             for (int k = 0; k < 3; k++)
                 M[a][b] += h[a][k] * g[k][b];
     const int n = s->p.n;
-    /* a parallel region costs more than the map of a small sample */
-#pragma omp parallel if (n > 50000)
+    /* Each thread maps the particles whose sums, kicks and drifts it ran
+     * in the pass (contact/pass.c: the same blocks), which are in its
+     * cache. In one thread the map of another's particles took twice as
+     * long (N = 3375, two threads, Zen 4: the cell's loop 10 % slower,
+     * docs/performance.md). Below DEM_MAP_PARALLEL particles a parallel
+     * region costs more than the map. */
+#pragma omp parallel if (n >= DEM_MAP_PARALLEL)
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        map_range(s, dem_block(n, t, nt), dem_block(n, t + 1, nt), M,
-                  from->lo, to->lo);
+        map_range(s, dem_block_aligned(n, t, nt, DEM_VIR_BLOCK),
+                  dem_block_aligned(n, t + 1, nt, DEM_VIR_BLOCK), M, from->lo,
+                  to->lo);
     }
 }
 
