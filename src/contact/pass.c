@@ -170,6 +170,20 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
         q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
 }
 
+/* The first index i < n of the ascending a with a[i] >= k (n if none). */
+DEM_INLINE int first_at_least(const int *a, int n, int k)
+{
+    int lo = 0, hi = n;
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (a[mid] < k)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
 /* What a pair reads of each of its particles. */
 struct pv {
     double x, y, z, r, vx, vy, vz, m, wx, wy, wz;
@@ -309,15 +323,8 @@ DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
 {
     const struct dem_pairs *pl = c->pl;
     const int *imgk = pl->imgk;
-    int lo = 0, hi = pl->ncross; /* the first of imgk at or after k0 */
-    while (lo < hi) {
-        const int mid = lo + (hi - lo) / 2;
-        if (imgk[mid] < k0)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    for (int m = lo; m < pl->ncross && imgk[m] < k1; m++) {
+    for (int m = first_at_least(imgk, pl->ncross, k0);
+         m < pl->ncross && imgk[m] < k1; m++) {
         const int k = imgk[m];
         const double *s = c->rec + DEM_REC * (size_t)c->q.cj[k];
         double *o = c->rec + DEM_REC * (size_t)c->q.cjr[k];
@@ -713,18 +720,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
  * 0 <= i < n (np pairs) are split in blocks of about equal pairs. */
 static int row_block(const int *start, int n, int np, int t, int nt)
 {
-    if (t >= nt)
-        return n;
-    const int k = dem_block(np, t, nt);
-    int lo = 0, hi = n; /* the first i with start[i] >= k */
-    while (lo < hi) {
-        const int mid = lo + (hi - lo) / 2;
-        if (start[mid] < k)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
+    return t >= nt ? n : first_at_least(start, n, dem_block(np, t, nt));
 }
 
 /* The first particle i0 of block t of the rows (row_block) and the end
