@@ -170,6 +170,7 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
         q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
 }
 
+#if DEM_PASS_RECORDS
 /* The first index i < n of the ascending a with a[i] >= k (n if none). */
 DEM_INLINE int first_at_least(const int *a, int n, int k)
 {
@@ -183,6 +184,7 @@ DEM_INLINE int first_at_least(const int *a, int n, int k)
     }
     return lo;
 }
+#endif
 
 /* What a pair reads of each of its particles. */
 struct pv {
