@@ -861,8 +861,8 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
 #pragma omp barrier
     if (law & DEM_SET_PERIODIC) /* no virial block across two threads */
         return particle_range(
-            law, dem_block_aligned(c->n, t, nt, DEM_VIR_BLOCK),
-            dem_block_aligned(c->n, t + 1, nt, DEM_VIR_BLOCK), c->P, c->pl,
+            law, dem_cell_block(c->n, t, nt), dem_cell_block(c->n, t + 1, nt),
+            c->P, c->pl,
             c->q.F, 0, -1, c->gb, c->gr, K, c->vir, c->rec);
     return particle_range(law, dem_block(c->n, t, nt),
                           dem_block(c->n, t + 1, nt), c->P, c->pl, c->q.F, 0,

@@ -145,7 +145,7 @@ void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
                 M[a][b] += h[a][k] * g[k][b];
     const int n = s->p.n;
     /* Each thread maps the particles whose sums, kicks and drifts it ran
-     * in the pass (contact/pass.c: the same blocks), which are in its
+     * in the pass (dem_cell_block: the same blocks), which are in its
      * cache. In one thread the map of another's particles took twice as
      * long (N = 3375, two threads, Zen 4: the cell's loop 10 % slower,
      * docs/performance.md). Below DEM_MAP_PARALLEL particles a parallel
@@ -153,9 +153,8 @@ void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
 #pragma omp parallel if (n >= DEM_MAP_PARALLEL)
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        map_range(s, dem_block_aligned(n, t, nt, DEM_VIR_BLOCK),
-                  dem_block_aligned(n, t + 1, nt, DEM_VIR_BLOCK), M, from->lo,
-                  to->lo);
+        map_range(s, dem_cell_block(n, t, nt), dem_cell_block(n, t + 1, nt),
+                  M, from->lo, to->lo);
     }
 }
 
