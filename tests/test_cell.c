@@ -71,6 +71,63 @@ static void check_list(const struct dem_sim *s)
     free(bg);
 }
 
+/* The reverse rows (each particle's pairs as j: those with j itself,
+ * then those through an image of j, each part in list order), the reach
+ * taken over the first part, and the ring pass's blocks
+ * (dem_pairs_row_block): for one to four threads and blocks cut at
+ * multiples of g, the blocks tile the particles, and a particle outside
+ * the waiting ranges has every pair as j in its own block's rows. */
+static void check_rows(const struct dem_sim *s)
+{
+    const struct dem_pairs *pl = &s->pairs;
+    const struct dem_contact_list *L = &pl->cur;
+    const int n = s->p.n;
+    int reach = 0;
+    assert_int_equal(pl->rstart[n], L->n);
+    for (int j = 0; j < n; j++) {
+        assert_true(pl->rstart[j] <= pl->rimg[j] &&
+                    pl->rimg[j] <= pl->rstart[j + 1]);
+        for (int q = pl->rstart[j]; q < pl->rstart[j + 1]; q++) {
+            const int k = pl->rpair[q], image = q >= pl->rimg[j];
+            assert_int_equal(L->j[k], j);
+            assert_int_equal(L->img[k] != DEM_IMG_NONE, image);
+            if (q > pl->rstart[j] && q != pl->rimg[j])
+                assert_true(k > pl->rpair[q - 1]);
+        }
+        if (pl->rstart[j] < pl->rimg[j]) {
+            const int span = L->start[j + 1] - pl->rpair[pl->rstart[j]];
+            reach = span > reach ? span : reach;
+        }
+    }
+    assert_int_equal(pl->reach, reach);
+    const int gs[3] = {1, 8, 64};
+    for (int u = 0; u < 3; u++) {
+        const int g = gs[u];
+        for (int nt = 1; nt <= 4; nt++) {
+            int end = 0, late = 0;
+            for (int t = 0; t < nt; t++) {
+                int w[4];
+                dem_pairs_row_block(pl, n, t, nt, g, w);
+                assert_int_equal(w[0], end);
+                end = w[3];
+                assert_true(w[0] <= w[1] && w[1] <= w[2] && w[2] <= w[3]);
+                for (int c = 0; c < 4; c++)
+                    assert_true(w[c] % g == 0 || w[c] == n);
+                const int k0 = L->start[w[0]];
+                for (int i = w[1]; i < w[2]; i++)
+                    for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
+                        assert_true(pl->rpair[q] >= k0);
+                late += t > 0 && w[2] < w[3];
+            }
+            assert_int_equal(end, n);
+            /* the pairs through the last faces come from the first block:
+             * a later block's last particles wait */
+            if (nt > 1 && g < 64)
+                assert_true(late > 0);
+        }
+    }
+}
+
 /* In a cell sheared by txy (and in 3D txz, tyz) the linked cells over
  * the fractional coordinates find exactly the pairs a brute-force search
  * over the 9 (27) images finds, each with its image, before and after
@@ -89,8 +146,10 @@ static void sheared_cell_list_is_brute_force(int dim)
                              dem_rng_uniform(&g)};
         add_frac(&s, f, 1.5e-3 + 3e-3 * dem_rng_uniform(&g));
     }
+    s.reorder = 1; /* in cell order, as a run's */
     test_ready(&s);
     check_list(&s);
+    check_rows(&s);
     for (int i = 0; i < n; i++) { /* some leave the cell */
         s.p.x[i] += 6e-3 * (dem_rng_uniform(&g) - 0.5);
         s.p.y[i] += 6e-3 * (dem_rng_uniform(&g) - 0.5);
@@ -98,6 +157,7 @@ static void sheared_cell_list_is_brute_force(int dim)
     struct dem_error err;
     assert_int_equal(dem_sim_rebuild(&s, &err), 0);
     check_list(&s);
+    check_rows(&s);
     dem_sim_destroy(&s);
 }
 

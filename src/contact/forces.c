@@ -406,7 +406,7 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
     }
     if (nt > pl->ring_threads) {
         free(pl->ring_wait);
-        pl->ring_wait = malloc(2 * (size_t)nt * sizeof *pl->ring_wait);
+        pl->ring_wait = malloc(4 * (size_t)nt * sizeof *pl->ring_wait);
         pl->ring_threads = pl->ring_wait ? nt : 0;
     }
     *mask = (int)size - 1;
@@ -447,9 +447,7 @@ static int forces(struct dem_sim *s, const struct kick K)
     }
     c.rec = pl->rec;
 #if DEM_HAVE_PASS_RECORDS
-    /* (a cell takes the stored path: its pairs through the z faces make
-     * the reach the whole list, docs/performance.md) */
-    if (K.chain && !s->cell.on) {
+    if (K.chain) {
         c.ring_chunk = pl->ring_chunk ? pl->ring_chunk : DEM_RING_CHUNK;
         c.ring = rings(pl, c.ring_chunk, &c.ring_mask);
         c.wait = pl->ring_wait;

@@ -17,10 +17,11 @@
  *     loop without branches over the flat list, run in SIMD lanes;
  *  2. every wall contact: force and history, stored with the contact;
  *  3. every particle: its background damping, then the forces of its
- *     pairs as i (its row), as j (its reverse row) and of its wall
- *     contacts, each in list order; then the torques and, in a time step,
- *     the closing half kick (and in a chained step the next half kick and
- *     drift, see dem_sim_step).
+ *     pairs as i (its row), as j (its reverse row: in a periodic cell
+ *     those with j itself, then those through an image of j) and of its
+ *     wall contacts, each in list order; then the torques and, in a
+ *     time step, the closing half kick (and in a chained step the next
+ *     half kick and drift, see dem_sim_step).
  * The records compilation (contact/pass.h) reads the pairs' particle
  * values from a copy of the particles in records: each thread first
  * writes its share of them, then a barrier; a chained pass writes its
@@ -170,22 +171,6 @@ DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
         q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
 }
 
-#if DEM_PASS_RECORDS
-/* The first index i < n of the ascending a with a[i] >= k (n if none). */
-DEM_INLINE int first_at_least(const int *a, int n, int k)
-{
-    int lo = 0, hi = n;
-    while (lo < hi) {
-        const int mid = lo + (hi - lo) / 2;
-        if (a[mid] < k)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-#endif
-
 /* What a pair reads of each of its particles. */
 struct pv {
     double x, y, z, r, vx, vy, vz, m, wx, wy, wz;
@@ -325,7 +310,7 @@ DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
 {
     const struct dem_pairs *pl = c->pl;
     const int *imgk = pl->imgk;
-    for (int m = first_at_least(imgk, pl->ncross, k0);
+    for (int m = dem_first_at_least(imgk, pl->ncross, k0);
          m < pl->ncross && imgk[m] < k1; m++) {
         const int k = imgk[m];
         const double *s = c->rec + DEM_REC * (size_t)c->q.cj[k];
@@ -481,35 +466,54 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
 typedef double dem_lanes8 __attribute__((vector_size(64), aligned(8)));
 #endif
 
-/* The periodic cell's virial (contact/forces.c) of particles
- * ib <= i < ib + nb, with contact forces f (the sums of their pairs and
- * no damping): sum_contacts b (x) f, b = x_i - x_j', is sum_i x_i (x) f_i
- * minus the images' shifts (summed after the pass), plus the kinetic part
- * m u (x) u. Particle i adds to lane i % 8 of w (ib is a multiple of 8);
- * at the end of a virial block (or with last, of the thread's range) the
- * lanes are summed in order into vir and cleared. */
-DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
-                             double (*f)[DEM_KICK_BLOCK], double (*w)[8],
-                             double *vir, int last)
+/* The periodic cell's virial as a pass sums it (virial_block): the
+ * virial blocks' sums (struct contacts.vir), the current block's 8 lanes
+ * of partial sums, and the end of the particles the caller takes. */
+struct virial {
+    double *vir;
+    _Alignas(64) double w[9][8];
+    int end;
+};
+
+/* Particle i's share of the periodic cell's virial, added to lane i % 8
+ * of w; f its contacts' sum. The same arithmetic as virial_lanes, so a
+ * particle adds the same bits either way. */
+DEM_INLINE void virial_add(const struct dem_particles *P, int i, double fx,
+                           double fy, double fz, double (*w)[8])
 {
-    const double *restrict X[3] = {P->x, P->y, P->z},
-                           *restrict U[3] = {P->vx, P->vy, P->vz};
-    const double *restrict m = P->m;
-    int u = 0;
+    const double X[3] = {P->x[i], P->y[i], P->z[i]},
+                 U[3] = {P->vx[i], P->vy[i], P->vz[i]}, f[3] = {fx, fy, fz};
+    const int l = i % 8;
+    for (int a = 0; a < 3; a++) {
+        const double mu = P->m[i] * U[a];
+        for (int c = 0; c < 3; c++)
+            w[3 * a + c][l] += X[a] * f[c] + mu * U[c];
+    }
+}
+
+/* The virial of particles ib + u, from u on (ib + u a multiple of 8) in
+ * groups of 8 while they end by ue, particle ib + u + l in lane l of w;
+ * f[.][u] their contacts' sums. Returns the u it stopped at. */
+DEM_INLINE int virial_lanes(const struct dem_particles *P, int ib, int u,
+                            int ue, double (*f)[DEM_KICK_BLOCK],
+                            double (*w)[8])
+{
 #if defined(__GNUC__)
     /* The lanes' sums as values, not in memory: the same arithmetic as
-     * the loop below, in the same order, so the same bits. With w
-     * updated in memory (the loop below) the cell's pass took 10 % longer
-     * at N = 3375 on Zen 4, more than this loop's own work: GCC 12 left
-     * the sums in memory and the inlined block slowed the pair loop
-     * around it too (docs/performance.md). */
+     * virial_add, in the same order, so the same bits. With w updated in
+     * memory (the loop below) the cell's pass took 10 % longer at N =
+     * 3375 on Zen 4, more than this loop's own work: GCC 12 left the sums
+     * in memory and the inlined block slowed the pair loop around it too
+     * (docs/performance.md). */
+    const double *restrict X[3] = {P->x, P->y, P->z},
+                           *restrict U[3] = {P->vx, P->vy, P->vz};
     dem_lanes8 s[9];
     for (int c = 0; c < 9; c++)
         memcpy(&s[c], w[c], sizeof s[c]);
-    for (; u + 8 <= nb; u += 8) {
+    for (; u + 8 <= ue; u += 8) {
         const int i = ib + u;
         dem_lanes8 mi, x[3], v[3], g[3];
-        memcpy(&mi, m + i, sizeof mi);
+        memcpy(&mi, P->m + i, sizeof mi);
         for (int a = 0; a < 3; a++) {
             memcpy(&x[a], X[a] + i, sizeof x[a]);
             memcpy(&v[a], U[a] + i, sizeof v[a]);
@@ -524,64 +528,99 @@ DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
     for (int c = 0; c < 9; c++)
         memcpy(w[c], &s[c], sizeof s[c]);
 #else
-    for (; u + 8 <= nb; u += 8) {
-#pragma omp simd
-        for (int l = 0; l < 8; l++) {
-            const int i = ib + u + l;
-            for (int a = 0; a < 3; a++) {
-                const double mu = m[i] * U[a][i];
-                for (int c = 0; c < 3; c++)
-                    w[3 * a + c][l] += X[a][i] * f[c][u + l] + mu * U[c][i];
-            }
-        }
-    }
+    for (; u + 8 <= ue; u += 8)
+        for (int l = 0; l < 8; l++)
+            virial_add(P, ib + u + l, f[0][u + l], f[1][u + l], f[2][u + l],
+                       w);
 #endif
-    for (; u < nb; u++) { /* a range's last particles */
-        const int i = ib + u, l = i % 8;
-        for (int a = 0; a < 3; a++) {
-            const double mu = m[i] * U[a][i];
-            for (int c = 0; c < 3; c++)
-                w[3 * a + c][l] += X[a][i] * f[c][u] + mu * U[c][i];
-        }
-    }
-    const int end = ib + nb;
-    if (end % DEM_VIR_BLOCK && !last)
+    return u;
+}
+
+/* After particle end - 1: at the end of its virial block, or at V->end,
+ * the lanes summed in order into the block's sums and cleared. */
+DEM_INLINE void virial_flush(struct virial *V, int end)
+{
+    if (end % DEM_VIR_BLOCK && end != V->end)
         return;
-    double *o = vir + 9 * ((end - 1) / DEM_VIR_BLOCK);
+    double *o = V->vir + 9 * ((end - 1) / DEM_VIR_BLOCK);
     for (int c = 0; c < 9; c++) {
         double t = 0.0;
         for (int l = 0; l < 8; l++) {
-            t += w[c][l];
-            w[c][l] = 0.0;
+            t += V->w[c][l];
+            V->w[c][l] = 0.0;
         }
         o[c] = t;
     }
 }
 
+/* virial_block for a piece that starts off lane 0 or crosses a virial
+ * block (the ring pass's pieces). Not inlined: inlined, this general
+ * loop made the cell's stored pass 15 % slower at N = 3375 on Zen 4
+ * (the pair loop around it, as virial_lanes says). */
+static __attribute__((noinline)) void
+virial_pieces(const struct dem_particles *P, int ib, int nb,
+              double (*f)[DEM_KICK_BLOCK], struct virial *V)
+{
+    for (int u = 0; u < nb;) {
+        /* up to the end of this virial block */
+        const int be = (ib + u) / DEM_VIR_BLOCK * DEM_VIR_BLOCK + DEM_VIR_BLOCK;
+        const int ue = be - ib < nb ? be - ib : nb;
+        for (; u < ue && (ib + u) % 8; u++) /* up to lane 0 */
+            virial_add(P, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+        u = virial_lanes(P, ib, u, ue, f, V->w);
+        for (; u < ue; u++)
+            virial_add(P, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+        virial_flush(V, ib + u);
+    }
+}
+
+/* The periodic cell's virial (contact/forces.c) of particles
+ * ib <= i < ib + nb, with contact forces f (the sums of their pairs and
+ * no damping): sum_contacts b (x) f, b = x_i - x_j', is sum_i x_i (x) f_i
+ * minus the images' shifts (summed after the pass), plus the kinetic part
+ * m u (x) u. Particle i adds to lane i % 8 of V->w, in particle order; at
+ * the end of each virial block of DEM_VIR_BLOCK particles (or at V->end)
+ * the lanes are summed in order into V->vir and cleared. A caller that
+ * finishes its particles in pieces (the ring pass) keeps V from one piece
+ * to the next: the sums are the same bits however the particles are cut,
+ * as long as one thread takes each virial block's particles in order. */
+DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
+                             double (*f)[DEM_KICK_BLOCK], struct virial *V)
+{
+    if (ib % 8 || ib / DEM_VIR_BLOCK != (ib + nb - 1) / DEM_VIR_BLOCK) {
+        virial_pieces(P, ib, nb, f, V);
+        return;
+    }
+    /* a piece from lane 0 within one virial block (every piece of the
+     * stored pass: DEM_KICK_BLOCK divides DEM_VIR_BLOCK) */
+    int u = virial_lanes(P, ib, 0, nb, f, V->w);
+    for (; u < nb; u++) /* a range's last particles */
+        virial_add(P, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+    virial_flush(V, ib + nb);
+}
+
 /* Particles i0 <= i < i1: background damping plus the forces of the
  * pairs as i (the particle's row), as j (its reverse row), pair k's
- * read from F[(k - kb) & fmask], and of the wall contacts; then the
+ * read from F[(k - kb) & fmask] (but in a periodic cell the pairs through
+ * an image of j from the list's array), and of the wall contacts; then the
  * torques, and the half kick if asked for. With K.chain the particle
  * then goes on into the next step: its half kick and drift
  * (dem_particle_kick and _drift, as the first pass of a step in
  * core/sim.c), and the force and torque are not stored (nothing reads
  * them before they are computed again). Returns then whether a particle
  * has moved further than its reach (less K.cut) since the last list
- * build. K.on and K.chain are literals in each caller, so they cost no
- * branch. */
+ * build. In a cell the particles' virial goes to V (virial_block). K.on
+ * and K.chain are literals in each caller, so they cost no branch. */
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl,
                               const struct dem_contact_force *F, int kb,
                               int fmask, double gb, double gr,
-                              const struct kick K, double *vir, double *rec)
+                              const struct kick K, struct virial *V,
+                              double *rec)
 {
     (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
-    /* the virial of the current virial block (cell), in 8 lanes of
-     * partial sums: particle i adds to lane i % 8, in particle order, so
-     * the bits do not depend on how the loop is compiled */
-    _Alignas(64) double w[9][8] = {{0.0}};
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
     double far = 0.0; /* the largest overshoot (chained) */
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
@@ -592,8 +631,9 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     const double hg[3] = {K.h * K.g[0], K.h * K.g[1], K.h * K.g[2]};
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
-    const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start;
-    const struct dem_contact_force *restrict WF = pl->wf.v;
+    const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start,
+                        *restrict rimg = pl->rimg;
+    const struct dem_contact_force *restrict WF = pl->wf.v, *FL = pl->f.v;
     /* The sums of a block of particles first, then the block's kicks and
      * drifts in SIMD lanes (as scalar code, one particle after the other,
      * they took a quarter of a chained step); each particle's arithmetic
@@ -619,8 +659,22 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             cy += o->c[1];
             cz += o->c[2];
         }
-        for (int q = rstart[i]; q < rstart[i + 1]; q++) {
+        /* (from a ring in a cell those with j itself, then those
+         * through an image of j, which are in the list's array: the
+         * order of every pass; a literal fmask of -1, the list's array,
+         * reads them all alike) */
+        const int qi = cell && fmask != -1 ? rimg[i] : rstart[i + 1];
+        for (int q = rstart[i]; q < qi; q++) {
             const struct dem_contact_force *o = &F[(rpair[q] - kb) & fmask];
+            fx -= o->f[0];
+            fy -= o->f[1];
+            fz -= o->f[2];
+            cx += o->c[0];
+            cy += o->c[1];
+            cz += o->c[2];
+        }
+        for (int q = qi; q < rstart[i + 1]; q++) {
+            const struct dem_contact_force *o = &FL[rpair[q]];
             fx -= o->f[0];
             fy -= o->f[1];
             fz -= o->f[2];
@@ -688,7 +742,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         if (b + 1 < DEM_KICK_BLOCK && i + 1 < i1)
             continue;
         if (cell) /* before the kicks: the velocities of the pass */
-            virial_block(&Q, ib, b + 1, bc, w, vir, i + 1 == i1);
+            virial_block(&Q, ib, b + 1, bc, V);
         /* the block's kicks and drifts, in SIMD lanes */
         if (K.on && !K.chain) {
 #pragma omp simd
@@ -718,33 +772,6 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 }
 
 #if DEM_PASS_RING
-/* The first particle of thread t's block when the rows of particles
- * 0 <= i < n (np pairs) are split in blocks of about equal pairs. */
-static int row_block(const int *start, int n, int np, int t, int nt)
-{
-    return t >= nt ? n : first_at_least(start, n, dem_block(np, t, nt));
-}
-
-/* The first particle i0 of block t of the rows (row_block) and the end
- * d of its particles that have a pair as j in an earlier block (they
- * wait for the barrier). A particle's first pair as j (its reverse row
- * is in list order) lies at most the reach before the end of its row, so
- * only the block's particles whose rows end within the reach after its
- * first pair can have one. */
-static int block_waiting(const struct contacts *c, int t, int nt, int *i0)
-{
-    const int *start = c->pl->cur.start, *rstart = c->pl->rstart,
-              *rpair = c->pl->rpair;
-    const int a = row_block(start, c->n, c->np, t, nt),
-              b = row_block(start, c->n, c->np, t + 1, nt), k0 = start[a];
-    int d = a;
-    for (int i = a; i < b && start[i + 1] < k0 + c->pl->reach; i++)
-        if (rstart[i] < rstart[i + 1] && rpair[rstart[i]] < k0)
-            d = i + 1;
-    *i0 = a;
-    return d;
-}
-
 /* Thread t's share of a chained pass with the pairs' forces in a ring
  * (contacts.ring, ring_mask + 1 entries per thread, at least the list's
  * reach (struct dem_pairs) plus a chunk): the thread takes the rows of a
@@ -753,34 +780,46 @@ static int block_waiting(const struct contacts *c, int t, int nt, int *i0)
  * completed and sums, kicks and moves them on. Every row holds j > i,
  * so such a particle's pairs as j lie in rows before its own: all of
  * them are done, within the ring's reach, and no pair still to come reads
- * its record. Only a particle with a pair as j in another thread's rows
- * (the block's first particles, up to d) must wait for the barrier,
- * after which the threads share all blocks' waiting particles equally;
- * the chunks holding their pairs (below start[d], or from kt on, the
- * block's first pair with a j beyond it) are copied to the list's force
- * array too, which they read from. The forces never leave the cache
- * otherwise. Each sum runs over the same values in the same order as in
- * the stored pass: the same bits. */
+ * its record. Only the particles with a pair as j in another thread's
+ * rows (dem_pairs_row_block) must wait for the barrier, after which the
+ * threads share all blocks' waiting particles equally; the chunks holding
+ * their pairs (below start[d], or from kt on: the block's first pair
+ * with a j beyond it or of a particle of the second waiting range) are
+ * copied to the list's force array too, which they read from. In a periodic
+ * cell every pair through an image is copied there as well, and read from there
+ * (particle_range: they are left out of the reach, so a ring is as small as
+ * between walls, docs/performance.md); the cell's stress sums them after the
+ * pass (contact/forces.c). The blocks and the waiting ranges are cut at
+ * multiples of DEM_VIR_BLOCK, so each virial block is summed by one thread in
+ * particle order (virial_block). The forces never leave the cache otherwise.
+ * Each sum runs over the same values in the same order as in the stored pass:
+ * the same bits. */
 DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                            const struct kick K, int t, int nt)
 {
     const struct dem_pairs *pl = c->pl;
     const int *start = pl->cur.start, *rstart = pl->rstart, *rpair = pl->rpair,
-              *wstart = pl->wcur.start;
-    int i0;
-    const int d = block_waiting(c, t, nt, &i0); /* before d: they wait */
-    c->wait[2 * t] = i0;
-    c->wait[2 * t + 1] = d;
-    const int i1 = row_block(start, c->n, c->np, t + 1, nt);
+              *rimg = pl->rimg, *wstart = pl->wcur.start, *imgk = pl->imgk;
+    const int cell = (law & DEM_SET_PERIODIC) != 0,
+              g = cell ? DEM_VIR_BLOCK : 1;
+    int *W = c->wait + 4 * t;
+    dem_pairs_row_block(pl, c->n, t, nt, g, W);
+    const int i0 = W[0], d = W[1], s = W[2], i1 = W[3];
     const int k0 = start[i0], k1 = start[i1], n = c->P->n;
+    if (cell) /* the images' records of the thread's own pairs */
+        image_records(c, k0, k1);
     int kt = k1; /* the block's first pair whose j is beyond it (as in
-                    block_waiting) */
+                    dem_pairs_row_block), or of its second waiting range */
     for (int i = i1; i < n && start[i + 1] < k1 + pl->reach; i++)
-        for (int u = rstart[i]; u < rstart[i + 1]; u++)
+        for (int u = rstart[i]; u < rimg[i]; u++)
             if (rpair[u] >= k0) {
                 kt = rpair[u] < kt ? rpair[u] : kt;
                 break;
             }
+    for (int i = s; i < i1; i++) {
+        const int f = rstart[i] < rimg[i] ? rpair[rstart[i]] : start[i];
+        kt = f < kt ? f : kt;
+    }
     const int kd = start[d], mask = c->ring_mask;
     /* pair k's force at ring[(k - k0) & mask]; a chunk never wraps (the
      * size is a multiple of the chunk's), so in the pair loop it is
@@ -788,23 +827,30 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
     struct dem_contact_force *ring = c->ring + (size_t)t * ((size_t)mask + 1);
     struct pass q = c->q;
     q.F = ring;
+    struct virial V = {c->vir, {{0.0}}, s};
     int moved = 0;
     int p = d, w = i0; /* next particle to finish, next one's walls */
+    int m = cell ? dem_first_at_least(imgk, pl->ncross, k0) : 0;
     for (int kc = k0;;) {
         const int ke = k1 - kc > c->ring_chunk ? kc + c->ring_chunk : k1;
         q.foff = kc - ((kc - k0) & mask);
         pair_range(law, q, kc, ke, k1, &c->cp, c->dt, c->cv, c->grad, c->rec);
-        if (kc < kd || ke > kt) /* some of the chunk's forces wait */
+        const int all = kc < kd || ke > kt; /* some of its forces wait */
+        if (all)
             for (int k = kc; k < ke; k++)
                 c->q.F[k] = q.F[k - q.foff];
+        for (; cell && m < pl->ncross && imgk[m] < ke; m++)
+            if (!all)
+                c->q.F[imgk[m]] = q.F[imgk[m] - q.foff];
         int e = w; /* the particles whose rows end in the chunk */
         while (e < i1 && start[e + 1] <= ke)
             e++;
         wall_range(law, c->wq, wstart[w], wstart[e], &c->cpw, c->dt, c->walls);
         w = e;
+        e = e < s ? e : s;
         if (e > p) {
             moved |= particle_range(law, p, e, c->P, pl, ring, k0, mask, c->gb,
-                                    c->gr, K, c->vir, c->rec);
+                                    c->gr, K, &V, c->rec);
             p = e;
         }
         if (ke == k1)
@@ -812,18 +858,23 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         kc = ke;
     }
 #pragma omp barrier
-    /* the waiting particles of all blocks, shared out in equal parts */
+    /* the waiting particles of all blocks, shared out in equal parts (in
+     * a cell whole virial blocks: every range but the last is made of
+     * them) */
     int nwait = 0;
-    for (int b = 0; b < nt; b++)
-        nwait += c->wait[2 * b + 1] - c->wait[2 * b];
-    const int u0 = dem_block(nwait, t, nt), u1 = dem_block(nwait, t + 1, nt);
-    for (int b = 0, u = 0; b < nt && u < u1; b++) {
-        const int a = c->wait[2 * b], e = c->wait[2 * b + 1];
+    for (int r = 0; r < 2 * nt; r++)
+        nwait += c->wait[2 * r + 1] - c->wait[2 * r];
+    const int u0 = dem_block_aligned(nwait, t, nt, g),
+              u1 = dem_block_aligned(nwait, t + 1, nt, g);
+    for (int r = 0, u = 0; r < 2 * nt && u < u1; r++) {
+        const int a = c->wait[2 * r], e = c->wait[2 * r + 1];
         const int lo = u0 > u ? a + (u0 - u) : a,
                   hi = u1 < u + (e - a) ? a + (u1 - u) : e;
-        if (lo < hi)
-            moved |= particle_range(law, lo, hi, c->P, pl, c->q.F, 0, -1,
-                                    c->gb, c->gr, K, c->vir, c->rec);
+        if (lo < hi) {
+            V.end = hi;
+            moved |= particle_range(law, lo, hi, c->P, pl, c->q.F, 0, -1, c->gb,
+                                    c->gr, K, &V, c->rec);
+        }
         u += e - a;
     }
     return moved;
@@ -844,8 +895,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     }
 #endif
 #if DEM_PASS_RING
-    /* (the cell's virial blocks run in particle order: stored forces) */
-    if (K.chain && !(law & DEM_SET_PERIODIC) && c->ring)
+    if (K.chain && c->ring)
         return ring_thread(law, c, K, t, nt);
 #endif
 #if DEM_PASS_RECORDS
@@ -859,14 +909,14 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
-    if (law & DEM_SET_PERIODIC) /* no virial block across two threads */
-        return particle_range(
-            law, dem_cell_block(c->n, t, nt), dem_cell_block(c->n, t + 1, nt),
-            c->P, c->pl,
-            c->q.F, 0, -1, c->gb, c->gr, K, c->vir, c->rec);
-    return particle_range(law, dem_block(c->n, t, nt),
-                          dem_block(c->n, t + 1, nt), c->P, c->pl, c->q.F, 0,
-                          -1, c->gb, c->gr, K, c->vir, c->rec);
+    /* in a cell no virial block across two threads */
+    const int cell = (law & DEM_SET_PERIODIC) != 0;
+    const int i0 = cell ? dem_cell_block(c->n, t, nt) : dem_block(c->n, t, nt),
+              i1 = cell ? dem_cell_block(c->n, t + 1, nt)
+                        : dem_block(c->n, t + 1, nt);
+    struct virial V = {c->vir, {{0.0}}, i1};
+    return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb, c->gr,
+                          K, &V, c->rec);
 }
 
 /* One instance per model set and kind of kick (literals), so that each

@@ -76,8 +76,10 @@ struct contacts {
                                        entries per thread, or NULL */
     int ring_mask;
     int ring_chunk; /* pairs per chunk, a power of two */
-    int *wait; /* the ring pass: each thread's particles that wait for the
-                  barrier, [wait[2t], wait[2t + 1]) */
+    int *wait; /* the ring pass: thread t's block [wait[4t], wait[4t + 3])
+                  and its particles that wait for the barrier,
+                  [wait[4t], wait[4t + 1]) and [wait[4t + 2], wait[4t + 3])
+                  (dem_pairs_row_block) */
 };
 
 /* One force pass: forces and history of every pair and wall contact,

@@ -709,14 +709,16 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
             c.time_step_auto = s->cfg.time_step_auto;
             s->cfg = c;
             io.why = check_restored(s, run);
-            if (!io.why) /* derived from the lists, as a build does */
-                dem_pairs_reach(&s->pairs, s->p.n);
         }
     }
     /* what the engine derives, and the force pass as for a new run
      * (contact/forces.c) */
     if (!io.why && !rc)
         rc = dem_sim_derive(s, err);
+    /* the reverse rows and the reach from the lists, as a build makes
+     * them (once the cell's images are known to be in use) */
+    if (!io.why && !rc && dem_pairs_reverse(&s->pairs, s->p.n))
+        rc = dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
     if (!io.why && !rc)
         rc = dem_sim_pass_setup(s, err);
     if (io.why && !rc)

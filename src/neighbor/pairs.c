@@ -39,6 +39,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     forces_free(&pl->f);
     forces_free(&pl->wf);
     free(pl->rstart);
+    free(pl->rimg);
     free(pl->rpair);
     free(pl->cross);
     free(pl->imgk);
@@ -150,8 +151,8 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
             memset(lists[k]->start, 0, (size_t)c * sizeof(int));
         lists[k]->start_cap = c;
     }
-    if (GROW(pl->rstart, c) || GROW(pl->cell_of, c) || GROW(pl->cell_list, c) ||
-        GROW(pl->old_of, c))
+    if (GROW(pl->rstart, c) || GROW(pl->rimg, c) || GROW(pl->cell_of, c) ||
+        GROW(pl->cell_list, c) || GROW(pl->old_of, c))
         return -1;
     /* the permutation swaps this with the particles' arrays: same length */
     free(pl->scratch);
@@ -575,8 +576,7 @@ int dem_pairs_cross(struct dem_pairs *pl, int n)
     return 0;
 }
 
-/* The pairs grouped by their j particle (stable in list order). */
-static int build_reverse(struct dem_pairs *pl, int n)
+int dem_pairs_reverse(struct dem_pairs *pl, int n)
 {
     const struct dem_contact_list *L = &pl->cur;
     if (L->n > pl->rpair_cap) {
@@ -584,33 +584,85 @@ static int build_reverse(struct dem_pairs *pl, int n)
             return -1;
         pl->rpair_cap = L->cap;
     }
-    int *rs = pl->rstart;
+    int *rs = pl->rstart, *ri = pl->rimg;
     memset(rs, 0, (size_t)(n + 1) * sizeof *rs);
     for (int k = 0; k < L->n; k++)
         rs[L->j[k] + 1]++;
     for (int i = 0; i < n; i++)
         rs[i + 1] += rs[i];
+    /* each row's pairs with j itself first, then those through an image,
+     * each part in list order; rs[j] runs to the end of the row */
+    const int cell = pl->periodic;
     for (int k = 0; k < L->n; k++)
-        pl->rpair[rs[L->j[k]]++] = k;
+        if (!cell || L->img[k] == DEM_IMG_NONE)
+            pl->rpair[rs[L->j[k]]++] = k;
+    for (int i = 0; i < n; i++)
+        ri[i] = rs[i];
+    for (int k = 0; cell && k < L->n; k++)
+        if (L->img[k] != DEM_IMG_NONE)
+            pl->rpair[rs[L->j[k]]++] = k;
     for (int i = n; i > 0; i--)
         rs[i] = rs[i - 1];
     rs[0] = 0;
-    dem_pairs_reach(pl, n);
-    return 0;
-}
-
-void dem_pairs_reach(struct dem_pairs *pl, int n)
-{
-    /* every row holds j > i, so a particle's pairs as j lie in rows
-     * before its own and the first of them opens its span */
-    const int *rs = pl->rstart, *start = pl->cur.start;
+    /* the reach: every row holds j > i, so a particle's pairs as j with j
+     * itself lie in rows before its own and the first of them opens its
+     * span (those through an image the ring pass reads from the list's
+     * array) */
+    const int *start = L->start;
     int reach = 0;
     for (int i = 0; i < n; i++) {
-        const int first = rs[i] < rs[i + 1] ? pl->rpair[rs[i]] : start[i];
+        const int first = rs[i] < ri[i] ? pl->rpair[rs[i]] : start[i];
         const int span = start[i + 1] - first;
         reach = span > reach ? span : reach;
     }
     pl->reach = reach;
+    return 0;
+}
+
+/* The first particle of block t when the rows of particles 0 <= i < n
+ * (np pairs) are split in blocks of about equal pairs, on a multiple of
+ * g. */
+static int row_block(const int *start, int n, int np, int t, int nt, int g)
+{
+    return t >= nt ? n
+                   : dem_first_at_least(start, n, dem_block(np, t, nt)) / g * g;
+}
+
+void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,
+                         int g, int w[4])
+{
+    const int *start = pl->cur.start, *rstart = pl->rstart, *rimg = pl->rimg,
+              *rpair = pl->rpair, np = start[n];
+    const int a = row_block(start, n, np, t, nt, g),
+              b = row_block(start, n, np, t + 1, nt, g), k0 = start[a];
+    /* a particle's first pair as j with j itself (its reverse row) lies
+     * at most the reach before the end of its row, so only the block's
+     * particles whose rows end within the reach after its first pair can
+     * have one in an earlier block */
+    int d = a, e = b;
+    for (int i = a; i < b && start[i + 1] < k0 + pl->reach; i++)
+        if (rstart[i] < rimg[i] && rpair[rstart[i]] < k0)
+            d = i + 1;
+    /* in a periodic cell a pair through an image can join the block's
+     * first particle with any later one (those through the z faces join
+     * the first and last layers of cells): those of earlier blocks extend
+     * the first range if their j is in the block's first half, else they
+     * open the second */
+    const int mid = a + (b - a) / 2;
+    for (int m = 0; pl->periodic && m < pl->ncross && pl->imgk[m] < k0; m++) {
+        const int j = pl->cur.j[pl->imgk[m]];
+        if (j >= a && j < mid)
+            d = j + 1 > d ? j + 1 : d;
+        else if (j >= mid && j < b)
+            e = j < e ? j : e;
+    }
+    d = (d + g - 1) / g * g;
+    d = d < b ? d : b;
+    e = e < b ? e / g * g : b;
+    w[0] = a;
+    w[1] = d;
+    w[2] = e > d ? e : d;
+    w[3] = b;
 }
 
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
@@ -647,7 +699,7 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
         for (int k = nown; k < n; k++)
             pl->old_of[k] = k;
         dem_particles_permute(p, pl->old_of, &pl->scratch);
-        int *new_of = pl->rstart; /* scratch: build_reverse fills it */
+        int *new_of = pl->rstart; /* scratch: dem_pairs_reverse fills it */
         for (int k = 0; k < n; k++)
             new_of[pl->old_of[k]] = k;
         for (int q = 0; q < n; q++)
@@ -668,7 +720,7 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
         rc = build_walls(pl, p, skin, w, nwall, err);
     if (rc)
         return rc;
-    if (build_reverse(pl, n) || dem_pairs_cross(pl, n) ||
+    if (dem_pairs_reverse(pl, n) || dem_pairs_cross(pl, n) ||
         forces_reserve(&pl->f, pl->cur.cap) ||
         forces_reserve(&pl->wf, pl->wcur.cap))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");

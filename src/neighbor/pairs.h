@@ -81,16 +81,19 @@ struct dem_pairs {
     struct dem_contact_forces f;  /* forces of cur, pair k at k */
     struct dem_contact_forces wf; /* forces of wcur, entry k at k */
     int *rstart;                  /* n_particles + 1: rows of rpair by j */
-    int *rpair; /* cur.n: the pairs grouped by their j particle, in list
-                   order: particle j is j of rpair[rstart[j]..rstart[j+1]) */
+    int *rpair; /* cur.n: the pairs grouped by their j particle: particle
+                   j is j of rpair[rstart[j]..rstart[j+1]), first those
+                   with j itself, then from rimg[j] on (periodic cell)
+                   those with an image of j, each part in list order */
+    int *rimg;  /* n_particles + 1: see rpair */
     int rpair_cap;
-    int reach; /* the largest span of pairs from a particle's first pair
-                  as j to the end of its row (the ring pass's window,
-                  contact/pass.c) */
-    int *cross;  /* periodic cell: the pairs with an image of j other
-                    than j itself, grouped by the image, each group in
-                    list order: image g's are cross[cross_start[g] ..
-                    cross_start[g + 1]) */
+    int reach;  /* the largest span of pairs from a particle's first pair
+                   as j (with j itself, not an image) to the end of its
+                   row (the ring pass's window, contact/pass.c) */
+    int *cross; /* periodic cell: the pairs with an image of j other
+                   than j itself, grouped by the image, each group in
+                   list order: image g's are cross[cross_start[g] ..
+                   cross_start[g + 1]) */
     int ncross, cross_cap;
     int cross_start[DEM_IMG_CODES + 1];
     int *imgk; /* periodic cell: the same ncross pairs in list order */
@@ -135,7 +138,8 @@ struct dem_pairs {
     struct dem_contact_force *ring; /* the ring pass's force records, one
                                        ring per thread (contact/forces.c) */
     size_t ring_cap;                /* entries allocated in ring */
-    int *ring_wait;   /* 2 per thread: the ring pass's waiting particles */
+    int *ring_wait;   /* 4 per thread: the ring pass's block and waiting
+                         particles (dem_pairs_row_block) */
     int ring_threads; /* threads ring_wait has room for */
     int ring_chunk;   /* the ring pass's pairs per chunk, a power of two;
                          0: DEM_RING_CHUNK (the tests set fewer) */
@@ -179,10 +183,36 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
  * checkpoint that fills cur calls it. 0 or -1 (out of memory). */
 int dem_pairs_cross(struct dem_pairs *pl, int n);
 
-/* The list's reach (struct dem_pairs) from cur's rows and the reverse
- * rows of particles 0 <= i < n. A build sets it; a checkpoint that fills
- * the lists calls it. */
-void dem_pairs_reach(struct dem_pairs *pl, int n);
+/* The reverse rows of particles 0 <= i < n (rstart, rpair, rimg) and
+ * the list's reach (struct dem_pairs) from cur and, in a periodic cell
+ * (pl->periodic), its images. A build makes them; a checkpoint that fills
+ * the lists calls it. 0 or -1 (out of memory). */
+int dem_pairs_reverse(struct dem_pairs *pl, int n);
+
+/* The first index i < n of the ascending a with a[i] >= k (n if none). */
+static inline int dem_first_at_least(const int *a, int n, int k)
+{
+    int lo = 0, hi = n;
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (a[mid] < k)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Block t of nt of the rows of particles 0 <= i < n, of about equal
+ * pairs and cut at a multiple of g: [w[0], w[3]); and its particles that
+ * have a pair as j in an earlier block: those in [w[0], w[1]) and in
+ * [w[2], w[3]), each range cut at a multiple of g too (the last block
+ * ends at n). Every other particle of the block has all its pairs, as i
+ * and as j, in the block's rows. For the ring pass (contact/pass.c),
+ * whose threads finish a particle as soon as its pairs are done and leave
+ * these for after a barrier. */
+void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,
+                         int g, int w[4]);
 
 /* Reference: all pairs with gap below skin plus, with reach (else NULL),
  * the sum of the two reaches, by brute force O(N^2); for tests. Fills pi/pj
