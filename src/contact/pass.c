@@ -664,17 +664,9 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
          * order of every pass; a literal fmask of -1, the list's array,
          * reads them all alike) */
         const int qi = cell && fmask != -1 ? rimg[i] : rstart[i + 1];
-        for (int q = rstart[i]; q < qi; q++) {
-            const struct dem_contact_force *o = &F[(rpair[q] - kb) & fmask];
-            fx -= o->f[0];
-            fy -= o->f[1];
-            fz -= o->f[2];
-            cx += o->c[0];
-            cy += o->c[1];
-            cz += o->c[2];
-        }
-        for (int q = qi; q < rstart[i + 1]; q++) {
-            const struct dem_contact_force *o = &FL[rpair[q]];
+        for (int q = rstart[i]; q < rstart[i + 1]; q++) {
+            const struct dem_contact_force *o =
+                q < qi ? &F[(rpair[q] - kb) & fmask] : &FL[rpair[q]];
             fx -= o->f[0];
             fy -= o->f[1];
             fz -= o->f[2];
