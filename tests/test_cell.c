@@ -75,8 +75,10 @@ static void check_list(const struct dem_sim *s)
  * then those through an image of j, each part in list order), the reach
  * taken over the first part, and the ring pass's blocks
  * (dem_pairs_row_block): for one to four threads and blocks cut at
- * multiples of g, the blocks tile the particles, and a particle outside
- * the waiting ranges has every pair as j in its own block's rows. */
+ * multiples of g, the blocks tile the particles, a particle outside
+ * the waiting ranges has every pair as j in its own block's rows, and
+ * the pairs the ring need not copy for the waiting particles (from the
+ * first range's end to kt) join two particles outside them. */
 static void check_rows(const struct dem_sim *s)
 {
     const struct dem_pairs *pl = &s->pairs;
@@ -106,8 +108,8 @@ static void check_rows(const struct dem_sim *s)
         for (int nt = 1; nt <= 4; nt++) {
             int end = 0, late = 0;
             for (int t = 0; t < nt; t++) {
-                int w[4];
-                dem_pairs_row_block(pl, n, t, nt, g, w);
+                int w[4], kt;
+                dem_pairs_row_block(pl, n, t, nt, g, w, &kt);
                 assert_int_equal(w[0], end);
                 end = w[3];
                 assert_true(w[0] <= w[1] && w[1] <= w[2] && w[2] <= w[3]);
@@ -117,6 +119,15 @@ static void check_rows(const struct dem_sim *s)
                 for (int i = w[1]; i < w[2]; i++)
                     for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
                         assert_true(pl->rpair[q] >= k0);
+                /* the block's pairs from its first waiting range's end
+                 * up to kt stay among the particles it finishes alone */
+                assert_true(k0 <= kt && kt <= L->start[w[3]]);
+                for (int i = w[0]; i < w[3]; i++)
+                    for (int k = L->start[i]; k < L->start[i + 1]; k++)
+                        if (k >= L->start[w[1]] && k < kt &&
+                            L->img[k] == DEM_IMG_NONE)
+                            assert_true(i >= w[1] && L->j[k] >= w[1] &&
+                                        L->j[k] < w[2]);
                 late += t > 0 && w[2] < w[3];
             }
             assert_int_equal(end, n);

@@ -790,28 +790,16 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                            const struct kick K, int t, int nt)
 {
     const struct dem_pairs *pl = c->pl;
-    const int *start = pl->cur.start, *rstart = pl->rstart, *rpair = pl->rpair,
-              *rimg = pl->rimg, *wstart = pl->wcur.start, *imgk = pl->imgk;
+    const int *start = pl->cur.start, *wstart = pl->wcur.start,
+              *imgk = pl->imgk;
     const int cell = (law & DEM_SET_PERIODIC) != 0,
               g = cell ? DEM_VIR_BLOCK : 1;
-    int *W = c->wait + 4 * t;
-    dem_pairs_row_block(pl, c->n, t, nt, g, W);
+    int *W = c->wait + 4 * t, kt;
+    dem_pairs_row_block(pl, c->n, t, nt, g, W, &kt);
     const int i0 = W[0], d = W[1], s = W[2], i1 = W[3];
-    const int k0 = start[i0], k1 = start[i1], n = c->P->n;
+    const int k0 = start[i0], k1 = start[i1];
     if (cell) /* the images' records of the thread's own pairs */
         image_records(c, k0, k1);
-    int kt = k1; /* the block's first pair whose j is beyond it (as in
-                    dem_pairs_row_block), or of its second waiting range */
-    for (int i = i1; i < n && start[i + 1] < k1 + pl->reach; i++)
-        for (int u = rstart[i]; u < rimg[i]; u++)
-            if (rpair[u] >= k0) {
-                kt = rpair[u] < kt ? rpair[u] : kt;
-                break;
-            }
-    for (int i = s; i < i1; i++) {
-        const int f = rstart[i] < rimg[i] ? rpair[rstart[i]] : start[i];
-        kt = f < kt ? f : kt;
-    }
     const int kd = start[d], mask = c->ring_mask;
     /* pair k's force at ring[(k - k0) & mask]; a chunk never wraps (the
      * size is a multiple of the chunk's), so in the pair loop it is

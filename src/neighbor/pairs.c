@@ -629,7 +629,7 @@ static int row_block(const int *start, int n, int np, int t, int nt, int g)
 }
 
 void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,
-                         int g, int w[4])
+                         int g, int w[4], int *kt)
 {
     const int *start = pl->cur.start, *rstart = pl->rstart, *rimg = pl->rimg,
               *rpair = pl->rpair, np = start[n];
@@ -663,6 +663,24 @@ void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,
     w[1] = d;
     w[2] = e > d ? e : d;
     w[3] = b;
+    /* kt: the first of the block's pairs with j beyond it (the first
+     * pair as j at or after k0 of each later particle whose rows end
+     * within the reach after the block's end: no other can have one)
+     * and the first pair of each particle of the second range. Own
+     * particles only: a ghost's sums are its owner's (decomp/halo.h) */
+    const int k1 = start[b];
+    int k = k1;
+    for (int i = b; i < n && start[i + 1] < k1 + pl->reach; i++)
+        for (int u = rstart[i]; u < rimg[i]; u++)
+            if (rpair[u] >= k0) {
+                k = rpair[u] < k ? rpair[u] : k;
+                break;
+            }
+    for (int i = w[2]; i < b; i++) {
+        const int f = rstart[i] < rimg[i] ? rpair[rstart[i]] : start[i];
+        k = f < k ? f : k;
+    }
+    *kt = k;
 }
 
 int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,

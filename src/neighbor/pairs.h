@@ -210,9 +210,13 @@ static inline int dem_first_at_least(const int *a, int n, int k)
  * ends at n). Every other particle of the block has all its pairs, as i
  * and as j, in the block's rows. For the ring pass (contact/pass.c),
  * whose threads finish a particle as soon as its pairs are done and leave
- * these for after a barrier. */
+ * these for after a barrier. *kt: the block's first pair with j itself
+ * (not an image) that such a waiting particle reads, of this block's
+ * second range or of a later block (start[w[3]] if none): every pair of
+ * the block from start[w[1]] up to it joins two particles of
+ * [w[1], w[2]), or is through an image. */
 void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,
-                         int g, int w[4]);
+                         int g, int w[4], int *kt);
 
 /* Reference: all pairs with gap below skin plus, with reach (else NULL),
  * the sum of the two reaches, by brute force O(N^2); for tests. Fills pi/pj
