@@ -337,12 +337,13 @@ static void print_timing(const struct dem_run_timing *T)
     fprintf(stderr,
             "dembox: %ld steps of %d particles in %.3g s, %.4g ns per "
             "particle-step: force pass %.1f %%, neighbour lists %.1f %% "
-            "(%ld builds, skin %.3g of its largest at the end), walls "
+            "(%ld builds, skin %.3g of its largest at the end), %s "
             "%.1f %%, unchained kicks and drifts %.1f %%, ",
             T->steps, T->particles, T->seconds,
             1e9 * T->seconds / ((double)T->steps * T->particles),
             pc * P->force, pc * P->neighbor, T->builds, T->skin_share,
-            pc * P->walls, pc * P->integrate);
+            T->periodic ? "cell map" : "walls", pc * P->walls,
+            pc * P->integrate);
     if (P->exchange > 0.0)
         fprintf(stderr, "MPI exchanges %.1f %%, ", pc * P->exchange);
     fprintf(stderr, "stages, samples and outputs %.1f %%; force pass %s\n",

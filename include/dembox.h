@@ -637,6 +637,8 @@ struct dem_run_timing {
                                (the skin adapts, docs/physics.md) */
     char pass[96];          /* the force pass's compilations: which ran, or
                                the trials each won (dem_sim_pass_tally) */
+    int periodic;           /* 1: a periodic cell, whose step.walls is the
+                               cell's motion and the particles' affine map */
 };
 
 #define DEM_BENCH_DEFAULT_STEPS 20000

@@ -109,9 +109,6 @@ static inline void map_set(double *restrict X, double *restrict Y,
  * records while still in the L1 cache */
 #define DEM_MAP_BLOCK 256
 
-/* the fewest particles whose map runs over the threads */
-#define DEM_MAP_PARALLEL 2048
-
 static void map_range(const struct dem_sim *s, int i0, int i1,
                       double M[3][3], const double lf[3], const double lt[3])
 {
@@ -148,9 +145,9 @@ void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
      * in the pass (dem_cell_block: the same blocks), which are in its
      * cache. In one thread the map of another's particles took twice as
      * long (N = 3375, two threads, Zen 4: the cell's loop 10 % slower,
-     * docs/performance.md). Below DEM_MAP_PARALLEL particles a parallel
-     * region costs more than the map. */
-#pragma omp parallel if (n >= DEM_MAP_PARALLEL)
+     * docs/performance.md), and so it did at N = 1000: a parallel region
+     * costs less than that at any size measured. */
+#pragma omp parallel
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
         map_range(s, dem_cell_block(n, t, nt), dem_cell_block(n, t + 1, nt),

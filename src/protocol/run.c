@@ -583,6 +583,7 @@ static void report_timing(const struct run_ctx *r)
     T->builds = r->sim.nbuild - r->nbuild0;
     T->skin_share = dem_sim_skin_share(&r->sim);
     dem_sim_pass_tally(&r->sim, T->pass, sizeof T->pass);
+    T->periodic = r->sim.cell.on;
 }
 
 /* The stages from first on, then the final outputs; releases everything
