@@ -421,8 +421,6 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
         return;
     if (C->on)
         io_i32s(io, pl->cur.img, npair);
-    io_i32s(io, pl->rstart, N + 1);
-    io_i32s(io, pl->rpair, npair);
 
     io_tag(io, "WALC");
     io_list(io, &pl->wcur, &pl->wf, N, nwc, hist, DEM_SET_TORQUES(set));
@@ -471,8 +469,7 @@ static const char *check_restored(const struct dem_sim *s,
         if (!(p->reach[i] > 0.0 && p->reach[i] <= 0.5 * s->skin))
             return "corrupt (neighbour reach)";
     const struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
-    if (!rows_ok(L->start, N, L->n) || !rows_ok(W->start, N, W->n) ||
-        !rows_ok(pl->rstart, N, L->n))
+    if (!rows_ok(L->start, N, L->n) || !rows_ok(W->start, N, W->n))
         return "corrupt (contact rows)";
     for (int i = 0; i < N; i++) {
         for (int k = L->start[i]; k < L->start[i + 1]; k++)
@@ -481,10 +478,6 @@ static const char *check_restored(const struct dem_sim *s,
         for (int k = W->start[i]; k < W->start[i + 1]; k++)
             if (W->i[k] != i || W->j[k] < 0 || W->j[k] >= s->nwall)
                 return "corrupt (wall contact list)";
-        for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
-            if (pl->rpair[q] < 0 || pl->rpair[q] >= L->n ||
-                L->j[pl->rpair[q]] != i)
-                return "corrupt (reverse pair rows)";
     }
     for (int w = 0; w < DEM_MAX_WALLS; w++)
         if (s->wall[w].axis != w / 2 || s->wall[w].side != w % 2)

@@ -20,8 +20,9 @@
  *           virial)
  *     PART  every particle array (DEM_PARTICLE_*_ARRAYS; the reaches
  *           since version 9)
- *     PAIR  the pair list with its history, row starts, stored forces,
- *           (periodic cell) the pairs' images, and the reverse rows
+ *     PAIR  the pair list with its history, row starts, stored forces
+ *           and (periodic cell) the pairs' images; the reverse rows are
+ *           derived on reading (since version 10)
  *     WALC  the particle-wall list with its history and stored forces
  *     NBR   wall positions at the last neighbour-list build
  *     END
@@ -37,7 +38,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 9u
+#define DEM_CKPT_VERSION 10u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {
