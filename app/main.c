@@ -182,7 +182,7 @@ static const char *const usage_bench =
     "timed. The summary gives the CPU and the vector instructions the build\n"
     "uses, the time per phase (neighbours, forces with\n"
     "the kicks and drifts of chained steps, integration of the others,\n"
-    "walls, or in a periodic cell the cell map), the force pass in use,\n"
+    "walls, or in a periodic cell the cell), the force pass in use,\n"
     "the neighbour list (noting a loop that built none: the first list),\n"
     "the coordination and the memory per particle; the last line is\n"
     "particle_steps_per_second=<number>.\n"
@@ -342,7 +342,7 @@ static void print_timing(const struct dem_run_timing *T)
             T->steps, T->particles, T->seconds,
             1e9 * T->seconds / ((double)T->steps * T->particles),
             pc * P->force, pc * P->neighbor, T->builds, T->skin_share,
-            T->periodic ? "cell map" : "walls", pc * P->walls,
+            T->periodic ? "cell" : "walls", pc * P->walls,
             pc * P->integrate);
     if (P->exchange > 0.0)
         fprintf(stderr, "MPI exchanges %.1f %%, ", pc * P->exchange);

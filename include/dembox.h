@@ -638,7 +638,8 @@ struct dem_run_timing {
     char pass[96];          /* the force pass's compilations: which ran, or
                                the trials each won (dem_sim_pass_tally) */
     int periodic;           /* 1: a periodic cell, whose step.walls is the
-                               cell's motion and the particles' affine map */
+                               cell's motion and the particles' positions
+                               computed from the frame (core/cell.h) */
 };
 
 #define DEM_BENCH_DEFAULT_STEPS 20000

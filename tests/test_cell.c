@@ -314,6 +314,95 @@ static void affine_motion_is_followed_exactly(void **state)
     dem_sim_destroy(&s);
 }
 
+/* The point of lattice c at fractional coordinates f. */
+static void lattice_point(const struct dem_lattice *c, const double f[3],
+                          double x[3])
+{
+    const double *v = c->v;
+    x[0] = c->lo[0] + v[0] * f[0] + v[1] * f[1] + v[2] * f[2];
+    x[1] = c->lo[1] + v[3] * f[1] + v[4] * f[2];
+    x[2] = c->lo[2] + v[5] * f[2];
+}
+
+/* Particles with their own (peculiar) velocities in a cell that
+ * stretches, shrinks and shears: each step every position moves with
+ * the cell (the same fractional coordinates) after moving by dt u. The
+ * engine keeps the positions in the frame of the last build and moves
+ * them by dt m^-1 u (core/cell.h); the positions it gives after chained
+ * steps must be those of the step-by-step map, computed here, within
+ * rounding. */
+static void own_motion_adds_to_the_affine_one(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.01, -0.02, 0.015};
+    const int n = 200;
+    cell_sim(&s, &c, 3, n, 0.2, t0);
+    struct dem_rng g;
+    dem_rng_seed(&g, 5);
+    static double want[200][3], u[200][3];
+    for (int i = 0; i < n; i++) {
+        double f[3];
+        for (int a = 0; a < 3; a++)
+            f[a] = 0.02 + 0.96 * dem_rng_uniform(&g);
+        const int k = add_frac(&s, f, 1e-4); /* dilute: no contact ever */
+        s.p.vx[k] = u[i][0] = 0.004 * (dem_rng_uniform(&g) - 0.5);
+        s.p.vy[k] = u[i][1] = 0.004 * (dem_rng_uniform(&g) - 0.5);
+        s.p.vz[k] = u[i][2] = 0.004 * (dem_rng_uniform(&g) - 0.5);
+    }
+    s.cfg.damping.gamma_b = s.cfg.damping.gamma_br = 0.0;
+    test_ready(&s);
+    for (int k = 0; k < n; k++) {
+        want[s.p.id[k]][0] = s.p.x[k];
+        want[s.p.id[k]][1] = s.p.y[k];
+        want[s.p.id[k]][2] = s.p.z[k];
+    }
+    /* within 0.01 s: x shrinks by 10 %, y grows by 5 %, txy and tyz run
+     * to 0.3 and -0.2 of their lengths (no re-map) */
+    const double T = 0.01;
+    dem_wall_set_strain(&s.wall[1], DEM_PROFILE_LINEAR, -0.02, T, s.t);
+    dem_wall_set_strain(&s.wall[3], DEM_PROFILE_LINEAR, 0.01, T, s.t);
+    dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XY], DEM_PROFILE_LINEAR, 0.05,
+                        T, s.t);
+    dem_wall_set_strain(&s.cell.tilt[DEM_TILT_YZ], DEM_PROFILE_LINEAR, -0.055,
+                        T, s.t);
+    s.dt = 1e-5;
+    const long steps = (long)(T / s.dt) + 10, builds = s.nbuild;
+    struct dem_error err;
+    for (long k = 0; k < steps; k++) {
+        struct dem_lattice a, b;
+        dem_sim_lattice(&s, &a);
+        s.chain = k + 1 < steps;
+        assert_int_equal(dem_sim_step(&s, &err), 0);
+        dem_sim_lattice(&s, &b);
+        for (int i = 0; i < n; i++) {
+            double x[3], f[3];
+            for (int d = 0; d < 3; d++)
+                x[d] = want[i][d] + s.dt * u[i][d];
+            dem_lattice_frac(&a, x, f);
+            lattice_point(&b, f, want[i]);
+        }
+    }
+    assert_true(s.nbuild - builds > 3); /* through several frames */
+    struct dem_lattice lat;
+    dem_sim_lattice(&s, &lat);
+    for (int k = 0; k < n; k++) {
+        const int i = s.p.id[k];
+        const double x[3] = {s.p.x[k], s.p.y[k], s.p.z[k]};
+        double f[3], fw[3];
+        dem_lattice_frac(&lat, x, f);
+        dem_lattice_frac(&lat, want[i], fw);
+        for (int a = 0; a < 3; a++) {
+            double d = f[a] - fw[a];
+            d -= round(d); /* builds wrap the positions into the cell */
+            assert_close(d, 0.0, 1e-12);
+        }
+        assert_close(s.p.vx[k], u[i][0], 0.0);
+    }
+    dem_sim_destroy(&s);
+}
+
 /* The worst case of the rule: two particles head-on along x, their gap
  * just wider than the skin at the build, while the cell shrinks along x
  * and closes it further. The pair is listed before it touches: each
@@ -358,6 +447,27 @@ static void closing_pair_in_shrinking_cell_is_listed(void **state)
     dem_sim_destroy(&s);
 }
 
+/* A 2D cell 0.1 m wide holding a triangular lattice of 20 x 20 disks,
+ * slightly compressed (it resists shear; a square one would not), with
+ * random velocities (seed); the first site left empty if skip. */
+static void triangular_cell(struct dem_sim *s, struct dem_config *c,
+                            unsigned seed, int skip)
+{
+    const double t0[3] = {0.0, 0.0, 0.0};
+    cell_sim(s, c, 2, 400, 0.1, t0);
+    s->wall[3].pos = 0.1 * sqrt(3.0) / 2.0;
+    struct dem_rng g;
+    dem_rng_seed(&g, seed);
+    for (int i = 0; i < 20; i++)
+        for (int j = skip && i == 0; j < 20; j++) {
+            const double f[3] = {(i + 0.25 + 0.5 * (j % 2)) / 20.0,
+                                 (j + 0.5) / 20.0, 0.0};
+            const int k = add_frac(s, f, 2.6e-3); /* touching a bit */
+            s->p.vx[k] = 0.02 * (dem_rng_uniform(&g) - 0.5);
+            s->p.vy[k] = 0.02 * (dem_rng_uniform(&g) - 0.5);
+        }
+}
+
 /* An elastic gas (no dissipation) sheared by the tilt: its energy (peculiar
  * kinetic plus elastic) changes by the work of the boundary, dE/dt =
  * - sum_ab grad_ab W_ba, W = sum over contacts of b (x) f (the equations
@@ -368,23 +478,8 @@ static void sheared_elastic_gas_energy_balance(void **state)
     (void)state;
     struct dem_config c;
     struct dem_sim s;
-    const double t0[3] = {0.0, 0.0, 0.0};
-    const int n = 400;
-    cell_sim(&s, &c, 2, n, 0.1, t0);
-    /* a triangular lattice, 20 x 20, slightly compressed: it resists
-     * shear (a square one would not) */
-    s.wall[3].pos = 0.1 * sqrt(3.0) / 2.0;
+    triangular_cell(&s, &c, 11, 0);
     c.contact.mu_s = c.contact.mu_d = 0.0; /* no friction: elastic */
-    struct dem_rng g;
-    dem_rng_seed(&g, 11);
-    for (int i = 0; i < 20; i++)
-        for (int j = 0; j < 20; j++) {
-            const double f[3] = {(i + 0.25 + 0.5 * (j % 2)) / 20.0,
-                                 (j + 0.5) / 20.0, 0.0};
-            int k = add_frac(&s, f, 2.6e-3); /* touching a bit */
-            s.p.vx[k] = 0.02 * (dem_rng_uniform(&g) - 0.5);
-            s.p.vy[k] = 0.02 * (dem_rng_uniform(&g) - 0.5);
-        }
     s.cfg.damping.gamma_b = s.cfg.damping.gamma_br = 0.0;
     s.cp.mu_s = s.cp.mu_d = 0.0;
     test_ready(&s);
@@ -420,6 +515,49 @@ static void sheared_elastic_gas_energy_balance(void **state)
      * it (the same in the release and the sanitizer builds) */
     assert_true(fabs(work) > 0.01); /* the boundary does real work */
     assert_close(E - E0, work, 0.01 * fabs(work));
+    dem_sim_destroy(&s);
+}
+
+/* The cell's stress as the force pass sums it (sum_i (m x_i) (x) f_i over
+ * the positions of the frame, less the images' shifts, plus m u (x) u:
+ * contact/pass.c) against the Love-Weber sum over the contacts of
+ * b (x) f from the positions now (the measurements, contact/forces.c),
+ * in a compressed triangular packing that the cell has stretched and
+ * sheared since the last build. */
+static void cell_stress_is_the_contacts_sum(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    /* one site left empty: the last particles of a range that are no
+     * whole lanes add their share one by one (virial_add) */
+    triangular_cell(&s, &c, 7, 1);
+    test_ready(&s);
+    /* 900 steps: before a quiet list is rebuilt to shrink its skin */
+    const double T = 1.8e-3;
+    dem_wall_set_strain(&s.wall[1], DEM_PROFILE_LINEAR, -0.0005, T, s.t);
+    dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XY], DEM_PROFILE_LINEAR, 0.0008,
+                        T, s.t);
+    s.dt = 2e-6;
+    test_step(&s, (long)(T / s.dt));
+    /* the frame is not the cell now: |h h_b^-1 - 1| is about 0.01 */
+    assert_true(dem_sim_cell_closure(&s) > 5e-3 * s.cell.range);
+    s.measure = 1;
+    dem_sim_forces(&s);
+    double kin[3][3] = {{0.0}};
+    for (int i = 0; i < s.p.n; i++) {
+        const double u[3] = {s.p.vx[i], s.p.vy[i], s.p.vz[i]};
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++)
+                kin[a][b] += s.p.m[i] * u[a] * u[b];
+    }
+    const double scale = fabs(s.sums.fabric_stress[0][0]);
+    assert_true(scale > 0.0 && s.sums.n_pp > 500);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            assert_close(s.cell.stress[a][b],
+                         s.sums.fabric_stress[a][b] + kin[a][b],
+                         1e-9 * scale);
     dem_sim_destroy(&s);
 }
 
@@ -649,8 +787,10 @@ int main(void)
         cmocka_unit_test(sheared_cell_list_3d),
         cmocka_unit_test(pair_across_every_face_edge_corner),
         cmocka_unit_test(affine_motion_is_followed_exactly),
+        cmocka_unit_test(own_motion_adds_to_the_affine_one),
         cmocka_unit_test(closing_pair_in_shrinking_cell_is_listed),
         cmocka_unit_test(sheared_elastic_gas_energy_balance),
+        cmocka_unit_test(cell_stress_is_the_contacts_sum),
         cmocka_unit_test(servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_holds_the_shear_stress),

@@ -659,9 +659,9 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     } rows[] = {{"neighbours", T->neighbor},
                 {"forces", T->force},
                 {"integration", T->integrate},
-                /* in a cell: the faces' servos and the particles'
-                 * affine map (core/cell.h) */
-                {r->periodic ? "cell map" : "walls", T->walls},
+                /* in a cell: its faces' and tilts' motion, and the
+                 * particles' positions from the frame (core/cell.h) */
+                {r->periodic ? "cell" : "walls", T->walls},
                 {"exchange", T->exchange},
                 {"other", other}};
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++)

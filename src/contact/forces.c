@@ -355,6 +355,8 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
      * (in list order; the list groups them by image, so each sum runs in
      * registers), then each image's shift times its sum */
     const struct dem_pairs *pl = &s->pairs;
+    struct dem_lattice lat; /* the pass took the positions mapped to it */
+    dem_sim_lattice(s, &lat);
     for (int g = 0; g < DEM_IMG_CODES; g++) {
         double F[3] = {0.0, 0.0, 0.0};
         for (int q = pl->cross_start[g]; q < pl->cross_start[g + 1]; q++) {
@@ -364,7 +366,7 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
             F[2] += f[2];
         }
         double S[3];
-        dem_img_shift(c->cv, g, S);
+        dem_img_shift(lat.v, g, S);
         for (int u = 0; u < 3; u++)
             for (int v = 0; v < 3; v++)
                 W[3 * u + v] -= S[u] * F[v];
@@ -417,12 +419,14 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
 static int forces(struct dem_sim *s, const struct kick K)
 {
     struct dem_pairs *pl = &s->pairs;
+    /* in a cell the positions of the frame of the build (core/cell.h) */
+    const struct dem_particles E = dem_sim_engine_particles(s);
     struct contacts c = {
-        .q = pass_of(&s->p, &pl->cur, &pl->f),
-        .wq = pass_of(&s->p, &pl->wcur, &pl->wf),
+        .q = pass_of(&E, &pl->cur, &pl->f),
+        .wq = pass_of(&E, &pl->wcur, &pl->wf),
         .cp = s->cp,
         .cpw = dem_contact_wall_view(&s->cp),
-        .P = &s->p,
+        .P = &E,
         .pl = pl,
         /* a pass without a kick re-evaluates the present state: the
          * springs take no displacement (see dem_sim_forces) */
@@ -439,9 +443,9 @@ static int forces(struct dem_sim *s, const struct kick K)
     };
     memcpy(c.walls, s->wall, sizeof c.walls);
     if (s->cell.on) {
-        struct dem_lattice lat;
-        dem_sim_lattice(s, &lat);
-        memcpy(c.cv, lat.v, sizeof c.cv);
+        /* the images' shifts of the frame, mapped with the pairs */
+        memcpy(c.cv, s->cell.built.v, sizeof c.cv);
+        dem_sim_cell_frame(s, &c.fr);
         dem_sim_cell_grad(s, c.grad);
         c.q.cjr = pl->jrec;
     }

@@ -26,9 +26,9 @@
  * values from a copy of the particles in records: each thread first
  * writes its share of them, then a barrier; a chained pass writes its
  * particles' records right after their drift instead, and the next pass
- * (dem_sim_step: no rebuild and no ghosts in between; a periodic cell's
- * map moves the records with the particles) skips the copy and the
- * barrier.
+ * (dem_sim_step: no rebuild and no ghosts in between; in a periodic cell
+ * the positions stay in the frame of the build, core/cell.h) skips the
+ * copy and the barrier.
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
  * once as always-inline functions and instantiated per normal law of
@@ -186,19 +186,28 @@ DEM_INLINE struct pv load_pv(const struct pass *q, int i)
 }
 
 /* Force and history update of pair k between particles with values pi and
- * pj (in a periodic cell j's image: its position x_j + h n, so that
- * b = x_i - x_j' below). With scalar = 0 (SIMD lanes) there is no branch:
- * the pair computes the closed-contact force, and if its gap is open it
- * gets a zero force and loses its history instead; scalar code (scalar =
- * 1) skips an open pair at once. */
+ * pj (in a periodic cell their positions in the frame of the last build,
+ * j's image's x_j + h_b n, so that b = fm (x_i - x_j') below: fm the
+ * frame's map, core/cell.h). With scalar = 0 (SIMD lanes) there is no
+ * branch: the pair computes the closed-contact force, and if its gap is
+ * open it gets a zero force and loses its history instead; scalar code
+ * (scalar = 1) skips an open pair at once. */
 DEM_INLINE void pair_vals(const int law, const int scalar,
                           const struct pass *qp, int k, const struct pv pi,
                           const struct pv pj,
                           const struct dem_contact_params *cp, double dt,
-                          const struct dem_tangential *T, const double *grad)
+                          const struct dem_tangential *T, const double *grad,
+                          const double *fm)
 {
     const struct pass q = *qp;
-    const double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
+    double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
+    if (law & DEM_SET_PERIODIC) { /* from the frame to the cell now */
+        const double ex = fm[0] * dx + fm[1] * dy + fm[2] * dz,
+                     ey = fm[3] * dy + fm[4] * dz;
+        dz = fm[5] * dz;
+        dx = ex;
+        dy = ey;
+    }
     const double d2 = dx * dx + dy * dy + dz * dz;
     const double ai = pi.r, aj = pj.r, R = ai + aj;
     const int touch = d2 < R * R;
@@ -239,7 +248,7 @@ DEM_INLINE void pair_vals(const int law, const int scalar,
 DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
                          int k, const struct dem_contact_params *cp, double dt,
                          const struct dem_tangential *T, const double *cv,
-                         const double *grad)
+                         const double *grad, const double *fm)
 {
     struct pv pj = load_pv(qp, qp->cj[k]);
     if (law & DEM_SET_PERIODIC) { /* j's image: x_j + h s (as its image
@@ -251,7 +260,7 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
         pj.z += S[2];
     }
     pair_vals(law, scalar, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T,
-              grad);
+              grad, fm);
 }
 
 #if DEM_PASS_RECORDS
@@ -358,12 +367,17 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx, double (*o)[8])
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                            int kend, const struct dem_contact_params *cp,
                            double dt, const double *cv, const double *grad,
-                           const double *rec)
+                           const double *fm, const double *rec)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    /* local copies, which no store of the loop can change */
+    const double gv[6] = {grad[0], grad[1], grad[2], grad[3], grad[4], grad[5]};
+    const double mv[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
+    grad = gv;
+    fm = mv;
     if (!dem_normal_simd(law)) {
         for (int k = k0; k < k1; k++)
-            pair_one(law, 1, &q, k, cp, dt, &T, cv, grad);
+            pair_one(law, 1, &q, k, cp, dt, &T, cv, grad, fm);
     } else {
         int k = k0;
         (void)rec;
@@ -392,13 +406,13 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                 const struct pv pj = {B[0][l], B[1][l], B[2][l], B[3][l],
                                       B[4][l], B[5][l], B[6][l], B[7][l],
                                       B[8][l], B[9][l], B[10][l]};
-                pair_vals(law, 0, &q, k + l, pi, pj, cp, dt, &T, grad);
+                pair_vals(law, 0, &q, k + l, pi, pj, cp, dt, &T, grad, fm);
             }
         }
 #endif
 #pragma omp simd
         for (int kk = k; kk < k1; kk++)
-            pair_one(law, 0, &q, kk, cp, dt, &T, cv, grad);
+            pair_one(law, 0, &q, kk, cp, dt, &T, cv, grad, fm);
     }
 }
 
@@ -473,15 +487,19 @@ struct virial {
     double *vir;
     _Alignas(64) double w[9][8];
     int end;
+    const double *fm; /* the frame's map (struct contacts.fr) */
 };
 
 /* Particle i's share of the periodic cell's virial, added to lane i % 8
  * of w; f its contacts' sum. The same arithmetic as virial_lanes, so a
  * particle adds the same bits either way. */
-DEM_INLINE void virial_add(const struct dem_particles *P, int i, double fx,
-                           double fy, double fz, double (*w)[8])
+DEM_INLINE void virial_add(const struct dem_particles *P, const double *fm,
+                           int i, double fx, double fy, double fz,
+                           double (*w)[8])
 {
-    const double X[3] = {P->x[i], P->y[i], P->z[i]},
+    const double x = P->x[i], y = P->y[i], z = P->z[i];
+    const double X[3] = {fm[0] * x + fm[1] * y + fm[2] * z,
+                         fm[3] * y + fm[4] * z, fm[5] * z},
                  U[3] = {P->vx[i], P->vy[i], P->vz[i]}, f[3] = {fx, fy, fz};
     const int l = i % 8;
     for (int a = 0; a < 3; a++) {
@@ -494,9 +512,9 @@ DEM_INLINE void virial_add(const struct dem_particles *P, int i, double fx,
 /* The virial of particles ib + u, from u on (ib + u a multiple of 8) in
  * groups of 8 while they end by ue, particle ib + u + l in lane l of w;
  * f[.][u] their contacts' sums. Returns the u it stopped at. */
-DEM_INLINE int virial_lanes(const struct dem_particles *P, int ib, int u,
-                            int ue, double (*f)[DEM_KICK_BLOCK],
-                            double (*w)[8])
+DEM_INLINE int virial_lanes(const struct dem_particles *P, const double *fm,
+                            int ib, int u, int ue,
+                            double (*f)[DEM_KICK_BLOCK], double (*w)[8])
 {
 #if defined(__GNUC__)
     /* The lanes' sums as values, not in memory: the same arithmetic as
@@ -507,18 +525,23 @@ DEM_INLINE int virial_lanes(const struct dem_particles *P, int ib, int u,
      * (docs/performance.md). */
     const double *restrict X[3] = {P->x, P->y, P->z},
                            *restrict U[3] = {P->vx, P->vy, P->vz};
+    const double m[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
     dem_lanes8 s[9];
     for (int c = 0; c < 9; c++)
         memcpy(&s[c], w[c], sizeof s[c]);
     for (; u + 8 <= ue; u += 8) {
         const int i = ib + u;
-        dem_lanes8 mi, x[3], v[3], g[3];
+        dem_lanes8 mi, y[3], x[3], v[3], g[3];
         memcpy(&mi, P->m + i, sizeof mi);
         for (int a = 0; a < 3; a++) {
-            memcpy(&x[a], X[a] + i, sizeof x[a]);
+            memcpy(&y[a], X[a] + i, sizeof y[a]);
             memcpy(&v[a], U[a] + i, sizeof v[a]);
             memcpy(&g[a], f[a] + u, sizeof g[a]);
         }
+        /* the position mapped from the frame, as virial_add */
+        x[0] = m[0] * y[0] + m[1] * y[1] + m[2] * y[2];
+        x[1] = m[3] * y[1] + m[4] * y[2];
+        x[2] = m[5] * y[2];
         for (int a = 0; a < 3; a++) {
             const dem_lanes8 mu = mi * v[a];
             for (int c = 0; c < 3; c++)
@@ -530,8 +553,8 @@ DEM_INLINE int virial_lanes(const struct dem_particles *P, int ib, int u,
 #else
     for (; u + 8 <= ue; u += 8)
         for (int l = 0; l < 8; l++)
-            virial_add(P, ib + u + l, f[0][u + l], f[1][u + l], f[2][u + l],
-                       w);
+            virial_add(P, fm, ib + u + l, f[0][u + l], f[1][u + l],
+                       f[2][u + l], w);
 #endif
     return u;
 }
@@ -561,23 +584,28 @@ static __attribute__((noinline)) void
 virial_pieces(const struct dem_particles *P, int ib, int nb,
               double (*f)[DEM_KICK_BLOCK], struct virial *V)
 {
+    const double *fm = V->fm;
+    const double m[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
     for (int u = 0; u < nb;) {
         /* up to the end of this virial block */
         const int be = (ib + u) / DEM_VIR_BLOCK * DEM_VIR_BLOCK + DEM_VIR_BLOCK;
         const int ue = be - ib < nb ? be - ib : nb;
         for (; u < ue && (ib + u) % 8; u++) /* up to lane 0 */
-            virial_add(P, ib + u, f[0][u], f[1][u], f[2][u], V->w);
-        u = virial_lanes(P, ib, u, ue, f, V->w);
+            virial_add(P, m, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+        u = virial_lanes(P, m, ib, u, ue, f, V->w);
         for (; u < ue; u++)
-            virial_add(P, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+            virial_add(P, m, ib + u, f[0][u], f[1][u], f[2][u], V->w);
         virial_flush(V, ib + u);
     }
 }
 
 /* The periodic cell's virial (contact/forces.c) of particles
  * ib <= i < ib + nb, with contact forces f (the sums of their pairs and
- * no damping): sum_contacts b (x) f, b = x_i - x_j', is sum_i x_i (x) f_i
- * minus the images' shifts (summed after the pass), plus the kinetic part
+ * no damping): sum_contacts b (x) f, b = m (x_i - x_j') with m the
+ * frame's map (V->fm), is sum_i (m x_i) (x) f_i (m x_i is the position
+ * now less one offset for all, whose share sums to zero with the pair
+ * forces) minus the images' shifts now (summed after the pass), plus the
+ * kinetic part
  * m u (x) u. Particle i adds to lane i % 8 of V->w, in particle order; at
  * the end of each virial block of DEM_VIR_BLOCK particles (or at V->end)
  * the lanes are summed in order into V->vir and cleared. A caller that
@@ -593,9 +621,9 @@ DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
     }
     /* a piece from lane 0 within one virial block (every piece of the
      * stored pass: DEM_KICK_BLOCK divides DEM_VIR_BLOCK) */
-    int u = virial_lanes(P, ib, 0, nb, f, V->w);
+    int u = virial_lanes(P, V->fm, ib, 0, nb, f, V->w);
     for (; u < nb; u++) /* a range's last particles */
-        virial_add(P, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+        virial_add(P, V->fm, ib + u, f[0][u], f[1][u], f[2][u], V->w);
     virial_flush(V, ib + nb);
 }
 
@@ -617,7 +645,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_contact_force *F, int kb,
                               int fmask, double gb, double gr,
                               const struct kick K, struct virial *V,
-                              double *rec)
+                              const struct dem_frame *fr, double *rec)
 {
     (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
@@ -629,6 +657,9 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     const double *wx = P->wx, *wy = P->wy, *wz = P->wz;
     const double *restrict r = P->r;
     const double hg[3] = {K.h * K.g[0], K.h * K.g[1], K.h * K.g[2]};
+    /* the frame's inverse map (cell), as locals no store changes */
+    const double *g = fr->g, s2 = fr->s2;
+    const double fi[6] = {g[0], g[1], g[2], g[3], g[4], g[5]};
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start,
@@ -750,8 +781,10 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                                   bf[3][u], bf[4][u], bf[5][u]);
                 dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
                                   bf[3][u], bf[4][u], bf[5][u]);
-                const double o = dem_particle_overshoot(
-                    &Q, k, dem_particle_drift(&Q, k, K.dt), K.cut);
+                const double d2 =
+                    cell ? dem_particle_drift_frame(&Q, k, K.dt, fi, s2)
+                         : dem_particle_drift(&Q, k, K.dt);
+                const double o = dem_particle_overshoot(&Q, k, d2, K.cut);
                 far = o > far ? o : far;
             }
 #if DEM_PASS_RECORDS
@@ -807,14 +840,15 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
     struct dem_contact_force *ring = c->ring + (size_t)t * ((size_t)mask + 1);
     struct pass q = c->q;
     q.F = ring;
-    struct virial V = {c->vir, {{0.0}}, s};
+    struct virial V = {c->vir, {{0.0}}, s, c->fr.m};
     int moved = 0;
     int p = d, w = i0; /* next particle to finish, next one's walls */
     int m = cell ? dem_first_at_least(imgk, pl->ncross, k0) : 0;
     for (int kc = k0;;) {
         const int ke = k1 - kc > c->ring_chunk ? kc + c->ring_chunk : k1;
         q.foff = kc - ((kc - k0) & mask);
-        pair_range(law, q, kc, ke, k1, &c->cp, c->dt, c->cv, c->grad, c->rec);
+        pair_range(law, q, kc, ke, k1, &c->cp, c->dt, c->cv, c->grad, c->fr.m,
+                   c->rec);
         const int all = kc < kd || ke > kt; /* some of its forces wait */
         if (all)
             for (int k = kc; k < ke; k++)
@@ -830,7 +864,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         e = e < s ? e : s;
         if (e > p) {
             moved |= particle_range(law, p, e, c->P, pl, ring, k0, mask, c->gb,
-                                    c->gr, K, &V, c->rec);
+                                    c->gr, K, &V, &c->fr, c->rec);
             p = e;
         }
         if (ke == k1)
@@ -853,7 +887,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         if (lo < hi) {
             V.end = hi;
             moved |= particle_range(law, lo, hi, c->P, pl, c->q.F, 0, -1, c->gb,
-                                    c->gr, K, &V, c->rec);
+                                    c->gr, K, &V, &c->fr, c->rec);
         }
         u += e - a;
     }
@@ -885,7 +919,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
 #endif
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
                dem_block(c->np, t + 1, nt), &c->cp, c->dt, c->cv, c->grad,
-               c->rec);
+               c->fr.m, c->rec);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
@@ -894,9 +928,9 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     const int i0 = cell ? dem_cell_block(c->n, t, nt) : dem_block(c->n, t, nt),
               i1 = cell ? dem_cell_block(c->n, t + 1, nt)
                         : dem_block(c->n, t + 1, nt);
-    struct virial V = {c->vir, {{0.0}}, i1};
+    struct virial V = {c->vir, {{0.0}}, i1, c->fr.m};
     return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb, c->gr,
-                          K, &V, c->rec);
+                          K, &V, &c->fr, c->rec);
 }
 
 /* One instance per model set and kind of kick (literals), so that each

@@ -63,7 +63,12 @@ struct contacts {
     int np, nw, n; /* pairs, wall contacts, particles */
     /* periodic cell (core/cell.h) */
     int periodic;   /* 1: run the pass of the set with DEM_SET_PERIODIC */
-    double cv[6];   /* m; the lattice, struct dem_lattice.v */
+    double cv[6];   /* m; the lattice of the frame, struct dem_lattice.v:
+                       the images' shifts of the pass's positions */
+    struct dem_frame fr; /* the positions' frame now (core/cell.h): a
+                            pair's distance is fr.m times theirs, and so
+                            is a position in the virial; a drift moves
+                            one by dt fr.g v */
     double grad[6]; /* 1/s; the affine velocity gradient, upper triangle */
     double *rec;    /* the records pass's particle records (contact/pass.c),
                        12 doubles per particle, 32-byte aligned */
@@ -98,12 +103,6 @@ int dem__pass_records(const struct contacts *c, struct kick K);
 /* The records pass whose chained steps keep the pairs' forces in a ring
  * per thread (contact/pass_ring.c). */
 int dem__pass_ring(const struct contacts *c, struct kick K);
-/* The positions (and radii) in the records of particles i0 <= i < i1
- * (struct dem_pairs.rec) as they are in P's arrays: after the periodic
- * cell's affine map (core/cell.c) of the arrays, the same bits as the
- * map applied to the records, which a chained records pass wrote. */
-void dem_records_positions(double *rec, const struct dem_particles *P, int i0,
-                           int i1);
 #endif
 
 #endif

@@ -1,11 +1,10 @@
-/* The periodic cell: its lattice, the affine map of a step, wrapping and
- * the Lees-Edwards re-map (core/cell.h). */
+/* The periodic cell: its lattice, the frame of the engine's positions,
+ * wrapping and the Lees-Edwards re-map (core/cell.h). */
 #include "core/cell.h"
 
 #include <math.h>
 #include <omp.h>
 
-#include "contact/pass.h"
 #include "core/parallel.h"
 #include "core/sim.h"
 
@@ -88,70 +87,76 @@ void dem_sim_cell_grad(const struct dem_sim *s, double grad[6])
     grad[5] = L[2][2];
 }
 
-/* x <- to.lo + M (x - from.lo) with M = h_to h_from^-1 (upper
- * triangular) for particles i0 <= i < i1 of coordinate arrays X, Y, Z
- * (distinct: restrict lets the loop run in SIMD lanes). */
-static inline void map_set(double *restrict X, double *restrict Y,
-                           double *restrict Z, int i0, int i1, double M[3][3],
-                           const double lf[3], const double lt[3])
+/* m = h_to h_from^-1 and its inverse g (upper triangular, as
+ * struct dem_lattice.v); 2D: z stays. */
+static void frame_of(const struct dem_lattice *from,
+                     const struct dem_lattice *to, int dim, double m[6],
+                     double g[6])
 {
-    const double m00 = M[0][0], m01 = M[0][1], m02 = M[0][2], m11 = M[1][1],
-                 m12 = M[1][2], m22 = M[2][2];
-    for (int i = i0; i < i1; i++) {
-        const double dx = X[i] - lf[0], dy = Y[i] - lf[1], dz = Z[i] - lf[2];
-        X[i] = lt[0] + m00 * dx + m01 * dy + m02 * dz;
-        Y[i] = lt[1] + m11 * dy + m12 * dz;
-        Z[i] = lt[2] + m22 * dz;
-    }
-}
-
-/* particles mapped at a time, their positions then copied to their
- * records while still in the L1 cache */
-#define DEM_MAP_BLOCK 256
-
-static void map_range(const struct dem_sim *s, int i0, int i1,
-                      double M[3][3], const double lf[3], const double lt[3])
-{
-    const struct dem_particles *p = &s->p;
-    map_set(p->x0, p->y0, p->z0, i0, i1, M, lf, lt);
-    for (int b = i0; b < i1; b += DEM_MAP_BLOCK) {
-        const int e = i1 - b > DEM_MAP_BLOCK ? b + DEM_MAP_BLOCK : i1;
-        map_set(p->x, p->y, p->z, b, e, M, lf, lt);
-#if DEM_HAVE_PASS_RECORDS
-        /* records a chained records pass wrote move with their particles,
-         * so that the next pass need not copy them again: their positions
-         * copied from the arrays, the same bits as mapped (mapped in
-         * place, strided, they took 2 % of a cell's step at N = 3375) */
-        if (s->pairs.rec_written)
-            dem_records_positions(s->pairs.rec, p, b, e);
-#endif
-    }
-}
-
-void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
-                      const struct dem_lattice *to)
-{
-    double h[3][3], g[3][3], M[3][3] = {{0}};
+    double h[3][3], gi[3][3], hb[3][3], gn[3][3];
+    double M[3][3] = {{0}}, G[3][3] = {{0}};
     matrix_of(to->v, h);
-    if (s->dim == 2)
-        h[2][2] = 1.0; /* z stays */
-    inverse_of(from->v, g);
+    inverse_of(from->v, gi);
+    matrix_of(from->v, hb);
+    inverse_of(to->v, gn);
+    if (dim == 2)
+        h[2][2] = hb[2][2] = 1.0;
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++)
-            for (int k = 0; k < 3; k++)
-                M[a][b] += h[a][k] * g[k][b];
-    const int n = s->p.n;
-    /* Each thread maps the particles whose sums, kicks and drifts it ran
-     * in the pass (dem_cell_block: the same blocks), which are in its
-     * cache. In one thread the map of another's particles took twice as
-     * long (N = 3375, two threads, Zen 4: the cell's loop 10 % slower,
-     * docs/performance.md), and so it did at N = 1000: a parallel region
-     * costs less than that at any size measured. */
-#pragma omp parallel
-    {
-        const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        map_range(s, dem_cell_block(n, t, nt), dem_cell_block(n, t + 1, nt),
-                  M, from->lo, to->lo);
+            for (int k = 0; k < 3; k++) {
+                M[a][b] += h[a][k] * gi[k][b];
+                G[a][b] += hb[a][k] * gn[k][b];
+            }
+    const double mv[6] = {M[0][0], M[0][1], M[0][2], M[1][1], M[1][2], M[2][2]};
+    const double gv[6] = {G[0][0], G[0][1], G[0][2], G[1][1], G[1][2], G[2][2]};
+    for (int u = 0; u < 6; u++) {
+        m[u] = mv[u];
+        g[u] = gv[u];
+    }
+}
+
+void dem_sim_cell_frame(const struct dem_sim *s, struct dem_frame *f)
+{
+    struct dem_lattice now;
+    dem_sim_lattice(s, &now);
+    frame_of(&s->cell.built, &now, s->dim, f->m, f->g);
+    const double *m = f->m;
+    const double e = sqrt((m[0] - 1.0) * (m[0] - 1.0) + m[1] * m[1] +
+                          m[2] * m[2] + (m[3] - 1.0) * (m[3] - 1.0) +
+                          m[4] * m[4] + (m[5] - 1.0) * (m[5] - 1.0));
+    f->s2 = (1.0 + e) * (1.0 + e);
+}
+
+struct dem_particles dem_sim_engine_particles(const struct dem_sim *s)
+{
+    struct dem_particles e = s->p;
+    if (s->cell.on) {
+        e.x = s->p.xs;
+        e.y = s->p.ys;
+        e.z = s->p.zs;
+    }
+    return e;
+}
+
+void dem_sim_cell_positions(struct dem_sim *s)
+{
+    const struct dem_lattice *b = &s->cell.built;
+    struct dem_lattice now;
+    dem_sim_lattice(s, &now);
+    double m[6], g[6];
+    frame_of(b, &now, s->dim, m, g);
+    const struct dem_particles *p = &s->p;
+    const double *restrict xs = p->xs, *restrict ys = p->ys,
+                           *restrict zs = p->zs;
+    double *restrict X = p->x, *restrict Y = p->y, *restrict Z = p->z;
+    const double *lb = b->lo, *lo = now.lo;
+    const int n = p->n;
+#pragma omp parallel for simd schedule(static)
+    for (int i = 0; i < n; i++) {
+        const double dx = xs[i] - lb[0], dy = ys[i] - lb[1], dz = zs[i] - lb[2];
+        X[i] = lo[0] + m[0] * dx + m[1] * dy + m[2] * dz;
+        Y[i] = lo[1] + m[3] * dy + m[4] * dz;
+        Z[i] = lo[2] + m[5] * dz;
     }
 }
 

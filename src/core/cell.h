@@ -22,10 +22,16 @@
  * cell is at least two interaction ranges wide in each direction, so a
  * pair touches at most one image. Particle velocities are peculiar (the
  * velocity relative to the affine field v = lo' + hdot h^-1 (x - lo));
- * each step maps every position affinely with the cell (dem_cell_map), and
- * the relative velocity of a pair adds the affine part grad (x_i - x_j'),
- * grad = hdot h^-1. Positions are wrapped into the cell at list builds
- * only; between builds they may leave it by less than the skin.
+ * every position moves affinely with the cell, and the relative velocity
+ * of a pair adds the affine part grad (x_i - x_j'), grad = hdot h^-1.
+ * Between list builds the engine keeps the positions in the frame of the
+ * lattice of the last build h_b (struct dem_particles.xs): a position r
+ * of the frame is lo + m (r - lo_b) now, m = h h_b^-1 (struct
+ * dem_frame), so that the cell's motion moves no particle: a drift adds
+ * dt m^-1 v, a pair's distance is m times the frame's, and x, y, z are
+ * computed from the frame when something looks at them
+ * (dem_sim_cell_positions). Positions are wrapped into the cell at list
+ * builds only; between builds they may leave it by less than the skin.
  *
  * Simple shear of any size (Lees-Edwards): when a tilt passes half the
  * length of its shear direction the cell is re-mapped to the equivalent
@@ -78,9 +84,7 @@ struct dem_cell {
 #define DEM_VIR_BLOCK 256
 
 /* The first particle of thread t's share of a cell's n particles in the
- * force pass's sums (no virial block across two threads) and in the
- * cell's map after it, which takes the same particles, still in that
- * thread's cache (core/cell.c). */
+ * force pass's sums (no virial block across two threads). */
 static inline int dem_cell_block(int n, int t, int nt)
 {
     return dem_block_aligned(n, t, nt, DEM_VIR_BLOCK);

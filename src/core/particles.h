@@ -14,6 +14,12 @@ struct dem_particles {
     int n;                /* number of particles */
     int cap;              /* allocated length of every array */
     double *x, *y, *z;    /* m; centre position */
+    double *xs, *ys, *zs; /* m; in a periodic cell the positions the
+                             engine moves, in the frame of the lattice of
+                             the last list build (core/cell.h); x, y, z
+                             follow from them at every step that is not
+                             chained (dem_sim_cell_positions). Unused
+                             between walls */
     double *vx, *vy, *vz; /* m/s; velocity */
     double *wx, *wy, *wz; /* rad/s; angular velocity */
     double *fx, *fy, *fz; /* N; total force of the current step */
@@ -42,8 +48,9 @@ struct dem_particles {
 #define DEM_PARTICLE_DOUBLE_ARRAYS(X)                                          \
     X(x)                                                                       \
     X(y)                                                                       \
-    X(z) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy) X(fz) X(tx) X(ty)     \
-        X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0) X(reach) X(fsum)
+    X(z) X(xs) X(ys) X(zs) X(vx) X(vy) X(vz) X(wx) X(wy) X(wz) X(fx) X(fy)     \
+        X(fz) X(tx) X(ty) X(tz) X(r) X(m) X(inv_m) X(inv_I) X(x0) X(y0) X(z0)  \
+            X(reach) X(fsum)
 
 #define DEM_PARTICLE_INT_ARRAYS(X) X(id) X(ncontact)
 
@@ -91,6 +98,24 @@ static inline double dem_particle_drift(const struct dem_particles *p, int i,
     const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
                  dz = p->z[i] - p->z0[i];
     return dx * dx + dy * dy + dz * dz;
+}
+
+/* The drift of particle i in a periodic cell, whose arrays x, y, z are
+ * the frame's (struct dem_particles.xs; core/cell.h): r += dt g v, g the
+ * inverse of the frame's map m (upper triangular, as struct
+ * dem_lattice.v); returns a bound of the squared distance from x0 now,
+ * |m (r - x0)|^2 <= s2 |r - x0|^2 (struct dem_frame). */
+static inline double dem_particle_drift_frame(const struct dem_particles *p,
+                                              int i, double dt,
+                                              const double g[6], double s2)
+{
+    const double vx = p->vx[i], vy = p->vy[i], vz = p->vz[i];
+    p->x[i] += dt * (g[0] * vx + g[1] * vy + g[2] * vz);
+    p->y[i] += dt * (g[3] * vy + g[4] * vz);
+    p->z[i] += dt * (g[5] * vz);
+    const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
+                 dz = p->z[i] - p->z0[i];
+    return s2 * (dx * dx + dy * dy + dz * dz);
 }
 
 /* Whether particle i, d2 its squared distance from x0, calls for a list

@@ -213,6 +213,11 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
     memcpy(p->x0, p->x, (size_t)p->n * sizeof *p->x);
     memcpy(p->y0, p->y, (size_t)p->n * sizeof *p->y);
     memcpy(p->z0, p->z, (size_t)p->n * sizeof *p->z);
+    if (s->cell.on) { /* the engine's frame is now the lattice built */
+        memcpy(p->xs, p->x, (size_t)p->n * sizeof *p->x);
+        memcpy(p->ys, p->y, (size_t)p->n * sizeof *p->y);
+        memcpy(p->zs, p->z, (size_t)p->n * sizeof *p->z);
+    }
     s->nbuild++;
     return DEM_OK;
 }
@@ -225,15 +230,17 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
  * moved further than its reach less cut since the last list build. */
 static int kick_drift_range(int i0, int i1, double h, double dt,
                             const double g[3], double cut,
-                            const struct dem_particles *p)
+                            const struct dem_particles *p,
+                            const struct dem_frame *fr)
 {
     const double hg[3] = {h * g[0], h * g[1], h * g[2]};
     double far = 0.0; /* the largest overshoot */
     for (int i = i0; i < i1; i++) {
         dem_particle_kick(p, i, h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
                           p->ty[i], p->tz[i]);
-        const double o =
-            dem_particle_overshoot(p, i, dem_particle_drift(p, i, dt), cut);
+        const double d2 = fr ? dem_particle_drift_frame(p, i, dt, fr->g, fr->s2)
+                             : dem_particle_drift(p, i, dt);
+        const double o = dem_particle_overshoot(p, i, d2, cut);
         far = o > far ? o : far;
     }
     return far > 0.0;
@@ -247,12 +254,17 @@ static int kick_drift(struct dem_sim *s, double h)
      * business (dem_halo_ops.sync) */
     const int n = s->p.n - s->pairs.nghost;
     const double cut = dem_sim_drift_cut(s);
+    const struct dem_particles e = dem_sim_engine_particles(s);
+    struct dem_frame fr;
+    if (s->cell.on)
+        dem_sim_cell_frame(s, &fr);
     int moved = 0;
 #pragma omp parallel reduction(| : moved)
     {
         int nt = omp_get_num_threads(), t = omp_get_thread_num();
         moved = kick_drift_range(dem_block(n, t, nt), dem_block(n, t + 1, nt),
-                                 h, s->dt, s->cfg.gravity, cut, &s->p);
+                                 h, s->dt, s->cfg.gravity, cut, &e,
+                                 s->cell.on ? &fr : NULL);
     }
     return moved;
 }
@@ -325,21 +337,14 @@ static void wall_drift(struct dem_sim *s, struct dem_wall *W, double t_new)
 }
 
 /* The walls move; in a periodic cell they and the tilts move the cell,
- * and every particle follows it affinely. */
+ * and every particle follows it affinely: its engine position stays in
+ * the frame of the last build (core/cell.h). */
 static void walls_drift(struct dem_sim *s, double t_new)
 {
-    struct dem_lattice from, to;
-    if (s->cell.on)
-        dem_sim_lattice(s, &from);
     for (int w = 0; w < s->nwall; w++)
         wall_drift(s, &s->wall[w], t_new);
-    if (!s->cell.on)
-        return;
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; s->cell.on && k < 3; k++)
         wall_drift(s, &s->cell.tilt[k], t_new);
-    dem_sim_lattice(s, &to);
-    if (memcmp(&from, &to, sizeof from))
-        dem_sim_cell_map(s, &from, &to);
 }
 
 static double now(void)
@@ -390,11 +395,19 @@ static void adapt_reach(struct dem_sim *s, long n, double e)
         n > 0 ? DEM_REACH_AHEAD * DEM_BUILD_INTERVAL / (double)n : 0.0;
     const double aff =
         s->cell.on ? 0.5 * (scale * e + DEM_CELL_AFFINE_AHEAD * s->skin) : 0.0;
+    /* in a cell the displacement in the frame mapped with the cell */
+    struct dem_frame fr = {{1.0, 0.0, 0.0, 1.0, 0.0, 1.0}, {0.0}, 1.0};
+    if (s->cell.on)
+        dem_sim_cell_frame(s, &fr);
+    const double *m = fr.m;
+    const struct dem_particles q = dem_sim_engine_particles(s);
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < own; i++) {
-        const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
-                     dz = p->z[i] - p->z0[i];
-        const double d = sqrt(dx * dx + dy * dy + dz * dz);
+        const double dx = q.x[i] - p->x0[i], dy = q.y[i] - p->y0[i],
+                     dz = q.z[i] - p->z0[i];
+        const double ex = m[0] * dx + m[1] * dy + m[2] * dz,
+                     ey = m[3] * dy + m[4] * dz, ez = m[5] * dz;
+        const double d = sqrt(ex * ex + ey * ey + ez * ez);
         double r =
             n > 0 ? (scale * d > lo ? scale * d : lo) + aff : p->reach[i];
         p->reach[i] = r < cap ? r : cap;
@@ -424,6 +437,10 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     double t1 = lap(s);
     walls_kick(s, h);
     walls_drift(s, s->t + s->dt);
+    /* whatever looks at the particles after a step that is not chained
+     * (and the measurements of its pass) sees them where they are */
+    if (s->cell.on && !chain)
+        dem_sim_cell_positions(s);
     double t2 = lap(s);
     s->t += s->dt;
     s->step++;
@@ -442,6 +459,10 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
         const long n = s->step - s->build_step;
         adapt_skin(s);
         adapt_reach(s, n, e);
+        /* a build takes the positions now (in a cell from the engine's;
+         * a step that is not chained has them already) */
+        if (s->cell.on && chain)
+            dem_sim_cell_positions(s);
         int rc = s->halo ? s->halo->rebuild(s, err) : dem_sim_rebuild(s, err);
         if (rc)
             return rc;
@@ -451,8 +472,9 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     set_closure(s, rebuild && s->cell.on ? dem_sim_cell_closure(s) : e);
     double t3 = lap(s);
     /* the particles are where the chained pass before left them (in a
-     * cell mapped with their records, dem_sim_cell_map), so the
-     * particle records it wrote are still theirs (contact/pass.c) */
+     * cell in the frame of the build, which the cell's motion does not
+     * change), so the particle records it wrote are still theirs
+     * (contact/pass.c) */
     s->pairs.rec_fresh = drifted && !rebuild && !s->halo;
     s->moved = dem_sim_forces_kick(s, h, chain);
     s->drifted = chain;

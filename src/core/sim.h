@@ -230,10 +230,22 @@ void dem_sim_lattice(const struct dem_sim *s, struct dem_lattice *c);
 /* The velocity gradient of the cell's affine field, hdot h^-1, as
  * {xx, xy, xz, yy, yz, zz} (upper triangular), 1/s. */
 void dem_sim_cell_grad(const struct dem_sim *s, double grad[6]);
-/* Map every position (and its copy at the last build) affinely from the
- * lattice from to the lattice to. */
-void dem_sim_cell_map(struct dem_sim *s, const struct dem_lattice *from,
-                      const struct dem_lattice *to);
+/* The frame of a cell's engine positions (struct dem_particles.xs):
+ * the lattice of the last list build, h_b. A position r of the frame is
+ * lo + m (r - lo_b) now, with m = h h_b^-1, whose inverse is g; both
+ * upper triangular, as struct dem_lattice.v (2D: m_zz = g_zz = 1).
+ * s2 = (1 + |m - 1|_F)^2 bounds |m d|^2 / |d|^2 for every d. */
+struct dem_frame {
+    double m[6], g[6], s2;
+};
+void dem_sim_cell_frame(const struct dem_sim *s, struct dem_frame *f);
+/* The positions x, y, z now from the engine's (xs, ys, zs), which stay
+ * in the frame between builds: the cell moves no position in a step
+ * (core/cell.h), so the results do not depend on when they are read. */
+void dem_sim_cell_positions(struct dem_sim *s);
+/* The particles as the engine moves them: in a periodic cell a copy of
+ * s->p whose x, y, z are its xs, ys, zs; else s->p itself. */
+struct dem_particles dem_sim_engine_particles(const struct dem_sim *s);
 /* Wrap every position into the cell (0 <= s < 1). */
 void dem_sim_cell_wrap(struct dem_sim *s);
 /* Re-map every tilt beyond half its shear length (Lees-Edwards); returns

@@ -19,7 +19,8 @@
  *           (on, tilts, re-mapped tilt, lattice at the last build,
  *           virial)
  *     PART  every particle array (DEM_PARTICLE_*_ARRAYS; the reaches
- *           since version 9)
+ *           since version 9, a periodic cell's positions in the frame
+ *           of the last build since version 11)
  *     PAIR  the pair list with its history, row starts, stored forces
  *           and (periodic cell) the pairs' images; the reverse rows are
  *           derived on reading (since version 10)
@@ -38,7 +39,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 10u
+#define DEM_CKPT_VERSION 11u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {
