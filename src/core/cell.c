@@ -143,8 +143,9 @@ void dem_sim_cell_positions(struct dem_sim *s)
     const struct dem_lattice *b = &s->cell.built;
     struct dem_lattice now;
     dem_sim_lattice(s, &now);
-    double m[6], g[6];
-    frame_of(b, &now, s->dim, m, g);
+    struct dem_frame f;
+    dem_sim_cell_frame(s, &f);
+    const double *m = f.m;
     const struct dem_particles *p = &s->p;
     const double *restrict xs = p->xs, *restrict ys = p->ys,
                            *restrict zs = p->zs;
