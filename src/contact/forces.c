@@ -445,6 +445,10 @@ static int forces(struct dem_sim *s, const struct kick K)
     if (s->cell.on) {
         /* the images' shifts of the frame, mapped with the pairs */
         memcpy(c.cv, s->cell.built.v, sizeof c.cv);
+        for (int g = 0; g < DEM_IMG_CODES; g++) {
+            dem_img_shift(c.cv, g, c.shift[g]);
+            c.shift[g][3] = 0.0;
+        }
         dem_sim_cell_frame(s, &c.fr);
         dem_sim_cell_grad(s, c.grad);
         c.q.cjr = pl->jrec;

@@ -324,12 +324,11 @@ DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
         const int k = imgk[m];
         const double *s = c->rec + DEM_REC * (size_t)c->q.cj[k];
         double *o = c->rec + DEM_REC * (size_t)c->q.cjr[k];
-        double S[3];
-        dem_img_shift(c->cv, c->q.img[k], S);
-        memcpy(o, s, DEM_REC * sizeof *o);
-        o[0] = s[0] + S[0];
-        o[1] = s[1] + S[1];
-        o[2] = s[2] + S[2];
+        /* x y z r plus the shift and 0 */
+        _mm256_store_pd(o, _mm256_add_pd(_mm256_load_pd(s),
+                                         _mm256_load_pd(c->shift[c->q.img[k]])));
+        _mm256_store_pd(o + 4, _mm256_load_pd(s + 4));
+        _mm256_store_pd(o + 8, _mm256_load_pd(s + 8));
     }
 }
 

@@ -69,6 +69,9 @@ struct contacts {
                             pair's distance is fr.m times theirs, and so
                             is a position in the virial; a drift moves
                             one by dt fr.g v */
+    /* m; image code g's shift (dem_img_shift of cv), then 0, as
+     * image_records adds it to a record (contact/pass.c) */
+    _Alignas(32) double shift[DEM_IMG_CODES][4];
     double grad[6]; /* 1/s; the affine velocity gradient, upper triangle */
     double *rec;    /* the records pass's particle records (contact/pass.c),
                        12 doubles per particle, 32-byte aligned */
