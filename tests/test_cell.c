@@ -76,9 +76,10 @@ static void check_list(const struct dem_sim *s)
  * taken over the first part, and the ring pass's blocks
  * (dem_pairs_row_block): for one to four threads and blocks cut at
  * multiples of g, the blocks tile the particles, a particle outside
- * the waiting ranges has every pair as j in its own block's rows, and
- * the pairs the ring need not copy for the waiting particles (from the
- * first range's end to kt) join two particles outside them. */
+ * the waiting ranges has every pair as j in its own block's rows, one of
+ * the second range has those of earlier blocks below kw, all through an
+ * image, and the pairs the ring need not copy (from the first range's
+ * end to kt) join two particles outside the first ranges. */
 static void check_rows(const struct dem_sim *s)
 {
     const struct dem_pairs *pl = &s->pairs;
@@ -108,8 +109,8 @@ static void check_rows(const struct dem_sim *s)
         for (int nt = 1; nt <= 4; nt++) {
             int end = 0, late = 0;
             for (int t = 0; t < nt; t++) {
-                int w[4], kt;
-                dem_pairs_row_block(pl, n, t, nt, g, w, &kt);
+                int w[4], kt, kw;
+                dem_pairs_row_block(pl, n, t, nt, g, w, &kt, &kw);
                 assert_int_equal(w[0], end);
                 end = w[3];
                 assert_true(w[0] <= w[1] && w[1] <= w[2] && w[2] <= w[3]);
@@ -119,15 +120,29 @@ static void check_rows(const struct dem_sim *s)
                 for (int i = w[1]; i < w[2]; i++)
                     for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
                         assert_true(pl->rpair[q] >= k0);
+                /* the second range's pairs as j from earlier blocks are
+                 * through an image and below kw, the last of them at
+                 * kw - 1 */
+                assert_true(kw >= 0 && kw <= k0);
+                int last = 0;
+                for (int i = w[2]; i < w[3]; i++)
+                    for (int q = pl->rstart[i]; q < pl->rstart[i + 1]; q++)
+                        if (pl->rpair[q] < k0) {
+                            assert_true(q >= pl->rimg[i] && pl->rpair[q] < kw);
+                            last = pl->rpair[q] + 1 > last ? pl->rpair[q] + 1
+                                                           : last;
+                        }
+                assert_int_equal(last, kw);
                 /* the block's pairs from its first waiting range's end
-                 * up to kt stay among the particles it finishes alone */
+                 * up to kt stay among the particles it finishes in
+                 * stream */
                 assert_true(k0 <= kt && kt <= L->start[w[3]]);
                 for (int i = w[0]; i < w[3]; i++)
                     for (int k = L->start[i]; k < L->start[i + 1]; k++)
                         if (k >= L->start[w[1]] && k < kt &&
                             L->img[k] == DEM_IMG_NONE)
                             assert_true(i >= w[1] && L->j[k] >= w[1] &&
-                                        L->j[k] < w[2]);
+                                        L->j[k] < w[3]);
                 late += t > 0 && w[2] < w[3];
             }
             assert_int_equal(end, n);

@@ -390,7 +390,8 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
 /* The ring pass's rings for a chained pass (contact/pass_ring.c): one per
  * thread of a power of two entries, at least the list's reach plus a
  * chunk of the given size; their size less 1 in *mask; and the threads'
- * waiting ranges (pl->ring_wait). NULL if out of memory (the pass then
+ * waiting ranges and progress (pl->ring_wait, ring_done). NULL if out of
+ * memory (the pass then
  * stores every force in the list's array). */
 static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
                                        int *mask)
@@ -408,11 +409,14 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
     }
     if (nt > pl->ring_threads) {
         free(pl->ring_wait);
+        free(pl->ring_done);
         pl->ring_wait = malloc(4 * (size_t)nt * sizeof *pl->ring_wait);
-        pl->ring_threads = pl->ring_wait ? nt : 0;
+        pl->ring_done =
+            aligned_alloc(64, DEM_RING_DONE * (size_t)nt * sizeof(int));
+        pl->ring_threads = pl->ring_wait && pl->ring_done ? nt : 0;
     }
     *mask = (int)size - 1;
-    return pl->ring_wait ? pl->ring : NULL;
+    return pl->ring_threads ? pl->ring : NULL;
 }
 #endif
 
@@ -459,6 +463,7 @@ static int forces(struct dem_sim *s, const struct kick K)
         c.ring_chunk = pl->ring_chunk ? pl->ring_chunk : DEM_RING_CHUNK;
         c.ring = rings(pl, c.ring_chunk, &c.ring_mask);
         c.wait = pl->ring_wait;
+        c.done = pl->ring_done;
     }
 #endif
     c.rec_fresh = pl->rec_fresh && pl->rec_written;

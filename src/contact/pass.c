@@ -37,6 +37,7 @@
  * pointer and no configuration branch per contact. A wall contact runs
  * the same model with the wall's parameters (dem_contact_wall_view).
  */
+#include <limits.h>
 #include <math.h>
 #include <omp.h>
 #include <string.h>
@@ -826,9 +827,12 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
               *imgk = pl->imgk;
     const int cell = (law & DEM_SET_PERIODIC) != 0,
               g = cell ? DEM_VIR_BLOCK : 1;
-    int *W = c->wait + 4 * t, kt;
-    dem_pairs_row_block(pl, c->n, t, nt, g, W, &kt);
+    int *W = c->wait + 4 * t, kt, kw;
+    dem_pairs_row_block(pl, c->n, t, nt, g, W, &kt, &kw);
     const int i0 = W[0], d = W[1], s = W[2], i1 = W[3];
+    /* the second range is finished in stream, not after the barrier */
+    W[2] = i1;
+    int *done = c->done + DEM_RING_DONE * t;
     const int k0 = start[i0], k1 = start[i1];
     if (cell) /* the images' records of the thread's own pairs */
         image_records(c, k0, k1);
@@ -839,7 +843,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
     struct dem_contact_force *ring = c->ring + (size_t)t * ((size_t)mask + 1);
     struct pass q = c->q;
     q.F = ring;
-    struct virial V = {c->vir, {{0.0}}, s, c->fr.m};
+    struct virial V = {c->vir, {{0.0}}, i1, c->fr.m};
     int moved = 0;
     int p = d, w = i0; /* next particle to finish, next one's walls */
     int m = cell ? dem_first_at_least(imgk, pl->ncross, k0) : 0;
@@ -855,12 +859,29 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         for (; cell && m < pl->ncross && imgk[m] < ke; m++)
             if (!all)
                 c->q.F[imgk[m]] = q.F[imgk[m] - q.foff];
+        /* the chunk's forces that other threads read are stored: say so */
+#pragma omp atomic write release
+        *done = ke;
         int e = w; /* the particles whose rows end in the chunk */
         while (e < i1 && start[e + 1] <= ke)
             e++;
         wall_range(law, c->wq, wstart[w], wstart[e], &c->cpw, c->dt, c->walls);
         w = e;
-        e = e < s ? e : s;
+        if (e > s && kw) {
+            /* the second range reads the earlier threads' pairs through
+             * an image below kw: wait until they are stored (they come
+             * in those threads' first chunks, so this rarely spins) */
+            for (int u = 0; u < t; u++)
+                while (1) {
+                    int k;
+#pragma omp atomic read acquire
+                    k = c->done[DEM_RING_DONE * u];
+                    if (k >= kw)
+                        break;
+                    _mm_pause();
+                }
+            kw = 0;
+        }
         if (e > p) {
             moved |= particle_range(law, p, e, c->P, pl, ring, k0, mask, c->gb,
                                     c->gr, K, &V, &c->fr, c->rec);
@@ -870,6 +891,9 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
             break;
         kc = ke;
     }
+    /* all done (a later thread may wait for pairs beyond this block) */
+#pragma omp atomic write release
+    *done = INT_MAX;
 #pragma omp barrier
     /* the waiting particles of all blocks, shared out in equal parts (in
      * a cell whole virial blocks: every range but the last is made of
@@ -965,6 +989,11 @@ _Static_assert(0 DEM_CONTACT_RESISTANCES(RESIST_COUNT_) == 2,
 int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
 {
     int moved = 0;
+#if DEM_PASS_RING
+    if (K.chain && c->ring) /* no thread's pairs done yet */
+        for (int t = 0; t < omp_get_max_threads(); t++)
+            c->done[DEM_RING_DONE * t] = 0;
+#endif
     switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0)) {
 #define CONTACTS_OF_(TAG, name, lanes)                                         \
     CONTACTS_KICKS(DEM_NORMAL_##TAG)                                           \

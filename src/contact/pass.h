@@ -88,6 +88,8 @@ struct contacts {
                   and its particles that wait for the barrier,
                   [wait[4t], wait[4t + 1]) and [wait[4t + 2], wait[4t + 3])
                   (dem_pairs_row_block) */
+    int *done; /* the ring pass: thread t's pairs done, in
+                  done[DEM_RING_DONE * t] (a cache line each) */
 };
 
 /* One force pass: forces and history of every pair and wall contact,

@@ -140,10 +140,16 @@ struct dem_pairs {
     size_t ring_cap;                /* entries allocated in ring */
     int *ring_wait;   /* 4 per thread: the ring pass's block and waiting
                          particles (dem_pairs_row_block) */
+    int *ring_done;   /* DEM_RING_DONE per thread, 64-byte aligned: in
+                         the first, the pairs a ring pass's thread has
+                         done (contact/pass.c) */
     int ring_threads; /* threads ring_wait has room for */
     int ring_chunk;   /* the ring pass's pairs per chunk, a power of two;
                          0: DEM_RING_CHUNK (the tests set fewer) */
 };
+
+/* ints per thread in struct dem_pairs.ring_done: one cache line */
+#define DEM_RING_DONE 16
 
 /* Doubles per particle record (struct dem_pairs.rec). */
 #define DEM_REC 12
@@ -204,19 +210,23 @@ static inline int dem_first_at_least(const int *a, int n, int k)
 }
 
 /* Block t of nt of the rows of particles 0 <= i < n, of about equal
- * pairs and cut at a multiple of g: [w[0], w[3]); and its particles that
+ * work (pairs and particles) and cut at a multiple of g: [w[0], w[3]);
+ * and its particles that
  * have a pair as j in an earlier block: those in [w[0], w[1]) and in
  * [w[2], w[3]), each range cut at a multiple of g too (the last block
  * ends at n). Every other particle of the block has all its pairs, as i
  * and as j, in the block's rows. For the ring pass (contact/pass.c),
- * whose threads finish a particle as soon as its pairs are done and leave
- * these for after a barrier. *kt: the block's first pair with j itself
- * (not an image) that such a waiting particle reads, of this block's
- * second range or of a later block (start[w[3]] if none): every pair of
- * the block from start[w[1]] up to it joins two particles of
- * [w[1], w[2]), or is through an image. */
+ * whose threads finish a particle as soon as its pairs are done: the
+ * first range waits for a barrier (it needs the earlier block's last
+ * pairs); the second, a periodic cell's last particles, needs only
+ * pairs through an image of the earlier blocks, all below *kw (0 if
+ * none), which their threads compute first. *kt: the block's first pair
+ * with j itself (not an image) that a first range of a later block
+ * reads (start[w[3]] if none): every pair of the block from start[w[1]]
+ * up to it joins two particles of [w[1], w[3]), or is through an
+ * image. */
 void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,
-                         int g, int w[4], int *kt);
+                         int g, int w[4], int *kt, int *kw);
 
 /* Reference: all pairs with gap below skin plus, with reach (else NULL),
  * the sum of the two reaches, by brute force O(N^2); for tests. Fills pi/pj
