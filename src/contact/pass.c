@@ -315,7 +315,9 @@ DEM_INLINE void records_fill(double *restrict rec,
  * shifted to the image, so that the pair loop reads a record as for any
  * other pair (a shift decoded and applied in every lane took 6 % of the
  * pass, docs/performance.md). They are filled every pass from j's
- * records, which must hold the present state. */
+ * records, which must hold the present state, the shift taken from the
+ * pass's table (decoded here, its integer to double conversions took
+ * most of the copy's time, docs/performance.md). */
 DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
 {
     const struct dem_pairs *pl = c->pl;
@@ -326,8 +328,8 @@ DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
         const double *s = c->rec + DEM_REC * (size_t)c->q.cj[k];
         double *o = c->rec + DEM_REC * (size_t)c->q.cjr[k];
         /* x y z r plus the shift and 0 */
-        _mm256_store_pd(o, _mm256_add_pd(_mm256_load_pd(s),
-                                         _mm256_load_pd(c->shift[c->q.img[k]])));
+        const __m256d S = _mm256_load_pd(c->shift[c->q.img[k]]);
+        _mm256_store_pd(o, _mm256_add_pd(_mm256_load_pd(s), S));
         _mm256_store_pd(o + 4, _mm256_load_pd(s + 4));
         _mm256_store_pd(o + 8, _mm256_load_pd(s + 8));
     }
@@ -806,19 +808,23 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
  * so such a particle's pairs as j lie in rows before its own: all of
  * them are done, within the ring's reach, and no pair still to come reads
  * its record. Only the particles with a pair as j in another thread's
- * rows (dem_pairs_row_block) must wait for the barrier, after which the
- * threads share all blocks' waiting particles equally; the chunks holding
- * their pairs (below start[d], or from kt on: the block's first pair
- * with a j beyond it or of a particle of the second waiting range) are
- * copied to the list's force array too, which they read from. In a periodic
- * cell every pair through an image is copied there as well, and read from there
- * (particle_range: they are left out of the reach, so a ring is as small as
- * between walls, docs/performance.md); the cell's stress sums them after the
- * pass (contact/forces.c). The blocks and the waiting ranges are cut at
- * multiples of DEM_VIR_BLOCK, so each virial block is summed by one thread in
- * particle order (virial_block). The forces never leave the cache otherwise.
- * Each sum runs over the same values in the same order as in the stored pass:
- * the same bits. */
+ * rows (dem_pairs_row_block) must wait. Those of the first range wait
+ * for the barrier, after which the threads share all blocks' first
+ * ranges equally; the chunks holding their pairs (below start[d], or
+ * from kt on: the block's first pair with a j beyond it) are copied to
+ * the list's force array too, which they read from. In a periodic cell
+ * every pair through an image is copied there as well after its chunk,
+ * and read from there (particle_range: they are left out of the reach,
+ * so a ring is as small as between walls, docs/performance.md); the
+ * cell's stress sums them after the pass (contact/forces.c). So the
+ * second range (the last layer, with pairs through the z faces in the
+ * earlier blocks' first rows) waits only until every earlier thread has
+ * published (c->done, after each chunk) that it is past those pairs
+ * (below kw), and is finished in stream. The blocks and the waiting
+ * ranges are cut at multiples of DEM_VIR_BLOCK, so each virial block is
+ * summed by one thread in particle order (virial_block). The forces never
+ * leave the cache otherwise. Each sum runs over the same values in the
+ * same order as in the stored pass: the same bits. */
 DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                            const struct kick K, int t, int nt)
 {
