@@ -391,8 +391,7 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
  * thread of a power of two entries, at least the list's reach plus a
  * chunk of the given size; their size less 1 in *mask; and the threads'
  * waiting ranges and progress (pl->ring_wait, ring_done). NULL if out of
- * memory (the pass then
- * stores every force in the list's array). */
+ * memory (the pass then stores every force in the list's array). */
 static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
                                        int *mask)
 {

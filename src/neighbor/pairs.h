@@ -211,20 +211,19 @@ static inline int dem_first_at_least(const int *a, int n, int k)
 
 /* Block t of nt of the rows of particles 0 <= i < n, of about equal
  * work (pairs and particles) and cut at a multiple of g: [w[0], w[3]);
- * and its particles that
- * have a pair as j in an earlier block: those in [w[0], w[1]) and in
- * [w[2], w[3]), each range cut at a multiple of g too (the last block
- * ends at n). Every other particle of the block has all its pairs, as i
- * and as j, in the block's rows. For the ring pass (contact/pass.c),
- * whose threads finish a particle as soon as its pairs are done: the
- * first range waits for a barrier (it needs the earlier block's last
- * pairs); the second, a periodic cell's last particles, needs only
- * pairs through an image of the earlier blocks, all below *kw (0 if
- * none), which their threads compute first. *kt: the block's first pair
- * with j itself (not an image) that a first range of a later block
- * reads (start[w[3]] if none): every pair of the block from start[w[1]]
- * up to it joins two particles of [w[1], w[3]), or is through an
- * image. */
+ * and its particles that have a pair as j in an earlier block: those in
+ * [w[0], w[1]) and in [w[2], w[3]), each range cut at a multiple of g
+ * too (the last block ends at n). Every other particle of the block has
+ * all its pairs, as i and as j, in the block's rows. For the ring pass
+ * (contact/pass.c), whose threads finish a particle as soon as its pairs
+ * are done: the first range waits for a barrier (it needs the earlier
+ * block's last pairs); the second, a periodic cell's last particles,
+ * needs only pairs through an image of the earlier blocks, all below
+ * *kw (0 if none), which their threads compute first. *kt: the block's
+ * first pair with j itself (not an image) that a first range of a later
+ * block reads (start[w[3]] if none): every pair of the block from
+ * start[w[1]] up to it joins two particles of [w[1], w[3]), or is
+ * through an image. */
 void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,
                          int g, int w[4], int *kt, int *kw);
 
