@@ -87,7 +87,8 @@ struct contacts {
     int *wait; /* the ring pass: thread t's block [wait[4t], wait[4t + 3])
                   and its particles that wait for the barrier,
                   [wait[4t], wait[4t + 1]) and [wait[4t + 2], wait[4t + 3])
-                  (dem_pairs_row_block) */
+                  (dem_pairs_row_block); the thread empties the second
+                  range at its start, as it finishes it in stream */
     int *done; /* the ring pass: thread t's pairs done, in
                   done[DEM_RING_DONE * t] (a cache line each) */
 };
