@@ -73,9 +73,10 @@ static void check_list(const struct dem_sim *s)
 
 /* The reverse rows (each particle's pairs as j: those with j itself,
  * then those through an image of j, each part in list order), the reach
- * taken over the first part, and the ring pass's blocks
- * (dem_pairs_row_block): for one to four threads and blocks cut at
- * multiples of g, the blocks tile the particles, a particle outside
+ * taken from the first part to the end of each particle's group's rows,
+ * and the ring pass's blocks (dem_pairs_row_block): for one to four
+ * threads and blocks cut at multiples of g, the blocks tile the
+ * particles, a particle outside
  * the waiting ranges has every pair as j in its own block's rows, one of
  * the second range has those of earlier blocks below kw, all through an
  * image, and the pairs the ring need not copy (from the first range's
@@ -97,10 +98,14 @@ static void check_rows(const struct dem_sim *s)
             if (q > pl->rstart[j] && q != pl->rimg[j])
                 assert_true(k > pl->rpair[q - 1]);
         }
-        if (pl->rstart[j] < pl->rimg[j]) {
-            const int span = L->start[j + 1] - pl->rpair[pl->rstart[j]];
-            reach = span > reach ? span : reach;
-        }
+        /* from the first pair as j with j itself (or its own row's
+         * start) to the end of its group's rows */
+        const int first = pl->rstart[j] < pl->rimg[j]
+                              ? pl->rpair[pl->rstart[j]]
+                              : L->start[j];
+        const int ge = (j / DEM_RING_GROUP + 1) * DEM_RING_GROUP;
+        const int span = L->start[ge < n ? ge : n] - first;
+        reach = span > reach ? span : reach;
     }
     assert_int_equal(pl->reach, reach);
     const int gs[3] = {1, 8, 64};

@@ -61,6 +61,11 @@
 
 /* particles summed before their kicks and drifts run (particle_range) */
 #define DEM_KICK_BLOCK 32
+/* the ring pass's groups are whole blocks, and whole groups make up a
+ * cell's virial block (virial_block) */
+_Static_assert(DEM_RING_GROUP % DEM_KICK_BLOCK == 0 &&
+                   DEM_VIR_BLOCK % DEM_RING_GROUP == 0,
+               "the ring's groups: whole kick blocks, within a virial block");
 
 /* the name of this compilation's entry point (contact/pass_loads.c
  * compiles this file again under another) */
@@ -888,10 +893,14 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                 }
             kw = 0;
         }
-        if (e > p) {
-            moved |= particle_range(law, p, e, c->P, pl, ring, k0, mask, c->gb,
+        /* finished in whole groups (but the last), so that the kicks and
+         * a cell's virial run in full blocks (the list's reach counts
+         * the wait) */
+        const int f = e < i1 ? e / DEM_RING_GROUP * DEM_RING_GROUP : i1;
+        if (f > p) {
+            moved |= particle_range(law, p, f, c->P, pl, ring, k0, mask, c->gb,
                                     c->gr, K, &V, &c->fr, c->rec);
-            p = e;
+            p = f;
         }
         if (ke == k1)
             break;

@@ -608,12 +608,14 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
     /* the reach: every row holds j > i, so a particle's pairs as j with j
      * itself lie in rows before its own and the first of them opens its
      * span (those through an image the ring pass reads from the list's
-     * array) */
+     * array); the span ends where the ring pass finishes the particle,
+     * after the rows of its group */
     const int *start = L->start;
     int reach = 0;
     for (int i = 0; i < n; i++) {
         const int first = rs[i] < ri[i] ? pl->rpair[rs[i]] : start[i];
-        const int span = start[i + 1] - first;
+        const int ge = (i / DEM_RING_GROUP + 1) * DEM_RING_GROUP;
+        const int span = start[ge < n ? ge : n] - first;
         reach = span > reach ? span : reach;
     }
     pl->reach = reach;

@@ -88,8 +88,9 @@ struct dem_pairs {
     int *rimg;  /* n_particles + 1: see rpair */
     int rpair_cap;
     int reach;  /* the largest span of pairs from a particle's first pair
-                   as j (with j itself, not an image) to the end of its
-                   row (the ring pass's window, contact/pass.c) */
+                   as j (with j itself, not an image) to the end of the
+                   rows of its group of DEM_RING_GROUP (the ring pass's
+                   window, contact/pass.c) */
     int *cross; /* periodic cell: the pairs with an image of j other
                    than j itself, grouped by the image, each group in
                    list order: image g's are cross[cross_start[g] ..
@@ -150,6 +151,12 @@ struct dem_pairs {
 
 /* ints per thread in struct dem_pairs.ring_done: one cache line */
 #define DEM_RING_DONE 16
+
+/* The ring pass finishes particles in whole groups of this many, from a
+ * multiple of it (but at the start and end of a thread's particles), so
+ * that its kicks and a cell's virial run in full SIMD blocks; a
+ * particle's span in the list's reach ends with its group's rows. */
+#define DEM_RING_GROUP 32
 
 /* Doubles per particle record (struct dem_pairs.rec). */
 #define DEM_REC 12
