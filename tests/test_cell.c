@@ -73,7 +73,8 @@ static void check_list(const struct dem_sim *s)
 
 /* The reverse rows (each particle's pairs as j: those with j itself,
  * then those through an image of j, each part in list order), the reach
- * taken from the first part to the end of each particle's group's rows,
+ * taken from the first part to the end of each particle's group's rows
+ * (DEM_RING_GROUP in a cell),
  * and the ring pass's blocks (dem_pairs_row_block): for one to four
  * threads and blocks cut at multiples of g, the blocks tile the
  * particles, a particle outside
@@ -103,7 +104,8 @@ static void check_rows(const struct dem_sim *s)
         const int first = pl->rstart[j] < pl->rimg[j]
                               ? pl->rpair[pl->rstart[j]]
                               : L->start[j];
-        const int ge = (j / DEM_RING_GROUP + 1) * DEM_RING_GROUP;
+        const int G = pl->periodic ? DEM_RING_GROUP : 1,
+                  ge = (j / G + 1) * G;
         const int span = L->start[ge < n ? ge : n] - first;
         reach = span > reach ? span : reach;
     }

@@ -61,8 +61,8 @@
 
 /* particles summed before their kicks and drifts run (particle_range) */
 #define DEM_KICK_BLOCK 32
-/* the ring pass's groups are whole blocks, and whole groups make up a
- * cell's virial block (virial_block) */
+/* the ring pass's groups in a cell are whole blocks, and whole groups
+ * make up a virial block (virial_block) */
 _Static_assert(DEM_RING_GROUP % DEM_KICK_BLOCK == 0 &&
                    DEM_VIR_BLOCK % DEM_RING_GROUP == 0,
                "the ring's groups: whole kick blocks, within a virial block");
@@ -893,10 +893,9 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                 }
             kw = 0;
         }
-        /* finished in whole groups (but the last), so that the kicks and
-         * a cell's virial run in full blocks (the list's reach counts
-         * the wait) */
-        const int f = e < i1 ? e / DEM_RING_GROUP * DEM_RING_GROUP : i1;
+        /* in a cell finished in whole groups (but the last), so that the
+         * virial runs in full blocks (the list's reach counts the wait) */
+        const int f = cell && e < i1 ? e / DEM_RING_GROUP * DEM_RING_GROUP : e;
         if (f > p) {
             moved |= particle_range(law, p, f, c->P, pl, ring, k0, mask, c->gb,
                                     c->gr, K, &V, &c->fr, c->rec);

@@ -610,11 +610,11 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
      * span (those through an image the ring pass reads from the list's
      * array); the span ends where the ring pass finishes the particle,
      * after the rows of its group */
-    const int *start = L->start;
+    const int *start = L->start, G = cell ? DEM_RING_GROUP : 1;
     int reach = 0;
     for (int i = 0; i < n; i++) {
         const int first = rs[i] < ri[i] ? pl->rpair[rs[i]] : start[i];
-        const int ge = (i / DEM_RING_GROUP + 1) * DEM_RING_GROUP;
+        const int ge = (i / G + 1) * G;
         const int span = start[ge < n ? ge : n] - first;
         reach = span > reach ? span : reach;
     }

@@ -89,8 +89,8 @@ struct dem_pairs {
     int rpair_cap;
     int reach;  /* the largest span of pairs from a particle's first pair
                    as j (with j itself, not an image) to the end of the
-                   rows of its group of DEM_RING_GROUP (the ring pass's
-                   window, contact/pass.c) */
+                   rows of its group (DEM_RING_GROUP in a cell; the ring
+                   pass's window, contact/pass.c) */
     int *cross; /* periodic cell: the pairs with an image of j other
                    than j itself, grouped by the image, each group in
                    list order: image g's are cross[cross_start[g] ..
@@ -152,10 +152,13 @@ struct dem_pairs {
 /* ints per thread in struct dem_pairs.ring_done: one cache line */
 #define DEM_RING_DONE 16
 
-/* The ring pass finishes particles in whole groups of this many, from a
- * multiple of it (but at the start and end of a thread's particles), so
- * that its kicks and a cell's virial run in full SIMD blocks; a
- * particle's span in the list's reach ends with its group's rows. */
+/* In a periodic cell the ring pass finishes particles in whole groups of
+ * this many, from a multiple of it (but at the end of a thread's
+ * particles), so that the cell's virial runs in full SIMD blocks; a
+ * particle's span in the list's reach ends with its group's rows. Between
+ * walls the groups are single particles: there groups of 32 made the ring
+ * pass 2-5 % slower at N = 3375 and 1-3 % faster at N = 216000 on Zen 4
+ * (docs/performance.md). */
 #define DEM_RING_GROUP 32
 
 /* Doubles per particle record (struct dem_pairs.rec). */
