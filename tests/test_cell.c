@@ -74,11 +74,10 @@ static void check_list(const struct dem_sim *s)
 /* The reverse rows (each particle's pairs as j: those with j itself,
  * then those through an image of j, each part in list order), the reach
  * taken from the first part to the end of each particle's group's rows
- * (DEM_RING_GROUP in a cell),
- * and the ring pass's blocks (dem_pairs_row_block): for one to four
- * threads and blocks cut at multiples of g, the blocks tile the
- * particles, a particle outside
- * the waiting ranges has every pair as j in its own block's rows, one of
+ * (DEM_RING_GROUP in a cell), and the ring pass's blocks
+ * (dem_pairs_row_block): for one to four threads and blocks cut at
+ * multiples of g, the blocks tile the particles, a particle outside the
+ * waiting ranges has every pair as j in its own block's rows, one of
  * the second range has those of earlier blocks below kw, all through an
  * image, and the pairs the ring need not copy (from the first range's
  * end to kt) join two particles outside the first ranges. */
