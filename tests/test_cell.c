@@ -103,8 +103,7 @@ static void check_rows(const struct dem_sim *s)
         const int first = pl->rstart[j] < pl->rimg[j]
                               ? pl->rpair[pl->rstart[j]]
                               : L->start[j];
-        const int G = pl->periodic ? DEM_RING_GROUP : 1,
-                  ge = (j / G + 1) * G;
+        const int G = dem_ring_group(pl->periodic), ge = (j / G + 1) * G;
         const int span = L->start[ge < n ? ge : n] - first;
         reach = span > reach ? span : reach;
     }

@@ -321,8 +321,8 @@ DEM_INLINE void records_fill(double *restrict rec,
  * other pair (a shift decoded and applied in every lane took 6 % of the
  * pass, docs/performance.md). They are filled every pass from j's
  * records, which must hold the present state, the shift taken from the
- * pass's table (decoded here, its integer to double conversions took
- * most of the copy's time, docs/performance.md). */
+ * pass's table (decoding it here took most of the copy's time, in its
+ * integer to double conversions, docs/performance.md). */
 DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
 {
     const struct dem_pairs *pl = c->pl;
@@ -895,7 +895,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         }
         /* in a cell finished in whole groups (but the last), so that the
          * virial runs in full blocks (the list's reach counts the wait) */
-        const int f = cell && e < i1 ? e / DEM_RING_GROUP * DEM_RING_GROUP : e;
+        const int G = dem_ring_group(cell), f = e < i1 ? e / G * G : e;
         if (f > p) {
             moved |= particle_range(law, p, f, c->P, pl, ring, k0, mask, c->gb,
                                     c->gr, K, &V, &c->fr, c->rec);

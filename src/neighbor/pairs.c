@@ -610,7 +610,7 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
      * span (those through an image the ring pass reads from the list's
      * array); the span ends where the ring pass finishes the particle,
      * after the rows of its group */
-    const int *start = L->start, G = cell ? DEM_RING_GROUP : 1;
+    const int *start = L->start, G = dem_ring_group(cell);
     int reach = 0;
     for (int i = 0; i < n; i++) {
         const int first = rs[i] < ri[i] ? pl->rpair[rs[i]] : start[i];

@@ -160,6 +160,10 @@ struct dem_pairs {
  * pass 2-5 % slower at N = 3375 and 1-3 % faster at N = 216000 on Zen 4
  * (docs/performance.md). */
 #define DEM_RING_GROUP 32
+static inline int dem_ring_group(int periodic)
+{
+    return periodic ? DEM_RING_GROUP : 1;
+}
 
 /* Doubles per particle record (struct dem_pairs.rec). */
 #define DEM_REC 12
