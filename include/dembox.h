@@ -98,7 +98,7 @@ enum dem_mass_model {
  * DEM_NORMAL_LINEAR (David et al. Eq. 1), DEM_NORMAL_LUDING (Luding et al. Fig. 2,
  * hysteretic adhesive). */
 enum dem_normal_law {
-#define DEM_NORMAL_ENUM_(TAG, name, lanes) DEM_NORMAL_##TAG,
+#define DEM_NORMAL_ENUM_(TAG, name) DEM_NORMAL_##TAG,
     DEM_NORMAL_MODELS(DEM_NORMAL_ENUM_)
 #undef DEM_NORMAL_ENUM_
         DEM_NORMAL_NMODELS

@@ -22,15 +22,16 @@
 #ifndef DEMBOX_MODELS_H
 #define DEMBOX_MODELS_H
 
-/* Normal models: X(TAG, name, lanes). The enum value is DEM_NORMAL_TAG,
- * the config value contact.normal = "name", the kernels are
- * dem_normal_name_* in src/contact/model_name.h. lanes: SIMD when the
- * kernel has no branch that SIMD lanes would all have to take (the pair
- * loop then runs vectorised), else SCALAR. */
+/* Normal models: X(TAG, name). The enum value is DEM_NORMAL_TAG, the
+ * config value contact.normal = "name", the kernels are dem_model_name_*
+ * in src/contact/model_name.h. The force pass runs every kernel in SIMD
+ * lanes: a kernel's branches become selections, each lane computing
+ * both sides (the luding law's three branches included; as scalar code
+ * with branches it took 1.4-1.8x longer, docs/performance.md). */
 #define DEM_NORMAL_MODELS(X)                                                   \
-    X(LINEAR, linear, SIMD)                                                    \
-    X(LUDING, luding, SCALAR)                                                  \
-    X(HERTZ, hertz, SIMD)
+    X(LINEAR, linear)                                                          \
+    X(LUDING, luding)                                                          \
+    X(HERTZ, hertz)
 
 /* Resistances a contact can add to the normal and tangential laws, each
  * switched by its own key, contact.name = "none" (the default) or

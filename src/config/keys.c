@@ -20,7 +20,7 @@ static const char *const dist_names[] = {"mono", "uniform", "gaussian", 0};
 static const char *const place_names[] = {"lattice", "random", "file", 0};
 static const char *const mass_names[] = {"sphere", "disc", 0};
 static const char *const law_names[] = {
-#define LAW_NAME_(TAG, name, lanes) #name,
+#define LAW_NAME_(TAG, name) #name,
     DEM_NORMAL_MODELS(LAW_NAME_)
 #undef LAW_NAME_
         0};

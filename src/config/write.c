@@ -95,7 +95,7 @@ static void write_line(FILE *f, int depth, const char *lhs, const char *rhs,
 static const char *omitted(const struct key *k, const struct dem_config *c)
 {
     static const char *const unused[] = {
-#define UNUSED_NOTE_(TAG, name, lanes) "not used by the " #name " law",
+#define UNUSED_NOTE_(TAG, name) "not used by the " #name " law",
         DEM_NORMAL_MODELS(UNUSED_NOTE_)
 #undef UNUSED_NOTE_
     };

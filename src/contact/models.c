@@ -9,7 +9,7 @@
 
 const char *dem_normal_name(int law)
 {
-#define DEM_NAME_(TAG, name, lanes)                                            \
+#define DEM_NAME_(TAG, name)                                                   \
     if (law == DEM_NORMAL_##TAG)                                               \
         return #name;
     DEM_NORMAL_MODELS(DEM_NAME_)
@@ -55,7 +55,7 @@ const char *dem_resistance_name(int owner)
 
 void dem_contact_derive(struct dem_contact_params *c)
 {
-#define DEM_DERIVE_(TAG, name, lanes)                                          \
+#define DEM_DERIVE_(TAG, name)                                                 \
     if (c->normal == DEM_NORMAL_##TAG)                                         \
         dem_model_##name##_derive(c);
     DEM_NORMAL_MODELS(DEM_DERIVE_)
@@ -66,7 +66,7 @@ double dem_contact_stiffness(const struct dem_contact_params *c, double m12,
                              double a12)
 {
     double k = 0.0;
-#define DEM_STIFF_(TAG, name, lanes)                                           \
+#define DEM_STIFF_(TAG, name)                                                  \
     if (c->normal == DEM_NORMAL_##TAG)                                         \
         k = dem_model_##name##_stiffness(c, m12, a12);
     DEM_NORMAL_MODELS(DEM_STIFF_)
@@ -157,7 +157,7 @@ const char *dem_contact_check(const struct dem_config *c, int *stage, char *msg,
                  "normals in the plane): leave it \"none\"");
         return "contact.torsion";
     }
-#define DEM_CHECK_(TAG, name, lanes)                                           \
+#define DEM_CHECK_(TAG, name)                                                  \
     if (cp->normal == DEM_NORMAL_##TAG)                                        \
         return dem_model_##name##_check(cp, msg, n);
     DEM_NORMAL_MODELS(DEM_CHECK_)

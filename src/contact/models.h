@@ -38,7 +38,7 @@ enum {
  * a spring constant and a viscosity); ANY = 0: every model. */
 enum {
     DEM_OWNER_ANY = 0,
-#define DEM_OWNER_NORMAL_(TAG, name, lanes)                                    \
+#define DEM_OWNER_NORMAL_(TAG, name)                                           \
     DEM_OWNER_##TAG = 1 << DEM_NORMAL_##TAG,
     DEM_NORMAL_MODELS(DEM_OWNER_NORMAL_)
 #undef DEM_OWNER_NORMAL_
@@ -110,22 +110,6 @@ static inline unsigned dem_contact_history_mask(int set)
 /* Whether the model set has a resistance (torques besides n x f_t). */
 #define DEM_SET_TORQUES(set) (((set) & DEM_SET_RESISTS) != 0)
 
-/* lanes column: whether the pair loop of a law runs in SIMD lanes */
-#define DEM_LANES_SIMD 1
-#define DEM_LANES_SCALAR 0
-
-/* Whether law's contacts are computed in SIMD lanes. */
-DEM_INLINE int dem_normal_simd(int law)
-{
-    law &= DEM_SET_NORMAL; /* law may be a model set */
-#define DEM_SIMD_(TAG, name, lanes)                                            \
-    if (law == DEM_NORMAL_##TAG)                                               \
-        return DEM_LANES_##lanes;
-    DEM_NORMAL_MODELS(DEM_SIMD_)
-#undef DEM_SIMD_
-    return 0;
-}
-
 /* Normal force of law (see contact/model_linear.h for the arguments). */
 DEM_INLINE double dem_normal_force(int law, const struct dem_contact_params *c,
                                    double delta, double ddot, double a12,
@@ -133,7 +117,7 @@ DEM_INLINE double dem_normal_force(int law, const struct dem_contact_params *c,
                                    double *fc)
 {
     law &= DEM_SET_NORMAL; /* law may be a model set */
-#define DEM_FORCE_(TAG, name, lanes)                                           \
+#define DEM_FORCE_(TAG, name)                                                  \
     if (law == DEM_NORMAL_##TAG)                                               \
         return dem_model_##name##_force(c, delta, ddot, a12, m12, h, fc);
     DEM_NORMAL_MODELS(DEM_FORCE_)
@@ -149,7 +133,7 @@ DEM_INLINE void dem_normal_shear(int law, const struct dem_contact_params *c,
                                  struct dem_tangential *T)
 {
     law &= DEM_SET_NORMAL;
-#define DEM_SHEAR_(TAG, name, lanes)                                           \
+#define DEM_SHEAR_(TAG, name)                                                  \
     if (law == DEM_NORMAL_##TAG)                                               \
         dem_model_##name##_shear(c, delta, a12, m12, T);
     DEM_NORMAL_MODELS(DEM_SHEAR_)
@@ -162,7 +146,7 @@ static inline double dem_normal_energy(int law,
                                        double delta, double a12,
                                        const struct dem_history *h)
 {
-#define DEM_ENERGY_(TAG, name, lanes)                                          \
+#define DEM_ENERGY_(TAG, name)                                                 \
     if (law == DEM_NORMAL_##TAG)                                               \
         return dem_model_##name##_energy(c, delta, a12, h);
     DEM_NORMAL_MODELS(DEM_ENERGY_)

@@ -160,23 +160,6 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     o->pad[0] = o->pad[1] = 0.0;
 }
 
-/* Contact k is open: no force, no torque, no history. */
-DEM_INLINE void open_contact(const int law, const struct pass *q, int k)
-{
-#define HIST_ZERO_(MODEL, name, unit, swap, doc)                               \
-    if (DEM_MODEL_USES(law, MODEL))                                            \
-        q->name[k] = 0.0;
-    DEM_CONTACT_HISTORY(HIST_ZERO_)
-#undef HIST_ZERO_
-    q->state[k] = 0;
-    struct dem_contact_force *o = &q->F[k - q->foff];
-    o->f[0] = o->f[1] = o->f[2] = 0.0;
-    o->c[0] = o->c[1] = o->c[2] = 0.0;
-    o->pad[0] = o->pad[1] = 0.0;
-    if (DEM_SET_TORQUES(law))
-        q->M[3 * k] = q->M[3 * k + 1] = q->M[3 * k + 2] = 0.0;
-}
-
 /* What a pair reads of each of its particles. */
 struct pv {
     double x, y, z, r, vx, vy, vz, m, wx, wy, wz;
@@ -194,13 +177,11 @@ DEM_INLINE struct pv load_pv(const struct pass *q, int i)
 /* Force and history update of pair k between particles with values pi and
  * pj (in a periodic cell their positions in the frame of the last build,
  * j's image's x_j + h_b n, so that b = fm (x_i - x_j') below: fm the
- * frame's map, core/cell.h). With scalar = 0 (SIMD lanes) there is no
- * branch: the pair computes the closed-contact force, and if its gap is
- * open it gets a zero force and loses its history instead; scalar code
- * (scalar = 1) skips an open pair at once. */
-DEM_INLINE void pair_vals(const int law, const int scalar,
-                          const struct pass *qp, int k, const struct pv pi,
-                          const struct pv pj,
+ * frame's map, core/cell.h). There is no branch (SIMD lanes): the pair
+ * computes the closed-contact force, and if its gap is open it gets a
+ * zero force and loses its history instead. */
+DEM_INLINE void pair_vals(const int law, const struct pass *qp, int k,
+                          const struct pv pi, const struct pv pj,
                           const struct dem_contact_params *cp, double dt,
                           const struct dem_tangential *T, const double *grad,
                           const double *fm)
@@ -217,10 +198,6 @@ DEM_INLINE void pair_vals(const int law, const int scalar,
     const double d2 = dx * dx + dy * dy + dz * dz;
     const double ai = pi.r, aj = pj.r, R = ai + aj;
     const int touch = d2 < R * R;
-    if (scalar && !touch) {
-        open_contact(law, &q, k);
-        return;
-    }
     const double d = sqrt(d2);
     const double id = 1.0 / d;
     const struct dem_vec3 n = {dx * id, dy * id, dz * id};
@@ -251,8 +228,8 @@ DEM_INLINE void pair_vals(const int law, const int scalar,
 }
 
 /* Pair k, its particles' values read from the arrays. */
-DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
-                         int k, const struct dem_contact_params *cp, double dt,
+DEM_INLINE void pair_one(const int law, const struct pass *qp, int k,
+                         const struct dem_contact_params *cp, double dt,
                          const struct dem_tangential *T, const double *cv,
                          const double *grad, const double *fm)
 {
@@ -265,8 +242,7 @@ DEM_INLINE void pair_one(const int law, const int scalar, const struct pass *qp,
         pj.y += S[1];
         pj.z += S[2];
     }
-    pair_vals(law, scalar, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T,
-              grad, fm);
+    pair_vals(law, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T, grad, fm);
 }
 
 #if DEM_PASS_RECORDS
@@ -367,10 +343,7 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx, double (*o)[8])
 #endif
 
 /* Forces and history updates of pairs k0 <= k < k1 (the thread's pairs
- * go on to kend), in SIMD lanes or as
- * scalar code as the law's lanes column says (the luding law's branches
- * (loading, un-/re-loading, adhesive re-mapping with a square root) all
- * computed in every lane made it slower than scalar code with branches). */
+ * go on to kend), in SIMD lanes. */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                            int kend, const struct dem_contact_params *cp,
                            double dt, const double *cv, const double *grad,
@@ -382,45 +355,38 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     const double mv[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
     grad = gv;
     fm = mv;
-    if (!dem_normal_simd(law)) {
-        for (int k = k0; k < k1; k++)
-            pair_one(law, 1, &q, k, cp, dt, &T, cv, grad, fm);
-    } else {
-        int k = k0;
-        (void)rec;
-        (void)kend;
+    int k = k0;
+    (void)rec;
+    (void)kend;
 #if DEM_PASS_RECORDS
-        for (; k + 8 <= k1; k += 8) {
-            _Alignas(32) double A[DEM_REC][8], B[DEM_REC][8];
-            /* the j records of the pairs DEM_PREFETCH_PAIRS ahead (up
-             * to kend), both cache lines of each (the i records run in
-             * order) */
-            if (k + DEM_PREFETCH_PAIRS + 8 <= kend)
-                for (int l = 0; l < 8; l++) {
-                    const double *r =
-                        rec +
-                        DEM_REC * (size_t)q.cjr[k + DEM_PREFETCH_PAIRS + l];
-                    __builtin_prefetch(r, 0, 3);
-                    __builtin_prefetch(r + 8, 0, 3);
-                }
-            records_lanes(rec, q.ci + k, A);
-            records_lanes(rec, q.cjr + k, B);
-#pragma omp simd
+    for (; k + 8 <= k1; k += 8) {
+        _Alignas(32) double A[DEM_REC][8], B[DEM_REC][8];
+        /* the j records of the pairs DEM_PREFETCH_PAIRS ahead (up to
+         * kend), both cache lines of each (the i records run in order) */
+        if (k + DEM_PREFETCH_PAIRS + 8 <= kend)
             for (int l = 0; l < 8; l++) {
-                const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
-                                      A[4][l], A[5][l], A[6][l], A[7][l],
-                                      A[8][l], A[9][l], A[10][l]};
-                const struct pv pj = {B[0][l], B[1][l], B[2][l], B[3][l],
-                                      B[4][l], B[5][l], B[6][l], B[7][l],
-                                      B[8][l], B[9][l], B[10][l]};
-                pair_vals(law, 0, &q, k + l, pi, pj, cp, dt, &T, grad, fm);
+                const double *r =
+                    rec + DEM_REC * (size_t)q.cjr[k + DEM_PREFETCH_PAIRS + l];
+                __builtin_prefetch(r, 0, 3);
+                __builtin_prefetch(r + 8, 0, 3);
             }
+        records_lanes(rec, q.ci + k, A);
+        records_lanes(rec, q.cjr + k, B);
+#pragma omp simd
+        for (int l = 0; l < 8; l++) {
+            const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
+                                  A[4][l], A[5][l], A[6][l], A[7][l],
+                                  A[8][l], A[9][l], A[10][l]};
+            const struct pv pj = {B[0][l], B[1][l], B[2][l], B[3][l],
+                                  B[4][l], B[5][l], B[6][l], B[7][l],
+                                  B[8][l], B[9][l], B[10][l]};
+            pair_vals(law, &q, k + l, pi, pj, cp, dt, &T, grad, fm);
         }
+    }
 #endif
 #pragma omp simd
-        for (int kk = k; kk < k1; kk++)
-            pair_one(law, 0, &q, kk, cp, dt, &T, cv, grad, fm);
-    }
+    for (int kk = k; kk < k1; kk++)
+        pair_one(law, &q, kk, cp, dt, &T, cv, grad, fm);
 }
 
 /* Force and history update of wall contact k (no branch, as pair_one). */
@@ -463,20 +429,15 @@ DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
- * (dem_contact_wall_view), in SIMD lanes or not as pair_range. */
+ * (dem_contact_wall_view), in SIMD lanes as pair_range. */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
                            const struct dem_wall *walls)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
-    if (!dem_normal_simd(law)) {
-        for (int k = k0; k < k1; k++)
-            wall_one(law, &q, k, cp, dt, walls, &T);
-    } else {
 #pragma omp simd
-        for (int k = k0; k < k1; k++)
-            wall_one(law, &q, k, cp, dt, walls, &T);
-    }
+    for (int k = k0; k < k1; k++)
+        wall_one(law, &q, k, cp, dt, walls, &T);
 }
 
 #if defined(__GNUC__)
@@ -1009,7 +970,7 @@ int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
             c->done[DEM_RING_DONE * t] = 0;
 #endif
     switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0)) {
-#define CONTACTS_OF_(TAG, name, lanes)                                         \
+#define CONTACTS_OF_(TAG, name)                                                \
     CONTACTS_KICKS(DEM_NORMAL_##TAG)                                           \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING)                         \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_TORSION)                         \
