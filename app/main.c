@@ -2,6 +2,7 @@
  * libdembox; this file turns its status codes into exit statuses and
  * one-line messages on stderr. */
 #include <limits.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -337,11 +338,14 @@ static void print_timing(const struct dem_run_timing *T)
     fprintf(stderr,
             "dembox: %ld steps of %d particles in %.3g s, %.4g ns per "
             "particle-step: force pass %.1f %%, neighbour lists %.1f %% "
-            "(%ld builds, skin %.3g of its largest at the end), %s "
-            "%.1f %%, unchained kicks and drifts %.1f %%, ",
+            "(%ld builds, skin %.3g of its largest at the end",
             T->steps, T->particles, T->seconds,
             1e9 * T->seconds / ((double)T->steps * T->particles),
-            pc * P->force, pc * P->neighbor, T->builds, T->skin_share,
+            pc * P->force, pc * P->neighbor, T->builds, T->skin_share);
+    if (isfinite(T->pairs_per_particle))
+        fprintf(stderr, ", %.3g pairs per particle",
+                T->pairs_per_particle);
+    fprintf(stderr, "), %s %.1f %%, unchained kicks and drifts %.1f %%, ",
             T->periodic ? "cell" : "walls", pc * P->walls,
             pc * P->integrate);
     if (P->exchange > 0.0)

@@ -635,6 +635,8 @@ struct dem_run_timing {
     long builds;            /* neighbour-list builds in these steps */
     double skin_share;      /* the list's skin at the end over its largest
                                (the skin adapts, docs/physics.md) */
+    double pairs_per_particle; /* the list's pairs per particle at the
+                                  end (NAN in a run split over ranks) */
     char pass[96];          /* the force pass's compilations: which ran, or
                                the trials each won (dem_sim_pass_tally) */
     int periodic;           /* 1: a periodic cell, whose step.walls is the

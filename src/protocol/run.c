@@ -582,6 +582,9 @@ static void report_timing(const struct run_ctx *r)
     T->step = r->sim.timers;
     T->builds = r->sim.nbuild - r->nbuild0;
     T->skin_share = dem_sim_skin_share(&r->sim);
+    T->pairs_per_particle = r->nranks < 2 && r->sim.p.n > 0
+                                ? (double)r->sim.pairs.cur.n / r->sim.p.n
+                                : NAN;
     dem_sim_pass_tally(&r->sim, T->pass, sizeof T->pass);
     T->periodic = r->sim.cell.on;
 }
