@@ -51,13 +51,31 @@
 #include <immintrin.h>
 #endif
 
+/* Pairs per round of the records and ring passes' pair loop. gcc gives
+ * the loop as many lanes as its 32-bit state words (struct
+ * dem_pairs.state) fill in the widest vectors: 16 with AVX-512 (each
+ * double in two 512-bit halves), 8 with AVX. With AVX-512, 8 records at
+ * a time come into 512-bit rows (records_lanes), so that each half the
+ * loop loads is one store of the transposes: 16 lanes from the 256-bit
+ * transposes, whose halves two stores make, gained nothing
+ * (docs/performance.md, session 38). */
+#if defined(__AVX512F__)
+#define DEM_PAIR_LANES 16
+#else
+#define DEM_PAIR_LANES 8
+#endif
+
 /* How many pairs ahead the records pass asks for the partners' records
  * (pair_range): at large N they come from main memory or L3 in an order
  * the hardware prefetchers cannot follow (one cell layer ahead, through
- * the list's indices). Measured on Zen 4 (docs/performance.md, "Partners'
- * records fetched ahead"): N = 216000 13 % faster, 3375 and 20000 the
- * same; 8 pairs ahead gained half as much, 32 and 64 no more than 16. */
-#define DEM_PREFETCH_PAIRS 16
+ * the list's indices). Two rounds of the loop ahead: a round asks for
+ * the records of the round after next.
+ * Measured (docs/performance.md, "Partners' records fetched ahead" and
+ * session 38): with 8 lanes on Zen 4, N = 216000 13 % faster, 3375 and
+ * 20000 the same, 8 pairs ahead gained half as much, 32 and 64 no more
+ * than 16; with 16 lanes on Zen 5, the ring pass at N = 216000 8 %
+ * faster at 32 pairs ahead than at 16. */
+#define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
 /* particles summed before their kicks and drifts run (particle_range) */
 #define DEM_KICK_BLOCK 32
@@ -249,7 +267,7 @@ DEM_INLINE void pair_one(const int law, const struct pass *qp, int k,
 /* Particle records (struct contacts.rec, DEM_REC doubles): x y z r |
  * vx vy vz m | wx wy wz 0, 32-byte aligned, so that a pair's particle
  * loads three vectors and four pairs' values reach their SIMD lanes by
- * 4 x 4 transposes. */
+ * 4 x 4 transposes (eight by 8 x 4 ones with AVX-512). */
 
 /* Four values of four consecutive particles (rows a, b, c, d: one value
  * each) as the same block of their four records at o, 12 doubles apart. */
@@ -316,10 +334,37 @@ DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
     }
 }
 
-/* The records of particles idx[0..7] as 12 rows of 8 lanes. */
-DEM_INLINE void records_lanes(const double *rec, const int *idx, double (*o)[8])
+/* The records of particles idx[0..DEM_PAIR_LANES) as 12 rows of lanes. */
+DEM_INLINE void records_lanes(const double *rec, const int *idx,
+                              double (*o)[DEM_PAIR_LANES])
 {
-    for (int g = 0; g < 8; g += 4) {
+#if defined(__AVX512F__)
+    /* per 4 doubles of 8 records r0..r7: rows (r_l, r_l+4) paired in
+     * 512 bits, unpacked, then each output row's lanes picked in order */
+    const __m512i lo = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13),
+                  hi = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+    for (int g = 0; g < DEM_PAIR_LANES; g += 8) {
+        const double *r[8];
+        for (int l = 0; l < 8; l++)
+            r[l] = rec + DEM_REC * (size_t)idx[g + l];
+        for (int b = 0; b < DEM_REC; b += 4) {
+            __m512d z[4];
+            for (int l = 0; l < 4; l++)
+                z[l] = _mm512_insertf64x4(
+                    _mm512_castpd256_pd512(_mm256_load_pd(r[l] + b)),
+                    _mm256_load_pd(r[l + 4] + b), 1);
+            const __m512d t0 = _mm512_unpacklo_pd(z[0], z[1]),
+                          t1 = _mm512_unpackhi_pd(z[0], z[1]),
+                          t2 = _mm512_unpacklo_pd(z[2], z[3]),
+                          t3 = _mm512_unpackhi_pd(z[2], z[3]);
+            _mm512_store_pd(&o[b][g], _mm512_permutex2var_pd(t0, lo, t2));
+            _mm512_store_pd(&o[b + 1][g], _mm512_permutex2var_pd(t1, lo, t3));
+            _mm512_store_pd(&o[b + 2][g], _mm512_permutex2var_pd(t0, hi, t2));
+            _mm512_store_pd(&o[b + 3][g], _mm512_permutex2var_pd(t1, hi, t3));
+        }
+    }
+#else
+    for (int g = 0; g < DEM_PAIR_LANES; g += 4) {
         const double *r0 = rec + DEM_REC * (size_t)idx[g],
                      *r1 = rec + DEM_REC * (size_t)idx[g + 1],
                      *r2 = rec + DEM_REC * (size_t)idx[g + 2],
@@ -339,6 +384,7 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx, double (*o)[8])
             _mm256_store_pd(&o[b + 3][g], _mm256_permute2f128_pd(t1, t3, 0x31));
         }
     }
+#endif
 }
 #endif
 
@@ -359,12 +405,13 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     (void)rec;
     (void)kend;
 #if DEM_PASS_RECORDS
-    for (; k + 8 <= k1; k += 8) {
-        _Alignas(32) double A[DEM_REC][8], B[DEM_REC][8];
+    for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
+        _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES],
+            B[DEM_REC][DEM_PAIR_LANES];
         /* the j records of the pairs DEM_PREFETCH_PAIRS ahead (up to
          * kend), both cache lines of each (the i records run in order) */
-        if (k + DEM_PREFETCH_PAIRS + 8 <= kend)
-            for (int l = 0; l < 8; l++) {
+        if (k + DEM_PREFETCH_PAIRS + DEM_PAIR_LANES <= kend)
+            for (int l = 0; l < DEM_PAIR_LANES; l++) {
                 const double *r =
                     rec + DEM_REC * (size_t)q.cjr[k + DEM_PREFETCH_PAIRS + l];
                 __builtin_prefetch(r, 0, 3);
@@ -373,7 +420,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         records_lanes(rec, q.ci + k, A);
         records_lanes(rec, q.cjr + k, B);
 #pragma omp simd
-        for (int l = 0; l < 8; l++) {
+        for (int l = 0; l < DEM_PAIR_LANES; l++) {
             const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
                                   A[4][l], A[5][l], A[6][l], A[7][l],
                                   A[8][l], A[9][l], A[10][l]};

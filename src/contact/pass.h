@@ -5,7 +5,7 @@
  * lane's particle data with hardware gathers; once with gathers switched
  * off (each lane's values from scalar loads); and, where the target has
  * AVX, twice reading the pairs' particle values from records of 12
- * doubles (x y z r, v m, w) by 4 x 4 transposes, neither gathers nor one
+ * doubles (x y z r, v m, w) by transposes, neither gathers nor one
  * load per lane (contact/pass_records.c), the second of them keeping the
  * pairs' forces of a chained step in a ring per thread in cache instead
  * of the list's array (contact/pass_ring.c). All compute the same
