@@ -54,7 +54,7 @@
 /* Pairs per round of the records and ring passes' pair loop. gcc gives
  * the loop as many lanes as its 32-bit state words (struct
  * dem_pairs.state) fill in the widest vectors: 16 with AVX-512 (each
- * double in two 512-bit halves), 8 with AVX. With AVX-512, 8 records at
+ * double in two 512-bit halves), 8 with AVX2. With AVX-512, 8 records at
  * a time come into 512-bit rows (records_lanes), so that each half the
  * loop loads is one store of the transposes: 16 lanes from the 256-bit
  * transposes, whose halves two stores make, gained nothing
