@@ -77,6 +77,20 @@
  * faster at 32 pairs ahead than at 16. */
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
+/* How far ahead the ring pass asks for the cache lines of the streams it
+ * goes down in order: the list's indices, history and states (pairs),
+ * and the particles' arrays its chained kicks, drifts and records read
+ * and write (particles). There are some 30 such streams at once, more
+ * than the hardware prefetchers follow; at N = 216000, where they come
+ * from main memory, asking for them took 8-10 % off the ring pass
+ * between walls and 15-20 % in a periodic cell, and nothing from the
+ * records pass, whose particle loop reads its forces from memory
+ * (docs/performance.md, session 39). The ring is the pass the trial
+ * picks at that size; while the arrays fit in L3 the requests cost a
+ * little, and the trial then picks another pass. */
+#define DEM_AHEAD_PAIRS 64
+#define DEM_AHEAD_PARTICLES 32
+
 /* particles summed before their kicks and drifts run (particle_range) */
 #define DEM_KICK_BLOCK 32
 /* the ring pass's groups in a cell are whole blocks, and whole groups
@@ -389,11 +403,12 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx,
 #endif
 
 /* Forces and history updates of pairs k0 <= k < k1 (the thread's pairs
- * go on to kend), in SIMD lanes. */
+ * go on to kend), in SIMD lanes; ahead: the records compilations ask for
+ * the list's streams of the pairs that many ahead (a literal, 0: not). */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                            int kend, const struct dem_contact_params *cp,
                            double dt, const double *cv, const double *grad,
-                           const double *fm, const double *rec)
+                           const double *fm, const double *rec, const int ahead)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
     /* local copies, which no store of the loop can change */
@@ -404,6 +419,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     int k = k0;
     (void)rec;
     (void)kend;
+    (void)ahead;
 #if DEM_PASS_RECORDS
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES],
@@ -417,6 +433,22 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                 __builtin_prefetch(r, 0, 3);
                 __builtin_prefetch(r + 8, 0, 3);
             }
+        /* the list's streams a round of pairs reads: asking for the line
+         * of a round's first 4-byte value and of every 8th double covers
+         * every line of them */
+        if (ahead && k + ahead + DEM_PAIR_LANES <= kend) {
+            const int u = k + ahead;
+            __builtin_prefetch(q.ci + u, 0, 3);
+            __builtin_prefetch(q.cjr + u, 0, 3);
+            __builtin_prefetch(q.state + u, 1, 3);
+            for (int e = 0; e < DEM_PAIR_LANES; e += 8) {
+#define HIST_AHEAD_(MODEL, name, unit, swap, doc)                               \
+    if (DEM_MODEL_USES(law, MODEL))                                            \
+        __builtin_prefetch(q.name + u + e, 1, 3);
+                DEM_CONTACT_HISTORY(HIST_AHEAD_)
+#undef HIST_AHEAD_
+            }
+        }
         records_lanes(rec, q.ci + k, A);
         records_lanes(rec, q.cjr + k, B);
 #pragma omp simd
@@ -660,7 +692,8 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_contact_force *F, int kb,
                               int fmask, double gb, double gr,
                               const struct kick K, struct virial *V,
-                              const struct dem_frame *fr, double *rec)
+                              const struct dem_frame *fr, double *rec,
+                              const int ahead)
 {
     (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
@@ -690,6 +723,23 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
      * change them, so the lanes' accesses are consecutive, not scatters */
     const struct dem_particles Q = *P;
     for (int i = i0; i < i1; i++) {
+        /* a chained step's streams, particles ahead (a literal, 0: not),
+         * each line asked for once: 8 doubles, or 16 ints on every other
+         * round */
+        if (ahead && K.chain && i % 8 == 0 && i + ahead < Q.n) {
+            const int u = i + ahead;
+            const double *const in[] = {Q.x0, Q.y0, Q.z0,    Q.r,
+                                        Q.m,  Q.inv_m, Q.inv_I, Q.reach};
+            double *const out[] = {Q.x,  Q.y,  Q.z,  Q.vx, Q.vy,
+                                   Q.vz, Q.wx, Q.wy, Q.wz};
+            for (int e = 0; e < (int)(sizeof in / sizeof *in); e++)
+                __builtin_prefetch(in[e] + u, 0, 3);
+            for (int e = 0; e < (int)(sizeof out / sizeof *out); e++)
+                __builtin_prefetch(out[e] + u, 1, 3);
+            __builtin_prefetch(start + u, 0, 3);
+            __builtin_prefetch(rstart + u, 0, 3);
+            __builtin_prefetch(wstart + u, 0, 3);
+        }
         const double a = r[i];
         /* in a cell the damping comes after the contacts' sum (the
          * virial takes that sum) */
@@ -870,7 +920,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         const int ke = k1 - kc > c->ring_chunk ? kc + c->ring_chunk : k1;
         q.foff = kc - ((kc - k0) & mask);
         pair_range(law, q, kc, ke, k1, &c->cp, c->dt, c->cv, c->grad, c->fr.m,
-                   c->rec);
+                   c->rec, DEM_AHEAD_PAIRS);
         const int all = kc < kd || ke > kt; /* some of its forces wait */
         if (all)
             for (int k = kc; k < ke; k++)
@@ -906,7 +956,8 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         const int G = dem_ring_group(cell), f = e < i1 ? e / G * G : e;
         if (f > p) {
             moved |= particle_range(law, p, f, c->P, pl, ring, k0, mask, c->gb,
-                                    c->gr, K, &V, &c->fr, c->rec);
+                                    c->gr, K, &V, &c->fr, c->rec,
+                                    DEM_AHEAD_PARTICLES);
             p = f;
         }
         if (ke == k1)
@@ -932,7 +983,8 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         if (lo < hi) {
             V.end = hi;
             moved |= particle_range(law, lo, hi, c->P, pl, c->q.F, 0, -1, c->gb,
-                                    c->gr, K, &V, &c->fr, c->rec);
+                                    c->gr, K, &V, &c->fr, c->rec,
+                                    DEM_AHEAD_PARTICLES);
         }
         u += e - a;
     }
@@ -964,7 +1016,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
 #endif
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
                dem_block(c->np, t + 1, nt), &c->cp, c->dt, c->cv, c->grad,
-               c->fr.m, c->rec);
+               c->fr.m, c->rec, 0);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier
@@ -975,7 +1027,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                         : dem_block(c->n, t + 1, nt);
     struct virial V = {c->vir, {{0.0}}, i1, c->fr.m};
     return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb, c->gr,
-                          K, &V, &c->fr, c->rec);
+                          K, &V, &c->fr, c->rec, 0);
 }
 
 /* One instance per model set and kind of kick (literals), so that each
