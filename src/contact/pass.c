@@ -723,9 +723,9 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
      * change them, so the lanes' accesses are consecutive, not scatters */
     const struct dem_particles Q = *P;
     for (int i = i0; i < i1; i++) {
-        /* a chained step's streams, particles ahead (a literal, 0: not),
-         * each line asked for once: 8 doubles, or 16 ints on every other
-         * round */
+        /* a chained step's streams, particles ahead (a literal, 0: not):
+         * every 8 particles one line of each array (8 doubles; the row
+         * starts' lines of 16 ints are asked for twice) */
         if (ahead && K.chain && i % 8 == 0 && i + ahead < Q.n) {
             const int u = i + ahead;
             const double *const in[] = {Q.x0, Q.y0, Q.z0,    Q.r,
