@@ -7,6 +7,9 @@
  *
  *     build/dembox_limits      (one thread; stop other work first)
  *
+ * Then the memory side of a chained step of the ring pass, at a small
+ * and a large N: its streams in its order, without its arithmetic.
+ *
  * Each kernel is timed 5 times; the fastest is printed. The loops work on
  * independent lanes, so that they measure throughput, not latency; check
  * with objdump -d that they use the vector instructions named.
@@ -116,6 +119,132 @@ static double triad(size_t n, int reps)
     return 24.0 * n * reps / t;
 }
 
+/* The memory side of a chained step of the ring pass (contact/pass.c)
+ * on n particles with `pairs` listed pairs each, without its arithmetic:
+ * the same arrays, element sizes and order of access, with one addition
+ * or copy per value. The particles lie in cell order about one per cell,
+ * as in the benchmark's packings: a layer of cells holds L = n^(2/3) of
+ * them, a row R = n^(1/3). Per particle i, in order:
+ *  - per pair k of its row: the list's i and j (4 B each), its state
+ *    (4 B) and three history values, read and written; the 96-byte
+ *    records of i and j (j one of eight neighbours ahead: the next
+ *    particle, the next row, the layer above and its neighbours); a
+ *    48-byte force record stored into a ring;
+ *  - the row's force records summed back, and as many a layer behind
+ *    (its reverse row, through a 4-byte index);
+ *  - three row starts, the 8 arrays the kicks and the drift only read,
+ *    and, if `arrays`, the 9 they write (x, v, omega); its record
+ *    written.
+ * Once n is large everything but the ring streams from main memory.
+ * Returns ns per particle-step, the fastest of 5 timings of reps steps;
+ * a negative value if out of memory. */
+static double ring_streams(int n, double pairs, int arrays, int reps)
+{
+    const int L = (int)lround(pow(n, 2.0 / 3.0)), R = (int)lround(cbrt(n));
+    const int off[8] = {1, R, L - R, L, L + R, R + 1, L + 1, L - 1};
+    int *start = malloc(((size_t)n + 1) * sizeof *start),
+        *wstart = calloc((size_t)n + 1, sizeof *wstart);
+    if (!start || !wstart) {
+        free(start);
+        free(wstart);
+        return -1.0;
+    }
+    for (int i = 0; i <= n; i++)
+        start[i] = (int)(i * pairs);
+    const size_t np = (size_t)start[n];
+    const int back = (int)(pairs * L); /* pairs a layer behind */
+    int size = 1024;
+    while (size < back + 1024)
+        size *= 2;
+    const int mask = size - 1;
+    int *rstart = malloc(((size_t)n + 1) * sizeof *rstart),
+        *ci = malloc(np * sizeof *ci), *cj = malloc(np * sizeof *cj),
+        *state = calloc(np, sizeof *state), *rpair = malloc(np * sizeof *rpair);
+    double *h[3], *ro[8], *rw[9];
+    int ok = rstart && ci && cj && state && rpair;
+    for (int e = 0; e < 3; e++)
+        ok &= (h[e] = calloc(np, sizeof *h[e])) != NULL;
+    for (int e = 0; e < 8; e++)
+        ok &= (ro[e] = calloc((size_t)n, sizeof *ro[e])) != NULL;
+    for (int e = 0; e < 9; e++)
+        ok &= (rw[e] = calloc((size_t)n, sizeof *rw[e])) != NULL;
+    double *rec = calloc(12 * (size_t)n, sizeof *rec),
+           *ring = calloc(6 * (size_t)size, sizeof *ring);
+    ok &= rec && ring;
+    double best = INFINITY;
+    if (ok) {
+        for (int i = 0; i < n; i++) {
+            rstart[i] = start[i];
+            for (int k = start[i]; k < start[i + 1]; k++) {
+                const int j = i + off[(k - start[i]) % 8];
+                ci[k] = i;
+                cj[k] = j < n ? j : n - 1;
+                rpair[k] = k >= back ? k - back : k;
+            }
+        }
+        rstart[n] = start[n];
+        for (int t = 0; t < 5; t++) {
+            const double t0 = now();
+            for (int s = 0; s < reps; s++)
+                for (int i = 0; i < n; i++) {
+                    double fx = 0.0, fy = 0.0;
+                    for (int k = start[i]; k < start[i + 1]; k++) {
+                        const double *a = rec + 12 * (size_t)ci[k],
+                                     *b = rec + 12 * (size_t)cj[k];
+                        const double d = a[0] + b[0] + b[11];
+                        state[k] ^= 1;
+                        double *o = ring + 6 * (size_t)(k & mask);
+                        for (int e = 0; e < 3; e++) {
+                            h[e][k] += d;
+                            o[e] = d;
+                            o[e + 3] = h[e][k];
+                        }
+                    }
+                    for (int k = start[i]; k < start[i + 1]; k++) {
+                        const double *o = ring + 6 * (size_t)(k & mask);
+                        fx += o[0] + o[1] + o[2];
+                        fy += o[3] + o[4] + o[5];
+                    }
+                    for (int q = rstart[i]; q < rstart[i + 1]; q++) {
+                        const double *o = ring + 6 * (size_t)(rpair[q] & mask);
+                        fx -= o[0] + o[1] + o[2];
+                        fy += o[3] + o[4] + o[5];
+                    }
+                    fx += wstart[i] + wstart[i + 1];
+                    for (int e = 0; e < 8; e++)
+                        fy += ro[e][i];
+                    double *w = rec + 12 * (size_t)i;
+                    for (int e = 0; e < 12; e++) {
+                        if (arrays && e < 9) {
+                            rw[e][i] += 1e-300 * fx + 1e-300 * fy;
+                            w[e] = rw[e][i];
+                        } else {
+                            w[e] += 1e-300 * fx + 1e-300 * fy;
+                        }
+                    }
+                }
+            best = fmin(best, now() - t0);
+        }
+        sink += rec[0] + h[0][0];
+    }
+    free(start);
+    free(wstart);
+    free(rstart);
+    free(ci);
+    free(cj);
+    free(state);
+    free(rpair);
+    for (int e = 0; e < 3; e++)
+        free(h[e]);
+    for (int e = 0; e < 8; e++)
+        free(ro[e]);
+    for (int e = 0; e < 9; e++)
+        free(rw[e]);
+    free(rec);
+    free(ring);
+    return ok ? 1e9 * best / ((double)reps * n) : -1.0;
+}
+
 static double best(double (*f)(long), long reps)
 {
     double m = 0.0;
@@ -194,6 +323,23 @@ int main(void)
         }
         printf("triad %-6s (%5.0f KB): %.1f GB/s\n", where[s],
                24.0 * sizes[s] / 1024, 1e-9 * m);
+    }
+    /* the benchmark's packings: listed pairs per particle at N = 3375
+     * and 216000 (docs/performance.md, "Issue 14 on Zen 5") */
+    const int ns[2] = {3375, 216000};
+    const double pairs[2] = {3.06, 3.89};
+    printf("ring pass's streams, no arithmetic, ns per particle-step:\n");
+    for (int s = 0; s < 2; s++) {
+        const int reps = (int)(1e7 / ns[s]) + 1;
+        const double all = ring_streams(ns[s], pairs[s], 1, reps),
+                     rec = ring_streams(ns[s], pairs[s], 0, reps);
+        if (all < 0.0 || rec < 0.0) {
+            fprintf(stderr, "limits: out of memory\n");
+            return 1;
+        }
+        printf("  N = %d, %.2f pairs per particle: %.1f (without the "
+               "arrays of x, v, omega: %.1f)\n",
+               ns[s], pairs[s], all, rec);
     }
     if (sysconf(_SC_NPROCESSORS_ONLN) >= 2) {
         /* each measured apart: the host may move the vCPUs in between */
