@@ -142,6 +142,9 @@ static double ring_streams(int n, double pairs, int arrays, int reps)
 {
     const int L = (int)lround(pow(n, 2.0 / 3.0)), R = (int)lround(cbrt(n));
     const int off[8] = {1, R, L - R, L, L + R, R + 1, L + 1, L - 1};
+    /* the three row starts are three streams, as in the pass: the
+     * reverse rows' (rstart) a copy of the rows' (as many pairs as j
+     * as as i), the walls' all 0 (no wall contact) */
     int *start = malloc(((size_t)n + 1) * sizeof *start),
         *wstart = calloc((size_t)n + 1, sizeof *wstart);
     if (!start || !wstart) {
