@@ -14,7 +14,7 @@
  * and so must the whole sample gathered on rank 0 (dem_halo_collect, what
  * outputs and checkpoints see): its contacts with their history and
  * forces, and the particles' forces. Prints the largest differences;
- * exit 1 on failure. */
+ * exit 1 on failure. argv[2], if given, names the force pass. */
 #include <math.h>
 #include <mpi.h>
 #include <stdio.h>
@@ -178,6 +178,20 @@ int main(int argc, char **argv)
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     const int dim = argc > 1 ? atoi(argv[1]) : 3;
     const int n = dim == 3 ? 2000 : 1500;
+    /* argv[2]: the force pass of both runs (DEMBOX_PASS); the records
+     * and ring passes keep the own particles' records from one chained
+     * pass to the next and fill the ghosts' at every pass, and the ring
+     * keeps no ghost's pairs */
+    if (argc > 2) {
+#if DEM_HAVE_PASS_RECORDS
+        setenv("DEMBOX_PASS", argv[2], 1);
+#else
+        if (rank == 0)
+            printf("mpi_decomp: no %s pass in this build, the trial's "
+                   "choice instead\n",
+                   argv[2]);
+#endif
+    }
     const long warm = 1500, run = 2000;
     struct dem_sim ref, s;
     struct dem_error err;

@@ -10,3 +10,8 @@ for dim in 3 2; do
         "$MPIRUN" -np "$np" $(mpi_opts "$np") "$PROG" "$dim"
     done
 done
+# the passes that keep the own particles' records from one chained step
+# to the next, filling only the ghosts' (3D, two ranks)
+for pass in records ring; do
+    "$MPIRUN" -np 2 $(mpi_opts 2) "$PROG" 3 "$pass"
+done

@@ -26,9 +26,10 @@
  * values from a copy of the particles in records: each thread first
  * writes its share of them, then a barrier; a chained pass writes its
  * particles' records right after their drift instead, and the next pass
- * (dem_sim_step: no rebuild and no ghosts in between; in a periodic cell
- * the positions stay in the frame of the build, core/cell.h) skips the
- * copy and the barrier.
+ * (dem_sim_step: no rebuild in between; in a periodic cell the positions
+ * stay in the frame of the build, core/cell.h) skips the copy and the
+ * barrier, or split over ranks copies only the ghosts, which their
+ * owners moved.
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
  * once as always-inline functions and instantiated per normal law of
@@ -999,9 +1000,13 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                                const struct kick K, int t, int nt)
 {
 #if DEM_PASS_RECORDS
-    if (!c->rec_fresh) {
-        records_fill(c->rec, c->P, dem_block(c->P->n, t, nt),
-                     dem_block(c->P->n, t + 1, nt));
+    /* every particle's record, or only the ghosts' when the chained pass
+     * before wrote the own ones (a subdomain's ghosts: their owners
+     * moved them, decomp/halo.h) */
+    const int f0 = c->rec_fresh ? c->n : 0, nf = c->P->n - f0;
+    if (nf > 0) {
+        records_fill(c->rec, c->P, f0 + dem_block(nf, t, nt),
+                     f0 + dem_block(nf, t + 1, nt));
 #pragma omp barrier
     }
 #endif

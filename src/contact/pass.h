@@ -75,9 +75,10 @@ struct contacts {
     double grad[6]; /* 1/s; the affine velocity gradient, upper triangle */
     double *rec;    /* the records pass's particle records (contact/pass.c),
                        12 doubles per particle, 32-byte aligned */
-    int rec_fresh;  /* 1: rec holds every particle's present state (the
-                       records pass of the chained step before wrote
-                       them, and nothing has moved a particle since) */
+    int rec_fresh;  /* 1: rec holds every own particle's present state
+                       (the records pass of the chained step before
+                       wrote them, and nothing has moved one since); the
+                       ghosts' are filled at every pass */
     double *vir;    /* N m; the virial sum x (x) f + m v (x) v of each
                        block of DEM_VIR_BLOCK particles, 9 values each */
     struct dem_contact_force *ring; /* the ring pass's rings, ring_mask + 1

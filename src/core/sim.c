@@ -474,8 +474,9 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     /* the particles are where the chained pass before left them (in a
      * cell in the frame of the build, which the cell's motion does not
      * change), so the particle records it wrote are still theirs
-     * (contact/pass.c) */
-    s->pairs.rec_fresh = drifted && !rebuild && !s->halo;
+     * (contact/pass.c); split over ranks the own particles' (the sync
+     * above moved only the ghosts) */
+    s->pairs.rec_fresh = drifted && !rebuild;
     s->moved = dem_sim_forces_kick(s, h, chain);
     s->drifted = chain;
     double t4 = lap(s);

@@ -609,10 +609,13 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
      * itself lie in rows before its own and the first of them opens its
      * span (those through an image the ring pass reads from the list's
      * array); the span ends where the ring pass finishes the particle,
-     * after the rows of its group */
+     * after the rows of its group. A subdomain's ghosts have none: the
+     * rank sums no forces for them (decomp/halo.h), so their pairs' forces
+     * need not stay in the ring (with them the reach took in most of the
+     * list, as the ghosts come after all own particles) */
     const int *start = L->start, G = dem_ring_group(cell);
     int reach = 0;
-    for (int i = 0; i < n; i++) {
+    for (int i = 0; i < n - pl->nghost; i++) {
         const int first = rs[i] < ri[i] ? pl->rpair[rs[i]] : start[i];
         const int ge = (i / G + 1) * G;
         const int span = start[ge < n ? ge : n] - first;

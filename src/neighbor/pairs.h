@@ -133,8 +133,10 @@ struct dem_pairs {
                       (contact/pass.c), x y z r | vx vy vz m | wx wy wz 0,
                       then in a periodic cell the image records (jrec) */
     int rec_cap;
-    int rec_fresh;   /* set by dem_sim_step for its pass: no particle has
-                        moved since the last pass, which was chained */
+    int rec_fresh;   /* set by dem_sim_step for its pass: no own particle
+                        has moved since the last pass, which was chained
+                        (ghosts may have: their records are filled at
+                        every pass) */
     int rec_written; /* the last pass was chained and wrote rec */
     struct dem_contact_force *ring; /* the ring pass's force records, one
                                        ring per thread (contact/forces.c) */
