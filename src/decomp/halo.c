@@ -213,6 +213,9 @@ static int records_reserve(struct dem_records *r, int n)
 /* First record of particle id in the sorted records, or r->n. */
 static int records_of(const struct dem_records *r, int id)
 {
+    if (r->first) /* indexed by the sort */
+        return id < r->lo || id - r->lo >= r->nfirst ? r->n
+                                                     : r->first[id - r->lo];
     int lo = 0, hi = r->n;
     while (lo < hi) {
         const int mid = lo + (hi - lo) / 2;

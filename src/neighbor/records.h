@@ -36,6 +36,11 @@ struct dem_contact_record {
 struct dem_records {
     int n, cap;
     struct dem_contact_record *v;
+    /* after dem_records_sort: the records of self = lo + b are
+     * v[first[b]] to v[first[b + 1]] (0 <= b < nfirst); NULL: none (out
+     * of memory then, or not sorted) */
+    int *first;
+    int lo, nfirst;
 };
 
 /* Append the records of every contact of pl's current lists that has a
@@ -50,7 +55,9 @@ int dem_records_export_marked(struct dem_records *r,
                               const struct dem_pairs *pl,
                               const struct dem_particles *p, int nself,
                               const unsigned char *mark);
-/* Sort by (self, wall, other), as dem_records_import needs. */
+/* Sort by (self, wall, other), as dem_records_import needs, and index
+ * the records by self (first). Appending records afterwards calls for
+ * another sort. */
 void dem_records_sort(struct dem_records *r);
 /* Every entry of pl's current lists takes the history of its record in r
  * (sorted): a pair (i, j) that of self = id i as it is, or else that of
