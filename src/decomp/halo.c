@@ -210,23 +210,6 @@ static int records_reserve(struct dem_records *r, int n)
     return DEM_ENOMEM;
 }
 
-/* First record of particle id in the sorted records, or r->n. */
-static int records_of(const struct dem_records *r, int id)
-{
-    if (r->first) /* indexed by the sort */
-        return id < r->lo || id - r->lo >= r->nfirst ? r->n
-                                                     : r->first[id - r->lo];
-    int lo = 0, hi = r->n;
-    while (lo < hi) {
-        const int mid = lo + (hi - lo) / 2;
-        if (r->v[mid].self < id)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
 /* Own particles [0, nown) of s move to the ranks whose subdomains they
  * are in now, with their records (H->rec, sorted); the kept and the
  * received ones become s's own particles (ghosts dropped), the kept
@@ -264,10 +247,11 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
     int *rcnt = calloc((size_t)size, sizeof *rcnt);
     if (!rcnt)
         rc = DEM_ENOMEM;
-    for (int i = 0; !rc && i < nown; i++)
-        for (int k = records_of(&H->rec, p->id[i]);
-             k < H->rec.n && H->rec.v[k].self == p->id[i]; k++)
-            rcnt[dest[i]]++;
+    for (int i = 0; !rc && i < nown; i++) {
+        int a, b;
+        dem_records_of(&H->rec, p->id[i], &a, &b);
+        rcnt[dest[i]] += b - a;
+    }
     int nout = 0, nkeep = 0;
     for (int r = 0; !rc && r < size; r++)
         if (r != H->rank)
@@ -283,14 +267,17 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
             at[r] = t;
             t += c;
         }
-        for (int i = 0; i < nown; i++)
-            for (int k = records_of(&H->rec, p->id[i]);
-                 k < H->rec.n && H->rec.v[k].self == p->id[i]; k++) {
+        for (int i = 0; i < nown; i++) {
+            int a, b;
+            dem_records_of(&H->rec, p->id[i], &a, &b);
+            for (int q = a; q < b; q++) {
+                const int k = dem_records_at(&H->rec, q);
                 if (dest[i] == H->rank)
                     keep.v[keep.n++] = H->rec.v[k];
                 else
                     out.v[at[dest[i]]++] = H->rec.v[k];
             }
+        }
         out.n = nout;
         rcnt[H->rank] = 0;
     }

@@ -21,6 +21,14 @@ static int reserve(struct dem_records *r, int n)
     return 0;
 }
 
+/* The index of dem_records_sort, dropped. */
+static void unindex(struct dem_records *r)
+{
+    free(r->order);
+    free(r->first);
+    r->order = r->first = NULL;
+}
+
 /* Entry k of list L as a record of particle id self; flip: self is the
  * entry's j (values times their swap factors). */
 static void put(struct dem_contact_record *o, const struct dem_contact_list *L,
@@ -59,8 +67,7 @@ int dem_records_export_marked(struct dem_records *r,
                               const struct dem_particles *p, int nself,
                               const unsigned char *mark)
 {
-    free(r->first); /* no longer sorted */
-    r->first = NULL;
+    unindex(r); /* no longer in order */
     const struct dem_contact_list *L = &pl->cur, *W = &pl->wcur;
 #define SELF_(i) ((i) < nself && (!mark || mark[i]))
     for (int k = 0; k < L->n; k++) {
@@ -108,32 +115,32 @@ static int cmp_record(const void *a, const void *b)
     return cmp_key(x->self, x->wall, x->other, b);
 }
 
-/* Records [a, b), all of one self, by (wall, other): a particle has a
- * few contacts, so insertion. */
-static void sort_group(struct dem_contact_record *v, int a, int b)
+/* The records of one self, o[a..b) (indices into v), by (wall, other):
+ * a particle has a few contacts, so insertion. */
+static void sort_group(const struct dem_contact_record *v, int *o, int a,
+                       int b)
 {
     for (int k = a + 1; k < b; k++) {
-        const struct dem_contact_record x = v[k];
+        const int x = o[k];
         int q = k;
-        for (; q > a && cmp_key(x.self, x.wall, x.other, &v[q - 1]) < 0; q--)
-            v[q] = v[q - 1];
-        v[q] = x;
+        for (; q > a && cmp_key(v[x].self, v[x].wall, v[x].other,
+                                &v[o[q - 1]]) < 0;
+             q--)
+            o[q] = o[q - 1];
+        o[q] = x;
     }
 }
 
-/* A bucket per id between the smallest and the largest self (ids are
- * 0..N-1): the records counted, then copied each to its bucket in a new
- * array (every copy independent of the others, so that their cache
- * misses overlap), then each bucket by (wall, other). Linear in the
- * records, where qsort's merges moved every record some 20 times (and
- * a sort in place, whose swaps wait for one another, was no faster):
- * together with the binary searches of the import, a third of a list
- * build split over two ranks at N = 216000 (docs/performance.md). The
- * keys are unique, so the order is qsort's. */
+/* An index, not the records moved: a bucket per id between the smallest
+ * and the largest self (ids are 0..N-1), each record's index put in its
+ * bucket, then each bucket by (wall, other). Linear in the records,
+ * where qsort moved every record some 20 times and the import then
+ * searched them by halves: together a third of a list build split over
+ * two ranks at N = 216000 (docs/performance.md). The records stay where
+ * they are, so no second copy of them is needed. */
 void dem_records_sort(struct dem_records *r)
 {
-    free(r->first);
-    r->first = NULL;
+    unindex(r);
     const int n = r->n;
     if (n < 1)
         return;
@@ -145,10 +152,10 @@ void dem_records_sort(struct dem_records *r)
     }
     const size_t nb = (size_t)hi - (size_t)lo + 1;
     int *first = nb < (size_t)INT_MAX ? malloc((nb + 1) * sizeof *first) : NULL;
-    struct dem_contact_record *w = malloc((size_t)n * sizeof *w);
-    if (!first || !w) { /* out of memory: qsort needs none */
+    int *order = malloc((size_t)n * sizeof *order);
+    if (!first || !order) { /* out of memory: sort the records themselves */
         free(first);
-        free(w);
+        free(order);
         qsort(r->v, (size_t)n, sizeof *r->v, cmp_record);
         return;
     }
@@ -160,43 +167,50 @@ void dem_records_sort(struct dem_records *r)
         first[b + 1] += first[b];
     /* first[b] runs to the end of bucket b, then moves back one */
     for (int k = 0; k < n; k++)
-        w[first[v[k].self - lo]++] = v[k];
+        order[first[v[k].self - lo]++] = k;
     for (size_t b = nb; b > 0; b--)
         first[b] = first[b - 1];
     first[0] = 0;
     for (size_t b = 0; b < nb; b++)
         if (first[b + 1] - first[b] > 1)
-            sort_group(w, first[b], first[b + 1]);
-    free(r->v);
-    r->v = w;
-    r->cap = n;
+            sort_group(v, order, first[b], first[b + 1]);
+    r->order = order;
     r->first = first;
     r->lo = lo;
     r->nfirst = (int)nb;
 }
 
+void dem_records_of(const struct dem_records *r, int id, int *a, int *b)
+{
+    if (r->order) {
+        const int in = id >= r->lo && id - r->lo < r->nfirst;
+        *a = in ? r->first[id - r->lo] : 0;
+        *b = in ? r->first[id - r->lo + 1] : 0;
+        return;
+    }
+    /* the records sorted: the first of id by halves, then its run */
+    int lo = 0, hi = r->n;
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (r->v[mid].self < id)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *a = *b = lo;
+    while (*b < r->n && r->v[*b].self == id)
+        (*b)++;
+}
+
 static const struct dem_contact_record *find(const struct dem_records *r,
                                              int self, int wall, int other)
 {
-    if (r->first) { /* the few records of self, in order */
-        if (self < r->lo || self - r->lo >= r->nfirst)
-            return NULL;
-        const int b = self - r->lo;
-        for (int k = r->first[b]; k < r->first[b + 1]; k++)
-            if (cmp_key(self, wall, other, &r->v[k]) == 0)
-                return &r->v[k];
-        return NULL;
-    }
-    int lo = 0, hi = r->n - 1;
-    while (lo <= hi) {
-        const int mid = lo + (hi - lo) / 2;
-        const int c = cmp_key(self, wall, other, &r->v[mid]);
-        if (c == 0)
-            return &r->v[mid];
-        if (c < 0)
-            hi = mid - 1;
-        else
-            lo = mid + 1;
+    int q, e;
+    dem_records_of(r, self, &q, &e);
+    for (; q < e; q++) {
+        const struct dem_contact_record *o = &r->v[dem_records_at(r, q)];
+        if (o->wall == wall && o->other == other)
+            return o;
     }
     return NULL;
 }
@@ -246,8 +260,7 @@ void dem_records_import(const struct dem_records *r, struct dem_pairs *pl,
 void dem_records_free(struct dem_records *r)
 {
     free(r->v);
-    free(r->first);
+    unindex(r);
     r->v = NULL;
-    r->first = NULL;
     r->n = r->cap = 0;
 }
