@@ -135,9 +135,9 @@ static void sort_group(const struct dem_contact_record *v, int *o, int a,
  * and the largest self (ids are 0..N-1), each record's index put in its
  * bucket, then each bucket by (wall, other). Linear in the records,
  * where qsort moved every record some 20 times and the import then
- * searched them by halves: together a third of a list build split over
- * two ranks at N = 216000 (docs/performance.md). The records stay where
- * they are, so no second copy of them is needed. */
+ * searched them by halves: together more than half of a list build
+ * split over two ranks at N = 216000 (docs/performance.md). The records
+ * stay where they are, so no second copy of them is needed. */
 void dem_records_sort(struct dem_records *r)
 {
     unindex(r);
