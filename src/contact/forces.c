@@ -223,8 +223,14 @@ _Static_assert(NPASS <= DEM_MAX_PASSES, "struct dem_pass_choice: best[]");
 
 /* Time steps between two trials, before the first one (the first passes
  * of a run touch memory for the first time and would time that), and
- * passes of each variant in a trial: one to warm up, then the timed ones. */
-enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5 };
+ * passes of each variant in a trial: one to warm up, then the timed ones.
+ * A variant slower than TRIAL_FAR times the winner's in n trials in a row
+ * sits out the next 1, 3, 7, ... of them, at most TRIAL_OUT: at N =
+ * 216000 the three losers' passes took 2 % of a run, though they are 1 %
+ * of its passes (docs/performance.md); a loser is still timed again at
+ * least every TRIAL_OUT + 1 trials. */
+enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
+#define TRIAL_FAR 1.25
 
 int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
 {
@@ -319,13 +325,19 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
         if (++C->since < TRIAL_EVERY || NPASS < 2)
             return passes[C->current].run(c, K);
         C->since = 0;
-        C->trial = NPASS * TRIAL_ROUNDS;
-    }
-    const int done = NPASS * TRIAL_ROUNDS - C->trial;
-    const int v = done / TRIAL_ROUNDS;
-    if (!done)
+        /* the variants not sitting out (the one in use always runs) */
+        C->nin = 0;
         for (int u = 0; u < NPASS; u++)
-            C->best[u] = INFINITY;
+            if (u == C->current || C->out[u] == 0)
+                C->in[C->nin++] = u;
+            else
+                C->out[u]--;
+        C->trial = C->nin * TRIAL_ROUNDS;
+    }
+    const int done = C->nin * TRIAL_ROUNDS - C->trial;
+    const int v = C->in[done / TRIAL_ROUNDS];
+    if (done % TRIAL_ROUNDS == 0)
+        C->best[v] = INFINITY;
     C->ran = v;
     const double t0 = seconds_now();
     const int moved = passes[v].run(c, K);
@@ -333,10 +345,19 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
     if (done % TRIAL_ROUNDS && t < C->best[v])
         C->best[v] = t;
     if (--C->trial == 0) {
-        for (int u = 0; u < NPASS; u++)
-            if (C->best[u] < C->best[C->current])
-                C->current = u;
+        for (int q = 0; q < C->nin; q++)
+            if (C->best[C->in[q]] < C->best[C->current])
+                C->current = C->in[q];
         C->won[C->current]++;
+        for (int q = 0; q < C->nin; q++) {
+            const int u = C->in[q];
+            const int p = 2 * C->pause[u] + 1;
+            if (C->best[u] <= TRIAL_FAR * C->best[C->current])
+                C->pause[u] = 0;
+            else
+                C->pause[u] = p < TRIAL_OUT ? p : TRIAL_OUT;
+            C->out[u] = C->pause[u];
+        }
     }
     return moved;
 }

@@ -41,8 +41,13 @@ struct dem_pass_choice {
     int trial;   /* passes of the running trial left, 0: none */
     long since;  /* time steps since the last trial */
     double best[DEM_MAX_PASSES]; /* s; each variant's fastest pass in the
-                                    trial */
+                                    last trial it ran in */
     long won[DEM_MAX_PASSES]; /* trials each variant won since the set-up */
+    int pause[DEM_MAX_PASSES]; /* trials it last had to sit out: 0 after
+                                  a trial not lost by far */
+    int out[DEM_MAX_PASSES];   /* trials still to sit out */
+    int in[DEM_MAX_PASSES];   /* the running trial's variants, in order */
+    int nin;
 };
 
 struct dem_sim;
