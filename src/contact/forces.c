@@ -224,11 +224,11 @@ _Static_assert(NPASS <= DEM_MAX_PASSES, "struct dem_pass_choice: best[]");
 /* Time steps between two trials, before the first one (the first passes
  * of a run touch memory for the first time and would time that), and
  * passes of each variant in a trial: one to warm up, then the timed ones.
- * A variant slower than TRIAL_FAR times the winner's in n trials in a row
- * sits out the next 1, 3, 7, ... of them, at most TRIAL_OUT: at N =
- * 216000 the three losers' passes took 2 % of a run, though they are 1 %
- * of its passes (docs/performance.md); a loser is still timed again at
- * least every TRIAL_OUT + 1 trials. */
+ * A variant slower than TRIAL_FAR times the winner sits out the next
+ * trial; if it loses by as much again, the next 3, then TRIAL_OUT each
+ * time: at N = 216000 the three losers' passes took 2 % of a run,
+ * though they are under 1 % of its passes (docs/performance.md). A loser
+ * is still timed at least every TRIAL_OUT + 1 trials. */
 enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
 #define TRIAL_FAR 1.25
 
