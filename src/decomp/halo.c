@@ -271,7 +271,7 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
             int a, b;
             dem_records_of(&H->rec, p->id[i], &a, &b);
             for (int q = a; q < b; q++) {
-                const int k = dem_records_at(&H->rec, q);
+                const int k = H->rec.order[q];
                 if (dest[i] == H->rank)
                     keep.v[keep.n++] = H->rec.v[k];
                 else
@@ -347,7 +347,8 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
     }
     dem_records_free(&H->rec);
     H->rec = keep;
-    dem_records_sort(&H->rec);
+    if (!all_ok(dem_records_sort(&H->rec)))
+        return DEM_ENOMEM;
     return p->n;
 }
 
@@ -517,10 +518,11 @@ static int halo_rebuild(struct dem_sim *s, struct dem_error *err)
     const int nown = s->p.n - s->pairs.nghost;
     H->rec.n = 0;
     rc = dem_records_export(&H->rec, &s->pairs, &s->p, nown);
+    if (!rc)
+        rc = dem_records_sort(&H->rec);
     if (!all_ok(rc))
         return dem_error_set(err, DEM_ENOMEM,
                              "domain decomposition: out of memory (records)");
-    dem_records_sort(&H->rec);
     const int n = migrate(s, H, nown);
     if (n < 0)
         return dem_error_set(err, n,
@@ -633,12 +635,13 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
     }
     if (!rc)
         rc = dem_records_export_marked(&H->rec, &s->pairs, &s->p, s->p.n, own);
+    if (!rc)
+        rc = dem_records_sort(&H->rec);
     if (rc) {
         free(own);
         halo_free(H);
         return dem_error_set(err, rc, "out of memory (records)");
     }
-    dem_records_sort(&H->rec);
     const int m = keep_own(H, &s->p, s->p.n, own);
     free(own);
     s->halo = &ops;
@@ -745,10 +748,12 @@ static int gather_records(const struct dem_sim *s, const struct halo *H,
         MPI_Gatherv(mine.v, mine.n, rec, out->v, cnt, cnt + H->size, rec, 0,
                     MPI_COMM_WORLD);
         out->n = total;
-        dem_records_sort(out);
+        rc = dem_records_sort(out);
     } else {
         rc = rc ? rc : DEM_ENOMEM;
     }
+    if (!all_ok(rc)) /* rank 0's sort, too */
+        rc = rc ? rc : DEM_ENOMEM;
     MPI_Type_free(&rec);
     dem_records_free(&mine);
     free(cnt);

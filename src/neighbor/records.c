@@ -109,12 +109,6 @@ static int cmp_key(int self, int wall, int other,
     return (other > b->other) - (other < b->other);
 }
 
-static int cmp_record(const void *a, const void *b)
-{
-    const struct dem_contact_record *x = a;
-    return cmp_key(x->self, x->wall, x->other, b);
-}
-
 /* The records of one self, o[a..b) (indices into v), by (wall, other):
  * a particle has a few contacts, so insertion. */
 static void sort_group(const struct dem_contact_record *v, int *o, int a,
@@ -138,12 +132,13 @@ static void sort_group(const struct dem_contact_record *v, int *o, int a,
  * searched them by halves: together more than half of a list build
  * split over two ranks at N = 216000 (docs/performance.md). The records
  * stay where they are, so no second copy of them is needed. */
-void dem_records_sort(struct dem_records *r)
+int dem_records_sort(struct dem_records *r)
 {
     unindex(r);
+    r->lo = r->nfirst = 0;
     const int n = r->n;
     if (n < 1)
-        return;
+        return 0;
     const struct dem_contact_record *v = r->v;
     int lo = v[0].self, hi = v[0].self;
     for (int k = 1; k < n; k++) {
@@ -153,11 +148,10 @@ void dem_records_sort(struct dem_records *r)
     const size_t nb = (size_t)hi - (size_t)lo + 1;
     int *first = nb < (size_t)INT_MAX ? malloc((nb + 1) * sizeof *first) : NULL;
     int *order = malloc((size_t)n * sizeof *order);
-    if (!first || !order) { /* out of memory: sort the records themselves */
+    if (!first || !order) {
         free(first);
         free(order);
-        qsort(r->v, (size_t)n, sizeof *r->v, cmp_record);
-        return;
+        return DEM_ENOMEM;
     }
     for (size_t b = 0; b <= nb; b++)
         first[b] = 0;
@@ -178,28 +172,14 @@ void dem_records_sort(struct dem_records *r)
     r->first = first;
     r->lo = lo;
     r->nfirst = (int)nb;
+    return 0;
 }
 
 void dem_records_of(const struct dem_records *r, int id, int *a, int *b)
 {
-    if (r->order) {
-        const int in = id >= r->lo && id - r->lo < r->nfirst;
-        *a = in ? r->first[id - r->lo] : 0;
-        *b = in ? r->first[id - r->lo + 1] : 0;
-        return;
-    }
-    /* the records sorted: the first of id by halves, then its run */
-    int lo = 0, hi = r->n;
-    while (lo < hi) {
-        const int mid = lo + (hi - lo) / 2;
-        if (r->v[mid].self < id)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    *a = *b = lo;
-    while (*b < r->n && r->v[*b].self == id)
-        (*b)++;
+    const int in = id >= r->lo && id - r->lo < r->nfirst;
+    *a = in ? r->first[id - r->lo] : 0;
+    *b = in ? r->first[id - r->lo + 1] : 0;
 }
 
 static const struct dem_contact_record *find(const struct dem_records *r,
@@ -208,7 +188,7 @@ static const struct dem_contact_record *find(const struct dem_records *r,
     int q, e;
     dem_records_of(r, self, &q, &e);
     for (; q < e; q++) {
-        const struct dem_contact_record *o = &r->v[dem_records_at(r, q)];
+        const struct dem_contact_record *o = &r->v[r->order[q]];
         if (o->wall == wall && o->other == other)
             return o;
     }

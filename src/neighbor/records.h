@@ -38,8 +38,7 @@ struct dem_records {
     struct dem_contact_record *v;
     /* after dem_records_sort, the records in order: v[order[q]] for
      * 0 <= q < n, those of self = lo + b from q = first[b] to first[b +
-     * 1] (0 <= b < nfirst); NULL: v itself is in order (out of memory
-     * for the index), or not sorted */
+     * 1] (0 <= b < nfirst); NULL (nfirst 0): not sorted, or no records */
     int *order, *first;
     int lo, nfirst;
 };
@@ -57,17 +56,13 @@ int dem_records_export_marked(struct dem_records *r,
                               const struct dem_particles *p, int nself,
                               const unsigned char *mark);
 /* Order by (self, wall, other), as dem_records_of and
- * dem_records_import need: an index (order, first), or the records
- * themselves sorted if there is no memory for it. Appending records
- * afterwards calls for another sort. */
-void dem_records_sort(struct dem_records *r);
-/* The records of particle id after dem_records_sort: v[dem_records_at(r,
- * q)] for *a <= q < *b, by (wall, other). */
+ * dem_records_import need: an index (order, first); the records stay
+ * where they are. Appending records afterwards calls for another sort.
+ * 0, or DEM_ENOMEM (then no index). */
+int dem_records_sort(struct dem_records *r);
+/* The records of particle id after dem_records_sort: v[order[q]] for
+ * *a <= q < *b, by (wall, other). */
 void dem_records_of(const struct dem_records *r, int id, int *a, int *b);
-static inline int dem_records_at(const struct dem_records *r, int q)
-{
-    return r->order ? r->order[q] : q;
-}
 /* Every entry of pl's current lists takes the history of its record in r
  * (sorted): a pair (i, j) that of self = id i as it is, or else that of
  * self = id j times the swap factors; none (all zero) without a record. */
