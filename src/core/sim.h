@@ -46,8 +46,6 @@ struct dem_pass_choice {
     int pause[DEM_MAX_PASSES]; /* trials it last had to sit out: 0 after
                                   a trial not lost by far */
     int out[DEM_MAX_PASSES];   /* trials still to sit out */
-    int in[DEM_MAX_PASSES];    /* the running trial's variants, in order */
-    int nin;
 };
 
 struct dem_sim;
