@@ -57,15 +57,18 @@ struct dem_sim;
  * s->pairs.nghost). */
 struct dem_halo_ops {
     /* After the drift, with this rank's answer to whether the list must
-     * be rebuilt: the answer of all ranks (1 or 0), or a negative status.
-     * Without a rebuild the ghosts take their owners' new positions,
-     * velocities and spins. */
-    int (*sync)(struct dem_sim *s, int rebuild, struct dem_error *err);
+     * be rebuilt: the answer of all ranks (1 or 0), or a negative status;
+     * agreed: every rank gives the same answer already (no exchange for
+     * it). Without a rebuild the ghosts take their owners' new
+     * positions, velocities and spins. */
+    int (*sync)(struct dem_sim *s, int rebuild, int agreed,
+                struct dem_error *err);
     /* Instead of dem_sim_rebuild: the particles move to the subdomains
      * they are now in, with their contacts' history, each rank takes its
      * new ghosts, and the lists are built. */
     int (*rebuild)(struct dem_sim *s, struct dem_error *err);
-    /* After a force pass: the walls' forces summed over the ranks. */
+    /* After a force pass: the walls' forces summed over the ranks, and
+     * s->moved made the answer of all ranks (1 if it is 1 on any). */
     void (*reduce)(struct dem_sim *s);
     /* v[0..n) summed over the ranks, in place (measurements); max: the
      * largest instead of the sum. */
@@ -109,7 +112,8 @@ struct dem_sim {
                     (see dem_sim_step) */
     int drifted; /* 1: the last step was chained: the next one's first
                     half kick and drift are done */
-    int moved;   /* for drifted: whether the drift calls for a rebuild */
+    int moved;   /* for drifted: whether the drift calls for a rebuild
+                    (split over ranks: on any rank) */
     struct dem_contact_sums sums;
     struct dem_pass_choice pass; /* the force pass's compilation */
     const struct dem_halo_ops *halo; /* a domain decomposition's

@@ -464,11 +464,13 @@ static void to_holders(struct halo *H, int w)
     MPI_Waitall(n, H->req, MPI_STATUSES_IGNORE);
 }
 
-static int halo_sync(struct dem_sim *s, int rebuild, struct dem_error *err)
+static int halo_sync(struct dem_sim *s, int rebuild, int agreed,
+                     struct dem_error *err)
 {
     struct halo *H = s->halo_ctx;
-    int any = 0;
-    MPI_Allreduce(&rebuild, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+    int any = rebuild;
+    if (!agreed)
+        MPI_Allreduce(&rebuild, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
     if (any)
         return 1;
     const struct dem_particles *p = &s->p;
@@ -535,14 +537,20 @@ static int halo_rebuild(struct dem_sim *s, struct dem_error *err)
     return build(s, H, err);
 }
 
+/* One allreduce for the walls' forces and for whether a rank's chained
+ * drift calls for a rebuild (a count of such ranks, exact in a double):
+ * the next step then needs none of its own for that answer. */
 static void halo_reduce(struct dem_sim *s)
 {
-    double f[DEM_MAX_WALLS], sum[DEM_MAX_WALLS];
-    for (int w = 0; w < s->nwall; w++)
+    double f[DEM_MAX_WALLS + 1], sum[DEM_MAX_WALLS + 1];
+    const int nw = s->nwall;
+    for (int w = 0; w < nw; w++)
         f[w] = s->wall[w].force;
-    MPI_Allreduce(f, sum, s->nwall, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    for (int w = 0; w < s->nwall; w++)
+    f[nw] = s->moved ? 1.0 : 0.0;
+    MPI_Allreduce(f, sum, nw + 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    for (int w = 0; w < nw; w++)
         s->wall[w].force = sum[w];
+    s->moved = sum[nw] > 0.0;
 }
 
 static void halo_sum(const struct dem_sim *s, double *v, int n, int max)

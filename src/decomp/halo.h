@@ -6,11 +6,13 @@
  * across a cut is computed by both ranks, each for its own particle
  * (LAMMPS's "newton off"): no forces travel back, and each rank sums
  * its particles' forces alone. Per step the ranks agree on whether to
- * rebuild the lists (one allreduce) and, without a rebuild, send the
- * ghosts' positions, velocities and spins to the ranks that hold them
- * (messages to and from the neighbours only, the counts known from the
- * rebuild); after the force pass the walls' forces are summed
- * (one allreduce), so that every rank moves the walls alike. At a
+ * rebuild the lists and, without a rebuild, send the ghosts' positions,
+ * velocities and spins to the ranks that hold them (messages to and
+ * from the neighbours only, the counts known from the rebuild); after
+ * the force pass the walls' forces are summed, so that every rank moves
+ * the walls alike. That sum is one allreduce, which also carries whether
+ * a chained pass's drift (core/sim.h) calls for a rebuild anywhere; only
+ * a step that is not chained needs an allreduce of its own for that. At a
  * rebuild the subdomains follow the walls, particles move to their new
  * subdomain with the records of their contacts (neighbor/records.h), and
  * each rank takes its ghosts anew.
