@@ -1,9 +1,11 @@
 /* Domain decomposition (src/decomp) and contact records
  * (neighbor/records.h), in one process: the grid is chosen from the rank
  * count and the box, a subdomain narrower than the ghost range is
- * refused, the records restore every contact after an arbitrary shuffle
- * of the particles, and a sample split into subdomains with their ghosts
- * gives every particle the force and torque of the undivided sample. */
+ * refused, every ghost lies near a face of its subdomain and between
+ * near subdomains (what halo.c searches), the records restore every
+ * contact after an arbitrary shuffle of the particles, and a sample split
+ * into subdomains with their ghosts gives every particle the force and
+ * torque of the undivided sample. */
 #include "testutil.h"
 
 #include <stdlib.h>
@@ -51,7 +53,24 @@ static void grid_follows_the_box(void **state)
         for (int a = 0; a < 3; a++)
             assert_true(x[a] >= bl[a] - 1e-12 && x[a] <= bh[a] + 1e-12);
         assert_true(dem_decomp_is_ghost(&d, r, x));
+        /* halo.c looks for ghosts only near a face, among near ranks */
+        for (int o = 0; o < 8; o++)
+            if (o != r && dem_decomp_is_ghost(&d, o, x))
+                assert_true(dem_decomp_near(&d, r, o) &&
+                            dem_decomp_at_face(&d, r, x));
     }
+    /* 8 slabs 0.5 wide along the rod, range 0.1: each is near its two
+     * neighbours only; a point 0.05 from a cut is at a face, one in the
+     * middle of a slab or 0.05 from a wall is not */
+    for (int a = 0; a < 8; a++)
+        for (int b = 0; b < 8; b++)
+            if (a != b)
+                assert_int_equal(dem_decomp_near(&d, a, b), abs(a - b) == 1);
+    const double cut[3] = {0.55, 0.5, 0.5}, mid[3] = {0.75, 0.5, 0.5},
+                 wall[3] = {0.05, 0.5, 0.5};
+    assert_true(dem_decomp_at_face(&d, 1, cut));
+    assert_false(dem_decomp_at_face(&d, 1, mid));
+    assert_false(dem_decomp_at_face(&d, 0, wall));
     /* 64 ranks in a box 0.5 wide: subdomains of 0.125 at best, range
      * 0.2: refused, naming the range */
     const double small[3] = {0.5, 0.5, 0.5};

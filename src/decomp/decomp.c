@@ -171,6 +171,36 @@ int dem_decomp_is_ghost(const struct dem_decomp *d, int rank, const double x[3])
     return s < d->range * d->range;
 }
 
+int dem_decomp_near(const struct dem_decomp *d, int a, int b)
+{
+    double alo[3], ahi[3], blo[3], bhi[3];
+    dem_decomp_bounds(d, a, alo, ahi);
+    dem_decomp_bounds(d, b, blo, bhi);
+    double s = 0.0; /* squared distance between the two boxes */
+    for (int k = 0; k < 3; k++) {
+        const double g = blo[k] > ahi[k]   ? blo[k] - ahi[k]
+                         : alo[k] > bhi[k] ? alo[k] - bhi[k]
+                                           : 0.0;
+        s += g * g;
+    }
+    /* no point of a is closer to b than a's box is (a point of a lies in
+     * a's bounds up to the rounding that the slack covers) */
+    const double r = d->range * (1.0 + 1e-9);
+    return s < r * r;
+}
+
+int dem_decomp_at_face(const struct dem_decomp *d, int rank, const double x[3])
+{
+    double lo[3], hi[3];
+    dem_decomp_bounds(d, rank, lo, hi);
+    /* a point of another subdomain is at least as far from x as the
+     * nearest face of this one (an infinite face: no other side) */
+    for (int a = 0; a < 3; a++)
+        if (x[a] - lo[a] < d->range || hi[a] - x[a] < d->range)
+            return 1;
+    return 0;
+}
+
 void dem_decomp_select(const struct dem_decomp *d, int rank,
                        const struct dem_particles *p, int *list, int *nown,
                        int *nghost)

@@ -66,6 +66,17 @@ void dem_decomp_bounds(const struct dem_decomp *d, int rank, double lo[3],
 int dem_decomp_is_ghost(const struct dem_decomp *d, int rank,
                         const double x[3]);
 
+/* Whether the subdomains of ranks a and b come within the ghost range
+ * of each other: only then can one take particles of the other as
+ * ghosts (a is not b). */
+int dem_decomp_near(const struct dem_decomp *d, int a, int b);
+
+/* Whether a point of rank's subdomain lies within the ghost range of
+ * one of its faces that is not on the box's boundary: only then can it
+ * be a ghost of another subdomain. */
+int dem_decomp_at_face(const struct dem_decomp *d, int rank,
+                       const double x[3]);
+
 /* Indices into p of rank's own particles (in p's order), then of its
  * ghosts (in p's order): written to list (room for p->n), their numbers
  * to *nown and *nghost. */

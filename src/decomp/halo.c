@@ -354,19 +354,29 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
 
 /* The own particles [0, nown) of s go as ghosts to every rank whose
  * subdomain they are near; the ghosts received are appended. Keeps the
- * send lists for the steps until the next rebuild. */
+ * send lists for the steps until the next rebuild. Only the particles
+ * near a face and the ranks near this subdomain are looked at: the cost
+ * is that of the boundary layer, not of every rank times every own
+ * particle. */
 static int ghosts(struct dem_sim *s, struct halo *H, int nown)
 {
     struct dem_particles *p = &s->p;
     const int size = H->size;
     memset(H->scount, 0, (size_t)size * sizeof *H->scount);
-    int rc = 0;
+    int *near = malloc((size_t)(nown > 0 ? nown : 1) * sizeof *near);
+    int rc = near ? 0 : DEM_ENOMEM, nnear = 0;
+    for (int i = 0; i < nown && near; i++) {
+        const double x[3] = {p->x[i], p->y[i], p->z[i]};
+        if (dem_decomp_at_face(&H->d, H->rank, x))
+            near[nnear++] = i;
+    }
     H->nsend = 0;
     /* grouped by rank: one pass per rank keeps the own order in each */
     for (int r = 0; r < size && !rc; r++) {
-        if (r == H->rank)
+        if (r == H->rank || !dem_decomp_near(&H->d, H->rank, r))
             continue;
-        for (int i = 0; i < nown; i++) {
+        for (int k = 0; k < nnear; k++) {
+            const int i = near[k];
             const double x[3] = {p->x[i], p->y[i], p->z[i]};
             if (!dem_decomp_is_ghost(&H->d, r, x))
                 continue;
@@ -384,6 +394,7 @@ static int ghosts(struct dem_sim *s, struct halo *H, int nown)
             H->scount[r]++;
         }
     }
+    free(near);
     if (!rc)
         rc = sbuf_reserve(H, (size_t)H->nsend * NPACK);
     if (!all_ok(rc))
