@@ -25,7 +25,7 @@ static struct pass pass_of(const struct dem_particles *P,
         .m = P->m,
         .ci = L->i, .cj = L->j, .img = L->img, .cjr = L->j,
         .state = L->state, .F = F->v,
-        .foff = 0, .M = F->m,
+        .foff = 0, .M = F->m, .A = F->axial,
 #define HIST_OF_(MODEL, name, unit, swap, doc) .name = L->name,
         DEM_CONTACT_HISTORY(HIST_OF_)
 #undef HIST_OF_
@@ -517,14 +517,14 @@ static int forces(struct dem_sim *s, const struct kick K)
         cell_stress(s, &c);
     } else {
         /* the walls feel the opposite forces: their outward push, in list
-         * order */
+         * order, from the compact array the pass wrote beside the records
+         * (with two threads on two L3 caches, reading a record's line per
+         * contact here made the other thread's next wall contacts wait for
+         * those lines: docs/performance.md, session 42) */
         const struct dem_contact_list *WL = &pl->wcur;
         double fout[DEM_MAX_WALLS] = {0};
-        for (int k = 0; k < WL->n; k++) {
-            const struct dem_wall *W = &s->wall[WL->j[k]];
-            const double f = pl->wf.v[k].f[W->axis];
-            fout[WL->j[k]] += f * (W->side ? -1.0 : 1.0);
-        }
+        for (int k = 0; k < WL->n; k++)
+            fout[WL->j[k]] += pl->wf.axial[k];
         for (int w = 0; w < s->nwall; w++)
             s->wall[w].force = fout[w];
     }

@@ -506,6 +506,10 @@ DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
     struct dem_tangential Tc = *T;
     dem_normal_shear(law, cp, delta, ai, q.m[i], &Tc);
     finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
+    /* the force on the wall along its axis, outward positive, for the
+     * walls' sums (contact/forces.c): the record's component times sgn */
+    const double *f = qp->F[k - q.foff].f;
+    qp->A[k] = sgn * (a == 0 ? f[0] : a == 1 ? f[1] : f[2]);
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp

@@ -42,6 +42,7 @@ struct pass {
     int foff;                    /* 0, or a ring's offset (contact/pass.c) */
     double *M; /* the resistances' torques on i, 3 per entry (only with a
                   resistance on) */
+    double *A; /* wall contacts: struct dem_contact_forces.axial */
 };
 
 /* The closing half kick of a step (h = dt/2, g gravity), or none. */

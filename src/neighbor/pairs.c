@@ -27,6 +27,7 @@ static void forces_free(struct dem_contact_forces *f)
 {
     free(f->v);
     free(f->m);
+    free(f->axial);
     memset(f, 0, sizeof *f);
 }
 
@@ -101,11 +102,13 @@ static int grow_records(struct dem_contact_force **v, int have, int cap)
     return 0;
 }
 
-static int forces_reserve(struct dem_contact_forces *f, int cap)
+/* axial: the wall contacts' (struct dem_contact_forces.axial) */
+static int forces_reserve(struct dem_contact_forces *f, int cap, int axial)
 {
     if (cap <= f->cap)
         return 0;
-    if (grow_records(&f->v, f->cap, cap) || GROW(f->m, 3 * cap))
+    if (grow_records(&f->v, f->cap, cap) || GROW(f->m, 3 * cap) ||
+        (axial && GROW(f->axial, cap)))
         return -1;
     f->cap = cap;
     return 0;
@@ -764,8 +767,8 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
     if (rc)
         return rc;
     if (dem_pairs_reverse(pl, n) || dem_pairs_cross(pl, n) ||
-        forces_reserve(&pl->f, pl->cur.cap) ||
-        forces_reserve(&pl->wf, pl->wcur.cap))
+        forces_reserve(&pl->f, pl->cur.cap, 0) ||
+        forces_reserve(&pl->wf, pl->wcur.cap, 1))
         return dem_error_set(err, DEM_ENOMEM, "out of memory (neighbours)");
     forces_zero(&pl->f, pl->cur.n, pl->torques);
     forces_zero(&pl->wf, pl->wcur.n, pl->torques);
@@ -779,8 +782,9 @@ int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc)
     npair = npair > 0 ? npair : 1;
     nwc = nwc > 0 ? nwc : 1;
     if (particles_reserve(pl, n, cap) || list_reserve(&pl->cur, npair) ||
-        list_reserve(&pl->wcur, nwc) || forces_reserve(&pl->f, pl->cur.cap) ||
-        forces_reserve(&pl->wf, pl->wcur.cap))
+        list_reserve(&pl->wcur, nwc) ||
+        forces_reserve(&pl->f, pl->cur.cap, 0) ||
+        forces_reserve(&pl->wf, pl->wcur.cap, 1))
         return DEM_ENOMEM;
     if (pl->cur.cap > pl->rpair_cap) {
         if (GROW(pl->rpair, pl->cur.cap))

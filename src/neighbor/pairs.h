@@ -71,6 +71,10 @@ struct dem_contact_forces {
     double *m; /* N m; 3 per entry: the torque of the rolling and torsion
                   resistances on i (on j the opposite); written and read
                   only with a resistance on (struct dem_pairs.torques) */
+    double *axial; /* N; wall contacts only (NULL for pairs): the force on
+                      the wall along its axis, outward positive, which the
+                      walls' sums read instead of the records (a record's
+                      line per contact would pass between threads) */
 };
 
 struct dem_pairs {
