@@ -19,7 +19,11 @@
  * it): tens of ns between cores that share an L3 cache, several times
  * more between two of a virtual machine's vCPUs that the host has put on
  * different L3 domains (docs/performance.md, "Why two threads gain so
- * unevenly here"). */
+ * unevenly here"). That alone, in a second or two, to label runs
+ * by where the host has put the vCPUs (docs/parallel.md, "Threads or
+ * ranks on one machine"):
+ *
+ *     build/dembox_limits --pingpong */
 #define _GNU_SOURCE /* pthread_setaffinity_np */
 #include <math.h>
 #include <pthread.h>
@@ -27,6 +31,7 @@
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -309,8 +314,36 @@ static double pingpong(void)
     return 1e9 * (t1 - t0) / (2.0 * PONG_ROUNDS);
 }
 
-int main(void)
+/* The ping-pong's line of output, measured k times; 0, or 1 when the
+ * machine has one CPU or the threads cannot be pinned. */
+static int pingpong_line(int k)
 {
+    if (sysconf(_SC_NPROCESSORS_ONLN) < 2) {
+        printf("cache line CPU 0 <-> 1: one CPU only\n");
+        return 1;
+    }
+    /* each measured apart: the host may move the vCPUs in between */
+    printf("cache line CPU 0 <-> 1:");
+    for (int u = 0; u < k; u++) {
+        const double ns = pingpong();
+        if (ns < 0.0) {
+            printf(" (cannot pin threads to CPUs 0 and 1)\n");
+            return 1;
+        }
+        printf(" %.0f", ns);
+    }
+    printf(" ns per one-way pass\n");
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 2 && !strcmp(argv[1], "--pingpong"))
+        return pingpong_line(5);
+    if (argc > 1) {
+        fprintf(stderr, "usage: dembox_limits [--pingpong]\n");
+        return 2;
+    }
     printf("fma:    %.1f Gflop/s\n", 1e-9 * best(fma_rate, 2000000));
     printf("sqrt:   %.3f G lanes/s (%.2f ns each)\n",
            1e-9 * best(sqrt_rate, 500000), 1e9 / best(sqrt_rate, 500000));
@@ -344,18 +377,7 @@ int main(void)
                "arrays of x, v, omega: %.1f)\n",
                ns[s], pairs[s], all, rec);
     }
-    if (sysconf(_SC_NPROCESSORS_ONLN) >= 2) {
-        /* each measured apart: the host may move the vCPUs in between */
-        printf("cache line CPU 0 <-> 1:");
-        for (int k = 0; k < 5; k++) {
-            const double ns = pingpong();
-            if (ns < 0.0) {
-                printf(" (cannot pin threads to CPUs 0 and 1)");
-                break;
-            }
-            printf(" %.0f", ns);
-        }
-        printf(" ns per one-way pass\n");
-    }
+    if (sysconf(_SC_NPROCESSORS_ONLN) >= 2)
+        pingpong_line(5);
     return sink == 42.0;
 }
