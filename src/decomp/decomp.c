@@ -157,18 +157,26 @@ void dem_decomp_bounds(const struct dem_decomp *d, int rank, double lo[3],
     }
 }
 
+/* Squared distance between the boxes [alo, ahi] and [blo, bhi] (a point:
+ * alo = ahi). */
+static double gap2(const double alo[3], const double ahi[3],
+                   const double blo[3], const double bhi[3])
+{
+    double s = 0.0;
+    for (int k = 0; k < 3; k++) {
+        const double g = blo[k] > ahi[k]   ? blo[k] - ahi[k]
+                         : alo[k] > bhi[k] ? alo[k] - bhi[k]
+                                           : 0.0;
+        s += g * g;
+    }
+    return s;
+}
+
 int dem_decomp_is_ghost(const struct dem_decomp *d, int rank, const double x[3])
 {
     double lo[3], hi[3];
     dem_decomp_bounds(d, rank, lo, hi);
-    double s = 0.0; /* squared distance from the subdomain */
-    for (int a = 0; a < 3; a++) {
-        const double g = x[a] < lo[a]   ? lo[a] - x[a]
-                         : x[a] > hi[a] ? x[a] - hi[a]
-                                        : 0.0;
-        s += g * g;
-    }
-    return s < d->range * d->range;
+    return gap2(x, x, lo, hi) < d->range * d->range;
 }
 
 int dem_decomp_near(const struct dem_decomp *d, int a, int b)
@@ -176,17 +184,10 @@ int dem_decomp_near(const struct dem_decomp *d, int a, int b)
     double alo[3], ahi[3], blo[3], bhi[3];
     dem_decomp_bounds(d, a, alo, ahi);
     dem_decomp_bounds(d, b, blo, bhi);
-    double s = 0.0; /* squared distance between the two boxes */
-    for (int k = 0; k < 3; k++) {
-        const double g = blo[k] > ahi[k]   ? blo[k] - ahi[k]
-                         : alo[k] > bhi[k] ? alo[k] - bhi[k]
-                                           : 0.0;
-        s += g * g;
-    }
     /* no point of a is closer to b than a's box is (a point of a lies in
      * a's bounds up to the rounding that the slack covers) */
     const double r = d->range * (1.0 + 1e-9);
-    return s < r * r;
+    return gap2(alo, ahi, blo, bhi) < r * r;
 }
 
 int dem_decomp_at_face(const struct dem_decomp *d, int rank, const double x[3])
