@@ -23,7 +23,14 @@
  * by where the host has put the vCPUs (docs/parallel.md, "Threads or
  * ranks on one machine"):
  *
- *     build/dembox_limits --pingpong */
+ *     build/dembox_limits --pingpong
+ *
+ * And what it costs to hand cache lines over: CPU 1 writes 640 lines
+ * that CPU 0 then reads, 4000 times, once with ordinary stores and once
+ * with non-temporal ones; ns per line for each side, with the ping-pong
+ * before and after (docs/performance.md, session 43):
+ *
+ *     build/dembox_limits --handover */
 #define _GNU_SOURCE /* pthread_setaffinity_np */
 #include <math.h>
 #include <pthread.h>
@@ -34,6 +41,9 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #define LANES 64 /* independent values: enough to hide every latency */
 
@@ -282,26 +292,34 @@ static void *pong_side(void *arg)
     return NULL;
 }
 
+/* The calling thread pinned to CPU 0 and fn started in *t pinned to
+ * CPU 1; non-zero if either cannot be done. */
+static int start_pair(pthread_t *t, void *(*fn)(void *))
+{
+    cpu_set_t set;
+    pthread_attr_t attr;
+    CPU_ZERO(&set);
+    CPU_SET(0, &set);
+    if (pthread_setaffinity_np(pthread_self(), sizeof set, &set))
+        return 1;
+    CPU_ZERO(&set);
+    CPU_SET(1, &set);
+    /* the other side starts pinned to CPU 1, or not at all */
+    if (pthread_attr_init(&attr))
+        return 1;
+    const int bad = pthread_attr_setaffinity_np(&attr, sizeof set, &set) ||
+                    pthread_create(t, &attr, fn, NULL);
+    pthread_attr_destroy(&attr);
+    return bad;
+}
+
 /* ns per one-way pass of a cache line between CPUs 0 and 1, or a
  * negative value if the threads cannot be pinned there. */
 static double pingpong(void)
 {
-    cpu_set_t set;
-    pthread_attr_t attr;
     pthread_t t;
     atomic_store(&pong, 0);
-    CPU_ZERO(&set);
-    CPU_SET(0, &set);
-    if (pthread_setaffinity_np(pthread_self(), sizeof set, &set))
-        return -1.0;
-    CPU_ZERO(&set);
-    CPU_SET(1, &set);
-    /* the other side starts pinned to CPU 1, or not at all */
-    int bad = pthread_attr_init(&attr) ||
-              pthread_attr_setaffinity_np(&attr, sizeof set, &set) ||
-              pthread_create(&t, &attr, pong_side, NULL);
-    pthread_attr_destroy(&attr);
-    if (bad)
+    if (start_pair(&t, pong_side))
         return -1.0;
     const double t0 = now();
     for (long i = 0; i < 2 * PONG_ROUNDS; i += 2) {
@@ -312,6 +330,77 @@ static double pingpong(void)
     const double t1 = now();
     pthread_join(t, NULL);
     return 1e9 * (t1 - t0) / (2.0 * PONG_ROUNDS);
+}
+
+/* Lines handed over from CPU 1 to CPU 0: round r, CPU 1 writes every
+ * line whole when hand_turn is 2r + 1 (with hand_stream past the caches,
+ * non-temporal), then sets it to 2r + 2, and CPU 0 reads them. */
+enum { HAND_LINES = 640, HAND_ROUNDS = 4000 };
+static _Alignas(64) double hand_buf[8 * HAND_LINES];
+static _Alignas(64) _Atomic long hand_turn;
+static int hand_stream;
+static double hand_write_s; /* CPU 1's time writing */
+
+static void hand_write(double v)
+{
+    for (int l = 0; l < HAND_LINES; l++) {
+        double *o = hand_buf + 8 * l;
+#if defined(__SSE2__)
+        if (hand_stream) {
+            for (int u = 0; u < 8; u += 2)
+                _mm_stream_pd(o + u, _mm_set1_pd(v));
+            continue;
+        }
+#endif
+        for (int u = 0; u < 8; u++)
+            o[u] = v;
+    }
+#if defined(__SSE2__)
+    _mm_sfence();
+#endif
+}
+
+static void *hand_side(void *arg)
+{
+    (void)arg;
+    for (long r = 0; r < HAND_ROUNDS; r++) {
+        while (atomic_load_explicit(&hand_turn, memory_order_acquire) !=
+               2 * r + 1)
+            ;
+        const double t0 = now();
+        hand_write((double)r);
+        hand_write_s += now() - t0;
+        atomic_store_explicit(&hand_turn, 2 * r + 2, memory_order_release);
+    }
+    return NULL;
+}
+
+/* ns per line for CPU 1 to write and for CPU 0 to read; 1 if the
+ * threads cannot be pinned. */
+static int handover(int stream, double *wr, double *rd)
+{
+    pthread_t t;
+    hand_stream = stream;
+    hand_write_s = 0.0;
+    atomic_store(&hand_turn, 0);
+    if (start_pair(&t, hand_side))
+        return 1;
+    double read_s = 0.0, s = 0.0;
+    for (long r = 0; r < HAND_ROUNDS; r++) {
+        atomic_store_explicit(&hand_turn, 2 * r + 1, memory_order_release);
+        while (atomic_load_explicit(&hand_turn, memory_order_acquire) !=
+               2 * r + 2)
+            ;
+        const double t0 = now();
+        for (int l = 0; l < HAND_LINES; l++)
+            s += hand_buf[8 * l];
+        read_s += now() - t0;
+    }
+    pthread_join(t, NULL);
+    sink += s;
+    *wr = 1e9 * hand_write_s / ((double)HAND_ROUNDS * HAND_LINES);
+    *rd = 1e9 * read_s / ((double)HAND_ROUNDS * HAND_LINES);
+    return 0;
 }
 
 /* The ping-pong's line of output, measured k times; 0, or 1 when the
@@ -340,8 +429,21 @@ int main(int argc, char **argv)
 {
     if (argc == 2 && !strcmp(argv[1], "--pingpong"))
         return pingpong_line(5);
+    if (argc == 2 && !strcmp(argv[1], "--handover")) {
+        if (pingpong_line(3))
+            return 1;
+        double w[2], r[2];
+        for (int m = 0; m < 2; m++)
+            if (handover(m, &w[m], &r[m]))
+                return 1;
+        printf("%d lines from CPU 1 to CPU 0, ns per line to write and to "
+               "read: in the caches %.1f and %.1f, non-temporal %.1f and "
+               "%.1f\n",
+               HAND_LINES, w[0], r[0], w[1], r[1]);
+        return pingpong_line(3);
+    }
     if (argc > 1) {
-        fprintf(stderr, "usage: dembox_limits [--pingpong]\n");
+        fprintf(stderr, "usage: dembox_limits [--pingpong | --handover]\n");
         return 2;
     }
     printf("fma:    %.1f Gflop/s\n", 1e-9 * best(fma_rate, 2000000));
