@@ -470,7 +470,7 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
  * in memory, each waited for the store of the one before, which took
  * 1.5 % of a step at N = 3375 with one thread (docs/performance.md,
  * session 43). */
-typedef long dem_wall_mask __attribute__((vector_size(64)));
+typedef long long dem_wall_mask __attribute__((vector_size(64)));
 typedef double dem_wall_sums __attribute__((vector_size(64)));
 _Static_assert(DEM_MAX_WALLS <= 8, "one lane per wall");
 
@@ -480,7 +480,7 @@ static void wall_sums(const struct dem_contact_list *L, const double *v,
     const dem_wall_mask lane = {0, 1, 2, 3, 4, 5, 6, 7};
     dem_wall_sums acc = {0.0};
     for (int k = 0; k < L->n; k++) {
-        const dem_wall_mask on = lane == (long)L->j[k];
+        const dem_wall_mask on = lane == (long long)L->j[k];
         const double x = v[k];
         const dem_wall_sums a = {x, x, x, x, x, x, x, x};
         acc += (dem_wall_sums)((dem_wall_mask)a & on);
