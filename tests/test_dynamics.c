@@ -175,6 +175,11 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
         }
     }
     assert_true(s.nbuild > 3);
+    /* the records pass's chained steps between walls: each thread owns
+     * its block (neighbor/blocks.h), set up for the last list */
+    if (threads > 1 && chained && !run_cell && pass &&
+        !strcmp(pass, "records"))
+        assert_int_equal(s.pairs.blocks.nt, threads);
     for (int i = 0; i < s.p.n && 6 * s.p.id[i] + 5 < RUN_PARTICLES; i++) {
         double *o = out + 6 * s.p.id[i];
         o[0] = s.p.x[i];
@@ -251,6 +256,9 @@ static void force_passes_give_identical_results(void **state)
      * pass; one by one: filled at every pass */
     assert_same_runs(1, 1, "gathers", 1, 1, "records");
     assert_same_runs(2, 1, "records", 1, 0, "records");
+    /* three threads own blocks thinner than the pairs' reach: a block's
+     * twins (neighbor/blocks.h) come from both earlier blocks */
+    assert_same_runs(3, 1, "records", 1, 1, "gathers");
     /* the ring pass: chained, the forces in rings (with two threads the
      * first particles of the second block wait for the barrier) */
     assert_same_runs(1, 1, "ring", 1, 0, "records");
@@ -260,6 +268,7 @@ static void force_passes_give_identical_results(void **state)
     run_resist = 1;
     assert_same_runs(1, 1, "ring", 1, 0, "records");
     assert_same_runs(2, 1, "ring", 1, 1, "gathers");
+    assert_same_runs(2, 1, "records", 1, 1, "gathers"); /* twins' torques */
     run_resist = 0;
     run_cell = 1;
     assert_same_runs(2, 1, "gathers", 1, 1, "records");

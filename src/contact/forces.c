@@ -208,14 +208,16 @@ static const struct {
     const char *name;
     pass_fn run;
     int rec; /* a chained pass writes the particle records (contact/pass.c) */
+    int blocks; /* its chained passes between walls run with threads that
+                   own their particles (neighbor/blocks.h) */
 } passes[] = {
-    {"gathers", dem__pass_gathers, 0},
+    {"gathers", dem__pass_gathers, 0, 0},
 #if DEM_PASS_LOADS
-    {"loads", dem__pass_loads, 0},
+    {"loads", dem__pass_loads, 0, 0},
 #endif
 #if DEM_HAVE_PASS_RECORDS
-    {"records", dem__pass_records, 1},
-    {"ring", dem__pass_ring, 1},
+    {"records", dem__pass_records, 1, 1},
+    {"ring", dem__pass_ring, 1, 0},
 #endif
 };
 enum { NPASS = sizeof passes / sizeof passes[0] };
@@ -489,6 +491,31 @@ static void wall_sums(const struct dem_contact_list *L, const double *v,
         out[w] = acc[w];
 }
 
+/* The threads' own blocks for a chained pass between walls in one
+ * process with more than one thread (neighbor/blocks.h), set up for the
+ * list if it changed, with room for their ghost records; NULL where they
+ * do not apply or could not be set up (the pass then runs without). */
+static const struct dem_blocks *own_blocks(struct dem_sim *s,
+                                           const struct kick K)
+{
+    struct dem_pairs *pl = &s->pairs;
+    const int nt = omp_get_max_threads();
+#if !DEM_HAVE_PASS_RECORDS
+    (void)pl;
+    (void)K;
+    (void)nt;
+    return NULL;
+#else
+    if (!K.chain || s->cell.on || s->halo || pl->nghost || nt < 2)
+        return NULL;
+    struct dem_blocks *B = &pl->blocks;
+    if (dem_blocks_setup(B, pl, s->p.n, nt) ||
+        dem_pairs_records_reserve(pl, B->base + 2 * B->ng))
+        return NULL;
+    return B;
+#endif
+}
+
 static int forces(struct dem_sim *s, const struct kick K)
 {
     struct dem_pairs *pl = &s->pairs;
@@ -526,7 +553,6 @@ static int forces(struct dem_sim *s, const struct kick K)
         dem_sim_cell_grad(s, c.grad);
         c.q.cjr = pl->jrec;
     }
-    c.rec = pl->rec;
 #if DEM_HAVE_PASS_RECORDS
     if (K.chain) {
         c.ring_chunk = pl->ring_chunk ? pl->ring_chunk : DEM_RING_CHUNK;
@@ -535,10 +561,17 @@ static int forces(struct dem_sim *s, const struct kick K)
         c.done = pl->ring_done;
     }
 #endif
+    c.blocks = own_blocks(s, K);
+    c.rec = pl->rec; /* (after own_blocks, which may move them) */
     c.rec_fresh = pl->rec_fresh && pl->rec_written;
+    c.blocks_fresh = c.rec_fresh && pl->blocks.written;
     pl->rec_fresh = 0;
     const int moved = run_pass(&s->pass, &c, K);
     pl->rec_written = K.chain && passes[s->pass.ran].rec;
+    /* the next such pass reads the ghost records this one wrote */
+    pl->blocks.written = c.blocks && passes[s->pass.ran].blocks;
+    if (pl->blocks.written)
+        pl->blocks.half ^= 1;
     if (s->cell.on) {
         cell_stress(s, &c);
     } else {

@@ -285,43 +285,71 @@ DEM_INLINE void pair_one(const int law, const struct pass *qp, int k,
  * 4 x 4 transposes (eight by 8 x 4 ones with AVX-512). */
 
 /* Four values of four consecutive particles (rows a, b, c, d: one value
- * each) as the same block of their four records at o, 12 doubles apart. */
+ * each) as the same block of their four records at o, 12 doubles apart;
+ * with stream (a literal) by non-temporal stores, past the caches. */
 DEM_INLINE void records_block(double *o, __m256d a, __m256d b, __m256d c,
-                              __m256d d)
+                              __m256d d, const int stream)
 {
     const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b),
                   t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
-    _mm256_store_pd(o, _mm256_permute2f128_pd(t0, t2, 0x20));
-    _mm256_store_pd(o + DEM_REC, _mm256_permute2f128_pd(t1, t3, 0x20));
-    _mm256_store_pd(o + 2 * DEM_REC, _mm256_permute2f128_pd(t0, t2, 0x31));
-    _mm256_store_pd(o + 3 * DEM_REC, _mm256_permute2f128_pd(t1, t3, 0x31));
+    const __m256d r[4] = {_mm256_permute2f128_pd(t0, t2, 0x20),
+                          _mm256_permute2f128_pd(t1, t3, 0x20),
+                          _mm256_permute2f128_pd(t0, t2, 0x31),
+                          _mm256_permute2f128_pd(t1, t3, 0x31)};
+    for (int u = 0; u < 4; u++) {
+        if (stream)
+            _mm256_stream_pd(o + u * DEM_REC, r[u]);
+        else
+            _mm256_store_pd(o + u * DEM_REC, r[u]);
+    }
 }
 
-/* Particles i0 <= i < i1 into their records, four at a time by
- * transposes. */
-DEM_INLINE void records_fill(double *restrict rec,
-                             const struct dem_particles *P, int i0, int i1)
+/* Particles i0 <= i < i1 into the records from o on (particle i's at
+ * o + DEM_REC (i - i0)), four at a time by transposes; with stream (a
+ * literal) past the caches, for ghost records (neighbor/blocks.h: the
+ * caller fences). */
+DEM_INLINE void records_fill(double *restrict o, const struct dem_particles *P,
+                             int i0, int i1, const int stream)
 {
     int i = i0;
-    for (; i + 4 <= i1; i += 4) {
-        double *o = rec + DEM_REC * (size_t)i;
+    for (; i + 4 <= i1; i += 4, o += 4 * DEM_REC) {
         records_block(o, _mm256_loadu_pd(P->x + i), _mm256_loadu_pd(P->y + i),
-                      _mm256_loadu_pd(P->z + i), _mm256_loadu_pd(P->r + i));
+                      _mm256_loadu_pd(P->z + i), _mm256_loadu_pd(P->r + i),
+                      stream);
         records_block(o + 4, _mm256_loadu_pd(P->vx + i),
                       _mm256_loadu_pd(P->vy + i), _mm256_loadu_pd(P->vz + i),
-                      _mm256_loadu_pd(P->m + i));
+                      _mm256_loadu_pd(P->m + i), stream);
         records_block(o + 8, _mm256_loadu_pd(P->wx + i),
                       _mm256_loadu_pd(P->wy + i), _mm256_loadu_pd(P->wz + i),
-                      _mm256_setzero_pd());
+                      _mm256_setzero_pd(), stream);
     }
-    for (; i < i1; i++) {
-        double *o = rec + DEM_REC * (size_t)i;
-        const double v[DEM_REC] = {P->x[i],  P->y[i],  P->z[i],  P->r[i],
-                                   P->vx[i], P->vy[i], P->vz[i], P->m[i],
-                                   P->wx[i], P->wy[i], P->wz[i], 0.0};
-        for (int u = 0; u < DEM_REC; u++)
-            o[u] = v[u];
+    for (; i < i1; i++, o += DEM_REC) {
+        const __m256d v[3] = {
+            _mm256_setr_pd(P->x[i], P->y[i], P->z[i], P->r[i]),
+            _mm256_setr_pd(P->vx[i], P->vy[i], P->vz[i], P->m[i]),
+            _mm256_setr_pd(P->wx[i], P->wy[i], P->wz[i], 0.0)};
+        for (int u = 0; u < 3; u++) {
+            if (stream)
+                _mm256_stream_pd(o + 4 * u, v[u]);
+            else
+                _mm256_store_pd(o + 4 * u, v[u]);
+        }
     }
+}
+
+/* Particles i0 <= i < i1 into their records (struct contacts.rec). */
+DEM_INLINE void records_own(double *rec, const struct dem_particles *P, int i0,
+                            int i1)
+{
+    records_fill(rec + DEM_REC * (size_t)i0, P, i0, i1, 0);
+}
+
+/* A particle's values for a pair, from its record. */
+DEM_INLINE struct pv record_pv(const double *o)
+{
+    const struct pv p = {o[0], o[1], o[2], o[3], o[4],  o[5],
+                         o[6], o[7], o[8], o[9], o[10]};
+    return p;
 }
 
 /* In a periodic cell, the image records of the pairs k0 <= k < k1 that
@@ -430,7 +458,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         if (k + DEM_PREFETCH_PAIRS + DEM_PAIR_LANES <= kend)
             for (int l = 0; l < DEM_PAIR_LANES; l++) {
                 const double *r =
-                    rec + DEM_REC * (size_t)q.cjr[k + DEM_PREFETCH_PAIRS + l];
+                    rec + DEM_REC * (size_t)q.cjr[k + DEM_PREFETCH_PAIRS + l -
+                                                  q.roff];
                 __builtin_prefetch(r, 0, 3);
                 __builtin_prefetch(r + 8, 0, 3);
             }
@@ -440,7 +469,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         if (ahead && k + ahead + DEM_PAIR_LANES <= kend) {
             const int u = k + ahead;
             __builtin_prefetch(q.ci + u, 0, 3);
-            __builtin_prefetch(q.cjr + u, 0, 3);
+            __builtin_prefetch(q.cjr + u - q.roff, 0, 3);
             __builtin_prefetch(q.state + u, 1, 3);
             for (int e = 0; e < DEM_PAIR_LANES; e += 8) {
 #define HIST_AHEAD_(MODEL, name, unit, swap, doc)                               \
@@ -451,7 +480,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
             }
         }
         records_lanes(rec, q.ci + k, A);
-        records_lanes(rec, q.cjr + k, B);
+        records_lanes(rec, q.cjr + (k - q.roff), B);
 #pragma omp simd
         for (int l = 0; l < DEM_PAIR_LANES; l++) {
             const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
@@ -463,10 +492,20 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
             pair_vals(law, &q, k + l, pi, pj, cp, dt, &T, grad, fm);
         }
     }
-#endif
+    /* the rest from the records too (the same values as in the arrays,
+     * which with threads that own their blocks another thread may be
+     * moving on already, neighbor/blocks.h) */
+    (void)cv;
+#pragma omp simd
+    for (int kk = k; kk < k1; kk++)
+        pair_vals(law, &q, kk, record_pv(rec + DEM_REC * (size_t)q.ci[kk]),
+                  record_pv(rec + DEM_REC * (size_t)q.cjr[kk - q.roff]), cp,
+                  dt, &T, grad, fm);
+#else
 #pragma omp simd
     for (int kk = k; kk < k1; kk++)
         pair_one(law, &q, kk, cp, dt, &T, cv, grad, fm);
+#endif
 }
 
 /* Force and history update of wall contact k (no branch, as pair_one). */
@@ -679,6 +718,20 @@ DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
     virial_flush(V, ib + nb);
 }
 
+/* What a thread that owns its block (neighbor/blocks.h) reads and writes
+ * besides the list's arrays: its twins' forces and resistance torques,
+ * F[u] and M[3 u] for the u = tw[q - q0] of a reverse row's entry q whose
+ * pair is below k0 (an earlier block's); and the ghost records of its
+ * particles in [lo[r], hi[r]) for the next pass, from ghost[at[r]] on. */
+struct own {
+    const struct dem_contact_force *F;
+    const double *M;
+    const int *tw;
+    int q0, k0;
+    double *ghost;
+    int lo[2], hi[2], at[2];
+};
+
 /* Particles i0 <= i < i1: background damping plus the forces of the
  * pairs as i (the particle's row), as j (its reverse row), pair k's
  * read from F[(k - kb) & fmask] (but in a periodic cell the pairs through
@@ -698,7 +751,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                               int fmask, double gb, double gr,
                               const struct kick K, struct virial *V,
                               const struct dem_frame *fr, double *rec,
-                              const int ahead)
+                              const int ahead, const struct own *O)
 {
     (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
@@ -768,6 +821,8 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         for (int q = rstart[i]; q < rstart[i + 1]; q++) {
             const struct dem_contact_force *o =
                 q < qi ? &F[(rpair[q] - kb) & fmask] : &FL[rpair[q]];
+            if (O && rpair[q] < O->k0) /* a twin: its own copy */
+                o = &O->F[O->tw[q - O->q0]];
             fx -= o->f[0];
             fy -= o->f[1];
             fz -= o->f[2];
@@ -805,9 +860,12 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                 mz += M[3 * k + 2];
             }
             for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-                mx -= M[3 * rpair[q]];
-                my -= M[3 * rpair[q] + 1];
-                mz -= M[3 * rpair[q] + 2];
+                const double *m = O && rpair[q] < O->k0
+                                      ? &O->M[3 * O->tw[q - O->q0]]
+                                      : &M[3 * rpair[q]];
+                mx -= m[0];
+                my -= m[1];
+                mz -= m[2];
             }
             for (int k = wstart[i]; k < wstart[i + 1]; k++) {
                 mx += WM[3 * k];
@@ -859,7 +917,15 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             }
 #if DEM_PASS_RECORDS
             /* the next pass reads the block's records as they are now */
-            records_fill(rec, &Q, ib, ib + b + 1);
+            records_own(rec, &Q, ib, ib + b + 1);
+            for (int r = 0; O && r < 2; r++) { /* and its ghost records */
+                const int lo = ib > O->lo[r] ? ib : O->lo[r],
+                          hi = ib + b + 1 < O->hi[r] ? ib + b + 1 : O->hi[r];
+                if (lo < hi)
+                    records_fill(O->ghost +
+                                     DEM_REC * (size_t)(O->at[r] + lo - O->lo[r]),
+                                 &Q, lo, hi, 1);
+            }
 #endif
         }
     }
@@ -962,7 +1028,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         if (f > p) {
             moved |= particle_range(law, p, f, c->P, pl, ring, k0, mask, c->gb,
                                     c->gr, K, &V, &c->fr, c->rec,
-                                    DEM_AHEAD_PARTICLES);
+                                    DEM_AHEAD_PARTICLES, NULL);
             p = f;
         }
         if (ke == k1)
@@ -989,10 +1055,91 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
             V.end = hi;
             moved |= particle_range(law, lo, hi, c->P, pl, c->q.F, 0, -1, c->gb,
                                     c->gr, K, &V, &c->fr, c->rec,
-                                    DEM_AHEAD_PARTICLES);
+                                    DEM_AHEAD_PARTICLES, NULL);
         }
         u += e - a;
     }
+    return moved;
+}
+#endif
+
+#if DEM_PASS_RECORDS && !DEM_PASS_RING
+/* Thread t's share of a chained pass between walls in which each thread
+ * owns its block (neighbor/blocks.h): its rows, its twins (the earlier
+ * blocks' pairs with its particles as j, again, with their own history),
+ * its wall contacts, then its particles, with no barrier. Every pair's
+ * force and history in the list are those its rows' thread computed;
+ * each sum runs over the same values in the same order as in the other
+ * passes: the same bits. */
+DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
+                             const struct kick K, int t)
+{
+    const struct dem_blocks *B = c->blocks;
+    const struct dem_block *k = &B->t[t];
+    const int h = B->half, s = k->g > k->d ? k->g : k->d;
+    double *ghosts = c->rec + DEM_REC * (size_t)B->base;
+    if (!c->blocks_fresh) {
+        /* the records it reads of its own particles and of the others
+         * (from the arrays: the state now), the twins' history from the
+         * list, before any thread changes it */
+        if (!c->rec_fresh)
+            records_own(c->rec, c->P, k->a, k->b);
+        double *g = ghosts + DEM_REC * (size_t)h * (size_t)B->ng;
+        records_fill(g + DEM_REC * (size_t)k->ga, c->P, k->a, k->d, 0);
+        records_fill(g + DEM_REC * (size_t)k->gg, c->P, s, k->b, 0);
+        const int *rpair = c->pl->rpair;
+        for (int u = k->q0; u < k->q1; u++) {
+            const int v = k->tw[u - k->q0], p = rpair[u];
+            if (v < 0)
+                continue;
+#define TWIN_HISTORY_(MODEL, name, unit, swap, doc)                             \
+    if (DEM_MODEL_USES(law, MODEL))                                            \
+        k->name[v] = c->q.name[p];
+            DEM_CONTACT_HISTORY(TWIN_HISTORY_)
+#undef TWIN_HISTORY_
+            k->state[v] = c->q.state[p];
+        }
+#pragma omp barrier
+    }
+    /* its rows: with j in the block, then with some j beyond it */
+    struct pass q = c->q;
+    pair_range(law, q, k->k0, k->kt, k->kt, &c->cp, c->dt, c->cv, c->grad,
+               c->fr.m, c->rec, 0);
+    q.cjr = k->rj[h];
+    q.roff = k->kt;
+    pair_range(law, q, k->kt, k->k1, k->k1, &c->cp, c->dt, c->cv, c->grad,
+               c->fr.m, c->rec, 0);
+    /* its twins, numbered from 0 in its own arrays */
+    struct pass w = c->q;
+    w.ci = k->ri2[h];
+    w.cjr = k->rj2[h];
+    w.roff = 0;
+#define TWIN_ARRAY_(MODEL, name, unit, swap, doc) w.name = k->name;
+    DEM_CONTACT_HISTORY(TWIN_ARRAY_)
+#undef TWIN_ARRAY_
+    w.state = k->state;
+    w.F = k->F;
+    w.foff = 0;
+    w.M = k->M;
+    pair_range(law, w, 0, k->nd, k->nd, &c->cp, c->dt, c->cv, c->grad, c->fr.m,
+               c->rec, 0);
+    const int *wstart = c->pl->wcur.start;
+    wall_range(law, c->wq, wstart[k->a], wstart[k->b], &c->cpw, c->dt,
+               c->walls);
+    const struct own O = {k->F,
+                          k->M,
+                          k->tw,
+                          k->q0,
+                          k->k0,
+                          ghosts + DEM_REC * (size_t)(1 - h) * (size_t)B->ng,
+                          {k->a, s},
+                          {k->d, k->b},
+                          {k->ga, k->gg}};
+    struct virial V = {c->vir, {{0.0}}, k->b, c->fr.m};
+    const int moved =
+        particle_range(law, k->a, k->b, c->P, c->pl, c->q.F, 0, -1, c->gb,
+                       c->gr, K, &V, &c->fr, c->rec, 0, &O);
+    _mm_sfence(); /* the ghost records out before the pass ends */
     return moved;
 }
 #endif
@@ -1003,14 +1150,20 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
 DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                                const struct kick K, int t, int nt)
 {
+#if DEM_PASS_RECORDS && !DEM_PASS_RING
+    /* a literal: no cell here */
+    if (!(law & DEM_SET_PERIODIC) && K.chain && c->blocks &&
+        c->blocks->nt == nt)
+        return blocks_thread(law, c, K, t);
+#endif
 #if DEM_PASS_RECORDS
     /* every particle's record, or only the ghosts' when the chained pass
      * before wrote the own ones (a subdomain's ghosts: their owners
      * moved them, decomp/halo.h) */
     const int f0 = c->rec_fresh ? c->n : 0, nf = c->P->n - f0;
     if (nf > 0) {
-        records_fill(c->rec, c->P, f0 + dem_block(nf, t, nt),
-                     f0 + dem_block(nf, t + 1, nt));
+        records_own(c->rec, c->P, f0 + dem_block(nf, t, nt),
+                    f0 + dem_block(nf, t + 1, nt));
 #pragma omp barrier
     }
 #endif
@@ -1036,7 +1189,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                         : dem_block(c->n, t + 1, nt);
     struct virial V = {c->vir, {{0.0}}, i1, c->fr.m};
     return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb, c->gr,
-                          K, &V, &c->fr, c->rec, 0);
+                          K, &V, &c->fr, c->rec, 0, NULL);
 }
 
 /* One instance per model set and kind of kick (literals), so that each

@@ -33,7 +33,10 @@ struct pass {
     const int *ci, *cj;
     const int *img; /* periodic cell: the image of j (core/cell.h) */
     const int *cjr; /* the record of j the records pass reads: cj, or in a
-                       periodic cell struct dem_pairs.jrec */
+                       periodic cell struct dem_pairs.jrec; pair k's at
+                       cjr[k - roff] */
+    int roff;       /* 0, or the first pair of a block's own cjr
+                       (neighbor/blocks.h) */
 #define HIST_ARRAY_(MODEL, name, unit, swap, doc) double *name;
     DEM_CONTACT_HISTORY(HIST_ARRAY_) /* the history values' arrays */
 #undef HIST_ARRAY_
@@ -93,6 +96,11 @@ struct contacts {
                   range at its start, as it finishes it in stream */
     int *done; /* the ring pass: thread t's pairs done, in
                   done[DEM_RING_DONE * t] (a cache line each) */
+    /* the records pass's chained steps with threads that own their
+     * particles (neighbor/blocks.h), or NULL */
+    const struct dem_blocks *blocks;
+    int blocks_fresh; /* 1: the half of the ghost records it reads and
+                         the twins' history hold the present state */
 };
 
 /* One force pass: forces and history of every pair and wall contact,

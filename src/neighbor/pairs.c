@@ -54,6 +54,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->ring);
     free(pl->ring_wait);
     free(pl->ring_done);
+    dem_blocks_free(&pl->blocks);
     memset(pl, 0, sizeof *pl);
 }
 
@@ -125,18 +126,28 @@ static void forces_zero(struct dem_contact_forces *f, int n, int torques)
 }
 
 /* Room for nrec of the force pass's particle records (contact/pass.c),
- * aligned for whole-vector loads. Growing them loses what they held. */
+ * aligned for whole-vector loads. Growing them loses what they held; if
+ * out of memory the old ones are kept. */
 static int records_reserve(struct dem_pairs *pl, int nrec)
 {
     if (nrec <= pl->rec_cap)
         return 0;
     const int c = nrec + nrec / 4;
-    free(pl->rec);
-    pl->rec_written = 0;
-    pl->rec = aligned_alloc(
+    double *r = aligned_alloc(
         64, ((size_t)c * DEM_REC * sizeof(double) + 63) / 64 * 64);
-    pl->rec_cap = pl->rec ? c : 0;
-    return pl->rec ? 0 : -1;
+    if (!r) /* the old ones kept */
+        return -1;
+    free(pl->rec);
+    pl->rec = r;
+    pl->rec_cap = c;
+    pl->rec_written = 0;
+    pl->blocks.written = 0;
+    return 0;
+}
+
+int dem_pairs_records_reserve(struct dem_pairs *pl, int nrec)
+{
+    return records_reserve(pl, nrec);
 }
 
 /* Per-particle arrays for n particles (row offsets need n + 1). */
@@ -583,6 +594,7 @@ int dem_pairs_cross(struct dem_pairs *pl, int n)
 int dem_pairs_reverse(struct dem_pairs *pl, int n)
 {
     const struct dem_contact_list *L = &pl->cur;
+    pl->gen++;
     if (L->n > pl->rpair_cap) {
         if (GROW(pl->rpair, L->cap))
             return -1;

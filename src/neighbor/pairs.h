@@ -27,6 +27,7 @@
 
 #include "core/cell.h"
 #include "dembox.h"
+#include "neighbor/blocks.h"
 
 struct dem_particles;
 
@@ -153,6 +154,10 @@ struct dem_pairs {
     int ring_threads; /* threads ring_wait has room for */
     int ring_chunk;   /* the ring pass's pairs per chunk, a power of two;
                          0: DEM_RING_CHUNK (the tests set fewer) */
+    unsigned long gen; /* the list's generation: one more at each build
+                          or restore (dem_pairs_reverse) */
+    struct dem_blocks blocks; /* the threads' own blocks of the records
+                                 pass (neighbor/blocks.h) */
 };
 
 /* ints per thread in struct dem_pairs.ring_done: one cache line */
@@ -201,6 +206,11 @@ int dem_pairs_build(struct dem_pairs *pl, struct dem_particles *p, int dim,
  * that a checkpoint can fill cur, wcur, f, wf, rstart and rpair directly.
  * The lists keep their counts; a later build works as usual. */
 int dem_pairs_reserve(struct dem_pairs *pl, int n, int cap, int npair, int nwc);
+
+/* Room for nrec particle records (struct dem_pairs.rec); growing them
+ * loses what they held (rec_written and blocks.written are then 0).
+ * 0 on success. */
+int dem_pairs_records_reserve(struct dem_pairs *pl, int nrec);
 
 /* The list of pairs through an image (cross, grouped by the image; imgk,
  * in list order) and each pair's record of j (jrec, with room in rec for
