@@ -208,16 +208,14 @@ static const struct {
     const char *name;
     pass_fn run;
     int rec; /* a chained pass writes the particle records (contact/pass.c) */
-    int blocks; /* its chained passes between walls run with threads that
-                   own their particles (neighbor/blocks.h) */
 } passes[] = {
-    {"gathers", dem__pass_gathers, 0, 0},
+    {"gathers", dem__pass_gathers, 0},
 #if DEM_PASS_LOADS
-    {"loads", dem__pass_loads, 0, 0},
+    {"loads", dem__pass_loads, 0},
 #endif
 #if DEM_HAVE_PASS_RECORDS
-    {"records", dem__pass_records, 1, 1},
-    {"ring", dem__pass_ring, 1, 0},
+    {"records", dem__pass_records, 1},
+    {"ring", dem__pass_ring, 1},
 #endif
 };
 enum { NPASS = sizeof passes / sizeof passes[0] };
@@ -565,11 +563,13 @@ static int forces(struct dem_sim *s, const struct kick K)
     c.rec = pl->rec; /* (after own_blocks, which may move them) */
     c.rec_fresh = pl->rec_fresh && pl->rec_written;
     c.blocks_fresh = c.rec_fresh && pl->blocks.written;
+    int blocks_ran = 0;
+    c.blocks_ran = &blocks_ran;
     pl->rec_fresh = 0;
     const int moved = run_pass(&s->pass, &c, K);
     pl->rec_written = K.chain && passes[s->pass.ran].rec;
     /* the next such pass reads the ghost records this one wrote */
-    pl->blocks.written = c.blocks && passes[s->pass.ran].blocks;
+    pl->blocks.written = blocks_ran;
     if (pl->blocks.written)
         pl->blocks.half ^= 1;
     if (s->cell.on) {
@@ -581,7 +581,7 @@ static int forces(struct dem_sim *s, const struct kick K)
          * contact here made the other thread's next wall contacts wait for
          * those lines: docs/performance.md, session 42) */
         double fout[DEM_MAX_WALLS];
-        wall_sums(&pl->wcur, pl->wf.axial, fout);
+        wall_sums(&pl->wcur, blocks_ran ? pl->wf.handed : pl->wf.axial, fout);
         for (int w = 0; w < s->nwall; w++)
             s->wall[w].force = fout[w];
     }

@@ -29,7 +29,9 @@
  * (dem_sim_step: no rebuild in between; in a periodic cell the positions
  * stay in the frame of the build, core/cell.h) skips the copy and the
  * barrier, or split over ranks copies only the ghosts, which their
- * owners moved.
+ * owners moved. With more than one thread its chained steps between
+ * walls run without the barrier: each thread owns a block of particles
+ * and computes every force they need (blocks_thread, neighbor/blocks.h).
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
  * once as always-inline functions and instantiated per normal law of
@@ -41,6 +43,7 @@
 #include <limits.h>
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "contact/models.h"
@@ -433,12 +436,16 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx,
 
 /* Forces and history updates of pairs k0 <= k < k1 (the thread's pairs
  * go on to kend), in SIMD lanes; ahead: the records compilations ask for
- * the list's streams of the pairs that many ahead (a literal, 0: not). */
+ * the list's streams of the pairs that many ahead (a literal, 0: not);
+ * ahead_i (a literal): they ask for the i records as for the j records
+ * (else those run in order). */
 DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                            int kend, const struct dem_contact_params *cp,
                            double dt, const double *cv, const double *grad,
-                           const double *fm, const double *rec, const int ahead)
+                           const double *fm, const double *rec, const int ahead,
+                           const int ahead_i)
 {
+    (void)ahead_i;
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
     /* local copies, which no store of the loop can change */
     const double gv[6] = {grad[0], grad[1], grad[2], grad[3], grad[4], grad[5]};
@@ -462,6 +469,12 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                                                   q.roff];
                 __builtin_prefetch(r, 0, 3);
                 __builtin_prefetch(r + 8, 0, 3);
+                if (ahead_i) {
+                    const double *o =
+                        rec + DEM_REC * (size_t)q.ci[k + DEM_PREFETCH_PAIRS + l];
+                    __builtin_prefetch(o, 0, 3);
+                    __builtin_prefetch(o + 8, 0, 3);
+                }
             }
         /* the list's streams a round of pairs reads: asking for the line
          * of a round's first 4-byte value and of every 8th double covers
@@ -469,7 +482,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         if (ahead && k + ahead + DEM_PAIR_LANES <= kend) {
             const int u = k + ahead;
             __builtin_prefetch(q.ci + u, 0, 3);
-            __builtin_prefetch(q.cjr + u - q.roff, 0, 3);
+            __builtin_prefetch(q.cjr + (u - q.roff), 0, 3);
             __builtin_prefetch(q.state + u, 1, 3);
             for (int e = 0; e < DEM_PAIR_LANES; e += 8) {
 #define HIST_AHEAD_(MODEL, name, unit, swap, doc)                               \
@@ -921,10 +934,9 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             for (int r = 0; O && r < 2; r++) { /* and its ghost records */
                 const int lo = ib > O->lo[r] ? ib : O->lo[r],
                           hi = ib + b + 1 < O->hi[r] ? ib + b + 1 : O->hi[r];
+                const size_t at = (size_t)(O->at[r] + lo - O->lo[r]);
                 if (lo < hi)
-                    records_fill(O->ghost +
-                                     DEM_REC * (size_t)(O->at[r] + lo - O->lo[r]),
-                                 &Q, lo, hi, 1);
+                    records_fill(O->ghost + DEM_REC * at, &Q, lo, hi, 1);
             }
 #endif
         }
@@ -991,7 +1003,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         const int ke = k1 - kc > c->ring_chunk ? kc + c->ring_chunk : k1;
         q.foff = kc - ((kc - k0) & mask);
         pair_range(law, q, kc, ke, k1, &c->cp, c->dt, c->cv, c->grad, c->fr.m,
-                   c->rec, DEM_AHEAD_PAIRS);
+                   c->rec, DEM_AHEAD_PAIRS, 0);
         const int all = kc < kd || ke > kt; /* some of its forces wait */
         if (all)
             for (int k = kc; k < ke; k++)
@@ -1064,6 +1076,23 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
 #endif
 
 #if DEM_PASS_RECORDS && !DEM_PASS_RING
+/* The wall contacts w0 <= k < w1's axial values (struct pass.A) copied
+ * to H past the caches: the walls' sums read them there after the pass
+ * (contact/forces.c), and the thread's next pass writes its own copy
+ * without waiting for another core to drop those lines. */
+DEM_INLINE void axial_handover(double *H, const double *A, int w0, int w1)
+{
+    int u = w0;
+    if (u < w1 && ((uintptr_t)(H + u) & 15)) {
+        H[u] = A[u];
+        u++;
+    }
+    for (; u + 2 <= w1; u += 2)
+        _mm_stream_pd(H + u, _mm_loadu_pd(A + u));
+    if (u < w1)
+        H[u] = A[u];
+}
+
 /* Thread t's share of a chained pass between walls in which each thread
  * owns its block (neighbor/blocks.h): its rows, its twins (the earlier
  * blocks' pairs with its particles as j, again, with their own history),
@@ -1092,8 +1121,8 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
             const int v = k->tw[u - k->q0], p = rpair[u];
             if (v < 0)
                 continue;
-#define TWIN_HISTORY_(MODEL, name, unit, swap, doc)                             \
-    if (DEM_MODEL_USES(law, MODEL))                                            \
+#define TWIN_HISTORY_(MODEL, name, unit, swap, doc)                            \
+    if (DEM_MODEL_USES(law, MODEL))                                           \
         k->name[v] = c->q.name[p];
             DEM_CONTACT_HISTORY(TWIN_HISTORY_)
 #undef TWIN_HISTORY_
@@ -1104,11 +1133,11 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
     /* its rows: with j in the block, then with some j beyond it */
     struct pass q = c->q;
     pair_range(law, q, k->k0, k->kt, k->kt, &c->cp, c->dt, c->cv, c->grad,
-               c->fr.m, c->rec, 0);
+               c->fr.m, c->rec, 0, 0);
     q.cjr = k->rj[h];
     q.roff = k->kt;
     pair_range(law, q, k->kt, k->k1, k->k1, &c->cp, c->dt, c->cv, c->grad,
-               c->fr.m, c->rec, 0);
+               c->fr.m, c->rec, 0, 0);
     /* its twins, numbered from 0 in its own arrays */
     struct pass w = c->q;
     w.ci = k->ri2[h];
@@ -1121,11 +1150,13 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
     w.F = k->F;
     w.foff = 0;
     w.M = k->M;
+    /* (their i records are ghosts, from memory: asked for ahead) */
     pair_range(law, w, 0, k->nd, k->nd, &c->cp, c->dt, c->cv, c->grad, c->fr.m,
-               c->rec, 0);
+               c->rec, 0, 1);
     const int *wstart = c->pl->wcur.start;
     wall_range(law, c->wq, wstart[k->a], wstart[k->b], &c->cpw, c->dt,
                c->walls);
+    axial_handover(c->pl->wf.handed, c->wq.A, wstart[k->a], wstart[k->b]);
     const struct own O = {k->F,
                           k->M,
                           k->tw,
@@ -1153,8 +1184,11 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
 #if DEM_PASS_RECORDS && !DEM_PASS_RING
     /* a literal: no cell here */
     if (!(law & DEM_SET_PERIODIC) && K.chain && c->blocks &&
-        c->blocks->nt == nt)
+        c->blocks->nt == nt) {
+        if (t == 0) /* (a team of another size runs without) */
+            *c->blocks_ran = 1;
         return blocks_thread(law, c, K, t);
+    }
 #endif
 #if DEM_PASS_RECORDS
     /* every particle's record, or only the ghosts' when the chained pass
@@ -1178,7 +1212,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
 #endif
     pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
                dem_block(c->np, t + 1, nt), &c->cp, c->dt, c->cv, c->grad,
-               c->fr.m, c->rec, 0);
+               c->fr.m, c->rec, 0, 0);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls);
 #pragma omp barrier

@@ -101,6 +101,7 @@ struct contacts {
     const struct dem_blocks *blocks;
     int blocks_fresh; /* 1: the half of the ghost records it reads and
                          the twins' history hold the present state */
+    int *blocks_ran;  /* set to 1 by a pass that ran with them */
 };
 
 /* One force pass: forces and history of every pair and wall contact,

@@ -32,7 +32,7 @@ static void block_free(struct dem_block *k)
 
 void dem_blocks_free(struct dem_blocks *B)
 {
-    for (int t = 0; t < B->nt; t++)
+    for (int t = 0; B->t && t < B->nt; t++)
         block_free(&B->t[t]);
     free(B->t);
     free(B->gix);
@@ -81,9 +81,11 @@ static int record_of(const struct dem_blocks *B, int x, int a, int b, int h)
     return B->gix[x] < 0 ? -1 : B->base + h * B->ng + B->gix[x];
 }
 
-/* A pair's and a particle's weight in a thread's work (its sums, kicks
- * and drift: about 1.5 pairs, as dem_pairs_row_block's). */
-enum { WPAIR = 2, WPART = 3 };
+/* A pair's, a particle's and a twin's weight in a thread's work: a
+ * particle (its sums, kicks and drift) about 1.5 pairs, as
+ * dem_pairs_row_block's; a twin, whose records come from memory,
+ * about 1.5 pairs too (docs/performance.md, session 44). */
+enum { WPAIR = 2, WPART = 3, WTWIN = 3 };
 
 /* The first particle x with WPAIR start[x] + WPART x >= target. */
 static int cut_at(const int *start, int n, long target)
@@ -129,7 +131,7 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
                      int nt)
 {
     if (B->nt == nt && B->gen == pl->gen && B->n == n)
-        return 0;
+        return B->t ? 0 : -1; /* set up, or found not to split */
     dem_blocks_free(B);
     B->t = calloc((size_t)nt, sizeof *B->t);
     B->gix = malloc((size_t)(n > 0 ? n : 1) * sizeof *B->gix);
@@ -141,7 +143,7 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
     const int *start = pl->cur.start, *ci = pl->cur.i, *cj = pl->cur.j,
               *rpair = pl->rpair;
     /* equal work, then again with each block's twins counted: blocks
-     * 0..t-1 take t/nt of it, C(a_t) + WPAIR (their twins) */
+     * 0..t-1 take t/nt of it, C(a_t) + WTWIN (their twins) */
     const long all = WPAIR * (long)start[n] + WPART * (long)n;
     for (int t = 0; t < nt; t++)
         block_ranges(&B->t[t], pl, cut_at(start, n, all * t / nt),
@@ -149,12 +151,12 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
     long twins = 0;
     for (int t = 0; t < nt; t++)
         twins += B->t[t].nd;
-    const long work = all + WPAIR * twins;
+    const long work = all + WTWIN * twins;
     long before = 0; /* the twins of blocks 0..t-1 */
     int a = 0;
     for (int t = 0; t < nt; t++) {
         before += B->t[t].nd;
-        long target = work * (t + 1) / nt - WPAIR * before;
+        long target = work * (t + 1) / nt - WTWIN * before;
         int b = t + 1 < nt ? cut_at(start, n, target) : n;
         b = b > a ? b : a;
         block_ranges(&B->t[t], pl, a, b);
@@ -212,8 +214,12 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
                 bad |= (k->ri2[h][v] = record_of(B, ci[p], k->a, k->b, h)) < 0;
                 bad |= (k->rj2[h][v] = record_of(B, cj[p], k->a, k->b, h)) < 0;
             }
-            if (bad) { /* not split as the blocks assume: none */
+            if (bad) { /* not split as the blocks assume: none for
+                          this list */
                 dem_blocks_free(B);
+                B->nt = nt;
+                B->n = n;
+                B->gen = pl->gen;
                 return -1;
             }
         }

@@ -28,6 +28,7 @@ static void forces_free(struct dem_contact_forces *f)
     free(f->v);
     free(f->m);
     free(f->axial);
+    free(f->handed);
     memset(f, 0, sizeof *f);
 }
 
@@ -109,7 +110,7 @@ static int forces_reserve(struct dem_contact_forces *f, int cap, int axial)
     if (cap <= f->cap)
         return 0;
     if (grow_records(&f->v, f->cap, cap) || GROW(f->m, 3 * cap) ||
-        (axial && GROW(f->axial, cap)))
+        (axial && (GROW(f->axial, cap) || GROW(f->handed, cap))))
         return -1;
     f->cap = cap;
     return 0;

@@ -76,6 +76,10 @@ struct dem_contact_forces {
                       the wall along its axis, outward positive, which the
                       walls' sums read instead of the records (a record's
                       line per contact would pass between threads) */
+    double *handed; /* N; wall contacts only: a copy of axial that the
+                       records pass with threads owning their blocks
+                       writes past the caches for the walls' sums
+                       (neighbor/blocks.h) */
 };
 
 struct dem_pairs {
