@@ -565,11 +565,13 @@ static int forces(struct dem_sim *s, const struct kick K)
     c.blocks_fresh = c.rec_fresh && pl->blocks.written;
     int blocks_ran = 0;
     c.blocks_ran = &blocks_ran;
+    c.busy = pl->blocks.busy;
     pl->rec_fresh = 0;
     const int moved = run_pass(&s->pass, &c, K);
     pl->rec_written = K.chain && passes[s->pass.ran].rec;
     /* the next such pass reads the ghost records this one wrote */
     pl->blocks.written = blocks_ran;
+    pl->blocks.passes += blocks_ran;
     if (pl->blocks.written)
         pl->blocks.half ^= 1;
     if (s->cell.on) {

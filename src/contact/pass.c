@@ -53,6 +53,7 @@
 #include "core/parallel.h"
 #if DEM_PASS_RECORDS
 #include <immintrin.h>
+#include <x86intrin.h>
 #endif
 
 /* Pairs per round of the records and ring passes' pair loop. gcc gives
@@ -1130,6 +1131,7 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
         }
 #pragma omp barrier
     }
+    const unsigned long long t0 = __rdtsc(); /* for the balance */
     /* its rows: with j in the block, then with some j beyond it */
     struct pass q = c->q;
     pair_range(law, q, k->k0, k->kt, k->kt, &c->cp, c->dt, c->cv, c->grad,
@@ -1171,6 +1173,7 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
         particle_range(law, k->a, k->b, c->P, c->pl, c->q.F, 0, -1, c->gb,
                        c->gr, K, &V, &c->fr, c->rec, 0, &O);
     _mm_sfence(); /* the ghost records out before the pass ends */
+    c->busy[8 * t] += __rdtsc() - t0;
     return moved;
 }
 #endif

@@ -30,13 +30,84 @@ static void block_free(struct dem_block *k)
     k->cap = 0;
 }
 
-void dem_blocks_free(struct dem_blocks *B)
+/* What B holds for one list freed (the balance kept). */
+static void list_free(struct dem_blocks *B)
 {
     for (int t = 0; B->t && t < B->nt; t++)
         block_free(&B->t[t]);
     free(B->t);
     free(B->gix);
+    B->t = NULL;
+    B->gix = NULL;
+    B->nt = 0;
+}
+
+void dem_blocks_free(struct dem_blocks *B)
+{
+    list_free(B);
+    free(B->shift);
+    free(B->busy);
     memset(B, 0, sizeof *B);
+}
+
+/* Passes after which the threads' times move the cuts (also without a
+ * new list: a quiet packing keeps one for 10^5 steps and more), if the
+ * slowest took more than BALANCE_OFF over the mean; and how far they move
+ * them towards equal times at once. */
+enum { BALANCE_PASSES = 1000 };
+#define BALANCE_OFF 0.01
+#define BALANCE_GAIN 0.5
+
+/* Whether the threads' times since the set-up call for new cuts. */
+static int off_balance(const struct dem_blocks *B)
+{
+    if (!B->t || B->shift_nt != B->nt || B->passes < BALANCE_PASSES)
+        return 0;
+    double S = 0.0, M = 0.0;
+    for (int t = 0; t < B->nt; t++) {
+        const double b = (double)B->busy[8 * t];
+        S += b;
+        M = b > M ? b : M;
+    }
+    return M > (1.0 + BALANCE_OFF) * S / B->nt;
+}
+
+/* The cuts moved by the last list's times: where the first t + 1
+ * threads took more than (t + 1)/nt of the time, cut t moves back by
+ * GAIN times that share of the work (at most a quarter of a block). */
+static void rebalance(struct dem_blocks *B, int nt)
+{
+    double S = 0.0;
+    for (int t = 0; t < nt; t++)
+        S += (double)B->busy[8 * t];
+    if (S <= 0.0 || B->passes < BALANCE_PASSES)
+        return;
+    const double cap = 0.25 * (double)B->work / nt;
+    double acc = 0.0;
+    for (int t = 0; t + 1 < nt; t++) {
+        acc += (double)B->busy[8 * t];
+        const double excess = acc / S - (double)(t + 1) / nt;
+        double x = B->shift[t] - BALANCE_GAIN * excess * (double)B->work;
+        B->shift[t] = x > cap ? cap : x < -cap ? -cap : x;
+    }
+}
+
+/* The balance's arrays for nt threads (kept if they are), the times
+ * cleared; 0 on success. */
+static int balance_reserve(struct dem_blocks *B, int nt)
+{
+    if (B->shift_nt != nt) {
+        free(B->shift);
+        free(B->busy);
+        B->shift = calloc((size_t)nt, sizeof *B->shift);
+        B->busy = aligned_alloc(64, 64 * (size_t)nt);
+        B->shift_nt = B->shift && B->busy ? nt : 0;
+        if (!B->shift_nt)
+            return -1;
+    }
+    memset(B->busy, 0, 64 * (size_t)nt);
+    B->passes = 0;
+    return 0;
 }
 
 /* Room for c pairs in each of block k's arrays; 0 on success. */
@@ -130,12 +201,14 @@ static void block_ranges(struct dem_block *k, const struct dem_pairs *pl,
 int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
                      int nt)
 {
-    if (B->nt == nt && B->gen == pl->gen && B->n == n)
+    if (B->nt == nt && B->gen == pl->gen && B->n == n && !off_balance(B))
         return B->t ? 0 : -1; /* set up, or found not to split */
-    dem_blocks_free(B);
+    if (B->shift_nt == nt)
+        rebalance(B, nt);
+    list_free(B);
     B->t = calloc((size_t)nt, sizeof *B->t);
     B->gix = malloc((size_t)(n > 0 ? n : 1) * sizeof *B->gix);
-    if (!B->t || !B->gix) {
+    if (!B->t || !B->gix || balance_reserve(B, nt)) {
         dem_blocks_free(B);
         return -1;
     }
@@ -152,11 +225,13 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
     for (int t = 0; t < nt; t++)
         twins += B->t[t].nd;
     const long work = all + WTWIN * twins;
-    long before = 0; /* the twins of blocks 0..t-1 */
+    B->work = work;
+    long before = 0; /* the twins of blocks 0..t */
     int a = 0;
     for (int t = 0; t < nt; t++) {
         before += B->t[t].nd;
-        long target = work * (t + 1) / nt - WTWIN * before;
+        const long target = work * (t + 1) / nt - WTWIN * before +
+                            (t + 1 < nt ? (long)B->shift[t] : 0);
         int b = t + 1 < nt ? cut_at(start, n, target) : n;
         b = b > a ? b : a;
         block_ranges(&B->t[t], pl, a, b);
@@ -196,7 +271,7 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
         const int nj = k->k1 - k->kt, nq = k->q1 - k->q0;
         int c = nj > k->nd ? nj : k->nd;
         if (block_reserve(k, c > nq ? c : nq)) {
-            dem_blocks_free(B);
+            list_free(B);
             return -1;
         }
         int u = 0;
@@ -216,7 +291,7 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
             }
             if (bad) { /* not split as the blocks assume: none for
                           this list */
-                dem_blocks_free(B);
+                list_free(B);
                 B->nt = nt;
                 B->n = n;
                 B->gen = pl->gen;

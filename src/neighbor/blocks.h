@@ -66,6 +66,16 @@ struct dem_blocks {
                            the twins' history that of the list */
     struct dem_block *t;
     int *gix; /* n: a particle's ghost record within a half, or -1 */
+    /* The balance, kept from list to list: the cuts' shifts from equal
+     * estimated work (nt - 1, in the units of that estimate), and the
+     * time-stamp counter's cycles each thread's share of the passes took
+     * since the set-up (busy[8 t], a cache line each), which move the
+     * cuts at the next set-up. The results do not depend on the cuts. */
+    double *shift;
+    unsigned long long *busy;
+    int shift_nt;
+    long work;   /* the estimated work of all blocks at the set-up */
+    long passes; /* passes run since it */
 };
 
 /* Set up (or keep) the blocks of nt threads for the list's present
