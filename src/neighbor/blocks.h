@@ -6,15 +6,17 @@
  *
  * Thread t takes the rows of its block [a, b) and, a second time, the
  * pairs of earlier blocks whose j is its own: the twins, which it
- * computes with its own copy of
- * their history into its own force records, in the same arithmetic, so
- * that both copies stay the same bits and its particles' sums read the
- * same values as from the list. The particles a thread reads of another
+ * computes with its own copy of their history into its own force
+ * records, in the same arithmetic, so that both copies stay the same
+ * bits and its particles' sums read the same values as from the list. The particles a thread reads of another
  * block (the j of its rows beyond b, the i and j of its twins) it reads
  * from ghost records, which their owner writes past the caches
  * (non-temporal stores) right after their drift, into the half of the
  * ghost records the next pass reads: a pass reads half p and writes half
  * 1 - p, so no thread writes a record another one may still read.
+ *
+ * The cut between the blocks is set for equal estimated work, then
+ * moved by the threads' measured times (struct dem_blocks.shift).
  *
  * Why: with two threads on two L3 caches (two chiplets of an AMD EPYC), a
  * line one thread writes after the other has read it waits for the other
@@ -35,7 +37,7 @@ struct dem_block {
     int a, d, b;   /* its block [a, b); [a, d): particles with a pair as j
                       in an earlier block */
     int g;         /* [g, b): particles a later block's twins read */
-    int k0, kt, k1; /* its rows' pairs [k0, k1); from kt on some j > b */
+    int k0, kt, k1; /* its rows' pairs [k0, k1); from kt on some j >= b */
     int nd, cap;   /* its twins: the nd pairs k < k0 with j in [a, b) */
     int q0, q1;    /* the reverse rows of [a, d), rpair[q0..q1) */
     int *tw;       /* q0 <= q < q1: twin tw[q - q0] is pair rpair[q] (if
