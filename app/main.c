@@ -199,10 +199,13 @@ static const char *const usage_bench =
     "where the CPU has AVX, reading the particles from 96-byte records\n"
     "by transposes, once storing every pair's force and once keeping\n"
     "them in a ring per thread that stays in cache (faster for large\n"
-    "packings); same results bit for bit. Every run times them now and\n"
-    "then and uses the fastest; the environment variable\n"
-    "DEMBOX_PASS=gathers|loads|records|ring|auto forces one (also for\n"
-    "dembox run).\n";
+    "packings). The first of these also runs as \"blocks\": with more\n"
+    "than one thread, each owns a block of particles and computes every\n"
+    "force it needs (faster where the cores sit on two L3 caches). Same\n"
+    "results bit for bit. Every run times them now and then and uses\n"
+    "the fastest; the environment variable\n"
+    "DEMBOX_PASS=gathers|loads|records|blocks|ring|auto forces one (also\n"
+    "for dembox run).\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";

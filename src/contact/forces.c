@@ -208,14 +208,19 @@ static const struct {
     const char *name;
     pass_fn run;
     int rec; /* a chained pass writes the particle records (contact/pass.c) */
+    int blocks; /* runs its chained steps between walls with threads that
+                   own their blocks (neighbor/blocks.h), where it can:
+                   faster on two L3 caches, not always on one (docs/
+                   performance.md, session 44), so the trials choose */
 } passes[] = {
-    {"gathers", dem__pass_gathers, 0},
+    {"gathers", dem__pass_gathers, 0, 0},
 #if DEM_PASS_LOADS
-    {"loads", dem__pass_loads, 0},
+    {"loads", dem__pass_loads, 0, 0},
 #endif
 #if DEM_HAVE_PASS_RECORDS
-    {"records", dem__pass_records, 1},
-    {"ring", dem__pass_ring, 1},
+    {"records", dem__pass_records, 1, 0},
+    {"blocks", dem__pass_records, 1, 1},
+    {"ring", dem__pass_ring, 1, 0},
 #endif
 };
 enum { NPASS = sizeof passes / sizeof passes[0] };
@@ -272,10 +277,14 @@ void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size)
     else if (C->best[0] == 0.0)
         snprintf(buf + len, size - (size_t)len, " (no timing trial yet)");
     else
-        for (int v = 0; v < NPASS && len > 0 && (size_t)len < size; v++)
-            len += snprintf(buf + len, size - (size_t)len, "%s%s %.4g ms",
-                            v ? ", " : " (fastest pass: ", passes[v].name,
-                            1e3 * C->best[v]);
+        /* (a variant never timed, as the one with blocks in a run that
+         * has none, left out) */
+        for (int v = 0, m = 0; v < NPASS && len > 0 && (size_t)len < size;
+             v++)
+            if (C->best[v] != 0.0)
+                len += snprintf(buf + len, size - (size_t)len, "%s%s %.4g ms",
+                                m++ ? ", " : " (fastest pass: ", passes[v].name,
+                                1e3 * C->best[v]);
     if (C->forced < 0 && NPASS > 1 && C->best[0] != 0.0 && len > 0 &&
         (size_t)len < size)
         snprintf(buf + len, size - (size_t)len, ")");
@@ -319,7 +328,21 @@ static double seconds_now(void)
  * others unless they sit it out. */
 static int in_trial(const struct dem_pass_choice *C, int u)
 {
+    if (passes[u].blocks && C->no_blocks && u != C->current)
+        return 0;
     return u == C->current || C->out[u] == 0;
+}
+
+/* Variant v of the pass, without the threads' own blocks unless it is
+ * the variant with them. */
+static int run_variant(int v, const struct contacts *c, const struct kick K)
+{
+    if (c->blocks && !passes[v].blocks) {
+        struct contacts o = *c;
+        o.blocks = NULL;
+        return passes[v].run(&o, K);
+    }
+    return passes[v].run(c, K);
 }
 
 /* The variants of a trial, and its k-th of them. */
@@ -344,10 +367,10 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
 {
     C->ran = C->current;
     if (!K.on || C->forced >= 0)
-        return passes[C->current].run(c, K);
+        return run_variant(C->current, c, K);
     if (!C->trial) {
         if (++C->since < TRIAL_EVERY || NPASS < 2)
-            return passes[C->current].run(c, K);
+            return run_variant(C->current, c, K);
         C->since = 0;
         C->trial = trial_size(C) * TRIAL_ROUNDS;
     }
@@ -357,7 +380,7 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
         C->best[v] = INFINITY;
     C->ran = v;
     const double t0 = seconds_now();
-    const int moved = passes[v].run(c, K);
+    const int moved = run_variant(v, c, K);
     const double t = seconds_now() - t0;
     if (done % TRIAL_ROUNDS && t < C->best[v])
         C->best[v] = t;
@@ -560,6 +583,7 @@ static int forces(struct dem_sim *s, const struct kick K)
     }
 #endif
     c.blocks = own_blocks(s, K);
+    s->pass.no_blocks = c.blocks == NULL;
     c.rec = pl->rec; /* (after own_blocks, which may move them) */
     c.rec_fresh = pl->rec_fresh && pl->rec_written;
     c.blocks_fresh = c.rec_fresh && pl->blocks.written;
@@ -572,6 +596,7 @@ static int forces(struct dem_sim *s, const struct kick K)
     /* the next such pass reads the ghost records this one wrote */
     pl->blocks.written = blocks_ran;
     pl->blocks.passes += blocks_ran;
+    pl->blocks.ran += blocks_ran;
     if (pl->blocks.written)
         pl->blocks.half ^= 1;
     if (s->cell.on) {

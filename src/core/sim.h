@@ -16,7 +16,7 @@
 #include "wall/wall.h"
 
 #define DEM_MAX_WALLS 6
-#define DEM_MAX_PASSES 4 /* compilations of the force pass */
+#define DEM_MAX_PASSES 5 /* variants of the force pass */
 
 /* Sums gathered by the force loop when measurement is requested. */
 struct dem_contact_sums {
@@ -46,6 +46,9 @@ struct dem_pass_choice {
     int pause[DEM_MAX_PASSES]; /* trials it last had to sit out: 0 after
                                   a trial not lost by far */
     int out[DEM_MAX_PASSES];   /* trials still to sit out */
+    int no_blocks; /* 1: the last pass had no threads' own blocks to run
+                      (contact/forces.c), so the variant with them is
+                      the records pass itself and sits out the trials */
 };
 
 struct dem_sim;
