@@ -583,7 +583,8 @@ static int forces(struct dem_sim *s, const struct kick K)
     }
 #endif
     c.blocks = own_blocks(s, K);
-    s->pass.no_blocks = c.blocks == NULL;
+    if (!s->pass.trial) /* (the same variants all through a trial) */
+        s->pass.no_blocks = c.blocks == NULL;
     c.rec = pl->rec; /* (after own_blocks, which may move them) */
     c.rec_fresh = pl->rec_fresh && pl->rec_written;
     c.blocks_fresh = c.rec_fresh && pl->blocks.written;
