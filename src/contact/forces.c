@@ -590,7 +590,6 @@ static int forces(struct dem_sim *s, const struct kick K)
     c.blocks_fresh = c.rec_fresh && pl->blocks.written;
     int blocks_ran = 0;
     c.blocks_ran = &blocks_ran;
-    c.busy = pl->blocks.busy;
     pl->rec_fresh = 0;
     const int moved = run_pass(&s->pass, &c, K);
     pl->rec_written = K.chain && passes[s->pass.ran].rec;

@@ -1173,7 +1173,7 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
         particle_range(law, k->a, k->b, c->P, c->pl, c->q.F, 0, -1, c->gb,
                        c->gr, K, &V, &c->fr, c->rec, 0, &O);
     _mm_sfence(); /* the ghost records out before the pass ends */
-    c->busy[8 * t] += __rdtsc() - t0;
+    B->busy[8 * t] += __rdtsc() - t0;
     return moved;
 }
 #endif

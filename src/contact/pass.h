@@ -102,7 +102,6 @@ struct contacts {
     int blocks_fresh; /* 1: the half of the ghost records it reads and
                          the twins' history hold the present state */
     int *blocks_ran;  /* set to 1 by a pass that ran with them */
-    unsigned long long *busy; /* struct dem_blocks.busy */
 };
 
 /* One force pass: forces and history of every pair and wall contact,

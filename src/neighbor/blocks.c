@@ -152,25 +152,10 @@ static int record_of(const struct dem_blocks *B, int x, int a, int b, int h)
     return B->gix[x] < 0 ? -1 : B->base + h * B->ng + B->gix[x];
 }
 
-/* A pair's, a particle's and a twin's weight in a thread's work: a
- * particle (its sums, kicks and drift) about 1.5 pairs, as
- * dem_pairs_row_block's; a twin, whose records come from memory,
- * about 1.5 pairs too (docs/performance.md, session 44). */
-enum { WPAIR = 2, WPART = 3, WTWIN = 3 };
-
-/* The first particle x with WPAIR start[x] + WPART x >= target. */
-static int cut_at(const int *start, int n, long target)
-{
-    int lo = 0, hi = n;
-    while (lo < hi) {
-        const int mid = lo + (hi - lo) / 2;
-        if (WPAIR * (long)start[mid] + WPART * (long)mid < target)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
+/* A twin's weight in a thread's work (dem_pairs_cut): its records come
+ * from memory, and it costs about 1.5 pairs (docs/performance.md,
+ * session 44). */
+enum { WTWIN = 3 };
 
 /* Block k's ranges for its rows [a, b): d, kt and its twins' count. */
 static void block_ranges(struct dem_block *k, const struct dem_pairs *pl,
@@ -217,10 +202,13 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
               *rpair = pl->rpair;
     /* equal work, then again with each block's twins counted: blocks
      * 0..t-1 take t/nt of it, C(a_t) + WTWIN (their twins) */
-    const long all = WPAIR * (long)start[n] + WPART * (long)n;
-    for (int t = 0; t < nt; t++)
-        block_ranges(&B->t[t], pl, cut_at(start, n, all * t / nt),
-                     t + 1 < nt ? cut_at(start, n, all * (t + 1) / nt) : n);
+    const long all =
+        DEM_WORK_PAIR * (long)start[n] + DEM_WORK_PARTICLE * (long)n;
+    for (int t = 0; t < nt; t++) {
+        const int b =
+            t + 1 < nt ? dem_pairs_cut(start, n, all * (t + 1) / nt) : n;
+        block_ranges(&B->t[t], pl, dem_pairs_cut(start, n, all * t / nt), b);
+    }
     long twins = 0;
     for (int t = 0; t < nt; t++)
         twins += B->t[t].nd;
@@ -232,7 +220,7 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
         before += B->t[t].nd;
         const long target = work * (t + 1) / nt - WTWIN * before +
                             (t + 1 < nt ? (long)B->shift[t] : 0);
-        int b = t + 1 < nt ? cut_at(start, n, target) : n;
+        int b = t + 1 < nt ? dem_pairs_cut(start, n, target) : n;
         b = b > a ? b : a;
         block_ranges(&B->t[t], pl, a, b);
         a = b;

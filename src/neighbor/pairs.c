@@ -641,27 +641,32 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
     return 0;
 }
 
-/* The first particle of block t when the rows of particles 0 <= i < n
- * (np pairs) are split in blocks of about equal work, on a multiple of
- * g: a particle (its sums, kicks and drift) counts as 1.5 pairs, about
- * what the profiles give at N = 3375 and 216000 (docs/performance.md).
- * With pairs alone a periodic cell's first block, whose rows hold the
- * pairs through the z faces, had 4 % fewer particles and finished first. */
-static int row_block(const int *start, int n, int np, int t, int nt, int g)
+int dem_pairs_cut(const int *start, int n, long target)
 {
-    if (t >= nt)
-        return n;
-    const long W = 2, P = 3; /* a pair's weight, a particle's */
-    const long target = (W * np + P * n) * t / nt;
     int lo = 0, hi = n;
     while (lo < hi) {
         const int mid = lo + (hi - lo) / 2;
-        if (W * start[mid] + P * mid < target)
+        if (DEM_WORK_PAIR * (long)start[mid] + DEM_WORK_PARTICLE * (long)mid <
+            target)
             lo = mid + 1;
         else
             hi = mid;
     }
-    return lo / g * g;
+    return lo;
+}
+
+/* The first particle of block t when the rows of particles 0 <= i < n
+ * (np pairs) are split in blocks of about equal work (dem_pairs_cut), on
+ * a multiple of g. With pairs alone a periodic cell's first block, whose
+ * rows hold the pairs through the z faces, had 4 % fewer particles and
+ * finished first. */
+static int row_block(const int *start, int n, int np, int t, int nt, int g)
+{
+    if (t >= nt)
+        return n;
+    const long target =
+        (DEM_WORK_PAIR * (long)np + DEM_WORK_PARTICLE * (long)n) * t / nt;
+    return dem_pairs_cut(start, n, target) / g * g;
 }
 
 void dem_pairs_row_block(const struct dem_pairs *pl, int n, int t, int nt,

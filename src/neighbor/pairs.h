@@ -243,6 +243,17 @@ static inline int dem_first_at_least(const int *a, int n, int k)
     return lo;
 }
 
+/* A thread's work on a pair and on a particle (its sums, kicks and
+ * drift: about 1.5 pairs, what the profiles give at N = 3375 and 216000,
+ * docs/performance.md), in the units that split the rows into blocks. */
+#define DEM_WORK_PAIR 2
+#define DEM_WORK_PARTICLE 3
+
+/* The first particle x whose rows start at work DEM_WORK_PAIR start[x] +
+ * DEM_WORK_PARTICLE x of at least target (n if none), start being the
+ * rows' offsets of particles 0 <= i < n. */
+int dem_pairs_cut(const int *start, int n, long target);
+
 /* Block t of nt of the rows of particles 0 <= i < n, of about equal
  * work (pairs and particles) and cut at a multiple of g: [w[0], w[3]);
  * and its particles that have a pair as j in an earlier block: those in
