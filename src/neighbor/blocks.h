@@ -10,10 +10,11 @@
  * records, in the same arithmetic, so that both copies stay the same
  * bits and its particles' sums read the same values as from the list.
  * The particles a thread reads of another block (the j of its rows
- * beyond b, the i and j of its twins) it reads from ghost records, which their owner writes past the caches
- * (non-temporal stores) right after their drift, into the half of the
- * ghost records the next pass reads: a pass reads half p and writes half
- * 1 - p, so no thread writes a record another one may still read.
+ * beyond b, the i and j of its twins) it reads from ghost records,
+ * which their owner writes past the caches (non-temporal stores) right
+ * after their drift, into the half of the ghost records the next pass
+ * reads: a pass reads half p and writes half 1 - p, so no thread writes
+ * a record another one may still read.
  *
  * The cut between the blocks is set for equal estimated work, then
  * moved by the threads' measured times (struct dem_blocks.shift).
