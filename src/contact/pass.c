@@ -22,10 +22,11 @@
  *     wall contacts, each in list order; then the torques and, in a
  *     time step, the closing half kick (and in a chained step the next
  *     half kick and drift, see dem_sim_step).
- * The records compilation (contact/pass.h) reads the pairs' particle
- * values from a copy of the particles in records: each thread first
- * writes its share of them, then a barrier; a chained pass writes its
- * particles' records right after their drift instead, and the next pass
+ * The records compilation (contact/pass.h) reads the particle values of
+ * the pairs and of the wall contacts from a copy of the particles in
+ * records: each thread first writes its share of them, then a barrier;
+ * a chained pass writes its particles' records right after their drift
+ * instead, and the next pass
  * (dem_sim_step: no rebuild in between; in a periodic cell the positions
  * stay in the frame of the build, core/cell.h) skips the copy and the
  * barrier, or split over ranks copies only the ghosts, which their
@@ -522,42 +523,43 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #endif
 }
 
-/* Force and history update of wall contact k (no branch, as pair_one). */
-DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
-                         const struct dem_contact_params *cp, double dt,
-                         const struct dem_wall *walls,
-                         const struct dem_tangential *T)
+/* Force and history update of wall contact k, its particle's values pi
+ * (no branch, as pair_vals). */
+DEM_INLINE void wall_vals(const int law, const struct pass *qp, int k,
+                          const struct pv pi,
+                          const struct dem_contact_params *cp, double dt,
+                          const struct dem_wall *walls,
+                          const struct dem_tangential *T)
 {
     const struct pass q = *qp;
-    const int i = q.ci[k];
     const struct dem_wall *W = &walls[q.cj[k]];
     const int a = W->axis;
     const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
     /* all three loaded, one picked by arithmetic (exact: 1 x + 0 y + 0 z;
      * a load or a subtraction under a condition keeps the loop out of
      * SIMD lanes where there are no masked gathers and divisions, AVX2) */
-    const double pa = (a == 0) * q.x[i] + (a == 1) * q.y[i] + (a == 2) * q.z[i];
-    const double ai = q.r[i];
+    const double pa = (a == 0) * pi.x + (a == 1) * pi.y + (a == 2) * pi.z;
+    const double ai = pi.r;
     const double delta = ai - sgn * (pa - W->pos);
     const int touch = delta > 0.0;
     const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
                                a == 2 ? sgn : 0.0};
-    const double cwx = ai * q.wx[i], cwy = ai * q.wy[i], cwz = ai * q.wz[i];
+    const double cwx = ai * pi.wx, cwy = ai * pi.wy, cwz = ai * pi.wz;
     /* the wall's surface moves along its normal at W->vel */
     const struct dem_vec3 vij = {
-        q.vx[i] + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
-        q.vy[i] + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
-        q.vz[i] + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
+        pi.vx + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
+        pi.vy + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
+        pi.vz + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
     const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
     struct dem_history h = load_history(law, &q, k);
     double fc;
     const double fn =
-        dem_normal_force(law, cp, delta, ddot, ai, q.m[i], &h, &fc);
+        dem_normal_force(law, cp, delta, ddot, ai, pi.m, &h, &fc);
     int st = q.state[k] | DEM_CONTACT_ACTIVE;
-    const struct dem_vec3 dw = {q.wx[i], q.wy[i], q.wz[i]};
+    const struct dem_vec3 dw = {pi.wx, pi.wy, pi.wz};
     resist_contact(law, &q, k, touch, n, dw, ai, fc, dt, cp, &h, &st);
     struct dem_tangential Tc = *T;
-    dem_normal_shear(law, cp, delta, ai, q.m[i], &Tc);
+    dem_normal_shear(law, cp, delta, ai, pi.m, &Tc);
     finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
     /* the force on the wall along its axis, outward positive, for the
      * walls' sums (contact/forces.c): the record's component times sgn */
@@ -566,15 +568,36 @@ DEM_INLINE void wall_one(const int law, const struct pass *qp, int k,
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
- * (dem_contact_wall_view), in SIMD lanes as pair_range. */
+ * (dem_contact_wall_view), in SIMD lanes as pair_range; the records
+ * compilations read the particles' values from their records (rec). */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
-                           const struct dem_wall *walls)
+                           const struct dem_wall *walls, const double *rec)
 {
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    int k = k0;
+    (void)rec;
+#if DEM_PASS_RECORDS
+    for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
+        _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES];
+        records_lanes(rec, q.ci + k, A);
 #pragma omp simd
-    for (int k = k0; k < k1; k++)
-        wall_one(law, &q, k, cp, dt, walls, &T);
+        for (int l = 0; l < DEM_PAIR_LANES; l++) {
+            const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
+                                  A[4][l], A[5][l], A[6][l], A[7][l],
+                                  A[8][l], A[9][l], A[10][l]};
+            wall_vals(law, &q, k + l, pi, cp, dt, walls, &T);
+        }
+    }
+#pragma omp simd
+    for (int kk = k; kk < k1; kk++)
+        wall_vals(law, &q, kk, record_pv(rec + DEM_REC * (size_t)q.ci[kk]), cp,
+                  dt, walls, &T);
+#else
+#pragma omp simd
+    for (int kk = k; kk < k1; kk++)
+        wall_vals(law, &q, kk, load_pv(&q, q.ci[kk]), cp, dt, walls, &T);
+#endif
 }
 
 #if defined(__GNUC__)
@@ -1018,7 +1041,8 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
         int e = w; /* the particles whose rows end in the chunk */
         while (e < i1 && start[e + 1] <= ke)
             e++;
-        wall_range(law, c->wq, wstart[w], wstart[e], &c->cpw, c->dt, c->walls);
+        wall_range(law, c->wq, wstart[w], wstart[e], &c->cpw, c->dt, c->walls,
+                   c->rec);
         w = e;
         if (e > s && kw) {
             /* the second range reads the earlier threads' pairs through
@@ -1157,7 +1181,7 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
                c->rec, 0, 1);
     const int *wstart = c->pl->wcur.start;
     wall_range(law, c->wq, wstart[k->a], wstart[k->b], &c->cpw, c->dt,
-               c->walls);
+               c->walls, c->rec);
     axial_handover(c->pl->wf.handed, c->wq.A, wstart[k->a], wstart[k->b]);
     const struct own O = {k->F,
                           k->M,
@@ -1217,7 +1241,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                dem_block(c->np, t + 1, nt), &c->cp, c->dt, c->cv, c->grad,
                c->fr.m, c->rec, 0, 0);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
-               &c->cpw, c->dt, c->walls);
+               &c->cpw, c->dt, c->walls, c->rec);
 #pragma omp barrier
     /* in a cell no virial block across two threads */
     const int cell = (law & DEM_SET_PERIODIC) != 0;
