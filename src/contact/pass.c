@@ -434,6 +434,15 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx,
     }
 #endif
 }
+
+/* Lane l of records_lanes's rows o: that particle's values for a pair. */
+DEM_INLINE struct pv lanes_pv(double (*o)[DEM_PAIR_LANES], int l)
+{
+    const struct pv p = {o[0][l], o[1][l], o[2][l], o[3][l],
+                         o[4][l], o[5][l], o[6][l], o[7][l],
+                         o[8][l], o[9][l], o[10][l]};
+    return p;
+}
 #endif
 
 /* Forces and history updates of pairs k0 <= k < k1 (the thread's pairs
@@ -498,13 +507,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         records_lanes(rec, q.cjr + (k - q.roff), B);
 #pragma omp simd
         for (int l = 0; l < DEM_PAIR_LANES; l++) {
-            const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
-                                  A[4][l], A[5][l], A[6][l], A[7][l],
-                                  A[8][l], A[9][l], A[10][l]};
-            const struct pv pj = {B[0][l], B[1][l], B[2][l], B[3][l],
-                                  B[4][l], B[5][l], B[6][l], B[7][l],
-                                  B[8][l], B[9][l], B[10][l]};
-            pair_vals(law, &q, k + l, pi, pj, cp, dt, &T, grad, fm);
+            pair_vals(law, &q, k + l, lanes_pv(A, l), lanes_pv(B, l), cp, dt,
+                      &T, grad, fm);
         }
     }
     /* the rest from the records too (the same values as in the arrays,
@@ -582,12 +586,8 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES];
         records_lanes(rec, q.ci + k, A);
 #pragma omp simd
-        for (int l = 0; l < DEM_PAIR_LANES; l++) {
-            const struct pv pi = {A[0][l], A[1][l], A[2][l], A[3][l],
-                                  A[4][l], A[5][l], A[6][l], A[7][l],
-                                  A[8][l], A[9][l], A[10][l]};
-            wall_vals(law, &q, k + l, pi, cp, dt, walls, &T);
-        }
+        for (int l = 0; l < DEM_PAIR_LANES; l++)
+            wall_vals(law, &q, k + l, lanes_pv(A, l), cp, dt, walls, &T);
     }
 #pragma omp simd
     for (int kk = k; kk < k1; kk++)
