@@ -24,15 +24,15 @@
  *     half kick and drift, see dem_sim_step).
  * The records compilation (contact/pass.h) reads the particle values of
  * the pairs and of the wall contacts from a copy of the particles in
- * records: each thread first writes its share of them, then a barrier;
- * a chained pass writes its particles' records right after their drift
- * instead, and the next pass
- * (dem_sim_step: no rebuild in between; in a periodic cell the positions
- * stay in the frame of the build, core/cell.h) skips the copy and the
- * barrier, or split over ranks copies only the ghosts, which their
- * owners moved. With more than one thread its chained steps between
- * walls run without the barrier: each thread owns a block of particles
- * and computes every force they need (blocks_thread, neighbor/blocks.h).
+ * records: each thread first writes its share of them, then a barrier; a
+ * chained pass writes its particles' records right after their drift
+ * instead, and the next pass (dem_sim_step: no rebuild in between; in a
+ * periodic cell the positions stay in the frame of the build,
+ * core/cell.h) skips the copy and the barrier, or split over ranks copies
+ * only the ghosts, which their owners moved. With more than one thread
+ * its chained steps between walls run without the barrier: each thread
+ * owns a block of particles and computes every force they need
+ * (blocks_thread, neighbor/blocks.h).
  * Every sum therefore runs in one fixed order, and the result is the same
  * bit for bit whatever the number of threads. The loop bodies are written
  * once as always-inline functions and instantiated per normal law of
