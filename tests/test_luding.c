@@ -22,7 +22,8 @@
         }                                                                      \
     } while (0)
 
-/* Luding et al. values: k2 = 1e5 N/m, k1/k2 = 1/2; kc/k2 = 0.2; two 1 mm discs. */
+/* Luding et al. values: k2 = 1e5 N/m, k1/k2 = 1/2; kc/k2 = 0.2; two 1 mm
+ * discs. */
 static const double K2 = 1e5, K1 = 0.5e5, KC = 0.2e5; /* N/m */
 static const double A12 = 0.5e-3;                     /* m */
 

@@ -481,8 +481,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
                 __builtin_prefetch(r, 0, 3);
                 __builtin_prefetch(r + 8, 0, 3);
                 if (ahead_i) {
-                    const double *o =
-                        rec + DEM_REC * (size_t)q.ci[k + DEM_PREFETCH_PAIRS + l];
+                    const int ia = q.ci[k + DEM_PREFETCH_PAIRS + l];
+                    const double *o = rec + DEM_REC * (size_t)ia;
                     __builtin_prefetch(o, 0, 3);
                     __builtin_prefetch(o + 8, 0, 3);
                 }
@@ -496,7 +496,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
             __builtin_prefetch(q.cjr + (u - q.roff), 0, 3);
             __builtin_prefetch(q.state + u, 1, 3);
             for (int e = 0; e < DEM_PAIR_LANES; e += 8) {
-#define HIST_AHEAD_(MODEL, name, unit, swap, doc)                               \
+#define HIST_AHEAD_(MODEL, name, unit, swap, doc)                              \
     if (DEM_MODEL_USES(law, MODEL))                                            \
         __builtin_prefetch(q.name + u + e, 1, 3);
                 DEM_CONTACT_HISTORY(HIST_AHEAD_)

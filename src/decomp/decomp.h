@@ -5,9 +5,9 @@
  * equal subdomains (np[2] = 1 in 2D); as the walls move, the same
  * fractions of the box are taken again at every neighbour-list build, so
  * the subdomains deform with the sample, and when the box's shape has
- * changed enough another grid is chosen (dem_decomp_resize). A particle belongs to the
- * subdomain its centre is in (beyond a wall: the subdomain at that
- * wall). A subdomain's ghosts are the particles of the others whose
+ * changed enough another grid is chosen (dem_decomp_resize). A
+ * particle belongs to the subdomain its centre is in (beyond a wall: the
+ * subdomain at that wall). A subdomain's ghosts are the particles of the others whose
  * centres lie within the ghost range of it: the largest diameter plus
  * the neighbour skin, so that every pair a build lists with an own
  * particle has its partner at hand, until the next build.

@@ -49,8 +49,9 @@ int dem_halo_gather(const struct dem_sim *s, struct dem_particles *out,
  * the order of their ids, the contacts with their history, the lists
  * built anew, the contacts' forces those of the run's last pass, like
  * the particles' and the walls'.
- * Free with dem_sim_destroy. On the other ranks whole is zeroed. Collective: every rank calls it; the status is
- * rank 0's (out of memory on another rank: the same status there). */
+ * Free with dem_sim_destroy. On the other ranks whole is zeroed.
+ * Collective: every rank calls it; the status is rank 0's (out of memory
+ * on another rank: the same status there). */
 int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
                      struct dem_error *err);
 

@@ -168,7 +168,8 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
             "# %s: density E(theta) of the contact normals' "
             "angle theta from x towards %s (%s), both senses, %d sectors; "
             "isotropic: 1/(2 pi) = 0.159\n# theta_deg  E(theta)\n",
-            c->name[1], ax, c->dim == 2 ? "2D" : "3D normals projected on x-z", NROSE);
+            c->name[1], ax,
+            c->dim == 2 ? "2D" : "3D normals projected on x-z", NROSE);
     for (int k = 0; k <= NROSE; k++) {
         const int q = k % NROSE;
         const double e =
