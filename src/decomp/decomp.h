@@ -7,10 +7,10 @@
  * the subdomains deform with the sample, and when the box's shape has
  * changed enough another grid is chosen (dem_decomp_resize). A
  * particle belongs to the subdomain its centre is in (beyond a wall: the
- * subdomain at that wall). A subdomain's ghosts are the particles of the others whose
- * centres lie within the ghost range of it: the largest diameter plus
- * the neighbour skin, so that every pair a build lists with an own
- * particle has its partner at hand, until the next build.
+ * subdomain at that wall). A subdomain's ghosts are the particles of the
+ * others whose centres lie within the ghost range of it: the largest
+ * diameter plus the neighbour skin, so that every pair a build lists
+ * with an own particle has its partner at hand, until the next build.
  *
  * Rank r is subdomain (ix, iy, iz) with r = ix + np[0] (iy + np[1] iz).
  */
