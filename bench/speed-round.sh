@@ -26,10 +26,12 @@
 #   two threads against one at N = 20000 (`dembox bench`);
 #   the cost per particle-step at N = 216000 over that at 3375, for dembox
 #     and for LAMMPS (issue 14 asks at most 1.2 of dembox).
-# A round takes some 8 minutes on a 2-vCPU machine. Run it on an otherwise
-# idle machine: the speed of a virtual machine moves by tens of per cent
-# from one hour to the next, so only figures measured side by side are
-# compared. Never run by CTest. Exit status 1 if a case fails.
+# The logs and peers.sh's work folders (inputs, the tiled packing) go to
+# one new folder, printed first. A round takes some 5 minutes on a 2-vCPU
+# machine. Run it on an otherwise idle machine: the speed of a virtual
+# machine moves by tens of per cent from one hour to the next, so only
+# figures measured side by side are compared. Never run by CTest. Exit
+# status 1 if a case fails.
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -70,7 +72,8 @@ peers() { # round name args...: one peers.sh case, its figures to $out/name
   local a b log=$out/r$r-$name.md
   a=$(pp)
   "$here/peers.sh" --dim 3 --codes "dembox lammps-hh" --data "$DATA" \
-    --dembox "$DEMBOX" "$@" >"$log" 2>&1 || { cat "$log" >&2; die "peers.sh $* failed"; }
+    --dembox "$DEMBOX" --work "$out/work-$name" "$@" >"$log" 2>&1 ||
+    { cat "$log" >&2; die "peers.sh $* failed"; }
   b=$(pp)
   local d l
   d=$(pss dembox <"$log"); l=$(pss lammps <"$log")
