@@ -6,7 +6,7 @@
 #
 # usage: bench/speed-round.sh [--rounds R] [--data DIR] [--dembox PATH]
 #
-#   --rounds  how many rounds (default 3; the table's rows use 3 to 5)
+#   --rounds  how many rounds (default 3)
 #   --data    folder of the packings (as bench/peers.sh: default
 #             $DEMBOX_BENCH_DATA or ../shared/bench/data next to this
 #             repository)
