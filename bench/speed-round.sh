@@ -83,15 +83,15 @@ peers() { # round name args...: one peers.sh case, its figures to $out/name
     "$name" "$d" "$l" "$(awk -v d="$d" -v l="$l" 'BEGIN {printf "%.2f", d / l}')" "$a" "$b"
 }
 
-bench() { # round threads: dembox bench at N = 20000, ns per particle-step
+bench() { # threads: dembox bench at N = 20000, ns per particle-step
   local a b ns
   a=$(pp)
-  ns=$("$DEMBOX" bench --n 20000 --steps 3000 --threads "$2" --quiet 2>&1 |
+  ns=$("$DEMBOX" bench --n 20000 --steps 3000 --threads "$1" --quiet 2>&1 |
        sed -n 's/.*, \([0-9.]*\) ns per particle-step.*/\1/p')
   b=$(pp)
-  [ -n "$ns" ] || die "dembox bench --threads $2 gave no figure"
+  [ -n "$ns" ] || die "dembox bench --threads $1 gave no figure"
   echo "$ns"
-  echo "  bench    $2 thread(s): $ns ns per particle-step (ping-pong $a / $b)" >&2
+  echo "  bench    $1 thread(s): $ns ns per particle-step (ping-pong $a / $b)" >&2
 }
 
 for r in $(seq 1 "$ROUNDS"); do
@@ -100,8 +100,8 @@ for r in $(seq 1 "$ROUNDS"); do
   peers "$r" 20000 --n 20000 --steps 10000
   peers "$r" 216000 --n 3375 --replicate 4 --steps 3000
   peers "$r" 20000np2 --n 20000 --steps 5000 --np 2
-  t1=$(bench "$r" 1)
-  t2=$(bench "$r" 2)
+  t1=$(bench 1)
+  t2=$(bench 2)
   awk -v a="$t1" -v b="$t2" 'BEGIN {print a / b}' >>"$out/threads"
 done
 
