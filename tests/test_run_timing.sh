@@ -60,6 +60,18 @@ DEMBOX_PASS=gathers "$BIN" run biaxial2d --max-steps 300 --threads 1 -o f \
     > /dev/null 2> f.log || fail "forced pass: $(tail -3 f.log)"
 line f.log | grep -q "; force pass gathers$" ||
     fail "DEMBOX_PASS=gathers: $(line f.log)"
+# the variant with the threads' own blocks, forced where it has none (one
+# thread), says that all its passes ran as the records pass (builds
+# without the records compilations refuse the name)
+if DEMBOX_PASS=blocks "$BIN" run biaxial2d --max-steps 300 --threads 1 -o g \
+    > /dev/null 2> g.log; then
+    want="; force pass blocks (as records in 301 of 301 passes)$"
+    line g.log | grep -q "$want" ||
+        fail "DEMBOX_PASS=blocks, one thread: $(line g.log)"
+else
+    grep -q "DEMBOX_PASS: 'blocks' is not a force pass of this build" g.log ||
+        fail "DEMBOX_PASS=blocks: $(tail -3 g.log)"
+fi
 "$BIN" run biaxial2d --max-steps 50 --threads 1 --quiet -o c 2> c.log ||
     fail "quiet run failed"
 [ -z "$(line c.log)" ] || fail "--quiet printed: $(line c.log)"

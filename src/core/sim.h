@@ -49,6 +49,7 @@ struct dem_pass_choice {
     int no_blocks; /* 1: the last pass had no threads' own blocks to run
                       (contact/forces.c), so the variant with them is
                       the records pass itself and sits out the trials */
+    long runs[DEM_MAX_PASSES]; /* passes each variant ran since the set-up */
 };
 
 struct dem_sim;
