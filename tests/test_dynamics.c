@@ -180,9 +180,9 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
      * never */
     if (threads > 1 && chained && !run_cell && pass &&
         !strcmp(pass, "blocks"))
-        assert_true(s.pairs.blocks.ran > 1000);
+        assert_true(s.pass.with_blocks > 1000);
     if (pass && !strcmp(pass, "records"))
-        assert_int_equal(s.pairs.blocks.ran, 0);
+        assert_int_equal(s.pass.with_blocks, 0);
     for (int i = 0; i < s.p.n && 6 * s.p.id[i] + 5 < RUN_PARTICLES; i++) {
         double *o = out + 6 * s.p.id[i];
         o[0] = s.p.x[i];

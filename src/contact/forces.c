@@ -277,7 +277,7 @@ static void blocks_note(const struct dem_sim *s, char *note, size_t size)
     note[0] = '\0';
     if (C->forced < 0 || !passes[C->forced].blocks)
         return;
-    const long all = C->runs[C->forced], without = all - s->pairs.blocks.ran;
+    const long all = C->runs[C->forced], without = all - C->with_blocks;
     if (without > 0)
         snprintf(note, size, "as records in %ld of %ld passes", without, all);
 }
@@ -615,11 +615,11 @@ static int forces(struct dem_sim *s, const struct kick K)
     pl->rec_fresh = 0;
     const int moved = run_pass(&s->pass, &c, K);
     s->pass.runs[s->pass.ran]++;
+    s->pass.with_blocks += blocks_ran;
     pl->rec_written = K.chain && passes[s->pass.ran].rec;
     /* the next such pass reads the ghost records this one wrote */
     pl->blocks.written = blocks_ran;
     pl->blocks.passes += blocks_ran;
-    pl->blocks.ran += blocks_ran;
     if (pl->blocks.written)
         pl->blocks.half ^= 1;
     if (s->cell.on) {

@@ -50,6 +50,7 @@ struct dem_pass_choice {
                       (contact/forces.c), so the variant with them is
                       the records pass itself and sits out the trials */
     long runs[DEM_MAX_PASSES]; /* passes each variant ran since the set-up */
+    long with_blocks; /* of them, passes with the threads' own blocks */
 };
 
 struct dem_sim;

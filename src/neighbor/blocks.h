@@ -79,7 +79,6 @@ struct dem_blocks {
     int shift_nt;
     long work;   /* the estimated work of all blocks at the set-up */
     long passes; /* passes run since it */
-    long ran;    /* passes run with blocks in all */
 };
 
 /* Set up (or keep) the blocks of nt threads for the list's present
