@@ -170,6 +170,11 @@ static void malformed_files_name_file_and_line(void **state)
         {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
          "1 1 0.1 2000 0.5 1.2 0.5\n",
          ":10: Atoms: atom 1 at y = 1.2 lies outside the box"},
+        /* a sphere wider than the box (that slack would let it pass) */
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 2 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 1e300 2000 0.5 1.2 0.5\n",
+         ":10: Atoms: atom 1's diameter 1.0000000000000001e+300 exceeds the "
+         "box's extent along x"},
     };
     char path[128];
     snprintf(path, sizeof path, "%s/bad.data", tmpdir);

@@ -158,6 +158,16 @@ static int read_atoms(struct reader *r, int *seen)
             return fail(r, DEM_EIO, "Atoms: diameter must be > 0, got", f[2]);
         if (!(v[1] > 0.0))
             return fail(r, DEM_EIO, "Atoms: density must be > 0, got", f[3]);
+        /* a sphere wider than the box is no packing; the test below,
+         * which allows a diameter's slack, would let any centre pass */
+        for (int a = 0; a < 2; a++)
+            if (!(v[0] <= d->hi[a] - d->lo[a]))
+                return dem_error_set(
+                    r->err, DEM_EIO,
+                    "%s:%d: Atoms: atom %ld's diameter %.17g exceeds the "
+                    "box's extent along %c (%.17g)",
+                    r->path, r->lineno, id, v[0], "xy"[a],
+                    d->hi[a] - d->lo[a]);
         /* write_data wraps every position into the box, and a periodic
          * cell's particles leave it by less than a skin between wraps; a
          * centre further out than the particle's diameter is a broken
