@@ -19,14 +19,7 @@
 
 #include "io/checkpoint.h"
 
-static char tmpdir[256];
-
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/dembox-test-ckpt-XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
+#include "tmpdir.h"
 
 /* A 2D biaxial test in miniature: an isotropic stage cut short by its
  * max_time, then compression; rows, snapshots and dump frames often. */
@@ -904,5 +897,5 @@ int main(void)
         cmocka_unit_test(kill_9_between_checkpoints_resumes_identically),
         cmocka_unit_test(write_error_in_outputs_stops_the_command),
     };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

@@ -12,14 +12,7 @@
 #include "contact/models.h"
 #include "formats/csvtable.h"
 
-static char tmpdir[256];
-
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/dembox-test-run-XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
+#include "tmpdir.h"
 
 static int exists(const char *dir, const char *name)
 {
@@ -527,5 +520,5 @@ int main(void)
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
     };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

@@ -15,14 +15,7 @@
 
 #define DEG (180.0 / M_PI)
 
-static char tmpdir[256];
-
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/dembox-test-sweep-XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
+#include "tmpdir.h"
 
 /* A 2D biaxial test of 60 discs; with --max-steps 1000 a run takes about
  * a second. */
@@ -686,5 +679,5 @@ int main(void)
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
     };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
