@@ -1,7 +1,8 @@
 /* LAMMPS data files (atom_style sphere): a hand-written file parses to the
  * numbers it holds, velocities are matched by atom id, the writer round-trips
  * bit-exactly, malformed files give one message naming file and line, and
- * the peers' 2D packing (when present on this machine) reads completely. */
+ * the peers' 2D packing (when present on this machine) reads completely;
+ * the header alone reads as in the full read. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -85,6 +86,43 @@ static void small_file_parses_to_its_numbers(void **state)
     assert_true(d.vx[1] == 1.0 && d.vy[1] == 2.0 && d.vz[1] == 3.0);
     assert_true(d.wx[1] == 4.0 && d.wy[1] == 5.0 && d.wz[1] == 6.0);
     dem_lammps_data_free(&d);
+}
+
+/* The header alone gives the count and the box of the full read, stops
+ * at the first section (a broken Atoms section is not its business) and
+ * refuses a broken header as the full read does. */
+static void header_alone_gives_count_and_box(void **state)
+{
+    (void)state;
+    char path[128];
+    snprintf(path, sizeof path, "%s/small.data", tmpdir);
+    write_text(path, small_file);
+    struct dem_lammps_data d, h;
+    struct dem_error err = {0};
+    if (dem_lammps_data_read(&d, path, &err) ||
+        dem_lammps_data_read_header(&h, path, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(h.n, d.n);
+    for (int a = 0; a < 3; a++)
+        assert_true(h.lo[a] == d.lo[a] && h.hi[a] == d.hi[a]);
+    assert_null(h.x);
+    assert_null(h.id);
+    dem_lammps_data_free(&d);
+    dem_lammps_data_free(&h);
+
+    write_text(path, "t\n\n3 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo "
+                     "zhi\n\nAtoms\n\nnot an atom\n");
+    if (dem_lammps_data_read_header(&h, path, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(h.n, 3);
+    assert_int_not_equal(dem_lammps_data_read(&d, path, &err), 0);
+
+    write_text(path, "t\n\n-3 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo "
+                     "zhi\n\nAtoms\n");
+    assert_int_not_equal(dem_lammps_data_read_header(&h, path, &err), 0);
+    if (!strstr(err.msg, ":3: bad atom count") || !strstr(err.msg, path))
+        fail_msg("message '%s'", err.msg);
+    assert_null(h.x);
 }
 
 static void write_then_read_is_bit_exact(void **state)
@@ -250,6 +288,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(small_file_parses_to_its_numbers),
+        cmocka_unit_test(header_alone_gives_count_and_box),
         cmocka_unit_test(write_then_read_is_bit_exact),
         cmocka_unit_test(malformed_files_name_file_and_line),
         cmocka_unit_test(centres_just_outside_the_box_are_kept),

@@ -495,9 +495,9 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     int n = o->n > 0 ? o->n
                      : (dim == 3 ? DEM_BENCH_DEFAULT_N3 : DEM_BENCH_DEFAULT_N2);
     if (o->data && o->n <= 0) {
-        /* --data without --n: the file says how many */
+        /* --data without --n: the file's header says how many */
         struct dem_lammps_data d;
-        int rc = dem_lammps_data_read(&d, o->data, err);
+        int rc = dem_lammps_data_read_header(&d, o->data, err);
         if (rc)
             return rc;
         n = d.n;

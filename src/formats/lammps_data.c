@@ -259,41 +259,39 @@ static int build_map(struct reader *r, struct id_index **out)
     return DEM_OK;
 }
 
-static int read_body(struct reader *r)
+/* The title line and the header, up to the first section name, which is
+ * left in f (nf fields). Fills d->n, lo and hi. */
+static int read_header(struct reader *r, char **f, int *nf)
 {
     struct dem_lammps_data *d = r->d;
-    char *f[MAX_FIELDS];
-    int nf, have_box[3] = {0, 0, 0}, atoms = 0;
+    int have_box[3] = {0, 0, 0};
     long natoms = -1;
-    struct id_index *map = 0;
-    int rc = DEM_OK;
     /* the first line is a title, whatever it says */
-    if (next_fields(r, f, &nf) < 0)
+    if (next_fields(r, f, nf) < 0)
         return dem_error_set(r->err, DEM_EIO, "%s: empty file", r->path);
-    /* header */
     static const char *const bounds[3][2] = {
         {"xlo", "xhi"}, {"ylo", "yhi"}, {"zlo", "zhi"}};
     for (;;) {
-        if (next_fields(r, f, &nf) < 0)
+        if (next_fields(r, f, nf) < 0)
             return dem_error_set(r->err, DEM_EIO, "%s: no Atoms section",
                                  r->path);
-        if (nf == 0)
+        if (*nf == 0)
             continue;
-        if (nf == 2 && !strcmp(f[1], "atoms")) {
+        if (*nf == 2 && !strcmp(f[1], "atoms")) {
             if (!integer(f[0], &natoms) || natoms < 1 || natoms > 1000000000L)
                 return fail(r, DEM_EIO, "bad atom count", f[0]);
             continue;
         }
-        if (nf == 3 && !strcmp(f[1], "atom") && !strcmp(f[2], "types"))
+        if (*nf == 3 && !strcmp(f[1], "atom") && !strcmp(f[2], "types"))
             continue;
-        if (nf == 6 && !strcmp(f[3], "xy"))
+        if (*nf == 6 && !strcmp(f[3], "xy"))
             return fail(r, DEM_EIO,
                         "triclinic boxes (xy xz yz) are not "
                         "supported",
                         0);
         int axis = -1;
         for (int a = 0; a < 3; a++)
-            if (nf == 4 && !strcmp(f[2], bounds[a][0]) &&
+            if (*nf == 4 && !strcmp(f[2], bounds[a][0]) &&
                 !strcmp(f[3], bounds[a][1]))
                 axis = a;
         if (axis >= 0) {
@@ -312,6 +310,18 @@ static int read_body(struct reader *r)
             return dem_error_set(r->err, DEM_EIO, "%s: no \"%s %s\" line",
                                  r->path, bounds[a][0], bounds[a][1]);
     d->n = (int)natoms;
+    return DEM_OK;
+}
+
+static int read_body(struct reader *r)
+{
+    struct dem_lammps_data *d = r->d;
+    char *f[MAX_FIELDS];
+    int nf, atoms = 0;
+    struct id_index *map = 0;
+    int rc = read_header(r, f, &nf);
+    if (rc)
+        return rc;
     if (alloc_arrays(d))
         return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory", r->path);
     /* sections: f holds the name of the current one (comment cut) */
@@ -349,8 +359,8 @@ static int read_body(struct reader *r)
     return rc;
 }
 
-int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
-                         struct dem_error *err)
+static int read_file(struct dem_lammps_data *d, const char *path,
+                     int header_only, struct dem_error *err)
 {
     memset(d, 0, sizeof *d);
     struct reader r = {path, 0, 0, 0, 0, d, err};
@@ -358,7 +368,9 @@ int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
     if (!r.f)
         return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
                              strerror(errno));
-    int rc = read_body(&r);
+    char *f[MAX_FIELDS];
+    int nf;
+    int rc = header_only ? read_header(&r, f, &nf) : read_body(&r);
     if (!rc && ferror(r.f))
         rc = dem_error_set(err, DEM_EIO, "%s: read error", path);
     fclose(r.f);
@@ -366,6 +378,18 @@ int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
     if (rc)
         dem_lammps_data_free(d);
     return rc;
+}
+
+int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
+                         struct dem_error *err)
+{
+    return read_file(d, path, 0, err);
+}
+
+int dem_lammps_data_read_header(struct dem_lammps_data *d, const char *path,
+                                struct dem_error *err)
+{
+    return read_file(d, path, 1, err);
 }
 
 int dem_lammps_data_write(const char *path, const struct dem_particles *p,

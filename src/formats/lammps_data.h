@@ -34,6 +34,11 @@ struct dem_lammps_data {
  * On error d is left empty and err->msg reads "PATH:LINE: ...". */
 int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
                          struct dem_error *err);
+/* Only the header of path: d->n, lo and hi, without reading the atoms
+ * (the arrays stay NULL). The same errors as dem_lammps_data_read for a
+ * bad header; a bad Atoms section is not seen. */
+int dem_lammps_data_read_header(struct dem_lammps_data *d, const char *path,
+                                struct dem_error *err);
 void dem_lammps_data_free(struct dem_lammps_data *d);
 
 /* Write the particles of p as an atom_style sphere data file with the box
