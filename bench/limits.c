@@ -28,7 +28,7 @@
  * And what it costs to hand cache lines over: CPU 1 writes 640 lines
  * that CPU 0 then reads, 4000 times, once with ordinary stores and once
  * with non-temporal ones; ns per line for each side, with the ping-pong
- * before and after (docs/performance.md, session 43):
+ * before and after (docs/performance-log.md, session 43):
  *
  *     build/dembox_limits --handover */
 #define _GNU_SOURCE /* pthread_setaffinity_np */
@@ -470,7 +470,7 @@ int main(int argc, char **argv)
                24.0 * sizes[s] / 1024, 1e-9 * m);
     }
     /* the benchmark's packings: listed pairs per particle at N = 3375
-     * and 216000 (docs/performance.md, "Issue 14 on Zen 5") */
+     * and 216000 (docs/performance-log.md, "Issue 14 on Zen 5") */
     const int ns[2] = {3375, 216000};
     const double pairs[2] = {3.06, 3.89};
     printf("ring pass's streams, no arithmetic, ns per particle-step:\n");

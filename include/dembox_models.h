@@ -27,7 +27,7 @@
  * in src/contact/model_name.h. The force pass runs every kernel in SIMD
  * lanes: a kernel's branches become selections, each lane computing
  * both sides (the luding law's three branches included; as scalar code
- * with branches it took 1.4-1.8x longer, docs/performance.md). */
+ * with branches it took 1.4-1.8x longer, docs/performance-log.md). */
 #define DEM_NORMAL_MODELS(X)                                                   \
     X(LINEAR, linear)                                                          \
     X(LUDING, luding)                                                          \

@@ -117,7 +117,7 @@ static void cpu_model(char *out, size_t len)
 /* The vector instructions this build was compiled for (the force pass
  * uses the widest; -mprefer-vector-width=512 where there is AVX-512: with
  * gcc 12 every loop of the pass over pairs, wall contacts and particles
- * then runs in 512-bit vectors, docs/performance.md, session 38). */
+ * then runs in 512-bit vectors, docs/performance-log.md, session 38). */
 static const char *simd_name(void)
 {
 #if defined(__AVX512F__)

@@ -211,7 +211,7 @@ static const struct {
     int blocks; /* runs its chained steps between walls with threads that
                    own their blocks (neighbor/blocks.h), where it can:
                    faster on two L3 caches, not always on one (docs/
-                   performance.md, session 44), so the trials choose */
+                   performance-log.md, session 44), so the trials choose */
 } passes[] = {
     {"gathers", dem__pass_gathers, 0, 0},
 #if DEM_PASS_LOADS
@@ -232,7 +232,7 @@ _Static_assert(NPASS <= DEM_MAX_PASSES, "struct dem_pass_choice: best[]");
  * A variant slower than TRIAL_FAR times the winner sits out the next
  * trial; if it loses by as much again, the next 3, then TRIAL_OUT each
  * time: at N = 216000 the three losers' passes took 2 % of a run,
- * though they are under 1 % of its passes (docs/performance.md). A loser
+ * though they are under 1 % of its passes (docs/performance-log.md). A loser
  * is still timed at least every TRIAL_OUT + 1 trials. */
 enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
 #define TRIAL_FAR 1.25
@@ -513,7 +513,7 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
  * own (exact: no sum starting at +0.0 is ever -0.0), so the sums stay in
  * one register and each contact waits for one addition: indexed by wall
  * in memory, each waited for the store of the one before, which took
- * 1.5 % of a step at N = 3375 with one thread (docs/performance.md,
+ * 1.5 % of a step at N = 3375 with one thread (docs/performance-log.md,
  * session 43). */
 typedef long long dem_wall_mask __attribute__((vector_size(64)));
 typedef double dem_wall_sums __attribute__((vector_size(64)));
@@ -629,7 +629,7 @@ static int forces(struct dem_sim *s, const struct kick K)
          * order, from the compact array the pass wrote beside the records
          * (with two threads on two L3 caches, reading a record's line per
          * contact here made the other thread's next wall contacts wait for
-         * those lines: docs/performance.md, session 42) */
+         * those lines: docs/performance-log.md, session 42) */
         double fout[DEM_MAX_WALLS];
         wall_sums(&pl->wcur, blocks_ran ? pl->wf.handed : pl->wf.axial, fout);
         for (int w = 0; w < s->nwall; w++)

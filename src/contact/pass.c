@@ -64,7 +64,7 @@
  * a time come into 512-bit rows (records_lanes), so that each half the
  * loop loads is one store of the transposes: 16 lanes from the 256-bit
  * transposes, whose halves two stores make, gained nothing
- * (docs/performance.md, session 38). */
+ * (docs/performance-log.md, session 38). */
 #if defined(__AVX512F__)
 #define DEM_PAIR_LANES 16
 #else
@@ -76,7 +76,7 @@
  * the hardware prefetchers cannot follow (one cell layer ahead, through
  * the list's indices). Two rounds of the loop ahead: a round asks for
  * the records of the round after next.
- * Measured (docs/performance.md, "Partners' records fetched ahead" and
+ * Measured (docs/performance-log.md, "Partners' records fetched ahead" and
  * session 38): with 8 lanes on Zen 4, N = 216000 13 % faster, 3375 and
  * 20000 the same, 8 pairs ahead gained half as much, 32 and 64 no more
  * than 16; with 16 lanes on Zen 5, the ring pass at N = 216000 8 %
@@ -91,7 +91,7 @@
  * from main memory, asking for them took 8-10 % off the ring pass
  * between walls and 15-20 % in a periodic cell, and nothing from the
  * records pass, whose particle loop reads its forces from memory
- * (docs/performance.md, session 39). The ring is the pass the trial
+ * (docs/performance-log.md, session 39). The ring is the pass the trial
  * picks at that size; while the arrays fit in L3 the requests cost a
  * little, and the trial then picks another pass. */
 #define DEM_AHEAD_PAIRS 64
@@ -361,10 +361,10 @@ DEM_INLINE struct pv record_pv(const double *o)
  * touch an image of j (struct dem_pairs.jrec): j's record, its position
  * shifted to the image, so that the pair loop reads a record as for any
  * other pair (a shift decoded and applied in every lane took 6 % of the
- * pass, docs/performance.md). They are filled every pass from j's
+ * pass, docs/performance-log.md). They are filled every pass from j's
  * records, which must hold the present state, the shift taken from the
  * pass's table (decoding it here took most of the copy's time, in its
- * integer to double conversions, docs/performance.md). */
+ * integer to double conversions, docs/performance-log.md). */
 DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
 {
     const struct dem_pairs *pl = c->pl;
@@ -650,7 +650,7 @@ DEM_INLINE int virial_lanes(const struct dem_particles *P, const double *fm,
      * memory (the loop below) the cell's pass took 10 % longer at N =
      * 3375 on Zen 4, more than this loop's own work: GCC 12 left the sums
      * in memory and the inlined block slowed the pair loop around it too
-     * (docs/performance.md). */
+     * (docs/performance-log.md). */
     const double *restrict X[3] = {P->x, P->y, P->z},
                            *restrict U[3] = {P->vx, P->vy, P->vz};
     const double m[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
@@ -985,7 +985,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
  * the list's force array too, which they read from. In a periodic cell
  * every pair through an image is copied there as well after its chunk,
  * and read from there (particle_range: they are left out of the reach,
- * so a ring is as small as between walls, docs/performance.md); the
+ * so a ring is as small as between walls, docs/performance-log.md); the
  * cell's stress sums them after the pass (contact/forces.c). So the
  * second range (the last layer, with pairs through the z faces in the
  * earlier blocks' first rows) waits only until every earlier thread has

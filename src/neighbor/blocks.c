@@ -153,7 +153,7 @@ static int record_of(const struct dem_blocks *B, int x, int a, int b, int h)
 }
 
 /* A twin's weight in a thread's work (dem_pairs_cut): its records come
- * from memory, and it costs about 1.5 pairs (docs/performance.md,
+ * from memory, and it costs about 1.5 pairs (docs/performance-log.md,
  * session 44). */
 enum { WTWIN = 3 };
 

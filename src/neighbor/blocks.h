@@ -23,7 +23,7 @@
  * line one thread writes after the other has read it waits for the other
  * cache to drop its copy; the pairs' forces and the particles' records
  * across the cut between the blocks made two threads a third slower
- * there (docs/performance.md, sessions 42 to 44).
+ * there (docs/performance-log.md, sessions 42 to 44).
  */
 #ifndef DEM_NEIGHBOR_BLOCKS_H
 #define DEM_NEIGHBOR_BLOCKS_H

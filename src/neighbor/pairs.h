@@ -173,7 +173,7 @@ struct dem_pairs {
  * particle's span in the list's reach ends with its group's rows. Between
  * walls the groups are single particles: there groups of 32 made the ring
  * pass 2-5 % slower at N = 3375 and 1-3 % faster at N = 216000 on Zen 4
- * (docs/performance.md). */
+ * (docs/performance-log.md). */
 #define DEM_RING_GROUP 32
 static inline int dem_ring_group(int periodic)
 {
