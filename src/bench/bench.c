@@ -13,6 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/fpmode.h"
 #include "formats/lammps_data.h"
 #include "io/fsutil.h"
 #include "decomp/halo.h"
@@ -482,8 +483,8 @@ static void sample_now(const struct dem_sim *s, struct dem_sample *smp)
     dem_measure(s, L0, V0, 0, smp);
 }
 
-int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
-                  struct dem_error *err)
+static int bench_run(const struct dem_bench_options *o,
+                     struct dem_bench_result *r, struct dem_error *err)
 {
     memset(r, 0, sizeof *r);
     r->rss_start = rss_now();
@@ -504,8 +505,6 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
         dem_lammps_data_free(&d);
     }
     const long steps = o->steps > 0 ? o->steps : DEM_BENCH_DEFAULT_STEPS;
-    if (o->threads > 0)
-        omp_set_num_threads(o->threads);
     const struct workload *w = dim == 3 ? &work3 : &work2;
     struct dem_config cfg;
     int rc = make_config(&cfg, w, n, o->periodic, err);
@@ -619,6 +618,20 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     r->particle_steps_per_second =
         r->seconds > 0 ? (double)r->n * (double)steps / r->seconds : 0.0;
     return DEM_OK;
+}
+
+int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
+                  struct dem_error *err)
+{
+    /* the run's threads, subnormal numbers flushed on each as in a run
+     * (core/fpmode.h) */
+    if (o->threads > 0)
+        omp_set_num_threads(o->threads);
+    struct dem_fpmode fp;
+    dem_fpmode_flush(&fp);
+    const int rc = bench_run(o, r, err);
+    dem_fpmode_restore(&fp);
+    return rc;
 }
 
 void dem_bench_print(FILE *f, const struct dem_bench_result *r)

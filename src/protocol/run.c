@@ -36,6 +36,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/fpmode.h"
 #include "core/sim.h"
 #include "decomp/halo.h"
 #include "formats/particles_csv.h"
@@ -643,16 +644,24 @@ static void start_ranks(struct run_ctx *r)
         dem_mpi_world(&r->rank, &r->nranks);
 }
 
-int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
-            struct dem_error *err)
+/* The run's threads, and subnormal numbers flushed on each of them
+ * (core/fpmode.h; restored when the run returns). */
+static void engine_mode(const struct dem_run_options *opt,
+                        struct dem_fpmode *fp)
+{
+    if (opt->threads > 0)
+        omp_set_num_threads(opt->threads);
+    dem_fpmode_flush(fp);
+}
+
+static int run_new(const struct dem_config *cfg,
+                   const struct dem_run_options *opt, struct dem_error *err)
 {
     struct run_ctx r;
     memset(&r, 0, sizeof r);
     r.opt = opt;
     r.outdir = opt->outdir;
     start_ranks(&r);
-    if (opt->threads > 0)
-        omp_set_num_threads(opt->threads);
     /* build the simulation first: a bad particle file must fail before
      * any output exists (under MPI every rank builds the same sample) */
     struct dem_particles given = {0};
@@ -717,16 +726,14 @@ static int read_checkpoint(struct run_ctx *r, struct dem_error *err)
                                err);
 }
 
-int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
-                   struct dem_error *err)
+static int run_resumed(const char *outdir, const struct dem_run_options *opt,
+                       struct dem_error *err)
 {
     struct run_ctx r;
     memset(&r, 0, sizeof r);
     r.opt = opt;
     r.outdir = outdir;
     start_ranks(&r);
-    if (opt->threads > 0)
-        omp_set_num_threads(opt->threads);
     int rc = read_checkpoint(&r, err);
     if (r.nranks > 1 && dem_halo_any(rc) && !rc) {
         rc = dem_error_set(err, DEM_EIO,
@@ -785,4 +792,24 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
         start_progress(&r);
     }
     return run_and_finish(&r, rc, first, 1, err);
+}
+
+int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
+            struct dem_error *err)
+{
+    struct dem_fpmode fp;
+    engine_mode(opt, &fp);
+    const int rc = run_new(cfg, opt, err);
+    dem_fpmode_restore(&fp);
+    return rc;
+}
+
+int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
+                   struct dem_error *err)
+{
+    struct dem_fpmode fp;
+    engine_mode(opt, &fp);
+    const int rc = run_resumed(outdir, opt, err);
+    dem_fpmode_restore(&fp);
+    return rc;
 }
