@@ -53,7 +53,8 @@ static const char *const usage_run =
     "  --set KEY=VALUE      override a config key by its dotted path, e.g.\n"
     "                       --set contact.mu=0.3 --set stages.1.pressure=250\n"
     "  --threads N          OpenMP threads (default: all cores)\n"
-    "  --quiet              no progress display\n"
+    "  --quiet              no progress display, and no closing line on\n"
+    "                       where the time went (OUTDIR/timing.txt keeps it)\n"
     "  --max-steps N        stop after N steps in all (smoke tests); the\n"
     "                       outputs are written as for a finished run\n"
     "  --resume OUTDIR      continue the interrupted run in OUTDIR from\n"
@@ -62,7 +63,8 @@ static const char *const usage_run =
     "\n"
     "OUTDIR receives config.cfg (the resolved config), timeseries.csv,\n"
     "particles_final.csv and particles_NNNNN.vtu snapshots with\n"
-    "particles.pvd. Files being written end in .part until the run is done.\n"
+    "particles.pvd, and timing.txt (where each part's time went). Files\n"
+    "being written end in .part until the run is done.\n"
     "\n"
     "Every output.checkpoint_interval seconds (default 600) and on Ctrl-C\n"
     "(SIGINT) or SIGTERM the run saves OUTDIR/checkpoint.bin; after a signal\n"
@@ -332,29 +334,9 @@ static void cli_progress(const struct dem_progress *p, void *user)
 /* One line: how fast the stage loops ran and where their time went. */
 static void print_timing(const struct dem_run_timing *T)
 {
-    if (T->steps <= 0 || T->seconds <= 0.0)
-        return;
-    const struct dem_timers *P = &T->step;
-    const double rest = T->seconds - P->force - P->neighbor - P->walls -
-                        P->integrate - P->exchange;
-    const double pc = 100.0 / T->seconds;
-    fprintf(stderr,
-            "dembox: %ld steps of %d particles in %.3g s, %.4g ns per "
-            "particle-step: force pass %.1f %%, neighbour lists %.1f %% "
-            "(%ld builds, skin %.3g of its largest at the end",
-            T->steps, T->particles, T->seconds,
-            1e9 * T->seconds / ((double)T->steps * T->particles),
-            pc * P->force, pc * P->neighbor, T->builds, T->skin_share);
-    if (isfinite(T->pairs_per_particle))
-        fprintf(stderr, ", %.3g pairs per particle",
-                T->pairs_per_particle);
-    fprintf(stderr, "), %s %.1f %%, unchained kicks and drifts %.1f %%, ",
-            T->periodic ? "cell" : "walls", pc * P->walls,
-            pc * P->integrate);
-    if (P->exchange > 0.0)
-        fprintf(stderr, "MPI exchanges %.1f %%, ", pc * P->exchange);
-    fprintf(stderr, "stages, samples and outputs %.1f %%; force pass %s\n",
-            pc * rest, T->pass);
+    char line[1024];
+    if (dem_run_timing_line(T, line, sizeof line))
+        fprintf(stderr, "dembox: %s\n", line);
 }
 
 /* dem_run or dem_run_resume with SIGINT and SIGTERM turned into a

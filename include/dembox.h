@@ -644,6 +644,12 @@ struct dem_run_timing {
                                computed from the frame (core/cell.h) */
 };
 
+/* T as the one line `dembox run` closes with and OUTDIR/timing.txt keeps
+ * (docs/outputs.md): "S steps of N particles in ..., X ns per
+ * particle-step: force pass ...". Returns 0 (buf "") when T timed no
+ * steps, else 1. */
+int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n);
+
 #define DEM_BENCH_DEFAULT_STEPS 20000
 #define DEM_BENCH_DEFAULT_N3 3375
 #define DEM_BENCH_DEFAULT_N2 1950

@@ -47,12 +47,13 @@ for ex in $(./build/dembox examples | awk '{print $1}'); do
         "$bin" run "$ex" "${args[@]}" -o "$WORK/out-$b/$ex" > /dev/null 2>&1 ||
             echo "$ex: the $b build failed (see $WORK/out-$b/$ex)"
     done
-    # gnuplot.log may name the folder: compare everything else
-    if diff -r -x gnuplot.log "$WORK/out-base/$ex" "$WORK/out-new/$ex" > /dev/null; then
+    # gnuplot.log may name the folder, timing.txt has the times: compare
+    # everything else
+    if diff -r -x gnuplot.log -x timing.txt "$WORK/out-base/$ex" "$WORK/out-new/$ex" > /dev/null; then
         echo "$ex: identical ($(find "$WORK/out-new/$ex" -type f | wc -l) files)"
     else
         echo "$ex: DIFFERENT:"
-        diff -r -q -x gnuplot.log "$WORK/out-base/$ex" "$WORK/out-new/$ex" | sed 's/^/    /'
+        diff -r -q -x gnuplot.log -x timing.txt "$WORK/out-base/$ex" "$WORK/out-new/$ex" | sed 's/^/    /'
         status=1
     fi
 done

@@ -3,7 +3,8 @@
 # (docs/outputs.md): the steps it took, the particles, ns per
 # particle-step and the phases' shares, each in [0, 100] %. A run stopped
 # and resumed reports each part's own steps, which add up to the whole;
-# --quiet says nothing.
+# --quiet says nothing on the terminal. OUTDIR/timing.txt records each
+# part's line.
 set -eu
 BIN=${DEMBOX_BIN:?run through ctest}
 T=$(mktemp -d "${TMPDIR:-/tmp}/dembox-test-timing.XXXXXX")
@@ -75,4 +76,28 @@ fi
 "$BIN" run biaxial2d --max-steps 50 --threads 1 --quiet -o c 2> c.log ||
     fail "quiet run failed"
 [ -z "$(line c.log)" ] || fail "--quiet printed: $(line c.log)"
+# OUTDIR/timing.txt keeps the same line for each part of a run, after
+# when it ended, how, its steps, threads, CPU and vectors; a quiet run
+# keeps it too, and a new run in the folder starts the record anew
+rec() { # lines of $1/timing.txt that say "$3, steps $4, 1 thread, " and
+         # end with log $2's line
+    awk -v h="Z $3, steps $4, 1 thread, " \
+        -v b=": $(line "$2" | sed 's/^dembox: //')" '
+        index($0, h) && substr($0, length($0) - length(b) + 1) == b { k++ }
+        END { print k + 0 }' "$1/timing.txt"
+}
+[ "$(wc -l < a/timing.txt)" -eq 1 ] &&
+    [ "$(rec a a.log finished "0 to 3000")" = 1 ] ||
+    fail "a/timing.txt: $(cat a/timing.txt)"
+[ "$(wc -l < b/timing.txt)" -eq 2 ] &&
+    [ "$(rec b b.log interrupted "0 to $s1")" = 1 ] &&
+    [ "$(rec b b2.log finished "$s1 to 3000")" = 1 ] ||
+    fail "b/timing.txt: $(cat b/timing.txt)"
+grep -q "Z finished, steps 0 to 50, 1 thread, .*: 50 steps of 500 " \
+    c/timing.txt || fail "quiet run: c/timing.txt: $(cat c/timing.txt)"
+"$BIN" run biaxial2d --max-steps 20 --threads 1 --quiet -o a 2> /dev/null ||
+    fail "second run in a"
+grep -q "^[0-9T:-]*Z finished, steps 0 to 20, " a/timing.txt &&
+    [ "$(wc -l < a/timing.txt)" -eq 1 ] ||
+    fail "a new run in a: a/timing.txt: $(cat a/timing.txt)"
 echo "ok: 3000 steps; stopped $s1 + resumed $s2; force pass $tally"

@@ -6,8 +6,14 @@
 /* MXCSR bit 15 flush-to-zero (results), bit 6 denormals-are-zero (inputs)
  * (Intel SDM vol. 1, 10.2.3) */
 #define FLUSH_BITS 0x8040ull
-static unsigned long long get_mode(void) { return _mm_getcsr(); }
-static void set_mode(unsigned long long v) { _mm_setcsr((unsigned)v); }
+static unsigned long long get_mode(void)
+{
+    return _mm_getcsr();
+}
+static void set_mode(unsigned long long v)
+{
+    _mm_setcsr((unsigned)v);
+}
 #elif defined(__aarch64__)
 /* FPCR bit 24, FZ: subnormal inputs and results are zero (Arm ARM,
  * FPCR) */
@@ -54,5 +60,8 @@ int dem_fpmode_flush(struct dem_fpmode *m)
     return 0;
 }
 
-void dem_fpmode_restore(const struct dem_fpmode *m) { (void)m; }
+void dem_fpmode_restore(const struct dem_fpmode *m)
+{
+    (void)m;
+}
 #endif

@@ -45,6 +45,7 @@
 #include "measure/measure.h"
 #include "output/output.h"
 #include "protocol/stage.h"
+#include "protocol/timing.h"
 
 struct run_ctx {
     struct dem_sim sim;
@@ -503,7 +504,8 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
      * longer belong to what is being written now: the outputs' files and
      * the runner's own */
     static const char *const own[] = {"summary.json", "particles_unstable.csv",
-                                      "checkpoint.bin", "checkpoint.bin.tmp"};
+                                      "checkpoint.bin", "checkpoint.bin.tmp",
+                                      "timing.txt"};
     for (size_t k = 0; !rc && k < sizeof own / sizeof own[0]; k++)
         rc = remove_stale(dir, own[k], err);
     for (int k = 0; !rc && k < dem_output_nkinds; k++)
@@ -571,23 +573,30 @@ static void start_progress(struct run_ctx *r)
     memset(&r->sim.timers, 0, sizeof r->sim.timers);
 }
 
-/* Where the stage loops' time went, for the caller. */
-static void report_timing(const struct run_ctx *r)
+/* Where the stage loops' time went (status: how they ended): for the
+ * caller, and as a line of OUTDIR/timing.txt written by rank 0
+ * (protocol/timing.h). */
+static void report_timing(const struct run_ctx *r, int status,
+                          const struct dem_error *err)
 {
-    struct dem_run_timing *T = r->opt->timing;
-    if (!T)
-        return;
-    T->steps = r->sim.step - r->step0;
-    T->particles = r->n_all;
-    T->seconds = wall_clock() - r->wall_t0;
-    T->step = r->sim.timers;
-    T->builds = r->sim.nbuild - r->nbuild0;
-    T->skin_share = dem_sim_skin_share(&r->sim);
-    T->pairs_per_particle = r->nranks < 2 && r->sim.p.n > 0
-                                ? (double)r->sim.pairs.cur.n / r->sim.p.n
-                                : NAN;
-    dem_sim_pass_tally(&r->sim, T->pass, sizeof T->pass);
-    T->periodic = r->sim.cell.on;
+    struct dem_run_timing T;
+    memset(&T, 0, sizeof T);
+    T.steps = r->sim.step - r->step0;
+    T.particles = r->n_all;
+    T.seconds = wall_clock() - r->wall_t0;
+    T.step = r->sim.timers;
+    T.builds = r->sim.nbuild - r->nbuild0;
+    T.skin_share = dem_sim_skin_share(&r->sim);
+    T.pairs_per_particle = r->nranks < 2 && r->sim.p.n > 0
+                               ? (double)r->sim.pairs.cur.n / r->sim.p.n
+                               : NAN;
+    dem_sim_pass_tally(&r->sim, T.pass, sizeof T.pass);
+    T.periodic = r->sim.cell.on;
+    if (r->opt->timing)
+        *r->opt->timing = T;
+    if (writer(r))
+        dem_run_timing_record(r->outdir, &T, status, r->step0,
+                              omp_get_max_threads(), r->nranks, err);
 }
 
 /* The stages from first on, then the final outputs; releases everything
@@ -598,7 +607,7 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
 {
     if (!rc) {
         rc = run_stages(r, first, resumed, err);
-        report_timing(r);
+        report_timing(r, rc, err);
     }
     if (!rc)
         rc = finish_outputs(r, err);

@@ -1,0 +1,85 @@
+/* Where a run's time went: the line and its record (timing.h). */
+#include "protocol/timing.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <time.h>
+
+#include "core/machine.h"
+#include "io/fsutil.h"
+
+/* snprintf into buf at *at, keeping *at within n. */
+#define PUT(...)                                                               \
+    do {                                                                       \
+        int k_ = snprintf(buf + *at, n - *at, __VA_ARGS__);                    \
+        if (k_ > 0)                                                            \
+            *at = *at + (size_t)k_ < n ? *at + (size_t)k_ : n - 1;             \
+    } while (0)
+
+static void line_into(const struct dem_run_timing *T, char *buf, size_t n,
+                      size_t *at)
+{
+    const struct dem_timers *P = &T->step;
+    const double rest = T->seconds - P->force - P->neighbor - P->walls -
+                        P->integrate - P->exchange;
+    const double pc = 100.0 / T->seconds;
+    PUT("%ld steps of %d particles in %.3g s, %.4g ns per particle-step: "
+        "force pass %.1f %%, neighbour lists %.1f %% (%ld builds, skin "
+        "%.3g of its largest at the end",
+        T->steps, T->particles, T->seconds,
+        1e9 * T->seconds / ((double)T->steps * T->particles), pc * P->force,
+        pc * P->neighbor, T->builds, T->skin_share);
+    if (isfinite(T->pairs_per_particle))
+        PUT(", %.3g pairs per particle", T->pairs_per_particle);
+    PUT("), %s %.1f %%, unchained kicks and drifts %.1f %%, ",
+        T->periodic ? "cell" : "walls", pc * P->walls, pc * P->integrate);
+    if (P->exchange > 0.0)
+        PUT("MPI exchanges %.1f %%, ", pc * P->exchange);
+    PUT("stages, samples and outputs %.1f %%; force pass %s", pc * rest,
+        T->pass);
+}
+
+int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n)
+{
+    if (n == 0)
+        return 0;
+    buf[0] = '\0';
+    if (T->steps <= 0 || T->seconds <= 0.0)
+        return 0;
+    size_t at = 0;
+    line_into(T, buf, n, &at);
+    return 1;
+}
+
+void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
+                           int status, long step_from, int threads, int ranks,
+                           const struct dem_error *err)
+{
+    char path[DEM_PATH_MAX], buf[1024], when[32] = "?", cpu[160];
+    struct dem_error e;
+    if (dem_path_join(path, sizeof path, dir, "timing.txt", &e))
+        return;
+    const time_t now = time(NULL);
+    struct tm tm;
+    if (gmtime_r(&now, &tm))
+        strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    dem_cpu_model(cpu, sizeof cpu);
+    const size_t n = sizeof buf;
+    size_t at0 = 0, *at = &at0;
+    PUT("%s %s, steps %ld to %ld, %d thread%s", when,
+        status == DEM_OK             ? "finished"
+        : status == DEM_EINTERRUPTED ? "interrupted"
+                                     : "failed",
+        step_from, step_from + T->steps, threads, threads == 1 ? "" : "s");
+    if (ranks > 1)
+        PUT(" x %d ranks", ranks);
+    PUT(", %s, %s: ", cpu, dem_simd_name());
+    if (T->steps > 0 && T->seconds > 0.0)
+        line_into(T, buf, n, at);
+    else
+        PUT("no steps timed");
+    FILE *f = fopen(path, "a");
+    const int ok = f && fprintf(f, "%s\n", buf) > 0;
+    if ((f && fclose(f) != 0) || !ok)
+        dem_warn(err, "%s: cannot write the timing record", path);
+}

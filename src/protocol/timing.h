@@ -1,0 +1,20 @@
+/* The record of where a run's time went: OUTDIR/timing.txt, one line for
+ * each start or resumption of the run (docs/outputs.md). The terminal's
+ * closing line (dem_run_timing_line) says the same after `dembox run`;
+ * this file keeps it for a run that was quiet, a sweep's point, or a
+ * caller of the library. */
+#ifndef DEM_PROTOCOL_TIMING_H
+#define DEM_PROTOCOL_TIMING_H
+
+#include "dembox.h"
+
+/* Appends one line to dir/timing.txt: when the part ended (UTC), how
+ * (status: 0 finished, DEM_EINTERRUPTED, or the failure's status), the
+ * steps it went from and to, the threads and ranks, the CPU and the
+ * vector width, then dem_run_timing_line. A record that cannot be
+ * written is a warning on err, not a failure of the run. */
+void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
+                           int status, long step_from, int threads, int ranks,
+                           const struct dem_error *err);
+
+#endif
