@@ -695,7 +695,8 @@ struct dem_bench_result {
     char cpu[160];             /* the CPU's model name, family and model
                                   (Linux /proc/cpuinfo; "unknown") */
     char simd[64];             /* the vector instructions and width the
-                                  build uses */
+                                  build uses, and ", subnormals flushed
+                                  to zero" (core/fpmode.h) */
     double pairs_per_particle; /* listed pairs / N at the end */
     double skin_share;         /* the list's skin at the end over its
                                   largest (it adapts, docs/physics.md) */

@@ -581,9 +581,13 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     if (o->threads > 0)
         omp_set_num_threads(o->threads);
     struct dem_fpmode fp;
-    dem_fpmode_flush(&fp);
+    const int flushed = dem_fpmode_flush(&fp);
     const int rc = bench_run(o, r, err);
     dem_fpmode_restore(&fp);
+    const size_t k = strlen(r->simd);
+    if (flushed)
+        snprintf(r->simd + k, sizeof r->simd - k,
+                 ", subnormals flushed to zero");
     return rc;
 }
 
