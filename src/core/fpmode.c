@@ -1,7 +1,7 @@
 /* Subnormal numbers flushed to zero while the engine runs (fpmode.h). */
 #include "core/fpmode.h"
 
-#if defined(__SSE2__) || defined(_M_X64)
+#if defined(__SSE2__)
 #include <xmmintrin.h>
 /* MXCSR bit 15 flush-to-zero (results), bit 6 denormals-are-zero (inputs)
  * (Intel SDM vol. 1, 10.2.3) */

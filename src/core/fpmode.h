@@ -2,13 +2,14 @@
  *
  * Under background damping (f = -gamma_b v) a particle without contacts,
  * a rattler, loses speed as exp(-gamma_b t / m): for the papers' spheres
- * (gamma_b / m about 220 1/s) its velocity passes below 1e-308 m/s within
- * a few seconds and stays there as a subnormal number, for the rest of a
- * run of hours. On x86 each operation that reads or makes a subnormal
- * can take a microcode assist of a hundred cycles and more, and a vector
- * operation takes it for all its lanes: cyclic3d-paper carries about 60
- * such rattlers (docs/performance.md, "Subnormal velocities"). Flushed,
- * they are zero: no physics is lost at 1e-308.
+ * (gamma_b / m about 220 1/s) its velocity passes below 2.2e-308 m/s, the
+ * smallest normal double, within a few seconds and stays there as a
+ * subnormal number for the rest of a run of hours. On x86 each operation
+ * that reads or makes a subnormal can take a microcode assist of a
+ * hundred cycles and more, and a vector operation takes it for all its
+ * lanes: cyclic3d-paper carries about 60 such rattlers
+ * (docs/performance.md, "Subnormal velocities"). Flushed, they are zero:
+ * no physics is lost at 1e-308.
  *
  * dem_fpmode_flush sets the mode on the calling thread and on every thread
  * of its OpenMP team (call it after omp_set_num_threads; threads created

@@ -16,9 +16,14 @@
             *at = *at + (size_t)k_ < n ? *at + (size_t)k_ : n - 1;             \
     } while (0)
 
-static void line_into(const struct dem_run_timing *T, char *buf, size_t n,
-                      size_t *at)
+int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n)
 {
+    if (n == 0)
+        return 0;
+    buf[0] = '\0';
+    if (T->steps <= 0 || T->seconds <= 0.0)
+        return 0;
+    size_t at0 = 0, *at = &at0;
     const struct dem_timers *P = &T->step;
     const double rest = T->seconds - P->force - P->neighbor - P->walls -
                         P->integrate - P->exchange;
@@ -37,17 +42,6 @@ static void line_into(const struct dem_run_timing *T, char *buf, size_t n,
         PUT("MPI exchanges %.1f %%, ", pc * P->exchange);
     PUT("stages, samples and outputs %.1f %%; force pass %s", pc * rest,
         T->pass);
-}
-
-int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n)
-{
-    if (n == 0)
-        return 0;
-    buf[0] = '\0';
-    if (T->steps <= 0 || T->seconds <= 0.0)
-        return 0;
-    size_t at = 0;
-    line_into(T, buf, n, &at);
     return 1;
 }
 
@@ -74,9 +68,7 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
     if (ranks > 1)
         PUT(" x %d ranks", ranks);
     PUT(", %s, %s: ", cpu, dem_simd_name());
-    if (T->steps > 0 && T->seconds > 0.0)
-        line_into(T, buf, n, at);
-    else
+    if (!dem_run_timing_line(T, buf + *at, n - *at))
         PUT("no steps timed");
     FILE *f = fopen(path, "a");
     const int ok = f && fprintf(f, "%s\n", buf) > 0;
