@@ -1243,11 +1243,13 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls, c->rec);
 #pragma omp barrier
-    /* in a cell no virial block across two threads */
-    const int cell = (law & DEM_SET_PERIODIC) != 0;
-    const int i0 = cell ? dem_cell_block(c->n, t, nt) : dem_block(c->n, t, nt),
+    /* in a cell no virial block across two threads; else each thread's
+     * particles start on a cache line of their arrays (core/particles.h) */
+    const int cell = (law & DEM_SET_PERIODIC) != 0, g = DEM_PARTICLE_LINE;
+    const int i0 = cell ? dem_cell_block(c->n, t, nt)
+                        : dem_block_aligned(c->n, t, nt, g),
               i1 = cell ? dem_cell_block(c->n, t + 1, nt)
-                        : dem_block(c->n, t + 1, nt);
+                        : dem_block_aligned(c->n, t + 1, nt, g);
     struct virial V = {c->vir, {{0.0}}, i1, c->fr.m};
     return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb, c->gr,
                           K, &V, &c->fr, c->rec, 0, NULL);

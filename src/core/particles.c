@@ -11,8 +11,21 @@
 #include "core/particles.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* n items of size bytes, zero, on a cache line (DEM_PARTICLE_ALIGN) */
+static void *alloc_lines(size_t n, size_t size)
+{
+    const size_t a = DEM_PARTICLE_ALIGN,
+                 bytes =
+                     n > (SIZE_MAX - a) / size ? 0 : (n * size + a - 1) / a * a;
+    void *q = bytes ? aligned_alloc(a, bytes) : NULL;
+    if (q)
+        memset(q, 0, bytes);
+    return q;
+}
 
 int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err)
 {
@@ -20,11 +33,11 @@ int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err)
     if (cap < 0)
         return dem_error_set(err, DEM_EINTERNAL,
                              "particles: negative capacity %d", cap);
-    /* calloc(0) may return NULL; keep every array a valid pointer. */
+    /* at least one item: keep every array a valid pointer */
     size_t n = cap > 0 ? (size_t)cap : 1;
     int ok = 1;
 #define DEM_ALLOC_(f)                                                          \
-    p->f = calloc(n, sizeof *p->f);                                            \
+    p->f = alloc_lines(n, sizeof *p->f);                                       \
     ok = ok && p->f != NULL;
     DEM_PARTICLE_DOUBLE_ARRAYS(DEM_ALLOC_)
     DEM_PARTICLE_INT_ARRAYS(DEM_ALLOC_)

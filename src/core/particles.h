@@ -43,6 +43,16 @@ struct dem_particles {
                              "force felt" used to colour pictures) */
 };
 
+/* Every array starts on a cache line, so that the DEM_PARTICLE_LINE
+ * doubles of particles i, i + 1, ..., i a multiple of it, fill one line;
+ * the threads' shares of the particles start on such an i. The kicks and
+ * drifts (contact/pass.c, particle_range) read and write the arrays in
+ * 512-bit vectors, and took a fifth longer when the arrays started 16
+ * bytes off a line, or a thread's share a few particles off one
+ * (docs/performance.md, "Where two threads' time goes"). */
+#define DEM_PARTICLE_ALIGN 64
+#define DEM_PARTICLE_LINE (DEM_PARTICLE_ALIGN / (int)sizeof(double))
+
 /* Every double and int array of struct dem_particles, so that init, free,
  * permutation and checkpoints cannot forget one. */
 #define DEM_PARTICLE_DOUBLE_ARRAYS(X)                                          \

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/particles.h"
 #include "neighbor/blocks.h"
 #include "neighbor/pairs.h"
 
@@ -221,6 +222,10 @@ int dem_blocks_setup(struct dem_blocks *B, const struct dem_pairs *pl, int n,
         const long target = work * (t + 1) / nt - WTWIN * before +
                             (t + 1 < nt ? (long)B->shift[t] : 0);
         int b = t + 1 < nt ? dem_pairs_cut(start, n, target) : n;
+        /* each block's particles start on a cache line of their arrays
+         * (core/particles.h): the kicks' vectors then never straddle two */
+        if (t + 1 < nt)
+            b -= b % DEM_PARTICLE_LINE;
         b = b > a ? b : a;
         block_ranges(&B->t[t], pl, a, b);
         a = b;
