@@ -15,8 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* n items of size bytes, zero, on a cache line (DEM_PARTICLE_ALIGN) */
-static void *alloc_lines(size_t n, size_t size)
+void *dem_particles_array(size_t n, size_t size)
 {
     const size_t a = DEM_PARTICLE_ALIGN,
                  bytes =
@@ -37,7 +36,7 @@ int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err)
     size_t n = cap > 0 ? (size_t)cap : 1;
     int ok = 1;
 #define DEM_ALLOC_(f)                                                          \
-    p->f = alloc_lines(n, sizeof *p->f);                                       \
+    p->f = dem_particles_array(n, sizeof *p->f);                               \
     ok = ok && p->f != NULL;
     DEM_PARTICLE_DOUBLE_ARRAYS(DEM_ALLOC_)
     DEM_PARTICLE_INT_ARRAYS(DEM_ALLOC_)

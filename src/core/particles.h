@@ -64,6 +64,10 @@ struct dem_particles {
 
 #define DEM_PARTICLE_INT_ARRAYS(X) X(id) X(ncontact)
 
+/* A particle array of n items of size bytes, zero, on a cache line
+ * (DEM_PARTICLE_ALIGN); NULL if out of memory. free() releases it. */
+void *dem_particles_array(size_t n, size_t size);
+
 /* Allocate arrays for cap particles, all zero; n = 0. */
 int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err);
 void dem_particles_free(struct dem_particles *p);

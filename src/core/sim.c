@@ -261,10 +261,12 @@ static int kick_drift(struct dem_sim *s, double h)
     int moved = 0;
 #pragma omp parallel reduction(| : moved)
     {
-        int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        moved = kick_drift_range(dem_block(n, t, nt), dem_block(n, t + 1, nt),
-                                 h, s->dt, s->cfg.gravity, cut, &e,
-                                 s->cell.on ? &fr : NULL);
+        /* shares on cache lines of the arrays (core/particles.h) */
+        const int nt = omp_get_num_threads(), t = omp_get_thread_num(),
+                  g = DEM_PARTICLE_LINE;
+        moved = kick_drift_range(
+            dem_block_aligned(n, t, nt, g), dem_block_aligned(n, t + 1, nt, g),
+            h, s->dt, s->cfg.gravity, cut, &e, s->cell.on ? &fr : NULL);
     }
     return moved;
 }

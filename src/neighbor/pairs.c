@@ -170,9 +170,11 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
     if (GROW(pl->rstart, c) || GROW(pl->rimg, c) || GROW(pl->cell_of, c) ||
         GROW(pl->cell_list, c) || GROW(pl->old_of, c))
         return -1;
-    /* the permutation swaps this with the particles' arrays: same length */
+    /* the permutation swaps this with the particles' arrays: same length
+     * and alignment */
     free(pl->scratch);
-    pl->scratch = malloc((size_t)(cap > c ? cap : c) * sizeof *pl->scratch);
+    pl->scratch =
+        dem_particles_array((size_t)(cap > c ? cap : c), sizeof *pl->scratch);
     if (!pl->scratch)
         return -1;
     if (records_reserve(pl, c))
