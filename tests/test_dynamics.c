@@ -179,8 +179,15 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
      * each thread owns its block (neighbor/blocks.h), with "records"
      * never */
     if (threads > 1 && chained && !run_cell && pass &&
-        !strcmp(pass, "blocks"))
+        !strcmp(pass, "blocks")) {
         assert_true(s.pass.with_blocks > 1000);
+        /* each block starts on a cache line of the particles' arrays
+         * (core/particles.h) */
+        const struct dem_blocks *B = &s.pairs.blocks;
+        assert_int_equal(B->nt, threads);
+        for (int t = 0; t < B->nt; t++)
+            assert_int_equal(B->t[t].a % DEM_PARTICLE_LINE, 0);
+    }
     if (pass && !strcmp(pass, "records"))
         assert_int_equal(s.pass.with_blocks, 0);
     for (int i = 0; i < s.p.n && 6 * s.p.id[i] + 5 < RUN_PARTICLES; i++) {

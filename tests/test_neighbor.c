@@ -2,6 +2,7 @@
  * radii in 2D and 3D, and the contact history survives a rebuild. */
 #include "testutil.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -166,6 +167,20 @@ static void forces_survive_reordering(void **state)
         flipped += L->state[k] && s.p.id[L->i[k]] > s.p.id[L->j[k]];
     assert_true(moved > n / 2);
     assert_true(flipped > 5);
+    /* every array still on a cache line: the reordering swaps them with
+     * a scratch array (core/particles.h, DEM_PARTICLE_ALIGN), twice here
+     * so that each array could have taken the scratch's place */
+    for (int r = 0; r < 2; r++) {
+#define ON_LINE_(f)                                                            \
+    assert_int_equal((uintptr_t)s.p.f % DEM_PARTICLE_ALIGN, 0);
+        DEM_PARTICLE_DOUBLE_ARRAYS(ON_LINE_)
+        DEM_PARTICLE_INT_ARRAYS(ON_LINE_)
+#undef ON_LINE_
+        if (r == 0) {
+            s.reorder = 1;
+            assert_int_equal(dem_sim_rebuild(&s, &err), 0);
+        }
+    }
     /* ... the forces did not */
     dem_sim_forces(&s);
     for (int i = 0; i < n; i++) {
