@@ -171,8 +171,7 @@ static void forces_survive_reordering(void **state)
      * a scratch array (core/particles.h, DEM_PARTICLE_ALIGN), twice here
      * so that each array could have taken the scratch's place */
     for (int r = 0; r < 2; r++) {
-#define ON_LINE_(f)                                                            \
-    assert_int_equal((uintptr_t)s.p.f % DEM_PARTICLE_ALIGN, 0);
+#define ON_LINE_(f) assert_int_equal((uintptr_t)s.p.f % DEM_PARTICLE_ALIGN, 0);
         DEM_PARTICLE_DOUBLE_ARRAYS(ON_LINE_)
         DEM_PARTICLE_INT_ARRAYS(ON_LINE_)
 #undef ON_LINE_
