@@ -106,6 +106,15 @@ static void cells_find_brute_force_pairs_2d(void **state)
     check_same_pairs(2, 1);
 }
 
+/* Every array of the particles starts on a cache line. */
+static void arrays_on_lines(const struct dem_particles *p)
+{
+#define ON_LINE_(f) assert_int_equal((uintptr_t)p->f % DEM_PARTICLE_ALIGN, 0);
+    DEM_PARTICLE_DOUBLE_ARRAYS(ON_LINE_)
+    DEM_PARTICLE_INT_ARRAYS(ON_LINE_)
+#undef ON_LINE_
+}
+
 /* Re-ordering the particles in cell order changes no force: a pair whose
  * particles swap places in memory (i < j turns into j < i) keeps its
  * springs as seen from each particle, so the force and torque on every
@@ -170,16 +179,10 @@ static void forces_survive_reordering(void **state)
     /* every array still on a cache line: the reordering swaps them with
      * a scratch array (core/particles.h, DEM_PARTICLE_ALIGN), twice here
      * so that each array could have taken the scratch's place */
-    for (int r = 0; r < 2; r++) {
-#define ON_LINE_(f) assert_int_equal((uintptr_t)s.p.f % DEM_PARTICLE_ALIGN, 0);
-        DEM_PARTICLE_DOUBLE_ARRAYS(ON_LINE_)
-        DEM_PARTICLE_INT_ARRAYS(ON_LINE_)
-#undef ON_LINE_
-        if (r == 0) {
-            s.reorder = 1;
-            assert_int_equal(dem_sim_rebuild(&s, &err), 0);
-        }
-    }
+    arrays_on_lines(&s.p);
+    s.reorder = 1;
+    assert_int_equal(dem_sim_rebuild(&s, &err), 0);
+    arrays_on_lines(&s.p);
     /* ... the forces did not */
     dem_sim_forces(&s);
     for (int i = 0; i < n; i++) {
