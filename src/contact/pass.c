@@ -165,16 +165,17 @@ DEM_INLINE void resist_contact(const int law, const struct pass *q, int k,
     q->M[3 * k + 2] = touch ? m.z : 0.0;
 }
 
-/* Tangential force and history update of contact k, stored with it; with
+/* Tangential force and history update of contact k: the history is
+ * stored with it, the force record returned (the caller stores it); with
  * touch = 0 (its gap is open) the force is zero and the history is
  * erased instead. h holds the history after the normal force and the
  * resistances, st the state bits after them; only the values law uses
  * are stored. */
-DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
-                               int touch, struct dem_vec3 n,
-                               struct dem_vec3 vij, double fn, double fc,
-                               struct dem_history h, int st, double dt,
-                               const struct dem_tangential *T)
+DEM_INLINE struct dem_contact_force
+finish_contact(const int law, const struct pass *q, int k, int touch,
+               struct dem_vec3 n, struct dem_vec3 vij, double fn, double fc,
+               struct dem_history h, int st, double dt,
+               const struct dem_tangential *T)
 {
     struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
     const struct dem_vec3 ft =
@@ -188,14 +189,14 @@ DEM_INLINE void finish_contact(const int law, const struct pass *q, int k,
     DEM_CONTACT_HISTORY(HIST_STORE_)
 #undef HIST_STORE_
     q->state[k] = touch ? st : 0;
-    struct dem_contact_force *o = &q->F[k - q->foff];
-    o->f[0] = touch ? fn * n.x + ft.x : 0.0;
-    o->f[1] = touch ? fn * n.y + ft.y : 0.0;
-    o->f[2] = touch ? fn * n.z + ft.z : 0.0;
-    o->c[0] = touch ? n.y * ft.z - n.z * ft.y : 0.0;
-    o->c[1] = touch ? n.z * ft.x - n.x * ft.z : 0.0;
-    o->c[2] = touch ? n.x * ft.y - n.y * ft.x : 0.0;
-    o->pad[0] = o->pad[1] = 0.0;
+    const struct dem_contact_force o = {{touch ? fn * n.x + ft.x : 0.0,
+                                         touch ? fn * n.y + ft.y : 0.0,
+                                         touch ? fn * n.z + ft.z : 0.0},
+                                        {touch ? n.y * ft.z - n.z * ft.y : 0.0,
+                                         touch ? n.z * ft.x - n.x * ft.z : 0.0,
+                                         touch ? n.x * ft.y - n.y * ft.x : 0.0},
+                                        {0.0, 0.0}};
+    return o;
 }
 
 /* What a pair reads of each of its particles. */
@@ -215,14 +216,13 @@ DEM_INLINE struct pv load_pv(const struct pass *q, int i)
 /* Force and history update of pair k between particles with values pi and
  * pj (in a periodic cell their positions in the frame of the last build,
  * j's image's x_j + h_b n, so that b = fm (x_i - x_j') below: fm the
- * frame's map, core/cell.h). There is no branch (SIMD lanes): the pair
- * computes the closed-contact force, and if its gap is open it gets a
- * zero force and loses its history instead. */
-DEM_INLINE void pair_vals(const int law, const struct pass *qp, int k,
-                          const struct pv pi, const struct pv pj,
-                          const struct dem_contact_params *cp, double dt,
-                          const struct dem_tangential *T, const double *grad,
-                          const double *fm)
+ * frame's map, core/cell.h); returns its force record. There is no branch
+ * (SIMD lanes): the pair computes the closed-contact force, and if its gap
+ * is open it gets a zero force and loses its history instead. */
+DEM_INLINE struct dem_contact_force
+pair_vals(const int law, const struct pass *qp, int k, const struct pv pi,
+          const struct pv pj, const struct dem_contact_params *cp, double dt,
+          const struct dem_tangential *T, const double *grad, const double *fm)
 {
     const struct pass q = *qp;
     double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
@@ -262,7 +262,7 @@ DEM_INLINE void pair_vals(const int law, const struct pass *qp, int k,
     resist_contact(law, &q, k, touch, n, dw, a12, fc, dt, cp, &h, &st);
     struct dem_tangential Tc = *T;
     dem_normal_shear(law, cp, R - d, a12, m12, &Tc);
-    finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
+    return finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
 }
 
 /* Pair k, its particles' values read from the arrays. */
@@ -280,7 +280,8 @@ DEM_INLINE void pair_one(const int law, const struct pass *qp, int k,
         pj.y += S[1];
         pj.z += S[2];
     }
-    pair_vals(law, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T, grad, fm);
+    qp->F[k - qp->foff] =
+        pair_vals(law, qp, k, load_pv(qp, qp->ci[k]), pj, cp, dt, T, grad, fm);
 }
 
 #if DEM_PASS_RECORDS
@@ -443,6 +444,83 @@ DEM_INLINE struct pv lanes_pv(double (*o)[DEM_PAIR_LANES], int l)
                          o[8][l], o[9][l], o[10][l]};
     return p;
 }
+
+/* Force record o into lane l of rows O[0..6) (forces_from_lanes). */
+DEM_INLINE void lanes_set(double (*O)[DEM_PAIR_LANES], int l,
+                          const struct dem_contact_force o)
+{
+    for (int e = 0; e < 3; e++) {
+        O[e][l] = o.f[e];
+        O[3 + e][l] = o.c[e];
+    }
+}
+
+_Static_assert(sizeof(struct dem_contact_force) == 8 * sizeof(double),
+               "a force record: f, c and two pads, one cache line");
+
+/* The force records of DEM_PAIR_LANES consecutive contacts from rows
+ * o[0..6) of lanes (f x y z, c x y z; the records' pads are zeros) into
+ * F[0..DEM_PAIR_LANES), by transposes, each record as whole vectors.
+ * Stored lane by lane, the records took a fifth of the pair loop's
+ * instructions and it ran 10-15 % slower (docs/performance-log.md,
+ * session 54). */
+DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
+                                  double (*o)[DEM_PAIR_LANES])
+{
+    double *d = (double *)(void *)F; /* the records as rows of 8 */
+#if defined(__AVX512F__)
+    /* per 8 lanes an 8 x 8 transpose: pairs of rows unpacked, then the
+     * 128-bit quarters gathered in two rounds of shuffles */
+    const __m512d z = _mm512_setzero_pd();
+    for (int g = 0; g < DEM_PAIR_LANES; g += 8, d += 64) {
+        __m512d r[6];
+        for (int e = 0; e < 6; e++)
+            r[e] = _mm512_load_pd(&o[e][g]);
+        /* lo[u]: lanes 2m of rows 2u, 2u+1 in quarter m; hi[u]: 2m+1 */
+        const __m512d lo[4] = {_mm512_unpacklo_pd(r[0], r[1]),
+                               _mm512_unpacklo_pd(r[2], r[3]),
+                               _mm512_unpacklo_pd(r[4], r[5]), z},
+                      hi[4] = {_mm512_unpackhi_pd(r[0], r[1]),
+                               _mm512_unpackhi_pd(r[2], r[3]),
+                               _mm512_unpackhi_pd(r[4], r[5]), z};
+        for (int h = 0; h < 2; h++) {
+            const __m512d *t = h ? hi : lo;
+            const __m512d v0 = _mm512_shuffle_f64x2(t[0], t[1], 0x88),
+                          v1 = _mm512_shuffle_f64x2(t[0], t[1], 0xdd),
+                          v2 = _mm512_shuffle_f64x2(t[2], t[3], 0x88),
+                          v3 = _mm512_shuffle_f64x2(t[2], t[3], 0xdd);
+            /* lane 2m + h of the 8: quarter m of t[0..4) */
+            _mm512_storeu_pd(d + 8 * (0 + h),
+                             _mm512_shuffle_f64x2(v0, v2, 0x88));
+            _mm512_storeu_pd(d + 8 * (2 + h),
+                             _mm512_shuffle_f64x2(v1, v3, 0x88));
+            _mm512_storeu_pd(d + 8 * (4 + h),
+                             _mm512_shuffle_f64x2(v0, v2, 0xdd));
+            _mm512_storeu_pd(d + 8 * (6 + h),
+                             _mm512_shuffle_f64x2(v1, v3, 0xdd));
+        }
+    }
+#else
+    /* per 4 lanes two 4 x 4 transposes: f and c x, then c y z and pad */
+    const __m256d z = _mm256_setzero_pd();
+    for (int g = 0; g < DEM_PAIR_LANES; g += 4, d += 32)
+        for (int b = 0; b < 2; b++) {
+            const __m256d a = _mm256_load_pd(&o[4 * b][g]),
+                          c = _mm256_load_pd(&o[4 * b + 1][g]),
+                          e = b ? z : _mm256_load_pd(&o[2][g]),
+                          f = b ? z : _mm256_load_pd(&o[3][g]);
+            const __m256d t0 = _mm256_unpacklo_pd(a, c),
+                          t1 = _mm256_unpackhi_pd(a, c),
+                          t2 = _mm256_unpacklo_pd(e, f),
+                          t3 = _mm256_unpackhi_pd(e, f);
+            double *w = d + 4 * b;
+            _mm256_storeu_pd(w, _mm256_permute2f128_pd(t0, t2, 0x20));
+            _mm256_storeu_pd(w + 8, _mm256_permute2f128_pd(t1, t3, 0x20));
+            _mm256_storeu_pd(w + 16, _mm256_permute2f128_pd(t0, t2, 0x31));
+            _mm256_storeu_pd(w + 24, _mm256_permute2f128_pd(t1, t3, 0x31));
+        }
+#endif
+}
 #endif
 
 /* Forces and history updates of pairs k0 <= k < k1 (the thread's pairs
@@ -505,11 +583,14 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         }
         records_lanes(rec, q.ci + k, A);
         records_lanes(rec, q.cjr + (k - q.roff), B);
+        _Alignas(64) double O[6][DEM_PAIR_LANES];
 #pragma omp simd
         for (int l = 0; l < DEM_PAIR_LANES; l++) {
-            pair_vals(law, &q, k + l, lanes_pv(A, l), lanes_pv(B, l), cp, dt,
-                      &T, grad, fm);
+            lanes_set(O, l,
+                      pair_vals(law, &q, k + l, lanes_pv(A, l), lanes_pv(B, l),
+                                cp, dt, &T, grad, fm));
         }
+        forces_from_lanes(q.F + (k - q.foff), O);
     }
     /* the rest from the records too (the same values as in the arrays,
      * which with threads that own their blocks another thread may be
@@ -517,9 +598,10 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     (void)cv;
 #pragma omp simd
     for (int kk = k; kk < k1; kk++)
-        pair_vals(law, &q, kk, record_pv(rec + DEM_REC * (size_t)q.ci[kk]),
-                  record_pv(rec + DEM_REC * (size_t)q.cjr[kk - q.roff]), cp,
-                  dt, &T, grad, fm);
+        q.F[kk - q.foff] =
+            pair_vals(law, &q, kk, record_pv(rec + DEM_REC * (size_t)q.ci[kk]),
+                      record_pv(rec + DEM_REC * (size_t)q.cjr[kk - q.roff]), cp,
+                      dt, &T, grad, fm);
 #else
 #pragma omp simd
     for (int kk = k; kk < k1; kk++)
@@ -527,13 +609,12 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #endif
 }
 
-/* Force and history update of wall contact k, its particle's values pi
- * (no branch, as pair_vals). */
-DEM_INLINE void wall_vals(const int law, const struct pass *qp, int k,
-                          const struct pv pi,
-                          const struct dem_contact_params *cp, double dt,
-                          const struct dem_wall *walls,
-                          const struct dem_tangential *T)
+/* Force and history update of wall contact k, its particle's values pi,
+ * its force record returned (no branch, as pair_vals). */
+DEM_INLINE struct dem_contact_force
+wall_vals(const int law, const struct pass *qp, int k, const struct pv pi,
+          const struct dem_contact_params *cp, double dt,
+          const struct dem_wall *walls, const struct dem_tangential *T)
 {
     const struct pass q = *qp;
     const struct dem_wall *W = &walls[q.cj[k]];
@@ -564,11 +645,12 @@ DEM_INLINE void wall_vals(const int law, const struct pass *qp, int k,
     resist_contact(law, &q, k, touch, n, dw, ai, fc, dt, cp, &h, &st);
     struct dem_tangential Tc = *T;
     dem_normal_shear(law, cp, delta, ai, pi.m, &Tc);
-    finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
+    const struct dem_contact_force o =
+        finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
     /* the force on the wall along its axis, outward positive, for the
      * walls' sums (contact/forces.c): the record's component times sgn */
-    const double *f = qp->F[k - q.foff].f;
-    qp->A[k] = sgn * (a == 0 ? f[0] : a == 1 ? f[1] : f[2]);
+    qp->A[k] = sgn * (a == 0 ? o.f[0] : a == 1 ? o.f[1] : o.f[2]);
+    return o;
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
@@ -585,18 +667,24 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES];
         records_lanes(rec, q.ci + k, A);
+        _Alignas(64) double O[6][DEM_PAIR_LANES];
 #pragma omp simd
         for (int l = 0; l < DEM_PAIR_LANES; l++)
-            wall_vals(law, &q, k + l, lanes_pv(A, l), cp, dt, walls, &T);
+            lanes_set(
+                O, l,
+                wall_vals(law, &q, k + l, lanes_pv(A, l), cp, dt, walls, &T));
+        forces_from_lanes(q.F + (k - q.foff), O);
     }
 #pragma omp simd
     for (int kk = k; kk < k1; kk++)
-        wall_vals(law, &q, kk, record_pv(rec + DEM_REC * (size_t)q.ci[kk]), cp,
-                  dt, walls, &T);
+        q.F[kk - q.foff] =
+            wall_vals(law, &q, kk, record_pv(rec + DEM_REC * (size_t)q.ci[kk]),
+                      cp, dt, walls, &T);
 #else
 #pragma omp simd
     for (int kk = k; kk < k1; kk++)
-        wall_vals(law, &q, kk, load_pv(&q, q.ci[kk]), cp, dt, walls, &T);
+        q.F[kk - q.foff] =
+            wall_vals(law, &q, kk, load_pv(&q, q.ci[kk]), cp, dt, walls, &T);
 #endif
 }
 
