@@ -290,18 +290,26 @@ DEM_INLINE void pair_one(const int law, const struct pass *qp, int k,
  * loads three vectors and four pairs' values reach their SIMD lanes by
  * 4 x 4 transposes (eight by 8 x 4 ones with AVX-512). */
 
+/* The 4 x 4 transpose of rows a, b, c, d: r[u] holds element u of each. */
+DEM_INLINE void transpose4(__m256d a, __m256d b, __m256d c, __m256d d,
+                           __m256d r[4])
+{
+    const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b),
+                  t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
+    r[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+    r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+    r[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+    r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+
 /* Four values of four consecutive particles (rows a, b, c, d: one value
  * each) as the same block of their four records at o, 12 doubles apart;
  * with stream (a literal) by non-temporal stores, past the caches. */
 DEM_INLINE void records_block(double *o, __m256d a, __m256d b, __m256d c,
                               __m256d d, const int stream)
 {
-    const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b),
-                  t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
-    const __m256d r[4] = {_mm256_permute2f128_pd(t0, t2, 0x20),
-                          _mm256_permute2f128_pd(t1, t3, 0x20),
-                          _mm256_permute2f128_pd(t0, t2, 0x31),
-                          _mm256_permute2f128_pd(t1, t3, 0x31)};
+    __m256d r[4];
+    transpose4(a, b, c, d, r);
     for (int u = 0; u < 4; u++) {
         if (stream)
             _mm256_stream_pd(o + u * DEM_REC, r[u]);
@@ -419,18 +427,11 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx,
                      *r2 = rec + DEM_REC * (size_t)idx[g + 2],
                      *r3 = rec + DEM_REC * (size_t)idx[g + 3];
         for (int b = 0; b < DEM_REC; b += 4) {
-            const __m256d a = _mm256_load_pd(r0 + b),
-                          c = _mm256_load_pd(r1 + b),
-                          e = _mm256_load_pd(r2 + b),
-                          f = _mm256_load_pd(r3 + b);
-            const __m256d t0 = _mm256_unpacklo_pd(a, c),
-                          t1 = _mm256_unpackhi_pd(a, c),
-                          t2 = _mm256_unpacklo_pd(e, f),
-                          t3 = _mm256_unpackhi_pd(e, f);
-            _mm256_store_pd(&o[b][g], _mm256_permute2f128_pd(t0, t2, 0x20));
-            _mm256_store_pd(&o[b + 1][g], _mm256_permute2f128_pd(t1, t3, 0x20));
-            _mm256_store_pd(&o[b + 2][g], _mm256_permute2f128_pd(t0, t2, 0x31));
-            _mm256_store_pd(&o[b + 3][g], _mm256_permute2f128_pd(t1, t3, 0x31));
+            __m256d t[4];
+            transpose4(_mm256_load_pd(r0 + b), _mm256_load_pd(r1 + b),
+                       _mm256_load_pd(r2 + b), _mm256_load_pd(r3 + b), t);
+            for (int u = 0; u < 4; u++)
+                _mm256_store_pd(&o[b + u][g], t[u]);
         }
     }
 #endif
@@ -505,19 +506,13 @@ DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
     const __m256d z = _mm256_setzero_pd();
     for (int g = 0; g < DEM_PAIR_LANES; g += 4, d += 32)
         for (int b = 0; b < 2; b++) {
-            const __m256d a = _mm256_load_pd(&o[4 * b][g]),
-                          c = _mm256_load_pd(&o[4 * b + 1][g]),
-                          e = b ? z : _mm256_load_pd(&o[2][g]),
-                          f = b ? z : _mm256_load_pd(&o[3][g]);
-            const __m256d t0 = _mm256_unpacklo_pd(a, c),
-                          t1 = _mm256_unpackhi_pd(a, c),
-                          t2 = _mm256_unpacklo_pd(e, f),
-                          t3 = _mm256_unpackhi_pd(e, f);
-            double *w = d + 4 * b;
-            _mm256_storeu_pd(w, _mm256_permute2f128_pd(t0, t2, 0x20));
-            _mm256_storeu_pd(w + 8, _mm256_permute2f128_pd(t1, t3, 0x20));
-            _mm256_storeu_pd(w + 16, _mm256_permute2f128_pd(t0, t2, 0x31));
-            _mm256_storeu_pd(w + 24, _mm256_permute2f128_pd(t1, t3, 0x31));
+            __m256d t[4];
+            transpose4(_mm256_load_pd(&o[4 * b][g]),
+                       _mm256_load_pd(&o[4 * b + 1][g]),
+                       b ? z : _mm256_load_pd(&o[2][g]),
+                       b ? z : _mm256_load_pd(&o[3][g]), t);
+            for (int u = 0; u < 4; u++) /* record g + u, its b-th half */
+                _mm256_storeu_pd(d + 8 * u + 4 * b, t[u]);
         }
 #endif
 }
