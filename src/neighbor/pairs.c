@@ -340,6 +340,16 @@ static void row_insert(int *out, int m, int key)
     out[b + 1] = key;
 }
 
+/* Whether particles i and j are closer than the sum of their reaches
+ * (radius plus reach each): the one test of the searches between walls. */
+static inline int within_reach(const struct dem_particles *p, int i, int j)
+{
+    const double ddx = p->x[i] - p->x[j], ddy = p->y[i] - p->y[j],
+                 ddz = p->z[i] - p->z[j];
+    const double cut = p->r[i] + p->r[j] + (p->reach[i] + p->reach[j]);
+    return !(ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut);
+}
+
 /* The neighbours j > i of particle i closer than the sum of their
  * reaches, written to out (when not NULL) sorted by j; returns how many
  * there are. */
@@ -366,14 +376,7 @@ static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
                 for (int q = pl->cell_start[cc]; q < pl->cell_start[cc + 1];
                      q++) {
                     const int j = pl->cell_list[q];
-                    if (j <= i)
-                        continue;
-                    double ddx = p->x[i] - p->x[j];
-                    double ddy = p->y[i] - p->y[j];
-                    double ddz = p->z[i] - p->z[j];
-                    double cut =
-                        p->r[i] + p->r[j] + (p->reach[i] + p->reach[j]);
-                    if (ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut)
+                    if (j <= i || !within_reach(p, i, j))
                         continue;
                     if (out) /* a row holds a handful of pairs */
                         row_insert(out, m, j);
@@ -385,20 +388,16 @@ static int row_of(const struct dem_pairs *pl, const struct dem_particles *p,
     return m;
 }
 
-/* The particles j0 <= j < j1 closer to i than the sum of their reaches
- * (the test of row_of) appended to out from m on, in index order;
- * returns the new m. Every candidate is written, and only a hit moves m
- * on: no branch that the hits' pattern would mispredict. */
+/* The particles j0 <= j < j1 within reach of i (within_reach)
+ * appended to out from m on, in index order; returns the new m. Every
+ * candidate is written, and only a hit moves m on: no branch that the
+ * hits' pattern would mispredict. */
 static int range_hits(const struct dem_particles *p, int i, int j0, int j1,
                       int *out, int m)
 {
-    const double *restrict x = p->x, *restrict y = p->y, *restrict z = p->z,
-                           *restrict r = p->r, *restrict reach = p->reach;
     for (int j = j0; j < j1; j++) {
-        const double ddx = x[i] - x[j], ddy = y[i] - y[j], ddz = z[i] - z[j];
-        const double cut = r[i] + r[j] + (reach[i] + reach[j]);
         out[m] = j;
-        m += !(ddx * ddx + ddy * ddy + ddz * ddz >= cut * cut);
+        m += within_reach(p, i, j);
     }
     return m;
 }
