@@ -789,6 +789,22 @@ static int main_mpi(int argc, char **argv, int rank, int size)
 
 static int dispatch(int argc, char **argv);
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+/* Before main, whose code may already use the build's instructions: a
+ * binary built for another CPU stops with one line (dem_cpu_check)
+ * instead of an illegal instruction somewhere in a run. Compiled for the
+ * baseline x86-64, as the library's check is. */
+__attribute__((constructor(101), target("arch=x86-64"))) static void
+cpu_guard(void)
+{
+    char msg[768];
+    if (dem_cpu_check(msg, sizeof msg)) {
+        fprintf(stderr, "dembox: %s\n", msg);
+        exit(1);
+    }
+}
+#endif
+
 int main(int argc, char **argv)
 {
     int rank, size;

@@ -358,6 +358,14 @@ void dem_config_defaults(struct dem_config *c);
 /* The library's version (DEM_VERSION of the header it was built with). */
 const char *dem_version(void);
 
+/* Whether this CPU can run this build: 0, else 1 with one line in msg
+ * (len bytes) naming the instructions it lacks. A build for the CPU that
+ * built it (-march=native, the default) may use instructions another CPU
+ * lacks, and would stop with an illegal instruction anywhere in a run;
+ * the dembox command asks before anything else, python/dembox.py when it
+ * loads the library. Runs on any x86-64 CPU (compiled for the baseline). */
+int dem_cpu_check(char *msg, size_t len);
+
 /* sizeof(struct dem_config), for bindings that cannot see the struct
  * (python/dembox.py allocates one of this size). */
 size_t dem_config_size(void);

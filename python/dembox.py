@@ -122,6 +122,12 @@ def _library():
     if _loaded is not None:
         return _loaded
     lib = ctypes.CDLL(_find_library())
+    # first: a library built for another CPU would stop this process with
+    # an illegal instruction in any other call (include/dembox.h)
+    lib.dem_cpu_check.argtypes = [ctypes.c_char_p, ctypes.c_size_t]
+    msg = ctypes.create_string_buffer(768)
+    if lib.dem_cpu_check(msg, ctypes.sizeof(msg)):
+        raise OSError("dembox: %s: %s" % (lib._name, msg.value.decode()))
     lib.dem_config_size.restype = ctypes.c_size_t
     lib.dem_struct_size.restype = ctypes.c_size_t
     lib.dem_struct_size.argtypes = [ctypes.c_char_p]

@@ -4,6 +4,7 @@ and a bad key raises dembox.Error naming the key. Run by CTest with
 PYTHONPATH and DEMBOX_LIB set; argv[1]: the dembox binary, argv[2]: a
 scratch folder."""
 import os
+import shutil
 import subprocess
 import sys
 
@@ -93,6 +94,28 @@ nolib = subprocess.run(
     env=dict(os.environ, DEMBOX_LIB=os.path.join(tmp, "no-such-lib.so")))
 assert nolib.returncode == 0 and "no-such-lib.so" in nolib.stdout, \
     nolib.stdout + nolib.stderr
+
+# on a CPU without the instructions the library was built for (qemu's
+# baseline x86-64, where qemu-user is installed) the first call raises
+# OSError naming them, not an illegal instruction, wherever the dembox
+# command refuses to run; a build for the baseline runs in both
+if shutil.which("qemu-x86_64") and os.uname().machine == "x86_64":
+    emu = ["qemu-x86_64", "-cpu", "qemu64"]
+    cli = subprocess.run(emu + [dembox_bin, "--version"],
+                         capture_output=True, text=True)
+    mod = subprocess.run(
+        emu + [sys.executable, "-c",
+               "import dembox\ntry:\n    print(dembox.version())\n"
+               "except OSError as e:\n    print('refused:', e)\n"],
+        capture_output=True, text=True)
+    assert cli.returncode in (0, 1) and mod.returncode == 0, \
+        cli.stderr + mod.stdout + mod.stderr
+    if cli.returncode:
+        assert "this CPU lacks" in cli.stderr, cli.stderr
+        assert mod.stdout.startswith("refused: dembox: ") and \
+            "this CPU lacks" in mod.stdout, mod.stdout
+    else:
+        assert mod.stdout.strip() == dembox.version(), mod.stdout
 
 # a sweep of two runs: sweep.json lists both, finished
 sw = dembox.sweep("biaxial2d", os.path.join(tmp, "sw"),

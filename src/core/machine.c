@@ -1,6 +1,8 @@
 /* What the machine is (machine.h). */
 #include "core/machine.h"
 
+#include "dembox.h"
+
 #include <stdio.h>
 #include <string.h>
 
@@ -50,4 +52,185 @@ const char *dem_simd_name(void)
 #else
     return "no vector instructions known to this build";
 #endif
+}
+
+/* dem_cpu_missing and dem_cpu_check run before anything that may use the
+ * build's instructions, so they are compiled for the baseline x86-64
+ * whatever -march says. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define DEM_CPU_CHECK 1
+#define BASELINE __attribute__((target("arch=x86-64")))
+#else
+#define DEM_CPU_CHECK 0
+#define BASELINE
+#endif
+
+#if DEM_CPU_CHECK
+/* The names of the missing extensions, space-separated. */
+struct missing {
+    char *out;
+    size_t len, used;
+    int n;
+};
+
+/* (unused in a build for the baseline, which has no extension to list) */
+__attribute__((unused)) BASELINE static void note(struct missing *m,
+                                                  const char *name, int present)
+{
+    if (present)
+        return;
+    m->n++;
+    if (m->used < m->len) {
+        const int w = snprintf(m->out + m->used, m->len - m->used, "%s%s",
+                               m->used ? " " : "", name);
+        m->used += w > 0 ? (size_t)w : 0;
+    }
+}
+#endif
+
+BASELINE int dem_cpu_missing(int (*has)(const char *name), char *out,
+                             size_t len)
+{
+    if (len)
+        out[0] = '\0';
+    (void)has;
+#if DEM_CPU_CHECK
+    struct missing m = {out, len, 0, 0};
+    /* (before the constructors of libgcc when called from one) */
+    __builtin_cpu_init();
+    /* The extensions -march may have switched on, by their predefined
+     * macros, as gcc 12's __builtin_cpu_supports names them (it takes
+     * string literals only): the compiler may use any of them anywhere. */
+#define FEATURE_(name)                                                         \
+    note(&m, name, has ? has(name) : __builtin_cpu_supports(name) != 0)
+#ifdef __SSE3__
+    FEATURE_("sse3");
+#endif
+#ifdef __SSSE3__
+    FEATURE_("ssse3");
+#endif
+#ifdef __SSE4_1__
+    FEATURE_("sse4.1");
+#endif
+#ifdef __SSE4_2__
+    FEATURE_("sse4.2");
+#endif
+#ifdef __SSE4A__
+    FEATURE_("sse4a");
+#endif
+#ifdef __POPCNT__
+    FEATURE_("popcnt");
+#endif
+#ifdef __ABM__
+    FEATURE_("abm");
+#endif
+#ifdef __LZCNT__
+    FEATURE_("lzcnt");
+#endif
+#ifdef __BMI__
+    FEATURE_("bmi");
+#endif
+#ifdef __BMI2__
+    FEATURE_("bmi2");
+#endif
+#ifdef __MOVBE__
+    FEATURE_("movbe");
+#endif
+#ifdef __ADX__
+    FEATURE_("adx");
+#endif
+#ifdef __AES__
+    FEATURE_("aes");
+#endif
+#ifdef __PCLMUL__
+    FEATURE_("pclmul");
+#endif
+#ifdef __F16C__
+    FEATURE_("f16c");
+#endif
+#ifdef __AVX__
+    FEATURE_("avx");
+#endif
+#ifdef __AVX2__
+    FEATURE_("avx2");
+#endif
+#ifdef __FMA__
+    FEATURE_("fma");
+#endif
+#ifdef __FMA4__
+    FEATURE_("fma4");
+#endif
+#ifdef __XOP__
+    FEATURE_("xop");
+#endif
+#ifdef __AVX512F__
+    FEATURE_("avx512f");
+#endif
+#ifdef __AVX512VL__
+    FEATURE_("avx512vl");
+#endif
+#ifdef __AVX512BW__
+    FEATURE_("avx512bw");
+#endif
+#ifdef __AVX512DQ__
+    FEATURE_("avx512dq");
+#endif
+#ifdef __AVX512CD__
+    FEATURE_("avx512cd");
+#endif
+#ifdef __AVX512IFMA__
+    FEATURE_("avx512ifma");
+#endif
+#ifdef __AVX512VBMI__
+    FEATURE_("avx512vbmi");
+#endif
+#ifdef __AVX512VBMI2__
+    FEATURE_("avx512vbmi2");
+#endif
+#ifdef __AVX512VNNI__
+    FEATURE_("avx512vnni");
+#endif
+#ifdef __AVX512BITALG__
+    FEATURE_("avx512bitalg");
+#endif
+#ifdef __AVX512VPOPCNTDQ__
+    FEATURE_("avx512vpopcntdq");
+#endif
+#ifdef __AVX512BF16__
+    FEATURE_("avx512bf16");
+#endif
+#ifdef __AVX512VP2INTERSECT__
+    FEATURE_("avx512vp2intersect");
+#endif
+#ifdef __AVXVNNI__
+    FEATURE_("avxvnni");
+#endif
+#ifdef __GFNI__
+    FEATURE_("gfni");
+#endif
+#ifdef __VAES__
+    FEATURE_("vaes");
+#endif
+#ifdef __VPCLMULQDQ__
+    FEATURE_("vpclmulqdq");
+#endif
+#undef FEATURE_
+    return m.n;
+#else
+    return 0;
+#endif
+}
+
+BASELINE int dem_cpu_check(char *msg, size_t len)
+{
+    char missing[512];
+    if (!dem_cpu_missing(NULL, missing, sizeof missing))
+        return 0;
+    snprintf(msg, len,
+             "this build of dembox uses instructions this CPU lacks (%s): "
+             "it was compiled for another CPU (-march=native by default); "
+             "build it on this machine, or for a CPU level both have "
+             "(README, \"Installing\")",
+             missing);
+    return 1;
 }

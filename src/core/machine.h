@@ -10,4 +10,13 @@ void dem_cpu_model(char *out, size_t len);
 /* The vector instructions this build was compiled for and their width. */
 const char *dem_simd_name(void);
 
+/* The instruction set extensions this build was compiled for (-march)
+ * that the CPU lacks, by their names in gcc's __builtin_cpu_supports,
+ * space-separated into out (truncated to len); returns how many. has says
+ * whether the CPU has one: NULL asks this CPU, a test passes its own.
+ * Compiled for the baseline x86-64, like dem_cpu_check (dembox.h), so
+ * that it runs on any x86-64 CPU; 0 where it cannot tell (another
+ * compiler or architecture). */
+int dem_cpu_missing(int (*has)(const char *name), char *out, size_t len);
+
 #endif
