@@ -182,8 +182,8 @@ static const char *const usage_bench =
     "  --quiet           no progress display\n"
     "\n"
     "The packing is relaxed once (not timed) and cached; only the loop is\n"
-    "timed. The summary gives the CPU and the vector instructions the build\n"
-    "uses, the time per phase (neighbours, forces with\n"
+    "timed. The summary gives the CPU and the vector instructions the\n"
+    "force pass uses, the time per phase (neighbours, forces with\n"
     "the kicks and drifts of chained steps, integration of the others,\n"
     "walls, or in a periodic cell the cell), the force pass in use,\n"
     "the neighbour list (noting a loop that built none: the first list),\n"
@@ -207,7 +207,10 @@ static const char *const usage_bench =
     "results bit for bit. Every run times them now and then and uses\n"
     "the fastest; the environment variable\n"
     "DEMBOX_PASS=gathers|loads|records|blocks|ring|auto forces one (also\n"
-    "for dembox run).\n";
+    "for dembox run). A build for a CPU level (-DDEM_NATIVE=OFF) has them\n"
+    "also for the x86-64 levels above its own and runs those of the\n"
+    "highest the CPU has; DEMBOX_ISA=build|x86-64-v3|x86-64-v4|auto\n"
+    "chooses the level (one the CPU lacks is refused).\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";

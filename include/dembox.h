@@ -647,6 +647,8 @@ struct dem_run_timing {
                                   end (NAN in a run split over ranks) */
     char pass[96];          /* the force pass's compilations: which ran, or
                                the trials each won (dem_sim_pass_tally) */
+    char simd[48];          /* their vector instructions, e.g. "AVX-512,
+                               512-bit vectors" */
     int periodic;           /* 1: a periodic cell, whose step.walls is the
                                cell's motion and the particles' positions
                                computed from the frame (core/cell.h) */

@@ -547,6 +547,7 @@ static int bench_run(const struct dem_bench_options *o,
     r->timers = s.timers;
     r->nbuild = s.nbuild - nbuild0;
     dem_sim_pass_report(&s, r->pass, sizeof r->pass);
+    snprintf(r->simd, sizeof r->simd, "%s", dem_sim_pass_simd(&s));
     dem_sim_pass_tally(&s, r->trials, sizeof r->trials);
     r->pairs_per_particle = (double)s.pairs.cur.n / (double)s.p.n;
     r->skin_share = dem_sim_skin_share(&s);

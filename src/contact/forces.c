@@ -12,6 +12,7 @@
 #include "contact/models.h"
 #include "contact/pass.h"
 #include "contact/tangential.h"
+#include "core/machine.h"
 #include "core/sim.h"
 
 static struct pass pass_of(const struct dem_particles *P,
@@ -204,7 +205,7 @@ static void measure_contacts(struct dem_sim *s)
 /* The compilations of the force pass, in the order of
  * struct dem_pass_choice's indices. */
 typedef int (*pass_fn)(const struct contacts *, struct kick);
-static const struct {
+struct variant {
     const char *name;
     pass_fn run;
     int rec; /* a chained pass writes the particle records (contact/pass.c) */
@@ -212,19 +213,85 @@ static const struct {
                    own their blocks (neighbor/blocks.h), where it can:
                    faster on two L3 caches, not always on one (docs/
                    performance-log.md, session 44), so the trials choose */
-} passes[] = {
-    {"gathers", dem__pass_gathers, 0, 0},
+};
 #if DEM_PASS_LOADS
-    {"loads", dem__pass_loads, 0, 0},
+#define LOADS_(S) {"loads", S(dem__pass_loads), 0, 0},
+#else
+#define LOADS_(S)
 #endif
-#if DEM_HAVE_PASS_RECORDS
-    {"records", dem__pass_records, 1, 0},
-    {"blocks", dem__pass_records, 1, 1},
-    {"ring", dem__pass_ring, 1, 0},
+#define RECORDS_(S)                                                            \
+    {"records", S(dem__pass_records), 1, 0},                                   \
+        {"blocks", S(dem__pass_records), 1, 1},                                \
+        {"ring", S(dem__pass_ring), 1, 0},
+static const struct variant plain[] = {{"gathers", dem__pass_gathers, 0, 0},
+                                       LOADS_(DEM_PASS_PLAIN_)
+#if DEM_PASS_RECORDS_HERE
+                                           RECORDS_(DEM_PASS_PLAIN_)
 #endif
 };
-enum { NPASS = sizeof passes / sizeof passes[0] };
-_Static_assert(NPASS <= DEM_MAX_PASSES, "struct dem_pass_choice: best[]");
+#if DEM_PASS_V3
+static const struct variant v3[] = {{"gathers", dem__pass_gathers_v3, 0, 0},
+                                    LOADS_(DEM_PASS_V3_)
+                                        RECORDS_(DEM_PASS_V3_)};
+#endif
+#if DEM_PASS_V4
+static const struct variant v4[] = {{"gathers", dem__pass_gathers_v4, 0, 0},
+                                    LOADS_(DEM_PASS_V4_)
+                                        RECORDS_(DEM_PASS_V4_)};
+#endif
+#define COUNT_(a) (int)(sizeof a / sizeof a[0])
+
+/* The sets of compilations, one per CPU level: the build's own, and in a
+ * build for a CPU level below x86-64-v3 or v4 those of the levels above
+ * (DEM_PASS_V3, DEM_PASS_V4: contact/pass.h). */
+static const struct level {
+    const char *name; /* for DEMBOX_ISA */
+    int isa;          /* 0: the build's, else the x86-64 level */
+    const char *simd; /* the vector instructions, or NULL: the build's */
+    const struct variant *v;
+    int n;
+} levels[] = {
+    {"build", 0, NULL, plain, COUNT_(plain)},
+#if DEM_PASS_V3
+    {"x86-64-v3", 3, "AVX2, 256-bit vectors", v3, COUNT_(v3)},
+#endif
+#if DEM_PASS_V4
+    {"x86-64-v4", 4, "AVX-512, 512-bit vectors", v4, COUNT_(v4)},
+#endif
+};
+enum { NLEVEL = sizeof levels / sizeof levels[0] };
+#define FITS_(S) _Static_assert(COUNT_(S) <= DEM_MAX_PASSES, "best[]");
+FITS_(plain)
+#if DEM_PASS_V3
+FITS_(v3)
+#endif
+#if DEM_PASS_V4
+FITS_(v4)
+#endif
+
+/* Whether this CPU runs the compilations of level l. */
+static int level_runs(int l)
+{
+#if DEM_PASS_V3 || DEM_PASS_V4
+    __builtin_cpu_init();
+    if (levels[l].isa == 4)
+        return __builtin_cpu_supports("x86-64-v4") != 0;
+    if (levels[l].isa == 3)
+        return __builtin_cpu_supports("x86-64-v3") != 0;
+#endif
+    return levels[l].isa == 0;
+}
+
+/* The set of the level in use, and its size. */
+static const struct variant *variants(const struct dem_pass_choice *C)
+{
+    return levels[C->level].v;
+}
+
+static int nvariants(const struct dem_pass_choice *C)
+{
+    return levels[C->level].n;
+}
 
 /* Time steps between two trials, before the first one (the first passes
  * of a run touch memory for the first time and would time that), and
@@ -237,6 +304,44 @@ _Static_assert(NPASS <= DEM_MAX_PASSES, "struct dem_pass_choice: best[]");
 enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
 #define TRIAL_FAR 1.25
 
+/* The highest level this CPU runs, or the one DEMBOX_ISA names (a build
+ * for a CPU level with the compilations of those above: to compare them
+ * on one CPU). */
+static int choose_level(struct dem_pass_choice *C, struct dem_error *err)
+{
+    for (int l = 0; l < NLEVEL; l++)
+        if (level_runs(l))
+            C->level = l;
+    const char *want = getenv("DEMBOX_ISA");
+    if (!want || !*want || !strcmp(want, "auto"))
+        return DEM_OK;
+    char names[96] = "auto";
+    for (int l = 0; l < NLEVEL; l++) {
+        if (!strcmp(want, levels[l].name)) {
+            if (!level_runs(l))
+                return dem_error_set(err, DEM_EUSAGE,
+                                     "environment variable DEMBOX_ISA: this "
+                                     "CPU lacks the instructions of %s",
+                                     want);
+            C->level = l;
+            return DEM_OK;
+        }
+        const size_t len = strlen(names);
+        snprintf(names + len, sizeof names - len, ", %s", levels[l].name);
+    }
+    return dem_error_set(err, DEM_EUSAGE,
+                         "environment variable DEMBOX_ISA: '%s' is not a "
+                         "level of this build (%s)",
+                         want, names);
+}
+
+/* The vector instructions of the force pass in use. */
+const char *dem_sim_pass_simd(const struct dem_sim *s)
+{
+    const char *simd = levels[s->pass.level].simd;
+    return simd ? simd : dem_simd_name();
+}
+
 int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
 {
     const int set = dem_contact_set(&s->cp);
@@ -246,19 +351,22 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
     memset(C, 0, sizeof *C);
     C->forced = -1;
     C->since = TRIAL_EVERY - TRIAL_FIRST;
+    int rc = choose_level(C, err);
+    if (rc)
+        return rc;
     const char *want = getenv("DEMBOX_PASS");
     if (!want || !*want || !strcmp(want, "auto"))
         return DEM_OK;
-    for (int v = 0; v < NPASS; v++)
-        if (!strcmp(want, passes[v].name)) {
+    for (int v = 0; v < nvariants(C); v++)
+        if (!strcmp(want, variants(C)[v].name)) {
             C->forced = C->current = v;
             C->trial = 0;
             return DEM_OK;
         }
     char names[64] = "auto";
-    for (int v = 0; v < NPASS; v++) {
+    for (int v = 0; v < nvariants(C); v++) {
         const size_t len = strlen(names);
-        snprintf(names + len, sizeof names - len, ", %s", passes[v].name);
+        snprintf(names + len, sizeof names - len, ", %s", variants(C)[v].name);
     }
     return dem_error_set(err, DEM_EUSAGE,
                          "environment variable DEMBOX_PASS: '%s' is not a "
@@ -275,7 +383,7 @@ static void blocks_note(const struct dem_sim *s, char *note, size_t size)
 {
     const struct dem_pass_choice *C = &s->pass;
     note[0] = '\0';
-    if (C->forced < 0 || !passes[C->forced].blocks)
+    if (C->forced < 0 || !variants(C)[C->forced].blocks)
         return;
     const long all = C->runs[C->forced], without = all - C->with_blocks;
     if (without > 0)
@@ -285,26 +393,26 @@ static void blocks_note(const struct dem_sim *s, char *note, size_t size)
 void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size)
 {
     const struct dem_pass_choice *C = &s->pass;
-    int len = snprintf(buf, size, "%s", passes[C->current].name);
+    int len = snprintf(buf, size, "%s", variants(C)[C->current].name);
     char note[96];
     blocks_note(s, note, sizeof note);
     if (C->forced >= 0)
         snprintf(buf + len, size - (size_t)len, " (DEMBOX_PASS%s%s)",
                  *note ? "; " : "", note);
-    else if (NPASS < 2)
+    else if (nvariants(C) < 2)
         snprintf(buf + len, size - (size_t)len, " (the only one built)");
     else if (C->best[0] == 0.0)
         snprintf(buf + len, size - (size_t)len, " (no timing trial yet)");
     else
         /* (a variant never timed, as the one with blocks in a run that
          * has none, left out) */
-        for (int v = 0, m = 0; v < NPASS && len > 0 && (size_t)len < size;
-             v++)
+        for (int v = 0, m = 0;
+             v < nvariants(C) && len > 0 && (size_t)len < size; v++)
             if (C->best[v] != 0.0)
                 len += snprintf(buf + len, size - (size_t)len, "%s%s %.4g ms",
-                                m++ ? ", " : " (fastest pass: ", passes[v].name,
-                                1e3 * C->best[v]);
-    if (C->forced < 0 && NPASS > 1 && C->best[0] != 0.0 && len > 0 &&
+                                m++ ? ", " : " (fastest pass: ",
+                                variants(C)[v].name, 1e3 * C->best[v]);
+    if (C->forced < 0 && nvariants(C) > 1 && C->best[0] != 0.0 && len > 0 &&
         (size_t)len < size)
         snprintf(buf + len, size - (size_t)len, ")");
 }
@@ -313,19 +421,19 @@ void dem_sim_pass_tally(const struct dem_sim *s, char *buf, size_t size)
 {
     const struct dem_pass_choice *C = &s->pass;
     long trials = 0;
-    for (int v = 0; v < NPASS; v++)
+    for (int v = 0; v < nvariants(C); v++)
         trials += C->won[v];
     if (!trials) {
         char note[96];
         blocks_note(s, note, sizeof note);
-        snprintf(buf, size, *note ? "%s (%s)" : "%s", passes[C->current].name,
-                 note);
+        snprintf(buf, size, *note ? "%s (%s)" : "%s",
+                 variants(C)[C->current].name, note);
         return;
     }
     int len = 0;
-    for (int v = 0; v < NPASS && len >= 0 && (size_t)len < size; v++)
+    for (int v = 0; v < nvariants(C) && len >= 0 && (size_t)len < size; v++)
         len += snprintf(buf + len, size - (size_t)len, "%s%s %ld",
-                        v ? ", " : "", passes[v].name, C->won[v]);
+                        v ? ", " : "", variants(C)[v].name, C->won[v]);
     if (len >= 0 && (size_t)len < size)
         snprintf(buf + len, size - (size_t)len, " of %ld trials", trials);
 }
@@ -350,35 +458,37 @@ static double seconds_now(void)
  * others unless they sit it out. */
 static int in_trial(const struct dem_pass_choice *C, int u)
 {
-    if (passes[u].blocks && C->no_blocks && u != C->current)
+    if (variants(C)[u].blocks && C->no_blocks && u != C->current)
         return 0;
     return u == C->current || C->out[u] == 0;
 }
 
 /* Variant v of the pass, without the threads' own blocks unless it is
  * the variant with them. */
-static int run_variant(int v, const struct contacts *c, const struct kick K)
+static int run_variant(const struct dem_pass_choice *C, int v,
+                       const struct contacts *c, const struct kick K)
 {
-    if (c->blocks && !passes[v].blocks) {
+    const struct variant *V = &variants(C)[v];
+    if (c->blocks && !V->blocks) {
         struct contacts o = *c;
         o.blocks = NULL;
-        return passes[v].run(&o, K);
+        return V->run(&o, K);
     }
-    return passes[v].run(c, K);
+    return V->run(c, K);
 }
 
 /* The variants of a trial, and its k-th of them. */
 static int trial_size(const struct dem_pass_choice *C)
 {
     int m = 0;
-    for (int u = 0; u < NPASS; u++)
+    for (int u = 0; u < nvariants(C); u++)
         m += in_trial(C, u);
     return m;
 }
 
 static int trial_variant(const struct dem_pass_choice *C, int k)
 {
-    for (int u = 0; u < NPASS; u++)
+    for (int u = 0; u < nvariants(C); u++)
         if (in_trial(C, u) && k-- == 0)
             return u;
     return C->current;
@@ -389,10 +499,10 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
 {
     C->ran = C->current;
     if (!K.on || C->forced >= 0)
-        return run_variant(C->current, c, K);
+        return run_variant(C, C->current, c, K);
     if (!C->trial) {
-        if (++C->since < TRIAL_EVERY || NPASS < 2)
-            return run_variant(C->current, c, K);
+        if (++C->since < TRIAL_EVERY || nvariants(C) < 2)
+            return run_variant(C, C->current, c, K);
         C->since = 0;
         C->trial = trial_size(C) * TRIAL_ROUNDS;
     }
@@ -402,18 +512,18 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
         C->best[v] = INFINITY;
     C->ran = v;
     const double t0 = seconds_now();
-    const int moved = run_variant(v, c, K);
+    const int moved = run_variant(C, v, c, K);
     const double t = seconds_now() - t0;
     if (done % TRIAL_ROUNDS && t < C->best[v])
         C->best[v] = t;
     if (--C->trial == 0) {
         int w = C->current;
-        for (int u = 0; u < NPASS; u++)
+        for (int u = 0; u < nvariants(C); u++)
             if (in_trial(C, u) && C->best[u] < C->best[w])
                 w = u;
         C->won[w]++;
         /* the sit-outs, decided among this trial's variants */
-        for (int u = 0; u < NPASS; u++) {
+        for (int u = 0; u < nvariants(C); u++) {
             if (!in_trial(C, u)) {
                 C->out[u]--;
                 continue;
@@ -515,23 +625,29 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
  * in memory, each waited for the store of the one before, which took
  * 1.5 % of a step at N = 3375 with one thread (docs/performance-log.md,
  * session 43). */
-typedef long long dem_wall_mask __attribute__((vector_size(64)));
-typedef double dem_wall_sums __attribute__((vector_size(64)));
+typedef long long dem_wall_mask __attribute__((vector_size(16)));
+typedef double dem_wall_sums __attribute__((vector_size(16)));
 _Static_assert(DEM_MAX_WALLS <= 8, "one lane per wall");
 
+/* The eight lanes as four 2-lane vectors, compared as doubles: what
+ * every x86-64 CPU has (SSE2). In one 512-bit vector of 64-bit integers
+ * a build for the baseline x86-64 (the rest of a build with
+ * DEM_DISPATCH, contact/pass.h) picked each lane by a scalar
+ * conditional move, 2.6 % of a step at N = 3375; with AVX-512 the four
+ * sums take as long as one, each waiting for its own addition. */
 static void wall_sums(const struct dem_contact_list *L, const double *v,
                       double *out)
 {
-    const dem_wall_mask lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    dem_wall_sums acc = {0.0};
+    const dem_wall_sums lane[4] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}};
+    dem_wall_sums acc[4] = {{0.0}};
     for (int k = 0; k < L->n; k++) {
-        const dem_wall_mask on = lane == (long long)L->j[k];
-        const double x = v[k];
-        const dem_wall_sums a = {x, x, x, x, x, x, x, x};
-        acc += (dem_wall_sums)((dem_wall_mask)a & on);
+        const double w = (double)L->j[k], x = v[k];
+        const dem_wall_sums a = {x, x};
+        for (int q = 0; q < 4; q++)
+            acc[q] += (dem_wall_sums)((dem_wall_mask)a & (lane[q] == w));
     }
     for (int w = 0; w < DEM_MAX_WALLS; w++)
-        out[w] = acc[w];
+        out[w] = acc[w / 2][w % 2];
 }
 
 /* The threads' own blocks for a chained pass between walls in one
@@ -616,7 +732,7 @@ static int forces(struct dem_sim *s, const struct kick K)
     const int moved = run_pass(&s->pass, &c, K);
     s->pass.runs[s->pass.ran]++;
     s->pass.with_blocks += blocks_ran;
-    pl->rec_written = K.chain && passes[s->pass.ran].rec;
+    pl->rec_written = K.chain && variants(&s->pass)[s->pass.ran].rec;
     /* the next such pass reads the ghost records this one wrote */
     pl->blocks.written = blocks_ran;
     pl->blocks.passes += blocks_ran;

@@ -108,7 +108,7 @@ _Static_assert(DEM_RING_GROUP % DEM_KICK_BLOCK == 0 &&
 /* the name of this compilation's entry point (contact/pass_loads.c
  * compiles this file again under another) */
 #ifndef DEM_PASS_ENTRY
-#define DEM_PASS_ENTRY dem__pass_gathers
+#define DEM_PASS_ENTRY DEM_PASS_NAME(dem__pass_gathers)
 #endif
 
 /* Contact k's history values used by the model set law (a normal law

@@ -104,22 +104,52 @@ struct contacts {
     int *blocks_ran;  /* set to 1 by a pass that ran with them */
 };
 
+/* A build for a CPU level (-DDEM_NATIVE=OFF) compiles the pass once
+ * more for each higher level the compiler knows, x86-64-v3 (AVX2 and
+ * FMA; DEM_PASS_V3) and x86-64-v4 (AVX-512; DEM_PASS_V4), and
+ * contact/forces.c runs the highest this CPU has (CMakeLists.txt,
+ * DEM_DISPATCH). Each of those compilations has DEM_PASS_ISA set to its
+ * level, and its entry points carry it: dem__pass_records_v4. */
+#define DEM_PASS_CAT_(f, l) f##_v##l
+#define DEM_PASS_CAT(f, l) DEM_PASS_CAT_(f, l)
+#ifdef DEM_PASS_ISA
+#define DEM_PASS_NAME(f) DEM_PASS_CAT(f, DEM_PASS_ISA)
+#else
+#define DEM_PASS_NAME(f) f
+#endif
+
 /* One force pass: forces and history of every pair and wall contact,
  * then every particle's sums (and kicks, per K). Returns whether a
  * particle has moved further than its reach less K.cut (chained steps),
  * else 0. */
-int dem__pass_gathers(const struct contacts *c, struct kick K);
-#if DEM_PASS_LOADS
-/* The same code without hardware gathers (contact/pass_loads.c). */
-int dem__pass_loads(const struct contacts *c, struct kick K);
+#define DEM_PASS_ENTRIES_(S)                                                   \
+    int S(dem__pass_gathers)(const struct contacts *c, struct kick K);         \
+    /* the same code without hardware gathers (contact/pass_loads.c) */        \
+    int S(dem__pass_loads)(const struct contacts *c, struct kick K);           \
+    /* the pairs' particle values from records (contact/pass_records.c;        \
+     * where the compilation has AVX) */                                       \
+    int S(dem__pass_records)(const struct contacts *c, struct kick K);         \
+    /* the records pass whose chained steps keep the pairs' forces in a        \
+     * ring per thread (contact/pass_ring.c) */                                \
+    int S(dem__pass_ring)(const struct contacts *c, struct kick K);
+#define DEM_PASS_PLAIN_(f) f
+#define DEM_PASS_V3_(f) f##_v3
+#define DEM_PASS_V4_(f) f##_v4
+DEM_PASS_ENTRIES_(DEM_PASS_PLAIN_)
+#if DEM_PASS_V3
+DEM_PASS_ENTRIES_(DEM_PASS_V3_)
 #endif
-#if DEM_HAVE_PASS_RECORDS
-/* The same code with the pairs' particle values from records
- * (contact/pass_records.c). */
-int dem__pass_records(const struct contacts *c, struct kick K);
-/* The records pass whose chained steps keep the pairs' forces in a ring
- * per thread (contact/pass_ring.c). */
-int dem__pass_ring(const struct contacts *c, struct kick K);
+#if DEM_PASS_V4
+DEM_PASS_ENTRIES_(DEM_PASS_V4_)
+#endif
+
+/* Whether this compilation of the records and ring passes has what they
+ * need (AVX): a build for a CPU level below it has them only in its
+ * compilations for the levels above. */
+#if DEM_HAVE_PASS_RECORDS && defined(__AVX__)
+#define DEM_PASS_RECORDS_HERE 1
+#else
+#define DEM_PASS_RECORDS_HERE 0
 #endif
 
 #endif

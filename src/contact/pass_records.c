@@ -1,8 +1,10 @@
 /* The force pass again, the pairs' particle values read from records
  * (contact/pass.c, DEM_PASS_RECORDS; AVX only). See contact/pass.h. */
-#if DEM_HAVE_PASS_RECORDS
+#include "contact/pass.h"
+
+#if DEM_PASS_RECORDS_HERE
 #define DEM_PASS_RECORDS 1
-#define DEM_PASS_ENTRY dem__pass_records
+#define DEM_PASS_ENTRY DEM_PASS_NAME(dem__pass_records)
 #include "contact/pass.c"
 #else
 typedef int dem_pass_records_unused; /* ISO C: no empty translation unit */

@@ -1,10 +1,12 @@
 /* The records pass again, its chained steps with the pairs' forces in a
  * ring per thread (contact/pass.c, DEM_PASS_RING; AVX only). See
  * contact/pass.h. */
-#if DEM_HAVE_PASS_RECORDS
+#include "contact/pass.h"
+
+#if DEM_PASS_RECORDS_HERE
 #define DEM_PASS_RECORDS 1
 #define DEM_PASS_RING 1
-#define DEM_PASS_ENTRY dem__pass_ring
+#define DEM_PASS_ENTRY DEM_PASS_NAME(dem__pass_ring)
 #include "contact/pass.c"
 #else
 typedef int dem_pass_ring_unused; /* ISO C: no empty translation unit */

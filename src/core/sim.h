@@ -35,6 +35,8 @@ struct dem_contact_sums {
 /* Which compilation of the force pass runs, and its timing trials
  * (contact/forces.c). */
 struct dem_pass_choice {
+    int level;   /* the set of compilations in use: 0 the build's, else a
+                    CPU level's (contact/forces.c, DEM_DISPATCH) */
     int forced;  /* -1: chosen by timing, else DEMBOX_PASS's index */
     int current; /* the variant in use */
     int ran;     /* the variant of the last pass */
@@ -169,8 +171,15 @@ void dem_sim_set_friction(struct dem_sim *s, double mu_s, double mu_d);
 
 /* Choose how the force pass runs: by timing its compilations (see
  * contact/pass.h), or as the environment variable DEMBOX_PASS says
- * (auto, gathers, loads); an unknown name is an error. */
+ * (auto, gathers, loads, records, blocks, ring); an unknown name is an
+ * error. In a build for a CPU level with the compilations of the levels
+ * above (CMake option DEM_DISPATCH), those of the highest level this CPU has,
+ * or of the one DEMBOX_ISA names (build, x86-64-v3, x86-64-v4); a level the CPU
+ * lacks is an error. */
 int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err);
+/* The vector instructions of the force pass in use (the build's,
+ * dem_simd_name, unless a level's compilations run). */
+const char *dem_sim_pass_simd(const struct dem_sim *s);
 /* The force pass's compilation in use and why, e.g. "loads (fastest
  * pass: gathers 0.151 ms, loads 0.144 ms)" after a timing trial. */
 void dem_sim_pass_report(const struct dem_sim *s, char *buf, size_t size);

@@ -591,6 +591,7 @@ static void report_timing(const struct run_ctx *r, int status,
                                ? (double)r->sim.pairs.cur.n / r->sim.p.n
                                : NAN;
     dem_sim_pass_tally(&r->sim, T.pass, sizeof T.pass);
+    snprintf(T.simd, sizeof T.simd, "%s", dem_sim_pass_simd(&r->sim));
     T.periodic = r->sim.cell.on;
     if (r->opt->timing)
         *r->opt->timing = T;

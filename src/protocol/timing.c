@@ -67,7 +67,7 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
         step_from, step_from + T->steps, threads, threads == 1 ? "" : "s");
     if (ranks > 1)
         PUT(" x %d ranks", ranks);
-    PUT(", %s, %s: ", cpu, dem_simd_name());
+    PUT(", %s, %s: ", cpu, T->simd[0] ? T->simd : dem_simd_name());
     if (!dem_run_timing_line(T, buf + *at, n - *at))
         PUT("no steps timed");
     FILE *f = fopen(path, "a");
