@@ -60,6 +60,13 @@ DEMBOX_ISA=x86-64-v9 "$BIN" run biaxial2d -o bad --max-steps 1 \
 grep -q "'x86-64-v9' is not a level of this build" bad.err ||
     fail "unknown level: $(cat bad.err)"
 [ ! -e bad/timeseries.csv ] || fail "an unknown level wrote outputs"
+# the ring pass needs AVX: a level without it refuses it by name
+if grep -q "SSE2" biaxial2d-build-1.simd; then
+    DEMBOX_ISA=build DEMBOX_PASS=ring "$BIN" run biaxial2d -o bad2 \
+        --max-steps 1 > /dev/null 2> bad2.err && fail "ring ran on SSE2"
+    grep -q "'ring' is not a force pass of this build at level build" \
+        bad2.err || fail "ring on SSE2: $(cat bad2.err)"
+fi
 
 # (a build for the baseline only: one for a higher level refuses these)
 if command -v qemu-x86_64 > /dev/null 2>&1 &&
