@@ -47,6 +47,13 @@ static int listed(const char *list, const char *w)
     return 0;
 }
 
+/* Where the check exists (gcc on x86-64). */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define CHECKED 1
+#else
+#define CHECKED 0
+#endif
+
 /* The machine that built the tests runs them: nothing missing. */
 static void this_cpu_runs_this_build(void **state)
 {
@@ -56,14 +63,16 @@ static void this_cpu_runs_this_build(void **state)
     assert_string_equal(out, "");
     assert_int_equal(dem_cpu_check(msg, sizeof msg), 0);
     assert_string_equal(msg, "untouched");
-}
-
-/* Where the check exists (gcc on x86-64). */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define CHECKED 1
+    /* and its x86-64 level is at least the build's */
+    const int level = dem_cpu_level();
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
+    assert_int_equal(level, CHECKED && __GNUC__ >= 12 ? 4 : 0);
+#elif defined(__AVX2__) && defined(__FMA__) && defined(__BMI2__)
+    assert_true(level >= 3 || !CHECKED || __GNUC__ < 12);
 #else
-#define CHECKED 0
+    assert_true(level >= (CHECKED && __GNUC__ >= 12 ? 1 : 0));
 #endif
+}
 
 /* A CPU without any extension lacks exactly what the build uses. */
 static void a_cpu_without_extensions_lacks_the_builds(void **state)

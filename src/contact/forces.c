@@ -223,21 +223,20 @@ struct variant {
     {"records", S(dem__pass_records), 1, 0},                                   \
         {"blocks", S(dem__pass_records), 1, 1},                                \
         {"ring", S(dem__pass_ring), 1, 0},
-static const struct variant plain[] = {{"gathers", dem__pass_gathers, 0, 0},
-                                       LOADS_(DEM_PASS_PLAIN_)
+/* A level's variants, S naming its entry points (contact/pass.h). */
+#define VARIANTS_(S)                                                           \
+    {"gathers", S(dem__pass_gathers), 0, 0}, LOADS_(S) RECORDS_(S)
 #if DEM_PASS_RECORDS_HERE
-                                           RECORDS_(DEM_PASS_PLAIN_)
+static const struct variant plain[] = {VARIANTS_(DEM_PASS_PLAIN_)};
+#else
+static const struct variant plain[] = {{"gathers", dem__pass_gathers, 0, 0},
+                                       LOADS_(DEM_PASS_PLAIN_)};
 #endif
-};
 #if DEM_PASS_V3
-static const struct variant v3[] = {{"gathers", dem__pass_gathers_v3, 0, 0},
-                                    LOADS_(DEM_PASS_V3_)
-                                        RECORDS_(DEM_PASS_V3_)};
+static const struct variant v3[] = {VARIANTS_(DEM_PASS_V3_)};
 #endif
 #if DEM_PASS_V4
-static const struct variant v4[] = {{"gathers", dem__pass_gathers_v4, 0, 0},
-                                    LOADS_(DEM_PASS_V4_)
-                                        RECORDS_(DEM_PASS_V4_)};
+static const struct variant v4[] = {VARIANTS_(DEM_PASS_V4_)};
 #endif
 #define COUNT_(a) (int)(sizeof a / sizeof a[0])
 
@@ -272,14 +271,7 @@ FITS_(v4)
 /* Whether this CPU runs the compilations of level l. */
 static int level_runs(int l)
 {
-#if DEM_PASS_V3 || DEM_PASS_V4
-    __builtin_cpu_init();
-    if (levels[l].isa == 4)
-        return __builtin_cpu_supports("x86-64-v4") != 0;
-    if (levels[l].isa == 3)
-        return __builtin_cpu_supports("x86-64-v3") != 0;
-#endif
-    return levels[l].isa == 0;
+    return levels[l].isa <= dem_cpu_level();
 }
 
 /* The set of the level in use, and its size. */

@@ -234,3 +234,16 @@ BASELINE int dem_cpu_check(char *msg, size_t len)
              missing);
     return 1;
 }
+
+BASELINE int dem_cpu_level(void)
+{
+#if DEM_CPU_CHECK && __GNUC__ >= 12
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("x86-64-v4")   ? 4
+           : __builtin_cpu_supports("x86-64-v3") ? 3
+           : __builtin_cpu_supports("x86-64-v2") ? 2
+                                                 : 1;
+#else
+    return 0;
+#endif
+}

@@ -18,5 +18,9 @@ const char *dem_simd_name(void);
  * that it runs on any x86-64 CPU; 0 where it cannot tell (another
  * compiler or architecture). */
 int dem_cpu_missing(int (*has)(const char *name), char *out, size_t len);
+/* The x86-64 level this CPU has (microarchitecture levels: 1 the
+ * baseline, 3 AVX2 and FMA, 4 AVX-512 ...), 0 where it cannot tell
+ * (another compiler or architecture). */
+int dem_cpu_level(void);
 
 #endif
