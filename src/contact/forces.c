@@ -360,12 +360,6 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
         const size_t len = strlen(names);
         snprintf(names + len, sizeof names - len, ", %s", variants(C)[v].name);
     }
-    if (NLEVEL > 1) /* (records, blocks and ring need AVX) */
-        return dem_error_set(err, DEM_EUSAGE,
-                             "environment variable DEMBOX_PASS: '%s' is "
-                             "not a force pass of this build at level %s "
-                             "(%s)",
-                             want, levels[C->level].name, names);
     return dem_error_set(err, DEM_EUSAGE,
                          "environment variable DEMBOX_PASS: '%s' is not a "
                          "force pass of this build (%s)",

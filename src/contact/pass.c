@@ -52,7 +52,7 @@
 #include "contact/tangential.h"
 #include "core/cell.h"
 #include "core/parallel.h"
-#if DEM_PASS_RECORDS
+#if DEM_PASS_RECORDS && (defined(__x86_64__) || defined(__i386__))
 #include <immintrin.h>
 #include <x86intrin.h>
 #endif
@@ -288,34 +288,120 @@ DEM_INLINE void pair_one(const int law, const struct pass *qp, int k,
 /* Particle records (struct contacts.rec, DEM_REC doubles): x y z r |
  * vx vy vz m | wx wy wz 0, 32-byte aligned, so that a pair's particle
  * loads three vectors and four pairs' values reach their SIMD lanes by
- * 4 x 4 transposes (eight by 8 x 4 ones with AVX-512). */
+ * 4 x 4 transposes (eight by 8 x 4 ones with AVX-512).
+ *
+ * The transposes are written in GCC's vector extensions, so that these
+ * compilations exist for every CPU: with AVX in 256-bit vectors (the
+ * shuffles of AVX's unpacklo/hi and permute2f128), else in 128-bit
+ * ones (SSE2's unpcklpd/unpckhpd, NEON's zip1/zip2; 256-bit vectors
+ * there were moved element by element through the stack, and the pass
+ * took twice as long). Only the AVX-512 transposes and the stores past
+ * the caches are written for x86 alone. */
+typedef double dem_v2 __attribute__((vector_size(16), aligned(8)));
+typedef long long dem_v2i __attribute__((vector_size(16)));
+#if defined(__AVX__)
+typedef double dem_v4 __attribute__((vector_size(32), aligned(8)));
+typedef long long dem_v4i __attribute__((vector_size(32)));
+#endif
+/* Lanes of a and b (b's numbered on from a's), in gcc's spelling or in
+ * clang's. */
+#if defined(__clang__)
+#define SHUF2_(a, b, i, j) __builtin_shufflevector(a, b, i, j)
+#define SHUF4_(a, b, i, j, k, l) __builtin_shufflevector(a, b, i, j, k, l)
+#else
+#define SHUF2_(a, b, i, j) __builtin_shuffle(a, b, (dem_v2i){i, j})
+#define SHUF4_(a, b, i, j, k, l) __builtin_shuffle(a, b, (dem_v4i){i, j, k, l})
+#endif
 
-/* The 4 x 4 transpose of rows a, b, c, d: r[u] holds element u of each. */
-DEM_INLINE void transpose4(__m256d a, __m256d b, __m256d c, __m256d d,
-                           __m256d r[4])
+/* A vector's doubles at p (32-byte aligned for 4, 16 for 2) past the
+ * caches where the CPU has such stores (x86: the reader is another core,
+ * after pass_fence), else by an ordinary store. */
+#if defined(__AVX__)
+#define STREAM4_(p, v) _mm256_stream_pd(p, (__m256d)(v))
+#endif
+#if defined(__SSE2__)
+#define STREAM2_(p, v) _mm_stream_pd(p, (__m128d)(v))
+#else
+#define STREAM2_(p, v) (*(dem_v2 *)(void *)(p) = (v))
+#endif
+
+/* The stores past the caches (STREAM2_, STREAM4_) done before what
+ * follows. */
+DEM_INLINE void pass_fence(void)
 {
-    const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b),
-                  t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
-    r[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
-    r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-    r[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
-    r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+#if defined(__SSE2__)
+    _mm_sfence();
+#endif
 }
 
-/* Four values of four consecutive particles (rows a, b, c, d: one value
- * each) as the same block of their four records at o, 12 doubles apart;
- * with stream (a literal) by non-temporal stores, past the caches. */
-DEM_INLINE void records_block(double *o, __m256d a, __m256d b, __m256d c,
-                              __m256d d, const int stream)
+/* A spinning thread's pause: the core's hint that this is a wait. */
+DEM_INLINE void spin_pause(void)
 {
-    __m256d r[4];
-    transpose4(a, b, c, d, r);
+#if defined(__SSE2__)
+    _mm_pause();
+#elif defined(__aarch64__)
+    __asm__ __volatile__("yield");
+#endif
+}
+
+/* A clock of the core for the threads' balance (neighbor/blocks.h): only
+ * the threads' ratios count. */
+DEM_INLINE unsigned long long pass_ticks(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    return __rdtsc();
+#elif defined(__aarch64__)
+    unsigned long long v;
+    __asm__ __volatile__("mrs %0, cntvct_el0" : "=r"(v));
+    return v;
+#else
+    return (unsigned long long)(omp_get_wtime() * 1e9);
+#endif
+}
+
+/* The 4 x 4 transpose of the rows of 4 doubles at a[0..4) into those at
+ * r[0..4): r[u] gets element u of each; with stream (a literal) past the
+ * caches (r 32-byte aligned). */
+DEM_INLINE void transpose4(const double *const a[4], double *const r[4],
+                           const int stream)
+{
+#if defined(__AVX__)
+    const dem_v4 x0 = *(const dem_v4 *)(const void *)a[0],
+                 x1 = *(const dem_v4 *)(const void *)a[1],
+                 x2 = *(const dem_v4 *)(const void *)a[2],
+                 x3 = *(const dem_v4 *)(const void *)a[3];
+    /* unpacklo and unpackhi of each pair of rows, then their low halves
+     * (permute2f128 0x20) and their high ones (0x31) */
+    const dem_v4 t0 = SHUF4_(x0, x1, 0, 4, 2, 6);
+    const dem_v4 t1 = SHUF4_(x0, x1, 1, 5, 3, 7);
+    const dem_v4 t2 = SHUF4_(x2, x3, 0, 4, 2, 6);
+    const dem_v4 t3 = SHUF4_(x2, x3, 1, 5, 3, 7);
+    const dem_v4 y[4] = {SHUF4_(t0, t2, 0, 1, 4, 5), SHUF4_(t1, t3, 0, 1, 4, 5),
+                         SHUF4_(t0, t2, 2, 3, 6, 7),
+                         SHUF4_(t1, t3, 2, 3, 6, 7)};
     for (int u = 0; u < 4; u++) {
         if (stream)
-            _mm256_stream_pd(o + u * DEM_REC, r[u]);
+            STREAM4_(r[u], y[u]);
         else
-            _mm256_store_pd(o + u * DEM_REC, r[u]);
+            *(dem_v4 *)(void *)r[u] = y[u];
     }
+#else
+    for (int h = 0; h < 2; h++) { /* elements 2h and 2h + 1 */
+        dem_v2 x[4];
+        for (int e = 0; e < 4; e++)
+            x[e] = *(const dem_v2 *)(const void *)(a[e] + 2 * h);
+        for (int q = 0; q < 2; q++) { /* rows 0, 1, then 2, 3 */
+            const dem_v2 y[2] = {SHUF2_(x[2 * q], x[2 * q + 1], 0, 2),
+                                 SHUF2_(x[2 * q], x[2 * q + 1], 1, 3)};
+            for (int u = 0; u < 2; u++) {
+                if (stream)
+                    STREAM2_(r[2 * h + u] + 2 * q, y[u]);
+                else
+                    *(dem_v2 *)(void *)(r[2 * h + u] + 2 * q) = y[u];
+            }
+        }
+    }
+#endif
 }
 
 /* Particles i0 <= i < i1 into the records from o on (particle i's at
@@ -325,28 +411,30 @@ DEM_INLINE void records_block(double *o, __m256d a, __m256d b, __m256d c,
 DEM_INLINE void records_fill(double *restrict o, const struct dem_particles *P,
                              int i0, int i1, const int stream)
 {
+    static const double zero[4] = {0.0};
     int i = i0;
     for (; i + 4 <= i1; i += 4, o += 4 * DEM_REC) {
-        records_block(o, _mm256_loadu_pd(P->x + i), _mm256_loadu_pd(P->y + i),
-                      _mm256_loadu_pd(P->z + i), _mm256_loadu_pd(P->r + i),
-                      stream);
-        records_block(o + 4, _mm256_loadu_pd(P->vx + i),
-                      _mm256_loadu_pd(P->vy + i), _mm256_loadu_pd(P->vz + i),
-                      _mm256_loadu_pd(P->m + i), stream);
-        records_block(o + 8, _mm256_loadu_pd(P->wx + i),
-                      _mm256_loadu_pd(P->wy + i), _mm256_loadu_pd(P->wz + i),
-                      _mm256_setzero_pd(), stream);
+        const double *const a[3][4] = {
+            {P->x + i, P->y + i, P->z + i, P->r + i},
+            {P->vx + i, P->vy + i, P->vz + i, P->m + i},
+            {P->wx + i, P->wy + i, P->wz + i, zero}};
+        for (int b = 0; b < 3; b++) {
+            double *const r[4] = {o + 4 * b, o + DEM_REC + 4 * b,
+                                  o + 2 * DEM_REC + 4 * b,
+                                  o + 3 * DEM_REC + 4 * b};
+            transpose4(a[b], r, stream);
+        }
     }
     for (; i < i1; i++, o += DEM_REC) {
-        const __m256d v[3] = {
-            _mm256_setr_pd(P->x[i], P->y[i], P->z[i], P->r[i]),
-            _mm256_setr_pd(P->vx[i], P->vy[i], P->vz[i], P->m[i]),
-            _mm256_setr_pd(P->wx[i], P->wy[i], P->wz[i], 0.0)};
-        for (int u = 0; u < 3; u++) {
+        _Alignas(32) const double v[DEM_REC] = {
+            P->x[i],  P->y[i], P->z[i],  P->r[i],  P->vx[i], P->vy[i],
+            P->vz[i], P->m[i], P->wx[i], P->wy[i], P->wz[i], 0.0};
+        for (int u = 0; u < DEM_REC; u += 2) {
+            const dem_v2 w = *(const dem_v2 *)(const void *)(v + u);
             if (stream)
-                _mm256_stream_pd(o + 4 * u, v[u]);
+                STREAM2_(o + u, w);
             else
-                _mm256_store_pd(o + 4 * u, v[u]);
+                *(dem_v2 *)(void *)(o + u) = w;
         }
     }
 }
@@ -384,10 +472,11 @@ DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
         const double *s = c->rec + DEM_REC * (size_t)c->q.cj[k];
         double *o = c->rec + DEM_REC * (size_t)c->q.cjr[k];
         /* x y z r plus the shift and 0 */
-        const __m256d S = _mm256_load_pd(c->shift[c->q.img[k]]);
-        _mm256_store_pd(o, _mm256_add_pd(_mm256_load_pd(s), S));
-        _mm256_store_pd(o + 4, _mm256_load_pd(s + 4));
-        _mm256_store_pd(o + 8, _mm256_load_pd(s + 8));
+        const double *S = c->shift[c->q.img[k]];
+        for (int u = 0; u < 4; u++)
+            o[u] = s[u] + S[u];
+        for (int u = 4; u < DEM_REC; u++)
+            o[u] = s[u];
     }
 }
 
@@ -427,11 +516,10 @@ DEM_INLINE void records_lanes(const double *rec, const int *idx,
                      *r2 = rec + DEM_REC * (size_t)idx[g + 2],
                      *r3 = rec + DEM_REC * (size_t)idx[g + 3];
         for (int b = 0; b < DEM_REC; b += 4) {
-            __m256d t[4];
-            transpose4(_mm256_load_pd(r0 + b), _mm256_load_pd(r1 + b),
-                       _mm256_load_pd(r2 + b), _mm256_load_pd(r3 + b), t);
-            for (int u = 0; u < 4; u++)
-                _mm256_store_pd(&o[b + u][g], t[u]);
+            const double *const a[4] = {r0 + b, r1 + b, r2 + b, r3 + b};
+            double *const t[4] = {&o[b][g], &o[b + 1][g], &o[b + 2][g],
+                                  &o[b + 3][g]};
+            transpose4(a, t, 0);
         }
     }
 #endif
@@ -503,16 +591,15 @@ DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
     }
 #else
     /* per 4 lanes two 4 x 4 transposes: f and c x, then c y z and pad */
-    const __m256d z = _mm256_setzero_pd();
+    static const double z[4] = {0.0};
     for (int g = 0; g < DEM_PAIR_LANES; g += 4, d += 32)
         for (int b = 0; b < 2; b++) {
-            __m256d t[4];
-            transpose4(_mm256_load_pd(&o[4 * b][g]),
-                       _mm256_load_pd(&o[4 * b + 1][g]),
-                       b ? z : _mm256_load_pd(&o[2][g]),
-                       b ? z : _mm256_load_pd(&o[3][g]), t);
-            for (int u = 0; u < 4; u++) /* record g + u, its b-th half */
-                _mm256_storeu_pd(d + 8 * u + 4 * b, t[u]);
+            const double *const a[4] = {&o[4 * b][g], &o[4 * b + 1][g],
+                                        b ? z : &o[2][g], b ? z : &o[3][g]};
+            /* record g + u, its b-th half */
+            double *const t[4] = {d + 4 * b, d + 8 + 4 * b, d + 16 + 4 * b,
+                                  d + 24 + 4 * b};
+            transpose4(a, t, 0);
         }
 #endif
 }
@@ -1138,7 +1225,7 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                     k = c->done[DEM_RING_DONE * u];
                     if (k >= kw)
                         break;
-                    _mm_pause();
+                    spin_pause();
                 }
             kw = 0;
         }
@@ -1195,8 +1282,14 @@ DEM_INLINE void axial_handover(double *H, const double *A, int w0, int w1)
         H[u] = A[u];
         u++;
     }
-    for (; u + 2 <= w1; u += 2)
+    for (; u + 2 <= w1; u += 2) {
+#if defined(__SSE2__)
         _mm_stream_pd(H + u, _mm_loadu_pd(A + u));
+#else
+        H[u] = A[u];
+        H[u + 1] = A[u + 1];
+#endif
+    }
     if (u < w1)
         H[u] = A[u];
 }
@@ -1238,7 +1331,7 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
         }
 #pragma omp barrier
     }
-    const unsigned long long t0 = __rdtsc(); /* for the balance */
+    const unsigned long long t0 = pass_ticks(); /* for the balance */
     /* its rows: with j in the block, then with some j beyond it */
     struct pass q = c->q;
     pair_range(law, q, k->k0, k->kt, k->kt, &c->cp, c->dt, c->cv, c->grad,
@@ -1279,8 +1372,8 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
     const int moved =
         particle_range(law, k->a, k->b, c->P, c->pl, c->q.F, 0, -1, c->gb,
                        c->gr, K, &V, &c->fr, c->rec, 0, &O);
-    _mm_sfence(); /* the ghost records out before the pass ends */
-    B->busy[8 * t] += __rdtsc() - t0;
+    pass_fence(); /* the ghost records out before the pass ends */
+    B->busy[8 * t] += pass_ticks() - t0;
     return moved;
 }
 #endif

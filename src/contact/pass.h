@@ -3,10 +3,10 @@
  * The pass is compiled up to four times (CMakeLists.txt): once as the
  * compiler likes it, which on CPUs with AVX2 or AVX-512 loads each SIMD
  * lane's particle data with hardware gathers; once with gathers switched
- * off (each lane's values from scalar loads); and, where the target has
- * AVX, twice reading the pairs' particle values from records of 12
- * doubles (x y z r, v m, w) by transposes, neither gathers nor one
- * load per lane (contact/pass_records.c), the second of them keeping the
+ * off (each lane's values from scalar loads); and twice reading the
+ * pairs' particle values from records of 12 doubles (x y z r, v m, w) by
+ * transposes, neither gathers nor one load per lane, on any CPU
+ * (contact/pass_records.c), the second of them keeping the
  * pairs' forces of a chained step in a ring per thread in cache instead
  * of the list's array (contact/pass_ring.c). All compute the same
  * operations in the same order, so their results are the same bit for
@@ -126,8 +126,7 @@ struct contacts {
     int S(dem__pass_gathers)(const struct contacts *c, struct kick K);         \
     /* the same code without hardware gathers (contact/pass_loads.c) */        \
     int S(dem__pass_loads)(const struct contacts *c, struct kick K);           \
-    /* the pairs' particle values from records (contact/pass_records.c;        \
-     * where the compilation has AVX) */                                       \
+    /* the pairs' particle values from records (contact/pass_records.c) */     \
     int S(dem__pass_records)(const struct contacts *c, struct kick K);         \
     /* the records pass whose chained steps keep the pairs' forces in a        \
      * ring per thread (contact/pass_ring.c) */                                \
@@ -143,10 +142,10 @@ DEM_PASS_ENTRIES_(DEM_PASS_V3_)
 DEM_PASS_ENTRIES_(DEM_PASS_V4_)
 #endif
 
-/* Whether this compilation of the records and ring passes has what they
- * need (AVX): a build for a CPU level below it has them only in its
- * compilations for the levels above. */
-#if DEM_HAVE_PASS_RECORDS && defined(__AVX__)
+/* Whether this build compiles the records and ring passes (GCC's vector
+ * extensions, any CPU: contact/pass.c; not in the sanitizer and fuzzing
+ * builds, CMakeLists.txt). */
+#if DEM_HAVE_PASS_RECORDS
 #define DEM_PASS_RECORDS_HERE 1
 #else
 #define DEM_PASS_RECORDS_HERE 0

@@ -1,5 +1,5 @@
 /* The force pass again, the pairs' particle values read from records
- * (contact/pass.c, DEM_PASS_RECORDS; AVX only). See contact/pass.h. */
+ * (contact/pass.c, DEM_PASS_RECORDS). See contact/pass.h. */
 #include "contact/pass.h"
 
 #if DEM_PASS_RECORDS_HERE

@@ -1,5 +1,5 @@
 /* The records pass again, its chained steps with the pairs' forces in a
- * ring per thread (contact/pass.c, DEM_PASS_RING; AVX only). See
+ * ring per thread (contact/pass.c, DEM_PASS_RING). See
  * contact/pass.h. */
 #include "contact/pass.h"
 

@@ -83,9 +83,14 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
         rc = parse_with(o, sets, ns, c, &e);
         if (rc) {
             char what[1024] = "";
-            for (int s = 0; s < ns; s++)
-                snprintf(what + strlen(what), sizeof what - strlen(what),
-                         "%s%s", s ? " " : "", sets[s]);
+            size_t len = 0; /* (a long list is cut at the buffer's end) */
+            for (int s = 0; s < ns; s++) {
+                const int w = snprintf(what + len, sizeof what - len, "%s%s",
+                                       s ? " " : "", sets[s]);
+                if (w < 0 || (size_t)w >= sizeof what - len)
+                    break;
+                len += (size_t)w;
+            }
             dem_error_set(err, rc, "sweep: grid point %s: %s", what, e.msg);
         }
     }
