@@ -226,7 +226,8 @@ struct variant {
 /* A level's variants, S naming its entry points (contact/pass.h). */
 #define VARIANTS_(S)                                                           \
     {"gathers", S(dem__pass_gathers), 0, 0}, LOADS_(S) RECORDS_(S)
-#if DEM_PASS_RECORDS_HERE
+/* (no records compilations in the sanitizer and fuzzing builds) */
+#if DEM_HAVE_PASS_RECORDS
 static const struct variant plain[] = {VARIANTS_(DEM_PASS_PLAIN_)};
 #else
 static const struct variant plain[] = {{"gathers", dem__pass_gathers, 0, 0},

@@ -142,13 +142,4 @@ DEM_PASS_ENTRIES_(DEM_PASS_V3_)
 DEM_PASS_ENTRIES_(DEM_PASS_V4_)
 #endif
 
-/* Whether this build compiles the records and ring passes (GCC's vector
- * extensions, any CPU: contact/pass.c; not in the sanitizer and fuzzing
- * builds, CMakeLists.txt). */
-#if DEM_HAVE_PASS_RECORDS
-#define DEM_PASS_RECORDS_HERE 1
-#else
-#define DEM_PASS_RECORDS_HERE 0
-#endif
-
 #endif

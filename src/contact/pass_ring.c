@@ -3,7 +3,7 @@
  * contact/pass.h. */
 #include "contact/pass.h"
 
-#if DEM_PASS_RECORDS_HERE
+#if DEM_HAVE_PASS_RECORDS
 #define DEM_PASS_RECORDS 1
 #define DEM_PASS_RING 1
 #define DEM_PASS_ENTRY DEM_PASS_NAME(dem__pass_ring)
