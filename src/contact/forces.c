@@ -701,10 +701,10 @@ static int forces(struct dem_sim *s, const struct kick K)
             dem_img_shift(c.cv, g, c.shift[g]);
             c.shift[g][3] = 0.0;
         }
-        dem_sim_cell_frame(s, &c.fr);
         dem_sim_cell_grad(s, c.grad);
         c.q.cjr = pl->jrec;
     }
+    dem_sim_frame(s, &c.fr);
 #if DEM_HAVE_PASS_RECORDS
     if (K.chain) {
         c.ring_chunk = pl->ring_chunk ? pl->ring_chunk : DEM_RING_CHUNK;

@@ -72,7 +72,8 @@ struct contacts {
     struct dem_frame fr; /* the positions' frame now (core/cell.h): a
                             pair's distance is fr.m times theirs, and so
                             is a position in the virial; a drift moves
-                            one by dt fr.g v */
+                            one by dt fr.g v; between walls the box's
+                            map of the list's check, fr.b */
     /* m; image code g's shift (dem_img_shift of cv), then 0, as
      * image_records adds it to a record (contact/pass.c) */
     _Alignas(32) double shift[DEM_IMG_CODES][4];

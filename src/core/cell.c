@@ -125,6 +125,10 @@ void dem_sim_cell_frame(const struct dem_sim *s, struct dem_frame *f)
                           m[2] * m[2] + (m[3] - 1.0) * (m[3] - 1.0) +
                           m[4] * m[4] + (m[5] - 1.0) * (m[5] - 1.0));
     f->s2 = (1.0 + e) * (1.0 + e);
+    for (int k = 0; k < 3; k++) { /* the box's map: the cell's is m */
+        f->b[k] = 1.0;
+        f->b[3 + k] = 0.0;
+    }
 }
 
 struct dem_particles dem_sim_engine_particles(const struct dem_sim *s)
@@ -225,5 +229,5 @@ double dem_sim_cell_closure(const struct dem_sim *s)
                 m += h[a][k] * g[k][bb];
             n2 += m * m;
         }
-    return sqrt(n2) * s->cell.range;
+    return sqrt(n2) * s->range;
 }

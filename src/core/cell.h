@@ -69,7 +69,6 @@ struct dem_cell {
     double stress[3][3];      /* N m (2D: N m / m); the cell's virial,
                                  sum over contacts of l (x) f plus
                                  sum m v (x) v, of the last force pass */
-    double range;             /* m; interaction range, 2 a_max + skin */
     double closure;           /* m; how much the cell's deformation may
                                  have closed a listed pair since the last
                                  build when the drift cut was last set

@@ -101,16 +101,18 @@ static inline void dem_particle_kick(const struct dem_particles *p, int i,
     p->wz[i] += h * p->inv_I[i] * tz;
 }
 
-/* Drift r += dt v of particle i; returns its squared distance from its
- * position at the last list build (x0). */
+/* Drift r += dt v of particle i; returns its squared distance from
+ * where the box's map b (struct dem_frame.b: r0 -> b[k] r0 + b[3 + k] on
+ * axis k) carries its position at the last list build (x0). */
 static inline double dem_particle_drift(const struct dem_particles *p, int i,
-                                        double dt)
+                                        double dt, const double b[6])
 {
     p->x[i] += dt * p->vx[i];
     p->y[i] += dt * p->vy[i];
     p->z[i] += dt * p->vz[i];
-    const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
-                 dz = p->z[i] - p->z0[i];
+    const double dx = p->x[i] - (b[0] * p->x0[i] + b[3]),
+                 dy = p->y[i] - (b[1] * p->y0[i] + b[4]),
+                 dz = p->z[i] - (b[2] * p->z0[i] + b[5]);
     return dx * dx + dy * dy + dz * dz;
 }
 

@@ -123,12 +123,12 @@ static void set_closure(struct dem_sim *s, double e)
 
 int dem_sim_derive(struct dem_sim *s, struct dem_error *err)
 {
-    if (!s->cell.on)
-        return DEM_OK;
     double rmax = 0.0;
     for (int i = 0; i < s->p.n; i++)
         rmax = s->p.r[i] > rmax ? s->p.r[i] : rmax;
-    s->cell.range = 2.0 * rmax + s->skin_max;
+    s->range = 2.0 * rmax + s->skin_max;
+    if (!s->cell.on)
+        return DEM_OK;
     set_closure(s, dem_sim_cell_closure(s)); /* from the range and the
                                                 lattice built */
     const size_t nb = (size_t)(s->p.n + DEM_VIR_BLOCK - 1) / DEM_VIR_BLOCK;
@@ -224,22 +224,83 @@ int dem_sim_rebuild(struct dem_sim *s, struct dem_error *err)
 
 /* The list is rebuilt when some particle has moved further than its
  * reach (less the drift cut) or a wall more than half the skin since the
- * last build: until then no contact can form that is not listed. */
+ * last build, both measured from where the box's deformation since the
+ * build carries them (sim.h): until then no contact can form that is not
+ * listed. */
+
+/* The box's map since the build (struct dem_frame.b): each axis between
+ * its two walls scaled as the walls have moved; the identity on an axis
+ * without its two walls, in a cell and before the first build. Walls
+ * that have not moved give the identity exactly. */
+static void box_map(const struct dem_sim *s, double b[6])
+{
+    for (int k = 0; k < 3; k++) {
+        b[k] = 1.0;
+        b[3 + k] = 0.0;
+    }
+    const double *w0 = s->pairs.wall_pos0;
+    for (int k = 0; !s->cell.on && k < s->dim && 2 * k + 1 < s->nwall; k++) {
+        const double lo0 = w0[2 * k], hi0 = w0[2 * k + 1],
+                     lo = s->wall[2 * k].pos, hi = s->wall[2 * k + 1].pos;
+        if (!(hi0 > lo0) || !(hi > lo))
+            continue;
+        b[k] = (hi - lo) / (hi0 - lo0);
+        b[3 + k] = lo - b[k] * lo0;
+    }
+}
+
+/* How far the box's map b may have closed a listed pair or a wall
+ * contact: a pair (i, j) not listed was further than a_i + a_j + its
+ * reaches, at most 2 a_max + skin (s->range, since every reach is at
+ * most half the skin), apart, a wall contact further than a_i + its
+ * reach + half the skin; the map shortens both by at most (1 - s) times
+ * that, s its smallest scale. (1 - s) (range + skin_max) bounds twice
+ * either. */
+static double box_closure(const struct dem_sim *s, const double b[6])
+{
+    double smin = 1.0;
+    for (int k = 0; k < s->dim; k++)
+        smin = b[k] < smin ? b[k] : smin;
+    return (1.0 - smin) * (s->range + s->skin_max);
+}
+
+void dem_sim_frame(const struct dem_sim *s, struct dem_frame *f)
+{
+    if (s->cell.on) {
+        dem_sim_cell_frame(s, f);
+        return;
+    }
+    static const double one[6] = {1.0, 0.0, 0.0, 1.0, 0.0, 1.0};
+    memcpy(f->m, one, sizeof one);
+    memcpy(f->g, one, sizeof one);
+    f->s2 = 1.0;
+    box_map(s, f->b);
+}
+
+double dem_sim_drift_cut(const struct dem_sim *s)
+{
+    if (s->cell.on)
+        return 0.5 * s->cell.closure;
+    double b[6];
+    box_map(s, b);
+    return 0.5 * box_closure(s, b);
+}
 
 /* Particles i0 <= i < i1: half kick, then drift; returns whether one has
  * moved further than its reach less cut since the last list build. */
 static int kick_drift_range(int i0, int i1, double h, double dt,
                             const double g[3], double cut,
                             const struct dem_particles *p,
-                            const struct dem_frame *fr)
+                            const struct dem_frame *fr, int cell)
 {
     const double hg[3] = {h * g[0], h * g[1], h * g[2]};
     double far = 0.0; /* the largest overshoot */
     for (int i = i0; i < i1; i++) {
         dem_particle_kick(p, i, h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
                           p->ty[i], p->tz[i]);
-        const double d2 = fr ? dem_particle_drift_frame(p, i, dt, fr->g, fr->s2)
-                             : dem_particle_drift(p, i, dt);
+        const double d2 =
+            cell ? dem_particle_drift_frame(p, i, dt, fr->g, fr->s2)
+                 : dem_particle_drift(p, i, dt, fr->b);
         const double o = dem_particle_overshoot(p, i, d2, cut);
         far = o > far ? o : far;
     }
@@ -256,25 +317,27 @@ static int kick_drift(struct dem_sim *s, double h)
     const double cut = dem_sim_drift_cut(s);
     const struct dem_particles e = dem_sim_engine_particles(s);
     struct dem_frame fr;
-    if (s->cell.on)
-        dem_sim_cell_frame(s, &fr);
+    dem_sim_frame(s, &fr);
     int moved = 0;
 #pragma omp parallel reduction(| : moved)
     {
         /* shares on cache lines of the arrays (core/particles.h) */
         const int nt = omp_get_num_threads(), t = omp_get_thread_num(),
                   g = DEM_PARTICLE_LINE;
-        moved = kick_drift_range(
-            dem_block_aligned(n, t, nt, g), dem_block_aligned(n, t + 1, nt, g),
-            h, s->dt, s->cfg.gravity, cut, &e, s->cell.on ? &fr : NULL);
+        moved = kick_drift_range(dem_block_aligned(n, t, nt, g),
+                                 dem_block_aligned(n, t + 1, nt, g), h, s->dt,
+                                 s->cfg.gravity, cut, &e, &fr, s->cell.on);
     }
     return moved;
 }
 
-/* Whether a wall has moved more than half the skin since the last build;
- * in a periodic cell, whether the cell has deformed too much (e, its
- * dem_sim_cell_closure now) or a tilt calls for a re-map. */
-static int walls_need_rebuild(const struct dem_sim *s, double e)
+/* Whether a wall is more than half the skin from where the box's map b
+ * of the particles' check (before the walls' drift) carries its position
+ * at the last build; in a periodic cell, whether the cell has deformed
+ * too much (e, its dem_sim_cell_closure now) or a tilt calls for a
+ * re-map. */
+static int walls_need_rebuild(const struct dem_sim *s, double e,
+                              const double b[6])
 {
     if (s->cell.on) {
         struct dem_lattice c;
@@ -286,9 +349,12 @@ static int walls_need_rebuild(const struct dem_sim *s, double e)
                e > (DEM_CELL_AFFINE_MAX - DEM_CELL_AFFINE_AHEAD) * s->skin;
     }
     const double half = 0.5 * s->skin;
-    for (int w = 0; w < s->nwall; w++)
-        if (fabs(s->wall[w].pos - s->pairs.wall_pos0[w]) > half)
+    for (int w = 0; w < s->nwall; w++) {
+        const int k = s->wall[w].axis;
+        const double at = b[k] * s->pairs.wall_pos0[w] + b[3 + k];
+        if (fabs(s->wall[w].pos - at) > half)
             return 1;
+    }
     return 0;
 }
 
@@ -382,7 +448,8 @@ static void adapt_skin(struct dem_sim *s)
 
 /* Each own particle's reach for the list about to be built (see
  * DEM_REACH_AHEAD), after adapt_skin; n steps since the last build, e the
- * cell's deformation over them (dem_sim_cell_closure). Depends only on
+ * closure of the cell's or the box's deformation over them (closure).
+ * Depends only on
  * the particle's own positions and on step counts, so runs stay the same
  * for any number of threads or ranks (the ghosts bring their owners'). */
 static void adapt_reach(struct dem_sim *s, long n, double e)
@@ -395,18 +462,19 @@ static void adapt_reach(struct dem_sim *s, long n, double e)
     /* no interval to scale (a second build in one step): keep them */
     const double scale =
         n > 0 ? DEM_REACH_AHEAD * DEM_BUILD_INTERVAL / (double)n : 0.0;
-    const double aff =
-        s->cell.on ? 0.5 * (scale * e + DEM_CELL_AFFINE_AHEAD * s->skin) : 0.0;
-    /* in a cell the displacement in the frame mapped with the cell */
-    struct dem_frame fr = {{1.0, 0.0, 0.0, 1.0, 0.0, 1.0}, {0.0}, 1.0};
-    if (s->cell.on)
-        dem_sim_cell_frame(s, &fr);
-    const double *m = fr.m;
+    const double ahead = s->cell.on ? DEM_CELL_AFFINE_AHEAD * s->skin : 0.0;
+    const double aff = 0.5 * (scale * e + ahead);
+    /* the displacement from where the box's map carries the position of
+     * the build, in a cell in the frame mapped with the cell */
+    struct dem_frame fr;
+    dem_sim_frame(s, &fr);
+    const double *m = fr.m, *b = fr.b;
     const struct dem_particles q = dem_sim_engine_particles(s);
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < own; i++) {
-        const double dx = q.x[i] - p->x0[i], dy = q.y[i] - p->y0[i],
-                     dz = q.z[i] - p->z0[i];
+        const double dx = q.x[i] - (b[0] * p->x0[i] + b[3]),
+                     dy = q.y[i] - (b[1] * p->y0[i] + b[4]),
+                     dz = q.z[i] - (b[2] * p->z0[i] + b[5]);
         const double ex = m[0] * dx + m[1] * dy + m[2] * dz,
                      ey = m[3] * dy + m[4] * dz, ez = m[5] * dz;
         const double d = sqrt(ex * ex + ey * ey + ez * ez);
@@ -437,6 +505,8 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     const int moved = s->drifted ? s->moved : kick_drift(s, h);
     s->drifted = 0;
     double t1 = lap(s);
+    double b[6]; /* the box's map of that drift's check */
+    box_map(s, b);
     walls_kick(s, h);
     walls_drift(s, s->t + s->dt);
     /* whatever looks at the particles after a step that is not chained
@@ -446,9 +516,13 @@ int dem_sim_step(struct dem_sim *s, struct dem_error *err)
     double t2 = lap(s);
     s->t += s->dt;
     s->step++;
-    /* the cell's deformation since the build, once per step */
-    const double e = s->cell.on ? dem_sim_cell_closure(s) : 0.0;
-    int rebuild = moved || walls_need_rebuild(s, e) || skin_stale(s);
+    /* the cell's or the box's deformation since the build, once per
+     * step */
+    double bnow[6];
+    box_map(s, bnow);
+    const double e =
+        s->cell.on ? dem_sim_cell_closure(s) : box_closure(s, bnow);
+    int rebuild = moved || walls_need_rebuild(s, e, b) || skin_stale(s);
     double ts = 0.0, tr = 0.0; /* the exchanges between ranks */
     if (s->halo) {
         const double a = lap(s);

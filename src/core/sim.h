@@ -110,6 +110,8 @@ struct dem_sim {
     double skin_max;  /* m; its largest value and the first (the
                          interaction range of the cell and of the domain
                          decomposition assume it) */
+    double range;     /* m; the interaction range, 2 a_max + skin_max
+                         (dem_sim_derive) */
     long build_step;  /* step of the last list build */
     long nbuild; /* neighbour-list builds so far */
     int reorder; /* 1: sort particles in cell order at each
@@ -239,13 +241,23 @@ double dem_sim_skin_share(const struct dem_sim *s);
  * DEM_CELL_AFFINE_MAX of the skin, calls for a rebuild. */
 #define DEM_CELL_AFFINE_AHEAD 0.02
 #define DEM_CELL_AFFINE_MAX 0.5
-/* What a periodic cell's deformation since the build takes from every
- * particle's reach: half of cell.closure (0 without a cell). A particle
- * that has moved further than its reach less this calls for a rebuild. */
-static inline double dem_sim_drift_cut(const struct dem_sim *s)
-{
-    return s->cell.on ? 0.5 * s->cell.closure : 0.0;
-}
+/* Between walls the list follows the box in the same way (core/sim.c,
+ * docs/physics.md): a particle's displacement since the build is taken
+ * from where the box's deformation since then carries its position at
+ * the build (struct dem_frame.b: each axis scaled between its two
+ * walls), so that a sample the walls compress as a whole does not call
+ * for builds by the affine motion alone. That map shortens no distance
+ * by more than the factor of its most compressed axis, s: a listed pair
+ * or wall contact closes by at most the particles' own displacements
+ * from it plus the box's closure, (1 - s) (range + skin_max), and each
+ * particle may move its reach less half of that; a wall calls for a
+ * rebuild when it is more than half the skin from where the map takes
+ * its position at the build. */
+/* What the deformation since the build takes from every particle's
+ * reach: half of cell.closure in a cell, else half of the box's closure
+ * now (0 while the walls have not moved). A particle that has moved
+ * further than its reach less this calls for a rebuild. */
+double dem_sim_drift_cut(const struct dem_sim *s);
 /* The lattice now, from the walls and the tilts. */
 void dem_sim_lattice(const struct dem_sim *s, struct dem_lattice *c);
 /* The velocity gradient of the cell's affine field, hdot h^-1, as
@@ -255,11 +267,16 @@ void dem_sim_cell_grad(const struct dem_sim *s, double grad[6]);
  * the lattice of the last list build, h_b. A position r of the frame is
  * lo + m (r - lo_b) now, with m = h h_b^-1, whose inverse is g; both
  * upper triangular, as struct dem_lattice.v (2D: m_zz = g_zz = 1).
- * s2 = (1 + |m - 1|_F)^2 bounds |m d|^2 / |d|^2 for every d. */
+ * s2 = (1 + |m - 1|_F)^2 bounds |m d|^2 / |d|^2 for every d.
+ * Between walls m and g are the identity and s2 = 1, and b is the box's
+ * map since the build: a position r0 of the build is carried to
+ * b[k] r0 + b[3 + k] on axis k (the identity in a cell). */
 struct dem_frame {
-    double m[6], g[6], s2;
+    double m[6], g[6], s2, b[6];
 };
 void dem_sim_cell_frame(const struct dem_sim *s, struct dem_frame *f);
+/* The frame of the list's check now: the cell's, or the box's map. */
+void dem_sim_frame(const struct dem_sim *s, struct dem_frame *f);
 /* The positions x, y, z now from the engine's (xs, ys, zs), which stay
  * in the frame between builds: the cell moves no position in a step
  * (core/cell.h), so the results do not depend on when they are read. */

@@ -11,8 +11,9 @@
  * have been re-ordered in memory.
  *
  * The lists are rebuilt when some particle has moved further than its
- * reach or some wall more than half the skin since the last build, so no
- * contact can be missed in between. At a rebuild the particles may be
+ * reach or some wall more than half the skin since the last build (both
+ * measured in the frame of the box or cell, core/sim.h), so no contact
+ * can be missed in between. At a rebuild the particles may be
  * re-ordered in cell order (see dem_pairs_build) so that neighbours are
  * close in memory.
  *
