@@ -377,6 +377,68 @@ static void reaches_follow_motion_and_miss_no_contact(void **state)
     dem_sim_destroy(&s);
 }
 
+/* The floor of the reaches is set by the bulk (core/sim.h): one fast
+ * particle in a packing of 1332 keeps the skin at its largest, yet the
+ * particles at rest keep the smallest floor, half of the smallest skin,
+ * and not half of half the skin; every touching pair and wall contact of
+ * the flier is listed. */
+static void one_fast_particle_sets_no_floor(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_sim s;
+    const int m = 10, n = m * m * m + 1;
+    const double r = 3e-3, a = 2.16 * r;
+    test_sim(&s, &c, n, 0.0, 0.1);
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            for (int k = 0; k < m; k++)
+                test_add(&s, 1.01 * r + a * i, 1.01 * r + a * j,
+                         1.01 * r + a * k, r);
+    /* the flier, above the lattice, 0.2 r from the wall it flies at */
+    test_add(&s, 0.1 - 1.2 * r, 0.05, 0.09, r);
+    test_ready(&s);
+    int f = -1;
+    for (int i = 0; i < n; i++)
+        if (s.p.id[i] == n - 1)
+            f = i;
+    s.p.vx[f] = 3.0;
+    s.p.vy[f] = 1.0;
+    char *in = malloc((size_t)n * n);
+    int walls = 0;
+    for (long k = 0; k < 1000;) {
+        const long d = k % 3 == 0 ? 2 : 1; /* chained steps too */
+        test_step(&s, d);
+        k += d;
+        touching_listed(&s, in);
+        for (f = 0; s.p.id[f] != n - 1; f++)
+            ;
+        if (s.p.x[f] > 0.1 - s.p.r[f]) { /* the flier at the wall */
+            int found = 0;
+            for (int q = s.pairs.wcur.start[f]; q < s.pairs.wcur.start[f + 1];
+                 q++)
+                found |= s.pairs.wcur.j[q] == 1;
+            if (!found)
+                fail_msg("step %ld: the flier touches wall 1 unlisted", s.step);
+            walls++;
+        }
+    }
+    free(in);
+    assert_true(walls > 10 && s.p.vx[f] < 0.0); /* it bounced */
+    assert_true(s.nbuild > 4 && s.skin > 0.5 * s.skin_max);
+    const double floor = 0.5 * DEM_SKIN_MIN * s.skin_max;
+    int rest = 0;
+    for (int i = 0; i < n; i++)
+        if (s.p.vx[i] == 0.0 && s.p.vy[i] == 0.0 && s.p.vz[i] == 0.0) {
+            assert_true(s.p.reach[i] == floor);
+            rest++;
+        }
+    assert_int_equal(rest, n - 1);
+    assert_true(floor < DEM_REACH_MIN * 0.5 * s.skin);
+    dem_sim_destroy(&s);
+}
+
 /* Between walls the list follows the box (core/sim.h): particles that
  * move with the box's deformation (here z compressed by 25 %, x stretched
  * by 10 %) do not call for builds by that motion, yet pairs that the
@@ -433,6 +495,7 @@ int main(void)
         cmocka_unit_test(skin_adapts_and_misses_no_contact),
         cmocka_unit_test(reaches_follow_motion_and_miss_no_contact),
         cmocka_unit_test(builds_follow_the_box_and_miss_no_contact),
+        cmocka_unit_test(one_fast_particle_sets_no_floor),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -973,9 +973,6 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     /* the frame's inverse map (cell), as locals no store changes */
     const double *g = fr->g, s2 = fr->s2;
     const double fi[6] = {g[0], g[1], g[2], g[3], g[4], g[5]};
-    /* and the box's map since the build (walls) */
-    const double *bm = fr->b;
-    const double bb[6] = {bm[0], bm[1], bm[2], bm[3], bm[4], bm[5]};
     double *restrict ofx = P->fx, *restrict ofy = P->fy, *restrict ofz = P->fz;
     double *restrict otx = P->tx, *restrict oty = P->ty, *restrict otz = P->tz;
     const int *restrict rstart = pl->rstart, *restrict wstart = pl->wcur.start,
@@ -1112,6 +1109,10 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                                   bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
         }
         if (K.chain) {
+            /* the box's map since the build (walls), loaded here: kept
+             * in registers through the pair loops it made them slower */
+            const double *bm = fr->b;
+            const double bb[6] = {bm[0], bm[1], bm[2], bm[3], bm[4], bm[5]};
 #pragma omp simd reduction(max : far)
             for (int u = 0; u <= b; u++) {
                 const int k = ib + u;

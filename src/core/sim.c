@@ -446,22 +446,51 @@ static void adapt_skin(struct dem_sim *s)
     s->skin = skin < lo ? lo : (skin > s->skin_max ? s->skin_max : skin);
 }
 
+/* The particles' reaches in bins of 1/8 octave of the largest skin,
+ * from 2^-24 of it (bin 0 holds everything below) to all of it (the last
+ * bin, everything above): counts, so that their sums over threads and
+ * ranks do not depend on the order. */
+#define REACH_BINS 193
+static int reach_bin(double r, double skin_max)
+{
+    const double x = 8.0 * log2(r / skin_max) + 192.0;
+    return !(x > 0.0) ? 0 : x >= REACH_BINS - 1 ? REACH_BINS - 1 : (int)x;
+}
+
+/* The upper edge of the bin that holds the reach of the bulk: all
+ * particles' reaches (counts hist) but those of the DEM_REACH_FAST share
+ * of them with the largest. */
+static double reach_bulk(const double hist[REACH_BINS], double skin_max)
+{
+    double total = 0.0;
+    for (int k = 0; k < REACH_BINS; k++)
+        total += hist[k];
+    const double allow = DEM_REACH_FAST * total;
+    double above = 0.0;
+    int k = REACH_BINS - 1;
+    for (; k > 0; k--) {
+        above += hist[k];
+        if (above > allow)
+            break;
+    }
+    return skin_max * exp2((k + 1 - 192) / 8.0);
+}
+
 /* Each own particle's reach for the list about to be built (see
  * DEM_REACH_AHEAD), after adapt_skin; n steps since the last build, e the
  * closure of the cell's or the box's deformation over them (closure).
- * Depends only on
- * the particle's own positions and on step counts, so runs stay the same
- * for any number of threads or ranks (the ghosts bring their owners'). */
+ * Depends only on the particles' positions, counted in bins, and on step
+ * counts, so runs stay the same for any number of threads or ranks (the
+ * ghosts bring their owners'). */
 static void adapt_reach(struct dem_sim *s, long n, double e)
 {
     struct dem_particles *p = &s->p;
     const int own = p->n - s->pairs.nghost;
-    const double cap = 0.5 * s->skin,
-                 lo = fmax(DEM_REACH_MIN * cap,
-                           0.5 * DEM_SKIN_MIN * s->skin_max);
     /* no interval to scale (a second build in one step): keep them */
-    const double scale =
-        n > 0 ? DEM_REACH_AHEAD * DEM_BUILD_INTERVAL / (double)n : 0.0;
+    if (n <= 0)
+        return;
+    const double cap = 0.5 * s->skin;
+    const double scale = DEM_REACH_AHEAD * DEM_BUILD_INTERVAL / (double)n;
     const double ahead = s->cell.on ? DEM_CELL_AFFINE_AHEAD * s->skin : 0.0;
     const double aff = 0.5 * (scale * e + ahead);
     /* the displacement from where the box's map carries the position of
@@ -470,16 +499,32 @@ static void adapt_reach(struct dem_sim *s, long n, double e)
     dem_sim_frame(s, &fr);
     const double *m = fr.m, *b = fr.b;
     const struct dem_particles q = dem_sim_engine_particles(s);
+    double hist[REACH_BINS] = {0.0};
+#pragma omp parallel
+    {
+        long h[REACH_BINS] = {0};
+#pragma omp for schedule(static)
+        for (int i = 0; i < own; i++) {
+            const double dx = q.x[i] - (b[0] * p->x0[i] + b[3]),
+                         dy = q.y[i] - (b[1] * p->y0[i] + b[4]),
+                         dz = q.z[i] - (b[2] * p->z0[i] + b[5]);
+            const double ex = m[0] * dx + m[1] * dy + m[2] * dz,
+                         ey = m[3] * dy + m[4] * dz, ez = m[5] * dz;
+            p->reach[i] = scale * sqrt(ex * ex + ey * ey + ez * ez);
+            h[reach_bin(p->reach[i], s->skin_max)]++;
+        }
+#pragma omp critical
+        for (int k = 0; k < REACH_BINS; k++)
+            hist[k] += (double)h[k];
+    }
+    if (s->halo)
+        s->halo->sum(s, hist, REACH_BINS, 0);
+    const double lo =
+        fmax(DEM_REACH_MIN * fmin(cap, reach_bulk(hist, s->skin_max)),
+             0.5 * DEM_SKIN_MIN * s->skin_max);
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < own; i++) {
-        const double dx = q.x[i] - (b[0] * p->x0[i] + b[3]),
-                     dy = q.y[i] - (b[1] * p->y0[i] + b[4]),
-                     dz = q.z[i] - (b[2] * p->z0[i] + b[5]);
-        const double ex = m[0] * dx + m[1] * dy + m[2] * dz,
-                     ey = m[3] * dy + m[4] * dz, ez = m[5] * dz;
-        const double d = sqrt(ex * ex + ey * ey + ez * ez);
-        double r =
-            n > 0 ? (scale * d > lo ? scale * d : lo) + aff : p->reach[i];
+        const double r = (p->reach[i] > lo ? p->reach[i] : lo) + aff;
         p->reach[i] = r < cap ? r : cap;
     }
 }

@@ -215,16 +215,18 @@ int dem_sim_forces_kick(struct dem_sim *s, double h, int chain);
 #define DEM_SKIN_STALE 4
 /* Each particle's reach (struct dem_particles.reach) adapts at each build
  * too: DEM_REACH_AHEAD times its displacement over the last interval,
- * scaled to DEM_BUILD_INTERVAL steps (in a cell plus its half of the
- * cell's deformation scaled the same way and of the reserve), at least
- * DEM_REACH_MIN of half the skin and half the smallest skin, at most half
- * the skin. A packing whose skin a few fast particles keep large
- * (rattlers sliding along a wall) then lists little more than its
- * contacts elsewhere; a particle at rest keeps a floor, since a resting
- * one that a neighbour sets moving would otherwise call for builds at
- * once (docs/physics.md). */
+ * scaled to DEM_BUILD_INTERVAL steps (plus its half of the cell's or the
+ * box's closure scaled the same way, and in a cell of the reserve), at
+ * least DEM_REACH_MIN of the reach of the bulk (at most half the skin)
+ * and half the smallest skin, at most half the skin. The bulk are all
+ * particles but the DEM_REACH_FAST share with the largest reaches. A
+ * packing whose skin a few fast particles keep large (rattlers sliding
+ * along a wall) then lists little more than its contacts elsewhere; a
+ * particle at rest keeps a floor, since a resting one that a neighbour
+ * sets moving would otherwise call for builds at once (docs/physics.md). */
 #define DEM_REACH_AHEAD 2.0
 #define DEM_REACH_MIN 0.5
+#define DEM_REACH_FAST 0.001
 /* The largest skin: a tenth of the particles' mean diameter (the
  * peers' benchmark settings use 1 mm for 10 mm spheres). */
 double dem_sim_skin_largest(const struct dem_particles *p);
