@@ -450,11 +450,13 @@ static void adapt_skin(struct dem_sim *s)
  * from 2^-24 of it (bin 0 holds everything below) to all of it (the last
  * bin, everything above): counts, so that their sums over threads and
  * ranks do not depend on the order. */
-#define REACH_BINS 193
+#define REACH_PER_OCTAVE 8
+#define REACH_TOP (24 * REACH_PER_OCTAVE) /* the bin of the largest skin */
+#define REACH_BINS (REACH_TOP + 1)
 static int reach_bin(double r, double skin_max)
 {
-    const double x = 8.0 * log2(r / skin_max) + 192.0;
-    return !(x > 0.0) ? 0 : x >= REACH_BINS - 1 ? REACH_BINS - 1 : (int)x;
+    const double x = REACH_PER_OCTAVE * log2(r / skin_max) + REACH_TOP;
+    return !(x > 0.0) ? 0 : x >= REACH_TOP ? REACH_TOP : (int)x;
 }
 
 /* The upper edge of the bin that holds the reach of the bulk: all
@@ -473,7 +475,7 @@ static double reach_bulk(const double hist[REACH_BINS], double skin_max)
         if (above > allow)
             break;
     }
-    return skin_max * exp2((k + 1 - 192) / 8.0);
+    return skin_max * exp2((double)(k + 1 - REACH_TOP) / REACH_PER_OCTAVE);
 }
 
 /* Each own particle's reach for the list about to be built (see
