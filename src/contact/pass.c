@@ -1109,8 +1109,8 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                                   bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
         }
         if (K.chain) {
-            /* the box's map since the build (walls), loaded here: kept
-             * in registers through the pair loops it made them slower */
+            /* the box's map since the build (walls), loaded where the
+             * drift uses it rather than live through the pair loops */
             const double *bm = fr->b;
             const double bb[6] = {bm[0], bm[1], bm[2], bm[3], bm[4], bm[5]};
 #pragma omp simd reduction(max : far)

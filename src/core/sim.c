@@ -512,6 +512,7 @@ static void adapt_reach(struct dem_sim *s, long n, double e)
                          dz = q.z[i] - (b[2] * p->z0[i] + b[5]);
             const double ex = m[0] * dx + m[1] * dy + m[2] * dz,
                          ey = m[3] * dy + m[4] * dz, ez = m[5] * dz;
+            /* until the floor is known below: the scaled displacement */
             p->reach[i] = scale * sqrt(ex * ex + ey * ey + ez * ez);
             h[reach_bin(p->reach[i], s->skin_max)]++;
         }
