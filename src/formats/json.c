@@ -132,9 +132,3 @@ void dem__json_null(struct dem__json *j, const char *key)
     item(j, key);
     fputs("null", j->f);
 }
-
-void dem__json_bool(struct dem__json *j, const char *key, int v)
-{
-    item(j, key);
-    fputs(v ? "true" : "false", j->f);
-}
