@@ -152,39 +152,49 @@ struct streams {
  * reverse row summed back, its kicks and drift. */
 static inline void ring_visit(const struct streams *S, double *ring, int i)
 {
+    /* locals, so that the stores through int and double pointers do not
+     * make the compiler read S's members again */
+    const int *start = S->start, *rstart = S->rstart, *ci = S->ci, *cj = S->cj,
+              *rpair = S->rpair;
+    int *state = S->state;
+    double *h0 = S->h[0], *h1 = S->h[1], *h2 = S->h[2], *rec = S->rec;
+    const int mask = S->mask, k0 = start[i], k1 = start[i + 1];
     double fx = 0.0, fy = 0.0;
-    for (int k = S->start[i]; k < S->start[i + 1]; k++) {
-        const double *a = S->rec + 12 * (size_t)S->ci[k],
-                     *b = S->rec + 12 * (size_t)S->cj[k];
+    for (int k = k0; k < k1; k++) {
+        const double *a = rec + 12 * (size_t)ci[k],
+                     *b = rec + 12 * (size_t)cj[k];
         const double d = a[0] + b[0] + b[11];
-        S->state[k] ^= 1;
-        double *o = ring + 6 * (size_t)(k & S->mask);
-        for (int e = 0; e < 3; e++) {
-            S->h[e][k] += d;
-            o[e] = d;
-            o[e + 3] = S->h[e][k];
-        }
+        state[k] ^= 1;
+        double *o = ring + 6 * (size_t)(k & mask);
+        h0[k] += d;
+        h1[k] += d;
+        h2[k] += d;
+        o[0] = o[1] = o[2] = d;
+        o[3] = h0[k];
+        o[4] = h1[k];
+        o[5] = h2[k];
     }
-    for (int k = S->start[i]; k < S->start[i + 1]; k++) {
-        const double *o = ring + 6 * (size_t)(k & S->mask);
+    for (int k = k0; k < k1; k++) {
+        const double *o = ring + 6 * (size_t)(k & mask);
         fx += o[0] + o[1] + o[2];
         fy += o[3] + o[4] + o[5];
     }
-    for (int q = S->rstart[i]; q < S->rstart[i + 1]; q++) {
-        const double *o = ring + 6 * (size_t)(S->rpair[q] & S->mask);
+    for (int q = rstart[i]; q < rstart[i + 1]; q++) {
+        const double *o = ring + 6 * (size_t)(rpair[q] & mask);
         fx -= o[0] + o[1] + o[2];
         fy += o[3] + o[4] + o[5];
     }
     fx += S->wstart[i] + S->wstart[i + 1];
     for (int e = 0; e < 8; e++)
         fy += S->ro[e][i];
-    double *w = S->rec + 12 * (size_t)i;
+    const double u = 1e-300 * fx + 1e-300 * fy;
+    double *w = rec + 12 * (size_t)i;
     for (int e = 0; e < 12; e++) {
         if (S->arrays && e < 9) {
-            S->rw[e][i] += 1e-300 * fx + 1e-300 * fy;
+            S->rw[e][i] += u;
             w[e] = S->rw[e][i];
         } else {
-            w[e] += 1e-300 * fx + 1e-300 * fy;
+            w[e] += u;
         }
     }
 }
