@@ -351,6 +351,51 @@ static void forces_file_of_wrong_length_is_an_error(void **state)
     remove_dir(dir);
 }
 
+/* A cyclic run's summary.json gives a picture of the strain per cycle:
+ * every cycle a row of the data file with its gain and its accumulated
+ * strain, a negative gain drawn as an open circle, the verdict in the
+ * key; a run without cycles gets none. */
+static void cycles_of_the_summary_are_drawn(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 3, 0, 30);
+    write_particles(dir, 3, 0);
+    run_ok(dir);
+    assert_int_equal(file_size(dir, "plots/strain_accumulation.dat"), -1);
+    char p[1024];
+    path_of(p, sizeof p, dir, "summary.json");
+    FILE *f = fopen(p, "w");
+    assert_non_null(f);
+    fprintf(f, "{\"peak\": {\"sin_phi\": null}, \"cycles\": ["
+               "{\"index\": 1, \"strain_end\": 2e-05, "
+               "\"strain_increment\": 2e-05},"
+               "{\"index\": 2, \"strain_end\": 2.1e-05, "
+               "\"strain_increment\": 1e-06},"
+               "{\"index\": 3, \"strain_end\": 2.05e-05, "
+               "\"strain_increment\": -5e-07}], "
+               "\"verdict\": \"shakedown\"}\n");
+    assert_int_equal(fclose(f), 0);
+    run_ok(dir);
+    assert_true(file_contains(dir, "plots/strain_accumulation.dat",
+                              "1 2e-05 0 2e-05 0 1"));
+    assert_true(file_contains(dir, "plots/strain_accumulation.dat",
+                              "2 1e-06 0 2.1e-05 0 1"));
+    assert_true(file_contains(dir, "plots/strain_accumulation.dat",
+                              "3 -5e-07 0 2.05e-05 0 1"));
+    assert_true(file_contains(dir, "plots/strain_accumulation.gp",
+                              "verdict: shakedown"));
+    assert_true(
+        file_contains(dir, "plots/strain_accumulation.gp", "open: negative"));
+    assert_outputs(dir);
+    if (have_gnuplot()) {
+        char plotdir[1024];
+        path_of(plotdir, sizeof plotdir, dir, "plots");
+        assert_png(plotdir, "strain_accumulation");
+    }
+    remove_dir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -362,6 +407,7 @@ int main(void)
         cmocka_unit_test(missing_column_names_the_column),
         cmocka_unit_test(header_only_timeseries_is_a_clear_error),
         cmocka_unit_test(forces_file_of_wrong_length_is_an_error),
+        cmocka_unit_test(cycles_of_the_summary_are_drawn),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -4,8 +4,9 @@
  * Every curve picture is one entry of the table `plots` below: the rows it
  * uses (the loading stage or the whole run), the quantity on x, the
  * quantities on y and a few flags. One generic writer turns an entry into
- * NAME.dat and NAME.gp; only the Mohr circles, which are not curves of
- * the timeseries, have their own writer.
+ * NAME.dat and NAME.gp; only the Mohr circles and the strain per cycle
+ * (from summary.json, cycles.c), which are not curves of the timeseries,
+ * have their own writers.
  *
  * The loading stage is the last compress or cyclic stage of the run's
  * config.cfg, with its axis. Without a config (or without such a stage)
@@ -98,6 +99,9 @@ struct series {
     size_t slo, shi;          /* the last shear stage's rows (none: equal) */
     double peak_sin, peak_strain; /* summary.json's peak (smoothed, as the
                                      analysis found it), NaN if none */
+    int ncyc;         /* summary.json's cycles of a cyclic stage, or 0 */
+    double *cyc;      /* their eps_D gained [0, ncyc), at the end [ncyc, ) */
+    char verdict[32]; /* summary.json's verdict, or empty */
 };
 
 static const char axis_name[3] = {'x', 'y', 'z'};
@@ -375,7 +379,7 @@ static void expand(char *out, size_t n, const char *in, const struct series *s)
 
 /* ----------------------------------------------------------- the table */
 
-enum rows { ROWS_LOADING, ROWS_ALL, ROWS_SHEAR };
+enum rows { ROWS_LOADING, ROWS_ALL, ROWS_SHEAR, ROWS_CYCLES };
 
 #define F_LOGY 1u   /* log y axis; non-positive values are left out */
 #define F_ZERO 2u   /* dashed line y = 0 */
@@ -399,6 +403,8 @@ struct plot_spec {
 
 static int write_mohr(const struct series *s, const struct plot_spec *p,
                       FILE *dat, FILE *gp);
+static int write_cycles(const struct series *s, const struct plot_spec *p,
+                        FILE *dat, FILE *gp);
 
 static const struct plot_spec plots[] = {
     {"stress_strain",
@@ -455,6 +461,15 @@ static const struct plot_spec plots[] = {
      Q_NONE,
      0,
      write_mohr},
+    {"strain_accumulation",
+     "Strain accumulated per cycle",
+     "Δε_D per cycle",
+     ROWS_CYCLES,
+     Q_NONE,
+     {Q_NONE},
+     Q_NONE,
+     0,
+     write_cycles},
     {"shear",
      "Simple shear: mobilised friction",
      "τ/σ_n",
@@ -777,6 +792,45 @@ static int write_mohr(const struct series *s, const struct plot_spec *p,
     return DEM_OK;
 }
 
+/* ------------------------------------------------ strain accumulation */
+
+/* The cycles of summary.json (cycles.c): the strain accumulated and the
+ * strain gained per cycle, with the verdict in the key. */
+static int write_cycles(const struct series *s, const struct plot_spec *p,
+                        FILE *dat, FILE *gp)
+{
+    (void)p;
+    dem__plot_cycles_head(dat, gp, "cyclic stage (summary.json; errors 0)");
+    fprintf(dat, "# this run\n");
+    const struct dem__plot_cycles c = {s->ncyc,          s->cyc, NULL,
+                                       s->cyc + s->ncyc, NULL,   NULL};
+    const int negative = dem__plot_cycles_block(dat, &c);
+    dem__plot_title title[1];
+    snprintf(title[0], sizeof title[0], "%s%s",
+             s->verdict[0] ? "verdict: " : "this run", s->verdict);
+    dem__plot_cycles_panels(gp, title, 1, negative, "");
+    return DEM_OK;
+}
+
+/* The cycles and the verdict of summary.json (js) into s. */
+static int read_cycles(struct series *s, const struct dem__jval *js)
+{
+    const struct dem__jval *cy = dem__jread_get(js, "cycles");
+    const char *v = dem__jread_string(js, "verdict");
+    snprintf(s->verdict, sizeof s->verdict, "%s", v ? v : "");
+    if (!cy || cy->type != DEM__JSON_ARRAY || cy->n == 0)
+        return DEM_OK;
+    s->cyc = malloc(2 * (size_t)cy->n * sizeof *s->cyc);
+    if (!s->cyc)
+        return DEM_ENOMEM;
+    s->ncyc = cy->n;
+    for (int k = 0; k < cy->n; k++) {
+        s->cyc[k] = dem__jread_number(&cy->items[k], "strain_increment");
+        s->cyc[cy->n + k] = dem__jread_number(&cy->items[k], "strain_end");
+    }
+    return DEM_OK;
+}
+
 /* ------------------------------------------------------------- driver */
 
 /* NAME.dat and NAME.gp, both written through temporaries. */
@@ -836,9 +890,12 @@ static int final_box(const struct series *s, double lo[3], double hi[3])
 }
 
 /* Whether plot k of the table is drawn for this run (the shear plots
- * only with a shear stage). */
+ * only with a shear stage, the strain per cycle only with the cycles of
+ * a cyclic stage in summary.json). */
 static int plot_wanted(const struct series *s, int k)
 {
+    if (plots[k].rows == ROWS_CYCLES)
+        return s->ncyc > 0;
     return plots[k].rows != ROWS_SHEAR || s->shi > s->slo;
 }
 
@@ -924,6 +981,8 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
         if (!dem__jread_file(&js, path, &jerr)) {
             s.peak_sin = dem__jread_number(&js, "peak.sin_phi");
             s.peak_strain = dem__jread_number(&js, "peak.strain");
+            if (read_cycles(&s, &js))
+                rc = dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
             dem__jread_free(&js);
         }
     }
@@ -954,5 +1013,6 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     if (!prc)
         dem__csv_table_free(&pt);
     dem__csv_table_free(&ts);
+    free(s.cyc);
     return rc;
 }

@@ -28,6 +28,35 @@ const char *dem__gp_command(void);
 int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
                 struct dem_error *err);
 
+/* ------------------------------------------------ strain accumulation */
+
+/* One series of strain_accumulation (cycles.c): per cycle k < n the ε_D
+ * gained in it and at its end, with standard errors and the number of
+ * runs averaged (runs NULL: one run, no errors). */
+struct dem__plot_cycles {
+    int n;
+    const double *inc, *inc_se, *end, *end_se;
+    const int *runs;
+};
+
+/* A series' title in the key. */
+typedef char dem__plot_title[640];
+
+/* The script's head and the data file's column line; blocks says what a
+ * block of the data file is. */
+void dem__plot_cycles_head(FILE *dat, FILE *gp, const char *blocks);
+
+/* One block of the data file; 1 if a value is negative (the sample
+ * relaxed in a cycle). */
+int dem__plot_cycles_block(FILE *dat, const struct dem__plot_cycles *c);
+
+/* The two panels of m blocks, with their titles; negative: whether a
+ * block had a negative value, which is drawn at its magnitude as an open
+ * circle and named in the key; what follows "Strain accumulation" in the
+ * picture's title. */
+void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
+                             int negative, const char *what);
+
 /* ---------------------------------------------------------- particles */
 
 /* What the particle picture needs: n discs or spheres, one colour value

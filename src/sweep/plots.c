@@ -578,27 +578,6 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
 
 /* ------------------------------------------------ strain accumulation */
 
-/* One block of strain_accumulation.dat: cycle, eps_D gained in it and its
- * standard error, eps_D at its end and its standard error, runs. A cycle
- * of one run has no standard error: 0 is written (as for a sweep without
- * seeds), since gnuplot skips a point whose error bar is missing and an
- * ensemble of one seed would draw nothing. */
-static void cyclic_block(FILE *dat, int ncyc, const double *inc,
-                         const double *inc_se, const double *end,
-                         const double *end_se, const int *runs)
-{
-    for (int c = 0; c < ncyc; c++) {
-        const int one = runs[c] < 2;
-        const double v[4] = {inc[c], one ? 0.0 : inc_se[c], end[c],
-                             one ? 0.0 : end_se[c]};
-        fprintf(dat, "%d", c + 1);
-        for (int k = 0; k < 4; k++)
-            isfinite(v[k]) ? fprintf(dat, " %.9g", v[k]) : fprintf(dat, " ?");
-        fprintf(dat, " %d\n", runs[c]);
-    }
-    fprintf(dat, "\n\n");
-}
-
 /* Strain accumulation, one series per cyclic run or, with seeds, per
  * ensemble (means with their standard errors). Two panels on logarithmic
  * axes, as the increments span many decades: the strain accumulated since
@@ -609,16 +588,11 @@ static void cyclic_block(FILE *dat, int ncyc, const double *inc,
 static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
-    dem__gp_head(gp, "strain_accumulation", "Strain accumulated per cycle",
-                 "cycle c", "Δε_D per cycle");
-    fprintf(dat,
-            "# columns 1 cycle  2 eps_D gained in the cycle  3 its standard "
-            "error  4 eps_D at its end  5 its standard error  6 runs; one "
-            "block per %s\n",
-            ens ? "ensemble (runs differing only in the seed): means over it"
-                : "cyclic run (errors 0)");
-    typedef char title_t[640];
-    title_t *title = malloc(((size_t)s->n + 1) * sizeof *title);
+    dem__plot_cycles_head(
+        dat, gp,
+        ens ? "ensemble (runs differing only in the seed): means over it"
+            : "cyclic run (errors 0)");
+    dem__plot_title *title = malloc(((size_t)s->n + 1) * sizeof *title);
     if (!title)
         return DEM_ENOMEM;
     int m = 0, negative = 0;
@@ -646,14 +620,15 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
             v[2 * nc + c] = e ? e->cyc_end[c].mean : r->cyc_end[c];
             v[3 * nc + c] = e ? e->cyc_end[c].se : 0.0;
             runs[c] = e ? e->cyc_inc[c].n : 1;
-            negative |= v[c] < 0.0 || v[2 * nc + c] < 0.0;
         }
         char lab[512], par[520];
         label(s, i, DEM_SWEEP_ROLE_MU | DEM_SWEEP_ROLE_SEED, lab, sizeof lab);
         paren(lab, par, sizeof par);
         fprintf(dat, "# %s: mu = %.6g%s\n", ens ? "ensemble" : r->name, r->mu,
                 par);
-        cyclic_block(dat, nc, v, v + nc, v + 2 * nc, v + 3 * nc, runs);
+        const struct dem__plot_cycles cyc = {nc,         v,          v + nc,
+                                             v + 2 * nc, v + 3 * nc, runs};
+        negative |= dem__plot_cycles_block(dat, &cyc);
         free(v);
         free(runs);
         if (ens)
@@ -664,41 +639,8 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
             snprintf(title[m++], sizeof *title, "μ = %.3g%s%s%s", r->mu, par,
                      r->verdict[0] ? ": " : "", r->verdict);
     }
-    /* the key sits in the left panel: longer titles (a parameter besides
-     * mu) take a smaller font, and a key narrower than gnuplot's estimate
-     * (made at the terminal's 12 points, a third too wide at 8), so that
-     * it does not reach into the right panel */
-    size_t widest = 0;
-    for (int b = 0; b < m; b++)
-        if (strlen(title[b]) > widest)
-            widest = strlen(title[b]);
-    fprintf(gp,
-            "set multiplot layout 1,2 title \"Strain accumulation%s\"\n"
-            "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
-            "set key inside top left box opaque font %s\n",
-            ens ? ", mean ± s.e. over the seeds" : "",
-            widest > 44 ? "\",8\" width -10" : "\",10\"");
-    for (int panel = 0; panel < 2; panel++) {
-        fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
-                panel ? "unset key\n" : "",
-                panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
-        const int y = panel ? 2 : 4; /* the column drawn */
-        for (int b = 0; b < m; b++)
-            fprintf(gp,
-                    "  \"strain_accumulation.dat\" index %d using 1:($%d > 0 "
-                    "? $%d : 1/0):%d with yerrorlines pointtype 7 pointsize "
-                    "0.6 linecolor %d title \"%s\" noenhanced, \\\n"
-                    "  \"\" index %d using 1:($%d < 0 ? -$%d : 1/0):%d with "
-                    "yerrorbars pointtype 6 pointsize 0.9 linecolor %d "
-                    "notitle, \\\n",
-                    b, y, y, y + 1, b + 1, title[b], b, y, y, y + 1, b + 1);
-        if (negative)
-            fprintf(gp, "  1/0 with points pointtype 6 pointsize 0.9 "
-                        "linecolor \"black\" title \"open: negative, "
-                        "|value| drawn\" noenhanced, \\\n");
-        fprintf(gp, "  1/0 notitle\n");
-    }
-    fprintf(gp, "unset multiplot\n");
+    dem__plot_cycles_panels(gp, title, m, negative,
+                            ens ? ", mean ± s.e. over the seeds" : "");
     free(title);
     return DEM_OK;
 }

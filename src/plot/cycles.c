@@ -1,0 +1,78 @@
+/* The picture of strain accumulation under cyclic loading, shared by the
+ * pictures of a run (plot.c) and of a sweep (sweep/plots.c): ε_D at the
+ * end of each cycle and the ε_D gained in it, on logarithmic axes, one
+ * series per block of the data file. */
+#include <math.h>
+#include <string.h>
+
+#include "plot/plot.h"
+
+void dem__plot_cycles_head(FILE *dat, FILE *gp, const char *blocks)
+{
+    dem__gp_head(gp, "strain_accumulation", "Strain accumulated per cycle",
+                 "cycle c", "Δε_D per cycle");
+    fprintf(dat,
+            "# columns 1 cycle  2 eps_D gained in the cycle  3 its standard "
+            "error  4 eps_D at its end  5 its standard error  6 runs; one "
+            "block per %s\n",
+            blocks);
+}
+
+/* A cycle of one run has no standard error: 0 is written, since gnuplot
+ * skips a point whose error bar is missing and a series of one run would
+ * draw nothing. */
+int dem__plot_cycles_block(FILE *dat, const struct dem__plot_cycles *c)
+{
+    int negative = 0;
+    for (int k = 0; k < c->n; k++) {
+        const int one = !c->runs || c->runs[k] < 2;
+        const double v[4] = {c->inc[k], one ? 0.0 : c->inc_se[k], c->end[k],
+                             one ? 0.0 : c->end_se[k]};
+        fprintf(dat, "%d", k + 1);
+        for (int e = 0; e < 4; e++)
+            isfinite(v[e]) ? fprintf(dat, " %.9g", v[e]) : fprintf(dat, " ?");
+        fprintf(dat, " %d\n", c->runs ? c->runs[k] : 1);
+        negative |= c->inc[k] < 0.0 || c->end[k] < 0.0;
+    }
+    fprintf(dat, "\n\n");
+    return negative;
+}
+
+void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
+                             int negative, const char *what)
+{
+    /* the key sits in the left panel: longer titles (a parameter besides
+     * mu) take a smaller font, and a key narrower than gnuplot's estimate
+     * (made at the terminal's 12 points, a third too wide at 8), so that
+     * it does not reach into the right panel */
+    size_t widest = 0;
+    for (int b = 0; b < m; b++)
+        if (strlen(title[b]) > widest)
+            widest = strlen(title[b]);
+    fprintf(gp,
+            "set multiplot layout 1,2 title \"Strain accumulation%s\"\n"
+            "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
+            "set key inside top left box opaque font %s\n",
+            what, widest > 44 ? "\",8\" width -10" : "\",10\"");
+    for (int panel = 0; panel < 2; panel++) {
+        fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
+                panel ? "unset key\n" : "",
+                panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
+        const int y = panel ? 2 : 4; /* the column drawn */
+        for (int b = 0; b < m; b++)
+            fprintf(gp,
+                    "  \"strain_accumulation.dat\" index %d using 1:($%d > 0 "
+                    "? $%d : 1/0):%d with yerrorlines pointtype 7 pointsize "
+                    "0.6 linecolor %d title \"%s\" noenhanced, \\\n"
+                    "  \"\" index %d using 1:($%d < 0 ? -$%d : 1/0):%d with "
+                    "yerrorbars pointtype 6 pointsize 0.9 linecolor %d "
+                    "notitle, \\\n",
+                    b, y, y, y + 1, b + 1, title[b], b, y, y, y + 1, b + 1);
+        if (negative)
+            fprintf(gp, "  1/0 with points pointtype 6 pointsize 0.9 "
+                        "linecolor \"black\" title \"open: negative, "
+                        "|value| drawn\" noenhanced, \\\n");
+        fprintf(gp, "  1/0 notitle\n");
+    }
+    fprintf(gp, "unset multiplot\n");
+}
