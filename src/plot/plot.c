@@ -462,8 +462,8 @@ static const struct plot_spec plots[] = {
      0,
      write_mohr},
     {"strain_accumulation",
-     "Strain accumulated per cycle",
-     "Δε_D per cycle",
+     NULL, /* title and labels: cycles.c, as for a sweep */
+     NULL,
      ROWS_CYCLES,
      Q_NONE,
      {Q_NONE},
