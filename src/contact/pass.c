@@ -949,8 +949,10 @@ struct own {
  * core/sim.c), and the force and torque are not stored (nothing reads
  * them before they are computed again). Returns then whether a particle
  * has moved further than its reach (less K.cut) since the last list
- * build. In a cell the particles' virial goes to V (virial_block). K.on
- * and K.chain are literals in each caller, so they cost no branch. */
+ * build. In a cell the particles' virial goes to V (virial_block).
+ * K.chain is a literal in each caller, so it costs no branch; K.on, read
+ * once per block of particles, is one only where K.chain is 0 (the pass
+ * without a kick runs once, at a sample's start: dem_sim_forces). */
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl,
@@ -1409,9 +1411,9 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     }
 #endif
 #if DEM_PASS_RING
-    if (K.chain && c->ring)
-        return ring_thread(law, c, K, t, nt);
-#endif
+    /* (the entry point runs every other pass as the records pass) */
+    return ring_thread(law, c, K, t, nt);
+#else
 #if DEM_PASS_RECORDS
     /* the images' records of the thread's own pairs */
     if (law & DEM_SET_PERIODIC)
@@ -1433,15 +1435,18 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     struct virial V = {c->vir, {{0.0}}, i1, c->fr.m};
     return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb, c->gr,
                           K, &V, &c->fr, c->rec, 0, NULL);
+#endif
 }
 
-/* One instance per model set and kind of kick (literals), so that each
- * outlined parallel region is compiled for them alone. */
+/* One instance per model set and kind of step (literals), so that each
+ * outlined parallel region is compiled for them alone: a chained step,
+ * or one step's closing kick (K.on 1) or none (0, once at a sample's
+ * start). The ring pass has only chained steps (DEM_PASS_ENTRY). */
 #define CONTACTS(LAW, ON, CHAIN)                                               \
     do {                                                                       \
         _Pragma("omp parallel reduction(| : moved)")                           \
         {                                                                      \
-            /* ON and CHAIN literal inside the outlined region */              \
+            /* CHAIN literal inside the outlined region */                     \
             const struct kick k_ = {ON,   CHAIN, K.h,                          \
                                     K.dt, K.cut, {K.g[0], K.g[1], K.g[2]}};    \
             moved = contacts_thread(LAW, c, k_, omp_get_thread_num(),          \
@@ -1449,15 +1454,20 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
         }                                                                      \
     } while (0)
 
+#if DEM_PASS_RING
+#define CONTACTS_KICKS(SET)                                                    \
+    case SET:                                                                  \
+        CONTACTS(SET, 1, 1);                                                   \
+        break;
+#else
 #define CONTACTS_KICKS(SET)                                                    \
     case SET:                                                                  \
         if (K.chain)                                                           \
             CONTACTS(SET, 1, 1);                                               \
-        else if (K.on)                                                         \
-            CONTACTS(SET, 1, 0);                                               \
         else                                                                   \
-            CONTACTS(SET, 0, 0);                                               \
+            CONTACTS(SET, K.on, 0);                                            \
         break;
+#endif
 
 /* every combination of the resistances with each normal law */
 #define RESIST_COUNT_(TAG, name, doc) +1
@@ -1469,9 +1479,12 @@ int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
 {
     int moved = 0;
 #if DEM_PASS_RING
-    if (K.chain && c->ring) /* no thread's pairs done yet */
-        for (int t = 0; t < omp_get_max_threads(); t++)
-            c->done[DEM_RING_DONE * t] = 0;
+    /* a step that is not chained, or a list without rings, runs as in
+     * the records pass: the same code, compiled once */
+    if (!K.chain || !c->ring)
+        return DEM_PASS_NAME(dem__pass_records)(c, K);
+    for (int t = 0; t < omp_get_max_threads(); t++) /* no pairs done yet */
+        c->done[DEM_RING_DONE * t] = 0;
 #endif
     switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0)) {
 #define CONTACTS_OF_(TAG, name)                                                \
