@@ -222,12 +222,15 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
  * data between the fronts (FRONT_LAG x L particles, about 400 B each:
  * 2.9 MB at N = 216000) may come from the caches. The fronts take turns
  * by FRONT_CHUNK particles (turns of one particle took twice as long).
+ * With row > 0 the particles lie in a column of row x row cells instead
+ * of a cube (L = row^2), as they would in a pass that swept a sample
+ * column by column: the data between two fronts then fit in the L2.
  * Returns ns per particle-step, the fastest of 5 timings of reps steps;
  * a negative value if out of memory. */
 static double ring_streams(int n, double pairs, int arrays, int fronts,
-                           int reps)
+                           int reps, int row)
 {
-    const int L = (int)lround(pow(n, 2.0 / 3.0)), R = (int)lround(cbrt(n));
+    const int R = row > 0 ? row : (int)lround(cbrt(n)), L = R * R;
     const int off[8] = {1, R, L - R, L, L + R, R + 1, L + 1, L - 1};
     /* the three row starts are three streams, as in the pass: the
      * reverse rows' (rstart) a copy of the rows' (as many pairs as j
@@ -529,9 +532,9 @@ int main(int argc, char **argv)
     printf("ring pass's streams, no arithmetic, ns per particle-step:\n");
     for (int s = 0; s < 2; s++) {
         const int reps = 2 * ((int)(5e6 / ns[s]) + 1);
-        const double all = ring_streams(ns[s], pairs[s], 1, 1, reps),
-                     rec = ring_streams(ns[s], pairs[s], 0, 1, reps),
-                     two = ring_streams(ns[s], pairs[s], 1, 2, reps);
+        const double all = ring_streams(ns[s], pairs[s], 1, 1, reps, 0),
+                     rec = ring_streams(ns[s], pairs[s], 0, 1, reps, 0),
+                     two = ring_streams(ns[s], pairs[s], 1, 2, reps, 0);
         if (all < 0.0 || rec < 0.0 || two < 0.0) {
             fprintf(stderr, "limits: out of memory\n");
             return 1;
@@ -541,6 +544,18 @@ int main(int argc, char **argv)
                "second 2 layers behind: %.1f)\n",
                ns[s], pairs[s], all, rec, two);
     }
+    /* N = 216000 in a column with the layers of N = 3375: two fronts 2
+     * layers apart (2 x 225 particles) have their data in the L2 */
+    const int reps = 2 * ((int)(5e6 / ns[1]) + 1);
+    const double col1 = ring_streams(ns[1], pairs[1], 1, 1, reps, 15),
+                 col2 = ring_streams(ns[1], pairs[1], 1, 2, reps, 15);
+    if (col1 < 0.0 || col2 < 0.0) {
+        fprintf(stderr, "limits: out of memory\n");
+        return 1;
+    }
+    printf("  N = %d in a column of 15 x 15 cells: %.1f (two steps a "
+           "sweep: %.1f)\n",
+           ns[1], col1, col2);
     if (sysconf(_SC_NPROCESSORS_ONLN) >= 2)
         pingpong_line(5);
     return sink == 42.0;
