@@ -1,6 +1,6 @@
-/* The records pass again, its chained steps with the pairs' forces in a
- * ring per thread (contact/pass.c, DEM_PASS_RING). See
- * contact/pass.h. */
+/* The records pass's chained steps with the pairs' forces in a ring per
+ * thread (contact/pass.c, DEM_PASS_RING); its other steps call the
+ * records pass. See contact/pass.h. */
 #include "contact/pass.h"
 
 #if DEM_HAVE_PASS_RECORDS
