@@ -950,9 +950,10 @@ struct own {
  * them before they are computed again). Returns then whether a particle
  * has moved further than its reach (less K.cut) since the last list
  * build. In a cell the particles' virial goes to V (virial_block).
- * K.chain is a literal in each caller, so it costs no branch; K.on, read
- * once per block of particles, is one only where K.chain is 0 (the pass
- * without a kick runs once, at a sample's start: dem_sim_forces). */
+ * K.chain is a literal in each caller, so it costs no branch, and so is
+ * K.on in a chained step; in the others K.on is read once per block of
+ * particles (it is 0 only in the pass without a kick, which runs once,
+ * at a sample's start: dem_sim_forces). */
 DEM_INLINE int particle_range(const int law, int i0, int i1,
                               const struct dem_particles *P,
                               const struct dem_pairs *pl,
