@@ -107,8 +107,13 @@ static double divider_rate(int op, long reps)
 
 /* Triad over three arrays of n doubles: bytes moved per second (24 per
  * element: two reads, one write; the write's read for ownership is not
- * counted, as in STREAM). */
-static double triad(size_t n, int reps)
+ * counted, as in STREAM), the best of tries. Every array is written
+ * before the clock starts: a first touch of a page costs a fault, some
+ * 12 us on the virtual machines of 2026-12 (0.33 GB/s), and an array set
+ * to zeros after malloc becomes calloc's untouched pages (gcc), which
+ * made this triad report 4-6 GB/s from memory where it streams 28-30
+ * (docs/performance-log.md, session 63). */
+static double triad(size_t n, int reps, int tries)
 {
     double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b),
            *c = malloc(n * sizeof *c);
@@ -117,21 +122,55 @@ static double triad(size_t n, int reps)
         exit(1);
     }
     for (size_t k = 0; k < n; k++) {
-        a[k] = 0.0;
+        a[k] = 3.0;
         b[k] = 1.0;
         c[k] = 2.0;
     }
-    double t = now();
-    for (int r = 0; r < reps; r++) {
-        for (size_t k = 0; k < n; k++)
-            a[k] = b[k] + 0.5 * c[k];
-        sink += a[r % n];
+    double best = INFINITY;
+    for (int u = 0; u < tries; u++) {
+        double t = now();
+        for (int r = 0; r < reps; r++) {
+            for (size_t k = 0; k < n; k++)
+                a[k] = b[k] + 0.5 * c[k];
+            sink += a[r % n];
+        }
+        t = now() - t;
+        best = t < best ? t : best;
     }
-    t = now() - t;
     free(a);
     free(b);
     free(c);
-    return 24.0 * n * reps / t;
+    return 24.0 * n * reps / best;
+}
+
+/* S arrays (S even) of the doubles at buf[0..n) in order, the first half
+ * read and the second half updated (read and written), 8 elements of
+ * each at a time, as a pass goes down its streams: bytes read per second,
+ * the best of tries. The ring pass goes down some 30 such streams at
+ * N = 216000 (ring_streams). */
+static double streams_rate(double *buf, size_t n, int S, int tries)
+{
+    const size_t m = n / (size_t)S / 8 * 8; /* each array's length */
+    double *a[64];
+    for (int s = 0; s < S; s++)
+        a[s] = buf + (size_t)s * m;
+    double best = INFINITY;
+    for (int u = 0; u < tries; u++) {
+        double t = now();
+        for (size_t k = 0; k < m; k += 8) {
+            double acc = 0.0;
+            for (int s = 0; s < S / 2; s++)
+                for (int e = 0; e < 8; e++)
+                    acc += a[s][k + e];
+            for (int s = S / 2; s < S; s++)
+                for (int e = 0; e < 8; e++)
+                    a[s][k + e] += 1e-300 * acc;
+        }
+        t = now() - t;
+        best = t < best ? t : best;
+    }
+    sink += buf[n / 2];
+    return 8.0 * (double)m * S / best;
 }
 
 #define FRONT_LAG 2      /* layers of cells between two fronts */
@@ -516,14 +555,27 @@ int main(int argc, char **argv)
            1e-9 * best(div_rate, 500000), 1e9 / best(div_rate, 500000));
     const size_t sizes[3] = {8192, 262144, 33554432}; /* 192 KB, 6 MB, 768 MB */
     const char *where[3] = {"L2", "L3", "memory"};
-    for (int s = 0; s < 3; s++) {
-        double m = 0.0;
-        for (int k = 0; k < 5; k++) {
-            double v = triad(sizes[s], (int)(2e8 / sizes[s]) + 1);
-            m = v > m ? v : m;
-        }
+    for (int s = 0; s < 3; s++)
         printf("triad %-6s (%5.0f KB): %.1f GB/s\n", where[s],
-               24.0 * sizes[s] / 1024, 1e-9 * m);
+               24.0 * sizes[s] / 1024,
+               1e-9 * triad(sizes[s], (int)(2e8 / sizes[s]) + 1, 5));
+    {
+        /* 384 MB, far beyond the caches, written once (first touch) */
+        const size_t n = (size_t)48 << 20;
+        double *buf = malloc(n * sizeof *buf);
+        if (!buf) {
+            fprintf(stderr, "limits: out of memory\n");
+            return 1;
+        }
+        for (size_t k = 0; k < n; k++)
+            buf[k] = 1.0;
+        printf("memory, S streams at once (half read, half updated), GB/s "
+               "read:");
+        const int S[] = {4, 8, 16, 24, 32, 48};
+        for (int u = 0; u < (int)(sizeof S / sizeof *S); u++)
+            printf(" %d: %.1f%s", S[u], 1e-9 * streams_rate(buf, n, S[u], 4),
+                   u + 1 < (int)(sizeof S / sizeof *S) ? "," : "\n");
+        free(buf);
     }
     /* the benchmark's packings: listed pairs per particle at N = 3375
      * and 216000 (docs/performance-log.md, "Issue 14 on Zen 5") */
