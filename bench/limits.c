@@ -1,9 +1,10 @@
 /* What one core of this machine can do, for the limit of the contact law
  * (docs/performance.md, "The limit on one core"): the throughput of fused
  * multiply-adds, square roots and divisions in the vector width the
- * compiler picks, and the bandwidth of a triad a = b + s c from the L2
- * cache, the L3 cache and main memory. Built with the project (not run
- * by CTest, it is a timing):
+ * compiler picks, the bandwidth of a triad a = b + s c from the L2
+ * cache, the L3 cache and main memory, and that of main memory read
+ * from 4 to 48 arrays at once. Built with the project (not run by CTest,
+ * it is a timing):
  *
  *     build/dembox_limits      (one thread; stop other work first)
  *
