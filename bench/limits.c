@@ -112,7 +112,7 @@ static double divider_rate(int op, long reps)
  * before the clock starts: a first touch of a page costs a fault, some
  * 12 us on the virtual machines of 2026-12 (0.33 GB/s), and an array set
  * to zeros after malloc becomes calloc's untouched pages (gcc), which
- * made this triad report 4-6 GB/s from memory where it streams 28-30
+ * made this triad report 4-6 GB/s from memory where it streams 32-36
  * (docs/performance-log.md, session 63). */
 static double triad(size_t n, int reps, int tries)
 {

@@ -299,11 +299,12 @@ enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
 
 /* The variant that runs until the first trial: the ring where it is
  * built (its steps that are not chained run the records pass), else the
- * first. The trials pick records or ring on every CPU measured
- * (docs/performance.md), and neither uses a gather. With the gathers
- * pass, the first before, the TRIAL_FIRST steps of `dembox bench` at
- * N = 216000 took 25 ms each instead of the ring's 15 on Zen 5, 5 % of
- * a 600-step benchmark (docs/performance-log.md, session 63). */
+ * first. The trials pick records, blocks or ring on every CPU measured
+ * (docs/performance.md), and none of them uses a gather. With the
+ * gathers pass, the first before, the TRIAL_FIRST steps of `dembox
+ * bench` at N = 216000 took 25 ms each instead of the ring's 15 on Zen
+ * 5, and its 600 steps 7-9 % longer (docs/performance-log.md, session
+ * 63). */
 static int first_variant(const struct dem_pass_choice *C)
 {
     for (int v = 0; v < nvariants(C); v++)
