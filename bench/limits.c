@@ -57,6 +57,13 @@ static double now(void)
 
 static double sink; /* keeps results alive */
 
+/* Stops the program: the memory a measurement needs is not there. */
+static void no_memory(void)
+{
+    fprintf(stderr, "limits: out of memory\n");
+    exit(1);
+}
+
 /* GCC's vectors of 4 doubles (256 bits, AVX2; one AVX-512 register holds
  * two): the kernels keep them in registers. */
 typedef double v4 __attribute__((vector_size(32)));
@@ -118,10 +125,8 @@ static double triad(size_t n, int reps, int tries)
 {
     double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b),
            *c = malloc(n * sizeof *c);
-    if (!a || !b || !c) {
-        fprintf(stderr, "limits: out of memory\n");
-        exit(1);
-    }
+    if (!a || !b || !c)
+        no_memory();
     for (size_t k = 0; k < n; k++) {
         a[k] = 3.0;
         b[k] = 1.0;
@@ -152,7 +157,7 @@ static double triad(size_t n, int reps, int tries)
 static double streams_rate(double *buf, size_t n, int S, int tries)
 {
     const size_t m = n / (size_t)S / 8 * 8; /* each array's length */
-    double *a[64];
+    double *a[64];                          /* S <= 64 */
     for (int s = 0; s < S; s++)
         a[s] = buf + (size_t)s * m;
     double best = INFINITY;
@@ -564,10 +569,8 @@ int main(int argc, char **argv)
         /* 384 MB, far beyond the caches, written once (first touch) */
         const size_t n = (size_t)48 << 20;
         double *buf = malloc(n * sizeof *buf);
-        if (!buf) {
-            fprintf(stderr, "limits: out of memory\n");
-            return 1;
-        }
+        if (!buf)
+            no_memory();
         for (size_t k = 0; k < n; k++)
             buf[k] = 1.0;
         printf("memory, S streams at once (half read, half updated), GB/s "
@@ -588,10 +591,8 @@ int main(int argc, char **argv)
         const double all = ring_streams(ns[s], pairs[s], 1, 1, reps, 0),
                      rec = ring_streams(ns[s], pairs[s], 0, 1, reps, 0),
                      two = ring_streams(ns[s], pairs[s], 1, 2, reps, 0);
-        if (all < 0.0 || rec < 0.0 || two < 0.0) {
-            fprintf(stderr, "limits: out of memory\n");
-            return 1;
-        }
+        if (all < 0.0 || rec < 0.0 || two < 0.0)
+            no_memory();
         printf("  N = %d, %.2f pairs per particle: %.1f (without the "
                "arrays of x, v, omega: %.1f; two steps a sweep, the "
                "second 2 layers behind: %.1f)\n",
@@ -602,10 +603,8 @@ int main(int argc, char **argv)
     const int reps = 2 * ((int)(5e6 / ns[1]) + 1);
     const double col1 = ring_streams(ns[1], pairs[1], 1, 1, reps, 15),
                  col2 = ring_streams(ns[1], pairs[1], 1, 2, reps, 15);
-    if (col1 < 0.0 || col2 < 0.0) {
-        fprintf(stderr, "limits: out of memory\n");
-        return 1;
-    }
+    if (col1 < 0.0 || col2 < 0.0)
+        no_memory();
     printf("  N = %d in a column of 15 x 15 cells: %.1f (two steps a "
            "sweep: %.1f)\n",
            ns[1], col1, col2);
