@@ -144,9 +144,9 @@ void dem_particles_permute(struct dem_particles *p, const int *old_of,
     /* the int arrays go through the same scratch, viewed as ints */
     int *ti = (int *)t;
 #define DEM_PERMUTE_INT_(f)                                                    \
-    for (int k = 0; k < n; k++)                                                \
+    _Pragma("omp parallel for schedule(static)") for (int k = 0; k < n; k++)   \
         ti[k] = p->f[old_of[k]];                                               \
-    for (int k = 0; k < n; k++)                                                \
+    _Pragma("omp parallel for schedule(static)") for (int k = 0; k < n; k++)   \
         p->f[k] = ti[k];
     DEM_PARTICLE_INT_ARRAYS(DEM_PERMUTE_INT_)
 #undef DEM_PERMUTE_INT_

@@ -49,6 +49,9 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->cell_start);
     free(pl->cell_list);
     free(pl->cell_of);
+    for (int t = 0; t < pl->rowbuf_n; t++)
+        free(pl->rowbuf[t].v);
+    free(pl->rowbuf);
     free(pl->old_of);
     free(pl->scratch);
     free(pl->rec);
@@ -117,13 +120,23 @@ static int forces_reserve(struct dem_contact_forces *f, int cap, int axial)
 }
 
 /* Stored forces of n entries set to zero (the force loop writes only
- * contacts that are closed or have just opened). */
+ * contacts that are closed or have just opened), by the threads in
+ * blocks of entries in order, so that each thread clears about the
+ * entries its force pass takes (dem_pairs_row_block). Cleared by one
+ * thread they took 0.7 ms a build at N = 20000 with one thread or two,
+ * an eighth of a one-thread build (Zen 5, docs/performance-log.md). */
 static void forces_zero(struct dem_contact_forces *f, int n, int torques)
 {
-    if (n > 0)
-        memset(f->v, 0, (size_t)n * sizeof *f->v);
-    if (n > 0 && torques)
-        memset(f->m, 0, 3 * (size_t)n * sizeof *f->m);
+    enum { CHUNK = 2048 };
+    const int nchunk = (n + CHUNK - 1) / CHUNK;
+#pragma omp parallel for schedule(static) if (nchunk > 1)
+    for (int c = 0; c < nchunk; c++) {
+        const size_t k0 = (size_t)c * CHUNK;
+        const size_t m = c + 1 < nchunk ? CHUNK : (size_t)n - k0;
+        memset(f->v + k0, 0, m * sizeof *f->v);
+        if (torques)
+            memset(f->m + 3 * k0, 0, 3 * m * sizeof *f->m);
+    }
 }
 
 /* Room for nrec of the force pass's particle records (contact/pass.c),
@@ -488,10 +501,42 @@ static int row_of_cell(const struct dem_pairs *pl,
     return m;
 }
 
+/* Room for nt threads' row buffers (struct dem_pairs.rowbuf); 0 on
+ * success. */
+static int rowbuf_reserve(struct dem_pairs *pl, int nt)
+{
+    if (nt <= pl->rowbuf_n)
+        return 0;
+    struct dem_row_buf *b = realloc(pl->rowbuf, (size_t)nt * sizeof *b);
+    if (!b)
+        return -1;
+    memset(b + pl->rowbuf_n, 0, (size_t)(nt - pl->rowbuf_n) * sizeof *b);
+    pl->rowbuf = b;
+    pl->rowbuf_n = nt;
+    return 0;
+}
+
+/* Room in b for need ints; 0 on success (else b is unchanged). */
+static int rowbuf_grow(struct dem_row_buf *b, size_t need)
+{
+    if (need <= b->cap)
+        return 0;
+    size_t cap = 2 * b->cap > need ? 2 * b->cap : need;
+    int *v = realloc(b->v, cap * sizeof *v);
+    if (!v)
+        return -1;
+    b->v = v;
+    b->cap = cap;
+    return 0;
+}
+
 /* One pass over the particles in equal blocks, one per thread: each
  * thread writes its rows to its own buffer, then, once the offsets are
  * known, copies them into the list. The history of every pair is then
- * found in the old list. The list is the same for any number of threads. */
+ * found in the old list. The list is the same for any number of threads.
+ * The buffers are kept from build to build: allocated anew, thread 0's
+ * came from fresh pages at every build, and their first touch made its
+ * half of the rows take about twice thread 1's (N = 20000, Zen 5). */
 static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
                        int dim, int ordered, struct dem_error *err)
 {
@@ -512,19 +557,21 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
         const int i0 = dem_block(n, t, nt), i1 = dem_block(n, t + 1, nt);
-        size_t cap = (size_t)longest + 4096, m = 0;
-        int *buf = malloc(cap * sizeof *buf);
+#pragma omp single
+        if (rowbuf_reserve(pl, nt))
+            failed = 1;
+        /* the single's barrier: failed and pl->rowbuf are set */
+        struct dem_row_buf *rb = failed ? NULL : &pl->rowbuf[t];
+        size_t m = 0;
+        int *buf = NULL;
+        if (rb && rowbuf_grow(rb, (size_t)longest + 4096) == 0)
+            buf = rb->v;
         for (int i = i0; buf && i < i1; i++) {
-            if (m + (size_t)longest > cap) {
-                cap = 2 * cap + (size_t)longest;
-                int *b2 = realloc(buf, cap * sizeof *buf);
-                if (!b2) {
-                    free(buf);
-                    buf = NULL;
-                    break;
-                }
-                buf = b2;
+            if (rowbuf_grow(rb, m + (size_t)longest)) {
+                buf = NULL;
+                break;
             }
+            buf = rb->v;
             /* a ghost's partners j > i are ghosts too: no row */
             int cnt = i >= n - pl->nghost ? 0
                       : pl->periodic
@@ -562,7 +609,6 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
                     }
                 }
         }
-        free(buf);
     }
     if (failed)
         return dem_error_set(err, DEM_ENOMEM, "out of memory (pair list)");
@@ -576,36 +622,54 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
     return DEM_OK;
 }
 
+/* Whether particle i is listed with wall w: closer than the wall's half
+ * of the skin plus its reach. */
+static int wall_near(const struct dem_particles *p, int i,
+                     const struct dem_wall *w, double skin)
+{
+    const double pos[3] = {p->x[i], p->y[i], p->z[i]};
+    const double sgn = w->side ? -1.0 : 1.0;
+    const double gap = sgn * (pos[w->axis] - w->pos) - p->r[i];
+    return gap < p->reach[i] + 0.5 * skin;
+}
+
+/* The particle-wall list, row by row in particle order, in two passes
+ * over the particles in blocks: one counts each row, one writes it and
+ * carries its history. */
 static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
                        double skin, const struct dem_wall *w, int nwall,
                        struct dem_error *err)
 {
     struct dem_contact_list *L = &pl->wcur;
     const struct dem_contact_list *O = &pl->wold;
-    L->n = 0;
-    const int nown = p->n - pl->nghost;
-    for (int i = 0; i < p->n; i++) {
-        L->start[i] = L->n;
-        if (i >= nown)
-            continue;
-        const double pos[3] = {p->x[i], p->y[i], p->z[i]};
-        for (int k = 0; k < nwall; k++) {
-            double sgn = w[k].side ? -1.0 : 1.0;
-            double gap = sgn * (pos[w[k].axis] - w[k].pos) - p->r[i];
-            /* the wall's half of the skin, the particle's reach */
-            if (gap >= p->reach[i] + 0.5 * skin)
+    const int n = p->n, nown = n - pl->nghost;
+    int *start = L->start;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
+        int cnt = 0;
+        for (int k = 0; i < nown && k < nwall; k++)
+            cnt += wall_near(p, i, &w[k], skin);
+        start[i + 1] = cnt;
+    }
+    start[0] = 0;
+    for (int i = 0; i < n; i++)
+        start[i + 1] += start[i];
+    if (list_reserve(L, start[n]))
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (wall contacts)");
+    L->n = start[n];
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nown; i++) {
+        int e = start[i];
+        for (int k = 0; e < start[i + 1] && k < nwall; k++) {
+            if (!wall_near(p, i, &w[k], skin))
                 continue;
-            if (L->n >= L->cap && list_reserve(L, L->n + 1))
-                return dem_error_set(err, DEM_ENOMEM,
-                                     "out of memory (wall contacts)");
-            L->i[L->n] = i;
-            L->j[L->n] = k;
-            int o = O->n ? old_find(O, pl->old_of[i], k) : -1;
-            carry_history(L, L->n, O, o, 0, pl->hist);
-            L->n++;
+            L->i[e] = i;
+            L->j[e] = k;
+            const int o = O->n ? old_find(O, pl->old_of[i], k) : -1;
+            carry_history(L, e, O, o, 0, pl->hist);
+            e++;
         }
     }
-    L->start[p->n] = L->n;
     return DEM_OK;
 }
 

@@ -83,6 +83,12 @@ struct dem_contact_forces {
                        (neighbor/blocks.h) */
 };
 
+/* A thread's buffer of rows (struct dem_pairs.rowbuf). */
+struct dem_row_buf {
+    int *v;
+    size_t cap; /* ints allocated in v */
+};
+
 struct dem_pairs {
     struct dem_contact_list cur;  /* particle pairs the force loop uses */
     struct dem_contact_list old;  /* the previous pairs, for the history */
@@ -122,6 +128,11 @@ struct dem_pairs {
     int periodic;    /* 1: the grid is the periodic cell's */
     struct dem_lattice lat; /* that cell at the build */
     int ncell_cap;
+    struct dem_row_buf *rowbuf; /* one per thread of the last build: the
+                                   rows the thread found (build_pairs),
+                                   kept so that no build allocates and
+                                   first touches them again */
+    int rowbuf_n;
     /* re-ordering */
     int *old_of;         /* old index of each particle after a re-order */
     double *scratch;     /* one particle array of doubles */
