@@ -622,15 +622,16 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
     return DEM_OK;
 }
 
-/* Whether particle i is listed with wall w: closer than the wall's half
- * of the skin plus its reach. */
+/* Whether particle i is listed with wall w: not further than the wall's
+ * half of the skin plus its reach (so listed if its gap is not a number,
+ * as within_reach). */
 static int wall_near(const struct dem_particles *p, int i,
                      const struct dem_wall *w, double skin)
 {
     const double pos[3] = {p->x[i], p->y[i], p->z[i]};
     const double sgn = w->side ? -1.0 : 1.0;
     const double gap = sgn * (pos[w->axis] - w->pos) - p->r[i];
-    return gap < p->reach[i] + 0.5 * skin;
+    return !(gap >= p->reach[i] + 0.5 * skin);
 }
 
 /* The particle-wall list, row by row in particle order, in two passes
