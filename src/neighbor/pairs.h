@@ -128,11 +128,11 @@ struct dem_pairs {
     int periodic;    /* 1: the grid is the periodic cell's */
     struct dem_lattice lat; /* that cell at the build */
     int ncell_cap;
-    struct dem_row_buf *rowbuf; /* one per thread of the last build: the
-                                   rows the thread found (build_pairs),
-                                   kept so that no build allocates and
-                                   first touches them again */
-    int rowbuf_n;
+    struct dem_row_buf *rowbuf; /* one per thread of a build: the rows
+                                   the thread found (build_pairs), kept
+                                   so that no build allocates and first
+                                   touches them again */
+    int rowbuf_n;               /* the most threads a build has had */
     /* re-ordering */
     int *old_of;         /* old index of each particle after a re-order */
     double *scratch;     /* one particle array of doubles */
