@@ -297,6 +297,15 @@ static int nvariants(const struct dem_pass_choice *C)
 enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
 #define TRIAL_FAR 1.25
 
+/* The index of the variant of that name in this build, or -1. */
+static int variant_named(const struct dem_pass_choice *C, const char *name)
+{
+    for (int v = 0; v < nvariants(C); v++)
+        if (!strcmp(name, variants(C)[v].name))
+            return v;
+    return -1;
+}
+
 /* The variant that runs until the first trial: the ring where it is
  * built (its steps that are not chained run the records pass), else the
  * first. The trials pick records, blocks or ring on every CPU measured
@@ -307,10 +316,8 @@ enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
  * 63). */
 static int first_variant(const struct dem_pass_choice *C)
 {
-    for (int v = 0; v < nvariants(C); v++)
-        if (!strcmp(variants(C)[v].name, "ring"))
-            return v;
-    return 0;
+    const int v = variant_named(C, "ring");
+    return v >= 0 ? v : 0;
 }
 
 /* The highest level this CPU runs, or the one DEMBOX_ISA names (a build
@@ -367,12 +374,12 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
     const char *want = getenv("DEMBOX_PASS");
     if (!want || !*want || !strcmp(want, "auto"))
         return DEM_OK;
-    for (int v = 0; v < nvariants(C); v++)
-        if (!strcmp(want, variants(C)[v].name)) {
-            C->forced = C->current = v;
-            C->trial = 0;
-            return DEM_OK;
-        }
+    const int v = variant_named(C, want);
+    if (v >= 0) {
+        C->forced = C->current = v;
+        C->trial = 0;
+        return DEM_OK;
+    }
     char names[64] = "auto";
     for (int v = 0; v < nvariants(C); v++) {
         const size_t len = strlen(names);
