@@ -1455,14 +1455,33 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
         }                                                                      \
     } while (0)
 
+/* The pass in parts (CMakeLists.txt compiles each of its compilations
+ * in DEM_PASS_PARTS translation units, to share them among a build's
+ * cores): part p has the model sets whose normal law's index is p modulo
+ * DEM_PASS_PARTS, in its own entry point, PART_ENTRY(p); part 0 also
+ * has the pass's, which calls the part of the contacts' law. A set of
+ * another part is a constant false condition, and the compiler drops its
+ * code before it optimises it. */
+#ifndef DEM_PASS_PARTS
+#define DEM_PASS_PARTS 1
+#define DEM_PASS_PART 0
+#endif
+#define IN_PART(SET) (((SET)&DEM_SET_NORMAL) % DEM_PASS_PARTS == DEM_PASS_PART)
+#define PART_ENTRY__(entry, p) entry##_part##p
+#define PART_ENTRY_(entry, p) PART_ENTRY__(entry, p)
+#define PART_ENTRY(p) PART_ENTRY_(DEM_PASS_ENTRY, p)
+
 #if DEM_PASS_RING
 #define CONTACTS_KICKS(SET)                                                    \
     case SET:                                                                  \
-        CONTACTS(SET, 1, 1);                                                   \
+        if (IN_PART(SET))                                                      \
+            CONTACTS(SET, 1, 1);                                               \
         break;
 #else
 #define CONTACTS_KICKS(SET)                                                    \
     case SET:                                                                  \
+        if (!IN_PART(SET))                                                     \
+            break;                                                             \
         if (K.chain)                                                           \
             CONTACTS(SET, 1, 1);                                               \
         else                                                                   \
@@ -1476,7 +1495,13 @@ _Static_assert(0 DEM_CONTACT_RESISTANCES(RESIST_COUNT_) == 2,
                "list every combination of the resistances below");
 #undef RESIST_COUNT_
 
-int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
+#if DEM_PASS_PARTS > 1
+#define THIS_ENTRY PART_ENTRY(DEM_PASS_PART)
+int THIS_ENTRY(const struct contacts *c, struct kick K);
+#else
+#define THIS_ENTRY DEM_PASS_ENTRY
+#endif
+int THIS_ENTRY(const struct contacts *c, const struct kick K)
 {
     int moved = 0;
 #if DEM_PASS_RING
@@ -1503,3 +1528,31 @@ int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
     }
     return moved;
 }
+
+#if DEM_PASS_PARTS > 1 && DEM_PASS_PART == 0
+#if DEM_PASS_PARTS > 4
+#error "contact/pass.c: the entry below calls at most 4 parts"
+#endif
+int PART_ENTRY(1)(const struct contacts *c, struct kick K);
+int PART_ENTRY(2)(const struct contacts *c, struct kick K);
+int PART_ENTRY(3)(const struct contacts *c, struct kick K);
+
+int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
+{
+    switch (c->cp.normal % DEM_PASS_PARTS) {
+    case 0:
+        return PART_ENTRY(0)(c, K);
+    case 1:
+        return PART_ENTRY(1)(c, K);
+#if DEM_PASS_PARTS > 2
+    case 2:
+        return PART_ENTRY(2)(c, K);
+#endif
+#if DEM_PASS_PARTS > 3
+    case 3:
+        return PART_ENTRY(3)(c, K);
+#endif
+    }
+    return 0;
+}
+#endif

@@ -13,6 +13,8 @@
  * bit; on some CPUs (Intel Skylake to Ice Lake with the Gather Data
  * Sampling mitigation) gathers are several times slower, on others
  * faster. contact/forces.c times them now and then and runs the fastest.
+ * Each compilation is built in parts, the normal laws shared among them
+ * (contact/pass.c, DEM_PASS_PARTS).
  */
 #ifndef DEM_CONTACT_PASS_H
 #define DEM_CONTACT_PASS_H
