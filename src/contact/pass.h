@@ -138,6 +138,10 @@ struct contacts {
 #define DEM_PASS_V3_(f) f##_v3
 #define DEM_PASS_V4_(f) f##_v4
 DEM_PASS_ENTRIES_(DEM_PASS_PLAIN_)
+#ifdef DEM_PASS_ISA
+/* a level's compilation calls its own (the ring pass the records pass) */
+DEM_PASS_ENTRIES_(DEM_PASS_NAME)
+#endif
 #if DEM_PASS_V3
 DEM_PASS_ENTRIES_(DEM_PASS_V3_)
 #endif
