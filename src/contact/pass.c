@@ -1534,8 +1534,12 @@ int THIS_ENTRY(const struct contacts *c, const struct kick K)
 #error "contact/pass.c: the entry below calls at most 4 parts"
 #endif
 int PART_ENTRY(1)(const struct contacts *c, struct kick K);
+#if DEM_PASS_PARTS > 2
 int PART_ENTRY(2)(const struct contacts *c, struct kick K);
+#endif
+#if DEM_PASS_PARTS > 3
 int PART_ENTRY(3)(const struct contacts *c, struct kick K);
+#endif
 
 int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
 {
@@ -1553,6 +1557,6 @@ int DEM_PASS_ENTRY(const struct contacts *c, const struct kick K)
         return PART_ENTRY(3)(c, K);
 #endif
     }
-    return 0;
+    return 0; /* (not reached) */
 }
 #endif
