@@ -1497,7 +1497,6 @@ _Static_assert(0 DEM_CONTACT_RESISTANCES(RESIST_COUNT_) == 2,
 
 #if DEM_PASS_PARTS > 1
 #define THIS_ENTRY PART_ENTRY(DEM_PASS_PART)
-int THIS_ENTRY(const struct contacts *c, struct kick K);
 #else
 #define THIS_ENTRY DEM_PASS_ENTRY
 #endif
