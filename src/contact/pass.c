@@ -83,6 +83,18 @@
  * faster at 32 pairs ahead than at 16. */
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
+/* The records passes' round for the linear law without resistances
+ * between walls in AVX2 intrinsics, on CPUs with AVX2 and without
+ * AVX-512 (contact/pair_linear_avx2.h: the same operations, fewer
+ * spills; with AVX-512 gcc's own 16 lanes have the registers they
+ * need). */
+#if DEM_PASS_RECORDS && defined(__AVX2__) && !defined(__AVX512F__)
+#define DEM_PAIR_LINEAR_AVX2 1
+#include "contact/pair_linear_avx2.h"
+#else
+#define DEM_PAIR_LINEAR_AVX2 0
+#endif
+
 /* How far ahead the ring pass asks for the cache lines of the streams it
  * goes down in order: the list's indices, history and states (pairs),
  * and the particles' arrays its chained kicks, drifts and records read
@@ -618,6 +630,9 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 {
     (void)ahead_i;
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
+    /* 1/k_t as dem_coulomb_spring has it (DEM_PAIR_LINEAR_AVX2) */
+    const double ik = T.kt > 0.0 ? 1.0 / T.kt : 0.0;
+    (void)ik;
     /* local copies, which no store of the loop can change */
     const double gv[6] = {grad[0], grad[1], grad[2], grad[3], grad[4], grad[5]};
     const double mv[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
@@ -663,6 +678,12 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #undef HIST_AHEAD_
             }
         }
+#if DEM_PAIR_LINEAR_AVX2
+        if (law == DEM_NORMAL_LINEAR) {
+            pairs_linear_avx2(&q, k, rec, cp, dt, &T, ik, q.F + (k - q.foff));
+            continue;
+        }
+#endif
         records_lanes(rec, q.ci + k, A);
         records_lanes(rec, q.cjr + (k - q.roff), B);
         _Alignas(64) double O[6][DEM_PAIR_LANES];
