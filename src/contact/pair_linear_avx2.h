@@ -20,7 +20,7 @@
  *    with the loads and products that do not need them after them.
  * gcc's own code for this loop (8 lanes, each double in two registers)
  * spilled some 50 of the round's 74 stores to the stack on Zen 1;
- * measured there, this round took 5-15 % off a step
+ * measured there, this round took 6-10 % off a step
  * (docs/performance-log.md, session 68). */
 #ifndef DEM_CONTACT_PAIR_LINEAR_AVX2_H
 #define DEM_CONTACT_PAIR_LINEAR_AVX2_H

@@ -1,0 +1,171 @@
+/* One contact's force and history update, the kernels composed in the
+ * fixed order normal law -> dashpot -> Coulomb limit -> tangential law ->
+ * torques (conventions: contact/pass.c). Every compilation of the force
+ * pass (contact/pass.h) runs these for its pairs and wall contacts, in
+ * SIMD lanes; test_pair_kernels runs them one contact at a time as the
+ * reference of the pass's rounds written in intrinsics
+ * (contact/pair_linear_avx2.h). */
+#ifndef DEM_CONTACT_PAIR_H
+#define DEM_CONTACT_PAIR_H
+
+#include <math.h>
+
+#include "contact/models.h"
+#include "contact/pass.h"
+#include "contact/tangential.h"
+
+/* Contact k's history values used by the model set law (a normal law
+ * with the bits of the resistances on, contact/models.h), read from the
+ * list (the others are 0 and never stored). */
+DEM_INLINE struct dem_history load_history(const int law, const struct pass *q,
+                                           int k)
+{
+    struct dem_history h;
+#define HIST_LOAD_(MODEL, name, unit, swap, doc)                               \
+    h.name = DEM_MODEL_USES(law, MODEL) ? q->name[k] : 0.0;
+    DEM_CONTACT_HISTORY(HIST_LOAD_)
+#undef HIST_LOAD_
+    return h;
+}
+
+/* The resistances of the model set law at contact k (none: nothing is
+ * done): their torque on i, stored with the contact (zero when touch =
+ * 0), their springs in h, their slip bits in *st. dw = w_i - w_j, a the
+ * reduced radius. */
+DEM_INLINE void resist_contact(const int law, const struct pass *q, int k,
+                               int touch, struct dem_vec3 n, struct dem_vec3 dw,
+                               double a, double fc, double dt,
+                               const struct dem_contact_params *cp,
+                               struct dem_history *h, int *st)
+{
+    if (!DEM_SET_TORQUES(law))
+        return;
+    struct dem_vec3 m = {0.0, 0.0, 0.0};
+    if (law & DEM_SET_ROLLING) {
+        const struct dem_tangential R = {cp->kr, cp->gamma_r, cp->mu_r,
+                                         cp->mu_r};
+        struct dem_vec3 xr = {h->xr_x, h->xr_y, h->xr_z};
+        m = dem_rolling_torque(n, dw, a, fc, dt, &R, &xr, st);
+        h->xr_x = xr.x;
+        h->xr_y = xr.y;
+        h->xr_z = xr.z;
+    }
+    if (law & DEM_SET_TORSION) {
+        const struct dem_tangential O = {cp->ko, cp->gamma_o, cp->mu_o,
+                                         cp->mu_o};
+        struct dem_vec3 xo = {h->xo_x, h->xo_y, h->xo_z};
+        const struct dem_vec3 mo =
+            dem_torsion_torque(n, dw, a, fc, dt, &O, &xo, st);
+        h->xo_x = xo.x;
+        h->xo_y = xo.y;
+        h->xo_z = xo.z;
+        m.x += mo.x;
+        m.y += mo.y;
+        m.z += mo.z;
+    }
+    q->M[3 * k] = touch ? m.x : 0.0;
+    q->M[3 * k + 1] = touch ? m.y : 0.0;
+    q->M[3 * k + 2] = touch ? m.z : 0.0;
+}
+
+/* Tangential force and history update of contact k: the history is
+ * stored with it, the force record returned (the caller stores it); with
+ * touch = 0 (its gap is open) the force is zero and the history is
+ * erased instead. h holds the history after the normal force and the
+ * resistances, st the state bits after them; only the values law uses
+ * are stored. */
+DEM_INLINE struct dem_contact_force
+finish_contact(const int law, const struct pass *q, int k, int touch,
+               struct dem_vec3 n, struct dem_vec3 vij, double fn, double fc,
+               struct dem_history h, int st, double dt,
+               const struct dem_tangential *T)
+{
+    struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
+    const struct dem_vec3 ft =
+        dem_tangential_force(n, vij, fc, dt, T, &xi, &st);
+    h.xi_x = xi.x;
+    h.xi_y = xi.y;
+    h.xi_z = xi.z;
+#define HIST_STORE_(MODEL, name, unit, swap, doc)                              \
+    if (DEM_MODEL_USES(law, MODEL))                                            \
+        q->name[k] = touch ? h.name : 0.0;
+    DEM_CONTACT_HISTORY(HIST_STORE_)
+#undef HIST_STORE_
+    q->state[k] = touch ? st : 0;
+    const struct dem_contact_force o = {{touch ? fn * n.x + ft.x : 0.0,
+                                         touch ? fn * n.y + ft.y : 0.0,
+                                         touch ? fn * n.z + ft.z : 0.0},
+                                        {touch ? n.y * ft.z - n.z * ft.y : 0.0,
+                                         touch ? n.z * ft.x - n.x * ft.z : 0.0,
+                                         touch ? n.x * ft.y - n.y * ft.x : 0.0},
+                                        {0.0, 0.0}};
+    return o;
+}
+
+/* What a pair reads of each of its particles. */
+struct pv {
+    double x, y, z, r, vx, vy, vz, m, wx, wy, wz;
+};
+
+/* Particle i's values for a pair, from the arrays. */
+DEM_INLINE struct pv load_pv(const struct pass *q, int i)
+{
+    const struct pv p = {q->x[i],  q->y[i],  q->z[i],  q->r[i],
+                         q->vx[i], q->vy[i], q->vz[i], q->m[i],
+                         q->wx[i], q->wy[i], q->wz[i]};
+    return p;
+}
+
+/* Force and history update of pair k between particles with values pi and
+ * pj (in a periodic cell their positions in the frame of the last build,
+ * j's image's x_j + h_b n, so that b = fm (x_i - x_j') below: fm the
+ * frame's map, core/cell.h); returns its force record. There is no branch
+ * (SIMD lanes): the pair computes the closed-contact force, and if its gap
+ * is open it gets a zero force and loses its history instead. */
+DEM_INLINE struct dem_contact_force
+pair_vals(const int law, const struct pass *qp, int k, const struct pv pi,
+          const struct pv pj, const struct dem_contact_params *cp, double dt,
+          const struct dem_tangential *T, const double *grad, const double *fm)
+{
+    const struct pass q = *qp;
+    double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
+    if (law & DEM_SET_PERIODIC) { /* from the frame to the cell now */
+        const double ex = fm[0] * dx + fm[1] * dy + fm[2] * dz,
+                     ey = fm[3] * dy + fm[4] * dz;
+        dz = fm[5] * dz;
+        dx = ex;
+        dy = ey;
+    }
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    const double ai = pi.r, aj = pj.r, R = ai + aj;
+    const int touch = d2 < R * R;
+    const double d = sqrt(d2);
+    const double id = 1.0 / d;
+    const struct dem_vec3 n = {dx * id, dy * id, dz * id};
+    /* a_i n x w_i + a_j n x w_j */
+    const double cwx = ai * pi.wx + aj * pj.wx;
+    const double cwy = ai * pi.wy + aj * pj.wy;
+    const double cwz = ai * pi.wz + aj * pj.wz;
+    struct dem_vec3 vij = {pi.vx - pj.vx + n.y * cwz - n.z * cwy,
+                           pi.vy - pj.vy + n.z * cwx - n.x * cwz,
+                           pi.vz - pj.vz + n.x * cwy - n.y * cwx};
+    if (law & DEM_SET_PERIODIC) { /* the cell's affine velocity, grad b */
+        vij.x += grad[0] * dx + grad[1] * dy + grad[2] * dz;
+        vij.y += grad[3] * dy + grad[4] * dz;
+        vij.z += grad[5] * dz;
+    }
+    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+    struct dem_history h = load_history(law, &q, k);
+    double fc;
+    const double a12 = ai * aj / R;
+    const double m12 = pi.m * pj.m / (pi.m + pj.m); /* if used */
+    const double fn = dem_normal_force(law, cp, R - d, ddot, a12, m12, &h, &fc);
+    int st = q.state[k] | DEM_CONTACT_ACTIVE;
+    const struct dem_vec3 dw = {pi.wx - pj.wx, pi.wy - pj.wy, pi.wz - pj.wz};
+    resist_contact(law, &q, k, touch, n, dw, a12, fc, dt, cp, &h, &st);
+    struct dem_tangential Tc = *T;
+    dem_normal_shear(law, cp, R - d, a12, m12, &Tc);
+    return finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
+}
+
+#endif

@@ -1,0 +1,188 @@
+/* The force pass's rounds written in intrinsics compute the very
+ * operations of the kernels they spell out: the same bits as pair_vals
+ * (contact/pair.h), one contact at a time in scalar code, for touching
+ * and open pairs, sticking and sliding contacts, with and without
+ * friction. test_dynamics compares the passes on the CPU that runs it;
+ * this test runs the AVX2 round (contact/pair_linear_avx2.h) on any
+ * x86-64 CPU with AVX2, also where the build's own pass uses AVX-512
+ * and never runs it. */
+#include <stdlib.h>
+
+#include "contact/pair.h"
+#include "testutil.h"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TEST_AVX2 1
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define DEM_PAIR_LANES 8
+#include "contact/pair_linear_avx2.h"
+/* pairs 0 <= k < np (a multiple of 8) by the AVX2 rounds */
+static void avx2_rounds(const struct pass *q, int np, const double *rec,
+                        const struct dem_contact_params *cp, double dt,
+                        const struct dem_tangential *T,
+                        struct dem_contact_force *F)
+{
+    const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
+    for (int k = 0; k < np; k += 8)
+        pairs_linear_avx2(q, k, rec, cp, dt, T, ik, F + k);
+}
+#pragma GCC pop_options
+#else
+#define TEST_AVX2 0
+#endif
+
+#define NP 1024 /* pairs, each of its own two particles */
+
+static double urand(unsigned *s, double lo, double hi)
+{
+    *s = *s * 1103515245u + 12345u;
+    return lo + (hi - lo) * (double)(*s >> 8) / 16777216.0;
+}
+
+/* The pairs' particle records and their histories and states before the
+ * step, at random: the gaps from 6 % overlap to 6 % apart, the springs
+ * from 1e-7 to 1e-3 m (the largest slide), every combination of the
+ * state bits. */
+struct pairs_data {
+    double *rec, xi[3][NP];
+    int ci[NP], cj[NP], state[NP];
+};
+
+static void make_pairs(struct pairs_data *D)
+{
+    unsigned s = 12345u;
+    D->rec = aligned_alloc(64, sizeof(double) * DEM_REC * 2 * NP);
+    assert_non_null(D->rec);
+    for (int k = 0; k < NP; k++) {
+        double *a = D->rec + DEM_REC * 2 * k, *b = a + DEM_REC;
+        const double ra = urand(&s, 0.8e-3, 1.2e-3),
+                     rb = urand(&s, 0.8e-3, 1.2e-3);
+        double u[3], un = 0.0;
+        for (int e = 0; e < 3; e++) {
+            u[e] = urand(&s, -1.0, 1.0);
+            un += u[e] * u[e];
+        }
+        un = sqrt(un);
+        const double dist = (ra + rb) * urand(&s, 0.94, 1.06);
+        for (int e = 0; e < 3; e++) {
+            a[e] = urand(&s, -0.01, 0.01);
+            b[e] = a[e] - dist * u[e] / un;
+            a[4 + e] = urand(&s, -0.1, 0.1);
+            b[4 + e] = urand(&s, -0.1, 0.1);
+            a[8 + e] = urand(&s, -20.0, 20.0);
+            b[8 + e] = urand(&s, -20.0, 20.0);
+            D->xi[e][k] = urand(&s, -1.0, 1.0) * pow(10.0, urand(&s, -7, -3));
+        }
+        a[3] = ra;
+        b[3] = rb;
+        a[7] = b[7] = 1e-5;
+        a[11] = b[11] = 0.0;
+        D->ci[k] = 2 * k;
+        D->cj[k] = 2 * k + 1;
+        D->state[k] = k % 4; /* none, active, sliding, both */
+    }
+}
+
+/* A pass over the pairs with the history and state arrays h, st. */
+static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st)
+{
+    struct pass q;
+    memset(&q, 0, sizeof q);
+    q.ci = D->ci;
+    q.cj = q.cjr = D->cj;
+    q.xi_x = h[0];
+    q.xi_y = h[1];
+    q.xi_z = h[2];
+    q.state = st;
+    return q;
+}
+
+static struct pv pv_of(const double *o)
+{
+    const struct pv p = {o[0], o[1], o[2], o[3], o[4], o[5],
+                         o[6], o[7], o[8], o[9], o[10]};
+    return p;
+}
+
+/* One parameter set: the AVX2 rounds against pair_vals, bit for bit;
+ * counts of touching sticking, touching sliding and open pairs. */
+static void compare(const struct pairs_data *D, struct dem_contact_params cp,
+                    int *stick, int *slide, int *open)
+{
+    static double h0[3][NP], h1[3][NP];
+    static int s0[NP], s1[NP];
+    static struct dem_contact_force F0[NP], F1[NP];
+    memcpy(h0, D->xi, sizeof h0);
+    memcpy(h1, D->xi, sizeof h1);
+    memcpy(s0, D->state, sizeof s0);
+    memcpy(s1, D->state, sizeof s1);
+    memset(F0, 0xff, sizeof F0);
+    memset(F1, 0xff, sizeof F1);
+    const double dt = 1e-5, zero[6] = {0.0};
+    const struct dem_tangential T = {cp.kt, cp.gamma_t, cp.mu_s, cp.mu_d};
+    const struct pass q0 = pass_of(D, h0, s0), q1 = pass_of(D, h1, s1);
+    for (int k = 0; k < NP; k++)
+        F0[k] = pair_vals(DEM_NORMAL_LINEAR, &q0, k,
+                          pv_of(D->rec + DEM_REC * (size_t)D->ci[k]),
+                          pv_of(D->rec + DEM_REC * (size_t)D->cj[k]), &cp, dt,
+                          &T, zero, zero);
+#if TEST_AVX2
+    avx2_rounds(&q1, NP, D->rec, &cp, dt, &T, F1);
+#else
+    (void)q1;
+#endif
+    assert_memory_equal(F0, F1, sizeof F0);
+    assert_memory_equal(h0, h1, sizeof h0);
+    assert_memory_equal(s0, s1, sizeof s0);
+    *stick = *slide = *open = 0;
+    for (int k = 0; k < NP; k++) {
+        if (!(s0[k] & DEM_CONTACT_ACTIVE))
+            ++*open;
+        else if (s0[k] & DEM_CONTACT_SLIDING)
+            ++*slide;
+        else
+            ++*stick;
+    }
+}
+
+static void avx2_round_matches_pair_vals(void **state)
+{
+    (void)state;
+#if TEST_AVX2
+    if (!__builtin_cpu_supports("avx2"))
+        skip();
+#else
+    skip();
+#endif
+    struct pairs_data D;
+    make_pairs(&D);
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_contact_params cp = c.contact;
+    cp.gamma_n = 0.05;
+    cp.gamma_t = 0.01;
+    cp.mu_s = 0.5;
+    cp.mu_d = 0.4;
+    int stick, slide, open;
+    compare(&D, cp, &stick, &slide, &open);
+    /* every branch of the law taken by many pairs */
+    assert_true(stick > 100 && slide > 100 && open > 100);
+    /* without friction every contact slides, with no friction force */
+    cp.mu_s = cp.mu_d = 0.0;
+    compare(&D, cp, &stick, &slide, &open);
+    assert_int_equal(stick, 0);
+    /* without a tangential spring (1/k_t taken as 0) */
+    cp.kt = 0.0;
+    compare(&D, cp, &stick, &slide, &open);
+    assert_true(slide > 100);
+    free(D.rec);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(avx2_round_matches_pair_vals),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
