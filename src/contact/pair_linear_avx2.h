@@ -18,10 +18,10 @@
  *    (square root, division) has the other group's work beside it;
  *  - the square roots are issued as soon as their operand is there,
  *    with the loads and products that do not need them after them.
- * gcc's own code for this loop (8 lanes, each double in two registers)
- * spilled some 50 of the round's 74 stores to the stack on Zen 1;
- * measured there, this round took 6-10 % off a step
- * (docs/performance-log.md, session 68). */
+ * It is about as long as gcc's own round (8 lanes, each double in two
+ * registers: 705 instructions on Zen 1, this one 750, both with some 200
+ * on the stack), but on Zen 1 it took 6-10 % off a step, where one group
+ * of 4 at a time gained nothing (docs/performance-log.md, session 68). */
 #ifndef DEM_CONTACT_PAIR_LINEAR_AVX2_H
 #define DEM_CONTACT_PAIR_LINEAR_AVX2_H
 
