@@ -98,13 +98,6 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st)
     return q;
 }
 
-static struct pv pv_of(const double *o)
-{
-    const struct pv p = {o[0], o[1], o[2], o[3], o[4], o[5],
-                         o[6], o[7], o[8], o[9], o[10]};
-    return p;
-}
-
 /* One parameter set: the AVX2 rounds against pair_vals, bit for bit;
  * counts of touching sticking, touching sliding and open pairs. */
 static void compare(const struct pairs_data *D, struct dem_contact_params cp,
@@ -124,9 +117,9 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
     const struct pass q0 = pass_of(D, h0, s0), q1 = pass_of(D, h1, s1);
     for (int k = 0; k < NP; k++)
         F0[k] = pair_vals(DEM_NORMAL_LINEAR, &q0, k,
-                          pv_of(D->rec + DEM_REC * (size_t)D->ci[k]),
-                          pv_of(D->rec + DEM_REC * (size_t)D->cj[k]), &cp, dt,
-                          &T, zero, zero);
+                          record_pv(D->rec + DEM_REC * (size_t)D->ci[k]),
+                          record_pv(D->rec + DEM_REC * (size_t)D->cj[k]), &cp,
+                          dt, &T, zero, zero);
 #if TEST_AVX2
     avx2_rounds(&q1, NP, D->rec, &cp, dt, &T, F1);
 #else

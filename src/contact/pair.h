@@ -116,6 +116,15 @@ DEM_INLINE struct pv load_pv(const struct pass *q, int i)
     return p;
 }
 
+/* A particle's values for a pair, from its record (struct
+ * contacts.rec: x y z r | vx vy vz m | wx wy wz 0). */
+DEM_INLINE struct pv record_pv(const double *o)
+{
+    const struct pv p = {o[0], o[1], o[2], o[3], o[4], o[5],
+                         o[6], o[7], o[8], o[9], o[10]};
+    return p;
+}
+
 /* Force and history update of pair k between particles with values pi and
  * pj (in a periodic cell their positions in the frame of the last build,
  * j's image's x_j + h_b n, so that b = fm (x_i - x_j') below: fm the

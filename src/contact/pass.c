@@ -307,14 +307,6 @@ DEM_INLINE void records_own(double *rec, const struct dem_particles *P, int i0,
     records_fill(rec + DEM_REC * (size_t)i0, P, i0, i1, 0);
 }
 
-/* A particle's values for a pair, from its record. */
-DEM_INLINE struct pv record_pv(const double *o)
-{
-    const struct pv p = {o[0], o[1], o[2], o[3], o[4],  o[5],
-                         o[6], o[7], o[8], o[9], o[10]};
-    return p;
-}
-
 /* In a periodic cell, the image records of the pairs k0 <= k < k1 that
  * touch an image of j (struct dem_pairs.jrec): j's record, its position
  * shifted to the image, so that the pair loop reads a record as for any
