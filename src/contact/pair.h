@@ -92,13 +92,12 @@ finish_contact(const int law, const struct pass *q, int k, int touch,
     DEM_CONTACT_HISTORY(HIST_STORE_)
 #undef HIST_STORE_
     q->state[k] = touch ? st : 0;
-    const struct dem_contact_force o = {{touch ? fn * n.x + ft.x : 0.0,
-                                         touch ? fn * n.y + ft.y : 0.0,
-                                         touch ? fn * n.z + ft.z : 0.0},
-                                        {touch ? n.y * ft.z - n.z * ft.y : 0.0,
-                                         touch ? n.z * ft.x - n.x * ft.z : 0.0,
-                                         touch ? n.x * ft.y - n.y * ft.x : 0.0},
-                                        {0.0, 0.0}};
+    const struct dem_contact_force o = {
+        {touch ? fn * n.x + ft.x : 0.0, touch ? fn * n.y + ft.y : 0.0,
+         touch ? fn * n.z + ft.z : 0.0},
+        {touch ? n.y * ft.z - n.z * ft.y : 0.0,
+         touch ? n.z * ft.x - n.x * ft.z : 0.0,
+         touch ? n.x * ft.y - n.y * ft.x : 0.0}};
     return o;
 }
 

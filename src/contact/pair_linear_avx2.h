@@ -51,8 +51,9 @@ DEM_INLINE __m128i lin_mask32(__m256d m)
     return _mm_castps_si128(_mm_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0)));
 }
 
-/* The force records of 4 pairs into F[0..4) from rows of lanes: f, c
- * and zero pads, by unpacks and 128-bit stores. */
+/* The force records of 4 pairs into F[0..4) from rows of lanes: f and
+ * c, by unpacks and 128-bit stores (each at a multiple of 16 bytes, so
+ * none crosses a cache line). */
 DEM_INLINE void lin_store_forces(struct dem_contact_force *F, __m256d fx,
                                  __m256d fy, __m256d fz, __m256d cx, __m256d cy,
                                  __m256d cz)
@@ -70,7 +71,6 @@ DEM_INLINE void lin_store_forces(struct dem_contact_force *F, __m256d fx,
             _mm_storeu_pd(o + 2 * e, l >> 1 ? _mm256_extractf128_pd(v, 1)
                                             : _mm256_castpd256_pd128(v));
         }
-        _mm_storeu_pd(o + 6, _mm_setzero_pd());
     }
 }
 

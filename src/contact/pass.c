@@ -397,24 +397,24 @@ DEM_INLINE void lanes_set(double (*O)[DEM_PAIR_LANES], int l,
     }
 }
 
-_Static_assert(sizeof(struct dem_contact_force) == 8 * sizeof(double),
-               "a force record: f, c and two pads, one cache line");
+_Static_assert(sizeof(struct dem_contact_force) == 6 * sizeof(double),
+               "a force record: f and c, 48 bytes");
 
 /* The force records of DEM_PAIR_LANES consecutive contacts from rows
- * o[0..6) of lanes (f x y z, c x y z; the records' pads are zeros) into
- * F[0..DEM_PAIR_LANES), by transposes, each record as whole vectors.
- * Stored lane by lane, the records took a fifth of the pair loop's
- * instructions and it ran 10-15 % slower (docs/performance-log.md,
+ * o[0..6) of lanes (f x y z, c x y z) into F[0..DEM_PAIR_LANES), by
+ * transposes. Stored lane by lane, the records took a fifth of the pair
+ * loop's instructions and it ran 10-15 % slower (docs/performance-log.md,
  * session 54). */
 DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
                                   double (*o)[DEM_PAIR_LANES])
 {
-    double *d = (double *)(void *)F; /* the records as rows of 8 */
+    double *d = (double *)(void *)F; /* the records as rows of 6 */
 #if defined(__AVX512F__)
-    /* per 8 lanes an 8 x 8 transpose: pairs of rows unpacked, then the
-     * 128-bit quarters gathered in two rounds of shuffles */
+    /* per 8 lanes an 8 x 8 transpose (pairs of rows unpacked, then the
+     * 128-bit quarters gathered in two rounds of shuffles), each record
+     * stored as the first 6 doubles of a vector */
     const __m512d z = _mm512_setzero_pd();
-    for (int g = 0; g < DEM_PAIR_LANES; g += 8, d += 64) {
+    for (int g = 0; g < DEM_PAIR_LANES; g += 8, d += 48) {
         __m512d r[6];
         for (int e = 0; e < 6; e++)
             r[e] = _mm512_load_pd(&o[e][g]);
@@ -432,28 +432,30 @@ DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
                           v2 = _mm512_shuffle_f64x2(t[2], t[3], 0x88),
                           v3 = _mm512_shuffle_f64x2(t[2], t[3], 0xdd);
             /* lane 2m + h of the 8: quarter m of t[0..4) */
-            _mm512_storeu_pd(d + 8 * (0 + h),
-                             _mm512_shuffle_f64x2(v0, v2, 0x88));
-            _mm512_storeu_pd(d + 8 * (2 + h),
-                             _mm512_shuffle_f64x2(v1, v3, 0x88));
-            _mm512_storeu_pd(d + 8 * (4 + h),
-                             _mm512_shuffle_f64x2(v0, v2, 0xdd));
-            _mm512_storeu_pd(d + 8 * (6 + h),
-                             _mm512_shuffle_f64x2(v1, v3, 0xdd));
+            _mm512_mask_storeu_pd(d + 6 * (0 + h), 0x3f,
+                                  _mm512_shuffle_f64x2(v0, v2, 0x88));
+            _mm512_mask_storeu_pd(d + 6 * (2 + h), 0x3f,
+                                  _mm512_shuffle_f64x2(v1, v3, 0x88));
+            _mm512_mask_storeu_pd(d + 6 * (4 + h), 0x3f,
+                                  _mm512_shuffle_f64x2(v0, v2, 0xdd));
+            _mm512_mask_storeu_pd(d + 6 * (6 + h), 0x3f,
+                                  _mm512_shuffle_f64x2(v1, v3, 0xdd));
         }
     }
 #else
-    /* per 4 lanes two 4 x 4 transposes: f and c x, then c y z and pad */
-    static const double z[4] = {0.0};
-    for (int g = 0; g < DEM_PAIR_LANES; g += 4, d += 32)
-        for (int b = 0; b < 2; b++) {
-            const double *const a[4] = {&o[4 * b][g], &o[4 * b + 1][g],
-                                        b ? z : &o[2][g], b ? z : &o[3][g]};
-            /* record g + u, its b-th half */
-            double *const t[4] = {d + 4 * b, d + 8 + 4 * b, d + 16 + 4 * b,
-                                  d + 24 + 4 * b};
-            transpose4(a, t, 0);
+    /* per 4 lanes a 4 x 4 transpose of f and c x into each record's
+     * first 4 doubles, then c y and c z two records at a time */
+    for (int g = 0; g < DEM_PAIR_LANES; g += 4, d += 24) {
+        const double *const a[4] = {&o[0][g], &o[1][g], &o[2][g], &o[3][g]};
+        double *const t[4] = {d, d + 6, d + 12, d + 18};
+        transpose4(a, t, 0);
+        for (int u = 0; u < 4; u += 2) {
+            const dem_v2 y = *(const dem_v2 *)(const void *)&o[4][g + u],
+                         w = *(const dem_v2 *)(const void *)&o[5][g + u];
+            *(dem_v2 *)(void *)(d + 6 * u + 4) = SHUF2_(y, w, 0, 2);
+            *(dem_v2 *)(void *)(d + 6 * u + 10) = SHUF2_(y, w, 1, 3);
         }
+    }
 #endif
 }
 #endif

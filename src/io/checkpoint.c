@@ -224,7 +224,6 @@ static void io_list(struct ck_io *io, struct dem_contact_list *L,
     for (int k = 0; k < n && !io->why; k++) { /* f and c, 6 in a row */
         io_f64s(io, F->v[k].f, 3);
         io_f64s(io, F->v[k].c, 3);
-        F->v[k].pad[0] = F->v[k].pad[1] = 0.0;
     }
     if (torques)
         io_f64s(io, F->m, 3 * n);

@@ -52,17 +52,16 @@ struct dem_contact_list {
     int start_cap;
 };
 
-/* Force of one entry in the last force pass. The six numbers of a
- * contact sit together in one 64-byte record, aligned to a cache line:
- * the sum over a particle's pairs as j reads them through an index, so
- * one contact costs one cache line; and eight doubles a record let the
- * force loop store them in SIMD lanes by shuffles where the CPU has no
- * scatter (AVX2; six would not: gcc interleaves only groups of 2^k and
- * 3). The pass writes zeros to pad. */
+/* Force of one entry in the last force pass: the six numbers of a
+ * contact together in one 48-byte record (the array aligned to a cache
+ * line). The force pass stores a round's records from its SIMD lanes by
+ * transposes (contact/pass.c, forces_from_lanes); the sums over a
+ * particle's pairs as j read them through an index. Records of 64 bytes,
+ * a cache line each with two pads, were a quarter more to write and read
+ * back at every step (docs/performance-log.md, session 69). */
 struct dem_contact_force {
     double f[3]; /* N; force on i (on j it is the opposite) */
     double c[3]; /* N; n x f_t: torque on i is -a_i c, on j -a_j c */
-    double pad[2];
 };
 #define DEM_CONTACT_FORCE_ALIGN 64
 
