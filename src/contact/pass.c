@@ -411,11 +411,15 @@ DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
     double *d = (double *)(void *)F; /* the records as rows of 6 */
 #if defined(__AVX512F__)
     /* per 8 lanes an 8 x 8 transpose (pairs of rows unpacked, then the
-     * 128-bit quarters gathered in two rounds of shuffles), each record
-     * stored as the first 6 doubles of a vector */
+     * 128-bit quarters gathered in two rounds of shuffles) gives each
+     * record as the first 6 doubles of a vector, R[l]; then the 8
+     * records' 48 doubles as 6 vectors, records 4g..4g+3 in 3 of them */
     const __m512d z = _mm512_setzero_pd();
+    const __m512i p0 = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 8, 9),
+                  p1 = _mm512_setr_epi64(2, 3, 4, 5, 8, 9, 10, 11),
+                  p2 = _mm512_setr_epi64(4, 5, 8, 9, 10, 11, 12, 13);
     for (int g = 0; g < DEM_PAIR_LANES; g += 8, d += 48) {
-        __m512d r[6];
+        __m512d r[6], R[8];
         for (int e = 0; e < 6; e++)
             r[e] = _mm512_load_pd(&o[e][g]);
         /* lo[u]: lanes 2m of rows 2u, 2u+1 in quarter m; hi[u]: 2m+1 */
@@ -432,14 +436,19 @@ DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
                           v2 = _mm512_shuffle_f64x2(t[2], t[3], 0x88),
                           v3 = _mm512_shuffle_f64x2(t[2], t[3], 0xdd);
             /* lane 2m + h of the 8: quarter m of t[0..4) */
-            _mm512_mask_storeu_pd(d + 6 * (0 + h), 0x3f,
-                                  _mm512_shuffle_f64x2(v0, v2, 0x88));
-            _mm512_mask_storeu_pd(d + 6 * (2 + h), 0x3f,
-                                  _mm512_shuffle_f64x2(v1, v3, 0x88));
-            _mm512_mask_storeu_pd(d + 6 * (4 + h), 0x3f,
-                                  _mm512_shuffle_f64x2(v0, v2, 0xdd));
-            _mm512_mask_storeu_pd(d + 6 * (6 + h), 0x3f,
-                                  _mm512_shuffle_f64x2(v1, v3, 0xdd));
+            R[0 + h] = _mm512_shuffle_f64x2(v0, v2, 0x88);
+            R[2 + h] = _mm512_shuffle_f64x2(v1, v3, 0x88);
+            R[4 + h] = _mm512_shuffle_f64x2(v0, v2, 0xdd);
+            R[6 + h] = _mm512_shuffle_f64x2(v1, v3, 0xdd);
+        }
+        for (int u = 0; u < 2; u++) {
+            const __m512d *s = R + 4 * u;
+            _mm512_storeu_pd(d + 24 * u,
+                             _mm512_permutex2var_pd(s[0], p0, s[1]));
+            _mm512_storeu_pd(d + 24 * u + 8,
+                             _mm512_permutex2var_pd(s[1], p1, s[2]));
+            _mm512_storeu_pd(d + 24 * u + 16,
+                             _mm512_permutex2var_pd(s[2], p2, s[3]));
         }
     }
 #else
