@@ -818,7 +818,9 @@ struct own {
  * for x = -0.0), so the sum is the same bits as over the row alone. The
  * loop then ends where a group ends, nearly always after the first,
  * instead of at the row's end, which varies from one particle to the
- * next: on Zen 1 that took 2-3 % off a step at N = 3375 and 20000. The
+ * next: on Zen 1 that took 2-3 % off a step at N = 3375 and 20000. An
+ * empty row skips the group (in a loose packing most rows are empty,
+ * and four neutral records each cost more than that branch). The
  * reverse rows and the walls' contacts summed alike were slower
  * (docs/performance-log.md, session 70). The address of a record past
  * the row is formed as an integer (it may lie past the array) and never
@@ -916,8 +918,8 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
         /* the row's records DEM_SUM_GROUP at a time, sum_neutral in place
          * of those past its end: no branch at its end, which varies from
-         * one particle to the next */
-        for (int k = start[i], k1 = start[i + 1];; k += DEM_SUM_GROUP) {
+         * one particle to the next (an empty row is skipped) */
+        for (int k = start[i], k1 = start[i + 1]; k < k1; k += DEM_SUM_GROUP) {
             for (int t = 0; t < DEM_SUM_GROUP; t++) {
                 const struct dem_contact_force *o = (const void *)sum_pick(
                     k + t < k1,
@@ -930,8 +932,6 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                 cy += o->c[1];
                 cz += o->c[2];
             }
-            if (k + DEM_SUM_GROUP >= k1)
-                break;
         }
         /* (from a ring in a cell those with j itself, then those
          * through an image of j, which are in the list's array: the
