@@ -820,7 +820,7 @@ struct own {
  * instead of at the row's end, which varies from one particle to the
  * next: on Zen 1 that took 2-3 % off a step at N = 3375 and 20000. An
  * empty row skips the group (in a loose packing most rows are empty,
- * and four neutral records each cost more than that branch). The
+ * and four neutral records cost more than that branch). The
  * reverse rows and the walls' contacts summed alike were slower
  * (docs/performance-log.md, session 70). The address of a record past
  * the row is formed as an integer (it may lie past the array) and never
