@@ -916,9 +916,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         double fx = cell ? 0.0 : -gb * vx[i], fy = cell ? 0.0 : -gb * vy[i],
                fz = cell ? 0.0 : -gb * vz[i];
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
-        /* the row's records DEM_SUM_GROUP at a time, sum_neutral in place
-         * of those past its end: no branch at its end, which varies from
-         * one particle to the next (an empty row is skipped) */
+        /* the row in groups (DEM_SUM_GROUP, sum_pick above) */
         for (int k = start[i], k1 = start[i + 1]; k < k1; k += DEM_SUM_GROUP) {
             for (int t = 0; t < DEM_SUM_GROUP; t++) {
                 const struct dem_contact_force *o = (const void *)sum_pick(
