@@ -17,15 +17,19 @@
 #pragma GCC target("avx2")
 #define DEM_PAIR_LANES 8
 #include "contact/pair_linear_avx2.h"
-/* pairs 0 <= k < np (a multiple of 8) by the AVX2 rounds */
-static void avx2_rounds(const struct pass *q, int np, const double *rec,
-                        const struct dem_contact_params *cp, double dt,
-                        const struct dem_tangential *T,
-                        struct dem_contact_force *F)
+/* pairs 0 <= k < np (a multiple of 8) by the AVX2 rounds, each skipping
+ * the sliding case where no touching pair slides if skip is set; returns
+ * the number of rounds in which none slid */
+static int avx2_rounds(const struct pass *q, int np, const double *rec,
+                       const struct dem_contact_params *cp, double dt,
+                       const struct dem_tangential *T,
+                       struct dem_contact_force *F, int skip)
 {
     const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
+    int none = 0;
     for (int k = 0; k < np; k += 8)
-        pairs_linear_avx2(q, k, rec, cp, dt, T, ik, F + k);
+        none += !pairs_linear_avx2(q, k, rec, cp, dt, T, ik, F + k, skip);
+    return none;
 }
 #pragma GCC pop_options
 #else
@@ -98,10 +102,12 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st)
     return q;
 }
 
-/* One parameter set: the AVX2 rounds against pair_vals, bit for bit;
- * counts of touching sticking, touching sliding and open pairs. */
+/* One parameter set: the AVX2 rounds, with the sliding case always
+ * computed (skip 0) or skipped in rounds where no touching pair slides
+ * (skip 1), against pair_vals, bit for bit; counts of touching sticking,
+ * touching sliding and open pairs, and of the rounds in which none slid. */
 static void compare(const struct pairs_data *D, struct dem_contact_params cp,
-                    int *stick, int *slide, int *open)
+                    int skip, int *stick, int *slide, int *open, int *calm)
 {
     static double h0[3][NP], h1[3][NP];
     static int s0[NP], s1[NP];
@@ -121,9 +127,11 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
                           record_pv(D->rec + DEM_REC * (size_t)D->cj[k]), &cp,
                           dt, &T, zero, zero);
 #if TEST_AVX2
-    avx2_rounds(&q1, NP, D->rec, &cp, dt, &T, F1);
+    *calm = avx2_rounds(&q1, NP, D->rec, &cp, dt, &T, F1, skip);
 #else
     (void)q1;
+    (void)skip;
+    *calm = 0;
 #endif
     assert_memory_equal(F0, F1, sizeof F0);
     assert_memory_equal(h0, h1, sizeof h0);
@@ -157,18 +165,40 @@ static void avx2_round_matches_pair_vals(void **state)
     cp.gamma_t = 0.01;
     cp.mu_s = 0.5;
     cp.mu_d = 0.4;
-    int stick, slide, open;
-    compare(&D, cp, &stick, &slide, &open);
-    /* every branch of the law taken by many pairs */
-    assert_true(stick > 100 && slide > 100 && open > 100);
-    /* without friction every contact slides, with no friction force */
-    cp.mu_s = cp.mu_d = 0.0;
-    compare(&D, cp, &stick, &slide, &open);
-    assert_int_equal(stick, 0);
-    /* without a tangential spring (1/k_t taken as 0) */
-    cp.kt = 0.0;
-    compare(&D, cp, &stick, &slide, &open);
-    assert_true(slide > 100);
+    int stick, slide, open, calm, open8 = 0;
+    /* rounds of 8 open pairs */
+    for (int k = 0; k < NP; k += 8) {
+        int n = 0;
+        for (int l = 0; l < 8; l++) {
+            const double *a = D.rec + DEM_REC * (size_t)D.ci[k + l],
+                         *b = D.rec + DEM_REC * (size_t)D.cj[k + l];
+            const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+            n += dx * dx + dy * dy + dz * dz >= (a[3] + b[3]) * (a[3] + b[3]);
+        }
+        open8 += n == 8;
+    }
+    for (int skip = 0; skip < 2; skip++) {
+        struct dem_contact_params c1 = cp;
+        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        /* every branch of the law taken by many pairs */
+        assert_true(stick > 100 && slide > 100 && open > 100);
+        /* high friction: few slide, and most rounds have none that
+         * does (their sliding case skipped with skip 1) */
+        c1.mu_s = c1.mu_d = 50.0;
+        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        assert_true(slide > 0 && slide < 20 && stick > 300);
+        assert_true(calm > NP / 8 * 3 / 4 && calm < NP / 8);
+        /* without friction every contact slides, with no friction
+         * force */
+        c1.mu_s = c1.mu_d = 0.0;
+        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        assert_int_equal(stick, 0);
+        assert_int_equal(calm, open8);
+        /* without a tangential spring (1/k_t taken as 0) */
+        c1.kt = 0.0;
+        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        assert_true(slide > 100);
+    }
     free(D.rec);
 }
 

@@ -17,11 +17,16 @@
  *    each, their operations side by side, so that each long operation
  *    (square root, division) has the other group's work beside it;
  *  - the square roots are issued as soon as their operand is there,
- *    with the loads and products that do not need them after them.
+ *    with the loads and products that do not need them after them;
+ *  - the sliding case is skipped in rounds where no touching pair
+ *    slides, while the caller finds such rounds common (branch; most
+ *    contacts stick in a quasi-static test, and without friction all
+ *    slide).
  * It is about as long as gcc's own round (8 lanes, each double in two
  * registers: 705 instructions on Zen 1, this one 750, both with some 200
  * on the stack), but on Zen 1 it took 6-10 % off a step, where one group
- * of 4 at a time gained nothing (docs/performance-log.md, session 68). */
+ * of 4 at a time gained nothing (docs/performance-log.md, session 68);
+ * skipping the sliding case took 3-4 % more (session 71). */
 #ifndef DEM_CONTACT_PAIR_LINEAR_AVX2_H
 #define DEM_CONTACT_PAIR_LINEAR_AVX2_H
 
@@ -77,12 +82,16 @@ DEM_INLINE void lin_store_forces(struct dem_contact_force *F, __m256d fx,
 /* Pairs k..k+8 of q, their particles' records in rec: forces into
  * F[0..8), springs and states stored with the pairs, as pair_vals does
  * for them. T the pairs' tangential law, ik its 1/k_t (0 without a
- * spring). */
-DEM_INLINE void pairs_linear_avx2(const struct pass *q, int k,
-                                  const double *rec,
-                                  const struct dem_contact_params *cp,
-                                  double dt, const struct dem_tangential *T,
-                                  double ik, struct dem_contact_force *F)
+ * spring). Returns whether a touching pair slides. With branch set, a
+ * round in which none does skips the sliding case (its square roots and
+ * divisions, half of the round's), whose results only sliding pairs
+ * take; without, the round computes it always, its square roots issued
+ * as soon as their operands are there, and has no branch on the pairs'
+ * data. */
+DEM_INLINE int pairs_linear_avx2(const struct pass *q, int k, const double *rec,
+                                 const struct dem_contact_params *cp, double dt,
+                                 const struct dem_tangential *T, double ik,
+                                 struct dem_contact_force *F, int branch)
 {
 #define EACH for (int h = 0; h < 2; h++)
     const double *pi[2][4], *pj[2][4];
@@ -172,7 +181,7 @@ DEM_INLINE void pairs_linear_avx2(const struct pass *q, int k,
     EACH sz[h] =
         _mm256_add_pd(_mm256_sub_pd(hz[h], _mm256_mul_pd(nz[h], nxi[h])),
                       _mm256_mul_pd(vtz[h], dtv));
-    __m256d f0x[2], f0y[2], f0z[2], f0sq[2], f0n[2];
+    __m256d f0x[2], f0y[2], f0z[2], f0sq[2];
     EACH f0x[h] =
         _mm256_sub_pd(_mm256_mul_pd(nkt, sx[h]), _mm256_mul_pd(gt, vtx[h]));
     EACH f0y[h] =
@@ -182,13 +191,15 @@ DEM_INLINE void pairs_linear_avx2(const struct pass *q, int k,
     EACH f0sq[h] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(f0x[h], f0x[h]),
                                                _mm256_mul_pd(f0y[h], f0y[h])),
                                  _mm256_mul_pd(f0z[h], f0z[h]));
-    EACH f0n[h] = _mm256_sqrt_pd(f0sq[h]);
+    __m256d f0n[2] = {zero, zero};
+    if (!branch)
+        EACH f0n[h] = _mm256_sqrt_pd(f0sq[h]);
     /* the Coulomb limit (dem_coulomb_spring): mu_s, or mu_d for a
      * contact that slid in the last step */
     const __m128i slip = _mm_set1_epi32(DEM_CONTACT_SLIDING);
     const __m256d mud = _mm256_set1_pd(T->mu_d);
     __m128i st[2];
-    __m256d limit[2], slide[2], scale[2];
+    __m256d limit[2], slide[2];
     EACH st[h] = _mm_or_si128(
         _mm_loadu_si128((const __m128i *)(const void *)(q->state + k + 4 * h)),
         _mm_set1_epi32(DEM_CONTACT_ACTIVE));
@@ -201,62 +212,86 @@ DEM_INLINE void pairs_linear_avx2(const struct pass *q, int k,
     EACH slide[h] = _mm256_or_pd(
         _mm256_cmp_pd(f0sq[h], _mm256_mul_pd(limit[h], limit[h]), _CMP_GT_OQ),
         _mm256_cmp_pd(limit[h], zero, _CMP_LE_OQ));
-    EACH scale[h] =
-        _mm256_and_pd(/* f0sq > 0 ? mu_d fc / |f0| : 0 */
-                      _mm256_div_pd(_mm256_mul_pd(mud, fc[h]), f0n[h]),
-                      _mm256_cmp_pd(f0sq[h], zero, _CMP_GT_OQ));
     /* the friction force and the spring kept: the test force's, or
      * sliding at mu_d fc with the spring that gives it; then the
      * records, everything zero where the gap is open */
-    const __m256d nik = _mm256_set1_pd(-ik);
-    EACH
-    {
-        const __m256d s = slide[h], t = touch[h];
-        const __m256d sfx = _mm256_mul_pd(f0x[h], scale[h]),
-                      sfy = _mm256_mul_pd(f0y[h], scale[h]),
-                      sfz = _mm256_mul_pd(f0z[h], scale[h]);
-        const __m256d ftx = _mm256_blendv_pd(f0x[h], sfx, s),
-                      fty = _mm256_blendv_pd(f0y[h], sfy, s),
-                      ftz = _mm256_blendv_pd(f0z[h], sfz, s);
-        const __m256d
-            kx = _mm256_blendv_pd(
+    __m256d ftx[2], fty[2], ftz[2], kx[2], ky[2], kz[2];
+    const int slid = _mm256_movemask_pd(_mm256_or_pd(
+        _mm256_and_pd(slide[0], touch[0]), _mm256_and_pd(slide[1], touch[1])));
+    if (!branch || slid) {
+        const __m256d nik = _mm256_set1_pd(-ik);
+        if (branch)
+            EACH f0n[h] = _mm256_sqrt_pd(f0sq[h]);
+        EACH
+        {
+            const __m256d s = slide[h];
+            const __m256d scale = _mm256_and_pd(
+                /* f0sq > 0 ? mu_d fc / |f0| : 0 */
+                _mm256_div_pd(_mm256_mul_pd(mud, fc[h]), f0n[h]),
+                _mm256_cmp_pd(f0sq[h], zero, _CMP_GT_OQ));
+            const __m256d sfx = _mm256_mul_pd(f0x[h], scale),
+                          sfy = _mm256_mul_pd(f0y[h], scale),
+                          sfz = _mm256_mul_pd(f0z[h], scale);
+            ftx[h] = _mm256_blendv_pd(f0x[h], sfx, s);
+            fty[h] = _mm256_blendv_pd(f0y[h], sfy, s);
+            ftz[h] = _mm256_blendv_pd(f0z[h], sfz, s);
+            kx[h] = _mm256_blendv_pd(
                 sx[h],
                 _mm256_mul_pd(nik,
                               _mm256_add_pd(sfx, _mm256_mul_pd(gt, vtx[h]))),
-                s),
-            ky = _mm256_blendv_pd(
+                s);
+            ky[h] = _mm256_blendv_pd(
                 sy[h],
                 _mm256_mul_pd(nik,
                               _mm256_add_pd(sfy, _mm256_mul_pd(gt, vty[h]))),
-                s),
-            kz = _mm256_blendv_pd(
+                s);
+            kz[h] = _mm256_blendv_pd(
                 sz[h],
                 _mm256_mul_pd(nik,
                               _mm256_add_pd(sfz, _mm256_mul_pd(gt, vtz[h]))),
                 s);
-        _mm256_storeu_pd(q->xi_x + k + 4 * h, _mm256_and_pd(kx, t));
-        _mm256_storeu_pd(q->xi_y + k + 4 * h, _mm256_and_pd(ky, t));
-        _mm256_storeu_pd(q->xi_z + k + 4 * h, _mm256_and_pd(kz, t));
+        }
+    } else {
+        EACH
+        {
+            ftx[h] = f0x[h];
+            fty[h] = f0y[h];
+            ftz[h] = f0z[h];
+            kx[h] = sx[h];
+            ky[h] = sy[h];
+            kz[h] = sz[h];
+        }
+    }
+    EACH
+    {
+        const __m256d s = slide[h], t = touch[h];
+        _mm256_storeu_pd(q->xi_x + k + 4 * h, _mm256_and_pd(kx[h], t));
+        _mm256_storeu_pd(q->xi_y + k + 4 * h, _mm256_and_pd(ky[h], t));
+        _mm256_storeu_pd(q->xi_z + k + 4 * h, _mm256_and_pd(kz[h], t));
         const __m128i so = _mm_or_si128(_mm_andnot_si128(slip, st[h]),
                                         _mm_and_si128(lin_mask32(s), slip));
         _mm_storeu_si128((__m128i *)(void *)(q->state + k + 4 * h),
                          _mm_and_si128(so, lin_mask32(t)));
         lin_store_forces(
             F + 4 * h,
-            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], nx[h]), ftx), t),
-            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], ny[h]), fty), t),
-            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], nz[h]), ftz), t),
-            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(ny[h], ftz),
-                                        _mm256_mul_pd(nz[h], fty)),
+            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], nx[h]), ftx[h]),
                           t),
-            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(nz[h], ftx),
-                                        _mm256_mul_pd(nx[h], ftz)),
+            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], ny[h]), fty[h]),
                           t),
-            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(nx[h], fty),
-                                        _mm256_mul_pd(ny[h], ftx)),
+            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], nz[h]), ftz[h]),
+                          t),
+            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(ny[h], ftz[h]),
+                                        _mm256_mul_pd(nz[h], fty[h])),
+                          t),
+            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(nz[h], ftx[h]),
+                                        _mm256_mul_pd(nx[h], ftz[h])),
+                          t),
+            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(nx[h], fty[h]),
+                                        _mm256_mul_pd(ny[h], ftx[h])),
                           t));
     }
 #undef EACH
+    return slid != 0;
 }
 
 #endif

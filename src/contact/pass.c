@@ -495,6 +495,12 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     (void)kend;
     (void)ahead;
 #if DEM_PASS_RECORDS
+#if DEM_PAIR_LINEAR_AVX2
+    /* sliding pairs in the last rounds (pairs_linear_avx2): while at
+     * most 24 of 32 rounds had one, a round skips the sliding case if
+     * none of its touching pairs slides */
+    int branch = 1, rounds = 0, slid = 0;
+#endif
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES],
             B[DEM_REC][DEM_PAIR_LANES];
@@ -532,7 +538,12 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         }
 #if DEM_PAIR_LINEAR_AVX2
         if (law == DEM_NORMAL_LINEAR) {
-            pairs_linear_avx2(&q, k, rec, cp, dt, &T, ik, q.F + (k - q.foff));
+            slid += pairs_linear_avx2(&q, k, rec, cp, dt, &T, ik,
+                                      q.F + (k - q.foff), branch);
+            if (++rounds == 32) {
+                branch = slid <= 24;
+                rounds = slid = 0;
+            }
             continue;
         }
 #endif
