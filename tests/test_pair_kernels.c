@@ -3,7 +3,7 @@
  * (contact/pair.h), one contact at a time in scalar code, for touching
  * and open pairs, sticking and sliding contacts, with and without
  * friction. test_dynamics compares the passes on the CPU that runs it;
- * this test runs the AVX2 round (contact/pair_linear_avx2.h) on any
+ * this test runs the AVX2 groups (contact/pair_linear_avx2.h) on any
  * x86-64 CPU with AVX2, also where the build's own pass uses AVX-512
  * and never runs it. */
 #include <stdlib.h>
@@ -17,17 +17,17 @@
 #pragma GCC target("avx2")
 #define DEM_PAIR_LANES 8
 #include "contact/pair_linear_avx2.h"
-/* pairs 0 <= k < np (a multiple of 8) by the AVX2 rounds, each skipping
- * the sliding case where no touching pair slides if skip is set; returns
- * the number of rounds in which none slid */
-static int avx2_rounds(const struct pass *q, int np, const double *rec,
+/* pairs 0 <= k < np (a multiple of 4) by the AVX2 groups of 4, each
+ * skipping the sliding case where no touching pair slides if skip is set;
+ * returns the number of groups in which none slid */
+static int avx2_groups(const struct pass *q, int np, const double *rec,
                        const struct dem_contact_params *cp, double dt,
                        const struct dem_tangential *T,
                        struct dem_contact_force *F, int skip)
 {
     const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
     int none = 0;
-    for (int k = 0; k < np; k += 8)
+    for (int k = 0; k < np; k += 4)
         none += !pairs_linear_avx2(q, k, rec, cp, dt, T, ik, F + k, skip);
     return none;
 }
@@ -102,10 +102,10 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st)
     return q;
 }
 
-/* One parameter set: the AVX2 rounds, with the sliding case always
- * computed (skip 0) or skipped in rounds where no touching pair slides
+/* One parameter set: the AVX2 groups, with the sliding case always
+ * computed (skip 0) or skipped in groups where no touching pair slides
  * (skip 1), against pair_vals, bit for bit; counts of touching sticking,
- * touching sliding and open pairs, and of the rounds in which none slid. */
+ * touching sliding and open pairs, and of the groups in which none slid. */
 static void compare(const struct pairs_data *D, struct dem_contact_params cp,
                     int skip, int *stick, int *slide, int *open, int *calm)
 {
@@ -127,7 +127,7 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
                           record_pv(D->rec + DEM_REC * (size_t)D->cj[k]), &cp,
                           dt, &T, zero, zero);
 #if TEST_AVX2
-    *calm = avx2_rounds(&q1, NP, D->rec, &cp, dt, &T, F1, skip);
+    *calm = avx2_groups(&q1, NP, D->rec, &cp, dt, &T, F1, skip);
 #else
     (void)q1;
     (void)skip;
@@ -165,35 +165,35 @@ static void avx2_round_matches_pair_vals(void **state)
     cp.gamma_t = 0.01;
     cp.mu_s = 0.5;
     cp.mu_d = 0.4;
-    int stick, slide, open, calm, open8 = 0;
-    /* rounds of 8 open pairs */
-    for (int k = 0; k < NP; k += 8) {
+    int stick, slide, open, calm, open4 = 0;
+    /* groups of 4 open pairs */
+    for (int k = 0; k < NP; k += 4) {
         int n = 0;
-        for (int l = 0; l < 8; l++) {
+        for (int l = 0; l < 4; l++) {
             const double *a = D.rec + DEM_REC * (size_t)D.ci[k + l],
                          *b = D.rec + DEM_REC * (size_t)D.cj[k + l];
             const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
             n += dx * dx + dy * dy + dz * dz >= (a[3] + b[3]) * (a[3] + b[3]);
         }
-        open8 += n == 8;
+        open4 += n == 4;
     }
     for (int skip = 0; skip < 2; skip++) {
         struct dem_contact_params c1 = cp;
         compare(&D, c1, skip, &stick, &slide, &open, &calm);
         /* every branch of the law taken by many pairs */
         assert_true(stick > 100 && slide > 100 && open > 100);
-        /* high friction: few slide, and most rounds have none that
+        /* high friction: few slide, and most groups have none that
          * does (their sliding case skipped with skip 1) */
         c1.mu_s = c1.mu_d = 50.0;
         compare(&D, c1, skip, &stick, &slide, &open, &calm);
         assert_true(slide > 0 && slide < 20 && stick > 300);
-        assert_true(calm > NP / 8 * 3 / 4 && calm < NP / 8);
+        assert_true(calm > NP / 4 * 3 / 4 && calm < NP / 4);
         /* without friction every contact slides, with no friction
          * force */
         c1.mu_s = c1.mu_d = 0.0;
         compare(&D, c1, skip, &stick, &slide, &open, &calm);
         assert_int_equal(stick, 0);
-        assert_int_equal(calm, open8);
+        assert_int_equal(calm, open4);
         /* without a tangential spring (1/k_t taken as 0) */
         c1.kt = 0.0;
         compare(&D, c1, skip, &stick, &slide, &open, &calm);

@@ -1,7 +1,8 @@
-/* A round of the pair loop (contact/pass.c, pair_range) for the linear
- * normal law without resistances between walls, the commonest model set
- * (the papers' law), written in AVX2 intrinsics. Only the records
- * compilations for a CPU with AVX2 and without AVX-512 include it.
+/* A group of 4 pairs of the pair loop (contact/pass.c, pair_range: two
+ * groups a round) for the linear normal law without resistances between
+ * walls, the commonest model set (the papers' law), written in AVX2
+ * intrinsics. Only the records compilations for a CPU with AVX2 and
+ * without AVX-512 include it.
  *
  * It computes the very operations of pair_vals with that law
  * (contact/model_linear.h), dem_tangential_force and finish_contact, in
@@ -13,26 +14,27 @@
  *  - a particle's rows come from its record by 128-bit loads, inserts
  *    and unpacks, only those the law reads (10 of 12), with no
  *    lane-crossing shuffle (which Zen 1 splits into 8 micro-ops);
- *  - the 8 pairs of a round are two groups of 4, one register per value
- *    each, their operations side by side, so that each long operation
- *    (square root, division) has the other group's work beside it;
+ *  - one register per value of the 4 pairs;
  *  - the square roots are issued as soon as their operand is there,
  *    with the loads and products that do not need them after them;
- *  - the sliding case is skipped in rounds where no touching pair
- *    slides, while the caller finds such rounds common (branch; most
+ *  - the sliding case is skipped in groups where no touching pair
+ *    slides, while the caller finds such groups common (branch; most
  *    contacts stick in a quasi-static test, and without friction all
  *    slide).
- * It is about as long as gcc's own round (8 lanes, each double in two
- * registers: 705 instructions on Zen 1, this one 750, both with some 200
- * on the stack), but on Zen 1 it took 6-10 % off a step, where one group
- * of 4 at a time gained nothing (docs/performance-log.md, session 68);
- * skipping the sliding case took 3-4 % more (session 71). */
+ * On Zen 1 the round in intrinsics took 6-10 % off a step against gcc's
+ * (docs/performance-log.md, session 68), then as two groups of 4 side by
+ * side; skipping the sliding case took 3-4 % more (session 71); one
+ * group at a time, each with its own test, 5-9 % more (session 72):
+ * a group of 4 has a sliding pair less often than a round of 8, and its
+ * path without the sliding case is short and keeps its values in
+ * registers. Without the skip, one group at a time and two side by side
+ * ran alike. */
 #ifndef DEM_CONTACT_PAIR_LINEAR_AVX2_H
 #define DEM_CONTACT_PAIR_LINEAR_AVX2_H
 
 #include <immintrin.h>
 
-_Static_assert(DEM_PAIR_LANES == 8, "two groups of 4 pairs a round");
+_Static_assert(DEM_PAIR_LANES % 4 == 0, "whole groups of 4 pairs a round");
 
 /* Elements o..o+3 of the records p[0..4) as four rows of lanes. */
 DEM_INLINE void lin_rows(const double *const p[4], int o, __m256d r[4])
@@ -79,218 +81,172 @@ DEM_INLINE void lin_store_forces(struct dem_contact_force *F, __m256d fx,
     }
 }
 
-/* Pairs k..k+8 of q, their particles' records in rec: forces into
- * F[0..8), springs and states stored with the pairs, as pair_vals does
+/* Pairs k..k+4 of q, their particles' records in rec: forces into
+ * F[0..4), springs and states stored with the pairs, as pair_vals does
  * for them. T the pairs' tangential law, ik its 1/k_t (0 without a
  * spring). Returns whether a touching pair slides. With branch set, a
- * round in which none does skips the sliding case (its square roots and
- * divisions, half of the round's), whose results only sliding pairs
- * take; without, the round computes it always, its square roots issued
- * as soon as their operands are there, and has no branch on the pairs'
+ * group in which none does skips the sliding case (its square root and
+ * division, half of the group's), whose results only sliding pairs
+ * take; without, the group computes it always, its square root issued
+ * as soon as its operand is there, and has no branch on the pairs'
  * data. */
 DEM_INLINE int pairs_linear_avx2(const struct pass *q, int k, const double *rec,
                                  const struct dem_contact_params *cp, double dt,
                                  const struct dem_tangential *T, double ik,
                                  struct dem_contact_force *F, int branch)
 {
-#define EACH for (int h = 0; h < 2; h++)
-    const double *pi[2][4], *pj[2][4];
-    EACH for (int l = 0; l < 4; l++)
-    {
-        pi[h][l] = rec + DEM_REC * (size_t)q->ci[k + 4 * h + l];
-        pj[h][l] = rec + DEM_REC * (size_t)q->cjr[k + 4 * h + l - q->roff];
+    const double *pi[4], *pj[4];
+    for (int l = 0; l < 4; l++) {
+        pi[l] = rec + DEM_REC * (size_t)q->ci[k + l];
+        pj[l] = rec + DEM_REC * (size_t)q->cjr[k + l - q->roff];
     }
     const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0),
                   sign = _mm256_set1_pd(-0.0);
     /* the distance, and whether the pair touches */
-    __m256d xi[2][4], xj[2][4], dx[2], dy[2], dz[2], R[2], d2[2], d[2],
-        touch[2];
-    EACH lin_rows(pi[h], 0, xi[h]);
-    EACH lin_rows(pj[h], 0, xj[h]);
-    EACH dx[h] = _mm256_sub_pd(xi[h][0], xj[h][0]);
-    EACH dy[h] = _mm256_sub_pd(xi[h][1], xj[h][1]);
-    EACH dz[h] = _mm256_sub_pd(xi[h][2], xj[h][2]);
-    EACH R[h] = _mm256_add_pd(xi[h][3], xj[h][3]);
-    EACH d2[h] = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(dx[h], dx[h]), _mm256_mul_pd(dy[h], dy[h])),
-        _mm256_mul_pd(dz[h], dz[h]));
-    EACH d[h] = _mm256_sqrt_pd(d2[h]);
-    EACH touch[h] = _mm256_cmp_pd(d2[h], _mm256_mul_pd(R[h], R[h]), _CMP_LT_OQ);
-    /* a_i w_i + a_j w_j while the square roots run */
-    __m256d wi[2][4], wj[2][4], cwx[2], cwy[2], cwz[2], id[2];
-    EACH lin_rows(pi[h], 8, wi[h]);
-    EACH lin_rows(pj[h], 8, wj[h]);
-    EACH cwx[h] = _mm256_add_pd(_mm256_mul_pd(xi[h][3], wi[h][0]),
-                                _mm256_mul_pd(xj[h][3], wj[h][0]));
-    EACH cwy[h] = _mm256_add_pd(_mm256_mul_pd(xi[h][3], wi[h][1]),
-                                _mm256_mul_pd(xj[h][3], wj[h][1]));
-    EACH cwz[h] = _mm256_add_pd(_mm256_mul_pd(xi[h][3], wi[h][2]),
-                                _mm256_mul_pd(xj[h][3], wj[h][2]));
-    EACH id[h] = _mm256_div_pd(one, d[h]);
-    /* v_i - v_j and the springs while the divisions run */
-    __m256d vi[2][4], vj[2][4], dvx[2], dvy[2], dvz[2], hx[2], hy[2], hz[2];
-    EACH lin_rows(pi[h], 4, vi[h]);
-    EACH lin_rows(pj[h], 4, vj[h]);
-    EACH dvx[h] = _mm256_sub_pd(vi[h][0], vj[h][0]);
-    EACH dvy[h] = _mm256_sub_pd(vi[h][1], vj[h][1]);
-    EACH dvz[h] = _mm256_sub_pd(vi[h][2], vj[h][2]);
-    EACH hx[h] = _mm256_loadu_pd(q->xi_x + k + 4 * h);
-    EACH hy[h] = _mm256_loadu_pd(q->xi_y + k + 4 * h);
-    EACH hz[h] = _mm256_loadu_pd(q->xi_z + k + 4 * h);
+    __m256d xi[4], xj[4];
+    lin_rows(pi, 0, xi);
+    lin_rows(pj, 0, xj);
+    const __m256d dx = _mm256_sub_pd(xi[0], xj[0]),
+                  dy = _mm256_sub_pd(xi[1], xj[1]),
+                  dz = _mm256_sub_pd(xi[2], xj[2]),
+                  R = _mm256_add_pd(xi[3], xj[3]);
+    const __m256d d2 = _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
+        _mm256_mul_pd(dz, dz));
+    const __m256d d = _mm256_sqrt_pd(d2);
+    const __m256d touch = _mm256_cmp_pd(d2, _mm256_mul_pd(R, R), _CMP_LT_OQ);
+    /* a_i w_i + a_j w_j while the square root runs */
+    __m256d wi[4], wj[4];
+    lin_rows(pi, 8, wi);
+    lin_rows(pj, 8, wj);
+    const __m256d cwx = _mm256_add_pd(_mm256_mul_pd(xi[3], wi[0]),
+                                      _mm256_mul_pd(xj[3], wj[0])),
+                  cwy = _mm256_add_pd(_mm256_mul_pd(xi[3], wi[1]),
+                                      _mm256_mul_pd(xj[3], wj[1])),
+                  cwz = _mm256_add_pd(_mm256_mul_pd(xi[3], wi[2]),
+                                      _mm256_mul_pd(xj[3], wj[2]));
+    const __m256d id = _mm256_div_pd(one, d);
+    /* v_i - v_j and the springs while the division runs */
+    __m256d vi[4], vj[4];
+    lin_rows(pi, 4, vi);
+    lin_rows(pj, 4, vj);
+    const __m256d dvx = _mm256_sub_pd(vi[0], vj[0]),
+                  dvy = _mm256_sub_pd(vi[1], vj[1]),
+                  dvz = _mm256_sub_pd(vi[2], vj[2]);
+    const __m256d hx = _mm256_loadu_pd(q->xi_x + k),
+                  hy = _mm256_loadu_pd(q->xi_y + k),
+                  hz = _mm256_loadu_pd(q->xi_z + k);
     /* the normal, the contact's velocity, the normal force */
-    __m256d nx[2], ny[2], nz[2], vx[2], vy[2], vz[2], ddot[2], fn[2], fc[2];
-    EACH nx[h] = _mm256_mul_pd(dx[h], id[h]);
-    EACH ny[h] = _mm256_mul_pd(dy[h], id[h]);
-    EACH nz[h] = _mm256_mul_pd(dz[h], id[h]);
-    EACH vx[h] =
-        _mm256_sub_pd(_mm256_add_pd(dvx[h], _mm256_mul_pd(ny[h], cwz[h])),
-                      _mm256_mul_pd(nz[h], cwy[h]));
-    EACH vy[h] =
-        _mm256_sub_pd(_mm256_add_pd(dvy[h], _mm256_mul_pd(nz[h], cwx[h])),
-                      _mm256_mul_pd(nx[h], cwz[h]));
-    EACH vz[h] =
-        _mm256_sub_pd(_mm256_add_pd(dvz[h], _mm256_mul_pd(nx[h], cwy[h])),
-                      _mm256_mul_pd(ny[h], cwx[h]));
-    EACH ddot[h] = _mm256_xor_pd(
-        sign, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(vx[h], nx[h]),
-                                          _mm256_mul_pd(vy[h], ny[h])),
-                            _mm256_mul_pd(vz[h], nz[h])));
-    EACH fn[h] = _mm256_add_pd(
-        _mm256_mul_pd(_mm256_set1_pd(cp->k), _mm256_sub_pd(R[h], d[h])),
-        _mm256_mul_pd(_mm256_set1_pd(cp->gamma_n), ddot[h]));
-    EACH fc[h] = _mm256_max_pd(fn[h], zero); /* fn > 0 ? fn : 0 */
+    const __m256d nx = _mm256_mul_pd(dx, id), ny = _mm256_mul_pd(dy, id),
+                  nz = _mm256_mul_pd(dz, id);
+    const __m256d vx = _mm256_sub_pd(_mm256_add_pd(dvx, _mm256_mul_pd(ny, cwz)),
+                                     _mm256_mul_pd(nz, cwy)),
+                  vy = _mm256_sub_pd(_mm256_add_pd(dvy, _mm256_mul_pd(nz, cwx)),
+                                     _mm256_mul_pd(nx, cwz)),
+                  vz = _mm256_sub_pd(_mm256_add_pd(dvz, _mm256_mul_pd(nx, cwy)),
+                                     _mm256_mul_pd(ny, cwx));
+    const __m256d ddot =
+        _mm256_xor_pd(sign, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(vx, nx),
+                                                        _mm256_mul_pd(vy, ny)),
+                                          _mm256_mul_pd(vz, nz)));
+    const __m256d fn =
+        _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(cp->k), _mm256_sub_pd(R, d)),
+                      _mm256_mul_pd(_mm256_set1_pd(cp->gamma_n), ddot));
+    const __m256d fc = _mm256_max_pd(fn, zero); /* fn > 0 ? fn : 0 */
     /* the spring projected and stretched to now, the test force */
     const __m256d dtv = _mm256_set1_pd(dt), nkt = _mm256_set1_pd(-T->kt),
                   gt = _mm256_set1_pd(T->gamma_t);
-    __m256d nv[2], nxi[2], vtx[2], vty[2], vtz[2], sx[2], sy[2], sz[2];
-    EACH nv[h] = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(nx[h], vx[h]), _mm256_mul_pd(ny[h], vy[h])),
-        _mm256_mul_pd(nz[h], vz[h]));
-    EACH nxi[h] = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(nx[h], hx[h]), _mm256_mul_pd(ny[h], hy[h])),
-        _mm256_mul_pd(nz[h], hz[h]));
-    EACH vtx[h] = _mm256_sub_pd(vx[h], _mm256_mul_pd(nx[h], nv[h]));
-    EACH vty[h] = _mm256_sub_pd(vy[h], _mm256_mul_pd(ny[h], nv[h]));
-    EACH vtz[h] = _mm256_sub_pd(vz[h], _mm256_mul_pd(nz[h], nv[h]));
-    EACH sx[h] =
-        _mm256_add_pd(_mm256_sub_pd(hx[h], _mm256_mul_pd(nx[h], nxi[h])),
-                      _mm256_mul_pd(vtx[h], dtv));
-    EACH sy[h] =
-        _mm256_add_pd(_mm256_sub_pd(hy[h], _mm256_mul_pd(ny[h], nxi[h])),
-                      _mm256_mul_pd(vty[h], dtv));
-    EACH sz[h] =
-        _mm256_add_pd(_mm256_sub_pd(hz[h], _mm256_mul_pd(nz[h], nxi[h])),
-                      _mm256_mul_pd(vtz[h], dtv));
-    __m256d f0x[2], f0y[2], f0z[2], f0sq[2];
-    EACH f0x[h] =
-        _mm256_sub_pd(_mm256_mul_pd(nkt, sx[h]), _mm256_mul_pd(gt, vtx[h]));
-    EACH f0y[h] =
-        _mm256_sub_pd(_mm256_mul_pd(nkt, sy[h]), _mm256_mul_pd(gt, vty[h]));
-    EACH f0z[h] =
-        _mm256_sub_pd(_mm256_mul_pd(nkt, sz[h]), _mm256_mul_pd(gt, vtz[h]));
-    EACH f0sq[h] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(f0x[h], f0x[h]),
-                                               _mm256_mul_pd(f0y[h], f0y[h])),
-                                 _mm256_mul_pd(f0z[h], f0z[h]));
-    __m256d f0n[2] = {zero, zero};
+    const __m256d nv = _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(nx, vx), _mm256_mul_pd(ny, vy)),
+        _mm256_mul_pd(nz, vz));
+    const __m256d nxi = _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(nx, hx), _mm256_mul_pd(ny, hy)),
+        _mm256_mul_pd(nz, hz));
+    const __m256d vtx = _mm256_sub_pd(vx, _mm256_mul_pd(nx, nv)),
+                  vty = _mm256_sub_pd(vy, _mm256_mul_pd(ny, nv)),
+                  vtz = _mm256_sub_pd(vz, _mm256_mul_pd(nz, nv));
+    const __m256d sx = _mm256_add_pd(_mm256_sub_pd(hx, _mm256_mul_pd(nx, nxi)),
+                                     _mm256_mul_pd(vtx, dtv)),
+                  sy = _mm256_add_pd(_mm256_sub_pd(hy, _mm256_mul_pd(ny, nxi)),
+                                     _mm256_mul_pd(vty, dtv)),
+                  sz = _mm256_add_pd(_mm256_sub_pd(hz, _mm256_mul_pd(nz, nxi)),
+                                     _mm256_mul_pd(vtz, dtv));
+    const __m256d f0x = _mm256_sub_pd(_mm256_mul_pd(nkt, sx),
+                                      _mm256_mul_pd(gt, vtx)),
+                  f0y = _mm256_sub_pd(_mm256_mul_pd(nkt, sy),
+                                      _mm256_mul_pd(gt, vty)),
+                  f0z = _mm256_sub_pd(_mm256_mul_pd(nkt, sz),
+                                      _mm256_mul_pd(gt, vtz));
+    const __m256d f0sq = _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(f0x, f0x), _mm256_mul_pd(f0y, f0y)),
+        _mm256_mul_pd(f0z, f0z));
+    __m256d f0n = zero;
     if (!branch)
-        EACH f0n[h] = _mm256_sqrt_pd(f0sq[h]);
+        f0n = _mm256_sqrt_pd(f0sq);
     /* the Coulomb limit (dem_coulomb_spring): mu_s, or mu_d for a
      * contact that slid in the last step */
     const __m128i slip = _mm_set1_epi32(DEM_CONTACT_SLIDING);
     const __m256d mud = _mm256_set1_pd(T->mu_d);
-    __m128i st[2];
-    __m256d limit[2], slide[2];
-    EACH st[h] = _mm_or_si128(
-        _mm_loadu_si128((const __m128i *)(const void *)(q->state + k + 4 * h)),
+    const __m128i st = _mm_or_si128(
+        _mm_loadu_si128((const __m128i *)(const void *)(q->state + k)),
         _mm_set1_epi32(DEM_CONTACT_ACTIVE));
-    EACH limit[h] = _mm256_mul_pd(
-        _mm256_blendv_pd(
-            _mm256_set1_pd(T->mu_s), mud,
-            _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
-                _mm_cmpeq_epi32(_mm_and_si128(st[h], slip), slip)))),
-        fc[h]);
-    EACH slide[h] = _mm256_or_pd(
-        _mm256_cmp_pd(f0sq[h], _mm256_mul_pd(limit[h], limit[h]), _CMP_GT_OQ),
-        _mm256_cmp_pd(limit[h], zero, _CMP_LE_OQ));
+    const __m256d limit = _mm256_mul_pd(
+        _mm256_blendv_pd(_mm256_set1_pd(T->mu_s), mud,
+                         _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
+                             _mm_cmpeq_epi32(_mm_and_si128(st, slip), slip)))),
+        fc);
+    const __m256d slide = _mm256_or_pd(
+        _mm256_cmp_pd(f0sq, _mm256_mul_pd(limit, limit), _CMP_GT_OQ),
+        _mm256_cmp_pd(limit, zero, _CMP_LE_OQ));
     /* the friction force and the spring kept: the test force's, or
      * sliding at mu_d fc with the spring that gives it; then the
      * records, everything zero where the gap is open */
-    __m256d ftx[2], fty[2], ftz[2], kx[2], ky[2], kz[2];
-    const int slid = _mm256_movemask_pd(_mm256_or_pd(
-        _mm256_and_pd(slide[0], touch[0]), _mm256_and_pd(slide[1], touch[1])));
+    __m256d ftx = f0x, fty = f0y, ftz = f0z, kx = sx, ky = sy, kz = sz;
+    const int slid = _mm256_movemask_pd(_mm256_and_pd(slide, touch));
     if (!branch || slid) {
         const __m256d nik = _mm256_set1_pd(-ik);
         if (branch)
-            EACH f0n[h] = _mm256_sqrt_pd(f0sq[h]);
-        EACH
-        {
-            const __m256d s = slide[h];
-            const __m256d scale = _mm256_and_pd(
-                /* f0sq > 0 ? mu_d fc / |f0| : 0 */
-                _mm256_div_pd(_mm256_mul_pd(mud, fc[h]), f0n[h]),
-                _mm256_cmp_pd(f0sq[h], zero, _CMP_GT_OQ));
-            const __m256d sfx = _mm256_mul_pd(f0x[h], scale),
-                          sfy = _mm256_mul_pd(f0y[h], scale),
-                          sfz = _mm256_mul_pd(f0z[h], scale);
-            ftx[h] = _mm256_blendv_pd(f0x[h], sfx, s);
-            fty[h] = _mm256_blendv_pd(f0y[h], sfy, s);
-            ftz[h] = _mm256_blendv_pd(f0z[h], sfz, s);
-            kx[h] = _mm256_blendv_pd(
-                sx[h],
-                _mm256_mul_pd(nik,
-                              _mm256_add_pd(sfx, _mm256_mul_pd(gt, vtx[h]))),
-                s);
-            ky[h] = _mm256_blendv_pd(
-                sy[h],
-                _mm256_mul_pd(nik,
-                              _mm256_add_pd(sfy, _mm256_mul_pd(gt, vty[h]))),
-                s);
-            kz[h] = _mm256_blendv_pd(
-                sz[h],
-                _mm256_mul_pd(nik,
-                              _mm256_add_pd(sfz, _mm256_mul_pd(gt, vtz[h]))),
-                s);
-        }
-    } else {
-        EACH
-        {
-            ftx[h] = f0x[h];
-            fty[h] = f0y[h];
-            ftz[h] = f0z[h];
-            kx[h] = sx[h];
-            ky[h] = sy[h];
-            kz[h] = sz[h];
-        }
+            f0n = _mm256_sqrt_pd(f0sq);
+        const __m256d scale = _mm256_and_pd(
+            /* f0sq > 0 ? mu_d fc / |f0| : 0 */
+            _mm256_div_pd(_mm256_mul_pd(mud, fc), f0n),
+            _mm256_cmp_pd(f0sq, zero, _CMP_GT_OQ));
+        const __m256d sfx = _mm256_mul_pd(f0x, scale),
+                      sfy = _mm256_mul_pd(f0y, scale),
+                      sfz = _mm256_mul_pd(f0z, scale);
+        ftx = _mm256_blendv_pd(f0x, sfx, slide);
+        fty = _mm256_blendv_pd(f0y, sfy, slide);
+        ftz = _mm256_blendv_pd(f0z, sfz, slide);
+        kx = _mm256_blendv_pd(
+            sx, _mm256_mul_pd(nik, _mm256_add_pd(sfx, _mm256_mul_pd(gt, vtx))),
+            slide);
+        ky = _mm256_blendv_pd(
+            sy, _mm256_mul_pd(nik, _mm256_add_pd(sfy, _mm256_mul_pd(gt, vty))),
+            slide);
+        kz = _mm256_blendv_pd(
+            sz, _mm256_mul_pd(nik, _mm256_add_pd(sfz, _mm256_mul_pd(gt, vtz))),
+            slide);
     }
-    EACH
-    {
-        const __m256d s = slide[h], t = touch[h];
-        _mm256_storeu_pd(q->xi_x + k + 4 * h, _mm256_and_pd(kx[h], t));
-        _mm256_storeu_pd(q->xi_y + k + 4 * h, _mm256_and_pd(ky[h], t));
-        _mm256_storeu_pd(q->xi_z + k + 4 * h, _mm256_and_pd(kz[h], t));
-        const __m128i so = _mm_or_si128(_mm_andnot_si128(slip, st[h]),
-                                        _mm_and_si128(lin_mask32(s), slip));
-        _mm_storeu_si128((__m128i *)(void *)(q->state + k + 4 * h),
-                         _mm_and_si128(so, lin_mask32(t)));
-        lin_store_forces(
-            F + 4 * h,
-            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], nx[h]), ftx[h]),
-                          t),
-            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], ny[h]), fty[h]),
-                          t),
-            _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn[h], nz[h]), ftz[h]),
-                          t),
-            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(ny[h], ftz[h]),
-                                        _mm256_mul_pd(nz[h], fty[h])),
-                          t),
-            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(nz[h], ftx[h]),
-                                        _mm256_mul_pd(nx[h], ftz[h])),
-                          t),
-            _mm256_and_pd(_mm256_sub_pd(_mm256_mul_pd(nx[h], fty[h]),
-                                        _mm256_mul_pd(ny[h], ftx[h])),
-                          t));
-    }
-#undef EACH
+    _mm256_storeu_pd(q->xi_x + k, _mm256_and_pd(kx, touch));
+    _mm256_storeu_pd(q->xi_y + k, _mm256_and_pd(ky, touch));
+    _mm256_storeu_pd(q->xi_z + k, _mm256_and_pd(kz, touch));
+    const __m128i so = _mm_or_si128(_mm_andnot_si128(slip, st),
+                                    _mm_and_si128(lin_mask32(slide), slip));
+    _mm_storeu_si128((__m128i *)(void *)(q->state + k),
+                     _mm_and_si128(so, lin_mask32(touch)));
+    lin_store_forces(
+        F, _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn, nx), ftx), touch),
+        _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn, ny), fty), touch),
+        _mm256_and_pd(_mm256_add_pd(_mm256_mul_pd(fn, nz), ftz), touch),
+        _mm256_and_pd(
+            _mm256_sub_pd(_mm256_mul_pd(ny, ftz), _mm256_mul_pd(nz, fty)),
+            touch),
+        _mm256_and_pd(
+            _mm256_sub_pd(_mm256_mul_pd(nz, ftx), _mm256_mul_pd(nx, ftz)),
+            touch),
+        _mm256_and_pd(
+            _mm256_sub_pd(_mm256_mul_pd(nx, fty), _mm256_mul_pd(ny, ftx)),
+            touch));
     return slid != 0;
 }
 
