@@ -50,6 +50,15 @@ DEM_INLINE void lin_rows(const double *const p[4], int o, __m256d r[4])
     r[3] = _mm256_unpackhi_pd(a[2], a[3]);
 }
 
+/* (ax bx + ay by) + az bz, in pair_vals's order */
+DEM_INLINE __m256d lin_dot3(__m256d ax, __m256d ay, __m256d az, __m256d bx,
+                            __m256d by, __m256d bz)
+{
+    return _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(ax, bx), _mm256_mul_pd(ay, by)),
+        _mm256_mul_pd(az, bz));
+}
+
 /* The low 32 bits of each 64-bit lane of m: four ints. */
 DEM_INLINE __m128i lin_mask32(__m256d m)
 {
@@ -110,9 +119,7 @@ DEM_INLINE int pairs_linear_avx2(const struct pass *q, int k, const double *rec,
                   dy = _mm256_sub_pd(xi[1], xj[1]),
                   dz = _mm256_sub_pd(xi[2], xj[2]),
                   R = _mm256_add_pd(xi[3], xj[3]);
-    const __m256d d2 = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
-        _mm256_mul_pd(dz, dz));
+    const __m256d d2 = lin_dot3(dx, dy, dz, dx, dy, dz);
     const __m256d d = _mm256_sqrt_pd(d2);
     const __m256d touch = _mm256_cmp_pd(d2, _mm256_mul_pd(R, R), _CMP_LT_OQ);
     /* a_i w_i + a_j w_j while the square root runs */
@@ -145,10 +152,7 @@ DEM_INLINE int pairs_linear_avx2(const struct pass *q, int k, const double *rec,
                                      _mm256_mul_pd(nx, cwz)),
                   vz = _mm256_sub_pd(_mm256_add_pd(dvz, _mm256_mul_pd(nx, cwy)),
                                      _mm256_mul_pd(ny, cwx));
-    const __m256d ddot =
-        _mm256_xor_pd(sign, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(vx, nx),
-                                                        _mm256_mul_pd(vy, ny)),
-                                          _mm256_mul_pd(vz, nz)));
+    const __m256d ddot = _mm256_xor_pd(sign, lin_dot3(vx, vy, vz, nx, ny, nz));
     const __m256d fn =
         _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(cp->k), _mm256_sub_pd(R, d)),
                       _mm256_mul_pd(_mm256_set1_pd(cp->gamma_n), ddot));
@@ -156,12 +160,8 @@ DEM_INLINE int pairs_linear_avx2(const struct pass *q, int k, const double *rec,
     /* the spring projected and stretched to now, the test force */
     const __m256d dtv = _mm256_set1_pd(dt), nkt = _mm256_set1_pd(-T->kt),
                   gt = _mm256_set1_pd(T->gamma_t);
-    const __m256d nv = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(nx, vx), _mm256_mul_pd(ny, vy)),
-        _mm256_mul_pd(nz, vz));
-    const __m256d nxi = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(nx, hx), _mm256_mul_pd(ny, hy)),
-        _mm256_mul_pd(nz, hz));
+    const __m256d nv = lin_dot3(nx, ny, nz, vx, vy, vz);
+    const __m256d nxi = lin_dot3(nx, ny, nz, hx, hy, hz);
     const __m256d vtx = _mm256_sub_pd(vx, _mm256_mul_pd(nx, nv)),
                   vty = _mm256_sub_pd(vy, _mm256_mul_pd(ny, nv)),
                   vtz = _mm256_sub_pd(vz, _mm256_mul_pd(nz, nv));
@@ -177,9 +177,7 @@ DEM_INLINE int pairs_linear_avx2(const struct pass *q, int k, const double *rec,
                                       _mm256_mul_pd(gt, vty)),
                   f0z = _mm256_sub_pd(_mm256_mul_pd(nkt, sz),
                                       _mm256_mul_pd(gt, vtz));
-    const __m256d f0sq = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(f0x, f0x), _mm256_mul_pd(f0y, f0y)),
-        _mm256_mul_pd(f0z, f0z));
+    const __m256d f0sq = lin_dot3(f0x, f0y, f0z, f0x, f0y, f0z);
     __m256d f0n = zero;
     if (!branch)
         f0n = _mm256_sqrt_pd(f0sq);
