@@ -1,11 +1,11 @@
 /* The force pass's rounds written in intrinsics compute the very
  * operations of the kernels they spell out: the same bits as pair_vals
- * (contact/pair.h), one contact at a time in scalar code, for touching
- * and open pairs, sticking and sliding contacts, with and without
- * friction. test_dynamics compares the passes on the CPU that runs it;
- * this test runs the AVX2 groups (contact/pair_linear_avx2.h) on any
- * x86-64 CPU with AVX2, also where the build's own pass uses AVX-512
- * and never runs it. */
+ * and wall_vals (contact/pair.h), one contact at a time in scalar code,
+ * for touching and open pairs and wall contacts, sticking and sliding
+ * contacts, with and without friction. test_dynamics compares the passes on the
+ * CPU that runs it; this test runs the AVX2 groups (contact/pair_linear_avx2.h)
+ * on any x86-64 CPU with AVX2, also where the build's own pass uses AVX-512 and
+ * never runs it. */
 #include <stdlib.h>
 
 #include "contact/pair.h"
@@ -31,6 +31,22 @@ static int avx2_groups(const struct pass *q, int np, const double *rec,
         none += !pairs_linear_avx2(q, k, rec, cp, dt, T, ik, F + k, skip);
     return none;
 }
+
+/* the same for wall contacts 0 <= k < nw, their walls in walls */
+static int avx2_wall_groups(const struct pass *q, int nw, const double *rec,
+                            const struct dem_wall *walls,
+                            const struct dem_contact_params *cp, double dt,
+                            const struct dem_tangential *T,
+                            struct dem_contact_force *F, int skip)
+{
+    const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
+    _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
+    lin_wall_rows(walls, DEM_MAX_WALLS, wr);
+    int none = 0;
+    for (int k = 0; k < nw; k += 4)
+        none += !walls_linear_avx2(q, k, rec, wr, cp, dt, T, ik, F + k, skip);
+    return none;
+}
 #pragma GCC pop_options
 #else
 #define TEST_AVX2 0
@@ -51,6 +67,10 @@ static double urand(unsigned *s, double lo, double hi)
 struct pairs_data {
     double *rec, xi[3][NP];
     int ci[NP], cj[NP], state[NP];
+    /* wall contact k: particle k's record in wrec against wall wj[k] */
+    double *wrec;
+    int wi[NP], wj[NP];
+    struct dem_wall walls[DEM_MAX_WALLS];
 };
 
 static void make_pairs(struct pairs_data *D)
@@ -86,15 +106,37 @@ static void make_pairs(struct pairs_data *D)
         D->cj[k] = 2 * k + 1;
         D->state[k] = k % 4; /* none, active, sliding, both */
     }
+    /* the six faces of a box, each moving along its axis; wall contact k
+     * with face k % 6 (a particle of pair k), its gap as a pair's */
+    memset(D->walls, 0, sizeof D->walls);
+    for (int w = 0; w < DEM_MAX_WALLS; w++) {
+        D->walls[w].axis = w / 2;
+        D->walls[w].side = w % 2;
+        D->walls[w].pos = w % 2 ? 0.02 : -0.02;
+        D->walls[w].vel = urand(&s, -0.05, 0.05);
+    }
+    D->wrec = aligned_alloc(64, sizeof(double) * DEM_REC * NP);
+    assert_non_null(D->wrec);
+    for (int k = 0; k < NP; k++) {
+        double *o = D->wrec + DEM_REC * k;
+        memcpy(o, D->rec + DEM_REC * 2 * k, sizeof(double) * DEM_REC);
+        const struct dem_wall *W = &D->walls[k % DEM_MAX_WALLS];
+        const double sgn = W->side ? -1.0 : 1.0;
+        o[W->axis] = W->pos + sgn * o[3] * urand(&s, 0.94, 1.06);
+        D->wi[k] = k;
+        D->wj[k] = k % DEM_MAX_WALLS;
+    }
 }
 
 /* A pass over the pairs with the history and state arrays h, st. */
-static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st)
+static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st,
+                           int wall, double *A)
 {
     struct pass q;
     memset(&q, 0, sizeof q);
-    q.ci = D->ci;
-    q.cj = q.cjr = D->cj;
+    q.ci = wall ? D->wi : D->ci;
+    q.cj = q.cjr = wall ? D->wj : D->cj;
+    q.A = A;
     q.xi_x = h[0];
     q.xi_y = h[1];
     q.xi_z = h[2];
@@ -102,14 +144,17 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st)
     return q;
 }
 
-/* One parameter set: the AVX2 groups, with the sliding case always
- * computed (skip 0) or skipped in groups where no touching pair slides
- * (skip 1), against pair_vals, bit for bit; counts of touching sticking,
- * touching sliding and open pairs, and of the groups in which none slid. */
+/* One parameter set: the AVX2 groups of pairs (wall 0) or of wall
+ * contacts (wall 1), with the sliding case always computed (skip 0) or
+ * skipped in groups where no touching contact slides (skip 1), against
+ * pair_vals or wall_vals, bit for bit, the forces on the walls too;
+ * counts of touching sticking, touching sliding and open contacts, and
+ * of the groups in which none slid. */
 static void compare(const struct pairs_data *D, struct dem_contact_params cp,
-                    int skip, int *stick, int *slide, int *open, int *calm)
+                    int wall, int skip, int *stick, int *slide, int *open,
+                    int *calm)
 {
-    static double h0[3][NP], h1[3][NP];
+    static double h0[3][NP], h1[3][NP], A0[NP], A1[NP];
     static int s0[NP], s1[NP];
     static struct dem_contact_force F0[NP], F1[NP];
     memcpy(h0, D->xi, sizeof h0);
@@ -118,16 +163,25 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
     memcpy(s1, D->state, sizeof s1);
     memset(F0, 0xff, sizeof F0);
     memset(F1, 0xff, sizeof F1);
+    memset(A0, 0xff, sizeof A0);
+    memset(A1, 0xff, sizeof A1);
     const double dt = 1e-5, zero[6] = {0.0};
     const struct dem_tangential T = {cp.kt, cp.gamma_t, cp.mu_s, cp.mu_d};
-    const struct pass q0 = pass_of(D, h0, s0), q1 = pass_of(D, h1, s1);
-    for (int k = 0; k < NP; k++)
-        F0[k] = pair_vals(DEM_NORMAL_LINEAR, &q0, k,
-                          record_pv(D->rec + DEM_REC * (size_t)D->ci[k]),
-                          record_pv(D->rec + DEM_REC * (size_t)D->cj[k]), &cp,
-                          dt, &T, zero, zero);
+    const struct pass q0 = pass_of(D, h0, s0, wall, A0),
+                      q1 = pass_of(D, h1, s1, wall, A1);
+    const double *rec = wall ? D->wrec : D->rec;
+    for (int k = 0; k < NP; k++) {
+        const struct pv pi = record_pv(rec + DEM_REC * (size_t)q0.ci[k]);
+        F0[k] = wall ? wall_vals(DEM_NORMAL_LINEAR, &q0, k, pi, &cp, dt,
+                                 D->walls, &T)
+                     : pair_vals(DEM_NORMAL_LINEAR, &q0, k, pi,
+                                 record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
+                                 &cp, dt, &T, zero, zero);
+    }
 #if TEST_AVX2
-    *calm = avx2_groups(&q1, NP, D->rec, &cp, dt, &T, F1, skip);
+    *calm =
+        wall ? avx2_wall_groups(&q1, NP, rec, D->walls, &cp, dt, &T, F1, skip)
+             : avx2_groups(&q1, NP, rec, &cp, dt, &T, F1, skip);
 #else
     (void)q1;
     (void)skip;
@@ -136,6 +190,8 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
     assert_memory_equal(F0, F1, sizeof F0);
     assert_memory_equal(h0, h1, sizeof h0);
     assert_memory_equal(s0, s1, sizeof s0);
+    if (wall)
+        assert_memory_equal(A0, A1, sizeof A0);
     *stick = *slide = *open = 0;
     for (int k = 0; k < NP; k++) {
         if (!(s0[k] & DEM_CONTACT_ACTIVE))
@@ -147,17 +203,17 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
     }
 }
 
-static void avx2_round_matches_pair_vals(void **state)
+/* The contacts (make_pairs) and the law's parameters with friction;
+ * skips the test without AVX2. */
+static struct dem_contact_params setup(struct pairs_data *D)
 {
-    (void)state;
 #if TEST_AVX2
     if (!__builtin_cpu_supports("avx2"))
         skip();
 #else
     skip();
 #endif
-    struct pairs_data D;
-    make_pairs(&D);
+    make_pairs(D);
     struct dem_config c;
     test_config(&c, 3);
     struct dem_contact_params cp = c.contact;
@@ -165,6 +221,14 @@ static void avx2_round_matches_pair_vals(void **state)
     cp.gamma_t = 0.01;
     cp.mu_s = 0.5;
     cp.mu_d = 0.4;
+    return cp;
+}
+
+static void avx2_round_matches_pair_vals(void **state)
+{
+    (void)state;
+    struct pairs_data D;
+    const struct dem_contact_params cp = setup(&D);
     int stick, slide, open, calm, open4 = 0;
     /* groups of 4 open pairs */
     for (int k = 0; k < NP; k += 4) {
@@ -179,33 +243,62 @@ static void avx2_round_matches_pair_vals(void **state)
     }
     for (int skip = 0; skip < 2; skip++) {
         struct dem_contact_params c1 = cp;
-        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
         /* every branch of the law taken by many pairs */
         assert_true(stick > 100 && slide > 100 && open > 100);
         /* high friction: few slide, and most groups have none that
          * does (their sliding case skipped with skip 1) */
         c1.mu_s = c1.mu_d = 50.0;
-        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
         assert_true(slide > 0 && slide < 20 && stick > 300);
         assert_true(calm > NP / 4 * 3 / 4 && calm < NP / 4);
         /* without friction every contact slides, with no friction
          * force */
         c1.mu_s = c1.mu_d = 0.0;
-        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
         assert_int_equal(stick, 0);
         assert_int_equal(calm, open4);
         /* without a tangential spring (1/k_t taken as 0) */
         c1.kt = 0.0;
-        compare(&D, c1, skip, &stick, &slide, &open, &calm);
+        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
         assert_true(slide > 100);
     }
     free(D.rec);
+    free(D.wrec);
+}
+
+static void avx2_walls_match_wall_vals(void **state)
+{
+    (void)state;
+    struct pairs_data D;
+    const struct dem_contact_params cp = setup(&D);
+    int stick, slide, open, calm;
+    for (int skip = 0; skip < 2; skip++) {
+        struct dem_contact_params c1 = cp;
+        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
+        assert_true(stick > 100 && slide > 100 && open > 100);
+        c1.mu_s = c1.mu_d = 50.0;
+        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
+        assert_true(slide < 20 && stick > 300);
+        assert_true(calm > NP / 4 * 3 / 4 && calm < NP / 4);
+        /* frictionless walls (the papers' examples) */
+        c1.mu_s = c1.mu_d = 0.0;
+        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
+        assert_int_equal(stick, 0);
+        assert_true(slide > 300);
+        c1.kt = 0.0;
+        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
+        assert_true(slide > 300);
+    }
+    free(D.rec);
+    free(D.wrec);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(avx2_round_matches_pair_vals),
+        cmocka_unit_test(avx2_walls_match_wall_vals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,9 +1,10 @@
 /* One contact's force and history update, the kernels composed in the
  * fixed order normal law -> dashpot -> Coulomb limit -> tangential law ->
- * torques (conventions: contact/pass.c). Every compilation of the force
- * pass (contact/pass.h) runs these for its pairs and wall contacts, in
- * SIMD lanes; test_pair_kernels runs them one contact at a time as the
- * reference of the pass's rounds written in intrinsics
+ * torques (conventions: contact/pass.c): pair_vals for a pair, wall_vals
+ * for a wall contact. Every compilation of the force pass
+ * (contact/pass.h) runs these for its pairs and wall contacts, in SIMD
+ * lanes; test_pair_kernels runs them one contact at a time as the
+ * reference of the pass's groups written in intrinsics
  * (contact/pair_linear_avx2.h). */
 #ifndef DEM_CONTACT_PAIR_H
 #define DEM_CONTACT_PAIR_H
@@ -174,6 +175,49 @@ pair_vals(const int law, const struct pass *qp, int k, const struct pv pi,
     struct dem_tangential Tc = *T;
     dem_normal_shear(law, cp, R - d, a12, m12, &Tc);
     return finish_contact(law, &q, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
+}
+
+/* Force and history update of wall contact k, its particle's values pi,
+ * its force record returned (no branch, as pair_vals). */
+DEM_INLINE struct dem_contact_force
+wall_vals(const int law, const struct pass *qp, int k, const struct pv pi,
+          const struct dem_contact_params *cp, double dt,
+          const struct dem_wall *walls, const struct dem_tangential *T)
+{
+    const struct pass q = *qp;
+    const struct dem_wall *W = &walls[q.cj[k]];
+    const int a = W->axis;
+    const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
+    /* all three loaded, one picked by arithmetic (exact: 1 x + 0 y + 0 z;
+     * a load or a subtraction under a condition keeps the loop out of
+     * SIMD lanes where there are no masked gathers and divisions, AVX2) */
+    const double pa = (a == 0) * pi.x + (a == 1) * pi.y + (a == 2) * pi.z;
+    const double ai = pi.r;
+    const double delta = ai - sgn * (pa - W->pos);
+    const int touch = delta > 0.0;
+    const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
+                               a == 2 ? sgn : 0.0};
+    const double cwx = ai * pi.wx, cwy = ai * pi.wy, cwz = ai * pi.wz;
+    /* the wall's surface moves along its normal at W->vel */
+    const struct dem_vec3 vij = {
+        pi.vx + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
+        pi.vy + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
+        pi.vz + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
+    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+    struct dem_history h = load_history(law, &q, k);
+    double fc;
+    const double fn = dem_normal_force(law, cp, delta, ddot, ai, pi.m, &h, &fc);
+    int st = q.state[k] | DEM_CONTACT_ACTIVE;
+    const struct dem_vec3 dw = {pi.wx, pi.wy, pi.wz};
+    resist_contact(law, &q, k, touch, n, dw, ai, fc, dt, cp, &h, &st);
+    struct dem_tangential Tc = *T;
+    dem_normal_shear(law, cp, delta, ai, pi.m, &Tc);
+    const struct dem_contact_force o =
+        finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
+    /* the force on the wall along its axis, outward positive, for the
+     * walls' sums (contact/forces.c): the record's component times sgn */
+    qp->A[k] = sgn * (a == 0 ? o.f[0] : a == 1 ? o.f[1] : o.f[2]);
+    return o;
 }
 
 #endif

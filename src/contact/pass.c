@@ -85,11 +85,12 @@
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
 /* The records passes' round for the linear law without resistances
- * between walls in AVX2 intrinsics, two groups of 4 pairs, on CPUs with
- * AVX2 and without AVX-512 (contact/pair_linear_avx2.h: the same
- * operations, in an order and with a skip that took some 15-20 % off a
- * step on Zen 1; with AVX-512 gcc's own 16 lanes have twice the
- * registers, and were not tried against it). */
+ * between walls in AVX2 intrinsics, two groups of 4 pairs, and their wall
+ * contacts in groups of 4, on CPUs with AVX2 and without AVX-512
+ * (contact/pair_linear_avx2.h: the same operations, in an order and with
+ * a skip that took some 15-20 % off a step on Zen 1; with AVX-512 gcc's
+ * own 16 lanes have twice the registers, and were not tried against
+ * it). */
 #if DEM_PASS_RECORDS && defined(__AVX2__) && !defined(__AVX512F__)
 #define DEM_PAIR_LINEAR_AVX2 1
 #include "contact/pair_linear_avx2.h"
@@ -497,10 +498,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     (void)ahead;
 #if DEM_PASS_RECORDS
 #if DEM_PAIR_LINEAR_AVX2
-    /* groups with a sliding pair in the last 32 rounds
-     * (pairs_linear_avx2): while at most 48 of their 64 had one, a group
-     * skips the sliding case if none of its touching pairs slides */
-    int branch = 1, rounds = 0, slid = 0;
+    struct lin_skip skip = {1, 0, 0};
 #endif
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES],
@@ -540,12 +538,9 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #if DEM_PAIR_LINEAR_AVX2
         if (law == DEM_NORMAL_LINEAR) {
             for (int g = 0; g < DEM_PAIR_LANES; g += 4)
-                slid += pairs_linear_avx2(&q, k + g, rec, cp, dt, &T, ik,
-                                          q.F + (k + g - q.foff), branch);
-            if (++rounds == 32) {
-                branch = slid <= 48;
-                rounds = slid = 0;
-            }
+                lin_skip_count(&skip, pairs_linear_avx2(
+                                          &q, k + g, rec, cp, dt, &T, ik,
+                                          q.F + (k + g - q.foff), skip.branch));
             continue;
         }
 #endif
@@ -577,50 +572,6 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #endif
 }
 
-/* Force and history update of wall contact k, its particle's values pi,
- * its force record returned (no branch, as pair_vals). */
-DEM_INLINE struct dem_contact_force
-wall_vals(const int law, const struct pass *qp, int k, const struct pv pi,
-          const struct dem_contact_params *cp, double dt,
-          const struct dem_wall *walls, const struct dem_tangential *T)
-{
-    const struct pass q = *qp;
-    const struct dem_wall *W = &walls[q.cj[k]];
-    const int a = W->axis;
-    const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
-    /* all three loaded, one picked by arithmetic (exact: 1 x + 0 y + 0 z;
-     * a load or a subtraction under a condition keeps the loop out of
-     * SIMD lanes where there are no masked gathers and divisions, AVX2) */
-    const double pa = (a == 0) * pi.x + (a == 1) * pi.y + (a == 2) * pi.z;
-    const double ai = pi.r;
-    const double delta = ai - sgn * (pa - W->pos);
-    const int touch = delta > 0.0;
-    const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
-                               a == 2 ? sgn : 0.0};
-    const double cwx = ai * pi.wx, cwy = ai * pi.wy, cwz = ai * pi.wz;
-    /* the wall's surface moves along its normal at W->vel */
-    const struct dem_vec3 vij = {
-        pi.vx + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
-        pi.vy + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
-        pi.vz + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
-    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
-    struct dem_history h = load_history(law, &q, k);
-    double fc;
-    const double fn =
-        dem_normal_force(law, cp, delta, ddot, ai, pi.m, &h, &fc);
-    int st = q.state[k] | DEM_CONTACT_ACTIVE;
-    const struct dem_vec3 dw = {pi.wx, pi.wy, pi.wz};
-    resist_contact(law, &q, k, touch, n, dw, ai, fc, dt, cp, &h, &st);
-    struct dem_tangential Tc = *T;
-    dem_normal_shear(law, cp, delta, ai, pi.m, &Tc);
-    const struct dem_contact_force o =
-        finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
-    /* the force on the wall along its axis, outward positive, for the
-     * walls' sums (contact/forces.c): the record's component times sgn */
-    qp->A[k] = sgn * (a == 0 ? o.f[0] : a == 1 ? o.f[1] : o.f[2]);
-    return o;
-}
-
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
  * (dem_contact_wall_view), in SIMD lanes as pair_range; the records
  * compilations read the particles' values from their records (rec). */
@@ -631,6 +582,18 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
     int k = k0;
     (void)rec;
+#if DEM_PAIR_LINEAR_AVX2
+    if (law == DEM_NORMAL_LINEAR) { /* (pair_range) */
+        const double ik = T.kt > 0.0 ? 1.0 / T.kt : 0.0;
+        _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
+        lin_wall_rows(walls, DEM_MAX_WALLS, wr);
+        struct lin_skip skip = {1, 0, 0};
+        for (; k + 4 <= k1; k += 4)
+            lin_skip_count(&skip,
+                           walls_linear_avx2(&q, k, rec, wr, cp, dt, &T, ik,
+                                             q.F + (k - q.foff), skip.branch));
+    }
+#endif
 #if DEM_PASS_RECORDS
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES];
