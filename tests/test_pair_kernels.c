@@ -2,10 +2,10 @@
  * operations of the kernels they spell out: the same bits as pair_vals
  * and wall_vals (contact/pair.h), one contact at a time in scalar code,
  * for touching and open pairs and wall contacts, sticking and sliding
- * contacts, with and without friction. test_dynamics compares the passes on the
- * CPU that runs it; this test runs the AVX2 groups (contact/pair_linear_avx2.h)
- * on any x86-64 CPU with AVX2, also where the build's own pass uses AVX-512 and
- * never runs it. */
+ * contacts, with and without friction. test_dynamics compares the
+ * passes on the CPU that runs it; this test runs the AVX2 groups
+ * (contact/pair_linear_avx2.h) on any x86-64 CPU with AVX2, also where
+ * the build's own pass uses AVX-512 and never runs it. */
 #include <stdlib.h>
 
 #include "contact/pair.h"

@@ -573,7 +573,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
- * (dem_contact_wall_view), in SIMD lanes as pair_range; the records
+ * (dem_contact_wall_view), in SIMD lanes as pair_range (the linear law's
+ * in its AVX2 groups where pair_range runs those); the records
  * compilations read the particles' values from their records (rec). */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
@@ -583,7 +584,7 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     int k = k0;
     (void)rec;
 #if DEM_PAIR_LINEAR_AVX2
-    if (law == DEM_NORMAL_LINEAR) { /* (pair_range) */
+    if (law == DEM_NORMAL_LINEAR) {
         const double ik = T.kt > 0.0 ? 1.0 / T.kt : 0.0;
         _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
         lin_wall_rows(walls, DEM_MAX_WALLS, wr);
