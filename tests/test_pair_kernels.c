@@ -41,7 +41,7 @@ static int avx2_wall_groups(const struct pass *q, int nw, const double *rec,
 {
     const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
     _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
-    lin_wall_rows(walls, DEM_MAX_WALLS, wr);
+    lin_wall_rows(walls, wr);
     int none = 0;
     for (int k = 0; k < nw; k += 4)
         none += !walls_linear_avx2(q, k, rec, wr, cp, dt, T, ik, F + k, skip);

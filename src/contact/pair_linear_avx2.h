@@ -305,9 +305,10 @@ DEM_INLINE int pairs_linear_avx2(const struct pass *q, int k, const double *rec,
  * a == 1, a == 2, sgn | pos, n_x, n_y, n_z | the wall's velocity in the
  * place of its axis, 0 elsewhere, with a its axis and sgn its inward
  * normal's sign, as wall_vals uses them (contact/pair.h). */
-DEM_INLINE void lin_wall_rows(const struct dem_wall *walls, int nw, double *o)
+DEM_INLINE void lin_wall_rows(const struct dem_wall walls[DEM_MAX_WALLS],
+                              double *o)
 {
-    for (int w = 0; w < nw; w++, o += DEM_REC) {
+    for (int w = 0; w < DEM_MAX_WALLS; w++, o += DEM_REC) {
         const int a = walls[w].axis;
         const double sgn = walls[w].side ? -1.0 : 1.0;
         for (int e = 0; e < 3; e++) {

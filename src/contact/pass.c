@@ -587,7 +587,7 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     if (law == DEM_NORMAL_LINEAR) {
         const double ik = T.kt > 0.0 ? 1.0 / T.kt : 0.0;
         _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
-        lin_wall_rows(walls, DEM_MAX_WALLS, wr);
+        lin_wall_rows(walls, wr);
         struct lin_skip skip = {1, 0, 0};
         for (; k + 4 <= k1; k += 4)
             lin_skip_count(&skip,
