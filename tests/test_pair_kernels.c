@@ -3,53 +3,69 @@
  * and wall_vals (contact/pair.h), one contact at a time in scalar code,
  * for touching and open pairs and wall contacts, sticking and sliding
  * contacts, with and without friction. test_dynamics compares the
- * passes on the CPU that runs it; this test runs the AVX2 groups
- * (contact/pair_linear_avx2.h) on any x86-64 CPU with AVX2, also where
- * the build's own pass uses AVX-512 and never runs it. */
+ * passes on the CPU that runs it; this test runs the groups of
+ * contact/pair_linear_simd.h of both widths the CPU has, 4 lanes in AVX2
+ * and 8 in AVX-512, also where the build's own pass never runs one of
+ * them. */
 #include <stdlib.h>
 
 #include "contact/pair.h"
 #include "testutil.h"
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define TEST_AVX2 1
+#define TEST_SIMD 1
+/* Contacts 0 <= k < n (a multiple of 8) by the groups of width W, pairs
+ * or (wall set) wall contacts against the walls walls, each group
+ * skipping the sliding case where no touching contact slides if skip is
+ * set; returns the number of groups in which none slid. Each width's
+ * function is compiled for its own instructions, so that the one of 4
+ * runs on a CPU without AVX-512. */
+#define GROUPS_(W)                                                              \
+    static int groups##W(int wall, int two, const struct pass *q, int n,        \
+                         const double *rec, const struct dem_wall *walls,       \
+                         const struct dem_contact_params *cp, double dt,        \
+                         const struct dem_tangential *T,                        \
+                         struct dem_contact_force *F, int skip)                 \
+    {                                                                           \
+        const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;                      \
+        _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];                        \
+        lin_wall_rows(walls, wr);                                               \
+        int none = 0;                                                           \
+        for (int k = 0; k < n; k += two ? 2 * W : W)                            \
+            none += !(                                                          \
+                wall  ? lin_walls##W(q, k, rec, wr, cp, dt, T, ik, F + k, skip) \
+                : two ? lin_pairs2##W(q, k, rec, cp, dt, T, ik, F + k, skip)    \
+                      : lin_pairs##W(q, k, rec, cp, dt, T, ik, F + k, skip));   \
+        return none;                                                            \
+    }
 #pragma GCC push_options
 #pragma GCC target("avx2")
-#define DEM_PAIR_LANES 8
-#include "contact/pair_linear_avx2.h"
-/* pairs 0 <= k < np (a multiple of 4) by the AVX2 groups of 4, each
- * skipping the sliding case where no touching pair slides if skip is set;
- * returns the number of groups in which none slid */
-static int avx2_groups(const struct pass *q, int np, const double *rec,
-                       const struct dem_contact_params *cp, double dt,
-                       const struct dem_tangential *T,
-                       struct dem_contact_force *F, int skip)
-{
-    const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
-    int none = 0;
-    for (int k = 0; k < np; k += 4)
-        none += !pairs_linear_avx2(q, k, rec, cp, dt, T, ik, F + k, skip);
-    return none;
-}
-
-/* the same for wall contacts 0 <= k < nw, their walls in walls */
-static int avx2_wall_groups(const struct pass *q, int nw, const double *rec,
-                            const struct dem_wall *walls,
-                            const struct dem_contact_params *cp, double dt,
-                            const struct dem_tangential *T,
-                            struct dem_contact_force *F, int skip)
-{
-    const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
-    _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
-    lin_wall_rows(walls, wr);
-    int none = 0;
-    for (int k = 0; k < nw; k += 4)
-        none += !walls_linear_avx2(q, k, rec, wr, cp, dt, T, ik, F + k, skip);
-    return none;
-}
+#define LIN_W 4
+#include "contact/pair_linear_simd.h"
+#undef LIN_W
+GROUPS_(4)
 #pragma GCC pop_options
+#pragma GCC push_options
+#pragma GCC target("avx2,avx512f,avx512dq,avx512vl")
+#define LIN_W 8
+#include "contact/pair_linear_simd.h"
+#undef LIN_W
+GROUPS_(8)
+#pragma GCC pop_options
+
+/* the groups of width w (4 or 8), pairs of them side by side with one
+ * skip for both if two is set (pairs only), the walls walls */
+static int groups(int w, int two, int wall, const struct pass *q, int n,
+                  const double *rec, const struct dem_wall *walls,
+                  const struct dem_contact_params *cp, double dt,
+                  const struct dem_tangential *T, struct dem_contact_force *F,
+                  int skip)
+{
+    return w == 8 ? groups8(wall, two, q, n, rec, walls, cp, dt, T, F, skip)
+                  : groups4(wall, two, q, n, rec, walls, cp, dt, T, F, skip);
+}
 #else
-#define TEST_AVX2 0
+#define TEST_SIMD 0
 #endif
 
 #define NP 1024 /* pairs, each of its own two particles */
@@ -144,15 +160,15 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st,
     return q;
 }
 
-/* One parameter set: the AVX2 groups of pairs (wall 0) or of wall
- * contacts (wall 1), with the sliding case always computed (skip 0) or
- * skipped in groups where no touching contact slides (skip 1), against
- * pair_vals or wall_vals, bit for bit, the forces on the walls too;
- * counts of touching sticking, touching sliding and open contacts, and
- * of the groups in which none slid. */
+/* One parameter set: the groups of width w of pairs (wall 0; two of them
+ * at a time with two set) or of wall contacts (wall 1), with the sliding case
+ * always computed (skip 0) or skipped in groups where no touching contact
+ * slides (skip 1), against pair_vals or wall_vals, bit for bit, the forces on
+ * the walls too; counts of touching sticking, touching sliding and open
+ * contacts, and of the groups in which none slid. */
 static void compare(const struct pairs_data *D, struct dem_contact_params cp,
-                    int wall, int skip, int *stick, int *slide, int *open,
-                    int *calm)
+                    int w, int two, int wall, int skip, int *stick, int *slide,
+                    int *open, int *calm)
 {
     static double h0[3][NP], h1[3][NP], A0[NP], A1[NP];
     static int s0[NP], s1[NP];
@@ -178,12 +194,12 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
                                  record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
                                  &cp, dt, &T, zero, zero);
     }
-#if TEST_AVX2
-    *calm =
-        wall ? avx2_wall_groups(&q1, NP, rec, D->walls, &cp, dt, &T, F1, skip)
-             : avx2_groups(&q1, NP, rec, &cp, dt, &T, F1, skip);
+#if TEST_SIMD
+    *calm = groups(w, two, wall, &q1, NP, rec, D->walls, &cp, dt, &T, F1, skip);
 #else
     (void)q1;
+    (void)w;
+    (void)two;
     (void)skip;
     *calm = 0;
 #endif
@@ -203,16 +219,30 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
     }
 }
 
+/* The widths of groups this CPU runs: 4 with AVX2, 8 with AVX-512 (F,
+ * DQ and VL) too; 0 without AVX2 (or on another CPU), and the test is
+ * skipped. */
+static int widths(void)
+{
+#if TEST_SIMD
+    if (!__builtin_cpu_supports("avx2"))
+        return 0;
+    if (__builtin_cpu_supports("avx512f") &&
+        __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512vl"))
+        return 8;
+    return 4;
+#else
+    return 0;
+#endif
+}
+
 /* The contacts (make_pairs) and the law's parameters with friction;
  * skips the test without AVX2. */
 static struct dem_contact_params setup(struct pairs_data *D)
 {
-#if TEST_AVX2
-    if (!__builtin_cpu_supports("avx2"))
+    if (!widths())
         skip();
-#else
-    skip();
-#endif
     make_pairs(D);
     struct dem_config c;
     test_config(&c, 3);
@@ -224,71 +254,80 @@ static struct dem_contact_params setup(struct pairs_data *D)
     return cp;
 }
 
-static void avx2_round_matches_pair_vals(void **state)
+static void groups_match_pair_vals(void **state)
 {
     (void)state;
     struct pairs_data D;
     const struct dem_contact_params cp = setup(&D);
-    int stick, slide, open, calm, open4 = 0;
-    /* groups of 4 open pairs */
-    for (int k = 0; k < NP; k += 4) {
-        int n = 0;
-        for (int l = 0; l < 4; l++) {
-            const double *a = D.rec + DEM_REC * (size_t)D.ci[k + l],
-                         *b = D.rec + DEM_REC * (size_t)D.cj[k + l];
-            const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-            n += dx * dx + dy * dy + dz * dz >= (a[3] + b[3]) * (a[3] + b[3]);
+    for (int w = 4; w <= widths(); w *= 2)
+        for (int two = 0; two < 2; two++) {
+            const int gs = two ? 2 * w : w, ng = NP / gs; /* group size */
+            int stick, slide, open, calm, openg = 0;
+            /* groups of gs open pairs */
+            for (int k = 0; k < NP; k += gs) {
+                int n = 0;
+                for (int l = 0; l < gs; l++) {
+                    const double *a = D.rec + DEM_REC * (size_t)D.ci[k + l],
+                                 *b = D.rec + DEM_REC * (size_t)D.cj[k + l];
+                    const double dx = a[0] - b[0], dy = a[1] - b[1],
+                                 dz = a[2] - b[2];
+                    n += dx * dx + dy * dy + dz * dz >=
+                         (a[3] + b[3]) * (a[3] + b[3]);
+                }
+                openg += n == gs;
+            }
+            for (int skip = 0; skip < 2; skip++) {
+                struct dem_contact_params c1 = cp;
+                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                /* every branch of the law taken by many pairs */
+                assert_true(stick > 100 && slide > 100 && open > 100);
+                /* high friction: few slide, and most groups have none
+                 * that does (their sliding case skipped with skip 1) */
+                c1.mu_s = c1.mu_d = 50.0;
+                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                assert_true(slide > 0 && slide < 20 && stick > 300);
+                assert_true(calm > ng * (two ? 2 : 3) / 4 && calm < ng);
+                /* without friction every contact slides, with no
+                 * friction force */
+                c1.mu_s = c1.mu_d = 0.0;
+                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                assert_int_equal(stick, 0);
+                assert_int_equal(calm, openg);
+                /* without a tangential spring (1/k_t taken as 0) */
+                c1.kt = 0.0;
+                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                assert_true(slide > 100);
+            }
         }
-        open4 += n == 4;
-    }
-    for (int skip = 0; skip < 2; skip++) {
-        struct dem_contact_params c1 = cp;
-        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
-        /* every branch of the law taken by many pairs */
-        assert_true(stick > 100 && slide > 100 && open > 100);
-        /* high friction: few slide, and most groups have none that
-         * does (their sliding case skipped with skip 1) */
-        c1.mu_s = c1.mu_d = 50.0;
-        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
-        assert_true(slide > 0 && slide < 20 && stick > 300);
-        assert_true(calm > NP / 4 * 3 / 4 && calm < NP / 4);
-        /* without friction every contact slides, with no friction
-         * force */
-        c1.mu_s = c1.mu_d = 0.0;
-        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
-        assert_int_equal(stick, 0);
-        assert_int_equal(calm, open4);
-        /* without a tangential spring (1/k_t taken as 0) */
-        c1.kt = 0.0;
-        compare(&D, c1, 0, skip, &stick, &slide, &open, &calm);
-        assert_true(slide > 100);
-    }
     free(D.rec);
     free(D.wrec);
 }
 
-static void avx2_walls_match_wall_vals(void **state)
+static void wall_groups_match_wall_vals(void **state)
 {
     (void)state;
     struct pairs_data D;
     const struct dem_contact_params cp = setup(&D);
-    int stick, slide, open, calm;
-    for (int skip = 0; skip < 2; skip++) {
-        struct dem_contact_params c1 = cp;
-        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
-        assert_true(stick > 100 && slide > 100 && open > 100);
-        c1.mu_s = c1.mu_d = 50.0;
-        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
-        assert_true(slide < 20 && stick > 300);
-        assert_true(calm > NP / 4 * 3 / 4 && calm < NP / 4);
-        /* frictionless walls (the papers' examples) */
-        c1.mu_s = c1.mu_d = 0.0;
-        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
-        assert_int_equal(stick, 0);
-        assert_true(slide > 300);
-        c1.kt = 0.0;
-        compare(&D, c1, 1, skip, &stick, &slide, &open, &calm);
-        assert_true(slide > 300);
+    for (int w = 4; w <= widths(); w *= 2) {
+        const int ng = NP / w;
+        int stick, slide, open, calm;
+        for (int skip = 0; skip < 2; skip++) {
+            struct dem_contact_params c1 = cp;
+            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            assert_true(stick > 100 && slide > 100 && open > 100);
+            c1.mu_s = c1.mu_d = 50.0;
+            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            assert_true(slide < 20 && stick > 300);
+            assert_true(calm > ng * 3 / 4 && calm < ng);
+            /* frictionless walls (the papers' examples) */
+            c1.mu_s = c1.mu_d = 0.0;
+            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            assert_int_equal(stick, 0);
+            assert_true(slide > 300);
+            c1.kt = 0.0;
+            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            assert_true(slide > 300);
+        }
     }
     free(D.rec);
     free(D.wrec);
@@ -297,8 +336,8 @@ static void avx2_walls_match_wall_vals(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(avx2_round_matches_pair_vals),
-        cmocka_unit_test(avx2_walls_match_wall_vals),
+        cmocka_unit_test(groups_match_pair_vals),
+        cmocka_unit_test(wall_groups_match_wall_vals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -5,7 +5,7 @@
  * (contact/pass.h) runs these for its pairs and wall contacts, in SIMD
  * lanes; test_pair_kernels runs them one contact at a time as the
  * reference of the pass's groups written in intrinsics
- * (contact/pair_linear_avx2.h). */
+ * (contact/pair_linear_simd.h). */
 #ifndef DEM_CONTACT_PAIR_H
 #define DEM_CONTACT_PAIR_H
 

@@ -85,17 +85,29 @@
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
 /* The records passes' round for the linear law without resistances
- * between walls in AVX2 intrinsics, two groups of 4 pairs, and their wall
- * contacts in groups of 4, on CPUs with AVX2 and without AVX-512
- * (contact/pair_linear_avx2.h: the same operations, in an order and with
- * a skip that took some 15-20 % off a step on Zen 1; with AVX-512 gcc's
- * own 16 lanes have twice the registers, and were not tried against
- * it). */
-#if DEM_PASS_RECORDS && defined(__AVX2__) && !defined(__AVX512F__)
-#define DEM_PAIR_LINEAR_AVX2 1
-#include "contact/pair_linear_avx2.h"
+ * between walls in intrinsics, groups of LIN_W pairs, and their wall
+ * contacts in such groups, on CPUs with AVX2: 4 lanes in AVX2, 8 with
+ * AVX-512 (contact/pair_linear_simd.h: the same operations, in an order
+ * and with a skip that took some 15-20 % off a step on Zen 1). */
+#if DEM_PASS_RECORDS && defined(__AVX2__)
+#define DEM_PAIR_LINEAR_SIMD 1
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
+/* two groups of 8 side by side, one skip for both */
+#define LIN_W 8
+#define LIN_PAIRS 16
+#define lin_pair_groups lin_pairs28
+#define lin_walls lin_walls8
 #else
-#define DEM_PAIR_LINEAR_AVX2 0
+/* one group of 4 at a time */
+#define LIN_W 4
+#define LIN_PAIRS 4
+#define lin_pair_groups lin_pairs4
+#define lin_walls lin_walls4
+#endif
+_Static_assert(DEM_PAIR_LANES % LIN_PAIRS == 0, "whole groups a round");
+#include "contact/pair_linear_simd.h"
+#else
+#define DEM_PAIR_LINEAR_SIMD 0
 #endif
 
 /* How far ahead the ring pass asks for the cache lines of the streams it
@@ -339,29 +351,17 @@ DEM_INLINE void image_records(const struct contacts *c, int k0, int k1)
 DEM_INLINE void records_lanes(const double *rec, const int *idx,
                               double (*o)[DEM_PAIR_LANES])
 {
-#if defined(__AVX512F__)
-    /* per 4 doubles of 8 records r0..r7: rows (r_l, r_l+4) paired in
-     * 512 bits, unpacked, then each output row's lanes picked in order */
-    const __m512i lo = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13),
-                  hi = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+#if DEM_PAIR_LINEAR_SIMD && LIN_W == 8
+    /* 8 records at a time (lin_rows8) */
     for (int g = 0; g < DEM_PAIR_LANES; g += 8) {
         const double *r[8];
         for (int l = 0; l < 8; l++)
             r[l] = rec + DEM_REC * (size_t)idx[g + l];
         for (int b = 0; b < DEM_REC; b += 4) {
             __m512d z[4];
-            for (int l = 0; l < 4; l++)
-                z[l] = _mm512_insertf64x4(
-                    _mm512_castpd256_pd512(_mm256_load_pd(r[l] + b)),
-                    _mm256_load_pd(r[l + 4] + b), 1);
-            const __m512d t0 = _mm512_unpacklo_pd(z[0], z[1]),
-                          t1 = _mm512_unpackhi_pd(z[0], z[1]),
-                          t2 = _mm512_unpacklo_pd(z[2], z[3]),
-                          t3 = _mm512_unpackhi_pd(z[2], z[3]);
-            _mm512_store_pd(&o[b][g], _mm512_permutex2var_pd(t0, lo, t2));
-            _mm512_store_pd(&o[b + 1][g], _mm512_permutex2var_pd(t1, lo, t3));
-            _mm512_store_pd(&o[b + 2][g], _mm512_permutex2var_pd(t0, hi, t2));
-            _mm512_store_pd(&o[b + 3][g], _mm512_permutex2var_pd(t1, hi, t3));
+            lin_rows8(r, b, z);
+            for (int u = 0; u < 4; u++)
+                _mm512_store_pd(&o[b + u][g], z[u]);
         }
     }
 #else
@@ -410,50 +410,16 @@ _Static_assert(sizeof(struct dem_contact_force) == 6 * sizeof(double),
 DEM_INLINE void forces_from_lanes(struct dem_contact_force *F,
                                   double (*o)[DEM_PAIR_LANES])
 {
-    double *d = (double *)(void *)F; /* the records as rows of 6 */
-#if defined(__AVX512F__)
-    /* per 8 lanes an 8 x 8 transpose (pairs of rows unpacked, then the
-     * 128-bit quarters gathered in two rounds of shuffles) gives each
-     * record as the first 6 doubles of a vector, R[l]; then the 8
-     * records' 48 doubles as 6 vectors, records 4g..4g+3 in 3 of them */
-    const __m512d z = _mm512_setzero_pd();
-    const __m512i p0 = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 8, 9),
-                  p1 = _mm512_setr_epi64(2, 3, 4, 5, 8, 9, 10, 11),
-                  p2 = _mm512_setr_epi64(4, 5, 8, 9, 10, 11, 12, 13);
-    for (int g = 0; g < DEM_PAIR_LANES; g += 8, d += 48) {
-        __m512d r[6], R[8];
+#if DEM_PAIR_LINEAR_SIMD && LIN_W == 8
+    /* per 8 lanes an 8 x 8 transpose (lin_store_forces8) */
+    for (int g = 0; g < DEM_PAIR_LANES; g += 8) {
+        __m512d r[6];
         for (int e = 0; e < 6; e++)
             r[e] = _mm512_load_pd(&o[e][g]);
-        /* lo[u]: lanes 2m of rows 2u, 2u+1 in quarter m; hi[u]: 2m+1 */
-        const __m512d lo[4] = {_mm512_unpacklo_pd(r[0], r[1]),
-                               _mm512_unpacklo_pd(r[2], r[3]),
-                               _mm512_unpacklo_pd(r[4], r[5]), z},
-                      hi[4] = {_mm512_unpackhi_pd(r[0], r[1]),
-                               _mm512_unpackhi_pd(r[2], r[3]),
-                               _mm512_unpackhi_pd(r[4], r[5]), z};
-        for (int h = 0; h < 2; h++) {
-            const __m512d *t = h ? hi : lo;
-            const __m512d v0 = _mm512_shuffle_f64x2(t[0], t[1], 0x88),
-                          v1 = _mm512_shuffle_f64x2(t[0], t[1], 0xdd),
-                          v2 = _mm512_shuffle_f64x2(t[2], t[3], 0x88),
-                          v3 = _mm512_shuffle_f64x2(t[2], t[3], 0xdd);
-            /* lane 2m + h of the 8: quarter m of t[0..4) */
-            R[0 + h] = _mm512_shuffle_f64x2(v0, v2, 0x88);
-            R[2 + h] = _mm512_shuffle_f64x2(v1, v3, 0x88);
-            R[4 + h] = _mm512_shuffle_f64x2(v0, v2, 0xdd);
-            R[6 + h] = _mm512_shuffle_f64x2(v1, v3, 0xdd);
-        }
-        for (int u = 0; u < 2; u++) {
-            const __m512d *s = R + 4 * u;
-            _mm512_storeu_pd(d + 24 * u,
-                             _mm512_permutex2var_pd(s[0], p0, s[1]));
-            _mm512_storeu_pd(d + 24 * u + 8,
-                             _mm512_permutex2var_pd(s[1], p1, s[2]));
-            _mm512_storeu_pd(d + 24 * u + 16,
-                             _mm512_permutex2var_pd(s[2], p2, s[3]));
-        }
+        lin_store_forces8(F + g, r);
     }
 #else
+    double *d = (double *)(void *)F; /* the records as rows of 6 */
     /* per 4 lanes a 4 x 4 transpose of f and c x into each record's
      * first 4 doubles, then c y and c z two records at a time */
     for (int g = 0; g < DEM_PAIR_LANES; g += 4, d += 24) {
@@ -484,7 +450,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 {
     (void)ahead_i;
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
-    /* 1/k_t as dem_coulomb_spring has it (DEM_PAIR_LINEAR_AVX2) */
+    /* 1/k_t as dem_coulomb_spring has it (DEM_PAIR_LINEAR_SIMD) */
     const double ik = T.kt > 0.0 ? 1.0 / T.kt : 0.0;
     (void)ik;
     /* local copies, which no store of the loop can change */
@@ -497,7 +463,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     (void)kend;
     (void)ahead;
 #if DEM_PASS_RECORDS
-#if DEM_PAIR_LINEAR_AVX2
+#if DEM_PAIR_LINEAR_SIMD
     struct lin_skip skip = {1, 0, 0};
 #endif
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
@@ -535,10 +501,10 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #undef HIST_AHEAD_
             }
         }
-#if DEM_PAIR_LINEAR_AVX2
+#if DEM_PAIR_LINEAR_SIMD
         if (law == DEM_NORMAL_LINEAR) {
-            for (int g = 0; g < DEM_PAIR_LANES; g += 4)
-                lin_skip_count(&skip, pairs_linear_avx2(
+            for (int g = 0; g < DEM_PAIR_LANES; g += LIN_PAIRS)
+                lin_skip_count(&skip, lin_pair_groups(
                                           &q, k + g, rec, cp, dt, &T, ik,
                                           q.F + (k + g - q.foff), skip.branch));
             continue;
@@ -583,16 +549,15 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
     int k = k0;
     (void)rec;
-#if DEM_PAIR_LINEAR_AVX2
+#if DEM_PAIR_LINEAR_SIMD
     if (law == DEM_NORMAL_LINEAR) {
         const double ik = T.kt > 0.0 ? 1.0 / T.kt : 0.0;
         _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
         lin_wall_rows(walls, wr);
         struct lin_skip skip = {1, 0, 0};
-        for (; k + 4 <= k1; k += 4)
-            lin_skip_count(&skip,
-                           walls_linear_avx2(&q, k, rec, wr, cp, dt, &T, ik,
-                                             q.F + (k - q.foff), skip.branch));
+        for (; k + LIN_W <= k1; k += LIN_W)
+            lin_skip_count(&skip, lin_walls(&q, k, rec, wr, cp, dt, &T, ik,
+                                            q.F + (k - q.foff), skip.branch));
     }
 #endif
 #if DEM_PASS_RECORDS
