@@ -859,6 +859,11 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         double fx = cell ? 0.0 : -gb * vx[i], fy = cell ? 0.0 : -gb * vy[i],
                fz = cell ? 0.0 : -gb * vz[i];
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
+        /* the resistances' torques: on i as i, the opposite as j, summed
+         * in the loops of the forces (each sum in its own order: the
+         * same bits as in loops of their own, which cost a particle
+         * three more loop exits) */
+        double mx = 0.0, my = 0.0, mz = 0.0;
         /* the row in groups (DEM_SUM_GROUP, sum_pick above) */
         for (int k = start[i], k1 = start[i + 1]; k < k1; k += DEM_SUM_GROUP) {
             for (int t = 0; t < DEM_SUM_GROUP; t++) {
@@ -872,6 +877,15 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                 cx += o->c[0];
                 cy += o->c[1];
                 cz += o->c[2];
+                if (DEM_SET_TORQUES(law)) {
+                    const double *m = (const void *)sum_pick(
+                        k + t < k1,
+                        (uintptr_t)M + 3 * sizeof *M * (size_t)(k + t),
+                        (uintptr_t)sum_neutral.f);
+                    mx += m[0];
+                    my += m[1];
+                    mz += m[2];
+                }
             }
         }
         /* (from a ring in a cell those with j itself, then those
@@ -890,6 +904,14 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             cx += o->c[0];
             cy += o->c[1];
             cz += o->c[2];
+            if (DEM_SET_TORQUES(law)) {
+                const double *m = O && rpair[q] < O->k0
+                                      ? &O->M[3 * O->tw[q - O->q0]]
+                                      : &M[3 * rpair[q]];
+                mx -= m[0];
+                my -= m[1];
+                mz -= m[2];
+            }
         }
         for (int k = wstart[i]; k < wstart[i + 1]; k++) {
             fx += WF[k].f[0];
@@ -898,6 +920,11 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             cx += WF[k].c[0];
             cy += WF[k].c[1];
             cz += WF[k].c[2];
+            if (DEM_SET_TORQUES(law)) {
+                mx += WM[3 * k];
+                my += WM[3 * k + 1];
+                mz += WM[3 * k + 2];
+            }
         }
         const int b = (i - i0) % DEM_KICK_BLOCK, ib = i - b;
         if (cell) {
@@ -913,26 +940,6 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
                tz = -g * wz[i] - a * cz;
         if (DEM_SET_TORQUES(law)) {
-            /* the resistances' torques: on i as i, the opposite as j */
-            double mx = 0.0, my = 0.0, mz = 0.0;
-            for (int k = start[i]; k < start[i + 1]; k++) {
-                mx += M[3 * k];
-                my += M[3 * k + 1];
-                mz += M[3 * k + 2];
-            }
-            for (int q = rstart[i]; q < rstart[i + 1]; q++) {
-                const double *m = O && rpair[q] < O->k0
-                                      ? &O->M[3 * O->tw[q - O->q0]]
-                                      : &M[3 * rpair[q]];
-                mx -= m[0];
-                my -= m[1];
-                mz -= m[2];
-            }
-            for (int k = wstart[i]; k < wstart[i + 1]; k++) {
-                mx += WM[3 * k];
-                my += WM[3 * k + 1];
-                mz += WM[3 * k + 2];
-            }
             tx += mx;
             ty += my;
             tz += mz;
