@@ -77,6 +77,24 @@ static const char *const small_3d =
     "output = { interval = 1.0e-3; snapshot_interval = 0.01;"
     " checkpoint_interval = 0; };\n";
 
+/* small_3d with the Hertz-Mindlin law, whose constants are derived at
+ * the start of a run (DEM_CONTACT_DERIVED). */
+static const char *const small_3d_hertz =
+    "dimension = 3; seed = 7; time_step = 2.0e-5;\n"
+    "particles = { count = 125; radius = { distribution = \"gaussian\";"
+    " mean = 5.0e-3; std = 0.7e-3; min = 3.0e-3; }; placement = \"lattice\"; "
+    "};\n"
+    "contact = { normal = \"hertz\"; E = 1.0e7; nu = 0.25; restitution = 0.6;"
+    " mu = 0.5; wall_mu = 0.0; };\n"
+    "damping = { gamma_b = 0.2; gamma_br = 0.05; };\n"
+    "walls = { mass = 2.0; gamma = 200.0; };\n"
+    "stages = ( { type = \"isotropic\"; pressure = 1000.0; tolerance = 1.0e-4;"
+    " max_time = 0.02; },\n"
+    " { type = \"cyclic\"; axis = \"x\"; pressure = 1000.0; amplitude = 200.0;"
+    " period = 0.02; cycles = 1; } );\n"
+    "output = { interval = 1.0e-3; snapshot_interval = 0.01;"
+    " checkpoint_interval = 0; };\n";
+
 /* ---------------------------------------------------------------- helpers */
 
 static void parse(struct dem_config *c, const char *text)
@@ -376,6 +394,9 @@ static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
     SAME_BITS(a.reorder, b.reorder);
     SAME_BITS(a.measure, b.measure);
     SAME_BITS(a.cp.normal, b.cp.normal);
+#define SAME_DERIVED_(MODEL, name, unit, doc) SAME_BITS(a.cp.name, b.cp.name);
+    DEM_CONTACT_DERIVED(SAME_DERIVED_)
+#undef SAME_DERIVED_
     SAME_BITS(a.cp.k, b.cp.k);
     SAME_BITS(a.cp.k1, b.cp.k1);
     SAME_BITS(a.cp.k2, b.cp.k2);
@@ -431,11 +452,13 @@ static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
 }
 
 /* The Luding law (dmax kept) in 2D; the linear law with rolling and
- * torsion resistance in 3D (their springs and torques kept). */
+ * torsion resistance in 3D (their springs and torques kept); the
+ * Hertz-Mindlin law (its derived constants). */
 static void round_trip_restores_every_field_bit_for_bit(void **state)
 {
     (void)state;
     round_trip(small_2d, NULL, 0);
+    round_trip(small_3d_hertz, NULL, 0);
     const char *const resist[] = {"contact.rolling=\"luding\"",
                                   "contact.torsion=\"luding\"",
                                   "contact.wall_mu_r=0.1"};
@@ -514,6 +537,14 @@ static void resumed_3d_cyclic_run_is_bit_identical(void **state)
     /* during the cyclic stage and during the final hold */
     const long stops[] = {1700, 2700};
     stop_and_resume(small_3d, "resume3d", 0, stops, 2, 0);
+}
+
+static void resumed_hertz_run_is_bit_identical(void **state)
+{
+    (void)state;
+    /* in the isotropic stage and in the cyclic one */
+    const long stops[] = {900, 1900};
+    stop_and_resume(small_3d_hertz, "resumehertz", 0, stops, 2, 0);
 }
 
 /* ------------------------------------------------------- refused checkpoints
@@ -891,6 +922,7 @@ int main(void)
         cmocka_unit_test(resumed_2d_run_is_bit_identical),
         cmocka_unit_test(resumed_3d_cyclic_run_is_bit_identical),
         cmocka_unit_test(resumed_periodic_shear_run_is_bit_identical),
+        cmocka_unit_test(resumed_hertz_run_is_bit_identical),
         cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
         cmocka_unit_test(write_error_keeps_the_last_checkpoint),
         cmocka_unit_test(sigint_checkpoints_and_resumes_identically),

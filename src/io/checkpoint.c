@@ -369,13 +369,16 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     DEM_CONTACT_RESISTANCES(RESIST_IO_)
 #undef RESIST_IO_
     const int set = dem_contact_set(cp);
-    if (io->reading)
-        dem_contact_derive(cp);
 #define PARAM_IO_(MODEL, name, unit, def, ...) io_f64(io, &cp->name);
 #define ALIAS_IO_(MODEL, name, field, unit, def, ...)
     DEM_CONTACT_KEYS(PARAM_IO_, ALIAS_IO_)
 #undef PARAM_IO_
 #undef ALIAS_IO_
+    /* the models' derived values, from the keys just read (derived before
+     * them, from the zeroed struct, a resumed Hertz run lost its damping
+     * and stiffness constants) */
+    if (io->reading)
+        dem_contact_derive(cp);
     io_bytes(io, s->rng.s, sizeof s->rng.s);
     struct dem_contact_sums *S = &s->sums;
     io_f64s(io, &S->fabric_stress[0][0], 9);
