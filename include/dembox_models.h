@@ -108,7 +108,13 @@
  * doc); filled by the model's _derive kernel. */
 #define DEM_CONTACT_DERIVED(D)                                                 \
     D(HERTZ, hertz_alpha, "-",                                                 \
-      "viscous damping of the restitution (contact/model_hertz.h)")
+      "viscous damping of the restitution (contact/model_hertz.h)")            \
+    D(HERTZ, hertz_kn, "Pa", "(4/3) E*: K over sqrt(R*)")                      \
+    D(HERTZ, hertz_gn, "Pa^(1/2)",                                             \
+      "alpha sqrt((4/3) E*): the normal dashpot over sqrt(sqrt(R*) m*)")       \
+    D(HERTZ, hertz_kt, "Pa", "8 G*: k_t over sqrt(R* delta)")                  \
+    D(HERTZ, hertz_gt, "Pa^(1/2)",                                             \
+      "alpha sqrt(8 G* / 1.5): gamma_t over sqrt(sqrt(R*) m*) delta^(1/4)")
 
 /* History values every contact carries from step to step:
  * H(MODEL, name, unit, swap, doc); kept (computed, carried across list

@@ -48,6 +48,15 @@ static inline double dem_hertz_estar(const struct dem_contact_params *c)
     return c->E / (2.0 * (1.0 - c->nu * c->nu));
 }
 
+/* The force and the shear law of a contact share their roots: sqrt(R*),
+ * sqrt(delta), delta^(1/4) and sqrt(sqrt(R*) m*), so that, with the
+ * material's constants derived once (dem_model_hertz_derive), a contact
+ * takes four square roots and no division here:
+ *   sqrt(K m*)         = sqrt((4/3) E*) sqrt(sqrt(R*) m*)
+ *   k_t                = 8 G* sqrt(R*) sqrt(delta)
+ *   sqrt(k_t m* / 1.5) = sqrt(8 G* / 1.5) sqrt(sqrt(R*) m*) delta^(1/4)
+ * (the roots are the same values in both, computed once where both are
+ * inlined). */
 static inline double dem_model_hertz_force(const struct dem_contact_params *c,
                                            double delta, double ddot,
                                            double a12, double m12,
@@ -55,9 +64,9 @@ static inline double dem_model_hertz_force(const struct dem_contact_params *c,
 {
     (void)h;
     const double d = delta > 0.0 ? delta : 0.0;
-    const double K = 4.0 / 3.0 * dem_hertz_estar(c) * sqrt(a12);
-    const double sd = sqrt(d), qd = sqrt(sd);
-    const double fn = K * d * sd + c->hertz_alpha * sqrt(K * m12) * qd * ddot;
+    const double ra = sqrt(a12), sd = sqrt(d), qd = sqrt(sd);
+    const double fn =
+        c->hertz_kn * ra * d * sd + c->hertz_gn * sqrt(ra * m12) * qd * ddot;
     *fc = fn > 0.0 ? fn : 0.0;
     return fn;
 }
@@ -67,10 +76,9 @@ static inline void dem_model_hertz_shear(const struct dem_contact_params *c,
                                          struct dem_tangential *T)
 {
     const double d = delta > 0.0 ? delta : 0.0;
-    const double G = c->E / (2.0 * (1.0 + c->nu));
-    const double gstar = G / (2.0 * (2.0 - c->nu));
-    T->kt = 8.0 * gstar * sqrt(a12 * d);
-    T->gamma_t = c->hertz_alpha * sqrt(T->kt * m12 / 1.5);
+    const double ra = sqrt(a12), sd = sqrt(d), qd = sqrt(sd);
+    T->kt = c->hertz_kt * ra * sd;
+    T->gamma_t = c->hertz_gt * sqrt(ra * m12) * qd;
 }
 
 static inline double dem_model_hertz_energy(const struct dem_contact_params *c,
@@ -136,9 +144,13 @@ static inline double dem_hertz_restitution(double alpha)
 static inline void dem_model_hertz_derive(struct dem_contact_params *c)
 {
     const double e = c->restitution;
+    const double G = c->E / (2.0 * (1.0 + c->nu)),
+                 gstar = G / (2.0 * (2.0 - c->nu));
+    c->hertz_kn = 4.0 / 3.0 * dem_hertz_estar(c);
+    c->hertz_kt = 8.0 * gstar;
     double lo = 0.0, hi = 1.0;
     if (e >= 1.0) {
-        c->hertz_alpha = 0.0;
+        c->hertz_alpha = c->hertz_gn = c->hertz_gt = 0.0;
         return;
     }
     while (dem_hertz_restitution(hi) > e && hi < 1e6)
@@ -151,6 +163,8 @@ static inline void dem_model_hertz_derive(struct dem_contact_params *c)
             hi = mid;
     }
     c->hertz_alpha = 0.5 * (lo + hi);
+    c->hertz_gn = c->hertz_alpha * sqrt(c->hertz_kn);
+    c->hertz_gt = c->hertz_alpha * sqrt(c->hertz_kt / 1.5);
 }
 
 #endif
