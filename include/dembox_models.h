@@ -105,7 +105,9 @@
 
 /* Values a model derives from its keys at the start of a run (fields of
  * struct dem_contact_params, not config keys): D(MODEL, name, unit,
- * doc); filled by the model's _derive kernel. */
+ * doc); filled by the model's _derive kernel (and again when a
+ * checkpoint is read). A wall contact's view copies them as they are, so
+ * they may not depend on a key of DEM_CONTACT_WALL_FIELDS. */
 #define DEM_CONTACT_DERIVED(D)                                                 \
     D(HERTZ, hertz_alpha, "-",                                                 \
       "viscous damping of the restitution (contact/model_hertz.h)")            \
