@@ -457,8 +457,10 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     /* local copies, which no store of the loop can change */
     const double gv[6] = {grad[0], grad[1], grad[2], grad[3], grad[4], grad[5]};
     const double mv[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
+    const struct dem_contact_params cpv = *cp;
     grad = gv;
     fm = mv;
+    cp = &cpv;
     int k = k0;
     (void)rec;
     (void)kend;
@@ -547,6 +549,9 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
                            const struct dem_wall *walls, const double *rec)
 {
+    /* a local copy, which no store of the loop can change */
+    const struct dem_contact_params cpv = *cp;
+    cp = &cpv;
     const struct dem_tangential T = {cp->kt, cp->gamma_t, cp->mu_s, cp->mu_d};
     int k = k0;
     (void)rec;
