@@ -87,7 +87,7 @@ static inline double dem_model_hertz_energy(const struct dem_contact_params *c,
 {
     (void)h;
     const double d = delta > 0.0 ? delta : 0.0;
-    const double K = 4.0 / 3.0 * dem_hertz_estar(c) * sqrt(a12);
+    const double K = c->hertz_kn * sqrt(a12); /* as the force's */
     return 0.4 * K * d * d * sqrt(d);
 }
 
