@@ -95,14 +95,30 @@ static const char *const small_3d_hertz =
     "output = { interval = 1.0e-3; snapshot_interval = 0.01;"
     " checkpoint_interval = 0; };\n";
 
+/* small_3d with rolling and torsion resistance, whose springs are
+ * contact history only while they are on; placed at random, since on
+ * the lattice no particle turns and the springs stay 0 */
+static const char *const resist[] = {
+    "particles.placement=\"random\"", "particles.volume_fraction=0.3",
+    "contact.rolling=\"luding\"", "contact.torsion=\"luding\"",
+    "contact.wall_mu_r=0.1"};
+#define NRESIST ((int)(sizeof resist / sizeof *resist))
+
 /* ---------------------------------------------------------------- helpers */
+
+/* text with the --set overrides sets[0 .. nsets) */
+static void parse_set(struct dem_config *c, const char *text,
+                      const char *const *sets, int nsets)
+{
+    struct dem_error err = {0};
+    if (dem_config_parse(c, text, "test", sets, nsets, &err))
+        fail_msg("config: %s", err.msg);
+    snprintf(c->name, sizeof c->name, "test");
+}
 
 static void parse(struct dem_config *c, const char *text)
 {
-    struct dem_error err = {0};
-    if (dem_config_parse(c, text, "test", 0, 0, &err))
-        fail_msg("config: %s", err.msg);
-    snprintf(c->name, sizeof c->name, "test");
+    parse_set(c, text, NULL, 0);
 }
 
 static void file_path(char *out, size_t n, const char *dir, const char *name)
@@ -312,10 +328,7 @@ static void assert_same_walls(const struct dem_sim *a, const struct dem_sim *b)
 static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
 {
     struct dem_config c;
-    struct dem_error perr = {0};
-    if (dem_config_parse(&c, cfg_text, "test", sets, nsets, &perr))
-        fail_msg("config: %s", perr.msg);
-    snprintf(c.name, sizeof c.name, "test");
+    parse_set(&c, cfg_text, sets, nsets);
     struct dem_sim a, b;
     struct dem_error err = {0};
     assert_int_equal(dem_sim_create(&a, &c, NULL, &err), 0);
@@ -459,21 +472,19 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
     (void)state;
     round_trip(small_2d, NULL, 0);
     round_trip(small_3d_hertz, NULL, 0);
-    const char *const resist[] = {"contact.rolling=\"luding\"",
-                                  "contact.torsion=\"luding\"",
-                                  "contact.wall_mu_r=0.1"};
-    round_trip(small_3d, resist, 3);
+    round_trip(small_3d, resist, NRESIST);
 }
 
 /* ------------------------------------------------------------ whole runs */
 
 /* Interrupted by the test hook at `stops` steps (each resume stopping at
  * the next), then resumed to the end: the same bytes as the reference. */
-static void stop_and_resume(const char *text, const char *name, long max_steps,
+static void stop_and_resume(const char *text, const char *const *sets,
+                            int nsets, const char *name, long max_steps,
                             const long *stops, int nstops, int dump)
 {
     struct dem_config c;
-    parse(&c, text);
+    parse_set(&c, text, sets, nsets);
     char ref[1024], out[1024], n2[256];
     struct dem_error err = {0};
     snprintf(n2, sizeof n2, "%s-ref", name);
@@ -518,7 +529,7 @@ static void resumed_2d_run_is_bit_identical(void **state)
      * resuming, before anything is appended to the dump), then twice in
      * the compression */
     const long stops[] = {1000, 1001, 2600, 4100};
-    stop_and_resume(small_2d, "resume2d", 6000, stops, 4, 1);
+    stop_and_resume(small_2d, NULL, 0, "resume2d", 6000, stops, 4, 1);
 }
 
 static void resumed_periodic_shear_run_is_bit_identical(void **state)
@@ -528,7 +539,7 @@ static void resumed_periodic_shear_run_is_bit_identical(void **state)
      * re-map at gamma = 1/2 (dt = 1.47e-7 s: the shear starts at step
      * 2036, re-maps near step 3400 and ends at step 4750) */
     const long stops[] = {900, 3000, 4200};
-    stop_and_resume(small_cell_2d, "resumecell", 6000, stops, 3, 0);
+    stop_and_resume(small_cell_2d, NULL, 0, "resumecell", 6000, stops, 3, 0);
 }
 
 static void resumed_3d_cyclic_run_is_bit_identical(void **state)
@@ -536,7 +547,7 @@ static void resumed_3d_cyclic_run_is_bit_identical(void **state)
     (void)state;
     /* during the cyclic stage and during the final hold */
     const long stops[] = {1700, 2700};
-    stop_and_resume(small_3d, "resume3d", 0, stops, 2, 0);
+    stop_and_resume(small_3d, NULL, 0, "resume3d", 0, stops, 2, 0);
 }
 
 static void resumed_hertz_run_is_bit_identical(void **state)
@@ -544,7 +555,16 @@ static void resumed_hertz_run_is_bit_identical(void **state)
     (void)state;
     /* in the isotropic stage and in the cyclic one */
     const long stops[] = {900, 1900};
-    stop_and_resume(small_3d_hertz, "resumehertz", 0, stops, 2, 0);
+    stop_and_resume(small_3d_hertz, NULL, 0, "resumehertz", 0, stops, 2, 0);
+}
+
+static void resumed_resistance_run_is_bit_identical(void **state)
+{
+    (void)state;
+    /* in the isotropic stage, in the cyclic one and in the hold */
+    const long stops[] = {900, 1700, 2700};
+    stop_and_resume(small_3d, resist, NRESIST, "resumeresist", 0, stops, 3,
+                    0);
 }
 
 /* ------------------------------------------------------- refused checkpoints
@@ -923,6 +943,7 @@ int main(void)
         cmocka_unit_test(resumed_3d_cyclic_run_is_bit_identical),
         cmocka_unit_test(resumed_periodic_shear_run_is_bit_identical),
         cmocka_unit_test(resumed_hertz_run_is_bit_identical),
+        cmocka_unit_test(resumed_resistance_run_is_bit_identical),
         cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
         cmocka_unit_test(write_error_keeps_the_last_checkpoint),
         cmocka_unit_test(sigint_checkpoints_and_resumes_identically),
