@@ -562,7 +562,7 @@ static void resumed_resistance_run_is_bit_identical(void **state)
 {
     (void)state;
     /* in the isotropic stage, in the cyclic one and in the hold */
-    const long stops[] = {900, 1700, 2700};
+    const long stops[] = {900, 1700, 3200};
     stop_and_resume(small_3d, resist, NRESIST, "resumeresist", 0, stops, 3,
                     0);
 }
