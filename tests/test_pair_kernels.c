@@ -21,11 +21,11 @@
  * function is compiled for its own instructions, so that the one of 4
  * runs on a CPU without AVX-512. */
 #define GROUPS_(W)                                                              \
-    static int groups##W(int wall, int two, const struct pass *q, int n,        \
-                         const double *rec, const struct dem_wall *walls,       \
-                         const struct dem_contact_params *cp, double dt,        \
-                         const struct dem_tangential *T,                        \
-                         struct dem_contact_force *F, int skip)                 \
+    static int groups##W(                                                       \
+        int wall, int two, const struct pass *q, int n, const double *rec,      \
+        const struct dem_wall *walls, const struct dem_contact_params *cp,      \
+        const double *cell, double dt, const struct dem_tangential *T,          \
+        struct dem_contact_force *F, int skip)                                  \
     {                                                                           \
         const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;                      \
         _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];                        \
@@ -34,8 +34,10 @@
         for (int k = 0; k < n; k += two ? 2 * W : W)                            \
             none += !(                                                          \
                 wall  ? lin_walls##W(q, k, rec, wr, cp, dt, T, ik, F + k, skip) \
-                : two ? lin_pairs2##W(q, k, rec, cp, dt, T, ik, F + k, skip)    \
-                      : lin_pairs##W(q, k, rec, cp, dt, T, ik, F + k, skip));   \
+                : two ? lin_pairs2##W(q, k, rec, cp, cell, dt, T, ik, F + k,    \
+                                      skip)                                     \
+                      : lin_pairs##W(q, k, rec, cp, cell, dt, T, ik, F + k,     \
+                                     skip));                                    \
         return none;                                                            \
     }
 #pragma GCC push_options
@@ -54,15 +56,17 @@ GROUPS_(8)
 #pragma GCC pop_options
 
 /* the groups of width w (4 or 8), pairs of them side by side with one
- * skip for both if two is set (pairs only), the walls walls */
+ * skip for both if two is set (pairs only), the walls walls; the pairs in
+ * a periodic cell with cell (lin_pair_test), else between walls (NULL) */
 static int groups(int w, int two, int wall, const struct pass *q, int n,
                   const double *rec, const struct dem_wall *walls,
-                  const struct dem_contact_params *cp, double dt,
-                  const struct dem_tangential *T, struct dem_contact_force *F,
-                  int skip)
+                  const struct dem_contact_params *cp, const double *cell,
+                  double dt, const struct dem_tangential *T,
+                  struct dem_contact_force *F, int skip)
 {
-    return w == 8 ? groups8(wall, two, q, n, rec, walls, cp, dt, T, F, skip)
-                  : groups4(wall, two, q, n, rec, walls, cp, dt, T, F, skip);
+    return w == 8
+               ? groups8(wall, two, q, n, rec, walls, cp, cell, dt, T, F, skip)
+               : groups4(wall, two, q, n, rec, walls, cp, cell, dt, T, F, skip);
 }
 #else
 #define TEST_SIMD 0
@@ -164,11 +168,13 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st,
  * at a time with two set) or of wall contacts (wall 1), with the sliding case
  * always computed (skip 0) or skipped in groups where no touching contact
  * slides (skip 1), against pair_vals or wall_vals, bit for bit, the forces on
- * the walls too; counts of touching sticking, touching sliding and open
- * contacts, and of the groups in which none slid. */
+ * the walls too; the pairs in a periodic cell with cell (its frame's map
+ * and affine gradient, lin_pair_test), else between walls (NULL); counts
+ * of touching sticking, touching sliding and open contacts, and of the
+ * groups in which none slid. */
 static void compare(const struct pairs_data *D, struct dem_contact_params cp,
-                    int w, int two, int wall, int skip, int *stick, int *slide,
-                    int *open, int *calm)
+                    const double *cell, int w, int two, int wall, int skip,
+                    int *stick, int *slide, int *open, int *calm)
 {
     static double h0[3][NP], h1[3][NP], A0[NP], A1[NP];
     static int s0[NP], s1[NP];
@@ -190,12 +196,17 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
         const struct pv pi = record_pv(rec + DEM_REC * (size_t)q0.ci[k]);
         F0[k] = wall ? wall_vals(DEM_NORMAL_LINEAR, &q0, k, pi, &cp, dt,
                                  D->walls, &T)
-                     : pair_vals(DEM_NORMAL_LINEAR, &q0, k, pi,
-                                 record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
-                                 &cp, dt, &T, zero, zero);
+                : cell
+                    ? pair_vals(DEM_NORMAL_LINEAR | DEM_SET_PERIODIC, &q0, k,
+                                pi, record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
+                                &cp, dt, &T, cell + 6, cell)
+                    : pair_vals(DEM_NORMAL_LINEAR, &q0, k, pi,
+                                record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
+                                &cp, dt, &T, zero, zero);
     }
 #if TEST_SIMD
-    *calm = groups(w, two, wall, &q1, NP, rec, D->walls, &cp, dt, &T, F1, skip);
+    *calm = groups(w, two, wall, &q1, NP, rec, D->walls, &cp, cell, dt, &T, F1,
+                   skip);
 #else
     (void)q1;
     (void)w;
@@ -254,16 +265,19 @@ static struct dem_contact_params setup(struct pairs_data *D)
     return cp;
 }
 
-static void groups_match_pair_vals(void **state)
+/* The pairs' groups against pair_vals, between walls (cell NULL) or in
+ * a periodic cell (lin_pair_test's cell). */
+static void pairs_match(const double *cell)
 {
-    (void)state;
     struct pairs_data D;
     const struct dem_contact_params cp = setup(&D);
+    const double id[6] = {1.0, 0.0, 0.0, 1.0, 0.0, 1.0}; /* the frame's map */
+    const double *fm = cell ? cell : id;
     for (int w = 4; w <= widths(); w *= 2)
         for (int two = 0; two < 2; two++) {
             const int gs = two ? 2 * w : w, ng = NP / gs; /* group size */
             int stick, slide, open, calm, openg = 0;
-            /* groups of gs open pairs */
+            /* groups of gs open pairs (their gaps in the cell now) */
             for (int k = 0; k < NP; k += gs) {
                 int n = 0;
                 for (int l = 0; l < gs; l++) {
@@ -271,36 +285,60 @@ static void groups_match_pair_vals(void **state)
                                  *b = D.rec + DEM_REC * (size_t)D.cj[k + l];
                     const double dx = a[0] - b[0], dy = a[1] - b[1],
                                  dz = a[2] - b[2];
-                    n += dx * dx + dy * dy + dz * dz >=
+                    const double ex = fm[0] * dx + fm[1] * dy + fm[2] * dz,
+                                 ey = fm[3] * dy + fm[4] * dz, ez = fm[5] * dz;
+                    n += ex * ex + ey * ey + ez * ez >=
                          (a[3] + b[3]) * (a[3] + b[3]);
                 }
                 openg += n == gs;
             }
             for (int skip = 0; skip < 2; skip++) {
                 struct dem_contact_params c1 = cp;
-                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
+                        &calm);
                 /* every branch of the law taken by many pairs */
                 assert_true(stick > 100 && slide > 100 && open > 100);
                 /* high friction: few slide, and most groups have none
                  * that does (their sliding case skipped with skip 1) */
                 c1.mu_s = c1.mu_d = 50.0;
-                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
+                        &calm);
                 assert_true(slide > 0 && slide < 20 && stick > 300);
                 assert_true(calm > ng * (two ? 2 : 3) / 4 && calm < ng);
                 /* without friction every contact slides, with no
                  * friction force */
                 c1.mu_s = c1.mu_d = 0.0;
-                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
+                        &calm);
                 assert_int_equal(stick, 0);
                 assert_int_equal(calm, openg);
                 /* without a tangential spring (1/k_t taken as 0) */
                 c1.kt = 0.0;
-                compare(&D, c1, w, two, 0, skip, &stick, &slide, &open, &calm);
+                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
+                        &calm);
                 assert_true(slide > 100);
             }
         }
     free(D.rec);
     free(D.wrec);
+}
+
+static void groups_match_pair_vals(void **state)
+{
+    (void)state;
+    pairs_match(NULL);
+}
+
+/* In a periodic cell: the frame's map, sheared and stretched by a few
+ * per cent (struct dem_frame.m, upper triangle), and an affine gradient
+ * whose velocities across a contact (some 0.02 m/s) are those of the
+ * particles' own, as pair_vals takes them. */
+static void cell_groups_match_pair_vals(void **state)
+{
+    (void)state;
+    const double cell[12] = {1.02, 0.03, -0.02, 0.97, 0.025, 1.01,
+                             8.0,  -5.0, 6.0,   -7.0, 4.0,   9.0};
+    pairs_match(cell);
 }
 
 static void wall_groups_match_wall_vals(void **state)
@@ -313,19 +351,19 @@ static void wall_groups_match_wall_vals(void **state)
         int stick, slide, open, calm;
         for (int skip = 0; skip < 2; skip++) {
             struct dem_contact_params c1 = cp;
-            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
             assert_true(stick > 100 && slide > 100 && open > 100);
             c1.mu_s = c1.mu_d = 50.0;
-            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
             assert_true(slide < 20 && stick > 300);
             assert_true(calm > ng * 3 / 4 && calm < ng);
             /* frictionless walls (the papers' examples) */
             c1.mu_s = c1.mu_d = 0.0;
-            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
             assert_int_equal(stick, 0);
             assert_true(slide > 300);
             c1.kt = 0.0;
-            compare(&D, c1, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
             assert_true(slide > 300);
         }
     }
@@ -337,6 +375,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(groups_match_pair_vals),
+        cmocka_unit_test(cell_groups_match_pair_vals),
         cmocka_unit_test(wall_groups_match_wall_vals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

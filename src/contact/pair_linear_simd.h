@@ -1,8 +1,8 @@
-/* Groups of contacts for the linear normal law without resistances
- * between walls, the commonest model set (the papers' law), written in
- * intrinsics: groups of LIN_W = 4 contacts in AVX2's 256-bit vectors or
- * of LIN_W = 8 in AVX-512's 512-bit ones, the pairs of the pair loop
- * (contact/pass.c, pair_range: DEM_PAIR_LANES / LIN_W groups a round)
+/* Groups of contacts for the linear normal law without resistances,
+ * the commonest model set (the papers' law), between walls and in a
+ * periodic cell, written in intrinsics: groups of LIN_W = 4 contacts in AVX2's
+ * 256-bit vectors or of LIN_W = 8 in AVX-512's 512-bit ones, the pairs of the
+ * pair loop (contact/pass.c, pair_range: DEM_PAIR_LANES / LIN_W groups a round)
  * and the wall contacts of the wall loop (wall_range). The includer
  * defines LIN_W; the names of one width end in it (lin_pairs4,
  * lin_pairs8), so that a file can include both (test_pair_kernels). Only
@@ -442,14 +442,18 @@ struct LIN_(lin_pg) {
 
 /* Pairs k..k+LIN_W of q, their particles' records in rec, up to their
  * Coulomb test (lin_test), into g; returns the lanes of the touching
- * pairs that slide, as bits. The distance's square root and 1/d are
+ * pairs that slide, as bits. cell: NULL between walls; in a periodic
+ * cell the frame's map (struct dem_frame.m) and the affine velocity
+ * gradient, 6 values each, as pair_vals takes them (fm, grad), the j
+ * records those of j's images. The distance's square root and 1/d are
  * issued as soon as their operands are there, with the loads and
  * products that do not need them after them. */
 DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
                                    const double *rec,
                                    const struct dem_contact_params *cp,
-                                   double dt, const struct dem_tangential *T,
-                                   int branch, struct LIN_(lin_pg) * g)
+                                   const double *cell, double dt,
+                                   const struct dem_tangential *T, int branch,
+                                   struct LIN_(lin_pg) * g)
 {
     const double *pi[LIN_W], *pj[LIN_W];
     for (int l = 0; l < LIN_W; l++) {
@@ -460,8 +464,18 @@ DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
     LV xi[4], xj[4];
     LIN_(lin_rows)(pi, 0, xi);
     LIN_(lin_rows)(pj, 0, xj);
-    const LV dx = LV_SUB(xi[0], xj[0]), dy = LV_SUB(xi[1], xj[1]),
-             dz = LV_SUB(xi[2], xj[2]), R = LV_ADD(xi[3], xj[3]);
+    LV dx = LV_SUB(xi[0], xj[0]), dy = LV_SUB(xi[1], xj[1]),
+       dz = LV_SUB(xi[2], xj[2]);
+    const LV R = LV_ADD(xi[3], xj[3]);
+    if (cell) { /* from the frame to the cell now */
+        const LV ex = LIN_(lin_dot)(LV_SET1(cell[0]), LV_SET1(cell[1]),
+                                    LV_SET1(cell[2]), dx, dy, dz),
+                 ey = LV_ADD(LV_MUL(LV_SET1(cell[3]), dy),
+                             LV_MUL(LV_SET1(cell[4]), dz));
+        dz = LV_MUL(LV_SET1(cell[5]), dz);
+        dx = ex;
+        dy = ey;
+    }
     const LV d2 = LIN_(lin_dot)(dx, dy, dz, dx, dy, dz);
     const LV d = LV_SQRT(d2);
     g->touch = LV_CMP(d2, LV_MUL(R, R), _CMP_LT_OQ);
@@ -480,9 +494,17 @@ DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
     const LV hx = LV_LOADU(q->xi_x + k), hy = LV_LOADU(q->xi_y + k),
              hz = LV_LOADU(q->xi_z + k);
     const LV nx = LV_MUL(dx, id), ny = LV_MUL(dy, id), nz = LV_MUL(dz, id);
-    const LV vx = LV_SUB(LV_ADD(dvx, LV_MUL(ny, cwz)), LV_MUL(nz, cwy)),
-             vy = LV_SUB(LV_ADD(dvy, LV_MUL(nz, cwx)), LV_MUL(nx, cwz)),
-             vz = LV_SUB(LV_ADD(dvz, LV_MUL(nx, cwy)), LV_MUL(ny, cwx));
+    LV vx = LV_SUB(LV_ADD(dvx, LV_MUL(ny, cwz)), LV_MUL(nz, cwy)),
+       vy = LV_SUB(LV_ADD(dvy, LV_MUL(nz, cwx)), LV_MUL(nx, cwz)),
+       vz = LV_SUB(LV_ADD(dvz, LV_MUL(nx, cwy)), LV_MUL(ny, cwx));
+    if (cell) { /* the cell's affine velocity, grad b */
+        const double *gr = cell + 6;
+        vx = LV_ADD(vx, LIN_(lin_dot)(LV_SET1(gr[0]), LV_SET1(gr[1]),
+                                      LV_SET1(gr[2]), dx, dy, dz));
+        vy = LV_ADD(
+            vy, LV_ADD(LV_MUL(LV_SET1(gr[3]), dy), LV_MUL(LV_SET1(gr[4]), dz)));
+        vz = LV_ADD(vz, LV_MUL(LV_SET1(gr[5]), dz));
+    }
     const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
     g->fn = LV_ADD(LV_MUL(LV_SET1(cp->k), LV_SUB(R, d)),
                    LV_MUL(LV_SET1(cp->gamma_n), ddot));
@@ -509,17 +531,19 @@ DEM_INLINE void LIN_(lin_pair_settle)(const struct pass *q, int k,
 
 /* Pairs k..k+LIN_W of q, their particles' records in rec: forces into
  * F[0..LIN_W), springs and states stored with the pairs, as pair_vals
- * does for them. T the pairs' tangential law, ik its 1/k_t (0 without a
- * spring). Returns whether a touching pair slides; with branch set, and
- * none sliding, the sliding case (half of a group's square roots and
- * divisions) is skipped. */
+ * does for them (cell as lin_pair_test's). T the pairs' tangential law, ik its
+ * 1/k_t (0 without a spring). Returns whether a touching pair slides; with
+ * branch set, and none sliding, the sliding case (half of a group's square
+ * roots and divisions) is skipped. */
 DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
-                               const struct dem_contact_params *cp, double dt,
+                               const struct dem_contact_params *cp,
+                               const double *cell, double dt,
                                const struct dem_tangential *T, double ik,
                                struct dem_contact_force *F, int branch)
 {
     struct LIN_(lin_pg) g;
-    const int slid = LIN_(lin_pair_test)(q, k, rec, cp, dt, T, branch, &g);
+    const int slid =
+        LIN_(lin_pair_test)(q, k, rec, cp, cell, dt, T, branch, &g);
     LIN_(lin_pair_settle)(q, k, T, ik, branch, !branch || slid, &g, F);
     return slid != 0;
 }
@@ -532,14 +556,15 @@ DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
  * with its own skip, gained 2-4 % in the cyclic stage and lost 4 % at
  * N = 20000 (docs/performance-log.md, session 74). */
 DEM_INLINE int LIN_(lin_pairs2)(const struct pass *q, int k, const double *rec,
-                                const struct dem_contact_params *cp, double dt,
+                                const struct dem_contact_params *cp,
+                                const double *cell, double dt,
                                 const struct dem_tangential *T, double ik,
                                 struct dem_contact_force *F, int branch)
 {
     struct LIN_(lin_pg) g0, g1;
-    const int s0 = LIN_(lin_pair_test)(q, k, rec, cp, dt, T, branch, &g0);
+    const int s0 = LIN_(lin_pair_test)(q, k, rec, cp, cell, dt, T, branch, &g0);
     const int s1 =
-        LIN_(lin_pair_test)(q, k + LIN_W, rec, cp, dt, T, branch, &g1);
+        LIN_(lin_pair_test)(q, k + LIN_W, rec, cp, cell, dt, T, branch, &g1);
     const int sliding = !branch || s0 || s1;
     LIN_(lin_pair_settle)(q, k, T, ik, branch, sliding, &g0, F);
     LIN_(lin_pair_settle)(q, k + LIN_W, T, ik, branch, sliding, &g1, F + LIN_W);
