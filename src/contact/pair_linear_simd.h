@@ -1,12 +1,13 @@
 /* Groups of contacts for the linear normal law without resistances,
  * the commonest model set (the papers' law), between walls and in a
- * periodic cell, written in intrinsics: groups of LIN_W = 4 contacts in AVX2's
- * 256-bit vectors or of LIN_W = 8 in AVX-512's 512-bit ones, the pairs of the
- * pair loop (contact/pass.c, pair_range: DEM_PAIR_LANES / LIN_W groups a round)
- * and the wall contacts of the wall loop (wall_range). The includer
- * defines LIN_W; the names of one width end in it (lin_pairs4,
- * lin_pairs8), so that a file can include both (test_pair_kernels). Only
- * the records compilations for a CPU with AVX2 include it.
+ * periodic cell, written in intrinsics: groups of LIN_W = 4 contacts in
+ * AVX2's 256-bit vectors or of LIN_W = 8 in AVX-512's 512-bit ones, the
+ * pairs of the pair loop (contact/pass.c, pair_range: DEM_PAIR_LANES /
+ * LIN_W groups a round) and the wall contacts of the wall loop
+ * (wall_range). The includer defines LIN_W; the names of one width end
+ * in it (lin_pairs4, lin_pairs8), so that a file can include both
+ * (test_pair_kernels). Only the records compilations for a CPU with
+ * AVX2 include it.
  *
  * It computes the very operations of pair_vals (wall_vals) with that
  * law (contact/model_linear.h), dem_tangential_force and finish_contact, in
@@ -531,10 +532,10 @@ DEM_INLINE void LIN_(lin_pair_settle)(const struct pass *q, int k,
 
 /* Pairs k..k+LIN_W of q, their particles' records in rec: forces into
  * F[0..LIN_W), springs and states stored with the pairs, as pair_vals
- * does for them (cell as lin_pair_test's). T the pairs' tangential law, ik its
- * 1/k_t (0 without a spring). Returns whether a touching pair slides; with
- * branch set, and none sliding, the sliding case (half of a group's square
- * roots and divisions) is skipped. */
+ * does for them (cell as lin_pair_test's). T the pairs' tangential
+ * law, ik its 1/k_t (0 without a spring). Returns whether a touching
+ * pair slides; with branch set, and none sliding, the sliding case (half
+ * of a group's square roots and divisions) is skipped. */
 DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
                                const struct dem_contact_params *cp,
                                const double *cell, double dt,

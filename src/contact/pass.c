@@ -85,10 +85,10 @@
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
 /* The records passes' round for the linear law without resistances
- * between walls in intrinsics, groups of LIN_W pairs, and their wall
- * contacts in such groups, on CPUs with AVX2: 4 lanes in AVX2, 8 with
- * AVX-512 (contact/pair_linear_simd.h: the same operations, in an order
- * and with a skip that took some 15-20 % off a step on Zen 1, and 7-11 %
+ * (between walls and in a periodic cell) in intrinsics, groups of LIN_W
+ * pairs, and their wall contacts in such groups, on CPUs with AVX2: 4 lanes in
+ * AVX2, 8 with AVX-512 (contact/pair_linear_simd.h: the same operations, in an
+ * order and with a skip that took some 15-20 % off a step on Zen 1, and 7-11 %
  * against gcc's 16 lanes on an Intel Xeon with AVX-512, session 74). */
 #if DEM_PASS_RECORDS && defined(__AVX2__)
 #define DEM_PAIR_LINEAR_SIMD 1
@@ -472,7 +472,6 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
     const double fg[12] = {fm[0],   fm[1],   fm[2],   fm[3],
                            fm[4],   fm[5],   grad[0], grad[1],
                            grad[2], grad[3], grad[4], grad[5]};
-    (void)fg;
 #endif
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES],
