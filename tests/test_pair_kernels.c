@@ -30,14 +30,15 @@
         const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;                      \
         _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];                        \
         lin_wall_rows(walls, wr);                                               \
+        const double *fm = cell, *grad = cell ? cell + 6 : NULL;                \
         int none = 0;                                                           \
         for (int k = 0; k < n; k += two ? 2 * W : W)                            \
             none += !(                                                          \
                 wall  ? lin_walls##W(q, k, rec, wr, cp, dt, T, ik, F + k, skip) \
-                : two ? lin_pairs2##W(q, k, rec, cp, cell, dt, T, ik, F + k,    \
-                                      skip)                                     \
-                      : lin_pairs##W(q, k, rec, cp, cell, dt, T, ik, F + k,     \
-                                     skip));                                    \
+                : two ? lin_pairs2##W(q, k, rec, cp, fm, grad, dt, T, ik,       \
+                                      F + k, skip)                              \
+                      : lin_pairs##W(q, k, rec, cp, fm, grad, dt, T, ik,        \
+                                     F + k, skip));                             \
         return none;                                                            \
     }
 #pragma GCC push_options
@@ -57,7 +58,8 @@ GROUPS_(8)
 
 /* the groups of width w (4 or 8), pairs of them side by side with one
  * skip for both if two is set (pairs only), the walls walls; the pairs in
- * a periodic cell with cell (lin_pair_test), else between walls (NULL) */
+ * a periodic cell with cell (the frame's map, then the affine gradient:
+ * lin_pair_test's fm and grad), else between walls (NULL) */
 static int groups(int w, int two, int wall, const struct pass *q, int n,
                   const double *rec, const struct dem_wall *walls,
                   const struct dem_contact_params *cp, const double *cell,
@@ -266,7 +268,7 @@ static struct dem_contact_params setup(struct pairs_data *D)
 }
 
 /* The pairs' groups against pair_vals, between walls (cell NULL) or in
- * a periodic cell (lin_pair_test's cell). */
+ * a periodic cell (cell as groups takes it). */
 static void pairs_match(const double *cell)
 {
     struct pairs_data D;

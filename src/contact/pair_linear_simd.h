@@ -443,18 +443,18 @@ struct LIN_(lin_pg) {
 
 /* Pairs k..k+LIN_W of q, their particles' records in rec, up to their
  * Coulomb test (lin_test), into g; returns the lanes of the touching
- * pairs that slide, as bits. cell: NULL between walls; in a periodic
- * cell the frame's map (struct dem_frame.m) and the affine velocity
- * gradient, 6 values each, as pair_vals takes them (fm, grad), the j
+ * pairs that slide, as bits. fm, grad: NULL between walls; in a
+ * periodic cell the frame's map (struct dem_frame.m) and the affine
+ * velocity gradient, 6 values each, as pair_vals takes them, the j
  * records those of j's images. The distance's square root and 1/d are
  * issued as soon as their operands are there, with the loads and
  * products that do not need them after them. */
 DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
                                    const double *rec,
                                    const struct dem_contact_params *cp,
-                                   const double *cell, double dt,
-                                   const struct dem_tangential *T, int branch,
-                                   struct LIN_(lin_pg) * g)
+                                   const double *fm, const double *grad,
+                                   double dt, const struct dem_tangential *T,
+                                   int branch, struct LIN_(lin_pg) * g)
 {
     const double *pi[LIN_W], *pj[LIN_W];
     for (int l = 0; l < LIN_W; l++) {
@@ -468,12 +468,12 @@ DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
     LV dx = LV_SUB(xi[0], xj[0]), dy = LV_SUB(xi[1], xj[1]),
        dz = LV_SUB(xi[2], xj[2]);
     const LV R = LV_ADD(xi[3], xj[3]);
-    if (cell) { /* from the frame to the cell now */
-        const LV ex = LIN_(lin_dot)(LV_SET1(cell[0]), LV_SET1(cell[1]),
-                                    LV_SET1(cell[2]), dx, dy, dz),
-                 ey = LV_ADD(LV_MUL(LV_SET1(cell[3]), dy),
-                             LV_MUL(LV_SET1(cell[4]), dz));
-        dz = LV_MUL(LV_SET1(cell[5]), dz);
+    if (fm) { /* from the frame to the cell now */
+        const LV ex = LIN_(lin_dot)(LV_SET1(fm[0]), LV_SET1(fm[1]),
+                                    LV_SET1(fm[2]), dx, dy, dz),
+                 ey = LV_ADD(LV_MUL(LV_SET1(fm[3]), dy),
+                             LV_MUL(LV_SET1(fm[4]), dz));
+        dz = LV_MUL(LV_SET1(fm[5]), dz);
         dx = ex;
         dy = ey;
     }
@@ -498,13 +498,12 @@ DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
     LV vx = LV_SUB(LV_ADD(dvx, LV_MUL(ny, cwz)), LV_MUL(nz, cwy)),
        vy = LV_SUB(LV_ADD(dvy, LV_MUL(nz, cwx)), LV_MUL(nx, cwz)),
        vz = LV_SUB(LV_ADD(dvz, LV_MUL(nx, cwy)), LV_MUL(ny, cwx));
-    if (cell) { /* the cell's affine velocity, grad b */
-        const double *gr = cell + 6;
-        vx = LV_ADD(vx, LIN_(lin_dot)(LV_SET1(gr[0]), LV_SET1(gr[1]),
-                                      LV_SET1(gr[2]), dx, dy, dz));
-        vy = LV_ADD(
-            vy, LV_ADD(LV_MUL(LV_SET1(gr[3]), dy), LV_MUL(LV_SET1(gr[4]), dz)));
-        vz = LV_ADD(vz, LV_MUL(LV_SET1(gr[5]), dz));
+    if (grad) { /* the cell's affine velocity, grad b */
+        vx = LV_ADD(vx, LIN_(lin_dot)(LV_SET1(grad[0]), LV_SET1(grad[1]),
+                                      LV_SET1(grad[2]), dx, dy, dz));
+        vy = LV_ADD(vy, LV_ADD(LV_MUL(LV_SET1(grad[3]), dy),
+                               LV_MUL(LV_SET1(grad[4]), dz)));
+        vz = LV_ADD(vz, LV_MUL(LV_SET1(grad[5]), dz));
     }
     const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
     g->fn = LV_ADD(LV_MUL(LV_SET1(cp->k), LV_SUB(R, d)),
@@ -532,19 +531,19 @@ DEM_INLINE void LIN_(lin_pair_settle)(const struct pass *q, int k,
 
 /* Pairs k..k+LIN_W of q, their particles' records in rec: forces into
  * F[0..LIN_W), springs and states stored with the pairs, as pair_vals
- * does for them (cell as lin_pair_test's). T the pairs' tangential
+ * does for them (fm and grad as lin_pair_test's). T the pairs' tangential
  * law, ik its 1/k_t (0 without a spring). Returns whether a touching
  * pair slides; with branch set, and none sliding, the sliding case (half
  * of a group's square roots and divisions) is skipped. */
 DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
                                const struct dem_contact_params *cp,
-                               const double *cell, double dt,
+                               const double *fm, const double *grad, double dt,
                                const struct dem_tangential *T, double ik,
                                struct dem_contact_force *F, int branch)
 {
     struct LIN_(lin_pg) g;
     const int slid =
-        LIN_(lin_pair_test)(q, k, rec, cp, cell, dt, T, branch, &g);
+        LIN_(lin_pair_test)(q, k, rec, cp, fm, grad, dt, T, branch, &g);
     LIN_(lin_pair_settle)(q, k, T, ik, branch, !branch || slid, &g, F);
     return slid != 0;
 }
@@ -558,14 +557,15 @@ DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
  * N = 20000 (docs/performance-log.md, session 74). */
 DEM_INLINE int LIN_(lin_pairs2)(const struct pass *q, int k, const double *rec,
                                 const struct dem_contact_params *cp,
-                                const double *cell, double dt,
+                                const double *fm, const double *grad, double dt,
                                 const struct dem_tangential *T, double ik,
                                 struct dem_contact_force *F, int branch)
 {
     struct LIN_(lin_pg) g0, g1;
-    const int s0 = LIN_(lin_pair_test)(q, k, rec, cp, cell, dt, T, branch, &g0);
-    const int s1 =
-        LIN_(lin_pair_test)(q, k + LIN_W, rec, cp, cell, dt, T, branch, &g1);
+    const int s0 =
+        LIN_(lin_pair_test)(q, k, rec, cp, fm, grad, dt, T, branch, &g0);
+    const int s1 = LIN_(lin_pair_test)(q, k + LIN_W, rec, cp, fm, grad, dt, T,
+                                       branch, &g1);
     const int sliding = !branch || s0 || s1;
     LIN_(lin_pair_settle)(q, k, T, ik, branch, sliding, &g0, F);
     LIN_(lin_pair_settle)(q, k + LIN_W, T, ik, branch, sliding, &g1, F + LIN_W);

@@ -468,10 +468,6 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #if DEM_PASS_RECORDS
 #if DEM_PAIR_LINEAR_SIMD
     struct lin_skip skip = {1, 0, 0};
-    /* a cell's frame map and affine gradient, as the groups take them */
-    const double fg[12] = {fm[0],   fm[1],   fm[2],   fm[3],
-                           fm[4],   fm[5],   grad[0], grad[1],
-                           grad[2], grad[3], grad[4], grad[5]};
 #endif
     for (; k + DEM_PAIR_LANES <= k1; k += DEM_PAIR_LANES) {
         _Alignas(64) double A[DEM_REC][DEM_PAIR_LANES],
@@ -512,10 +508,11 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
         if ((law & ~DEM_SET_PERIODIC) == DEM_NORMAL_LINEAR) {
             for (int g = 0; g < DEM_PAIR_LANES; g += LIN_PAIRS)
                 lin_skip_count(
-                    &skip,
-                    lin_pair_groups(&q, k + g, rec, cp,
-                                    law & DEM_SET_PERIODIC ? fg : NULL, dt, &T,
-                                    ik, q.F + (k + g - q.foff), skip.branch));
+                    &skip, lin_pair_groups(&q, k + g, rec, cp,
+                                           law & DEM_SET_PERIODIC ? fm : NULL,
+                                           law & DEM_SET_PERIODIC ? grad : NULL,
+                                           dt, &T, ik, q.F + (k + g - q.foff),
+                                           skip.branch));
             continue;
         }
 #endif
