@@ -314,6 +314,17 @@ static void pairs_match(const double *cell)
                         &calm);
                 assert_int_equal(stick, 0);
                 assert_int_equal(calm, openg);
+                /* the same with -0 (the sliding force's zeros take its
+                 * sign), and static friction without dynamic */
+                c1.mu_s = c1.mu_d = -0.0;
+                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
+                        &calm);
+                assert_int_equal(stick, 0);
+                c1.mu_s = 0.5;
+                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
+                        &calm);
+                assert_true(stick > 100 && slide > 100);
+                c1.mu_s = c1.mu_d = 0.0;
                 /* without a tangential spring (1/k_t taken as 0) */
                 c1.kt = 0.0;
                 compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
@@ -364,6 +375,10 @@ static void wall_groups_match_wall_vals(void **state)
             compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
             assert_int_equal(stick, 0);
             assert_true(slide > 300);
+            c1.mu_s = c1.mu_d = -0.0;
+            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
+            assert_int_equal(stick, 0);
+            c1.mu_s = c1.mu_d = 0.0;
             c1.kt = 0.0;
             compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
             assert_true(slide > 300);

@@ -342,7 +342,7 @@ DEM_INLINE int LIN_(lin_test)(const struct pass *q, int k, LV nx, LV ny, LV nz,
     t->f0sq = LIN_(lin_dot)(t->f0x, t->f0y, t->f0z, t->f0x, t->f0y, t->f0z);
     const LV zero = LV_ZERO();
     t->f0n = zero;
-    if (!branch)
+    if (!branch && T->mu_d != 0.0)
         t->f0n = LV_SQRT(t->f0sq);
     const LV mud = LV_SET1(T->mu_d);
     t->st = LIN_(lin_state)(q, k);
@@ -369,10 +369,16 @@ DEM_INLINE void LIN_(lin_settle)(const struct pass *q, int k, LM touch,
        kz = t->sz;
     if (sliding) {
         const LV nik = LV_SET1(-ik);
-        if (branch)
-            t->f0n = LV_SQRT(t->f0sq);
-        const LV scale = LV_KEEP(LV_DIV(LV_MUL(mud, t->fc), t->f0n),
-                                 LV_CMP(t->f0sq, zero, _CMP_GT_OQ));
+        const LM some = LV_CMP(t->f0sq, zero, _CMP_GT_OQ);
+        /* mu_d fc / |f0| where |f0| > 0: without dynamic friction that
+         * is mu_d itself (+0, or -0 as mu_d), the same bits with no
+         * square root and no division (a stage without friction) */
+        LV scale = LV_KEEP(mud, some);
+        if (T->mu_d != 0.0) {
+            if (branch)
+                t->f0n = LV_SQRT(t->f0sq);
+            scale = LV_KEEP(LV_DIV(LV_MUL(mud, t->fc), t->f0n), some);
+        }
         const LV sfx = LV_MUL(t->f0x, scale), sfy = LV_MUL(t->f0y, scale),
                  sfz = LV_MUL(t->f0z, scale);
         ftx = LV_BLEND(t->f0x, sfx, t->slide);
