@@ -92,27 +92,23 @@ peers() { # round name args...: one peers.sh case, its figures to $out/name
     "$name" "$d" "$l" "$(awk -v d="$d" -v l="$l" 'BEGIN {printf "%.2f", d / l}')" "$a" "$b"
 }
 
-bench() { # threads: dembox bench at N = 20000, ns per particle-step
-  local a b ns
+# label args...: `dembox bench args --quiet`, its ns per particle-step on
+# standard output, a line with the label and the ping-pong times on stderr
+bench() {
+  local label=$1 a b ns
+  shift
   a=$(pp)
-  ns=$("$DEMBOX" bench --n 20000 --steps 3000 --threads "$1" --quiet 2>&1 |
+  ns=$("$DEMBOX" bench "$@" --quiet 2>&1 |
        sed -n 's/.*, \([0-9.]*\) ns per particle-step.*/\1/p')
   b=$(pp)
-  [ -n "$ns" ] || die "dembox bench --threads $1 gave no figure"
+  [ -n "$ns" ] || die "dembox bench $* gave no figure"
   echo "$ns"
-  echo "  bench    $1 thread(s): $ns ns per particle-step (ping-pong $a / $b)" >&2
+  echo "  $label: $ns ns per particle-step (ping-pong $a / $b)" >&2
 }
-
-cell() { # name file: dembox bench in a periodic cell, 3000 steps, ns
-  local a b ns
-  a=$(pp)
-  ns=$("$DEMBOX" bench --data "$2" --steps 3000 --threads 1 \
-         --boundary periodic --quiet 2>&1 |
-       sed -n 's/.*, \([0-9.]*\) ns per particle-step.*/\1/p')
-  b=$(pp)
-  [ -n "$ns" ] || die "dembox bench --boundary periodic --data $2 gave no figure"
-  echo "$ns" >>"$out/cell$1"
-  echo "  cell     N = $1, 3000 steps: $ns ns per particle-step (ping-pong $a / $b)"
+# the same in a periodic cell, 3000 steps, one thread: N = $1, packing $2
+cell() {
+  bench "cell     N = $1, 3000 steps" --data "$2" --steps 3000 --threads 1 \
+    --boundary periodic >>"$out/cell$1"
 }
 
 for r in $(seq 1 "$ROUNDS"); do
@@ -121,8 +117,8 @@ for r in $(seq 1 "$ROUNDS"); do
   peers "$r" 20000 --n 20000 --steps 10000
   peers "$r" 216000 --n 3375 --replicate 4 --steps 3000
   peers "$r" 20000np2 --n 20000 --steps 5000 --np 2
-  t1=$(bench 1)
-  t2=$(bench 2)
+  t1=$(bench "bench    1 thread(s)" --n 20000 --steps 3000 --threads 1)
+  t2=$(bench "bench    2 thread(s)" --n 20000 --steps 3000 --threads 2)
   awk -v a="$t1" -v b="$t2" 'BEGIN {print a / b}' >>"$out/threads"
   peers "$r" 3375s --n 3375 --steps 3000
   cell 3375 "$DATA/pack3d_3375.data"

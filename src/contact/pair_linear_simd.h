@@ -373,11 +373,13 @@ DEM_INLINE void LIN_(lin_settle)(const struct pass *q, int k, LM touch,
         /* mu_d fc / |f0| where |f0| > 0: without dynamic friction that
          * is mu_d itself (+0, or -0 as mu_d), the same bits with no
          * square root and no division (a stage without friction) */
-        LV scale = LV_KEEP(mud, some);
+        LV scale;
         if (T->mu_d != 0.0) {
             if (branch)
                 t->f0n = LV_SQRT(t->f0sq);
             scale = LV_KEEP(LV_DIV(LV_MUL(mud, t->fc), t->f0n), some);
+        } else {
+            scale = LV_KEEP(mud, some);
         }
         const LV sfx = LV_MUL(t->f0x, scale), sfy = LV_MUL(t->f0y, scale),
                  sfz = LV_MUL(t->f0z, scale);
