@@ -110,9 +110,12 @@ static void two_d_stays_in_plane(void **state)
 }
 
 /* Whether run_threads runs in a periodic cell (1) or between walls (0),
- * and with rolling and torsion resistance (1) or without (0). */
+ * with rolling and torsion resistance (1) or without (0), with Luding's
+ * normal law, adhesive and with a plasticity depth that its contacts
+ * exceed (1), or the linear law (0). */
 static int run_cell;
 static int run_resist;
+static int run_luding;
 
 /* Positions and spins by particle id (512 of them) after a frictional,
  * damped run with re-ordering, between walls or (run_cell) in a periodic
@@ -141,6 +144,13 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     c.time_step = 2e-5;
     if (run_cell)
         c.box.boundary = DEM_BOUNDARY_PERIODIC;
+    if (run_luding) { /* about the linear law's stiffness */
+        c.contact.normal = DEM_NORMAL_LUDING;
+        c.contact.k1 = 2500.0;
+        c.contact.k2 = 5000.0;
+        c.contact.kc = 1000.0;
+        c.contact.phi_f = 0.005;
+    }
     if (run_resist) {
         c.contact.rolling = c.contact.torsion = DEM_RESIST_LUDING;
         c.contact.kr = 50.0;
@@ -282,6 +292,15 @@ static void force_passes_give_identical_results(void **state)
     assert_same_runs(2, 1, "ring", 1, 1, "gathers");
     assert_same_runs(2, 1, "blocks", 1, 1, "gathers"); /* twins' torques */
     run_resist = 0;
+    /* Luding's law, whose groups keep its history of largest overlaps,
+     * between walls and in a cell */
+    run_luding = 1;
+    assert_same_runs(1, 1, "gathers", 1, 1, "records");
+    assert_same_runs(2, 1, "ring", 1, 0, "gathers");
+    run_cell = 1;
+    assert_same_runs(2, 1, "gathers", 1, 1, "records");
+    run_cell = 0;
+    run_luding = 0;
     run_cell = 1;
     assert_same_runs(2, 1, "gathers", 1, 1, "records");
     /* the ring in a cell: the pairs through an image read from the

@@ -20,26 +20,26 @@
  * set; returns the number of groups in which none slid. Each width's
  * function is compiled for its own instructions, so that the one of 4
  * runs on a CPU without AVX-512. */
-#define GROUPS_(W)                                                              \
-    static int groups##W(                                                       \
-        int wall, int two, const struct pass *q, int n, const double *rec,      \
-        const struct dem_wall *walls, const struct dem_contact_params *cp,      \
-        const double *cell, double dt, const struct dem_tangential *T,          \
-        struct dem_contact_force *F, int skip)                                  \
-    {                                                                           \
-        const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;                      \
-        _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];                        \
-        lin_wall_rows(walls, wr);                                               \
-        const double *fm = cell, *grad = cell ? cell + 6 : NULL;                \
-        int none = 0;                                                           \
-        for (int k = 0; k < n; k += two ? 2 * W : W)                            \
-            none += !(                                                          \
-                wall  ? lin_walls##W(q, k, rec, wr, cp, dt, T, ik, F + k, skip) \
-                : two ? lin_pairs2##W(q, k, rec, cp, fm, grad, dt, T, ik,       \
-                                      F + k, skip)                              \
-                      : lin_pairs##W(q, k, rec, cp, fm, grad, dt, T, ik,        \
-                                     F + k, skip));                             \
-        return none;                                                            \
+#define GROUPS_(W)                                                             \
+    static int groups##W(                                                      \
+        int law, int wall, int two, const struct pass *q, int n,               \
+        const double *rec, const struct dem_wall *walls,                       \
+        const struct dem_contact_params *cp, const double *cell, double dt,    \
+        const struct dem_tangential *T, struct dem_contact_force *F, int skip) \
+    {                                                                          \
+        const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;                     \
+        _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];                       \
+        lin_wall_rows(walls, wr);                                              \
+        const double *fm = cell, *grad = cell ? cell + 6 : NULL;               \
+        int none = 0;                                                          \
+        for (int k = 0; k < n; k += two ? 2 * W : W)                           \
+            none += !(wall  ? lin_walls##W(law, q, k, rec, wr, cp, dt, T, ik,  \
+                                           F + k, skip)                        \
+                      : two ? lin_pairs2##W(law, q, k, rec, cp, fm, grad, dt,  \
+                                            T, ik, F + k, skip)                \
+                            : lin_pairs##W(law, q, k, rec, cp, fm, grad, dt,   \
+                                           T, ik, F + k, skip));               \
+        return none;                                                           \
     }
 #pragma GCC push_options
 #pragma GCC target("avx2")
@@ -56,19 +56,21 @@ GROUPS_(4)
 GROUPS_(8)
 #pragma GCC pop_options
 
-/* the groups of width w (4 or 8), pairs of them side by side with one
- * skip for both if two is set (pairs only), the walls walls; the pairs in
- * a periodic cell with cell (the frame's map, then the affine gradient:
- * lin_pair_test's fm and grad), else between walls (NULL) */
-static int groups(int w, int two, int wall, const struct pass *q, int n,
-                  const double *rec, const struct dem_wall *walls,
+/* the groups of width w (4 or 8) with the normal law law, pairs of them
+ * side by side with one skip for both if two is set (pairs only), the
+ * walls walls; the pairs in a periodic cell with cell (the frame's map,
+ * then the affine gradient: lin_pair_test's fm and grad), else between
+ * walls (NULL) */
+static int groups(int law, int w, int two, int wall, const struct pass *q,
+                  int n, const double *rec, const struct dem_wall *walls,
                   const struct dem_contact_params *cp, const double *cell,
                   double dt, const struct dem_tangential *T,
                   struct dem_contact_force *F, int skip)
 {
-    return w == 8
-               ? groups8(wall, two, q, n, rec, walls, cp, cell, dt, T, F, skip)
-               : groups4(wall, two, q, n, rec, walls, cp, cell, dt, T, F, skip);
+    return w == 8 ? groups8(law, wall, two, q, n, rec, walls, cp, cell, dt, T,
+                            F, skip)
+                  : groups4(law, wall, two, q, n, rec, walls, cp, cell, dt, T,
+                            F, skip);
 }
 #else
 #define TEST_SIMD 0
@@ -84,10 +86,12 @@ static double urand(unsigned *s, double lo, double hi)
 
 /* The pairs' particle records and their histories and states before the
  * step, at random: the gaps from 6 % overlap to 6 % apart, the springs
- * from 1e-7 to 1e-3 m (the largest slide), every combination of the
- * state bits. */
+ * from 1e-7 to 1e-3 m (the largest slide), Luding's largest overlaps
+ * from 0 to 9 % (h[3]: below and above the overlaps), every combination
+ * of the state bits. */
+#define NH 4 /* history values: xi_x, xi_y, xi_z, dmax */
 struct pairs_data {
-    double *rec, xi[3][NP];
+    double *rec, h[NH][NP];
     int ci[NP], cj[NP], state[NP];
     /* wall contact k: particle k's record in wrec against wall wj[k] */
     double *wrec;
@@ -118,8 +122,9 @@ static void make_pairs(struct pairs_data *D)
             b[4 + e] = urand(&s, -0.1, 0.1);
             a[8 + e] = urand(&s, -20.0, 20.0);
             b[8 + e] = urand(&s, -20.0, 20.0);
-            D->xi[e][k] = urand(&s, -1.0, 1.0) * pow(10.0, urand(&s, -7, -3));
+            D->h[e][k] = urand(&s, -1.0, 1.0) * pow(10.0, urand(&s, -7, -3));
         }
+        D->h[3][k] = (ra + rb) * urand(&s, 0.0, 0.09);
         a[3] = ra;
         b[3] = rb;
         a[7] = b[7] = 1e-5;
@@ -162,27 +167,37 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st,
     q.xi_x = h[0];
     q.xi_y = h[1];
     q.xi_z = h[2];
+    q.dmax = h[3];
     q.state = st;
     return q;
 }
 
-/* One parameter set: the groups of width w of pairs (wall 0; two of them
- * at a time with two set) or of wall contacts (wall 1), with the sliding case
- * always computed (skip 0) or skipped in groups where no touching contact
- * slides (skip 1), against pair_vals or wall_vals, bit for bit, the forces on
- * the walls too; the pairs in a periodic cell with cell (its frame's map
- * and affine gradient, lin_pair_test), else between walls (NULL); counts
- * of touching sticking, touching sliding and open contacts, and of the
- * groups in which none slid. */
-static void compare(const struct pairs_data *D, struct dem_contact_params cp,
-                    const double *cell, int w, int two, int wall, int skip,
-                    int *stick, int *slide, int *open, int *calm)
+/* What one comparison found: touching contacts that stick and that slide,
+ * open ones, the groups in which none slid; with Luding's law the
+ * touching contacts whose largest overlap grew (virgin loading), stayed
+ * (on their un-/re-loading line) and fell (re-mapped on the adhesive
+ * branch). */
+struct counts {
+    int stick, slide, open, calm, virgin, line, remap;
+};
+
+/* One parameter set cp (its normal law cp.normal): the groups of width w
+ * of pairs (wall 0; two of them at a time with two set) or of wall
+ * contacts (wall 1), with the sliding case always computed (skip 0) or
+ * skipped in groups where no touching contact slides (skip 1), against
+ * pair_vals or wall_vals, bit for bit, the forces on the walls too; the
+ * pairs in a periodic cell with cell (its frame's map and affine
+ * gradient, lin_pair_test), else between walls (NULL). */
+static struct counts compare(const struct pairs_data *D,
+                             struct dem_contact_params cp, const double *cell,
+                             int w, int two, int wall, int skip)
 {
-    static double h0[3][NP], h1[3][NP], A0[NP], A1[NP];
+    static double h0[NH][NP], h1[NH][NP], A0[NP], A1[NP];
     static int s0[NP], s1[NP];
     static struct dem_contact_force F0[NP], F1[NP];
-    memcpy(h0, D->xi, sizeof h0);
-    memcpy(h1, D->xi, sizeof h1);
+    const int law = cp.normal;
+    memcpy(h0, D->h, sizeof h0);
+    memcpy(h1, D->h, sizeof h1);
     memcpy(s0, D->state, sizeof s0);
     memcpy(s1, D->state, sizeof s1);
     memset(F0, 0xff, sizeof F0);
@@ -196,40 +211,41 @@ static void compare(const struct pairs_data *D, struct dem_contact_params cp,
     const double *rec = wall ? D->wrec : D->rec;
     for (int k = 0; k < NP; k++) {
         const struct pv pi = record_pv(rec + DEM_REC * (size_t)q0.ci[k]);
-        F0[k] = wall ? wall_vals(DEM_NORMAL_LINEAR, &q0, k, pi, &cp, dt,
-                                 D->walls, &T)
-                : cell
-                    ? pair_vals(DEM_NORMAL_LINEAR | DEM_SET_PERIODIC, &q0, k,
-                                pi, record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
-                                &cp, dt, &T, cell + 6, cell)
-                    : pair_vals(DEM_NORMAL_LINEAR, &q0, k, pi,
-                                record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
-                                &cp, dt, &T, zero, zero);
+        F0[k] = wall   ? wall_vals(law, &q0, k, pi, &cp, dt, D->walls, &T)
+                : cell ? pair_vals(law | DEM_SET_PERIODIC, &q0, k, pi,
+                                   record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
+                                   &cp, dt, &T, cell + 6, cell)
+                       : pair_vals(law, &q0, k, pi,
+                                   record_pv(rec + DEM_REC * (size_t)q0.cj[k]),
+                                   &cp, dt, &T, zero, zero);
     }
+    struct counts c = {0};
 #if TEST_SIMD
-    *calm = groups(w, two, wall, &q1, NP, rec, D->walls, &cp, cell, dt, &T, F1,
-                   skip);
+    c.calm = groups(law, w, two, wall, &q1, NP, rec, D->walls, &cp, cell, dt,
+                    &T, F1, skip);
 #else
     (void)q1;
     (void)w;
     (void)two;
     (void)skip;
-    *calm = 0;
 #endif
     assert_memory_equal(F0, F1, sizeof F0);
     assert_memory_equal(h0, h1, sizeof h0);
     assert_memory_equal(s0, s1, sizeof s0);
     if (wall)
         assert_memory_equal(A0, A1, sizeof A0);
-    *stick = *slide = *open = 0;
     for (int k = 0; k < NP; k++) {
-        if (!(s0[k] & DEM_CONTACT_ACTIVE))
-            ++*open;
-        else if (s0[k] & DEM_CONTACT_SLIDING)
-            ++*slide;
-        else
-            ++*stick;
+        if (!(s0[k] & DEM_CONTACT_ACTIVE)) {
+            c.open++;
+            continue;
+        }
+        ++*(s0[k] & DEM_CONTACT_SLIDING ? &c.slide : &c.stick);
+        if (law == DEM_NORMAL_LUDING)
+            ++*(h0[3][k] > D->h[3][k]   ? &c.virgin
+                : h0[3][k] < D->h[3][k] ? &c.remap
+                                        : &c.line);
     }
+    return c;
 }
 
 /* The widths of groups this CPU runs: 4 with AVX2, 8 with AVX-512 (F,
@@ -267,24 +283,50 @@ static struct dem_contact_params setup(struct pairs_data *D)
     return cp;
 }
 
-/* The pairs' groups against pair_vals, between walls (cell NULL) or in
- * a periodic cell (cell as groups takes it). */
-static void pairs_match(const double *cell)
+/* Luding's law in the variants its groups take apart: i = 0 the seed law
+ * (constant k2) without adhesion, 1 with adhesion, 2 with the plasticity
+ * depth phi_f (delta*_max about the overlaps), 3 that with k1 = k2 (no
+ * plasticity: delta*_max infinite). */
+static struct dem_contact_params luding(struct dem_contact_params cp, int i)
 {
-    struct pairs_data D;
-    const struct dem_contact_params cp = setup(&D);
+    cp.normal = DEM_NORMAL_LUDING;
+    cp.k1 = 5e4;
+    cp.k2 = 1e5;
+    cp.kc = i ? 2e4 : 0.0;
+    cp.phi_f = i >= 2 ? 0.05 : 0.0;
+    if (i == 3)
+        cp.k1 = cp.k2;
+    return cp;
+}
+
+/* Luding's branches taken by many touching contacts (with k1 = k2 the
+ * contact is elastic: its line is its virgin load, never re-mapped). */
+static void luding_branches(struct counts c, int i)
+{
+    assert_true(c.virgin > 50 && c.line > 50);
+    if (i < 3)
+        assert_true(c.remap > 50);
+    else
+        assert_int_equal(c.remap, 0);
+}
+
+/* The pairs' groups of the normal law of cp0 against pair_vals, between
+ * walls (cell NULL) or in a periodic cell (cell as groups takes it). */
+static void pairs_match(struct dem_contact_params cp0, const double *cell,
+                        struct pairs_data *D)
+{
     const double id[6] = {1.0, 0.0, 0.0, 1.0, 0.0, 1.0}; /* the frame's map */
     const double *fm = cell ? cell : id;
     for (int w = 4; w <= widths(); w *= 2)
         for (int two = 0; two < 2; two++) {
             const int gs = two ? 2 * w : w, ng = NP / gs; /* group size */
-            int stick, slide, open, calm, openg = 0;
+            int openg = 0;
             /* groups of gs open pairs (their gaps in the cell now) */
             for (int k = 0; k < NP; k += gs) {
                 int n = 0;
                 for (int l = 0; l < gs; l++) {
-                    const double *a = D.rec + DEM_REC * (size_t)D.ci[k + l],
-                                 *b = D.rec + DEM_REC * (size_t)D.cj[k + l];
+                    const double *a = D->rec + DEM_REC * (size_t)D->ci[k + l],
+                                 *b = D->rec + DEM_REC * (size_t)D->cj[k + l];
                     const double dx = a[0] - b[0], dy = a[1] - b[1],
                                  dz = a[2] - b[2];
                     const double ex = fm[0] * dx + fm[1] * dy + fm[2] * dz,
@@ -295,43 +337,61 @@ static void pairs_match(const double *cell)
                 openg += n == gs;
             }
             for (int skip = 0; skip < 2; skip++) {
-                struct dem_contact_params c1 = cp;
-                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
-                        &calm);
+                struct dem_contact_params cp = cp0;
+                struct counts c = compare(D, cp, cell, w, two, 0, skip);
                 /* every branch of the law taken by many pairs */
-                assert_true(stick > 100 && slide > 100 && open > 100);
+                assert_true(c.stick > 100 && c.slide > 100 && c.open > 100);
                 /* high friction: few slide, and most groups have none
                  * that does (their sliding case skipped with skip 1) */
-                c1.mu_s = c1.mu_d = 50.0;
-                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
-                        &calm);
-                assert_true(slide > 0 && slide < 20 && stick > 300);
-                assert_true(calm > ng * (two ? 2 : 3) / 4 && calm < ng);
+                cp.mu_s = cp.mu_d = 50.0;
+                c = compare(D, cp, cell, w, two, 0, skip);
+                /* (Luding's law: fewer, many of its contacts without a
+                 * normal force, on the adhesive branch or below their
+                 * plastic overlap) */
+                if (cp.normal == DEM_NORMAL_LUDING) {
+                    assert_true(c.stick > 300 && c.calm > 0 && c.calm < ng);
+                } else {
+                    assert_true(c.slide > 0 && c.slide < 20 && c.stick > 300);
+                    assert_true(c.calm > ng * (two ? 2 : 3) / 4 && c.calm < ng);
+                }
                 /* without friction every contact slides, with no
                  * friction force */
-                c1.mu_s = c1.mu_d = 0.0;
-                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
-                        &calm);
-                assert_int_equal(stick, 0);
-                assert_int_equal(calm, openg);
+                cp.mu_s = cp.mu_d = 0.0;
+                c = compare(D, cp, cell, w, two, 0, skip);
+                assert_int_equal(c.stick, 0);
+                assert_int_equal(c.calm, openg);
                 /* the same with -0 (the sliding force's zeros take its
                  * sign), and static friction without dynamic */
-                c1.mu_s = c1.mu_d = -0.0;
-                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
-                        &calm);
-                assert_int_equal(stick, 0);
-                c1.mu_s = 0.5;
-                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
-                        &calm);
-                assert_true(stick > 100 && slide > 100);
-                c1.mu_s = c1.mu_d = 0.0;
+                cp.mu_s = cp.mu_d = -0.0;
+                c = compare(D, cp, cell, w, two, 0, skip);
+                assert_int_equal(c.stick, 0);
+                cp.mu_s = 0.5;
+                c = compare(D, cp, cell, w, two, 0, skip);
+                assert_true(c.stick > 100 && c.slide > 100);
+                cp.mu_s = cp.mu_d = 0.0;
                 /* without a tangential spring (1/k_t taken as 0) */
-                c1.kt = 0.0;
-                compare(&D, c1, cell, w, two, 0, skip, &stick, &slide, &open,
-                        &calm);
-                assert_true(slide > 100);
+                cp.kt = 0.0;
+                c = compare(D, cp, cell, w, two, 0, skip);
+                assert_true(c.slide > 100);
             }
+            /* Luding's law, each of its variants */
+            if (cp0.normal == DEM_NORMAL_LUDING)
+                for (int i = 0; i < 4; i++)
+                    for (int skip = 0; skip < 2; skip++)
+                        luding_branches(
+                            compare(D, luding(cp0, i), cell, w, two, 0, skip),
+                            i);
         }
+}
+
+/* Both laws' pairs' groups against pair_vals, between walls (cell NULL)
+ * or in a periodic cell. */
+static void both_laws_match(const double *cell)
+{
+    struct pairs_data D;
+    const struct dem_contact_params cp = setup(&D);
+    pairs_match(cp, cell, &D);
+    pairs_match(luding(cp, 1), cell, &D);
     free(D.rec);
     free(D.wrec);
 }
@@ -339,7 +399,7 @@ static void pairs_match(const double *cell)
 static void groups_match_pair_vals(void **state)
 {
     (void)state;
-    pairs_match(NULL);
+    both_laws_match(NULL);
 }
 
 /* In a periodic cell: the frame's map, sheared and stretched by a few
@@ -351,38 +411,46 @@ static void cell_groups_match_pair_vals(void **state)
     (void)state;
     const double cell[12] = {1.02, 0.03, -0.02, 0.97, 0.025, 1.01,
                              8.0,  -5.0, 6.0,   -7.0, 4.0,   9.0};
-    pairs_match(cell);
+    both_laws_match(cell);
 }
 
 static void wall_groups_match_wall_vals(void **state)
 {
     (void)state;
     struct pairs_data D;
-    const struct dem_contact_params cp = setup(&D);
+    const struct dem_contact_params cp0 = setup(&D);
     for (int w = 4; w <= widths(); w *= 2) {
         const int ng = NP / w;
-        int stick, slide, open, calm;
-        for (int skip = 0; skip < 2; skip++) {
-            struct dem_contact_params c1 = cp;
-            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
-            assert_true(stick > 100 && slide > 100 && open > 100);
-            c1.mu_s = c1.mu_d = 50.0;
-            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
-            assert_true(slide < 20 && stick > 300);
-            assert_true(calm > ng * 3 / 4 && calm < ng);
-            /* frictionless walls (the papers' examples) */
-            c1.mu_s = c1.mu_d = 0.0;
-            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
-            assert_int_equal(stick, 0);
-            assert_true(slide > 300);
-            c1.mu_s = c1.mu_d = -0.0;
-            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
-            assert_int_equal(stick, 0);
-            c1.mu_s = c1.mu_d = 0.0;
-            c1.kt = 0.0;
-            compare(&D, c1, NULL, w, 0, 1, skip, &stick, &slide, &open, &calm);
-            assert_true(slide > 300);
-        }
+        for (int law = 0; law < 2; law++)
+            for (int skip = 0; skip < 2; skip++) {
+                struct dem_contact_params cp = law ? luding(cp0, 1) : cp0;
+                struct counts c = compare(&D, cp, NULL, w, 0, 1, skip);
+                assert_true(c.stick > 100 && c.slide > 100 && c.open > 100);
+                cp.mu_s = cp.mu_d = 50.0;
+                c = compare(&D, cp, NULL, w, 0, 1, skip);
+                if (law) {
+                    assert_true(c.stick > 300 && c.calm > 0 && c.calm < ng);
+                } else {
+                    assert_true(c.slide < 20 && c.stick > 300);
+                    assert_true(c.calm > ng * 3 / 4 && c.calm < ng);
+                }
+                /* frictionless walls (the papers' examples) */
+                cp.mu_s = cp.mu_d = 0.0;
+                c = compare(&D, cp, NULL, w, 0, 1, skip);
+                assert_int_equal(c.stick, 0);
+                assert_true(c.slide > 300);
+                cp.mu_s = cp.mu_d = -0.0;
+                c = compare(&D, cp, NULL, w, 0, 1, skip);
+                assert_int_equal(c.stick, 0);
+                cp.mu_s = cp.mu_d = 0.0;
+                cp.kt = 0.0;
+                c = compare(&D, cp, NULL, w, 0, 1, skip);
+                assert_true(c.slide > 300);
+            }
+        for (int i = 0; i < 4; i++)
+            for (int skip = 0; skip < 2; skip++)
+                luding_branches(
+                    compare(&D, luding(cp0, i), NULL, w, 0, 1, skip), i);
     }
     free(D.rec);
     free(D.wrec);

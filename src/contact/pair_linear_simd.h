@@ -1,16 +1,20 @@
-/* Groups of contacts for the linear normal law without resistances,
- * the commonest model set (the papers' law), between walls and in a
- * periodic cell, written in intrinsics: groups of LIN_W = 4 contacts in
- * AVX2's 256-bit vectors or of LIN_W = 8 in AVX-512's 512-bit ones, the
+/* Groups of contacts for the linear normal law (the commonest model set:
+ * the 3D paper's law and the benchmark's) and for Luding's (the 2D
+ * paper's and every cohesive run's), without resistances, between walls
+ * and in a periodic cell, written in intrinsics: groups of LIN_W = 4 contacts
+ * in AVX2's 256-bit vectors or of LIN_W = 8 in AVX-512's 512-bit ones, the
  * pairs of the pair loop (contact/pass.c, pair_range: DEM_PAIR_LANES /
  * LIN_W groups a round) and the wall contacts of the wall loop
  * (wall_range). The includer defines LIN_W; the names of one width end
  * in it (lin_pairs4, lin_pairs8), so that a file can include both
  * (test_pair_kernels). Only the records compilations for a CPU with
- * AVX2 include it.
+ * AVX2 include it. (The names, lin_ and LIN_, are from when the groups
+ * ran the linear law only; Luding's law joined them in session 78,
+ * lin_normal and lin_luding.)
  *
- * It computes the very operations of pair_vals (wall_vals) with that
- * law (contact/model_linear.h), dem_tangential_force and finish_contact, in
+ * It computes the very operations of pair_vals (wall_vals) with these
+ * laws (contact/model_linear.h, contact/model_luding.h and
+ * contact/luding.h), dem_tangential_force and finish_contact, in
  * the same order, each rounded on its own (no contraction, no
  * reassociation), so that its results are the same bits as those of
  * every other compilation of the pass; test_dynamics compares the
@@ -40,7 +44,10 @@
  * took about 4 % less (session 73). On an Intel Xeon with AVX-512,
  * against gcc's 16 lanes, two groups of 8 side by side with one skip
  * took 7-11 % off a step in the benchmark at N = 3375 and in the cyclic
- * stage, 2 % at N = 20000 (session 74). */
+ * stage, 2 % at N = 20000 (session 74). Luding's law in these groups
+ * took 22 % off a step of biaxial2d-paper's compression there, against
+ * gcc's lanes, which compute each of its branches in every lane
+ * (session 78). */
 #include <immintrin.h>
 
 #ifndef DEM_CONTACT_PAIR_LINEAR_SIMD_H
@@ -109,6 +116,7 @@ DEM_INLINE void lin_wall_rows(const struct dem_wall walls[DEM_MAX_WALLS],
 #define LV_KEEP(v, m) _mm256_and_pd(v, m)           /* m ? v : 0 */
 #define LM_OR _mm256_or_pd
 #define LM_AND _mm256_and_pd
+#define LM_ANDNOT _mm256_andnot_pd /* ~a & b */
 #define LM_BITS _mm256_movemask_pd
 
 /* The low 32 bits of each 64-bit lane of m: four ints. */
@@ -205,6 +213,7 @@ DEM_INLINE void lin_store_state4(const struct pass *q, int k, __m128i st,
 #define LV_KEEP(v, m) _mm512_maskz_mov_pd(m, v)         /* m ? v : 0 */
 #define LM_OR(a, b) ((__mmask8)((a) | (b)))
 #define LM_AND(a, b) ((__mmask8)((a) & (b)))
+#define LM_ANDNOT(a, b) ((__mmask8)(~(a) & (b)))
 #define LM_BITS(m) ((int)(m))
 
 /* Elements o..o+3 of the records p[0..8) as four rows of lanes: per
@@ -440,6 +449,91 @@ DEM_INLINE void LIN_(lin_records)(struct dem_contact_force *F, LV fn, LV nx,
     LIN_(lin_store_forces)(F, r);
 }
 
+/* Luding's hysteretic normal force (dem_luding_force, contact/luding.h)
+ * of LIN_W contacts whose overlaps are delta and reduced radii a12,
+ * returned; *dmax, their largest overlaps until the last step, updated.
+ * The law's branches on its constants (phi_f > 0, k2 > k1) are taken once
+ * for the group, the branches on each contact's overlap by selects, and
+ * the re-mapping's square root only in groups where a touching contact
+ * (touch) is on the adhesive branch. */
+DEM_INLINE LV LIN_(lin_luding)(const struct dem_contact_params *cp, LV delta,
+                               LV a12, LM touch, LV *dmax)
+{
+    const double k1 = cp->k1, k2 = cp->k2, kc = cp->kc, phi_f = cp->phi_f;
+    /* whether delta*_max is finite (dem_luding_dstar) */
+    const int fin = !(phi_f <= 0.0 || k2 <= k1);
+    const LV one = LV_SET1(1.0), k1v = LV_SET1(k1), k2v = LV_SET1(k2),
+             e = LV_SET1(1.0 - k1 / k2), dm = *dmax;
+    const LV ds = fin ? LV_MUL(LV_SET1(k2 / (k2 - k1) * phi_f * 2.0), a12)
+                      : LV_SET1(INFINITY);
+    /* the virgin envelope (dem_luding_envelope) */
+    LV fenv = LV_MUL(k1v, delta);
+    if (fin) {
+        const LV fl = LV_MUL(k2v, LV_SUB(delta, LV_MUL(e, ds)));
+        fenv = LV_BLEND(fenv, fl,
+                        LM_AND(LV_CMP(delta, ds, _CMP_GT_OQ),
+                               LV_CMP(fl, fenv, _CMP_GT_OQ)));
+    }
+    /* the un-/re-loading line of dmax (dem_luding_line) */
+    LV k2h = k2v, d0;
+    if (phi_f <= 0.0) {
+        d0 = LV_MUL(e, dm);
+    } else {
+        const LV kk = LV_ADD(k1v, LV_MUL(LV_SET1(k2 - k1), LV_DIV(dm, ds)));
+        const LM lim = LV_CMP(dm, ds, _CMP_GE_OQ);
+        k2h = LV_BLEND(kk, k2v, lim);
+        d0 = LV_BLEND(LV_MUL(LV_SUB(one, LV_DIV(k1v, kk)), dm), LV_MUL(e, ds),
+                      lim);
+    }
+    const LV fline = LV_MUL(k2h, LV_SUB(delta, d0)),
+             fa = LV_MUL(LV_SET1(-kc), delta);
+    const LM virgin = LV_CMP(delta, dm, _CMP_GE_OQ),
+             adh = LM_ANDNOT(virgin, LV_CMP(fline, fa, _CMP_NGT_UQ));
+    LV dn = dm;
+    if (LM_BITS(LM_AND(adh, touch))) {
+        /* re-mapped (dem_luding_remap) where that lowers dmax */
+        const LV lin = LV_MUL(LV_SET1((k2 + kc) / (k2 - k1)), delta);
+        LV x = lin;
+        if (fin) {
+            const LV s = LV_DIV(LV_SET1(k2 - k1), ds),
+                     disc = LV_ADD(
+                         LV_MUL(delta, delta),
+                         LV_DIV(LV_MUL(LV_SET1(4.0 * (k1 + kc)), delta), s));
+            x = LV_MUL(LV_SET1(0.5), LV_ADD(delta, LV_SQRT(disc)));
+            x = LV_BLEND(ds, x, LV_CMP(x, ds, _CMP_LT_OQ));
+            x = LV_BLEND(x, lin, LV_CMP(ds, LV_SET1(INFINITY), _CMP_EQ_OQ));
+        }
+        dn = LV_BLEND(dm, x, LM_AND(adh, LV_CMP(x, dm, _CMP_LT_OQ)));
+    }
+    *dmax = LV_BLEND(dn, delta, virgin);
+    return LV_BLEND(LV_BLEND(fline, fa, adh), fenv, virgin);
+}
+
+/* The normal force of LIN_W contacts by law (DEM_NORMAL_LINEAR or
+ * DEM_NORMAL_LUDING, a literal), with the dashpot, as
+ * dem_normal_force computes it: overlaps delta, their rates ddot,
+ * reduced radii a12 (read by Luding's law only); *fc the normal force
+ * of the Coulomb limit. Luding's law reads its contacts' dmax from q at
+ * k and stores them back (0 where touch is not set). */
+DEM_INLINE LV LIN_(lin_normal)(const int law, const struct pass *q, int k,
+                               const struct dem_contact_params *cp, LV delta,
+                               LV ddot, LV a12, LM touch, LV *fc)
+{
+    const LV zero = LV_ZERO(), gn = LV_SET1(cp->gamma_n);
+    if (law == DEM_NORMAL_LUDING) {
+        LV dm = LV_LOADU(q->dmax + k);
+        const LV fn = LV_ADD(LIN_(lin_luding)(cp, delta, a12, touch, &dm),
+                             LV_MUL(gn, ddot));
+        LV_STOREU(q->dmax + k, LV_KEEP(dm, touch));
+        /* dem_luding_coulomb_force */
+        *fc = LV_MAX(LV_ADD(fn, LV_MUL(LV_SET1(cp->kc), delta)), zero);
+        return fn;
+    }
+    const LV fn = LV_ADD(LV_MUL(LV_SET1(cp->k), delta), LV_MUL(gn, ddot));
+    *fc = LV_MAX(fn, zero); /* fn > 0 ? fn : 0 */
+    return fn;
+}
+
 /* A group of pairs between lin_pair_test and lin_pair_settle: their
  * normals and normal forces, where they touch, their tangential law's
  * trial. */
@@ -457,7 +551,7 @@ struct LIN_(lin_pg) {
  * records those of j's images. The distance's square root and 1/d are
  * issued as soon as their operands are there, with the loads and
  * products that do not need them after them. */
-DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
+DEM_INLINE int LIN_(lin_pair_test)(const int law, const struct pass *q, int k,
                                    const double *rec,
                                    const struct dem_contact_params *cp,
                                    const double *fm, const double *grad,
@@ -469,7 +563,7 @@ DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
         pi[l] = rec + DEM_REC * (size_t)q->ci[k + l];
         pj[l] = rec + DEM_REC * (size_t)q->cjr[k + l - q->roff];
     }
-    const LV zero = LV_ZERO(), one = LV_SET1(1.0), sign = LV_SET1(-0.0);
+    const LV one = LV_SET1(1.0), sign = LV_SET1(-0.0);
     LV xi[4], xj[4];
     LIN_(lin_rows)(pi, 0, xi);
     LIN_(lin_rows)(pj, 0, xj);
@@ -514,9 +608,9 @@ DEM_INLINE int LIN_(lin_pair_test)(const struct pass *q, int k,
         vz = LV_ADD(vz, LV_MUL(LV_SET1(grad[5]), dz));
     }
     const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
-    g->fn = LV_ADD(LV_MUL(LV_SET1(cp->k), LV_SUB(R, d)),
-                   LV_MUL(LV_SET1(cp->gamma_n), ddot));
-    const LV fc = LV_MAX(g->fn, zero);
+    LV fc;
+    g->fn = LIN_(lin_normal)(law, q, k, cp, LV_SUB(R, d), ddot,
+                             LV_DIV(LV_MUL(xi[3], xj[3]), R), g->touch, &fc);
     g->nx = nx;
     g->ny = ny;
     g->nz = nz;
@@ -543,7 +637,8 @@ DEM_INLINE void LIN_(lin_pair_settle)(const struct pass *q, int k,
  * law, ik its 1/k_t (0 without a spring). Returns whether a touching
  * pair slides; with branch set, and none sliding, the sliding case (half
  * of a group's square roots and divisions) is skipped. */
-DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
+DEM_INLINE int LIN_(lin_pairs)(const int law, const struct pass *q, int k,
+                               const double *rec,
                                const struct dem_contact_params *cp,
                                const double *fm, const double *grad, double dt,
                                const struct dem_tangential *T, double ik,
@@ -551,7 +646,7 @@ DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
 {
     struct LIN_(lin_pg) g;
     const int slid =
-        LIN_(lin_pair_test)(q, k, rec, cp, fm, grad, dt, T, branch, &g);
+        LIN_(lin_pair_test)(law, q, k, rec, cp, fm, grad, dt, T, branch, &g);
     LIN_(lin_pair_settle)(q, k, T, ik, branch, !branch || slid, &g, F);
     return slid != 0;
 }
@@ -563,7 +658,8 @@ DEM_INLINE int LIN_(lin_pairs)(const struct pass *q, int k, const double *rec,
  * a step against gcc's 16 lanes, where one group of 8 at a time, each
  * with its own skip, gained 2-4 % in the cyclic stage and lost 4 % at
  * N = 20000 (docs/performance-log.md, session 74). */
-DEM_INLINE int LIN_(lin_pairs2)(const struct pass *q, int k, const double *rec,
+DEM_INLINE int LIN_(lin_pairs2)(const int law, const struct pass *q, int k,
+                                const double *rec,
                                 const struct dem_contact_params *cp,
                                 const double *fm, const double *grad, double dt,
                                 const struct dem_tangential *T, double ik,
@@ -571,9 +667,9 @@ DEM_INLINE int LIN_(lin_pairs2)(const struct pass *q, int k, const double *rec,
 {
     struct LIN_(lin_pg) g0, g1;
     const int s0 =
-        LIN_(lin_pair_test)(q, k, rec, cp, fm, grad, dt, T, branch, &g0);
-    const int s1 = LIN_(lin_pair_test)(q, k + LIN_W, rec, cp, fm, grad, dt, T,
-                                       branch, &g1);
+        LIN_(lin_pair_test)(law, q, k, rec, cp, fm, grad, dt, T, branch, &g0);
+    const int s1 = LIN_(lin_pair_test)(law, q, k + LIN_W, rec, cp, fm, grad, dt,
+                                       T, branch, &g1);
     const int sliding = !branch || s0 || s1;
     LIN_(lin_pair_settle)(q, k, T, ik, branch, sliding, &g0, F);
     LIN_(lin_pair_settle)(q, k + LIN_W, T, ik, branch, sliding, &g1, F + LIN_W);
@@ -585,8 +681,8 @@ DEM_INLINE int LIN_(lin_pairs2)(const struct pass *q, int k, const double *rec,
  * into F[0..LIN_W), springs and states stored with the contacts and the
  * forces on the walls along their axes into q->A, as wall_vals does for
  * them; the rest as lin_pairs. */
-DEM_INLINE int LIN_(lin_walls)(const struct pass *q, int k, const double *rec,
-                               const double *wr,
+DEM_INLINE int LIN_(lin_walls)(const int law, const struct pass *q, int k,
+                               const double *rec, const double *wr,
                                const struct dem_contact_params *cp, double dt,
                                const struct dem_tangential *T, double ik,
                                struct dem_contact_force *F, int branch)
@@ -626,9 +722,9 @@ DEM_INLINE int LIN_(lin_walls)(const struct pass *q, int k, const double *rec,
     const LV hx = LV_LOADU(q->xi_x + k), hy = LV_LOADU(q->xi_y + k),
              hz = LV_LOADU(q->xi_z + k);
     const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
-    const LV fn = LV_ADD(LV_MUL(LV_SET1(cp->k), delta),
-                         LV_MUL(LV_SET1(cp->gamma_n), ddot));
-    const LV fc = LV_MAX(fn, zero); /* fn > 0 ? fn : 0 */
+    LV fc;
+    const LV fn =
+        LIN_(lin_normal)(law, q, k, cp, delta, ddot, xi[3], touch, &fc);
     LV ft[3], f[3];
     const int slid = LIN_(lin_friction)(q, k, nx, ny, nz, vx, vy, vz, hx, hy,
                                         hz, fc, touch, dt, T, ik, branch, ft);
@@ -663,5 +759,6 @@ DEM_INLINE int LIN_(lin_walls)(const struct pass *q, int k, const double *rec,
 #undef LV_KEEP
 #undef LM_OR
 #undef LM_AND
+#undef LM_ANDNOT
 #undef LM_BITS
 #endif

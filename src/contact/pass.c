@@ -84,12 +84,14 @@
  * faster at 32 pairs ahead than at 16. */
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
-/* The records passes' round for the linear law without resistances
- * (between walls and in a periodic cell) in intrinsics, groups of LIN_W
+/* The records passes' round for the linear law and Luding's without
+ * resistances (between walls and in a periodic cell) in intrinsics,
+ * groups of LIN_W
  * pairs, and their wall contacts in such groups, on CPUs with AVX2: 4 lanes in
  * AVX2, 8 with AVX-512 (contact/pair_linear_simd.h: the same operations, in an
  * order and with a skip that took some 15-20 % off a step on Zen 1, and 7-11 %
- * against gcc's 16 lanes on an Intel Xeon with AVX-512, session 74). */
+ * against gcc's 16 lanes on an Intel Xeon with AVX-512, session 74; for
+ * Luding's law 22 % off a step of biaxial2d-paper there, session 78). */
 #if DEM_PASS_RECORDS && defined(__AVX2__)
 #define DEM_PAIR_LINEAR_SIMD 1
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
@@ -107,6 +109,10 @@
 #endif
 _Static_assert(DEM_PAIR_LANES % LIN_PAIRS == 0, "whole groups a round");
 #include "contact/pair_linear_simd.h"
+/* Whether the groups run the model set law (without the periodic bit):
+ * the linear law or Luding's, without resistances. */
+#define GROUPS_LAW(law)                                                        \
+    ((law) == DEM_NORMAL_LINEAR || (law) == DEM_NORMAL_LUDING)
 #else
 #define DEM_PAIR_LINEAR_SIMD 0
 #endif
@@ -505,14 +511,14 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
             }
         }
 #if DEM_PAIR_LINEAR_SIMD
-        if ((law & ~DEM_SET_PERIODIC) == DEM_NORMAL_LINEAR) {
+        if (GROUPS_LAW(law & ~DEM_SET_PERIODIC)) {
             for (int g = 0; g < DEM_PAIR_LANES; g += LIN_PAIRS)
-                lin_skip_count(
-                    &skip, lin_pair_groups(&q, k + g, rec, cp,
-                                           law & DEM_SET_PERIODIC ? fm : NULL,
-                                           law & DEM_SET_PERIODIC ? grad : NULL,
-                                           dt, &T, ik, q.F + (k + g - q.foff),
-                                           skip.branch));
+                lin_skip_count(&skip,
+                               lin_pair_groups(
+                                   law & DEM_SET_NORMAL, &q, k + g, rec, cp,
+                                   law & DEM_SET_PERIODIC ? fm : NULL,
+                                   law & DEM_SET_PERIODIC ? grad : NULL, dt, &T,
+                                   ik, q.F + (k + g - q.foff), skip.branch));
             continue;
         }
 #endif
@@ -545,8 +551,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
- * (dem_contact_wall_view), in SIMD lanes as pair_range (the linear law's
- * in its AVX2 groups where pair_range runs those); the records
+ * (dem_contact_wall_view), in SIMD lanes as pair_range (the linear and
+ * Luding's laws in groups where pair_range runs those); the records
  * compilations read the particles' values from their records (rec). */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
@@ -559,13 +565,13 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
     int k = k0;
     (void)rec;
 #if DEM_PAIR_LINEAR_SIMD
-    if (law == DEM_NORMAL_LINEAR) {
+    if (GROUPS_LAW(law)) {
         const double ik = T.kt > 0.0 ? 1.0 / T.kt : 0.0;
         _Alignas(64) double wr[DEM_MAX_WALLS * DEM_REC];
         lin_wall_rows(walls, wr);
         struct lin_skip skip = {1, 0, 0};
         for (; k + LIN_W <= k1; k += LIN_W)
-            lin_skip_count(&skip, lin_walls(&q, k, rec, wr, cp, dt, &T, ik,
+            lin_skip_count(&skip, lin_walls(law, &q, k, rec, wr, cp, dt, &T, ik,
                                             q.F + (k - q.foff), skip.branch));
     }
 #endif
