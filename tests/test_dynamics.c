@@ -110,12 +110,13 @@ static void two_d_stays_in_plane(void **state)
 }
 
 /* Whether run_threads runs in a periodic cell (1) or between walls (0),
- * with rolling and torsion resistance (1) or without (0), with Luding's
- * normal law, adhesive and with a plasticity depth that its contacts
- * exceed (1), or the linear law (0). */
+ * with rolling and torsion resistance (1) or without (0), and its
+ * normal law: the linear law, Luding's (adhesive, with a plasticity
+ * depth that its contacts exceed) or Hertz's, at about the linear law's
+ * stiffness. */
 static int run_cell;
 static int run_resist;
-static int run_luding;
+static int run_normal = DEM_NORMAL_LINEAR;
 
 /* Positions and spins by particle id (512 of them) after a frictional,
  * damped run with re-ordering, between walls or (run_cell) in a periodic
@@ -144,13 +145,14 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     c.time_step = 2e-5;
     if (run_cell)
         c.box.boundary = DEM_BOUNDARY_PERIODIC;
-    if (run_luding) { /* about the linear law's stiffness */
-        c.contact.normal = DEM_NORMAL_LUDING;
-        c.contact.k1 = 2500.0;
-        c.contact.k2 = 5000.0;
-        c.contact.kc = 1000.0;
-        c.contact.phi_f = 0.005;
-    }
+    c.contact.normal = run_normal;
+    c.contact.k1 = 2500.0;
+    c.contact.k2 = 5000.0;
+    c.contact.kc = 1000.0;
+    c.contact.phi_f = 0.005;
+    c.contact.E = 1e7;
+    c.contact.nu = 0.25;
+    c.contact.restitution = 0.5;
     if (run_resist) {
         c.contact.rolling = c.contact.torsion = DEM_RESIST_LUDING;
         c.contact.kr = 50.0;
@@ -293,14 +295,18 @@ static void force_passes_give_identical_results(void **state)
     assert_same_runs(2, 1, "blocks", 1, 1, "gathers"); /* twins' torques */
     run_resist = 0;
     /* Luding's law, whose groups keep its history of largest overlaps,
-     * between walls and in a cell */
-    run_luding = 1;
-    assert_same_runs(1, 1, "gathers", 1, 1, "records");
-    assert_same_runs(2, 1, "ring", 1, 0, "gathers");
-    run_cell = 1;
-    assert_same_runs(2, 1, "gathers", 1, 1, "records");
-    run_cell = 0;
-    run_luding = 0;
+     * and Hertz's, whose tangential law's stiffness and viscosity are
+     * each contact's, between walls and in a cell */
+    static const int laws[] = {DEM_NORMAL_LUDING, DEM_NORMAL_HERTZ};
+    for (int u = 0; u < 2; u++) {
+        run_normal = laws[u];
+        assert_same_runs(1, 1, "gathers", 1, 1, "records");
+        assert_same_runs(2, 1, "ring", 1, 0, "gathers");
+        run_cell = 1;
+        assert_same_runs(2, 1, "gathers", 1, 1, "records");
+        run_cell = 0;
+    }
+    run_normal = DEM_NORMAL_LINEAR;
     run_cell = 1;
     assert_same_runs(2, 1, "gathers", 1, 1, "records");
     /* the ring in a cell: the pairs through an image read from the

@@ -1,6 +1,6 @@
 /* Groups of contacts for the linear normal law (the commonest model set:
- * the 3D paper's law and the benchmark's) and for Luding's (the 2D
- * paper's and every cohesive run's), without resistances, between walls
+ * the 3D paper's law and the benchmark's), Luding's (the 2D paper's and
+ * every cohesive run's) and Hertz-Mindlin, without resistances, between walls
  * and in a periodic cell, written in intrinsics: groups of LIN_W = 4 contacts
  * in AVX2's 256-bit vectors or of LIN_W = 8 in AVX-512's 512-bit ones, the
  * pairs of the pair loop (contact/pass.c, pair_range: DEM_PAIR_LANES /
@@ -9,12 +9,13 @@
  * in it (lin_pairs4, lin_pairs8), so that a file can include both
  * (test_pair_kernels). Only the records compilations for a CPU with
  * AVX2 include it. (The names, lin_ and LIN_, are from when the groups
- * ran the linear law only; Luding's law joined them in session 78,
- * lin_normal and lin_luding.)
+ * ran the linear law only; Luding's and Hertz's laws joined them in
+ * session 78: lin_normal, lin_luding and struct lin_shear.)
  *
  * It computes the very operations of pair_vals (wall_vals) with these
- * laws (contact/model_linear.h, contact/model_luding.h and
- * contact/luding.h), dem_tangential_force and finish_contact, in
+ * laws (contact/model_linear.h, contact/model_luding.h,
+ * contact/luding.h and contact/model_hertz.h), dem_tangential_force and
+ * finish_contact, in
  * the same order, each rounded on its own (no contraction, no
  * reassociation), so that its results are the same bits as those of
  * every other compilation of the pass; test_dynamics compares the
@@ -46,8 +47,9 @@
  * took 7-11 % off a step in the benchmark at N = 3375 and in the cyclic
  * stage, 2 % at N = 20000 (session 74). Luding's law in these groups
  * took 22 % off a step of biaxial2d-paper's compression there, against
- * gcc's lanes, which compute each of its branches in every lane
- * (session 78). */
+ * gcc's lanes, which compute each of its branches in every lane, and
+ * Hertz's 4 % (it keeps its 5 square roots and 3 divisions a pair,
+ * against the linear law's 1 and 1) (session 78). */
 #include <immintrin.h>
 
 #ifndef DEM_CONTACT_PAIR_LINEAR_SIMD_H
@@ -312,6 +314,14 @@ DEM_INLINE LV LIN_(lin_dot)(LV ax, LV ay, LV az, LV bx, LV by, LV bz)
     return LV_ADD(LV_ADD(LV_MUL(ax, bx), LV_MUL(ay, by)), LV_MUL(az, bz));
 }
 
+/* The tangential law's stiffness and viscosity at LIN_W contacts
+ * (dem_normal_shear): the law's own, in every lane, or with vary set
+ * (Hertz-Mindlin) each contact's. */
+struct LIN_(lin_shear) {
+    LV kt, gt;
+    int vary;
+};
+
 /* The tangential law of LIN_W contacts up to the Coulomb test
  * (lin_test), and what the rest of it (lin_settle) needs: the
  * tangential velocities, the springs projected and stretched to now, the
@@ -321,22 +331,27 @@ struct LIN_(lin_trial) {
     LV vtx, vty, vtz, sx, sy, sz, f0x, f0y, f0z, f0sq, f0n, fc;
     LM slide;
     LI st;
+    struct LIN_(lin_shear) sh;
 };
 
 /* The tangential law of the LIN_W contacts from k of q
  * (dem_tangential_force, dem_coulomb_spring), up to the test against the
  * Coulomb limit, into t: n their normals, v their contacts' velocities,
  * h their springs of the last step, fc the normal forces of their
- * limits, touch where the gap is closed. Returns the lanes of the
+ * limits, sh the law's stiffness and viscosity, touch where the gap is
+ * closed. Returns the lanes of the
  * touching contacts that slide, as bits. Without branch the square root
  * of the sliding case is issued here, as soon as its operand is there. */
 DEM_INLINE int LIN_(lin_test)(const struct pass *q, int k, LV nx, LV ny, LV nz,
                               LV vx, LV vy, LV vz, LV hx, LV hy, LV hz, LV fc,
-                              LM touch, double dt,
+                              struct LIN_(lin_shear) sh, LM touch, double dt,
                               const struct dem_tangential *T, int branch,
                               struct LIN_(lin_trial) * t)
 {
-    const LV dtv = LV_SET1(dt), nkt = LV_SET1(-T->kt), gt = LV_SET1(T->gamma_t);
+    const LV dtv = LV_SET1(dt),
+             nkt = sh.vary ? LV_XOR(LV_SET1(-0.0), sh.kt) : LV_SET1(-T->kt),
+             gt = sh.vary ? sh.gt : LV_SET1(T->gamma_t);
+    t->sh = sh;
     const LV nv = LIN_(lin_dot)(nx, ny, nz, vx, vy, vz);
     const LV nxi = LIN_(lin_dot)(nx, ny, nz, hx, hy, hz);
     t->vtx = LV_SUB(vx, LV_MUL(nx, nv));
@@ -373,11 +388,17 @@ DEM_INLINE void LIN_(lin_settle)(const struct pass *q, int k, LM touch,
                                  int branch, int sliding,
                                  struct LIN_(lin_trial) * t, LV ft[3])
 {
-    const LV gt = LV_SET1(T->gamma_t), zero = LV_ZERO(), mud = LV_SET1(T->mu_d);
+    const LV gt = t->sh.vary ? t->sh.gt : LV_SET1(T->gamma_t), zero = LV_ZERO(),
+             mud = LV_SET1(T->mu_d);
     LV ftx = t->f0x, fty = t->f0y, ftz = t->f0z, kx = t->sx, ky = t->sy,
        kz = t->sz;
     if (sliding) {
-        const LV nik = LV_SET1(-ik);
+        /* -1/k_t, 0 without a spring (ik, or each contact's) */
+        const LV nik = t->sh.vary
+                           ? LV_XOR(LV_SET1(-0.0),
+                                    LV_KEEP(LV_DIV(LV_SET1(1.0), t->sh.kt),
+                                            LV_CMP(t->sh.kt, zero, _CMP_GT_OQ)))
+                           : LV_SET1(-ik);
         const LM some = LV_CMP(t->f0sq, zero, _CMP_GT_OQ);
         /* mu_d fc / |f0| where |f0| > 0: without dynamic friction that
          * is mu_d itself (+0, or -0 as mu_d), the same bits with no
@@ -418,13 +439,14 @@ DEM_INLINE void LIN_(lin_settle)(const struct pass *q, int k, LM touch,
  * without, it is computed always. */
 DEM_INLINE int LIN_(lin_friction)(const struct pass *q, int k, LV nx, LV ny,
                                   LV nz, LV vx, LV vy, LV vz, LV hx, LV hy,
-                                  LV hz, LV fc, LM touch, double dt,
+                                  LV hz, LV fc, struct LIN_(lin_shear) sh,
+                                  LM touch, double dt,
                                   const struct dem_tangential *T, double ik,
                                   int branch, LV ft[3])
 {
     struct LIN_(lin_trial) t;
     const int slid = LIN_(lin_test)(q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz,
-                                    fc, touch, dt, T, branch, &t);
+                                    fc, sh, touch, dt, T, branch, &t);
     LIN_(lin_settle)(q, k, touch, T, ik, branch, !branch || slid, &t, ft);
     return slid;
 }
@@ -509,17 +531,38 @@ DEM_INLINE LV LIN_(lin_luding)(const struct dem_contact_params *cp, LV delta,
     return LV_BLEND(LV_BLEND(fline, fa, adh), fenv, virgin);
 }
 
-/* The normal force of LIN_W contacts by law (DEM_NORMAL_LINEAR or
- * DEM_NORMAL_LUDING, a literal), with the dashpot, as
- * dem_normal_force computes it: overlaps delta, their rates ddot,
- * reduced radii a12 (read by Luding's law only); *fc the normal force
- * of the Coulomb limit. Luding's law reads its contacts' dmax from q at
- * k and stores them back (0 where touch is not set). */
+/* The normal force of LIN_W contacts by law (DEM_NORMAL_LINEAR,
+ * DEM_NORMAL_LUDING or DEM_NORMAL_HERTZ, a literal), with the dashpot,
+ * as dem_normal_force computes it: overlaps delta, their rates ddot,
+ * reduced radii a12 and masses m12 (read by Luding's and Hertz's laws
+ * only); *fc the normal force of the Coulomb limit, *sh the tangential
+ * law's stiffness and viscosity (dem_normal_shear; T's but with Hertz).
+ * Luding's law reads its contacts' dmax from q at k and stores them
+ * back (0 where touch is not set). */
 DEM_INLINE LV LIN_(lin_normal)(const int law, const struct pass *q, int k,
-                               const struct dem_contact_params *cp, LV delta,
-                               LV ddot, LV a12, LM touch, LV *fc)
+                               const struct dem_contact_params *cp,
+                               const struct dem_tangential *T, LV delta,
+                               LV ddot, LV a12, LV m12, LM touch, LV *fc,
+                               struct LIN_(lin_shear) * sh)
 {
     const LV zero = LV_ZERO(), gn = LV_SET1(cp->gamma_n);
+    sh->kt = LV_SET1(T->kt);
+    sh->gt = LV_SET1(T->gamma_t);
+    sh->vary = 0;
+    if (law == DEM_NORMAL_HERTZ) {
+        /* dem_model_hertz_force and _shear, their roots shared */
+        const LV d = LV_MAX(delta, zero); /* delta > 0 ? delta : 0 */
+        const LV ra = LV_SQRT(a12), sd = LV_SQRT(d), qd = LV_SQRT(sd),
+                 rm = LV_SQRT(LV_MUL(ra, m12));
+        const LV fn =
+            LV_ADD(LV_MUL(LV_MUL(LV_MUL(LV_SET1(cp->hertz_kn), ra), d), sd),
+                   LV_MUL(LV_MUL(LV_MUL(LV_SET1(cp->hertz_gn), rm), qd), ddot));
+        *fc = LV_MAX(fn, zero);
+        sh->kt = LV_MUL(LV_MUL(LV_SET1(cp->hertz_kt), ra), sd);
+        sh->gt = LV_MUL(LV_MUL(LV_SET1(cp->hertz_gt), rm), qd);
+        sh->vary = 1;
+        return fn;
+    }
     if (law == DEM_NORMAL_LUDING) {
         LV dm = LV_LOADU(q->dmax + k);
         const LV fn = LV_ADD(LIN_(lin_luding)(cp, delta, a12, touch, &dm),
@@ -609,12 +652,14 @@ DEM_INLINE int LIN_(lin_pair_test)(const int law, const struct pass *q, int k,
     }
     const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
     LV fc;
-    g->fn = LIN_(lin_normal)(law, q, k, cp, LV_SUB(R, d), ddot,
-                             LV_DIV(LV_MUL(xi[3], xj[3]), R), g->touch, &fc);
+    struct LIN_(lin_shear) sh;
+    g->fn = LIN_(lin_normal)(
+        law, q, k, cp, T, LV_SUB(R, d), ddot, LV_DIV(LV_MUL(xi[3], xj[3]), R),
+        LV_DIV(LV_MUL(vi[3], vj[3]), LV_ADD(vi[3], vj[3])), g->touch, &fc, &sh);
     g->nx = nx;
     g->ny = ny;
     g->nz = nz;
-    return LIN_(lin_test)(q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz, fc,
+    return LIN_(lin_test)(q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz, fc, sh,
                           g->touch, dt, T, branch, &g->t);
 }
 
@@ -723,11 +768,13 @@ DEM_INLINE int LIN_(lin_walls)(const int law, const struct pass *q, int k,
              hz = LV_LOADU(q->xi_z + k);
     const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
     LV fc;
-    const LV fn =
-        LIN_(lin_normal)(law, q, k, cp, delta, ddot, xi[3], touch, &fc);
+    struct LIN_(lin_shear) sh;
+    const LV fn = LIN_(lin_normal)(law, q, k, cp, T, delta, ddot, xi[3], vi[3],
+                                   touch, &fc, &sh);
     LV ft[3], f[3];
-    const int slid = LIN_(lin_friction)(q, k, nx, ny, nz, vx, vy, vz, hx, hy,
-                                        hz, fc, touch, dt, T, ik, branch, ft);
+    const int slid =
+        LIN_(lin_friction)(q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz, fc, sh,
+                           touch, dt, T, ik, branch, ft);
     LIN_(lin_records)(F, fn, nx, ny, nz, ft, touch, f);
     /* the force on the wall along its axis, outward positive: sgn times
      * the record's component along it */

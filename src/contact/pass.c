@@ -84,14 +84,15 @@
  * faster at 32 pairs ahead than at 16. */
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
-/* The records passes' round for the linear law and Luding's without
- * resistances (between walls and in a periodic cell) in intrinsics,
+/* The records passes' round for the linear, Luding's and Hertz's laws
+ * without resistances (between walls and in a periodic cell) in intrinsics,
  * groups of LIN_W
  * pairs, and their wall contacts in such groups, on CPUs with AVX2: 4 lanes in
  * AVX2, 8 with AVX-512 (contact/pair_linear_simd.h: the same operations, in an
  * order and with a skip that took some 15-20 % off a step on Zen 1, and 7-11 %
  * against gcc's 16 lanes on an Intel Xeon with AVX-512, session 74; for
- * Luding's law 22 % off a step of biaxial2d-paper there, session 78). */
+ * Luding's law 22 % off a step of biaxial2d-paper there, Hertz's 4 %,
+ * session 78). */
 #if DEM_PASS_RECORDS && defined(__AVX2__)
 #define DEM_PAIR_LINEAR_SIMD 1
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
@@ -110,9 +111,10 @@
 _Static_assert(DEM_PAIR_LANES % LIN_PAIRS == 0, "whole groups a round");
 #include "contact/pair_linear_simd.h"
 /* Whether the groups run the model set law (without the periodic bit):
- * the linear law or Luding's, without resistances. */
+ * the linear, Luding's or Hertz's law, without resistances. */
 #define GROUPS_LAW(law)                                                        \
-    ((law) == DEM_NORMAL_LINEAR || (law) == DEM_NORMAL_LUDING)
+    ((law) == DEM_NORMAL_LINEAR || (law) == DEM_NORMAL_LUDING ||               \
+     (law) == DEM_NORMAL_HERTZ)
 #else
 #define DEM_PAIR_LINEAR_SIMD 0
 #endif
@@ -551,8 +553,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 }
 
 /* Wall contacts k0 <= k < k1, with the wall's parameters cp
- * (dem_contact_wall_view), in SIMD lanes as pair_range (the linear and
- * Luding's laws in groups where pair_range runs those); the records
+ * (dem_contact_wall_view), in SIMD lanes as pair_range (in groups for
+ * the laws pair_range runs in groups); the records
  * compilations read the particles' values from their records (rec). */
 DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
                            const struct dem_contact_params *cp, double dt,
