@@ -85,14 +85,14 @@
 #define DEM_PREFETCH_PAIRS (2 * DEM_PAIR_LANES)
 
 /* The records passes' round for the linear, Luding's and Hertz's laws
- * without resistances (between walls and in a periodic cell) in intrinsics,
- * groups of LIN_W
- * pairs, and their wall contacts in such groups, on CPUs with AVX2: 4 lanes in
- * AVX2, 8 with AVX-512 (contact/pair_linear_simd.h: the same operations, in an
- * order and with a skip that took some 15-20 % off a step on Zen 1, and 7-11 %
- * against gcc's 16 lanes on an Intel Xeon with AVX-512, session 74; for
- * Luding's law 22 % off a step of biaxial2d-paper there, Hertz's 4 %,
- * session 78). */
+ * without resistances (between walls and in a periodic cell) in
+ * intrinsics, groups of LIN_W pairs, and their wall contacts in such
+ * groups, on CPUs with AVX2: 4 lanes in AVX2, 8 with AVX-512
+ * (contact/pair_linear_simd.h: the same operations, in an order and with
+ * a skip that took some 15-20 % off a step on Zen 1, and 7-11 % against
+ * gcc's 16 lanes on an Intel Xeon with AVX-512, session 74; for Luding's
+ * law 22 % off a step of biaxial2d-paper there, Hertz's 4 %, session
+ * 78). */
 #if DEM_PASS_RECORDS && defined(__AVX2__)
 #define DEM_PAIR_LINEAR_SIMD 1
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
