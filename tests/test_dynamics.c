@@ -117,6 +117,11 @@ static void two_d_stays_in_plane(void **state)
 static int run_cell;
 static int run_resist;
 static int run_normal = DEM_NORMAL_LINEAR;
+/* and in 2D (run_dim 2: discs, gravity along y, rolling resistance
+ * only), with the passes of the plane (DEM_SET_PLANE) or, with
+ * run_plane_off, the 3D passes, which compute the plane's zeros */
+static int run_dim = 3;
+static int run_plane_off;
 
 /* Positions and spins by particle id (512 of them) after a frictional,
  * damped run with re-ordering, between walls or (run_cell) in a periodic
@@ -136,12 +141,14 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     else
         unsetenv("DEMBOX_PASS");
     struct dem_config c;
-    test_config(&c, 3);
+    const int dim = run_dim;
+    test_config(&c, dim);
     c.contact.gamma_n = 0.05;
     c.contact.gamma_t = 0.01;
     c.contact.wall_mu = 0.2;
     c.damping.gamma_b = 0.01;
-    c.gravity[2] = run_cell ? 0.0 : -9.81;
+    c.damping.gamma_br = 0.02;
+    c.gravity[dim - 1] = run_cell ? 0.0 : -9.81;
     c.time_step = 2e-5;
     if (run_cell)
         c.box.boundary = DEM_BOUNDARY_PERIODIC;
@@ -154,7 +161,8 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     c.contact.nu = 0.25;
     c.contact.restitution = 0.5;
     if (run_resist) {
-        c.contact.rolling = c.contact.torsion = DEM_RESIST_LUDING;
+        c.contact.rolling = DEM_RESIST_LUDING;
+        c.contact.torsion = dim == 3 ? DEM_RESIST_LUDING : DEM_RESIST_NONE;
         c.contact.kr = 50.0;
         c.contact.gamma_r = 0.01;
         c.contact.mu_r = c.contact.wall_mu_r = 0.1;
@@ -166,18 +174,27 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     /* in the cell 729 particles: two threads split a virial block
      * unless they keep to its bounds, and 729 % 8 particles are left
      * over after the SIMD lanes */
-    const int nside = run_cell ? 9 : 8;
-    test_sim(&s, &c, nside * nside * nside, 0.0, 0.1);
+    const int nside = dim == 2 ? (run_cell ? 23 : 22) : run_cell ? 9 : 8;
+    test_sim(&s, &c, dim == 2 ? nside * nside : nside * nside * nside, 0.0,
+             0.1);
     s.reorder = 1;
-    gas(&s, 3, nside, run_cell ? 5e-3 : 6e-3, 0.3, 9);
+    gas(&s, dim, nside,
+        dim == 2   ? (run_cell ? 2.1e-3 : 2.2e-3)
+        : run_cell ? 5e-3
+                   : 6e-3,
+        0.3, 9);
     test_ready(&s);
+    assert_int_equal(s.pass.plane, dim == 2);
+    if (run_plane_off)
+        s.pass.plane = 0;
     /* the ring pass in chunks of 64 pairs (of some 1000): each thread
      * finishes its particles in many pieces */
     s.pairs.ring_chunk = 64;
-    dem_wall_set_stress(&s.wall[5], 0.05, 5.0, 0.0, 200.0, 0.0, 0.0, 0.0);
+    dem_wall_set_stress(&s.wall[2 * dim - 1], 0.05, 5.0, 0.0, 200.0, 0.0, 0.0,
+                        0.0);
     if (run_cell) /* shear along x by a fifth of the cell */
-        dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XZ], DEM_PROFILE_LINEAR, 0.02,
-                            0.06, s.t);
+        dem_wall_set_strain(&s.cell.tilt[dim == 2 ? DEM_TILT_XY : DEM_TILT_XZ],
+                            DEM_PROFILE_LINEAR, 0.02, 0.06, s.t);
     if (chained) {
         test_step(&s, 3000);
     } else {
@@ -330,6 +347,50 @@ static void force_passes_give_identical_results(void **state)
     dem_sim_destroy(&s);
 }
 
+/* The passes of a 2D sample (DEM_SET_PLANE) leave out the zeros of the
+ * plane (z, v_z, w_x, w_y, f_z, the torques' x and y) and give the run
+ * of the 3D passes, which compute them, to the last bit; and as those,
+ * the same bits for any threads, chained steps and pass. Between walls
+ * and in a sheared cell, with each normal law and the rolling
+ * resistance. */
+static void plane_passes_give_the_3d_run(void **state)
+{
+    (void)state;
+    run_dim = 2;
+    const int n = RUN_OUT;
+    double *a = calloc((size_t)n, sizeof *a), *b = calloc((size_t)n, sizeof *b);
+    static const int laws[] = {DEM_NORMAL_LINEAR, DEM_NORMAL_LUDING,
+                               DEM_NORMAL_HERTZ};
+    for (int cell = 0; cell < 2; cell++)
+        for (int u = 0; u < 4; u++) {
+            run_cell = cell;
+            run_normal = laws[u % 3];
+            run_resist = u == 3;
+            run_plane_off = 0;
+            run_threads(2, 1, NULL, a);
+            run_plane_off = 1;
+            run_threads(1, 0, NULL, b);
+            run_plane_off = 0;
+            assert_memory_equal(a, b, (size_t)n * sizeof *a);
+            int moved = 0; /* discs that turned */
+            for (int i = 0; i < RUN_PARTICLES / 6; i++)
+                moved += a[6 * i + 5] != 0.0;
+            assert_true(moved > 400);
+        }
+    run_cell = run_resist = 0;
+    run_normal = DEM_NORMAL_LINEAR;
+#if DEM_HAVE_PASS_RECORDS
+    assert_same_runs(1, 1, "gathers", 2, 1, "ring");
+    assert_same_runs(2, 1, "blocks", 1, 0, "records");
+    run_cell = 1;
+    assert_same_runs(2, 1, "ring", 1, 1, "gathers");
+    run_cell = 0;
+#endif
+    free(a);
+    free(b);
+    run_dim = 3;
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -338,6 +399,7 @@ int main(void)
         cmocka_unit_test(threads_give_identical_results),
         cmocka_unit_test(chained_steps_give_identical_results),
         cmocka_unit_test(force_passes_give_identical_results),
+        cmocka_unit_test(plane_passes_give_the_3d_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -371,6 +371,7 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
     if (rc)
         return rc;
     C->current = first_variant(C);
+    C->plane = s->dim == 2;
     const char *want = getenv("DEMBOX_PASS");
     if (!want || !*want || !strcmp(want, "auto"))
         return DEM_OK;
@@ -715,6 +716,7 @@ static int forces(struct dem_sim *s, const struct kick K)
          * ghosts' state comes from their owners (decomp/halo.h) */
         .n = s->p.n - pl->nghost,
         .periodic = s->cell.on,
+        .plane = s->pass.plane,
         .vir = s->cell.vir,
     };
     memcpy(c.walls, s->wall, sizeof c.walls);

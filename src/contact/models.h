@@ -59,6 +59,11 @@ enum {
  * periodic cell (branch vectors through images, the affine velocity of
  * the cell, the cell's virial; core/cell.h). */
 #define DEM_SET_PERIODIC 0x8000
+/* Nor is this: a 2D sample (struct dem_sim.dim 2), whose positions and
+ * velocities have z = 0, its spins, torques and the pairs' n x f_t only
+ * a z component, always (test_dynamics): the pass leaves those zeros out
+ * of its sums, kicks and drifts. */
+#define DEM_SET_PLANE 0x10000
 _Static_assert(DEM_NRESIST <= 7, "DEM_SET_RESISTS: room for 7 resistances");
 enum {
 #define DEM_SET_BIT_(TAG, name, doc)                                           \

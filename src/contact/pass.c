@@ -110,11 +110,13 @@
 #endif
 _Static_assert(DEM_PAIR_LANES % LIN_PAIRS == 0, "whole groups a round");
 #include "contact/pair_linear_simd.h"
-/* Whether the groups run the model set law (without the periodic bit):
- * the linear, Luding's or Hertz's law, without resistances. */
+/* Whether the groups run the model set law (whatever its boundary and
+ * dimension bits): the linear, Luding's or Hertz's law, without
+ * resistances. */
 #define GROUPS_LAW(law)                                                        \
-    ((law) == DEM_NORMAL_LINEAR || (law) == DEM_NORMAL_LUDING ||               \
-     (law) == DEM_NORMAL_HERTZ)
+    (((law) & (DEM_SET_NORMAL | DEM_SET_RESISTS)) == DEM_NORMAL_LINEAR ||      \
+     ((law) & (DEM_SET_NORMAL | DEM_SET_RESISTS)) == DEM_NORMAL_LUDING ||      \
+     ((law) & (DEM_SET_NORMAL | DEM_SET_RESISTS)) == DEM_NORMAL_HERTZ)
 #else
 #define DEM_PAIR_LINEAR_SIMD 0
 #endif
@@ -513,7 +515,7 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
             }
         }
 #if DEM_PAIR_LINEAR_SIMD
-        if (GROUPS_LAW(law & ~DEM_SET_PERIODIC)) {
+        if (GROUPS_LAW(law)) {
             for (int g = 0; g < DEM_PAIR_LANES; g += LIN_PAIRS)
                 lin_skip_count(&skip,
                                lin_pair_groups(
@@ -573,7 +575,8 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
         lin_wall_rows(walls, wr);
         struct lin_skip skip = {1, 0, 0};
         for (; k + LIN_W <= k1; k += LIN_W)
-            lin_skip_count(&skip, lin_walls(law, &q, k, rec, wr, cp, dt, &T, ik,
+            lin_skip_count(&skip, lin_walls(law & DEM_SET_NORMAL, &q, k, rec,
+                                            wr, cp, dt, &T, ik,
                                             q.F + (k - q.foff), skip.branch));
     }
 #endif
@@ -826,6 +829,9 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 {
     (void)rec;
     const int cell = (law & DEM_SET_PERIODIC) != 0;
+    /* in 2D f_z, c_x, c_y and the torques' x and y are zero: not summed,
+     * and v_z, w_x, w_y and z are not kicked or moved */
+    const int plane = (law & DEM_SET_PLANE) != 0;
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
     double far = 0.0; /* the largest overshoot (chained) */
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
@@ -873,7 +879,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         /* in a cell the damping comes after the contacts' sum (the
          * virial takes that sum) */
         double fx = cell ? 0.0 : -gb * vx[i], fy = cell ? 0.0 : -gb * vy[i],
-               fz = cell ? 0.0 : -gb * vz[i];
+               fz = cell || plane ? 0.0 : -gb * vz[i];
         double cx = 0.0, cy = 0.0, cz = 0.0; /* sums of n x f_t */
         /* the resistances' torques: on i as i, the opposite as j, summed
          * in the loops of the forces (each sum in its own order: the
@@ -889,17 +895,21 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                     (uintptr_t)&sum_neutral);
                 fx += o->f[0];
                 fy += o->f[1];
-                fz += o->f[2];
-                cx += o->c[0];
-                cy += o->c[1];
+                if (!plane) {
+                    fz += o->f[2];
+                    cx += o->c[0];
+                    cy += o->c[1];
+                }
                 cz += o->c[2];
                 if (DEM_SET_TORQUES(law)) {
                     const double *m = (const void *)sum_pick(
                         k + t < k1,
                         (uintptr_t)M + 3 * sizeof *M * (size_t)(k + t),
                         (uintptr_t)sum_neutral.f);
-                    mx += m[0];
-                    my += m[1];
+                    if (!plane) {
+                        mx += m[0];
+                        my += m[1];
+                    }
                     mz += m[2];
                 }
             }
@@ -916,29 +926,37 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
                 o = &O->F[O->tw[q - O->q0]];
             fx -= o->f[0];
             fy -= o->f[1];
-            fz -= o->f[2];
-            cx += o->c[0];
-            cy += o->c[1];
+            if (!plane) {
+                fz -= o->f[2];
+                cx += o->c[0];
+                cy += o->c[1];
+            }
             cz += o->c[2];
             if (DEM_SET_TORQUES(law)) {
                 const double *m = O && rpair[q] < O->k0
                                       ? &O->M[3 * O->tw[q - O->q0]]
                                       : &M[3 * rpair[q]];
-                mx -= m[0];
-                my -= m[1];
+                if (!plane) {
+                    mx -= m[0];
+                    my -= m[1];
+                }
                 mz -= m[2];
             }
         }
         for (int k = wstart[i]; k < wstart[i + 1]; k++) {
             fx += WF[k].f[0];
             fy += WF[k].f[1];
-            fz += WF[k].f[2];
-            cx += WF[k].c[0];
-            cy += WF[k].c[1];
+            if (!plane) {
+                fz += WF[k].f[2];
+                cx += WF[k].c[0];
+                cy += WF[k].c[1];
+            }
             cz += WF[k].c[2];
             if (DEM_SET_TORQUES(law)) {
-                mx += WM[3 * k];
-                my += WM[3 * k + 1];
+                if (!plane) {
+                    mx += WM[3 * k];
+                    my += WM[3 * k + 1];
+                }
                 mz += WM[3 * k + 2];
             }
         }
@@ -950,14 +968,17 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             bc[2][b] = fz;
             fx -= gb * vx[i];
             fy -= gb * vy[i];
-            fz -= gb * vz[i];
+            if (!plane)
+                fz -= gb * vz[i];
         }
         const double g = gr * a * a;
-        double tx = -g * wx[i] - a * cx, ty = -g * wy[i] - a * cy,
-               tz = -g * wz[i] - a * cz;
+        double tx = plane ? 0.0 : -g * wx[i] - a * cx,
+               ty = plane ? 0.0 : -g * wy[i] - a * cy, tz = -g * wz[i] - a * cz;
         if (DEM_SET_TORQUES(law)) {
-            tx += mx;
-            ty += my;
+            if (!plane) {
+                tx += mx;
+                ty += my;
+            }
             tz += mz;
         }
         if (!K.chain) {
@@ -981,9 +1002,14 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         /* the block's kicks and drifts, in SIMD lanes */
         if (K.on && !K.chain) {
 #pragma omp simd
-            for (int u = 0; u <= b; u++)
-                dem_particle_kick(&Q, ib + u, K.h, hg, bf[0][u], bf[1][u],
-                                  bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
+            for (int u = 0; u <= b; u++) {
+                if (plane)
+                    dem_particle_kick_plane(&Q, ib + u, K.h, hg, bf[0][u],
+                                            bf[1][u], bf[5][u]);
+                else
+                    dem_particle_kick(&Q, ib + u, K.h, hg, bf[0][u], bf[1][u],
+                                      bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
+            }
         }
         if (K.chain) {
             /* the box's map since the build (walls), loaded where the
@@ -993,13 +1019,23 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 #pragma omp simd reduction(max : far)
             for (int u = 0; u <= b; u++) {
                 const int k = ib + u;
-                dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
-                                  bf[3][u], bf[4][u], bf[5][u]);
-                dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u], bf[2][u],
-                                  bf[3][u], bf[4][u], bf[5][u]);
-                const double d2 =
-                    cell ? dem_particle_drift_frame(&Q, k, K.dt, fi, s2)
-                         : dem_particle_drift(&Q, k, K.dt, bb);
+                double d2;
+                if (plane) {
+                    dem_particle_kick_plane(&Q, k, K.h, hg, bf[0][u], bf[1][u],
+                                            bf[5][u]);
+                    dem_particle_kick_plane(&Q, k, K.h, hg, bf[0][u], bf[1][u],
+                                            bf[5][u]);
+                    d2 = cell ? dem_particle_drift_frame_plane(&Q, k, K.dt, fi,
+                                                               s2)
+                              : dem_particle_drift_plane(&Q, k, K.dt, bb);
+                } else {
+                    dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u],
+                                      bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
+                    dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u],
+                                      bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
+                    d2 = cell ? dem_particle_drift_frame(&Q, k, K.dt, fi, s2)
+                              : dem_particle_drift(&Q, k, K.dt, bb);
+                }
                 const double o = dem_particle_overshoot(&Q, k, d2, K.cut);
                 far = o > far ? o : far;
             }
@@ -1385,7 +1421,9 @@ int THIS_ENTRY(const struct contacts *c, const struct kick K)
     for (int t = 0; t < omp_get_max_threads(); t++) /* no pairs done yet */
         c->done[DEM_RING_DONE * t] = 0;
 #endif
-    switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0)) {
+    switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0) |
+            (c->plane ? DEM_SET_PLANE : 0)) {
+        /* (in 2D no torsion: the config refuses it, contact/models.c) */
 #define CONTACTS_OF_(TAG, name)                                                \
     CONTACTS_KICKS(DEM_NORMAL_##TAG)                                           \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING)                         \
@@ -1395,7 +1433,12 @@ int THIS_ENTRY(const struct contacts *c, const struct kick K)
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_PERIODIC)      \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_TORSION | DEM_SET_PERIODIC)      \
     CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_TORSION |      \
-                   DEM_SET_PERIODIC)
+                   DEM_SET_PERIODIC)                                           \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_PLANE)                           \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_PLANE)         \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_PERIODIC | DEM_SET_PLANE)        \
+    CONTACTS_KICKS(DEM_NORMAL_##TAG | DEM_SET_ROLLING | DEM_SET_PERIODIC |     \
+                   DEM_SET_PLANE)
         DEM_NORMAL_MODELS(CONTACTS_OF_)
 #undef CONTACTS_OF_
     }

@@ -69,6 +69,7 @@ struct contacts {
     int np, nw, n; /* pairs, wall contacts, particles */
     /* periodic cell (core/cell.h) */
     int periodic;   /* 1: run the pass of the set with DEM_SET_PERIODIC */
+    int plane;      /* 1: run the pass of the set with DEM_SET_PLANE */
     double cv[6];   /* m; the lattice of the frame, struct dem_lattice.v:
                        the images' shifts of the pass's positions */
     struct dem_frame fr; /* the positions' frame now (core/cell.h): a

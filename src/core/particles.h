@@ -101,6 +101,18 @@ static inline void dem_particle_kick(const struct dem_particles *p, int i,
     p->wz[i] += h * p->inv_I[i] * tz;
 }
 
+/* dem_particle_kick of a 2D sample (DEM_SET_PLANE): v_z, w_x and w_y
+ * stay zero, so only v_x, v_y and w_z are kicked (the same arithmetic:
+ * the same bits). */
+static inline void dem_particle_kick_plane(const struct dem_particles *p, int i,
+                                           double h, const double hg[3],
+                                           double fx, double fy, double tz)
+{
+    p->vx[i] += h * p->inv_m[i] * fx + hg[0];
+    p->vy[i] += h * p->inv_m[i] * fy + hg[1];
+    p->wz[i] += h * p->inv_I[i] * tz;
+}
+
 /* Drift r += dt v of particle i; returns its squared distance from
  * where the box's map b (struct dem_frame.b: r0 -> b[k] r0 + b[3 + k] on
  * axis k) carries its position at the last list build (x0). */
@@ -114,6 +126,19 @@ static inline double dem_particle_drift(const struct dem_particles *p, int i,
                  dy = p->y[i] - (b[1] * p->y0[i] + b[4]),
                  dz = p->z[i] - (b[2] * p->z0[i] + b[5]);
     return dx * dx + dy * dy + dz * dz;
+}
+
+/* dem_particle_drift of a 2D sample (z and v_z zero; in 2D the box's
+ * map leaves z as it is): the same value. */
+static inline double dem_particle_drift_plane(const struct dem_particles *p,
+                                              int i, double dt,
+                                              const double b[6])
+{
+    p->x[i] += dt * p->vx[i];
+    p->y[i] += dt * p->vy[i];
+    const double dx = p->x[i] - (b[0] * p->x0[i] + b[3]),
+                 dy = p->y[i] - (b[1] * p->y0[i] + b[4]);
+    return dx * dx + dy * dy;
 }
 
 /* The drift of particle i in a periodic cell, whose arrays x, y, z are
@@ -132,6 +157,18 @@ static inline double dem_particle_drift_frame(const struct dem_particles *p,
     const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
                  dz = p->z[i] - p->z0[i];
     return s2 * (dx * dx + dy * dy + dz * dz);
+}
+
+/* dem_particle_drift_frame of a 2D sample: the same values. */
+static inline double
+dem_particle_drift_frame_plane(const struct dem_particles *p, int i, double dt,
+                               const double g[6], double s2)
+{
+    const double vx = p->vx[i], vy = p->vy[i];
+    p->x[i] += dt * (g[0] * vx + g[1] * vy);
+    p->y[i] += dt * (g[3] * vy);
+    const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i];
+    return s2 * (dx * dx + dy * dy);
 }
 
 /* Whether particle i, d2 its squared distance from x0, calls for a list

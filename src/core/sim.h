@@ -53,6 +53,9 @@ struct dem_pass_choice {
                       the records pass itself and sits out the trials */
     long runs[DEM_MAX_PASSES]; /* passes each variant ran since the set-up */
     long with_blocks; /* of them, passes with the threads' own blocks */
+    int plane;        /* 1: the passes of a 2D sample (DEM_SET_PLANE), set with
+                         the sample's dimension (a test may turn it off: the 3D
+                         passes then run the plane with its zeros) */
 };
 
 struct dem_sim;
