@@ -10,20 +10,29 @@
 #define DEM_CONTACT_PAIR_H
 
 #include <math.h>
+#include <stddef.h>
 
 #include "contact/models.h"
 #include "contact/pass.h"
 #include "contact/tangential.h"
 
+/* Whether the model set law keeps the history value name: the others
+ * are 0 and never stored. In 2D (DEM_SET_PLANE) the tangential spring
+ * has no z: it stays 0 (dem_tangential_force_in). */
+#define HIST_KEPT_(law, MODEL, name)                                           \
+    (DEM_MODEL_USES(law, MODEL) &&                                             \
+     !(((law)&DEM_SET_PLANE) &&                                                \
+       offsetof(struct pass, name) == offsetof(struct pass, xi_z)))
+
 /* Contact k's history values used by the model set law (a normal law
  * with the bits of the resistances on, contact/models.h), read from the
- * list (the others are 0 and never stored). */
+ * list. */
 DEM_INLINE struct dem_history load_history(const int law, const struct pass *q,
                                            int k)
 {
     struct dem_history h;
 #define HIST_LOAD_(MODEL, name, unit, swap, doc)                               \
-    h.name = DEM_MODEL_USES(law, MODEL) ? q->name[k] : 0.0;
+    h.name = HIST_KEPT_(law, MODEL, name) ? q->name[k] : 0.0;
     DEM_CONTACT_HISTORY(HIST_LOAD_)
 #undef HIST_LOAD_
     return h;
@@ -81,23 +90,25 @@ finish_contact(const int law, const struct pass *q, int k, int touch,
                struct dem_history h, int st, double dt,
                const struct dem_tangential *T)
 {
+    const int plane = (law & DEM_SET_PLANE) != 0;
     struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
     const struct dem_vec3 ft =
-        dem_tangential_force(n, vij, fc, dt, T, &xi, &st);
+        dem_tangential_force_in(plane, n, vij, fc, dt, T, &xi, &st);
     h.xi_x = xi.x;
     h.xi_y = xi.y;
     h.xi_z = xi.z;
 #define HIST_STORE_(MODEL, name, unit, swap, doc)                              \
-    if (DEM_MODEL_USES(law, MODEL))                                            \
+    if (HIST_KEPT_(law, MODEL, name))                                          \
         q->name[k] = touch ? h.name : 0.0;
     DEM_CONTACT_HISTORY(HIST_STORE_)
 #undef HIST_STORE_
     q->state[k] = touch ? st : 0;
+    /* (in 2D f_z = c_x = c_y = 0, as they come out in 3D) */
     const struct dem_contact_force o = {
         {touch ? fn * n.x + ft.x : 0.0, touch ? fn * n.y + ft.y : 0.0,
-         touch ? fn * n.z + ft.z : 0.0},
-        {touch ? n.y * ft.z - n.z * ft.y : 0.0,
-         touch ? n.z * ft.x - n.x * ft.z : 0.0,
+         touch && !plane ? fn * n.z + ft.z : 0.0},
+        {touch && !plane ? n.y * ft.z - n.z * ft.y : 0.0,
+         touch && !plane ? n.z * ft.x - n.x * ft.z : 0.0,
          touch ? n.x * ft.y - n.y * ft.x : 0.0}};
     return o;
 }
@@ -137,40 +148,48 @@ pair_vals(const int law, const struct pass *qp, int k, const struct pv pi,
           const struct dem_tangential *T, const double *grad, const double *fm)
 {
     const struct pass q = *qp;
-    double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = pi.z - pj.z;
+    /* in 2D (a literal) every z term is left out: z, v_z, w_x, w_y are
+     * zero (the same bits, test_dynamics) */
+    const int plane = (law & DEM_SET_PLANE) != 0;
+    double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = plane ? 0.0 : pi.z - pj.z;
     if (law & DEM_SET_PERIODIC) { /* from the frame to the cell now */
-        const double ex = fm[0] * dx + fm[1] * dy + fm[2] * dz,
-                     ey = fm[3] * dy + fm[4] * dz;
-        dz = fm[5] * dz;
+        const double ex = plane ? fm[0] * dx + fm[1] * dy
+                                : fm[0] * dx + fm[1] * dy + fm[2] * dz,
+                     ey = plane ? fm[3] * dy : fm[3] * dy + fm[4] * dz;
+        dz = plane ? 0.0 : fm[5] * dz;
         dx = ex;
         dy = ey;
     }
-    const double d2 = dx * dx + dy * dy + dz * dz;
+    const double d2 = plane ? dx * dx + dy * dy : dx * dx + dy * dy + dz * dz;
     const double ai = pi.r, aj = pj.r, R = ai + aj;
     const int touch = d2 < R * R;
     const double d = sqrt(d2);
     const double id = 1.0 / d;
-    const struct dem_vec3 n = {dx * id, dy * id, dz * id};
+    const struct dem_vec3 n = {dx * id, dy * id, plane ? 0.0 : dz * id};
     /* a_i n x w_i + a_j n x w_j */
-    const double cwx = ai * pi.wx + aj * pj.wx;
-    const double cwy = ai * pi.wy + aj * pj.wy;
+    const double cwx = plane ? 0.0 : ai * pi.wx + aj * pj.wx;
+    const double cwy = plane ? 0.0 : ai * pi.wy + aj * pj.wy;
     const double cwz = ai * pi.wz + aj * pj.wz;
-    struct dem_vec3 vij = {pi.vx - pj.vx + n.y * cwz - n.z * cwy,
-                           pi.vy - pj.vy + n.z * cwx - n.x * cwz,
-                           pi.vz - pj.vz + n.x * cwy - n.y * cwx};
+    struct dem_vec3 vij = {plane ? pi.vx - pj.vx + n.y * cwz
+                                 : pi.vx - pj.vx + n.y * cwz - n.z * cwy,
+                           plane ? pi.vy - pj.vy - n.x * cwz
+                                 : pi.vy - pj.vy + n.z * cwx - n.x * cwz,
+                           plane ? 0.0 : pi.vz - pj.vz + n.x * cwy - n.y * cwx};
     if (law & DEM_SET_PERIODIC) { /* the cell's affine velocity, grad b */
-        vij.x += grad[0] * dx + grad[1] * dy + grad[2] * dz;
-        vij.y += grad[3] * dy + grad[4] * dz;
-        vij.z += grad[5] * dz;
+        vij.x += plane ? grad[0] * dx + grad[1] * dy
+                       : grad[0] * dx + grad[1] * dy + grad[2] * dz;
+        vij.y += plane ? grad[3] * dy : grad[3] * dy + grad[4] * dz;
+        vij.z += plane ? 0.0 : grad[5] * dz;
     }
-    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+    const double ddot = -dem_dot_in(plane, vij, n);
     struct dem_history h = load_history(law, &q, k);
     double fc;
     const double a12 = ai * aj / R;
     const double m12 = pi.m * pj.m / (pi.m + pj.m); /* if used */
     const double fn = dem_normal_force(law, cp, R - d, ddot, a12, m12, &h, &fc);
     int st = q.state[k] | DEM_CONTACT_ACTIVE;
-    const struct dem_vec3 dw = {pi.wx - pj.wx, pi.wy - pj.wy, pi.wz - pj.wz};
+    const struct dem_vec3 dw = {plane ? 0.0 : pi.wx - pj.wx,
+                                plane ? 0.0 : pi.wy - pj.wy, pi.wz - pj.wz};
     resist_contact(law, &q, k, touch, n, dw, a12, fc, dt, cp, &h, &st);
     struct dem_tangential Tc = *T;
     dem_normal_shear(law, cp, R - d, a12, m12, &Tc);
@@ -185,30 +204,37 @@ wall_vals(const int law, const struct pass *qp, int k, const struct pv pi,
           const struct dem_wall *walls, const struct dem_tangential *T)
 {
     const struct pass q = *qp;
+    const int plane = (law & DEM_SET_PLANE) != 0; /* as pair_vals */
     const struct dem_wall *W = &walls[q.cj[k]];
     const int a = W->axis;
     const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */
     /* all three loaded, one picked by arithmetic (exact: 1 x + 0 y + 0 z;
      * a load or a subtraction under a condition keeps the loop out of
      * SIMD lanes where there are no masked gathers and divisions, AVX2) */
-    const double pa = (a == 0) * pi.x + (a == 1) * pi.y + (a == 2) * pi.z;
+    const double pa = plane
+                          ? (a == 0) * pi.x + (a == 1) * pi.y
+                          : (a == 0) * pi.x + (a == 1) * pi.y + (a == 2) * pi.z;
     const double ai = pi.r;
     const double delta = ai - sgn * (pa - W->pos);
     const int touch = delta > 0.0;
     const struct dem_vec3 n = {a == 0 ? sgn : 0.0, a == 1 ? sgn : 0.0,
-                               a == 2 ? sgn : 0.0};
-    const double cwx = ai * pi.wx, cwy = ai * pi.wy, cwz = ai * pi.wz;
+                               !plane && a == 2 ? sgn : 0.0};
+    const double cwx = plane ? 0.0 : ai * pi.wx, cwy = plane ? 0.0 : ai * pi.wy,
+                 cwz = ai * pi.wz;
     /* the wall's surface moves along its normal at W->vel */
     const struct dem_vec3 vij = {
-        pi.vx + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
-        pi.vy + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
-        pi.vz + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
-    const double ddot = -(vij.x * n.x + vij.y * n.y + vij.z * n.z);
+        plane ? pi.vx + n.y * cwz - (a == 0 ? W->vel : 0.0)
+              : pi.vx + n.y * cwz - n.z * cwy - (a == 0 ? W->vel : 0.0),
+        plane ? pi.vy - n.x * cwz - (a == 1 ? W->vel : 0.0)
+              : pi.vy + n.z * cwx - n.x * cwz - (a == 1 ? W->vel : 0.0),
+        plane ? 0.0 : pi.vz + n.x * cwy - n.y * cwx - (a == 2 ? W->vel : 0.0)};
+    const double ddot = -dem_dot_in(plane, vij, n);
     struct dem_history h = load_history(law, &q, k);
     double fc;
     const double fn = dem_normal_force(law, cp, delta, ddot, ai, pi.m, &h, &fc);
     int st = q.state[k] | DEM_CONTACT_ACTIVE;
-    const struct dem_vec3 dw = {pi.wx, pi.wy, pi.wz};
+    const struct dem_vec3 dw = {plane ? 0.0 : pi.wx, plane ? 0.0 : pi.wy,
+                                pi.wz};
     resist_contact(law, &q, k, touch, n, dw, ai, fc, dt, cp, &h, &st);
     struct dem_tangential Tc = *T;
     dem_normal_shear(law, cp, delta, ai, pi.m, &Tc);
@@ -216,7 +242,7 @@ wall_vals(const int law, const struct pass *qp, int k, const struct pv pi,
         finish_contact(law, qp, k, touch, n, vij, fn, fc, h, st, dt, &Tc);
     /* the force on the wall along its axis, outward positive, for the
      * walls' sums (contact/forces.c): the record's component times sgn */
-    qp->A[k] = sgn * (a == 0 ? o.f[0] : a == 1 ? o.f[1] : o.f[2]);
+    qp->A[k] = sgn * (a == 0 ? o.f[0] : a == 1 || plane ? o.f[1] : o.f[2]);
     return o;
 }
 

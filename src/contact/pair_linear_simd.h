@@ -314,6 +314,15 @@ DEM_INLINE LV LIN_(lin_dot)(LV ax, LV ay, LV az, LV bx, LV by, LV bz)
     return LV_ADD(LV_ADD(LV_MUL(ax, bx), LV_MUL(ay, by)), LV_MUL(az, bz));
 }
 
+/* lin_dot, or in 2D (plane, a literal: az = bz = 0) ax bx + ay by, as
+ * dem_dot_in. */
+DEM_INLINE LV LIN_(lin_dot_in)(const int plane, LV ax, LV ay, LV az, LV bx,
+                               LV by, LV bz)
+{
+    return plane ? LV_ADD(LV_MUL(ax, bx), LV_MUL(ay, by))
+                 : LIN_(lin_dot)(ax, ay, az, bx, by, bz);
+}
+
 /* The tangential law's stiffness and viscosity at LIN_W contacts
  * (dem_normal_shear): the law's own, in every lane, or with vary set
  * (Hertz-Mindlin) each contact's. */
@@ -339,12 +348,14 @@ struct LIN_(lin_trial) {
  * Coulomb limit, into t: n their normals, v their contacts' velocities,
  * h their springs of the last step, fc the normal forces of their
  * limits, sh the law's stiffness and viscosity, touch where the gap is
- * closed. Returns the lanes of the
+ * closed; plane (a literal): in 2D, the z terms left out
+ * (dem_tangential_force_in), the z values zero. Returns the lanes of the
  * touching contacts that slide, as bits. Without branch the square root
  * of the sliding case is issued here, as soon as its operand is there. */
-DEM_INLINE int LIN_(lin_test)(const struct pass *q, int k, LV nx, LV ny, LV nz,
-                              LV vx, LV vy, LV vz, LV hx, LV hy, LV hz, LV fc,
-                              struct LIN_(lin_shear) sh, LM touch, double dt,
+DEM_INLINE int LIN_(lin_test)(const int plane, const struct pass *q, int k,
+                              LV nx, LV ny, LV nz, LV vx, LV vy, LV vz, LV hx,
+                              LV hy, LV hz, LV fc, struct LIN_(lin_shear) sh,
+                              LM touch, double dt,
                               const struct dem_tangential *T, int branch,
                               struct LIN_(lin_trial) * t)
 {
@@ -352,19 +363,21 @@ DEM_INLINE int LIN_(lin_test)(const struct pass *q, int k, LV nx, LV ny, LV nz,
              nkt = sh.vary ? LV_XOR(LV_SET1(-0.0), sh.kt) : LV_SET1(-T->kt),
              gt = sh.vary ? sh.gt : LV_SET1(T->gamma_t);
     t->sh = sh;
-    const LV nv = LIN_(lin_dot)(nx, ny, nz, vx, vy, vz);
-    const LV nxi = LIN_(lin_dot)(nx, ny, nz, hx, hy, hz);
+    const LV zero = LV_ZERO();
+    const LV nv = LIN_(lin_dot_in)(plane, nx, ny, nz, vx, vy, vz);
+    const LV nxi = LIN_(lin_dot_in)(plane, nx, ny, nz, hx, hy, hz);
     t->vtx = LV_SUB(vx, LV_MUL(nx, nv));
     t->vty = LV_SUB(vy, LV_MUL(ny, nv));
-    t->vtz = LV_SUB(vz, LV_MUL(nz, nv));
+    t->vtz = plane ? zero : LV_SUB(vz, LV_MUL(nz, nv));
     t->sx = LV_ADD(LV_SUB(hx, LV_MUL(nx, nxi)), LV_MUL(t->vtx, dtv));
     t->sy = LV_ADD(LV_SUB(hy, LV_MUL(ny, nxi)), LV_MUL(t->vty, dtv));
-    t->sz = LV_ADD(LV_SUB(hz, LV_MUL(nz, nxi)), LV_MUL(t->vtz, dtv));
+    t->sz =
+        plane ? zero : LV_ADD(LV_SUB(hz, LV_MUL(nz, nxi)), LV_MUL(t->vtz, dtv));
     t->f0x = LV_SUB(LV_MUL(nkt, t->sx), LV_MUL(gt, t->vtx));
     t->f0y = LV_SUB(LV_MUL(nkt, t->sy), LV_MUL(gt, t->vty));
-    t->f0z = LV_SUB(LV_MUL(nkt, t->sz), LV_MUL(gt, t->vtz));
-    t->f0sq = LIN_(lin_dot)(t->f0x, t->f0y, t->f0z, t->f0x, t->f0y, t->f0z);
-    const LV zero = LV_ZERO();
+    t->f0z = plane ? zero : LV_SUB(LV_MUL(nkt, t->sz), LV_MUL(gt, t->vtz));
+    t->f0sq =
+        LIN_(lin_dot_in)(plane, t->f0x, t->f0y, t->f0z, t->f0x, t->f0y, t->f0z);
     t->f0n = zero;
     if (!branch && T->mu_d != 0.0)
         t->f0n = LV_SQRT(t->f0sq);
@@ -383,9 +396,9 @@ DEM_INLINE int LIN_(lin_test)(const struct pass *q, int k, LV nx, LV ny, LV nz,
  * friction forces in ft (still to be masked with touch). With sliding
  * set the sliding case is computed (its square root here where branch is
  * set); without, none of the touching contacts may slide. */
-DEM_INLINE void LIN_(lin_settle)(const struct pass *q, int k, LM touch,
-                                 const struct dem_tangential *T, double ik,
-                                 int branch, int sliding,
+DEM_INLINE void LIN_(lin_settle)(const int plane, const struct pass *q, int k,
+                                 LM touch, const struct dem_tangential *T,
+                                 double ik, int branch, int sliding,
                                  struct LIN_(lin_trial) * t, LV ft[3])
 {
     const LV gt = t->sh.vary ? t->sh.gt : LV_SET1(T->gamma_t), zero = LV_ZERO(),
@@ -411,21 +424,24 @@ DEM_INLINE void LIN_(lin_settle)(const struct pass *q, int k, LM touch,
         } else {
             scale = LV_KEEP(mud, some);
         }
-        const LV sfx = LV_MUL(t->f0x, scale), sfy = LV_MUL(t->f0y, scale),
-                 sfz = LV_MUL(t->f0z, scale);
+        const LV sfx = LV_MUL(t->f0x, scale), sfy = LV_MUL(t->f0y, scale);
         ftx = LV_BLEND(t->f0x, sfx, t->slide);
         fty = LV_BLEND(t->f0y, sfy, t->slide);
-        ftz = LV_BLEND(t->f0z, sfz, t->slide);
         kx = LV_BLEND(t->sx, LV_MUL(nik, LV_ADD(sfx, LV_MUL(gt, t->vtx))),
                       t->slide);
         ky = LV_BLEND(t->sy, LV_MUL(nik, LV_ADD(sfy, LV_MUL(gt, t->vty))),
                       t->slide);
-        kz = LV_BLEND(t->sz, LV_MUL(nik, LV_ADD(sfz, LV_MUL(gt, t->vtz))),
-                      t->slide);
+        if (!plane) {
+            const LV sfz = LV_MUL(t->f0z, scale);
+            ftz = LV_BLEND(t->f0z, sfz, t->slide);
+            kz = LV_BLEND(t->sz, LV_MUL(nik, LV_ADD(sfz, LV_MUL(gt, t->vtz))),
+                          t->slide);
+        }
     }
     LV_STOREU(q->xi_x + k, LV_KEEP(kx, touch));
     LV_STOREU(q->xi_y + k, LV_KEEP(ky, touch));
-    LV_STOREU(q->xi_z + k, LV_KEEP(kz, touch));
+    if (!plane) /* (in 2D it stays 0) */
+        LV_STOREU(q->xi_z + k, LV_KEEP(kz, touch));
     LIN_(lin_store_state)(q, k, t->st, t->slide, touch);
     ft[0] = ftx;
     ft[1] = fty;
@@ -437,36 +453,40 @@ DEM_INLINE void LIN_(lin_settle)(const struct pass *q, int k, LM touch,
  * contacts that slide, as bits. With branch set, and none of them
  * sliding, the sliding case (its square root and division) is skipped;
  * without, it is computed always. */
-DEM_INLINE int LIN_(lin_friction)(const struct pass *q, int k, LV nx, LV ny,
-                                  LV nz, LV vx, LV vy, LV vz, LV hx, LV hy,
-                                  LV hz, LV fc, struct LIN_(lin_shear) sh,
-                                  LM touch, double dt,
-                                  const struct dem_tangential *T, double ik,
-                                  int branch, LV ft[3])
+DEM_INLINE int LIN_(lin_friction)(const int plane, const struct pass *q, int k,
+                                  LV nx, LV ny, LV nz, LV vx, LV vy, LV vz,
+                                  LV hx, LV hy, LV hz, LV fc,
+                                  struct LIN_(lin_shear) sh, LM touch,
+                                  double dt, const struct dem_tangential *T,
+                                  double ik, int branch, LV ft[3])
 {
     struct LIN_(lin_trial) t;
-    const int slid = LIN_(lin_test)(q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz,
-                                    fc, sh, touch, dt, T, branch, &t);
-    LIN_(lin_settle)(q, k, touch, T, ik, branch, !branch || slid, &t, ft);
+    const int slid = LIN_(lin_test)(plane, q, k, nx, ny, nz, vx, vy, vz, hx, hy,
+                                    hz, fc, sh, touch, dt, T, branch, &t);
+    LIN_(lin_settle)
+    (plane, q, k, touch, T, ik, branch, !branch || slid, &t, ft);
     return slid;
 }
 
 /* The force records of the LIN_W contacts into F[0..LIN_W)
  * (finish_contact): f = f_n n + f_t and c = n x f_t, zero where the gap
- * is open; f also into f. */
-DEM_INLINE void LIN_(lin_records)(struct dem_contact_force *F, LV fn, LV nx,
-                                  LV ny, LV nz, const LV ft[3], LM touch,
-                                  LV f[3])
+ * is open; f also into f. In 2D (plane) f_z, c_x and c_y are 0. */
+DEM_INLINE void LIN_(lin_records)(const int plane, struct dem_contact_force *F,
+                                  LV fn, LV nx, LV ny, LV nz, const LV ft[3],
+                                  LM touch, LV f[3])
 {
+    const LV zero = LV_ZERO();
     f[0] = LV_KEEP(LV_ADD(LV_MUL(fn, nx), ft[0]), touch);
     f[1] = LV_KEEP(LV_ADD(LV_MUL(fn, ny), ft[1]), touch);
-    f[2] = LV_KEEP(LV_ADD(LV_MUL(fn, nz), ft[2]), touch);
+    f[2] = plane ? zero : LV_KEEP(LV_ADD(LV_MUL(fn, nz), ft[2]), touch);
     const LV r[6] = {
         f[0],
         f[1],
         f[2],
-        LV_KEEP(LV_SUB(LV_MUL(ny, ft[2]), LV_MUL(nz, ft[1])), touch),
-        LV_KEEP(LV_SUB(LV_MUL(nz, ft[0]), LV_MUL(nx, ft[2])), touch),
+        plane ? zero
+              : LV_KEEP(LV_SUB(LV_MUL(ny, ft[2]), LV_MUL(nz, ft[1])), touch),
+        plane ? zero
+              : LV_KEEP(LV_SUB(LV_MUL(nz, ft[0]), LV_MUL(nx, ft[2])), touch),
         LV_KEEP(LV_SUB(LV_MUL(nx, ft[1]), LV_MUL(ny, ft[0])), touch)};
     LIN_(lin_store_forces)(F, r);
 }
@@ -549,7 +569,7 @@ DEM_INLINE LV LIN_(lin_normal)(const int law, const struct pass *q, int k,
     sh->kt = LV_SET1(T->kt);
     sh->gt = LV_SET1(T->gamma_t);
     sh->vary = 0;
-    if (law == DEM_NORMAL_HERTZ) {
+    if ((law & DEM_SET_NORMAL) == DEM_NORMAL_HERTZ) {
         /* dem_model_hertz_force and _shear, their roots shared */
         const LV d = LV_MAX(delta, zero); /* delta > 0 ? delta : 0 */
         const LV ra = LV_SQRT(a12), sd = LV_SQRT(d), qd = LV_SQRT(sd),
@@ -563,7 +583,7 @@ DEM_INLINE LV LIN_(lin_normal)(const int law, const struct pass *q, int k,
         sh->vary = 1;
         return fn;
     }
-    if (law == DEM_NORMAL_LUDING) {
+    if ((law & DEM_SET_NORMAL) == DEM_NORMAL_LUDING) {
         LV dm = LV_LOADU(q->dmax + k);
         const LV fn = LV_ADD(LIN_(lin_luding)(cp, delta, a12, touch, &dm),
                              LV_MUL(gn, ddot));
@@ -606,51 +626,64 @@ DEM_INLINE int LIN_(lin_pair_test)(const int law, const struct pass *q, int k,
         pi[l] = rec + DEM_REC * (size_t)q->ci[k + l];
         pj[l] = rec + DEM_REC * (size_t)q->cjr[k + l - q->roff];
     }
-    const LV one = LV_SET1(1.0), sign = LV_SET1(-0.0);
+    const LV one = LV_SET1(1.0), sign = LV_SET1(-0.0), zero = LV_ZERO();
+    /* in 2D every z term left out, as pair_vals */
+    const int plane = (law & DEM_SET_PLANE) != 0;
     LV xi[4], xj[4];
     LIN_(lin_rows)(pi, 0, xi);
     LIN_(lin_rows)(pj, 0, xj);
     LV dx = LV_SUB(xi[0], xj[0]), dy = LV_SUB(xi[1], xj[1]),
-       dz = LV_SUB(xi[2], xj[2]);
+       dz = plane ? zero : LV_SUB(xi[2], xj[2]);
     const LV R = LV_ADD(xi[3], xj[3]);
     if (fm) { /* from the frame to the cell now */
-        const LV ex = LIN_(lin_dot)(LV_SET1(fm[0]), LV_SET1(fm[1]),
-                                    LV_SET1(fm[2]), dx, dy, dz),
-                 ey = LV_ADD(LV_MUL(LV_SET1(fm[3]), dy),
-                             LV_MUL(LV_SET1(fm[4]), dz));
-        dz = LV_MUL(LV_SET1(fm[5]), dz);
+        const LV ex = LIN_(lin_dot_in)(plane, LV_SET1(fm[0]), LV_SET1(fm[1]),
+                                       LV_SET1(fm[2]), dx, dy, dz),
+                 ey = plane ? LV_MUL(LV_SET1(fm[3]), dy)
+                            : LV_ADD(LV_MUL(LV_SET1(fm[3]), dy),
+                                     LV_MUL(LV_SET1(fm[4]), dz));
+        dz = plane ? zero : LV_MUL(LV_SET1(fm[5]), dz);
         dx = ex;
         dy = ey;
     }
-    const LV d2 = LIN_(lin_dot)(dx, dy, dz, dx, dy, dz);
+    const LV d2 = LIN_(lin_dot_in)(plane, dx, dy, dz, dx, dy, dz);
     const LV d = LV_SQRT(d2);
     g->touch = LV_CMP(d2, LV_MUL(R, R), _CMP_LT_OQ);
     LV wi[4], wj[4];
     LIN_(lin_rows)(pi, 8, wi);
     LIN_(lin_rows)(pj, 8, wj);
-    const LV cwx = LV_ADD(LV_MUL(xi[3], wi[0]), LV_MUL(xj[3], wj[0])),
-             cwy = LV_ADD(LV_MUL(xi[3], wi[1]), LV_MUL(xj[3], wj[1])),
+    const LV cwx = plane ? zero
+                         : LV_ADD(LV_MUL(xi[3], wi[0]), LV_MUL(xj[3], wj[0])),
+             cwy = plane ? zero
+                         : LV_ADD(LV_MUL(xi[3], wi[1]), LV_MUL(xj[3], wj[1])),
              cwz = LV_ADD(LV_MUL(xi[3], wi[2]), LV_MUL(xj[3], wj[2]));
     const LV id = LV_DIV(one, d);
     LV vi[4], vj[4];
     LIN_(lin_rows)(pi, 4, vi);
     LIN_(lin_rows)(pj, 4, vj);
     const LV dvx = LV_SUB(vi[0], vj[0]), dvy = LV_SUB(vi[1], vj[1]),
-             dvz = LV_SUB(vi[2], vj[2]);
+             dvz = plane ? zero : LV_SUB(vi[2], vj[2]);
     const LV hx = LV_LOADU(q->xi_x + k), hy = LV_LOADU(q->xi_y + k),
-             hz = LV_LOADU(q->xi_z + k);
-    const LV nx = LV_MUL(dx, id), ny = LV_MUL(dy, id), nz = LV_MUL(dz, id);
-    LV vx = LV_SUB(LV_ADD(dvx, LV_MUL(ny, cwz)), LV_MUL(nz, cwy)),
-       vy = LV_SUB(LV_ADD(dvy, LV_MUL(nz, cwx)), LV_MUL(nx, cwz)),
-       vz = LV_SUB(LV_ADD(dvz, LV_MUL(nx, cwy)), LV_MUL(ny, cwx));
+             hz = plane ? zero : LV_LOADU(q->xi_z + k);
+    const LV nx = LV_MUL(dx, id), ny = LV_MUL(dy, id),
+             nz = plane ? zero : LV_MUL(dz, id);
+    LV vx = plane ? LV_ADD(dvx, LV_MUL(ny, cwz))
+                  : LV_SUB(LV_ADD(dvx, LV_MUL(ny, cwz)), LV_MUL(nz, cwy)),
+       vy = plane ? LV_SUB(dvy, LV_MUL(nx, cwz))
+                  : LV_SUB(LV_ADD(dvy, LV_MUL(nz, cwx)), LV_MUL(nx, cwz)),
+       vz =
+           plane ? zero : LV_SUB(LV_ADD(dvz, LV_MUL(nx, cwy)), LV_MUL(ny, cwx));
     if (grad) { /* the cell's affine velocity, grad b */
-        vx = LV_ADD(vx, LIN_(lin_dot)(LV_SET1(grad[0]), LV_SET1(grad[1]),
-                                      LV_SET1(grad[2]), dx, dy, dz));
-        vy = LV_ADD(vy, LV_ADD(LV_MUL(LV_SET1(grad[3]), dy),
-                               LV_MUL(LV_SET1(grad[4]), dz)));
-        vz = LV_ADD(vz, LV_MUL(LV_SET1(grad[5]), dz));
+        vx = LV_ADD(vx,
+                    LIN_(lin_dot_in)(plane, LV_SET1(grad[0]), LV_SET1(grad[1]),
+                                     LV_SET1(grad[2]), dx, dy, dz));
+        vy = LV_ADD(vy, plane ? LV_MUL(LV_SET1(grad[3]), dy)
+                              : LV_ADD(LV_MUL(LV_SET1(grad[3]), dy),
+                                       LV_MUL(LV_SET1(grad[4]), dz)));
+        if (!plane)
+            vz = LV_ADD(vz, LV_MUL(LV_SET1(grad[5]), dz));
     }
-    const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
+    const LV ddot =
+        LV_XOR(sign, LIN_(lin_dot_in)(plane, vx, vy, vz, nx, ny, nz));
     LV fc;
     struct LIN_(lin_shear) sh;
     g->fn = LIN_(lin_normal)(
@@ -659,21 +692,21 @@ DEM_INLINE int LIN_(lin_pair_test)(const int law, const struct pass *q, int k,
     g->nx = nx;
     g->ny = ny;
     g->nz = nz;
-    return LIN_(lin_test)(q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz, fc, sh,
-                          g->touch, dt, T, branch, &g->t);
+    return LIN_(lin_test)(plane, q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz, fc,
+                          sh, g->touch, dt, T, branch, &g->t);
 }
 
 /* The rest of the pairs of g from k (lin_settle), and their force
  * records into F[0..LIN_W). */
-DEM_INLINE void LIN_(lin_pair_settle)(const struct pass *q, int k,
-                                      const struct dem_tangential *T, double ik,
-                                      int branch, int sliding,
+DEM_INLINE void LIN_(lin_pair_settle)(const int plane, const struct pass *q,
+                                      int k, const struct dem_tangential *T,
+                                      double ik, int branch, int sliding,
                                       struct LIN_(lin_pg) * g,
                                       struct dem_contact_force *F)
 {
     LV ft[3], f[3];
-    LIN_(lin_settle)(q, k, g->touch, T, ik, branch, sliding, &g->t, ft);
-    LIN_(lin_records)(F, g->fn, g->nx, g->ny, g->nz, ft, g->touch, f);
+    LIN_(lin_settle)(plane, q, k, g->touch, T, ik, branch, sliding, &g->t, ft);
+    LIN_(lin_records)(plane, F, g->fn, g->nx, g->ny, g->nz, ft, g->touch, f);
 }
 
 /* Pairs k..k+LIN_W of q, their particles' records in rec: forces into
@@ -692,7 +725,8 @@ DEM_INLINE int LIN_(lin_pairs)(const int law, const struct pass *q, int k,
     struct LIN_(lin_pg) g;
     const int slid =
         LIN_(lin_pair_test)(law, q, k, rec, cp, fm, grad, dt, T, branch, &g);
-    LIN_(lin_pair_settle)(q, k, T, ik, branch, !branch || slid, &g, F);
+    LIN_(lin_pair_settle)
+    ((law & DEM_SET_PLANE) != 0, q, k, T, ik, branch, !branch || slid, &g, F);
     return slid != 0;
 }
 
@@ -715,9 +749,10 @@ DEM_INLINE int LIN_(lin_pairs2)(const int law, const struct pass *q, int k,
         LIN_(lin_pair_test)(law, q, k, rec, cp, fm, grad, dt, T, branch, &g0);
     const int s1 = LIN_(lin_pair_test)(law, q, k + LIN_W, rec, cp, fm, grad, dt,
                                        T, branch, &g1);
-    const int sliding = !branch || s0 || s1;
-    LIN_(lin_pair_settle)(q, k, T, ik, branch, sliding, &g0, F);
-    LIN_(lin_pair_settle)(q, k + LIN_W, T, ik, branch, sliding, &g1, F + LIN_W);
+    const int sliding = !branch || s0 || s1, plane = (law & DEM_SET_PLANE) != 0;
+    LIN_(lin_pair_settle)(plane, q, k, T, ik, branch, sliding, &g0, F);
+    LIN_(lin_pair_settle)
+    (plane, q, k + LIN_W, T, ik, branch, sliding, &g1, F + LIN_W);
     return (s0 | s1) != 0;
 }
 
@@ -738,49 +773,57 @@ DEM_INLINE int LIN_(lin_walls)(const int law, const struct pass *q, int k,
         pw[l] = wr + DEM_REC * (size_t)q->cj[k + l];
     }
     const LV zero = LV_ZERO(), sign = LV_SET1(-0.0);
+    /* in 2D every z term left out, as wall_vals */
+    const int plane = (law & DEM_SET_PLANE) != 0;
     /* the overlap: a_i - sgn (x_a - pos), x_a picked by products */
     LV xi[4], wa[4], wn[4];
     LIN_(lin_rows)(pi, 0, xi);
     LIN_(lin_rows)(pw, 0, wa);
     LIN_(lin_rows)(pw, 4, wn);
-    const LV pa = LV_ADD(LV_ADD(LV_MUL(wa[0], xi[0]), LV_MUL(wa[1], xi[1])),
-                         LV_MUL(wa[2], xi[2]));
+    const LV pa =
+        LIN_(lin_dot_in)(plane, wa[0], wa[1], wa[2], xi[0], xi[1], xi[2]);
     const LV delta = LV_SUB(xi[3], LV_MUL(wa[3], LV_SUB(pa, wn[0])));
     const LM touch = LV_CMP(delta, zero, _CMP_GT_OQ);
-    const LV nx = wn[1], ny = wn[2], nz = wn[3];
+    const LV nx = wn[1], ny = wn[2], nz = plane ? zero : wn[3];
     /* the contact's velocity, less the wall's */
     LV wi[4], vi[4], vw[4];
     LIN_(lin_rows)(pi, 8, wi);
     LIN_(lin_rows)(pi, 4, vi);
     LIN_(lin_rows)(pw, 8, vw);
-    const LV cwx = LV_MUL(xi[3], wi[0]), cwy = LV_MUL(xi[3], wi[1]),
+    const LV cwx = plane ? zero : LV_MUL(xi[3], wi[0]),
+             cwy = plane ? zero : LV_MUL(xi[3], wi[1]),
              cwz = LV_MUL(xi[3], wi[2]);
-    const LV vx =
-                 LV_SUB(LV_SUB(LV_ADD(vi[0], LV_MUL(ny, cwz)), LV_MUL(nz, cwy)),
-                        vw[0]),
-             vy =
-                 LV_SUB(LV_SUB(LV_ADD(vi[1], LV_MUL(nz, cwx)), LV_MUL(nx, cwz)),
-                        vw[1]),
-             vz =
-                 LV_SUB(LV_SUB(LV_ADD(vi[2], LV_MUL(nx, cwy)), LV_MUL(ny, cwx)),
-                        vw[2]);
+    const LV vx = plane ? LV_SUB(LV_ADD(vi[0], LV_MUL(ny, cwz)), vw[0])
+                        : LV_SUB(LV_SUB(LV_ADD(vi[0], LV_MUL(ny, cwz)),
+                                        LV_MUL(nz, cwy)),
+                                 vw[0]),
+             vy = plane ? LV_SUB(LV_SUB(vi[1], LV_MUL(nx, cwz)), vw[1])
+                        : LV_SUB(LV_SUB(LV_ADD(vi[1], LV_MUL(nz, cwx)),
+                                        LV_MUL(nx, cwz)),
+                                 vw[1]),
+             vz = plane ? zero
+                        : LV_SUB(LV_SUB(LV_ADD(vi[2], LV_MUL(nx, cwy)),
+                                        LV_MUL(ny, cwx)),
+                                 vw[2]);
     const LV hx = LV_LOADU(q->xi_x + k), hy = LV_LOADU(q->xi_y + k),
-             hz = LV_LOADU(q->xi_z + k);
-    const LV ddot = LV_XOR(sign, LIN_(lin_dot)(vx, vy, vz, nx, ny, nz));
+             hz = plane ? zero : LV_LOADU(q->xi_z + k);
+    const LV ddot =
+        LV_XOR(sign, LIN_(lin_dot_in)(plane, vx, vy, vz, nx, ny, nz));
     LV fc;
     struct LIN_(lin_shear) sh;
     const LV fn = LIN_(lin_normal)(law, q, k, cp, T, delta, ddot, xi[3], vi[3],
                                    touch, &fc, &sh);
     LV ft[3], f[3];
     const int slid =
-        LIN_(lin_friction)(q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz, fc, sh,
-                           touch, dt, T, ik, branch, ft);
-    LIN_(lin_records)(F, fn, nx, ny, nz, ft, touch, f);
+        LIN_(lin_friction)(plane, q, k, nx, ny, nz, vx, vy, vz, hx, hy, hz, fc,
+                           sh, touch, dt, T, ik, branch, ft);
+    LIN_(lin_records)(plane, F, fn, nx, ny, nz, ft, touch, f);
     /* the force on the wall along its axis, outward positive: sgn times
      * the record's component along it */
     const LV fa =
-        LV_BLEND(LV_BLEND(f[2], f[1], LV_CMP(wa[1], zero, _CMP_NEQ_OQ)), f[0],
-                 LV_CMP(wa[0], zero, _CMP_NEQ_OQ));
+        plane ? LV_BLEND(f[1], f[0], LV_CMP(wa[0], zero, _CMP_NEQ_OQ))
+              : LV_BLEND(LV_BLEND(f[2], f[1], LV_CMP(wa[1], zero, _CMP_NEQ_OQ)),
+                         f[0], LV_CMP(wa[0], zero, _CMP_NEQ_OQ));
     LV_STOREU(q->A + k, LV_MUL(wa[3], fa));
     return slid != 0;
 }

@@ -519,7 +519,8 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
             for (int g = 0; g < DEM_PAIR_LANES; g += LIN_PAIRS)
                 lin_skip_count(&skip,
                                lin_pair_groups(
-                                   law & DEM_SET_NORMAL, &q, k + g, rec, cp,
+                                   law & (DEM_SET_NORMAL | DEM_SET_PLANE), &q,
+                                   k + g, rec, cp,
                                    law & DEM_SET_PERIODIC ? fm : NULL,
                                    law & DEM_SET_PERIODIC ? grad : NULL, dt, &T,
                                    ik, q.F + (k + g - q.foff), skip.branch));
@@ -575,9 +576,10 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
         lin_wall_rows(walls, wr);
         struct lin_skip skip = {1, 0, 0};
         for (; k + LIN_W <= k1; k += LIN_W)
-            lin_skip_count(&skip, lin_walls(law & DEM_SET_NORMAL, &q, k, rec,
-                                            wr, cp, dt, &T, ik,
-                                            q.F + (k - q.foff), skip.branch));
+            lin_skip_count(&skip,
+                           lin_walls(law & (DEM_SET_NORMAL | DEM_SET_PLANE), &q,
+                                     k, rec, wr, cp, dt, &T, ik,
+                                     q.F + (k - q.foff), skip.branch));
     }
 #endif
 #if DEM_PASS_RECORDS

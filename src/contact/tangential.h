@@ -52,23 +52,28 @@ struct dem_tangential {
  * to now, v the relative velocity it acts against; returns the force
  * -k s - gamma v when its size is within the limit (static, or a sliding
  * contact back below mu_d f_c), else mu_d fc along it with the spring that
- * gives that force. *xi gets the spring to keep, *state the slip bit. */
+ * gives that force. *xi gets the spring to keep, *state the slip bit.
+ * With plane (a literal) s and v lie in the x-y plane (a 2D sample,
+ * DEM_SET_PLANE): sz and vz are not read, and the z of the force and of
+ * *xi are 0, as they come out in 3D (the same bits). */
 static inline struct dem_vec3
-dem_coulomb_spring(double sx, double sy, double sz, double vx, double vy,
-                   double vz, double fc, const struct dem_tangential *T,
-                   struct dem_vec3 *xi, int *state, int slip_bit)
+dem_coulomb_spring_in(const int plane, double sx, double sy, double sz,
+                      double vx, double vy, double vz, double fc,
+                      const struct dem_tangential *T, struct dem_vec3 *xi,
+                      int *state, int slip_bit)
 {
     const double f0x = -T->kt * sx - T->gamma_t * vx;
     const double f0y = -T->kt * sy - T->gamma_t * vy;
-    const double f0z = -T->kt * sz - T->gamma_t * vz;
-    const double f0sq = f0x * f0x + f0y * f0y + f0z * f0z;
+    const double f0z = plane ? 0.0 : -T->kt * sz - T->gamma_t * vz;
+    const double f0sq =
+        plane ? f0x * f0x + f0y * f0y : f0x * f0x + f0y * f0y + f0z * f0z;
     const int sliding = (*state & slip_bit) != 0;
     const double limit = (sliding ? T->mu_d : T->mu_s) * fc;
     /* static friction; a sliding contact sticks again here */
     struct dem_vec3 ft = {f0x, f0y, f0z};
     xi->x = sx;
     xi->y = sy;
-    xi->z = sz;
+    xi->z = plane ? 0.0 : sz;
     *state &= ~slip_bit;
     if (f0sq > limit * limit || limit <= 0.0) {
         /* sliding at mu_d f_C along the test force, with the spring that
@@ -79,13 +84,31 @@ dem_coulomb_spring(double sx, double sy, double sz, double vx, double vy,
         const double ik = T->kt > 0.0 ? 1.0 / T->kt : 0.0;
         ft.x = f0x * scale;
         ft.y = f0y * scale;
-        ft.z = f0z * scale;
+        ft.z = plane ? 0.0 : f0z * scale;
         xi->x = -ik * (ft.x + T->gamma_t * vx);
         xi->y = -ik * (ft.y + T->gamma_t * vy);
-        xi->z = -ik * (ft.z + T->gamma_t * vz);
+        xi->z = plane ? 0.0 : -ik * (ft.z + T->gamma_t * vz);
         *state |= slip_bit;
     }
     return ft;
+}
+
+/* dem_coulomb_spring_in in 3D. */
+static inline struct dem_vec3
+dem_coulomb_spring(double sx, double sy, double sz, double vx, double vy,
+                   double vz, double fc, const struct dem_tangential *T,
+                   struct dem_vec3 *xi, int *state, int slip_bit)
+{
+    return dem_coulomb_spring_in(0, sx, sy, sz, vx, vy, vz, fc, T, xi, state,
+                                 slip_bit);
+}
+
+/* a . b, in the plane (plane, a literal: a.z = b.z = 0) without its
+ * z term: the same value. */
+static inline double dem_dot_in(const int plane, struct dem_vec3 a,
+                                struct dem_vec3 b)
+{
+    return plane ? a.x * b.x + a.y * b.y : a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
 /* Tangential force of one contact, returned (force on i, N).
@@ -96,26 +119,37 @@ dem_coulomb_spring(double sx, double sy, double sz, double vx, double vy,
  *   xi    in: stored spring xi' of the last step; out: the spring at the
  *         time of this force (stored for the next step), m
  *   state in/out: DEM_CONTACT_SLIDING bit
+ *   plane (a literal) n, vij and xi in the x-y plane (2D): their z
+ *         terms left out, the same bits (dem_coulomb_spring_in)
  * In a loop run in SIMD lanes the compiler computes the sliding case
  * under a mask; scalar code branches past it (most contacts stick).
  */
+static inline struct dem_vec3
+dem_tangential_force_in(const int plane, struct dem_vec3 n, struct dem_vec3 vij,
+                        double fc, double dt, const struct dem_tangential *T,
+                        struct dem_vec3 *xi, int *state)
+{
+    const double nv = dem_dot_in(plane, n, vij);
+    const double vtx = vij.x - n.x * nv;
+    const double vty = vij.y - n.y * nv;
+    const double vtz = plane ? 0.0 : vij.z - n.z * nv;
+    /* the spring at the time of the force: projected, then stretched by
+     * this step's tangential displacement */
+    const double nxi = dem_dot_in(plane, n, *xi);
+    const double sx = xi->x - n.x * nxi + vtx * dt;
+    const double sy = xi->y - n.y * nxi + vty * dt;
+    const double sz = plane ? 0.0 : xi->z - n.z * nxi + vtz * dt;
+    return dem_coulomb_spring_in(plane, sx, sy, sz, vtx, vty, vtz, fc, T, xi,
+                                 state, DEM_CONTACT_SLIDING);
+}
+
+/* dem_tangential_force_in in 3D. */
 static inline struct dem_vec3
 dem_tangential_force(struct dem_vec3 n, struct dem_vec3 vij, double fc,
                      double dt, const struct dem_tangential *T,
                      struct dem_vec3 *xi, int *state)
 {
-    const double nv = n.x * vij.x + n.y * vij.y + n.z * vij.z;
-    const double vtx = vij.x - n.x * nv;
-    const double vty = vij.y - n.y * nv;
-    const double vtz = vij.z - n.z * nv;
-    /* the spring at the time of the force: projected, then stretched by
-     * this step's tangential displacement */
-    const double nxi = n.x * xi->x + n.y * xi->y + n.z * xi->z;
-    const double sx = xi->x - n.x * nxi + vtx * dt;
-    const double sy = xi->y - n.y * nxi + vty * dt;
-    const double sz = xi->z - n.z * nxi + vtz * dt;
-    return dem_coulomb_spring(sx, sy, sz, vtx, vty, vtz, fc, T, xi, state,
-                              DEM_CONTACT_SLIDING);
+    return dem_tangential_force_in(0, n, vij, fc, dt, T, xi, state);
 }
 
 /* Elastic energy of the tangential spring, J. */

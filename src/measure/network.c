@@ -6,11 +6,18 @@
 
 #include "contact/state.h"
 
+/* v, or +0 for -0: the outputs write a zero as 0 (a 2D sample's z
+ * values, a spring whose contact swapped its particles) */
+static double plus_zero(double v)
+{
+    return v + 0.0;
+}
+
 static void split(struct dem_network_contact *c, const double f[3])
 {
     c->fn = f[0] * c->n[0] + f[1] * c->n[1] + f[2] * c->n[2];
     for (int a = 0; a < 3; a++)
-        c->ft[a] = f[a] - c->fn * c->n[a];
+        c->ft[a] = plus_zero(f[a] - c->fn * c->n[a]);
 }
 
 /* Entry k of list L's history values into c->h (those of hist, 0 else). */
@@ -19,7 +26,7 @@ static void history(struct dem_network_contact *c,
 {
     int q = 0;
 #define HIST_TAKE_(MODEL, name, unit, swap, doc)                               \
-    c->h[q] = hist >> q & 1u ? L->name[k] : 0.0;                               \
+    c->h[q] = hist >> q & 1u ? plus_zero(L->name[k]) : 0.0;                    \
     q++;
     DEM_CONTACT_HISTORY(HIST_TAKE_)
 #undef HIST_TAKE_
@@ -57,8 +64,8 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         const double ri[3] = {P->x[i], P->y[i], P->z[i]};
         for (int a = 0; a < 3; a++) {
             c->b[a] = b[a];
-            c->n[a] = b[a] / d;
-            c->x[a] = ri[a] - (P->r[i] - 0.5 * c->delta) * c->n[a];
+            c->n[a] = plus_zero(b[a] / d);
+            c->x[a] = plus_zero(ri[a] - (P->r[i] - 0.5 * c->delta) * c->n[a]);
         }
         split(c, s->pairs.f.v[k].f);
         c->sliding = (L->state[k] & DEM_CONTACT_SLIDING) != 0;
