@@ -293,17 +293,20 @@ DEM_INLINE void transpose4(const double *const a[4], double *const r[4],
 /* Particles i0 <= i < i1 into the records from o on (particle i's at
  * o + DEM_REC (i - i0)), four at a time by transposes; with stream (a
  * literal) past the caches, for ghost records (neighbor/blocks.h: the
- * caller fences). */
+ * caller fences). With plane (a literal: a 2D sample, whose passes never
+ * read z, v_z, w_x and w_y) those are written 0 without reading their
+ * arrays. */
 DEM_INLINE void records_fill(double *restrict o, const struct dem_particles *P,
-                             int i0, int i1, const int stream)
+                             int i0, int i1, const int stream, const int plane)
 {
     static const double zero[4] = {0.0};
     int i = i0;
     for (; i + 4 <= i1; i += 4, o += 4 * DEM_REC) {
         const double *const a[3][4] = {
-            {P->x + i, P->y + i, P->z + i, P->r + i},
-            {P->vx + i, P->vy + i, P->vz + i, P->m + i},
-            {P->wx + i, P->wy + i, P->wz + i, zero}};
+            {P->x + i, P->y + i, plane ? zero : P->z + i, P->r + i},
+            {P->vx + i, P->vy + i, plane ? zero : P->vz + i, P->m + i},
+            {plane ? zero : P->wx + i, plane ? zero : P->wy + i, P->wz + i,
+             zero}};
         for (int b = 0; b < 3; b++) {
             double *const r[4] = {o + 4 * b, o + DEM_REC + 4 * b,
                                   o + 2 * DEM_REC + 4 * b,
@@ -312,9 +315,18 @@ DEM_INLINE void records_fill(double *restrict o, const struct dem_particles *P,
         }
     }
     for (; i < i1; i++, o += DEM_REC) {
-        _Alignas(32) const double v[DEM_REC] = {
-            P->x[i],  P->y[i], P->z[i],  P->r[i],  P->vx[i], P->vy[i],
-            P->vz[i], P->m[i], P->wx[i], P->wy[i], P->wz[i], 0.0};
+        _Alignas(32) const double v[DEM_REC] = {P->x[i],
+                                                P->y[i],
+                                                plane ? 0.0 : P->z[i],
+                                                P->r[i],
+                                                P->vx[i],
+                                                P->vy[i],
+                                                plane ? 0.0 : P->vz[i],
+                                                P->m[i],
+                                                plane ? 0.0 : P->wx[i],
+                                                plane ? 0.0 : P->wy[i],
+                                                P->wz[i],
+                                                0.0};
         for (int u = 0; u < DEM_REC; u += 2) {
             const dem_v2 w = *(const dem_v2 *)(const void *)(v + u);
             if (stream)
@@ -325,11 +337,12 @@ DEM_INLINE void records_fill(double *restrict o, const struct dem_particles *P,
     }
 }
 
-/* Particles i0 <= i < i1 into their records (struct contacts.rec). */
+/* Particles i0 <= i < i1 into their records (struct contacts.rec); plane
+ * as records_fill's. */
 DEM_INLINE void records_own(double *rec, const struct dem_particles *P, int i0,
-                            int i1)
+                            int i1, const int plane)
 {
-    records_fill(rec + DEM_REC * (size_t)i0, P, i0, i1, 0);
+    records_fill(rec + DEM_REC * (size_t)i0, P, i0, i1, 0, plane);
 }
 
 /* In a periodic cell, the image records of the pairs k0 <= k < k1 that
@@ -865,13 +878,16 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
          * starts' lines of 16 ints are asked for twice) */
         if (ahead && K.chain && i % 8 == 0 && i + ahead < Q.n) {
             const int u = i + ahead;
-            const double *const in[] = {Q.x0, Q.y0, Q.z0,    Q.r,
-                                        Q.m,  Q.inv_m, Q.inv_I, Q.reach};
-            double *const out[] = {Q.x,  Q.y,  Q.z,  Q.vx, Q.vy,
-                                   Q.vz, Q.wx, Q.wy, Q.wz};
-            for (int e = 0; e < (int)(sizeof in / sizeof *in); e++)
+            /* (in 2D those of z, v_z, w_x, w_y, last, are not used) */
+            const double *const in[] = {Q.x0,    Q.y0,    Q.r,     Q.m,
+                                        Q.inv_m, Q.inv_I, Q.reach, Q.z0};
+            double *const out[] = {Q.x, Q.y,  Q.vx, Q.vy, Q.wz,
+                                   Q.z, Q.vz, Q.wx, Q.wy};
+            const int nin = (int)(sizeof in / sizeof *in) - plane,
+                      nout = (int)(sizeof out / sizeof *out) - 4 * plane;
+            for (int e = 0; e < nin; e++)
                 __builtin_prefetch(in[e] + u, 0, 3);
-            for (int e = 0; e < (int)(sizeof out / sizeof *out); e++)
+            for (int e = 0; e < nout; e++)
                 __builtin_prefetch(out[e] + u, 1, 3);
             __builtin_prefetch(start + u, 0, 3);
             __builtin_prefetch(rstart + u, 0, 3);
@@ -1043,13 +1059,13 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
             }
 #if DEM_PASS_RECORDS
             /* the next pass reads the block's records as they are now */
-            records_own(rec, &Q, ib, ib + b + 1);
+            records_own(rec, &Q, ib, ib + b + 1, plane);
             for (int r = 0; O && r < 2; r++) { /* and its ghost records */
                 const int lo = ib > O->lo[r] ? ib : O->lo[r],
                           hi = ib + b + 1 < O->hi[r] ? ib + b + 1 : O->hi[r];
                 const size_t at = (size_t)(O->at[r] + lo - O->lo[r]);
                 if (lo < hi)
-                    records_fill(O->ghost + DEM_REC * at, &Q, lo, hi, 1);
+                    records_fill(O->ghost + DEM_REC * at, &Q, lo, hi, 1, plane);
             }
 #endif
         }
@@ -1225,17 +1241,18 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
 {
     const struct dem_blocks *B = c->blocks;
     const struct dem_block *k = &B->t[t];
-    const int h = B->half, s = k->g > k->d ? k->g : k->d;
+    const int h = B->half, s = k->g > k->d ? k->g : k->d,
+              plane = (law & DEM_SET_PLANE) != 0;
     double *ghosts = c->rec + DEM_REC * (size_t)B->base;
     if (!c->blocks_fresh) {
         /* the records it reads of its own particles and of the others
          * (from the arrays: the state now), the twins' history from the
          * list, before any thread changes it */
         if (!c->rec_fresh)
-            records_own(c->rec, c->P, k->a, k->b);
+            records_own(c->rec, c->P, k->a, k->b, plane);
         double *g = ghosts + DEM_REC * (size_t)h * (size_t)B->ng;
-        records_fill(g + DEM_REC * (size_t)k->ga, c->P, k->a, k->d, 0);
-        records_fill(g + DEM_REC * (size_t)k->gg, c->P, s, k->b, 0);
+        records_fill(g + DEM_REC * (size_t)k->ga, c->P, k->a, k->d, 0, plane);
+        records_fill(g + DEM_REC * (size_t)k->gg, c->P, s, k->b, 0, plane);
         const int *rpair = c->pl->rpair;
         for (int u = k->q0; u < k->q1; u++) {
             const int v = k->tw[u - k->q0], p = rpair[u];
@@ -1319,7 +1336,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     const int f0 = c->rec_fresh ? c->n : 0, nf = c->P->n - f0;
     if (nf > 0) {
         records_own(c->rec, c->P, f0 + dem_block(nf, t, nt),
-                    f0 + dem_block(nf, t + 1, nt));
+                    f0 + dem_block(nf, t + 1, nt), (law & DEM_SET_PLANE) != 0);
 #pragma omp barrier
     }
 #endif
