@@ -1020,14 +1020,10 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         /* the block's kicks and drifts, in SIMD lanes */
         if (K.on && !K.chain) {
 #pragma omp simd
-            for (int u = 0; u <= b; u++) {
-                if (plane)
-                    dem_particle_kick_plane(&Q, ib + u, K.h, hg, bf[0][u],
-                                            bf[1][u], bf[5][u]);
-                else
-                    dem_particle_kick(&Q, ib + u, K.h, hg, bf[0][u], bf[1][u],
-                                      bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
-            }
+            for (int u = 0; u <= b; u++)
+                dem_particle_kick(plane, &Q, ib + u, K.h, hg, bf[0][u],
+                                  bf[1][u], bf[2][u], bf[3][u], bf[4][u],
+                                  bf[5][u]);
         }
         if (K.chain) {
             /* the box's map since the build (walls), loaded where the
@@ -1037,23 +1033,13 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
 #pragma omp simd reduction(max : far)
             for (int u = 0; u <= b; u++) {
                 const int k = ib + u;
-                double d2;
-                if (plane) {
-                    dem_particle_kick_plane(&Q, k, K.h, hg, bf[0][u], bf[1][u],
-                                            bf[5][u]);
-                    dem_particle_kick_plane(&Q, k, K.h, hg, bf[0][u], bf[1][u],
-                                            bf[5][u]);
-                    d2 = cell ? dem_particle_drift_frame_plane(&Q, k, K.dt, fi,
-                                                               s2)
-                              : dem_particle_drift_plane(&Q, k, K.dt, bb);
-                } else {
-                    dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u],
-                                      bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
-                    dem_particle_kick(&Q, k, K.h, hg, bf[0][u], bf[1][u],
-                                      bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
-                    d2 = cell ? dem_particle_drift_frame(&Q, k, K.dt, fi, s2)
-                              : dem_particle_drift(&Q, k, K.dt, bb);
-                }
+                dem_particle_kick(plane, &Q, k, K.h, hg, bf[0][u], bf[1][u],
+                                  bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
+                dem_particle_kick(plane, &Q, k, K.h, hg, bf[0][u], bf[1][u],
+                                  bf[2][u], bf[3][u], bf[4][u], bf[5][u]);
+                const double d2 =
+                    cell ? dem_particle_drift_frame(plane, &Q, k, K.dt, fi, s2)
+                         : dem_particle_drift(plane, &Q, k, K.dt, bb);
                 const double o = dem_particle_overshoot(&Q, k, d2, K.cut);
                 far = o > far ? o : far;
             }

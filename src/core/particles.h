@@ -87,88 +87,70 @@ void dem_particles_permute(struct dem_particles *p, const int *old_of,
 /* Velocity Verlet for particle i, written once for every pass that moves
  * particles (so that a step done in one pass or in two gives the same
  * numbers bit for bit). Half kick by force f and torque t:
- * v += h f/m + hg, w += h t/I, with h = dt/2 and hg = h g. */
-static inline void dem_particle_kick(const struct dem_particles *p, int i,
+ * v += h f/m + hg, w += h t/I, with h = dt/2 and hg = h g. With plane (a
+ * literal: a 2D sample, whose v_z, w_x and w_y stay zero, and so do f_z,
+ * t_x and t_y) only v_x, v_y and w_z are kicked: the same bits. */
+static inline void dem_particle_kick(const int plane,
+                                     const struct dem_particles *p, int i,
                                      double h, const double hg[3], double fx,
                                      double fy, double fz, double tx, double ty,
                                      double tz)
 {
     p->vx[i] += h * p->inv_m[i] * fx + hg[0];
     p->vy[i] += h * p->inv_m[i] * fy + hg[1];
-    p->vz[i] += h * p->inv_m[i] * fz + hg[2];
-    p->wx[i] += h * p->inv_I[i] * tx;
-    p->wy[i] += h * p->inv_I[i] * ty;
-    p->wz[i] += h * p->inv_I[i] * tz;
-}
-
-/* dem_particle_kick of a 2D sample (DEM_SET_PLANE): v_z, w_x and w_y
- * stay zero, so only v_x, v_y and w_z are kicked (the same arithmetic:
- * the same bits). */
-static inline void dem_particle_kick_plane(const struct dem_particles *p, int i,
-                                           double h, const double hg[3],
-                                           double fx, double fy, double tz)
-{
-    p->vx[i] += h * p->inv_m[i] * fx + hg[0];
-    p->vy[i] += h * p->inv_m[i] * fy + hg[1];
+    if (!plane) {
+        p->vz[i] += h * p->inv_m[i] * fz + hg[2];
+        p->wx[i] += h * p->inv_I[i] * tx;
+        p->wy[i] += h * p->inv_I[i] * ty;
+    }
     p->wz[i] += h * p->inv_I[i] * tz;
 }
 
 /* Drift r += dt v of particle i; returns its squared distance from
  * where the box's map b (struct dem_frame.b: r0 -> b[k] r0 + b[3 + k] on
- * axis k) carries its position at the last list build (x0). */
-static inline double dem_particle_drift(const struct dem_particles *p, int i,
+ * axis k) carries its position at the last list build (x0). With plane
+ * (z and v_z zero; in 2D the box's map leaves z as it is) z is left out:
+ * the same value. */
+static inline double dem_particle_drift(const int plane,
+                                        const struct dem_particles *p, int i,
                                         double dt, const double b[6])
-{
-    p->x[i] += dt * p->vx[i];
-    p->y[i] += dt * p->vy[i];
-    p->z[i] += dt * p->vz[i];
-    const double dx = p->x[i] - (b[0] * p->x0[i] + b[3]),
-                 dy = p->y[i] - (b[1] * p->y0[i] + b[4]),
-                 dz = p->z[i] - (b[2] * p->z0[i] + b[5]);
-    return dx * dx + dy * dy + dz * dz;
-}
-
-/* dem_particle_drift of a 2D sample (z and v_z zero; in 2D the box's
- * map leaves z as it is): the same value. */
-static inline double dem_particle_drift_plane(const struct dem_particles *p,
-                                              int i, double dt,
-                                              const double b[6])
 {
     p->x[i] += dt * p->vx[i];
     p->y[i] += dt * p->vy[i];
     const double dx = p->x[i] - (b[0] * p->x0[i] + b[3]),
                  dy = p->y[i] - (b[1] * p->y0[i] + b[4]);
-    return dx * dx + dy * dy;
+    if (plane)
+        return dx * dx + dy * dy;
+    p->z[i] += dt * p->vz[i];
+    const double dz = p->z[i] - (b[2] * p->z0[i] + b[5]);
+    return dx * dx + dy * dy + dz * dz;
 }
 
 /* The drift of particle i in a periodic cell, whose arrays x, y, z are
  * the frame's (struct dem_particles.xs; core/cell.h): r += dt g v, g the
  * inverse of the frame's map m (upper triangular, as struct
  * dem_lattice.v); returns a bound of the squared distance from x0 now,
- * |m (r - x0)|^2 <= s2 |r - x0|^2 (struct dem_frame). */
-static inline double dem_particle_drift_frame(const struct dem_particles *p,
+ * |m (r - x0)|^2 <= s2 |r - x0|^2 (struct dem_frame). plane as
+ * dem_particle_drift's. */
+static inline double dem_particle_drift_frame(const int plane,
+                                              const struct dem_particles *p,
                                               int i, double dt,
                                               const double g[6], double s2)
 {
-    const double vx = p->vx[i], vy = p->vy[i], vz = p->vz[i];
+    const double vx = p->vx[i], vy = p->vy[i];
+    if (plane) {
+        p->x[i] += dt * (g[0] * vx + g[1] * vy);
+        p->y[i] += dt * (g[3] * vy);
+        const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i];
+        return s2 * (dx * dx + dy * dy);
+    }
+    const double vz = p->vz[i];
     p->x[i] += dt * (g[0] * vx + g[1] * vy + g[2] * vz);
     p->y[i] += dt * (g[3] * vy + g[4] * vz);
     p->z[i] += dt * (g[5] * vz);
     const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i],
                  dz = p->z[i] - p->z0[i];
     return s2 * (dx * dx + dy * dy + dz * dz);
-}
-
-/* dem_particle_drift_frame of a 2D sample: the same values. */
-static inline double
-dem_particle_drift_frame_plane(const struct dem_particles *p, int i, double dt,
-                               const double g[6], double s2)
-{
-    const double vx = p->vx[i], vy = p->vy[i];
-    p->x[i] += dt * (g[0] * vx + g[1] * vy);
-    p->y[i] += dt * (g[3] * vy);
-    const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i];
-    return s2 * (dx * dx + dy * dy);
 }
 
 /* Whether particle i, d2 its squared distance from x0, calls for a list

@@ -296,11 +296,11 @@ static int kick_drift_range(int i0, int i1, double h, double dt,
     const double hg[3] = {h * g[0], h * g[1], h * g[2]};
     double far = 0.0; /* the largest overshoot */
     for (int i = i0; i < i1; i++) {
-        dem_particle_kick(p, i, h, hg, p->fx[i], p->fy[i], p->fz[i], p->tx[i],
-                          p->ty[i], p->tz[i]);
+        dem_particle_kick(0, p, i, h, hg, p->fx[i], p->fy[i], p->fz[i],
+                          p->tx[i], p->ty[i], p->tz[i]);
         const double d2 =
-            cell ? dem_particle_drift_frame(p, i, dt, fr->g, fr->s2)
-                 : dem_particle_drift(p, i, dt, fr->b);
+            cell ? dem_particle_drift_frame(0, p, i, dt, fr->g, fr->s2)
+                 : dem_particle_drift(0, p, i, dt, fr->b);
         const double o = dem_particle_overshoot(p, i, d2, cut);
         far = o > far ? o : far;
     }
