@@ -117,11 +117,12 @@ static inline double dem_particle_drift(const int plane,
 {
     p->x[i] += dt * p->vx[i];
     p->y[i] += dt * p->vy[i];
+    if (!plane)
+        p->z[i] += dt * p->vz[i];
     const double dx = p->x[i] - (b[0] * p->x0[i] + b[3]),
                  dy = p->y[i] - (b[1] * p->y0[i] + b[4]);
     if (plane)
         return dx * dx + dy * dy;
-    p->z[i] += dt * p->vz[i];
     const double dz = p->z[i] - (b[2] * p->z0[i] + b[5]);
     return dx * dx + dy * dy + dz * dz;
 }
