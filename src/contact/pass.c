@@ -640,19 +640,25 @@ struct virial {
 
 /* Particle i's share of the periodic cell's virial, added to lane i % 8
  * of w; f its contacts' sum. The same arithmetic as virial_lanes, so a
- * particle adds the same bits either way. */
-DEM_INLINE void virial_add(const struct dem_particles *P, const double *fm,
-                           int i, double fx, double fy, double fz,
-                           double (*w)[8])
+ * particle adds the same bits either way. With plane (a literal: a 2D
+ * sample, z, v_z and f_z zero) only the x-y block: the others stay +0,
+ * as their sums of zeros come out (a lane's sum starts at +0 and adding
+ * -0 leaves it +0). */
+DEM_INLINE void virial_add(const int plane, const struct dem_particles *P,
+                           const double *fm, int i, double fx, double fy,
+                           double fz, double (*w)[8])
 {
-    const double x = P->x[i], y = P->y[i], z = P->z[i];
-    const double X[3] = {fm[0] * x + fm[1] * y + fm[2] * z,
-                         fm[3] * y + fm[4] * z, fm[5] * z},
-                 U[3] = {P->vx[i], P->vy[i], P->vz[i]}, f[3] = {fx, fy, fz};
+    const int D = plane ? 2 : 3;
+    const double x = P->x[i], y = P->y[i], z = plane ? 0.0 : P->z[i];
+    const double X[3] = {plane ? fm[0] * x + fm[1] * y
+                               : fm[0] * x + fm[1] * y + fm[2] * z,
+                         plane ? fm[3] * y : fm[3] * y + fm[4] * z, fm[5] * z},
+                 U[3] = {P->vx[i], P->vy[i], plane ? 0.0 : P->vz[i]},
+                 f[3] = {fx, fy, fz};
     const int l = i % 8;
-    for (int a = 0; a < 3; a++) {
+    for (int a = 0; a < D; a++) {
         const double mu = P->m[i] * U[a];
-        for (int c = 0; c < 3; c++)
+        for (int c = 0; c < D; c++)
             w[3 * a + c][l] += X[a] * f[c] + mu * U[c];
     }
 }
@@ -660,10 +666,11 @@ DEM_INLINE void virial_add(const struct dem_particles *P, const double *fm,
 /* The virial of particles ib + u, from u on (ib + u a multiple of 8) in
  * groups of 8 while they end by ue, particle ib + u + l in lane l of w;
  * f[.][u] their contacts' sums. Returns the u it stopped at. */
-DEM_INLINE int virial_lanes(const struct dem_particles *P, const double *fm,
-                            int ib, int u, int ue,
+DEM_INLINE int virial_lanes(const int plane, const struct dem_particles *P,
+                            const double *fm, int ib, int u, int ue,
                             double (*f)[DEM_KICK_BLOCK], double (*w)[8])
 {
+    const int D = plane ? 2 : 3; /* as virial_add */
 #if defined(__GNUC__)
     /* The lanes' sums as values, not in memory: the same arithmetic as
      * virial_add, in the same order, so the same bits. With w updated in
@@ -681,18 +688,23 @@ DEM_INLINE int virial_lanes(const struct dem_particles *P, const double *fm,
         const int i = ib + u;
         dem_lanes8 mi, y[3], x[3], v[3], g[3];
         memcpy(&mi, P->m + i, sizeof mi);
-        for (int a = 0; a < 3; a++) {
+        for (int a = 0; a < D; a++) {
             memcpy(&y[a], X[a] + i, sizeof y[a]);
             memcpy(&v[a], U[a] + i, sizeof v[a]);
             memcpy(&g[a], f[a] + u, sizeof g[a]);
         }
         /* the position mapped from the frame, as virial_add */
-        x[0] = m[0] * y[0] + m[1] * y[1] + m[2] * y[2];
-        x[1] = m[3] * y[1] + m[4] * y[2];
-        x[2] = m[5] * y[2];
-        for (int a = 0; a < 3; a++) {
+        if (plane) {
+            x[0] = m[0] * y[0] + m[1] * y[1];
+            x[1] = m[3] * y[1];
+        } else {
+            x[0] = m[0] * y[0] + m[1] * y[1] + m[2] * y[2];
+            x[1] = m[3] * y[1] + m[4] * y[2];
+            x[2] = m[5] * y[2];
+        }
+        for (int a = 0; a < D; a++) {
             const dem_lanes8 mu = mi * v[a];
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; c < D; c++)
                 s[3 * a + c] += x[a] * g[c] + mu * v[c];
         }
     }
@@ -701,7 +713,7 @@ DEM_INLINE int virial_lanes(const struct dem_particles *P, const double *fm,
 #else
     for (; u + 8 <= ue; u += 8)
         for (int l = 0; l < 8; l++)
-            virial_add(P, fm, ib + u + l, f[0][u + l], f[1][u + l],
+            virial_add(plane, P, fm, ib + u + l, f[0][u + l], f[1][u + l],
                        f[2][u + l], w);
 #endif
     return u;
@@ -728,9 +740,9 @@ DEM_INLINE void virial_flush(struct virial *V, int end)
  * block (the ring pass's pieces). Not inlined: inlined, this general
  * loop made the cell's stored pass 15 % slower at N = 3375 on Zen 4
  * (the pair loop around it, as virial_lanes says). */
-static __attribute__((noinline)) void
-virial_pieces(const struct dem_particles *P, int ib, int nb,
-              double (*f)[DEM_KICK_BLOCK], struct virial *V)
+DEM_INLINE void virial_pieces_in(const int plane, const struct dem_particles *P,
+                                 int ib, int nb, double (*f)[DEM_KICK_BLOCK],
+                                 struct virial *V)
 {
     const double *fm = V->fm;
     const double m[6] = {fm[0], fm[1], fm[2], fm[3], fm[4], fm[5]};
@@ -739,12 +751,21 @@ virial_pieces(const struct dem_particles *P, int ib, int nb,
         const int be = (ib + u) / DEM_VIR_BLOCK * DEM_VIR_BLOCK + DEM_VIR_BLOCK;
         const int ue = be - ib < nb ? be - ib : nb;
         for (; u < ue && (ib + u) % 8; u++) /* up to lane 0 */
-            virial_add(P, m, ib + u, f[0][u], f[1][u], f[2][u], V->w);
-        u = virial_lanes(P, m, ib, u, ue, f, V->w);
+            virial_add(plane, P, m, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+        u = virial_lanes(plane, P, m, ib, u, ue, f, V->w);
         for (; u < ue; u++)
-            virial_add(P, m, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+            virial_add(plane, P, m, ib + u, f[0][u], f[1][u], f[2][u], V->w);
         virial_flush(V, ib + u);
     }
+}
+static __attribute__((noinline)) void
+virial_pieces(int plane, const struct dem_particles *P, int ib, int nb,
+              double (*f)[DEM_KICK_BLOCK], struct virial *V)
+{
+    if (plane)
+        virial_pieces_in(1, P, ib, nb, f, V);
+    else
+        virial_pieces_in(0, P, ib, nb, f, V);
 }
 
 /* The periodic cell's virial (contact/forces.c) of particles
@@ -760,18 +781,19 @@ virial_pieces(const struct dem_particles *P, int ib, int nb,
  * finishes its particles in pieces (the ring pass) keeps V from one piece
  * to the next: the sums are the same bits however the particles are cut,
  * as long as one thread takes each virial block's particles in order. */
-DEM_INLINE void virial_block(const struct dem_particles *P, int ib, int nb,
-                             double (*f)[DEM_KICK_BLOCK], struct virial *V)
+DEM_INLINE void virial_block(const int plane, const struct dem_particles *P,
+                             int ib, int nb, double (*f)[DEM_KICK_BLOCK],
+                             struct virial *V)
 {
     if (ib % 8 || ib / DEM_VIR_BLOCK != (ib + nb - 1) / DEM_VIR_BLOCK) {
-        virial_pieces(P, ib, nb, f, V);
+        virial_pieces(plane, P, ib, nb, f, V);
         return;
     }
     /* a piece from lane 0 within one virial block (every piece of the
      * stored pass: DEM_KICK_BLOCK divides DEM_VIR_BLOCK) */
-    int u = virial_lanes(P, V->fm, ib, 0, nb, f, V->w);
+    int u = virial_lanes(plane, P, V->fm, ib, 0, nb, f, V->w);
     for (; u < nb; u++) /* a range's last particles */
-        virial_add(P, V->fm, ib + u, f[0][u], f[1][u], f[2][u], V->w);
+        virial_add(plane, P, V->fm, ib + u, f[0][u], f[1][u], f[2][u], V->w);
     virial_flush(V, ib + nb);
 }
 
@@ -1016,7 +1038,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
         if (b + 1 < DEM_KICK_BLOCK && i + 1 < i1)
             continue;
         if (cell) /* before the kicks: the velocities of the pass */
-            virial_block(&Q, ib, b + 1, bc, V);
+            virial_block(plane, &Q, ib, b + 1, bc, V);
         /* the block's kicks and drifts, in SIMD lanes */
         if (K.on && !K.chain) {
 #pragma omp simd
