@@ -114,6 +114,11 @@ static inline unsigned dem_contact_history_mask(int set)
 
 /* Whether the model set has a resistance (torques besides n x f_t). */
 #define DEM_SET_TORQUES(set) (((set) & DEM_SET_RESISTS) != 0)
+/* Whether a pass's set is a 2D sample's (DEM_SET_PLANE). */
+#define DEM_SET_IN_PLANE(set) (((set)&DEM_SET_PLANE) != 0)
+/* The models of a pass's set: its normal law and resistances, without
+ * the boundary's and the dimension's bits. */
+#define DEM_SET_MODELS(set) ((set) & (DEM_SET_NORMAL | DEM_SET_RESISTS))
 
 /* Normal force of law (see contact/model_linear.h for the arguments). */
 DEM_INLINE double dem_normal_force(int law, const struct dem_contact_params *c,

@@ -21,7 +21,7 @@
  * has no z: it stays 0 (dem_tangential_force_in). */
 #define HIST_KEPT_(law, MODEL, name)                                           \
     (DEM_MODEL_USES(law, MODEL) &&                                             \
-     !(((law)&DEM_SET_PLANE) &&                                                \
+     !(DEM_SET_IN_PLANE(law) &&                                                \
        offsetof(struct pass, name) == offsetof(struct pass, xi_z)))
 
 /* Contact k's history values used by the model set law (a normal law
@@ -90,7 +90,7 @@ finish_contact(const int law, const struct pass *q, int k, int touch,
                struct dem_history h, int st, double dt,
                const struct dem_tangential *T)
 {
-    const int plane = (law & DEM_SET_PLANE) != 0;
+    const int plane = DEM_SET_IN_PLANE(law);
     struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
     const struct dem_vec3 ft =
         dem_tangential_force_in(plane, n, vij, fc, dt, T, &xi, &st);
@@ -150,7 +150,7 @@ pair_vals(const int law, const struct pass *qp, int k, const struct pv pi,
     const struct pass q = *qp;
     /* in 2D (a literal) every z term is left out: z, v_z, w_x, w_y are
      * zero (the same bits, test_dynamics) */
-    const int plane = (law & DEM_SET_PLANE) != 0;
+    const int plane = DEM_SET_IN_PLANE(law);
     double dx = pi.x - pj.x, dy = pi.y - pj.y, dz = plane ? 0.0 : pi.z - pj.z;
     if (law & DEM_SET_PERIODIC) { /* from the frame to the cell now */
         const double ex = plane ? fm[0] * dx + fm[1] * dy
@@ -204,7 +204,7 @@ wall_vals(const int law, const struct pass *qp, int k, const struct pv pi,
           const struct dem_wall *walls, const struct dem_tangential *T)
 {
     const struct pass q = *qp;
-    const int plane = (law & DEM_SET_PLANE) != 0; /* as pair_vals */
+    const int plane = DEM_SET_IN_PLANE(law); /* as pair_vals */
     const struct dem_wall *W = &walls[q.cj[k]];
     const int a = W->axis;
     const double sgn = W->side ? -1.0 : 1.0; /* inward normal along a */

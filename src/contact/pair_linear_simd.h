@@ -463,8 +463,8 @@ DEM_INLINE int LIN_(lin_friction)(const int plane, const struct pass *q, int k,
     struct LIN_(lin_trial) t;
     const int slid = LIN_(lin_test)(plane, q, k, nx, ny, nz, vx, vy, vz, hx, hy,
                                     hz, fc, sh, touch, dt, T, branch, &t);
-    LIN_(lin_settle)
-    (plane, q, k, touch, T, ik, branch, !branch || slid, &t, ft);
+    const int sliding = !branch || slid;
+    LIN_(lin_settle)(plane, q, k, touch, T, ik, branch, sliding, &t, ft);
     return slid;
 }
 
@@ -551,8 +551,9 @@ DEM_INLINE LV LIN_(lin_luding)(const struct dem_contact_params *cp, LV delta,
     return LV_BLEND(LV_BLEND(fline, fa, adh), fenv, virgin);
 }
 
-/* The normal force of LIN_W contacts by law (DEM_NORMAL_LINEAR,
- * DEM_NORMAL_LUDING or DEM_NORMAL_HERTZ, a literal), with the dashpot,
+/* The normal force of LIN_W contacts by law (a model set, a literal,
+ * whose normal law is DEM_NORMAL_LINEAR, DEM_NORMAL_LUDING or
+ * DEM_NORMAL_HERTZ; its other bits are the caller's), with the dashpot,
  * as dem_normal_force computes it: overlaps delta, their rates ddot,
  * reduced radii a12 and masses m12 (read by Luding's and Hertz's laws
  * only); *fc the normal force of the Coulomb limit, *sh the tangential
@@ -628,7 +629,7 @@ DEM_INLINE int LIN_(lin_pair_test)(const int law, const struct pass *q, int k,
     }
     const LV one = LV_SET1(1.0), sign = LV_SET1(-0.0), zero = LV_ZERO();
     /* in 2D every z term left out, as pair_vals */
-    const int plane = (law & DEM_SET_PLANE) != 0;
+    const int plane = DEM_SET_IN_PLANE(law);
     LV xi[4], xj[4];
     LIN_(lin_rows)(pi, 0, xi);
     LIN_(lin_rows)(pj, 0, xj);
@@ -723,10 +724,10 @@ DEM_INLINE int LIN_(lin_pairs)(const int law, const struct pass *q, int k,
                                struct dem_contact_force *F, int branch)
 {
     struct LIN_(lin_pg) g;
+    const int plane = DEM_SET_IN_PLANE(law);
     const int slid =
         LIN_(lin_pair_test)(law, q, k, rec, cp, fm, grad, dt, T, branch, &g);
-    LIN_(lin_pair_settle)
-    ((law & DEM_SET_PLANE) != 0, q, k, T, ik, branch, !branch || slid, &g, F);
+    LIN_(lin_pair_settle)(plane, q, k, T, ik, branch, !branch || slid, &g, F);
     return slid != 0;
 }
 
@@ -749,10 +750,10 @@ DEM_INLINE int LIN_(lin_pairs2)(const int law, const struct pass *q, int k,
         LIN_(lin_pair_test)(law, q, k, rec, cp, fm, grad, dt, T, branch, &g0);
     const int s1 = LIN_(lin_pair_test)(law, q, k + LIN_W, rec, cp, fm, grad, dt,
                                        T, branch, &g1);
-    const int sliding = !branch || s0 || s1, plane = (law & DEM_SET_PLANE) != 0;
+    const int sliding = !branch || s0 || s1, plane = DEM_SET_IN_PLANE(law);
+    struct dem_contact_force *F1 = F + LIN_W;
     LIN_(lin_pair_settle)(plane, q, k, T, ik, branch, sliding, &g0, F);
-    LIN_(lin_pair_settle)
-    (plane, q, k + LIN_W, T, ik, branch, sliding, &g1, F + LIN_W);
+    LIN_(lin_pair_settle)(plane, q, k + LIN_W, T, ik, branch, sliding, &g1, F1);
     return (s0 | s1) != 0;
 }
 
@@ -774,7 +775,7 @@ DEM_INLINE int LIN_(lin_walls)(const int law, const struct pass *q, int k,
     }
     const LV zero = LV_ZERO(), sign = LV_SET1(-0.0);
     /* in 2D every z term left out, as wall_vals */
-    const int plane = (law & DEM_SET_PLANE) != 0;
+    const int plane = DEM_SET_IN_PLANE(law);
     /* the overlap: a_i - sgn (x_a - pos), x_a picked by products */
     LV xi[4], wa[4], wn[4];
     LIN_(lin_rows)(pi, 0, xi);

@@ -113,10 +113,10 @@ _Static_assert(DEM_PAIR_LANES % LIN_PAIRS == 0, "whole groups a round");
 /* Whether the groups run the model set law (whatever its boundary and
  * dimension bits): the linear, Luding's or Hertz's law, without
  * resistances. */
-#define GROUPS_LAW(law)                                                        \
-    (((law) & (DEM_SET_NORMAL | DEM_SET_RESISTS)) == DEM_NORMAL_LINEAR ||      \
-     ((law) & (DEM_SET_NORMAL | DEM_SET_RESISTS)) == DEM_NORMAL_LUDING ||      \
-     ((law) & (DEM_SET_NORMAL | DEM_SET_RESISTS)) == DEM_NORMAL_HERTZ)
+#define GROUPS_LAW(law) GROUPS_MODELS_(DEM_SET_MODELS(law))
+#define GROUPS_MODELS_(m)                                                      \
+    ((m) == DEM_NORMAL_LINEAR || (m) == DEM_NORMAL_LUDING ||                   \
+     (m) == DEM_NORMAL_HERTZ)
 #else
 #define DEM_PAIR_LINEAR_SIMD 0
 #endif
@@ -530,13 +530,12 @@ DEM_INLINE void pair_range(const int law, const struct pass q, int k0, int k1,
 #if DEM_PAIR_LINEAR_SIMD
         if (GROUPS_LAW(law)) {
             for (int g = 0; g < DEM_PAIR_LANES; g += LIN_PAIRS)
-                lin_skip_count(&skip,
-                               lin_pair_groups(
-                                   law & (DEM_SET_NORMAL | DEM_SET_PLANE), &q,
-                                   k + g, rec, cp,
-                                   law & DEM_SET_PERIODIC ? fm : NULL,
-                                   law & DEM_SET_PERIODIC ? grad : NULL, dt, &T,
-                                   ik, q.F + (k + g - q.foff), skip.branch));
+                lin_skip_count(
+                    &skip, lin_pair_groups(law, &q, k + g, rec, cp,
+                                           law & DEM_SET_PERIODIC ? fm : NULL,
+                                           law & DEM_SET_PERIODIC ? grad : NULL,
+                                           dt, &T, ik, q.F + (k + g - q.foff),
+                                           skip.branch));
             continue;
         }
 #endif
@@ -589,10 +588,8 @@ DEM_INLINE void wall_range(const int law, const struct pass q, int k0, int k1,
         lin_wall_rows(walls, wr);
         struct lin_skip skip = {1, 0, 0};
         for (; k + LIN_W <= k1; k += LIN_W)
-            lin_skip_count(&skip,
-                           lin_walls(law & (DEM_SET_NORMAL | DEM_SET_PLANE), &q,
-                                     k, rec, wr, cp, dt, &T, ik,
-                                     q.F + (k - q.foff), skip.branch));
+            lin_skip_count(&skip, lin_walls(law, &q, k, rec, wr, cp, dt, &T, ik,
+                                            q.F + (k - q.foff), skip.branch));
     }
 #endif
 #if DEM_PASS_RECORDS
@@ -868,7 +865,7 @@ DEM_INLINE int particle_range(const int law, int i0, int i1,
     const int cell = (law & DEM_SET_PERIODIC) != 0;
     /* in 2D f_z, c_x, c_y and the torques' x and y are zero: not summed,
      * and v_z, w_x, w_y and z are not kicked or moved */
-    const int plane = (law & DEM_SET_PLANE) != 0;
+    const int plane = DEM_SET_IN_PLANE(law);
     const double *restrict M = pl->f.m, *restrict WM = pl->wf.m;
     double far = 0.0; /* the largest overshoot (chained) */
     const int *restrict start = pl->cur.start, *restrict rpair = pl->rpair;
@@ -1250,7 +1247,7 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
     const struct dem_blocks *B = c->blocks;
     const struct dem_block *k = &B->t[t];
     const int h = B->half, s = k->g > k->d ? k->g : k->d,
-              plane = (law & DEM_SET_PLANE) != 0;
+              plane = DEM_SET_IN_PLANE(law);
     double *ghosts = c->rec + DEM_REC * (size_t)B->base;
     if (!c->blocks_fresh) {
         /* the records it reads of its own particles and of the others
@@ -1344,7 +1341,7 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     const int f0 = c->rec_fresh ? c->n : 0, nf = c->P->n - f0;
     if (nf > 0) {
         records_own(c->rec, c->P, f0 + dem_block(nf, t, nt),
-                    f0 + dem_block(nf, t + 1, nt), (law & DEM_SET_PLANE) != 0);
+                    f0 + dem_block(nf, t + 1, nt), DEM_SET_IN_PLANE(law));
 #pragma omp barrier
     }
 #endif
