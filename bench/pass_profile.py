@@ -12,6 +12,14 @@ instead.
 usage:
   perf record -e cpu-clock -o P.data BIN bench --n 3375 --threads 1
   bench/pass_profile.py P.data BIN [--symbol SYM] [--lines FUNC]
+  bench/pass_profile.py P.data BIN --threads
+
+With --threads, each thread's samples instead (counts, not shares): its
+samples in the pass by part, and outside it those in the OpenMP runtime
+(libgomp: a thread that waits at a barrier spins there before it
+sleeps) and elsewhere (the main thread's serial work between passes).
+Where two threads lose shows as one thread's part costing more than the
+other's, and the other waiting (docs/performance-log.md, session 80).
 
 BIN must be built with -g (cmake -DCMAKE_C_FLAGS=-g: the same code, with
 the line tables). SYM defaults to the hottest symbol whose name starts with
@@ -79,14 +87,52 @@ def chains(binary, addrs):
     return res
 
 
+def by_thread(data, binary, sym):
+    """per thread id: samples by part of the pass, and outside it"""
+    out = run(["perf", "script", "-i", data, "-F", "tid,ip,sym,symoff,dso"])
+    start = None
+    for line in run(["nm", binary]).splitlines():
+        f = line.split()
+        if len(f) == 3 and f[2] == sym:
+            start = int(f[0], 16)
+    if start is None:
+        sys.exit("pass_profile: %s not in the symbols of %s" % (sym, binary))
+    per, where = collections.Counter(), collections.Counter()
+    for line in out.splitlines():
+        m = re.match(r"\s*(\d+)\s+[0-9a-f]+\s+(\S+?)(?:\+0x([0-9a-f]+))?"
+                     r"\s+\((.*)\)\s*$", line)
+        if not m:
+            continue
+        tid, name, off, dso = m.groups()
+        if name == sym and off:
+            per[(tid, "%x" % (start + int(off, 16)))] += 1
+        else:
+            where[(tid, "(in libgomp)" if "libgomp" in dso else
+                   "(outside the pass)")] += 1
+    ch = chains(binary, sorted({a for _, a in per}))
+    for (tid, addr), n in per.items():
+        part = [f for f, _ in ch.get(addr, []) if f in PARTS]
+        where[(tid, part[0] if part else "(the rest of the pass)")] += n
+    tids = sorted({t for t, _ in where}, key=int)
+    names = sorted({k for _, k in where})
+    print("samples of each thread (by id); the pass is %s" % sym)
+    print("%-24s" % "" + "".join("%10s" % t for t in tids))
+    for k in names:
+        print("%-24s" % k + "".join("%10d" % where[(t, k)] for t in tids))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("data")
     ap.add_argument("binary")
     ap.add_argument("--symbol")
     ap.add_argument("--lines", metavar="FUNC")
+    ap.add_argument("--threads", action="store_true")
     a = ap.parse_args()
     sym = a.symbol or hottest(a.data)
+    if a.threads:
+        by_thread(a.data, a.binary, sym)
+        return
     pct = samples(a.data, sym)
     ch = chains(a.binary, list(pct))
     if not any(f for c in ch.values() for f, _ in c if f in PARTS):
