@@ -17,9 +17,11 @@ usage:
 With --threads, each thread's samples instead (counts, not shares): its
 samples in the pass by part, and outside it those in the OpenMP runtime
 (libgomp: a thread that waits at a barrier spins there before it
-sleeps) and elsewhere (the main thread's serial work between passes).
-Where two threads lose shows as one thread's part costing more than the
-other's, and the other waiting (docs/performance-log.md, session 80).
+sleeps) and elsewhere (the main thread's serial work between passes,
+and the other passes the start-up and run-time trials time, which are
+other symbols than SYM). Where two threads lose shows as one thread's
+part costing more than the other's, and the other waiting
+(docs/performance-log.md, "Zen 3 again").
 
 BIN must be built with -g (cmake -DCMAKE_C_FLAGS=-g: the same code, with
 the line tables). SYM defaults to the hottest symbol whose name starts with
