@@ -13,6 +13,7 @@
 #include "contact/pass.h"
 #include "contact/tangential.h"
 #include "core/machine.h"
+#include "core/parallel.h"
 #include "core/sim.h"
 
 static struct pass pass_of(const struct dem_particles *P,
@@ -636,6 +637,21 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
 }
 #endif
 
+/* The counters of the passes' shares (struct contacts.share) for the
+ * threads of a region, or NULL if out of memory (each thread then takes
+ * its equal block whole). */
+static unsigned long long *shares(struct dem_pairs *pl)
+{
+    const int nt = omp_get_max_threads();
+    if (nt > pl->share_threads) {
+        free(pl->share);
+        pl->share = aligned_alloc(64, 2 * DEM_SHARE_LINE * (size_t)nt *
+                                          sizeof *pl->share);
+        pl->share_threads = pl->share ? nt : 0;
+    }
+    return pl->share;
+}
+
 /* Each wall's sum of the values v of its contacts in list L, in list
  * order. Every contact adds to every wall's lane, +0.0 to all but its
  * own (exact: no sum starting at +0.0 is ever -0.0), so the sums stay in
@@ -739,6 +755,7 @@ static int forces(struct dem_sim *s, const struct kick K)
         c.done = pl->ring_done;
     }
 #endif
+    c.share = shares(pl);
     c.blocks = own_blocks(s, K);
     if (!s->pass.trial) /* (the same variants all through a trial) */
         s->pass.no_blocks = c.blocks == NULL;

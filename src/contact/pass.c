@@ -10,9 +10,10 @@
  * -a_i (n x f_t) on i and -a_j (n x f_t) on j. A wall is a partner of
  * infinite mass and radius whose surface moves only along its normal.
  *
- * A pass has three parts, each split over the threads in equal blocks
- * of independent items, in one parallel region with one barrier before
- * the third:
+ * A pass has three parts, each split over the threads in blocks of
+ * independent items (the wall contacts in equal ones, the pairs and the
+ * particles in dynamic shares, core/parallel.h), in one parallel region
+ * with one barrier before the third:
  *  1. every listed pair: force and history, stored with the pair; one
  *     loop without branches over the flat list, run in SIMD lanes;
  *  2. every wall contact: force and history, stored with the contact;
@@ -1319,9 +1320,20 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
 }
 #endif
 
-/* Thread t's share of a pass, in one parallel region: equal blocks of
- * the pairs and of the wall contacts, then (once every contact force is
- * stored) an equal block of the particles to sum, kick and move on. */
+/* The smallest takes of the shares of a pass's pairs and particles
+ * (core/parallel.h): each a few microseconds' work */
+#define DEM_SHARE_PAIRS 512
+#define DEM_SHARE_PARTICLES 64
+
+/* Thread t's share of a pass, in one parallel region: an equal block of
+ * the wall contacts, then the pairs in dynamic shares (struct
+ * dem_share), then (once every contact force is stored) the particles to
+ * sum, kick and move on, in shares too. Every pair and every particle is
+ * computed alone, each sum in its own order, so which thread takes which
+ * changes no result. With two threads the shares took 0-13 % (median
+ * 4 %) off a step of the benchmark at N = 3375 and 20000 where equal
+ * blocks had one thread wait for the other (docs/performance-log.md,
+ * session 83). */
 DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                                const struct kick K, int t, int nt)
 {
@@ -1349,27 +1361,36 @@ DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
     /* (the entry point runs every other pass as the records pass) */
     return ring_thread(law, c, K, t, nt);
 #else
-#if DEM_PASS_RECORDS
-    /* the images' records of the thread's own pairs */
-    if (law & DEM_SET_PERIODIC)
-        image_records(c, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt));
-#endif
-    pair_range(law, c->q, dem_block(c->np, t, nt), dem_block(c->np, t + 1, nt),
-               dem_block(c->np, t + 1, nt), &c->cp, c->dt, c->cv, c->grad,
-               c->fr.m, c->rec, 0, 0);
     wall_range(law, c->wq, dem_block(c->nw, t, nt), dem_block(c->nw, t + 1, nt),
                &c->cpw, c->dt, c->walls, c->rec);
+    int lo, hi, end;
+    struct dem_share S = {c->share, c->np, 1, DEM_SHARE_PAIRS, t, nt, 0};
+    while (dem_share_take(&S, &lo, &hi, &end)) {
+#if DEM_PASS_RECORDS
+        /* the images' records of the chunk's pairs */
+        if (law & DEM_SET_PERIODIC)
+            image_records(c, lo, hi);
+#endif
+        pair_range(law, c->q, lo, hi, end, &c->cp, c->dt, c->cv, c->grad,
+                   c->fr.m, c->rec, 0, 0);
+    }
 #pragma omp barrier
-    /* in a cell no virial block across two threads; else each thread's
-     * particles start on a cache line of their arrays (core/particles.h) */
-    const int cell = (law & DEM_SET_PERIODIC) != 0, g = DEM_PARTICLE_LINE;
-    const int i0 = cell ? dem_cell_block(c->n, t, nt)
-                        : dem_block_aligned(c->n, t, nt, g),
-              i1 = cell ? dem_cell_block(c->n, t + 1, nt)
-                        : dem_block_aligned(c->n, t + 1, nt, g);
-    struct virial V = {c->vir, {{0.0}}, i1, c->fr.m};
-    return particle_range(law, i0, i1, c->P, c->pl, c->q.F, 0, -1, c->gb, c->gr,
-                          K, &V, &c->fr, c->rec, 0, NULL);
+    /* in a cell whole virial blocks (each summed by one thread); else
+     * chunks start on a cache line of the particles' arrays
+     * (core/particles.h) */
+    const int cell = (law & DEM_SET_PERIODIC) != 0,
+              g = cell ? DEM_VIR_BLOCK : DEM_PARTICLE_LINE;
+    const int chunk = cell ? DEM_VIR_BLOCK : DEM_SHARE_PARTICLES;
+    unsigned long long *pc = c->share ? c->share + DEM_SHARE_LINE * nt : NULL;
+    struct dem_share U = {pc, c->n, g, chunk, t, nt, 0};
+    struct virial V = {c->vir, {{0.0}}, 0, c->fr.m};
+    int moved = 0;
+    while (dem_share_take(&U, &lo, &hi, &end)) {
+        V.end = hi;
+        moved |= particle_range(law, lo, hi, c->P, c->pl, c->q.F, 0, -1, c->gb,
+                                c->gr, K, &V, &c->fr, c->rec, 0, NULL);
+    }
+    return moved;
 #endif
 }
 
@@ -1444,6 +1465,10 @@ int THIS_ENTRY(const struct contacts *c, const struct kick K)
         return DEM_PASS_NAME(dem__pass_records)(c, K);
     for (int t = 0; t < omp_get_max_threads(); t++) /* no pairs done yet */
         c->done[DEM_RING_DONE * t] = 0;
+#else
+    /* nothing of any share taken yet (struct dem_share) */
+    for (int t = 0; c->share && t < 2 * omp_get_max_threads(); t++)
+        c->share[DEM_SHARE_LINE * t] = 0;
 #endif
     switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0) |
             (c->plane ? DEM_SET_PLANE : 0)) {

@@ -100,6 +100,9 @@ struct contacts {
                   range at its start, as it finishes it in stream */
     int *done; /* the ring pass: thread t's pairs done, in
                   done[DEM_RING_DONE * t] (a cache line each) */
+    /* the counters of the shares of the pairs, then of the particles
+     * (struct dem_share), DEM_SHARE_LINE per thread each, or NULL */
+    unsigned long long *share;
     /* the records pass's chained steps with threads that own their
      * particles (neighbor/blocks.h), or NULL */
     const struct dem_blocks *blocks;

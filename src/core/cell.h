@@ -40,7 +40,6 @@
 #ifndef DEM_CORE_CELL_H
 #define DEM_CORE_CELL_H
 
-#include "core/parallel.h"
 #include "wall/wall.h"
 
 enum { DEM_TILT_XY = 0, DEM_TILT_XZ = 1, DEM_TILT_YZ = 2 };
@@ -81,13 +80,6 @@ struct dem_cell {
  * dem_cell.vir, 9 values per block): the blocks are summed in their
  * order, so the cell's stress is the same for any number of threads. */
 #define DEM_VIR_BLOCK 256
-
-/* The first particle of thread t's share of a cell's n particles in the
- * force pass's sums (no virial block across two threads). */
-static inline int dem_cell_block(int n, int t, int nt)
-{
-    return dem_block_aligned(n, t, nt, DEM_VIR_BLOCK);
-}
 
 /* Image codes: 2 bits per axis, s + 1. */
 #define DEM_IMG_NONE 21 /* s = (0, 0, 0) */

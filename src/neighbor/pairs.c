@@ -58,6 +58,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->ring);
     free(pl->ring_wait);
     free(pl->ring_done);
+    free(pl->share);
     dem_blocks_free(&pl->blocks);
     memset(pl, 0, sizeof *pl);
 }

@@ -167,6 +167,10 @@ struct dem_pairs {
                          the first, the pairs a ring pass's thread has
                          done (contact/pass.c) */
     int ring_threads; /* threads ring_wait has room for */
+    unsigned long long *share; /* 2 DEM_SHARE_LINE per thread, 64-byte
+                                  aligned: the passes' shares
+                                  (struct contacts.share) */
+    int share_threads;         /* threads share has room for */
     int ring_chunk;   /* the ring pass's pairs per chunk, a power of two;
                          0: DEM_RING_CHUNK (the tests set fewer) */
     unsigned long gen; /* the list's generation: one more at each build
