@@ -1330,9 +1330,9 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
  * dem_share), then (once every contact force is stored) the particles to
  * sum, kick and move on, in shares too. Every pair and every particle is
  * computed alone, each sum in its own order, so which thread takes which
- * changes no result. With two threads the shares took 0-13 % (median
- * 4 %) off a step of the benchmark at N = 3375 and 20000 where equal
- * blocks had one thread wait for the other (docs/performance-log.md,
+ * changes no result. With two threads on Zen 3 the shares took 0-15 %
+ * (median 5 %) off the pass at N = 3375 and 20000 with the vCPUs on one
+ * L3, and cost 1-3 % in most runs on two (docs/performance-log.md,
  * session 83). */
 DEM_INLINE int contacts_thread(const int law, const struct contacts *c,
                                const struct kick K, int t, int nt)
