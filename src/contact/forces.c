@@ -637,9 +637,9 @@ static struct dem_contact_force *rings(struct dem_pairs *pl, int chunk,
 }
 #endif
 
-/* The counters of the passes' shares (struct contacts.share) for the
- * threads of a region, or NULL if out of memory (each thread then takes
- * its equal block whole). */
+/* The counters of one pass's shares (struct contacts.share) for the
+ * threads of a region, nothing taken yet; NULL if out of memory (each
+ * thread then takes its equal block whole). */
 static unsigned long long *shares(struct dem_pairs *pl)
 {
     const int nt = omp_get_max_threads();
@@ -649,6 +649,8 @@ static unsigned long long *shares(struct dem_pairs *pl)
                                           sizeof *pl->share);
         pl->share_threads = pl->share ? nt : 0;
     }
+    for (int u = 0; u < 2 * pl->share_threads; u++)
+        pl->share[DEM_SHARE_LINE * u] = 0;
     return pl->share;
 }
 

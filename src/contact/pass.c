@@ -1465,10 +1465,6 @@ int THIS_ENTRY(const struct contacts *c, const struct kick K)
         return DEM_PASS_NAME(dem__pass_records)(c, K);
     for (int t = 0; t < omp_get_max_threads(); t++) /* no pairs done yet */
         c->done[DEM_RING_DONE * t] = 0;
-#else
-    /* nothing of any share taken yet (struct dem_share) */
-    for (int t = 0; c->share && t < 2 * omp_get_max_threads(); t++)
-        c->share[DEM_SHARE_LINE * t] = 0;
 #endif
     switch (dem_contact_set(&c->cp) | (c->periodic ? DEM_SET_PERIODIC : 0) |
             (c->plane ? DEM_SET_PLANE : 0)) {

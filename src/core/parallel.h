@@ -60,19 +60,17 @@ static inline int dem_share_take(struct dem_share *S, int *lo, int *hi,
             (unsigned long long)((e - a + S->chunk - 1) / S->chunk);
         unsigned long long *ctr = S->ctr + DEM_SHARE_LINE * b, m = 1,
                            v = __atomic_load_n(ctr, __ATOMIC_RELAXED);
-        int got = 0;
+        /* (a failed exchange reloads v; a successful one leaves the
+         * counts before the take there) */
         while ((v & low) + (v >> 32) < nch) {
             m = own ? (nch - (v & low) - (v >> 32) + 1) / 2 : 1;
             if (__atomic_compare_exchange_n(ctr, &v, v + (own ? m : 1ull << 32),
                                             1, __ATOMIC_RELAXED,
-                                            __ATOMIC_RELAXED)) {
-                got = 1;
+                                            __ATOMIC_RELAXED))
                 break;
-            }
         }
-        if (!got)
+        if ((v & low) + (v >> 32) >= nch)
             continue;
-        /* (v: the counts before the take) */
         const int q = own ? (int)(v & low) : (int)(nch - 1 - (v >> 32));
         *lo = a + q * S->chunk;
         *hi = e - *lo > (int)m * S->chunk ? *lo + (int)m * S->chunk : e;
