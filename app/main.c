@@ -149,7 +149,7 @@ static const char *const usage_sweep =
     "the pictures of what the sweep varies. Details: docs/sweep.md.\n";
 
 static const char *const usage_bench =
-    "usage: dembox bench [--dim 2|3] [--n N] [--steps S] [--threads T]\n"
+    "usage: dembox bench [--dim 2|3] [--n N] [--steps S] [--threads T[,U]]\n"
     "                    [--boundary walls|periodic] [--data FILE]\n"
     "                    [--cache-dir DIR] [--no-cache] [--quiet]\n"
     "\n"
@@ -166,6 +166,15 @@ static const char *const usage_bench =
     "  --steps S         timed steps (default 20000)\n"
     "  --threads T       OpenMP threads (default: OMP_NUM_THREADS or all "
     "cores)\n"
+    "  --threads T,U     T threads and U threads by turns, in slices of\n"
+    "                    about 2e6 particle-steps (at most S/10 steps), in\n"
+    "                    the order T U, U T, T U, ...: each count's time per\n"
+    "                    particle-step in the same minutes of the machine,\n"
+    "                    and U's speed over T's, whole and per round of two\n"
+    "                    slices (median and range); the first round warms\n"
+    "                    up and is not counted. Each count chooses its own\n"
+    "                    force pass; the results are those of one count\n"
+    "                    (the same bits). S at least 16\n"
     "  --boundary B      walls (default) or periodic: the same workload in\n"
     "                    a periodic cell whose faces move as the walls\n"
     "                    would (prepared in the cell, a peer's file in its\n"
@@ -188,7 +197,7 @@ static const char *const usage_bench =
     "walls, or in a periodic cell the cell), the force pass in use,\n"
     "the neighbour list (noting a loop that built none: the first list),\n"
     "the coordination and the memory per particle; the last line is\n"
-    "particle_steps_per_second=<number>.\n"
+    "particle_steps_per_second=<number> (by turns: T threads').\n"
     "\n"
     "Under mpirun (a build with MPI) the sample of the timed loop is split\n"
     "over the ranks by domain decomposition (docs/parallel.md): rank 0\n"
@@ -646,9 +655,29 @@ static int cmd_bench(int argc, char **argv)
                 if (parse_int("bench", a, val, 1, 1000000000L, &o.steps))
                     return 1;
             } else if (!strcmp(a, "--threads")) {
-                if (parse_int("bench", a, val, 1, 4096, &v))
+                /* T, or T,U: two counts by turns */
+                char first[32];
+                const char *comma = strchr(val, ',');
+                const size_t len = comma ? (size_t)(comma - val) : 0;
+                if (comma && len < sizeof first) {
+                    memcpy(first, val, len);
+                    first[len] = '\0';
+                }
+                if (comma && len >= sizeof first) {
+                    if (!quiet_rank)
+                        fprintf(stderr, "dembox: bench: --threads needs an "
+                                        "integer in [1, 4096] or two, T,U\n");
+                    return 1;
+                }
+                if (parse_int("bench", a, comma ? first : val, 1, 4096, &v))
                     return 1;
                 o.threads = (int)v;
+                if (comma) {
+                    if (parse_int("bench", "--threads' second count", comma + 1,
+                                  1, 4096, &v))
+                        return 1;
+                    o.versus = (int)v;
+                }
             } else if (!strcmp(a, "--data")) {
                 o.data = val;
             } else if (!strcmp(a, "--boundary")) {
@@ -675,7 +704,7 @@ static int cmd_bench(int argc, char **argv)
     }
     struct dem_bench_result r;
     struct dem_error err = {0, "", cli_warning, NULL};
-    warn_oversubscribed(1, o.threads);
+    warn_oversubscribed(1, o.threads > o.versus ? o.threads : o.versus);
     if (dem_bench_run(&o, &r, &err))
         return fail(err.msg);
     if (!quiet_rank) /* under MPI: rank 0 speaks for the split run */

@@ -17,7 +17,8 @@
 #   N = 3375, 20000 steps; N = 20000, 10000 steps; N = 216000, 3000 steps
 #     (one thread against one rank);
 #   N = 20000, 5000 steps, two threads against two ranks;
-#   `dembox bench --n 20000 --steps 3000` with one thread, then two;
+#   `dembox bench --n 20000 --steps 3000 --threads 1,2`: one thread and
+#     two by turns, in slices of 100 steps (docs/performance.md);
 #   N = 3375, 3000 steps (one thread against one rank), and
 #   `dembox bench --boundary periodic --steps 3000` of both packings: the
 #     same work per particle at both sizes (below).
@@ -26,7 +27,7 @@
 # they share an L3, 160 and more when they do not; docs/parallel.md).
 # The summary gives, per figure, the median of the rounds and the range:
 #   dembox / LAMMPS at each N (particle-steps per second, back to back);
-#   two threads against one at N = 20000 (`dembox bench`);
+#   two threads against one at N = 20000 (`dembox bench` by turns);
 #   the cost per particle-step at N = 216000 over that at 3375, for dembox
 #     and for LAMMPS (issue 14 asks at most 1.2 of dembox);
 #   the same over 3000 steps at both sizes: dembox in its periodic cell,
@@ -105,6 +106,20 @@ bench() {
   echo "$ns"
   echo "  $label: $ns ns per particle-step (ping-pong $a / $b)" >&2
 }
+# one thread and two by turns at N = 20000 (`dembox bench --threads 1,2`):
+# two threads' speed over one's to $out/threads, a line on stderr
+turns() {
+  local a b log=$out/turns.log v
+  a=$(pp)
+  "$DEMBOX" bench --n 20000 --steps 3000 --threads 1,2 --quiet >"$log" 2>&1 ||
+    { cat "$log" >&2; die "dembox bench --threads 1,2 failed"; }
+  b=$(pp)
+  v=$(sed -n 's/^by turns.*: 1 thread \([0-9.]*\) ns, 2 threads \([0-9.]*\) ns.*; \([0-9.]*\) times as fast (rounds: \(.*\))$/\1 \2 \3 \4/p' "$log")
+  [ -n "$v" ] || die "no figures by turns in $log"
+  set -- $v
+  echo "$3" >>"$out/threads"
+  echo "  turns    1 thread $1 ns, 2 threads $2 ns: $3 (rounds: ${*:4}) (ping-pong $a / $b)" >&2
+}
 # the same in a periodic cell, 3000 steps, one thread: N = $1, packing $2
 cell() {
   bench "cell     N = $1, 3000 steps" --data "$2" --steps 3000 --threads 1 \
@@ -117,9 +132,7 @@ for r in $(seq 1 "$ROUNDS"); do
   peers "$r" 20000 --n 20000 --steps 10000
   peers "$r" 216000 --n 3375 --replicate 4 --steps 3000
   peers "$r" 20000np2 --n 20000 --steps 5000 --np 2
-  t1=$(bench "bench    1 thread(s)" --n 20000 --steps 3000 --threads 1)
-  t2=$(bench "bench    2 thread(s)" --n 20000 --steps 3000 --threads 2)
-  awk -v a="$t1" -v b="$t2" 'BEGIN {print a / b}' >>"$out/threads"
+  turns
   peers "$r" 3375s --n 3375 --steps 3000
   cell 3375 "$DATA/pack3d_3375.data"
   cell 216000 "$out/work-216000/pack3d_216000.data"

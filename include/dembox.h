@@ -669,6 +669,9 @@ struct dem_bench_options {
     int n;                 /* particles; 0 = 3375 (3D) or 1950 (2D) */
     long steps;            /* timed steps; 0 = 20000 */
     int threads;           /* OpenMP threads; 0 = leave the default */
+    int versus;            /* 0, or a second count of threads: the timed
+                              loop then runs threads and versus by turns,
+                              a slice of steps each (dem_bench_slice) */
     const char *data;      /* LAMMPS data file to start from, or NULL:
                               DATA_DIR/pack{dim}d_{n}.data if the
                               environment variable DEMBOX_BENCH_DATA names a
@@ -686,7 +689,19 @@ struct dem_bench_result {
     int dim, n;                /* dimension, particles */
     int periodic;              /* 1: timed in a periodic cell */
     long steps;                /* timed steps */
-    int threads;               /* OpenMP threads in force */
+    int threads;               /* OpenMP threads in force (the first
+                                  count by turns) */
+    int versus;                /* the second count by turns, or 0 */
+    long slice;                /* steps per slice by turns */
+    double turn_seconds[2];    /* s; by turns: the slices' time with
+                                  threads and with versus */
+    long turn_steps[2];        /* their steps */
+    int rounds;                /* by turns: rounds of a slice each */
+    double ratio[3];           /* by turns: a step's time with threads
+                                  over that with versus in a round;
+                                  median, smallest, largest */
+    char pass_versus[160];     /* pass and trials with versus */
+    char trials_versus[96];
     int ranks;                 /* MPI ranks the sample was split over (1:
                                   not split; docs/parallel.md) */
     char source[DEM_PATH_MAX]; /* where the particles came from */
@@ -696,6 +711,8 @@ struct dem_bench_result {
     double seconds;            /* s; wall time of the timed loop */
     double cpu_seconds;        /* s; CPU time of the process (all threads)
                                   during the timed loop */
+    double thread_seconds;     /* s; the loop's wall time times its threads
+                                  (by turns: slice by slice) */
     struct dem_timers timers;  /* s; per phase of the timed loop */
     long nbuild;               /* neighbour-list builds in the timed loop */
     char pass[160];            /* the force pass's compilation at the end
@@ -719,8 +736,14 @@ struct dem_bench_result {
     double rss_end;            /* bytes; resident set after the run */
     double rss_peak;           /* bytes; peak resident set of the process */
     double bytes_per_particle; /* (rss_end - rss_start) / n */
-    double particle_steps_per_second; /* n steps / seconds */
+    double particle_steps_per_second; /* n steps / seconds (by turns: of
+                                         the slices with threads) */
 };
+
+/* Steps per slice when two counts of threads run by turns: about 2e6
+ * particle-steps (N = 3375: 592, 20000: 100, 216000: 9), at most a
+ * tenth of the steps (five rounds, the first not counted), at least 2. */
+long dem_bench_slice(int n, long steps);
 
 /* Prepare or load the packing, run the timed steps, fill r. Errors name
  * the file or the option at fault. */

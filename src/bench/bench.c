@@ -436,6 +436,94 @@ static void sample_now(const struct dem_sim *s, struct dem_sample *smp)
     dem_measure(s, L0, V0, 0, smp);
 }
 
+long dem_bench_slice(int n, long steps)
+{
+    long k = 2000000L / (n > 0 ? n : 1);
+    k = k < steps / 10 ? k : steps / 10;
+    return k > 2 ? k : 2;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The timed steps, one chain of them (the last one unchained, as a run
+ * ends), with o->versus by two counts of threads in turns, a slice of
+ * steps each: the same steps, and the same bits (a chained pass reads
+ * nothing the threads of the pass before left that the count changes:
+ * test_bench). Each count keeps its own choice of the force pass and
+ * its trials, as in a run of its own. Fills r's by-turns fields; the
+ * pass the first count chose is left in s. */
+static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
+                      long steps, struct dem_bench_result *r,
+                      struct dem_error *err)
+{
+    const int turns = o->versus > 0;
+    const long slice = turns ? dem_bench_slice(s->p.n, steps) : steps;
+    const long nr = (steps / slice + 2) / 2;
+    double *ratio = turns ? malloc((size_t)nr * sizeof *ratio) : NULL;
+    if (turns && !ratio)
+        return dem_error_set(err, DEM_ENOMEM, "bench: out of memory");
+    struct dem_pass_choice pc[2] = {s->pass, s->pass};
+    /* The slices run the counts in the order A B, B A, A B, ... (a
+     * count's slice is as often first in its round as second, so that
+     * whatever the second slice of a round meets that the first does
+     * not, both meet alike); the first round warms both counts up
+     * (their caches, the passes' buffers and per-thread set-ups) and is
+     * not counted. */
+    int rounds = 0, cur = 0, rc = DEM_OK;
+    double per[2] = {0.0, 0.0}; /* s per step, the round's slices */
+    for (long k = 0, si = 0; k < steps && !rc; si++) {
+        const int c = (int)(((si + 1) >> 1) & 1);
+        if (turns && c != cur) {
+            pc[cur] = s->pass;
+            s->pass = pc[c];
+            cur = c;
+            omp_set_num_threads(cur ? o->versus : o->threads);
+        }
+        const long m = slice < steps - k ? slice : steps - k;
+        const double ts = wall_clock();
+        for (long u = 0; u < m && !rc; u++, k++) {
+            if (k == steps - 1)
+                s->measure = 1;
+            s->chain = k < steps - 1;
+            rc = dem_sim_step(s, err);
+        }
+        const double dt = wall_clock() - ts;
+        r->thread_seconds += dt * (cur ? o->versus : r->threads);
+        if (turns && si < 2)
+            continue;
+        r->turn_seconds[cur] += dt;
+        r->turn_steps[cur] += m;
+        per[cur] = dt / (double)m;
+        if (turns && si % 2 && rounds < nr)
+            ratio[rounds++] = per[0] / per[1];
+    }
+    if (turns) {
+        pc[cur] = s->pass;
+        s->pass = pc[1];
+        dem_sim_pass_report(s, r->pass_versus, sizeof r->pass_versus);
+        dem_sim_pass_tally(s, r->trials_versus, sizeof r->trials_versus);
+        s->pass = pc[0];
+        omp_set_num_threads(o->threads);
+        r->versus = o->versus;
+        r->slice = slice;
+        r->rounds = rounds;
+        if (rounds > 0) {
+            qsort(ratio, (size_t)rounds, sizeof *ratio, cmp_double);
+            r->ratio[0] =
+                rounds % 2 ? ratio[rounds / 2]
+                           : 0.5 * (ratio[rounds / 2 - 1] + ratio[rounds / 2]);
+            r->ratio[1] = ratio[0];
+            r->ratio[2] = ratio[rounds - 1];
+        }
+    }
+    free(ratio);
+    return rc;
+}
+
 static int bench_run(const struct dem_bench_options *o,
                      struct dem_bench_result *r, struct dem_error *err)
 {
@@ -458,6 +546,10 @@ static int bench_run(const struct dem_bench_options *o,
         dem_lammps_data_free(&d);
     }
     const long steps = o->steps > 0 ? o->steps : DEM_BENCH_DEFAULT_STEPS;
+    if (o->versus > 0 && steps < 16)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "bench: --threads T,U needs --steps 16 or more "
+                             "(rounds of two slices)");
     const struct workload *w = dim == 3 ? &work3 : &work2;
     struct dem_config cfg;
     int rc = make_config(&cfg, w, n, o->periodic, err);
@@ -536,12 +628,7 @@ static int bench_run(const struct dem_bench_options *o,
     const long nbuild0 = s.nbuild;
     const double c0 = cpu_seconds();
     const double t0 = wall_clock();
-    for (long k = 0; k < steps && !rc; k++) {
-        if (k == steps - 1)
-            s.measure = 1;
-        s.chain = k < steps - 1;
-        rc = dem_sim_step(&s, err);
-    }
+    rc = timed_loop(o, &s, steps, r, err);
     r->seconds = wall_clock() - t0;
     r->cpu_seconds = cpu_seconds() - c0;
     r->timers = s.timers;
@@ -570,7 +657,9 @@ static int bench_run(const struct dem_bench_options *o,
         return rc;
     r->bytes_per_particle = (r->rss_end - r->rss_start) / (double)r->n;
     r->particle_steps_per_second =
-        r->seconds > 0 ? (double)r->n * (double)steps / r->seconds : 0.0;
+        r->turn_seconds[0] > 0
+            ? (double)r->n * (double)r->turn_steps[0] / r->turn_seconds[0]
+            : 0.0;
     return DEM_OK;
 }
 
@@ -579,6 +668,15 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
 {
     /* the run's threads, subnormal numbers flushed on each as in a run
      * (core/fpmode.h) */
+    if (o->versus > 0) {
+        /* the threads of both counts started before the timed loop, not
+         * in the first slice of the larger count */
+        omp_set_num_threads(o->versus > o->threads ? o->versus : o->threads);
+#pragma omp parallel
+        {
+            (void)0;
+        }
+    }
     if (o->threads > 0)
         omp_set_num_threads(o->threads);
     struct dem_fpmode fp;
@@ -604,9 +702,14 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     if (r->ranks > 1)
         snprintf(split, sizeof split,
                  " per rank, %d MPI ranks (domain decomposition)", r->ranks);
-    fprintf(f, "dembox bench: %dD, N = %d, %ld steps, %d thread%s%s, %s\n",
-            r->dim, r->n, r->steps, r->threads, r->threads == 1 ? "" : "s",
-            split, r->periodic ? "periodic cell" : "walls");
+    char threads[64];
+    snprintf(threads, sizeof threads, "%d thread%s", r->threads,
+             r->threads == 1 ? "" : "s");
+    if (r->versus)
+        snprintf(threads, sizeof threads, "%d and %d threads by turns",
+                 r->threads, r->versus);
+    fprintf(f, "dembox bench: %dD, N = %d, %ld steps, %s%s, %s\n", r->dim, r->n,
+            r->steps, threads, split, r->periodic ? "periodic cell" : "walls");
     fprintf(f, "machine: %s; %s\n", r->cpu, r->simd);
     fprintf(f, "packing: %s\n", r->source);
     fprintf(f, "cache:   %s (%s)\n", r->cache,
@@ -618,14 +721,41 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
             "builds, axial strain %.3g\n",
             r->seconds, ps > 0 ? 1e9 * r->seconds / ps : 0.0, r->nbuild,
             r->strain);
+    if (r->versus) {
+        /* each count's time per particle-step over its slices, and the
+         * rounds' ratios: the same minutes of the host for both */
+        const double a = r->turn_steps[0] > 0
+                             ? 1e9 * r->turn_seconds[0] /
+                                   ((double)r->n * (double)r->turn_steps[0])
+                             : 0.0,
+                     b = r->turn_steps[1] > 0
+                             ? 1e9 * r->turn_seconds[1] /
+                                   ((double)r->n * (double)r->turn_steps[1])
+                             : 0.0;
+        fprintf(f,
+                "by turns, %ld steps a slice, %d rounds: %d thread%s %.2f "
+                "ns, %d thread%s %.2f ns per particle-step; %.3f times "
+                "as fast (rounds: median %.3f, %.3f to %.3f)\n",
+                r->slice, r->rounds, r->threads, r->threads == 1 ? "" : "s", a,
+                r->versus, r->versus == 1 ? "" : "s", b, b > 0 ? a / b : 0.0,
+                r->ratio[0], r->ratio[1], r->ratio[2]);
+    }
     /* below 100 % the machine was busy with something else (or threads
      * waited): the time is not the engine's alone */
     fprintf(f, "cpu: %.3f s, %.1f %% CPU use per thread\n", r->cpu_seconds,
-            r->seconds > 0 && r->threads > 0
-                ? 100.0 * r->cpu_seconds / (r->seconds * r->threads)
-                : 0.0);
-    fprintf(f, "force pass: %s\n", r->pass);
-    fprintf(f, "force pass trials won: %s\n", r->trials);
+            r->thread_seconds > 0 ? 100.0 * r->cpu_seconds / r->thread_seconds
+                                  : 0.0);
+    if (r->versus) {
+        fprintf(f, "force pass, %d thread%s: %s\n", r->threads,
+                r->threads == 1 ? "" : "s", r->pass);
+        fprintf(f, "force pass trials won: %s\n", r->trials);
+        fprintf(f, "force pass, %d thread%s: %s\n", r->versus,
+                r->versus == 1 ? "" : "s", r->pass_versus);
+        fprintf(f, "force pass trials won: %s\n", r->trials_versus);
+    } else {
+        fprintf(f, "force pass: %s\n", r->pass);
+        fprintf(f, "force pass trials won: %s\n", r->trials);
+    }
     struct {
         const char *name;
         double t;

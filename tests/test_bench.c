@@ -1,0 +1,99 @@
+/* `dembox bench` with two counts of threads by turns (--threads T,U):
+ * every step runs, one chain of them whose passes change their count of
+ * threads from one slice to the next, and the run ends in the same bits
+ * as one count alone; and the bad input. */
+#include "testutil.h"
+
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dembox.h"
+#include "tmpdir.h"
+
+static struct dem_bench_result bench(int threads, int versus, long steps)
+{
+    struct dem_bench_options o;
+    memset(&o, 0, sizeof o);
+    o.dim = 3;
+    o.n = 300;
+    o.steps = steps;
+    o.threads = threads;
+    o.versus = versus;
+    o.cache_dir = tmpdir; /* prepared once, by the first run */
+    o.quiet = 1;
+    struct dem_bench_result r;
+    struct dem_error err = {0, "", NULL, NULL};
+    const int rc = dem_bench_run(&o, &r, &err);
+    if (rc)
+        fprintf(stderr, "%s\n", err.msg);
+    assert_int_equal(rc, DEM_OK);
+    return r;
+}
+
+static void by_turns_same_bits_as_one_count(void **state)
+{
+    (void)state;
+    /* forced passes too: the blocks pass's ghost records and the ring's
+     * per-thread rings must not carry a count's state into the other's */
+    const char *passes[] = {NULL, "blocks", "ring", "records"};
+    for (size_t a = 0; a < sizeof passes / sizeof *passes; a++) {
+        if (passes[a])
+            setenv("DEMBOX_PASS", passes[a], 1);
+        else
+            unsetenv("DEMBOX_PASS");
+        const long steps = 120;
+        const struct dem_bench_result one = bench(1, 0, steps),
+                                      two = bench(2, 0, steps),
+                                      turns = bench(1, 2, steps),
+                                      back = bench(2, 1, steps);
+        assert_true(one.p_end != one.p_start); /* the wall moved */
+        assert_memory_equal(&one.p_end, &two.p_end, sizeof one.p_end);
+        assert_memory_equal(&one.p_end, &turns.p_end, sizeof one.p_end);
+        assert_memory_equal(&one.p_end, &back.p_end, sizeof one.p_end);
+        assert_memory_equal(&one.z_end, &turns.z_end, sizeof one.z_end);
+        /* 12 steps a slice (a tenth), the first round not counted */
+        assert_int_equal(one.versus, 0);
+        assert_int_equal(turns.versus, 2);
+        assert_int_equal(turns.slice, 12);
+        assert_int_equal(turns.turn_steps[0] + turns.turn_steps[1],
+                         steps - 2 * turns.slice);
+        assert_int_equal(turns.turn_steps[0], turns.turn_steps[1]);
+        assert_int_equal(turns.rounds, 4);
+        assert_true(turns.ratio[1] > 0.0 && turns.ratio[1] <= turns.ratio[0] &&
+                    turns.ratio[0] <= turns.ratio[2]);
+        assert_int_equal(one.turn_steps[0], steps);
+    }
+    unsetenv("DEMBOX_PASS");
+}
+
+static void by_turns_needs_rounds(void **state)
+{
+    (void)state;
+    struct dem_bench_options o;
+    memset(&o, 0, sizeof o);
+    o.n = 300;
+    o.steps = 15;
+    o.threads = 1;
+    o.versus = 2;
+    o.cache_dir = tmpdir;
+    o.quiet = 1;
+    struct dem_bench_result r;
+    struct dem_error err = {0, "", NULL, NULL};
+    assert_int_equal(dem_bench_run(&o, &r, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "--threads T,U needs --steps 16"));
+    assert_int_equal(dem_bench_slice(3375, 20000), 592);
+    assert_int_equal(dem_bench_slice(20000, 3000), 100);
+    assert_int_equal(dem_bench_slice(216000, 20000), 9);
+    assert_int_equal(dem_bench_slice(300, 30), 3);
+    assert_int_equal(dem_bench_slice(300, 16), 2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(by_turns_same_bits_as_one_count),
+        cmocka_unit_test(by_turns_needs_rounds),
+    };
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
+}
