@@ -654,36 +654,36 @@ static unsigned long long *shares(struct dem_pairs *pl)
     return pl->share;
 }
 
-/* Each wall's sum of the values v of its contacts in list L, in list
- * order. Every contact adds to every wall's lane, +0.0 to all but its
- * own (exact: no sum starting at +0.0 is ever -0.0), so the sums stay in
- * one register and each contact waits for one addition: indexed by wall
- * in memory, each waited for the store of the one before, which took
- * 1.5 % of a step at N = 3375 with one thread (docs/performance-log.md,
- * session 43). */
-typedef long long dem_wall_mask __attribute__((vector_size(16)));
-typedef double dem_wall_sums __attribute__((vector_size(16)));
-_Static_assert(DEM_MAX_WALLS <= 8, "one lane per wall");
-
-/* The eight lanes as four 2-lane vectors, compared as doubles: what
- * every x86-64 CPU has (SSE2). In one 512-bit vector of 64-bit integers
- * a build for the baseline x86-64 (the rest of a build with
- * DEM_DISPATCH, contact/pass.h) picked each lane by a scalar
- * conditional move, 2.6 % of a step at N = 3375; with AVX-512 the four
- * sums take as long as one, each waiting for its own addition. */
-static void wall_sums(const struct dem_contact_list *L, const double *v,
-                      double *out)
+/* Each wall's sum of the values v of its contacts, in list order: each
+ * wall's chain of additions on its own, the walls' chains side by side
+ * (struct dem_pairs.wall_order). In the list's order every contact had
+ * to wait for the one before, whatever its wall: about 1.3 % of a step
+ * of cyclic3d-paper with two threads, the main thread's work between
+ * the passes, in which the other waits (docs/performance-log.md,
+ * session 84); each wall's sum from +0.0 over its own contacts, as
+ * then. */
+_Static_assert(DEM_MAX_WALLS == DEM_PAIRS_WALLS, "the lists' walls");
+static void wall_sums(const struct dem_pairs *pl, const double *v, double *out)
 {
-    const dem_wall_sums lane[4] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}};
-    dem_wall_sums acc[4] = {{0.0}};
-    for (int k = 0; k < L->n; k++) {
-        const double w = (double)L->j[k], x = v[k];
-        const dem_wall_sums a = {x, x};
-        for (int q = 0; q < 4; q++)
-            acc[q] += (dem_wall_sums)((dem_wall_mask)a & (lane[q] == w));
+    const int *ws = pl->wall_start;
+    const int *o[DEM_MAX_WALLS];
+    double acc[DEM_MAX_WALLS];
+    int least = ws[1] - ws[0];
+    for (int w = 0; w < DEM_MAX_WALLS; w++) {
+        o[w] = pl->wall_order + ws[w];
+        acc[w] = 0.0;
+        least = ws[w + 1] - ws[w] < least ? ws[w + 1] - ws[w] : least;
     }
+    /* as far as every wall has contacts, all side by side; then the
+     * rest of each */
+    for (int m = 0; m < least; m++)
+        for (int w = 0; w < DEM_MAX_WALLS; w++)
+            acc[w] += v[o[w][m]];
     for (int w = 0; w < DEM_MAX_WALLS; w++)
-        out[w] = acc[w / 2][w % 2];
+        for (int m = least; m < ws[w + 1] - ws[w]; m++)
+            acc[w] += v[o[w][m]];
+    for (int w = 0; w < DEM_MAX_WALLS; w++)
+        out[w] = acc[w];
 }
 
 /* The threads' own blocks for a chained pass between walls in one
@@ -785,7 +785,7 @@ static int forces(struct dem_sim *s, const struct kick K)
          * contact here made the other thread's next wall contacts wait for
          * those lines: docs/performance-log.md, session 42) */
         double fout[DEM_MAX_WALLS];
-        wall_sums(&pl->wcur, blocks_ran ? pl->wf.handed : pl->wf.axial, fout);
+        wall_sums(pl, blocks_ran ? pl->wf.handed : pl->wf.axial, fout);
         for (int w = 0; w < s->nwall; w++)
             s->wall[w].force = fout[w];
     }

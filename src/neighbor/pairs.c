@@ -43,6 +43,7 @@ void dem_pairs_free(struct dem_pairs *pl)
     free(pl->rstart);
     free(pl->rimg);
     free(pl->rpair);
+    free(pl->wall_order);
     free(pl->cross);
     free(pl->imgk);
     free(pl->jrec);
@@ -763,6 +764,24 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
         reach = span > reach ? span : reach;
     }
     pl->reach = reach;
+    /* the wall contacts by wall, each wall's in list order (a counting
+     * sort, stable) */
+    const struct dem_contact_list *W = &pl->wcur;
+    if (W->n > pl->wall_order_cap) {
+        if (GROW(pl->wall_order, W->cap))
+            return -1;
+        pl->wall_order_cap = W->cap;
+    }
+    int *ws = pl->wall_start, next[DEM_PAIRS_WALLS];
+    memset(ws, 0, sizeof pl->wall_start);
+    for (int k = 0; k < W->n; k++)
+        ws[W->j[k] + 1]++;
+    for (int w = 0; w < DEM_PAIRS_WALLS; w++) {
+        ws[w + 1] += ws[w];
+        next[w] = ws[w];
+    }
+    for (int k = 0; k < W->n; k++)
+        pl->wall_order[next[W->j[k]]++] = k;
     return 0;
 }
 

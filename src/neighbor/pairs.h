@@ -88,6 +88,9 @@ struct dem_row_buf {
     size_t cap; /* ints allocated in v */
 };
 
+/* The walls a list's wall contacts name (j), DEM_MAX_WALLS of core/sim.h. */
+#define DEM_PAIRS_WALLS 6
+
 struct dem_pairs {
     struct dem_contact_list cur;  /* particle pairs the force loop uses */
     struct dem_contact_list old;  /* the previous pairs, for the history */
@@ -102,6 +105,12 @@ struct dem_pairs {
                    those with an image of j, each part in list order */
     int *rimg;  /* n_particles + 1: see rpair */
     int rpair_cap;
+    int *wall_order; /* wcur.n: the wall contacts grouped by wall, each
+                        group in list order: wall w's are wall_order[
+                        wall_start[w] .. wall_start[w + 1]) (the walls'
+                        sums, contact/forces.c) */
+    int wall_order_cap;
+    int wall_start[DEM_PAIRS_WALLS + 1];
     int reach;  /* the largest span of pairs from a particle's first pair
                    as j (with j itself, not an image) to the end of the
                    rows of its group (DEM_RING_GROUP in a cell; the ring
