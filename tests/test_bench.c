@@ -34,9 +34,18 @@ static struct dem_bench_result bench(int threads, int versus, long steps)
 static void by_turns_same_bits_as_one_count(void **state)
 {
     (void)state;
-    /* forced passes too: the blocks pass's ghost records and the ring's
-     * per-thread rings must not carry a count's state into the other's */
-    const char *passes[] = {NULL, "blocks", "ring", "records"};
+    /* forced passes too (those of this build): the blocks pass's ghost
+     * records and the ring's per-thread rings must not carry a count's
+     * state into the other's */
+    const char *passes[] = {
+        NULL,
+        "gathers",
+#if DEM_HAVE_PASS_RECORDS
+        "blocks",
+        "ring",
+        "records"
+#endif
+    };
     for (size_t a = 0; a < sizeof passes / sizeof *passes; a++) {
         if (passes[a])
             setenv("DEMBOX_PASS", passes[a], 1);

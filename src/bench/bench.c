@@ -481,7 +481,7 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
             pc[cur] = s->pass;
             s->pass = pc[c];
             cur = c;
-            omp_set_num_threads(cur ? o->versus : o->threads);
+            omp_set_num_threads(cur ? o->versus : r->threads);
         }
         const long m = slice < steps - k ? slice : steps - k;
         const double ts = wall_clock();
@@ -507,7 +507,7 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
         dem_sim_pass_report(s, r->pass_versus, sizeof r->pass_versus);
         dem_sim_pass_tally(s, r->trials_versus, sizeof r->trials_versus);
         s->pass = pc[0];
-        omp_set_num_threads(o->threads);
+        omp_set_num_threads(r->threads);
         r->versus = o->versus;
         r->slice = slice;
         r->rounds = rounds;

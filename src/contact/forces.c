@@ -2,6 +2,7 @@
  * compilations is faster on this CPU, the walls' reaction, and the sums
  * for the measurements.
  */
+#include <limits.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -668,17 +669,21 @@ static void wall_sums(const struct dem_pairs *pl, const double *v, double *out)
     const int *ws = pl->wall_start;
     const int *o[DEM_MAX_WALLS];
     double acc[DEM_MAX_WALLS];
-    int least = ws[1] - ws[0];
+    int has[DEM_MAX_WALLS], least = INT_MAX;
     for (int w = 0; w < DEM_MAX_WALLS; w++) {
         o[w] = pl->wall_order + ws[w];
         acc[w] = 0.0;
-        least = ws[w + 1] - ws[w] < least ? ws[w + 1] - ws[w] : least;
+        has[w] = ws[w + 1] > ws[w];
+        if (has[w] && ws[w + 1] - ws[w] < least)
+            least = ws[w + 1] - ws[w];
     }
-    /* as far as every wall has contacts, all side by side; then the
-     * rest of each */
+    least = least == INT_MAX ? 0 : least; /* (no contacts) */
+    /* as far as every wall with contacts has them, all side by side (in
+     * 2D walls 4 and 5 have none); then the rest of each */
     for (int m = 0; m < least; m++)
         for (int w = 0; w < DEM_MAX_WALLS; w++)
-            acc[w] += v[o[w][m]];
+            if (has[w])
+                acc[w] += v[o[w][m]];
     for (int w = 0; w < DEM_MAX_WALLS; w++)
         for (int m = least; m < ws[w + 1] - ws[w]; m++)
             acc[w] += v[o[w][m]];
