@@ -1321,9 +1321,13 @@ DEM_INLINE int blocks_thread(const int law, const struct contacts *c,
 #endif
 
 /* The smallest takes of the shares of a pass's pairs and particles
- * (core/parallel.h): each a few microseconds' work */
-#define DEM_SHARE_PAIRS 512
-#define DEM_SHARE_PARTICLES 64
+ * (core/parallel.h): each about a microsecond's work, so that a thread
+ * waits at most that long for the other's last take. Against 512 and 64
+ * (session 83), 128 and 16 took 1.5-2 % off a step of cyclic3d-paper's
+ * cyclic stage and 2-4.5 % at N = 3375 in the benchmark, on two L3s
+ * (64 and 8, or 256 and 32, less; docs/performance-log.md, session 84). */
+#define DEM_SHARE_PAIRS 128
+#define DEM_SHARE_PARTICLES 16
 
 /* Thread t's share of a pass, in one parallel region: an equal block of
  * the wall contacts, then the pairs in dynamic shares (struct
