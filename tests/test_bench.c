@@ -11,7 +11,7 @@
 #include "dembox.h"
 #include "tmpdir.h"
 
-static struct dem_bench_result bench(int threads, int versus, long steps)
+static struct dem_bench_options options(int threads, int versus, long steps)
 {
     struct dem_bench_options o;
     memset(&o, 0, sizeof o);
@@ -22,6 +22,12 @@ static struct dem_bench_result bench(int threads, int versus, long steps)
     o.versus = versus;
     o.cache_dir = tmpdir; /* prepared once, by the first run */
     o.quiet = 1;
+    return o;
+}
+
+static struct dem_bench_result bench(int threads, int versus, long steps)
+{
+    const struct dem_bench_options o = options(threads, versus, steps);
     struct dem_bench_result r;
     struct dem_error err = {0, "", NULL, NULL};
     const int rc = dem_bench_run(&o, &r, &err);
@@ -79,14 +85,7 @@ static void by_turns_same_bits_as_one_count(void **state)
 static void by_turns_needs_rounds(void **state)
 {
     (void)state;
-    struct dem_bench_options o;
-    memset(&o, 0, sizeof o);
-    o.n = 300;
-    o.steps = 15;
-    o.threads = 1;
-    o.versus = 2;
-    o.cache_dir = tmpdir;
-    o.quiet = 1;
+    const struct dem_bench_options o = options(1, 2, 15);
     struct dem_bench_result r;
     struct dem_error err = {0, "", NULL, NULL};
     assert_int_equal(dem_bench_run(&o, &r, &err), DEM_EUSAGE);
