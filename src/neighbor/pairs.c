@@ -676,6 +676,27 @@ static int build_walls(struct dem_pairs *pl, const struct dem_particles *p,
     return DEM_OK;
 }
 
+/* Items 0 <= k < n by their key in [0, nb), those whose key is skip
+ * left out: a counting sort, stable (each key's items in order, so that
+ * a sum over them keeps the list's order). Key b's items are
+ * out[start[b] .. start[b + 1]); start has nb + 1 entries. */
+static void stable_buckets(const int *key, int n, int nb, int skip, int *start,
+                           int *out)
+{
+    memset(start, 0, (size_t)(nb + 1) * sizeof *start);
+    for (int k = 0; k < n; k++)
+        if (key[k] != skip)
+            start[key[k] + 1]++;
+    for (int b = 0; b < nb; b++)
+        start[b + 1] += start[b];
+    for (int k = 0; k < n; k++)
+        if (key[k] != skip)
+            out[start[key[k]]++] = k;
+    for (int b = nb; b > 0; b--)
+        start[b] = start[b - 1];
+    start[0] = 0;
+}
+
 int dem_pairs_cross(struct dem_pairs *pl, int n)
 {
     const struct dem_contact_list *L = &pl->cur;
@@ -701,20 +722,10 @@ int dem_pairs_cross(struct dem_pairs *pl, int n)
     }
     if (records_reserve(pl, n + m))
         return -1;
-    /* a counting sort by image, stable: each image's pairs in list order
-     * (so that the sum over them keeps its order, contact/forces.c) */
-    for (int k = 0; k < L->n; k++)
-        if (L->img[k] != DEM_IMG_NONE)
-            start[L->img[k] + 1]++;
-    for (int g = 0; g < DEM_IMG_CODES; g++)
-        start[g + 1] += start[g];
+    /* by image, each image's pairs in list order (contact/forces.c sums
+     * over them) */
+    stable_buckets(L->img, L->n, DEM_IMG_CODES, DEM_IMG_NONE, start, pl->cross);
     pl->ncross = start[DEM_IMG_CODES];
-    int next[DEM_IMG_CODES];
-    for (int g = 0; g < DEM_IMG_CODES; g++)
-        next[g] = start[g];
-    for (int k = 0; k < L->n; k++)
-        if (L->img[k] != DEM_IMG_NONE)
-            pl->cross[next[L->img[k]]++] = k;
     return 0;
 }
 
@@ -764,24 +775,15 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
         reach = span > reach ? span : reach;
     }
     pl->reach = reach;
-    /* the wall contacts by wall, each wall's in list order (a counting
-     * sort, stable) */
+    /* the wall contacts by wall, each wall's in list order */
     const struct dem_contact_list *W = &pl->wcur;
     if (W->n > pl->wall_order_cap) {
         if (GROW(pl->wall_order, W->cap))
             return -1;
         pl->wall_order_cap = W->cap;
     }
-    int *ws = pl->wall_start, next[DEM_PAIRS_WALLS];
-    memset(ws, 0, sizeof pl->wall_start);
-    for (int k = 0; k < W->n; k++)
-        ws[W->j[k] + 1]++;
-    for (int w = 0; w < DEM_PAIRS_WALLS; w++) {
-        ws[w + 1] += ws[w];
-        next[w] = ws[w];
-    }
-    for (int k = 0; k < W->n; k++)
-        pl->wall_order[next[W->j[k]]++] = k;
+    stable_buckets(W->j, W->n, DEM_PAIRS_WALLS, -1, pl->wall_start,
+                   pl->wall_order);
     return 0;
 }
 

@@ -249,8 +249,9 @@ int dem_pairs_cross(struct dem_pairs *pl, int n);
 
 /* The reverse rows of particles 0 <= i < n (rstart, rpair, rimg) and
  * the list's reach (struct dem_pairs) from cur and, in a periodic cell
- * (pl->periodic), its images. A build makes them; a checkpoint that fills
- * the lists calls it. 0 or -1 (out of memory). */
+ * (pl->periodic), its images; and the wall contacts of wcur by wall
+ * (wall_order). A build makes them; a checkpoint that fills the lists
+ * calls it. 0 or -1 (out of memory). */
 int dem_pairs_reverse(struct dem_pairs *pl, int n);
 
 /* The first index i < n of the ascending a with a[i] >= k (n if none). */
