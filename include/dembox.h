@@ -645,8 +645,8 @@ struct dem_run_timing {
                                (the skin adapts, docs/physics.md) */
     double pairs_per_particle; /* the list's pairs per particle at the
                                   end (NAN in a run split over ranks) */
-    char pass[96];          /* the force pass's compilations: which ran, or
-                               the trials each won (dem_sim_pass_tally) */
+    char pass[160];            /* the force pass's compilations: which ran, or
+                                  the trials each won (dem_sim_pass_tally) */
     char simd[48];          /* their vector instructions, e.g. "AVX-512,
                                512-bit vectors" */
     int periodic;           /* 1: a periodic cell, whose step.walls is the
@@ -701,7 +701,7 @@ struct dem_bench_result {
                                   over that with versus in a round;
                                   median, smallest, largest */
     char pass_versus[160];     /* pass and trials with versus */
-    char trials_versus[96];
+    char trials_versus[160];
     int ranks;                 /* MPI ranks the sample was split over (1:
                                   not split; docs/parallel.md) */
     char source[DEM_PATH_MAX]; /* where the particles came from */
@@ -717,7 +717,7 @@ struct dem_bench_result {
     long nbuild;               /* neighbour-list builds in the timed loop */
     char pass[160];            /* the force pass's compilation at the end
                                   and its last timing trial */
-    char trials[96];           /* the timing trials each compilation won
+    char trials[160];          /* the timing trials each compilation won
                                   in the timed loop (dem_sim_pass_tally) */
     char cpu[160];             /* the CPU's model name, family and model
                                   (Linux /proc/cpuinfo; "unknown") */

@@ -13,6 +13,7 @@
 #include "contact/models.h"
 #include "contact/pass.h"
 #include "contact/tangential.h"
+#include "contact/trials.h"
 #include "core/machine.h"
 #include "core/parallel.h"
 #include "core/sim.h"
@@ -288,17 +289,6 @@ static int nvariants(const struct dem_pass_choice *C)
     return levels[C->level].n;
 }
 
-/* Time steps between two trials, before the first one (the first passes
- * of a run touch memory for the first time and would time that), and
- * passes of each variant in a trial: one to warm up, then the timed ones.
- * A variant slower than TRIAL_FAR times the winner sits out the next
- * trial; if it loses by as much again, the next 3, then TRIAL_OUT each
- * time: at N = 216000 the three losers' passes took 2 % of a run,
- * though they are under 1 % of its passes (docs/performance-log.md). A loser
- * is still timed at least every TRIAL_OUT + 1 trials. */
-enum { TRIAL_EVERY = 2000, TRIAL_FIRST = 50, TRIAL_ROUNDS = 5, TRIAL_OUT = 7 };
-#define TRIAL_FAR 1.25
-
 /* The index of the variant of that name in this build, or -1. */
 static int variant_named(const struct dem_pass_choice *C, const char *name)
 {
@@ -312,7 +302,7 @@ static int variant_named(const struct dem_pass_choice *C, const char *name)
  * built (its steps that are not chained run the records pass), else the
  * first. The trials pick records, blocks or ring on every CPU measured
  * (docs/performance.md), and none of them uses a gather. With the
- * gathers pass, the first before, the TRIAL_FIRST steps of `dembox
+ * gathers pass, the first before, the DEM_TRIAL_FIRST steps of `dembox
  * bench` at N = 216000 took 25 ms each instead of the ring's 15 on Zen
  * 5, and its 600 steps 7-9 % longer (docs/performance-log.md, session
  * 63). */
@@ -368,11 +358,13 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
     struct dem_pass_choice *C = &s->pass;
     memset(C, 0, sizeof *C);
     C->forced = -1;
-    C->since = TRIAL_EVERY - TRIAL_FIRST;
     int rc = choose_level(C, err);
     if (rc)
         return rc;
-    C->current = first_variant(C);
+    unsigned blocks = 0;
+    for (int v = 0; v < nvariants(C); v++)
+        blocks |= (unsigned)(variants(C)[v].blocks != 0) << v;
+    dem_trials_init(C, nvariants(C), blocks, first_variant(C));
     C->plane = s->dim == 2;
     const char *want = getenv("DEMBOX_PASS");
     if (!want || !*want || !strcmp(want, "auto"))
@@ -455,7 +447,11 @@ void dem_sim_pass_tally(const struct dem_sim *s, char *buf, size_t size)
         len += snprintf(buf + len, size - (size_t)len, "%s%s %ld",
                         v ? ", " : "", variants(C)[v].name, C->won[v]);
     if (len >= 0 && (size_t)len < size)
-        snprintf(buf + len, size - (size_t)len, " of %ld trials", trials);
+        len +=
+            snprintf(buf + len, size - (size_t)len, " of %ld trials", trials);
+    if (C->proposed && len >= 0 && (size_t)len < size)
+        snprintf(buf + len, size - (size_t)len,
+                 " (%ld of %ld changes confirmed)", C->confirmed, C->proposed);
 }
 
 static double seconds_now(void)
@@ -463,24 +459,6 @@ static double seconds_now(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* One pass in the variant chosen. After TRIAL_FIRST and then every
- * TRIAL_EVERY time steps each variant runs TRIAL_ROUNDS steps in a row,
- * the first of them untimed, and the one with the fastest timed pass runs
- * until the next trial (the results do not depend on which runs: see
- * contact/pass.h). In a row, not by turns: a variant's first pass after
- * another one finds the caches as the other left them, and the records
- * pass must fill its records, which it does not in a run of its own
- * (timed by turns at N = 91125 on Zen 4, the records pass looked 5 %
- * slower than the gathers pass, and ran 18 % faster in a row). */
-/* Whether variant u runs in a trial: the one in use always does, the
- * others unless they sit it out. */
-static int in_trial(const struct dem_pass_choice *C, int u)
-{
-    if (variants(C)[u].blocks && C->no_blocks && u != C->current)
-        return 0;
-    return u == C->current || C->out[u] == 0;
 }
 
 /* Variant v of the pass, without the threads' own blocks unless it is
@@ -497,66 +475,21 @@ static int run_variant(const struct dem_pass_choice *C, int v,
     return V->run(c, K);
 }
 
-/* The variants of a trial, and its k-th of them. */
-static int trial_size(const struct dem_pass_choice *C)
-{
-    int m = 0;
-    for (int u = 0; u < nvariants(C); u++)
-        m += in_trial(C, u);
-    return m;
-}
-
-static int trial_variant(const struct dem_pass_choice *C, int k)
-{
-    for (int u = 0; u < nvariants(C); u++)
-        if (in_trial(C, u) && k-- == 0)
-            return u;
-    return C->current;
-}
-
+/* One pass in the variant in use, or the one of a timing trial that
+ * contact/trials.c gives (the results do not depend on which runs: see
+ * contact/pass.h). */
 static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
                     const struct kick K)
 {
-    C->ran = C->current;
-    if (!K.on || C->forced >= 0)
-        return run_variant(C, C->current, c, K);
-    if (!C->trial) {
-        if (++C->since < TRIAL_EVERY || nvariants(C) < 2)
-            return run_variant(C, C->current, c, K);
-        C->since = 0;
-        C->trial = trial_size(C) * TRIAL_ROUNDS;
-    }
-    const int done = trial_size(C) * TRIAL_ROUNDS - C->trial;
-    const int v = trial_variant(C, done / TRIAL_ROUNDS);
-    if (done % TRIAL_ROUNDS == 0)
-        C->best[v] = INFINITY;
+    int timed = 0;
+    const int v =
+        K.on && C->forced < 0 ? dem_trials_next(C, &timed) : C->current;
     C->ran = v;
+    if (!timed)
+        return run_variant(C, v, c, K);
     const double t0 = seconds_now();
     const int moved = run_variant(C, v, c, K);
-    const double t = seconds_now() - t0;
-    if (done % TRIAL_ROUNDS && t < C->best[v])
-        C->best[v] = t;
-    if (--C->trial == 0) {
-        int w = C->current;
-        for (int u = 0; u < nvariants(C); u++)
-            if (in_trial(C, u) && C->best[u] < C->best[w])
-                w = u;
-        C->won[w]++;
-        /* the sit-outs, decided among this trial's variants */
-        for (int u = 0; u < nvariants(C); u++) {
-            if (!in_trial(C, u)) {
-                C->out[u]--;
-                continue;
-            }
-            const int p = 2 * C->pause[u] + 1;
-            if (C->best[u] <= TRIAL_FAR * C->best[w])
-                C->pause[u] = 0;
-            else
-                C->pause[u] = p < TRIAL_OUT ? p : TRIAL_OUT;
-            C->out[u] = C->pause[u];
-        }
-        C->current = w;
-    }
+    dem_trials_time(C, seconds_now() - t0);
     return moved;
 }
 

@@ -38,13 +38,21 @@ struct dem_pass_choice {
     int level;   /* the set of compilations in use: 0 the build's, else a
                     CPU level's (contact/forces.c, DEM_DISPATCH) */
     int forced;  /* -1: chosen by timing, else DEMBOX_PASS's index */
-    int current; /* the variant in use */
-    int ran;     /* the variant of the last pass */
-    int trial;   /* passes of the running trial left, 0: none */
+    int nvar;    /* variants in the set in use */
+    unsigned blocks_var; /* bit v: variant v runs the threads' own blocks */
+    int current;         /* the variant in use */
+    int ran;             /* the variant of the last pass */
+    int trial;           /* passes of the running trial left, 0: none */
+    int confirm;         /* -1, or the winner of the last trial, which runs
+                            against the one in use again before it replaces it
+                            (contact/trials.c) */
     long since;  /* time steps since the last trial */
     double best[DEM_MAX_PASSES]; /* s; each variant's fastest pass in the
                                     last trial it ran in */
-    long won[DEM_MAX_PASSES]; /* trials each variant won since the set-up */
+    long won[DEM_MAX_PASSES];    /* trials each variant won since the set-up
+                                    (confirmed where it was not in use) */
+    long proposed, confirmed;    /* changes of variant the trials proposed,
+                                    and the ones their second trial confirmed */
     int pause[DEM_MAX_PASSES]; /* trials it last had to sit out: 0 after
                                   a trial not lost by far */
     int out[DEM_MAX_PASSES];   /* trials still to sit out */
