@@ -24,7 +24,8 @@
 
 /* Set C up for nvar variants (at most DEM_MAX_PASSES), those with bit v
  * of blocks_var set running the threads' own blocks, variant first in
- * use until the first trial. Leaves C->level, C->forced and C->plane. */
+ * use until the first trial. Sets the trials' fields only (C->level,
+ * forced, no_blocks, runs and the rest are the caller's). */
 void dem_trials_init(struct dem_pass_choice *C, int nvar, unsigned blocks_var,
                      int first);
 

@@ -32,8 +32,8 @@ struct dem_contact_sums {
     int max_overlap_j;          /* id of the other, -1 for a wall */
 };
 
-/* Which compilation of the force pass runs, and its timing trials
- * (contact/forces.c). */
+/* Which compilation of the force pass runs (contact/forces.c), and its
+ * timing trials (contact/trials.c). */
 struct dem_pass_choice {
     int level;   /* the set of compilations in use: 0 the build's, else a
                     CPU level's (contact/forces.c, DEM_DISPATCH) */
