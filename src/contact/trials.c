@@ -135,6 +135,15 @@ static void decide(struct dem_pass_choice *C)
     C->won[w]++;
 }
 
+/* The running trial's present pass: its variant in *v, and its round
+ * (0: the untimed one that warms up). */
+static int trial_round(const struct dem_pass_choice *C, int *v)
+{
+    const int done = trial_size(C) * DEM_TRIAL_ROUNDS - C->trial;
+    *v = trial_variant(C, done / DEM_TRIAL_ROUNDS);
+    return done % DEM_TRIAL_ROUNDS;
+}
+
 int dem_trials_next(struct dem_pass_choice *C, int *timed)
 {
     *timed = 0;
@@ -144,9 +153,8 @@ int dem_trials_next(struct dem_pass_choice *C, int *timed)
         C->since = 0;
         C->trial = trial_size(C) * DEM_TRIAL_ROUNDS;
     }
-    const int done = trial_size(C) * DEM_TRIAL_ROUNDS - C->trial;
-    const int v = trial_variant(C, done / DEM_TRIAL_ROUNDS);
-    if (done % DEM_TRIAL_ROUNDS == 0)
+    int v;
+    if (trial_round(C, &v) == 0)
         C->best[v] = INFINITY;
     *timed = 1;
     return v;
@@ -154,9 +162,8 @@ int dem_trials_next(struct dem_pass_choice *C, int *timed)
 
 void dem_trials_time(struct dem_pass_choice *C, double t)
 {
-    const int done = trial_size(C) * DEM_TRIAL_ROUNDS - C->trial;
-    const int v = trial_variant(C, done / DEM_TRIAL_ROUNDS);
-    if (done % DEM_TRIAL_ROUNDS && t < C->best[v])
+    int v;
+    if (trial_round(C, &v) && t < C->best[v])
         C->best[v] = t;
     if (--C->trial == 0)
         decide(C);
