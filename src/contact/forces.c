@@ -475,6 +475,38 @@ static int run_variant(const struct dem_pass_choice *C, int v,
     return V->run(c, K);
 }
 
+/* With the environment variable DEMBOX_TRIALS_LOG naming a file, one
+ * line appended to it at the end of each trial (docs/performance.md):
+ * the wall clock (s since 1970), the passes the run's pass choice has
+ * run, "first" or "second" trial, the variant in use before it, the one
+ * after it, the winner it proposes (a first trial's winner not in use)
+ * or "-", then the name and fastest timed pass in microseconds of each
+ * variant in it (set: dem_trials_set before its end). A file that
+ * cannot be opened is passed over: the log is a diagnosis, and must not
+ * stop a run. */
+static void trial_log(const struct dem_pass_choice *C, unsigned set, int before,
+                      int second)
+{
+    const char *path = getenv("DEMBOX_TRIALS_LOG");
+    FILE *f = path && *path ? fopen(path, "a") : NULL;
+    if (!f)
+        return;
+    struct timespec t;
+    clock_gettime(CLOCK_REALTIME, &t);
+    long passes = 0;
+    for (int v = 0; v < C->nvar; v++)
+        passes += C->runs[v];
+    fprintf(f, "%.3f %ld %s %s %s %s", (double)t.tv_sec + 1e-9 * t.tv_nsec,
+            passes, second ? "second" : "first", variants(C)[before].name,
+            variants(C)[C->current].name,
+            C->confirm >= 0 ? variants(C)[C->confirm].name : "-");
+    for (int v = 0; v < C->nvar; v++)
+        if (set >> v & 1u)
+            fprintf(f, " %s %.2f", variants(C)[v].name, 1e6 * C->best[v]);
+    fputc('\n', f);
+    fclose(f);
+}
+
 /* One pass in the variant in use, or the one of a timing trial that
  * contact/trials.c gives (the results do not depend on which runs: see
  * contact/pass.h). */
@@ -489,7 +521,16 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
         return run_variant(C, v, c, K);
     const double t0 = seconds_now();
     const int moved = run_variant(C, v, c, K);
-    dem_trials_time(C, seconds_now() - t0);
+    const double t = seconds_now() - t0;
+    if (C->trial > 1) {
+        dem_trials_time(C, t);
+        return moved;
+    }
+    /* the trial's last pass */
+    const unsigned set = dem_trials_set(C);
+    const int before = C->current, second = C->confirm >= 0;
+    dem_trials_time(C, t);
+    trial_log(C, set, before, second);
     return moved;
 }
 

@@ -168,3 +168,12 @@ void dem_trials_time(struct dem_pass_choice *C, double t)
     if (--C->trial == 0)
         decide(C);
 }
+
+unsigned dem_trials_set(const struct dem_pass_choice *C)
+{
+    unsigned set = 0;
+    if (C->trial)
+        for (int u = 0; u < C->nvar; u++)
+            set |= (unsigned)in_trial(C, u) << u;
+    return set;
+}

@@ -37,4 +37,8 @@ int dem_trials_next(struct dem_pass_choice *C, int *timed);
 /* The time of the trial's pass dem_trials_next gave, in s. */
 void dem_trials_time(struct dem_pass_choice *C, double t);
 
+/* The variants of the running trial: bit v set for variant v (0 when
+ * none runs). */
+unsigned dem_trials_set(const struct dem_pass_choice *C);
+
 #endif
