@@ -26,8 +26,8 @@ check() {
         echo bad
     fi
 }
-"$BIN" run biaxial2d --max-steps 3000 --threads 1 -o a > /dev/null 2> a.log ||
-    fail "run: $(tail -3 a.log)"
+DEMBOX_TRIALS_LOG=a.trials "$BIN" run biaxial2d --max-steps 3000 --threads 1 \
+    -o a > /dev/null 2> a.log || fail "run: $(tail -3 a.log)"
 [ "$(check a.log)" = 3000 ] || fail "a.log: $(line a.log)"
 set +e
 DEMBOX_STOP_AFTER_STEP=1500 "$BIN" run biaxial2d --max-steps 3000 --threads 1 \
@@ -56,7 +56,24 @@ case "$tally" in
         tr ',' '\n' | awk '{ k += $2 } END { print k + 0 }')
     all=$(printf '%s\n' "$tally" | sed 's/.* of \([0-9]*\) trials$/\1/')
     [ "$won" -ge 1 ] && [ "$won" -eq "$all" ] ||
-        fail "trials won ($won) do not add up to $all: $tally" ;;
+        fail "trials won ($won) do not add up to $all: $tally"
+    # DEMBOX_TRIALS_LOG: a line per trial, the tally's and the first
+    # trials that proposed a change; passes rising; a second trial just
+    # after each proposal (of a variant not in use), and only then; the
+    # variant after a trial the one in use before the next; a time > 0 us
+    # for each variant in it
+    proposed=$(line a.log |
+        sed -n 's/.* of \([0-9]*\) changes confirmed)$/\1/p')
+    awk -v want=$((all + ${proposed:-0})) '
+        NF < 8 || NF % 2 || $2 <= p || (NR > 1 && $4 != after) ||
+            ($3 == "second") != (NR > 1 && prop != "-") ||
+            ($3 != "second" && $3 != "first") ||
+            ($6 != "-" && $6 == $5) { bad = bad " " NR }
+        { for (k = 7; k < NF; k += 2) if ($(k + 1) <= 0) bad = bad " " NR
+          p = $2; after = $5; prop = $6 }
+        END { if (NR != want || bad != "") {
+            print NR " lines, " want " wanted; bad:" bad; exit 1 } }
+    ' a.trials || fail "DEMBOX_TRIALS_LOG: $(cat a.trials)" ;;
 *) [ "$(printf '%s\n' "$tally" | wc -w)" -eq 1 ] ||
     fail "force pass: $tally" ;;
 esac
