@@ -37,15 +37,26 @@ static void run(struct dem_pass_choice *C, const struct machine *M, long steps,
     R->trials = 0;
     R->first_in_use = -1;
     int was_in_trial = 0, seen[DEM_MAX_PASSES] = {0};
+    unsigned set = 0, ran = 0; /* the trial's variants, and those timed */
     for (long k = 0; k < steps; k++) {
         int timed;
         const int v = dem_trials_next(C, &timed);
         R->runs[v]++;
+        if (!timed || !was_in_trial) /* a trial ended: all its set ran */
+            assert_int_equal(ran, set);
+        if (!timed)
+            assert_int_equal(dem_trials_set(C), 0);
         if (timed) {
             if (!was_in_trial) {
                 R->trials++;
                 memset(seen, 0, sizeof seen);
+                set = dem_trials_set(C);
+                ran = 0;
             }
+            /* (dem_trials_set, for DEMBOX_TRIALS_LOG: the same all
+             * through a trial, and the variants it times) */
+            assert_int_equal(dem_trials_set(C), set);
+            ran |= 1u << v;
             if (!seen[v]++)
                 R->in_trials[v]++;
             R->timed[v]++;
