@@ -216,10 +216,12 @@ static const char *const usage_bench =
     "bit. Every run times them now and then and uses the fastest; the\n"
     "environment variable\n"
     "DEMBOX_PASS=gathers|loads|records|blocks|ring|auto forces one (also\n"
-    "for dembox run). A build for a CPU level (-DDEM_NATIVE=OFF) has them\n"
-    "also for the x86-64 levels above its own and runs those of the\n"
-    "highest the CPU has; DEMBOX_ISA=build|x86-64-v3|x86-64-v4|auto\n"
-    "chooses the level (one the CPU lacks is refused).\n";
+    "for dembox run), and DEMBOX_TRIALS_LOG=FILE appends each trial's\n"
+    "times to FILE (docs/performance.md). A build for a CPU level\n"
+    "(-DDEM_NATIVE=OFF) has them also for the x86-64 levels above its\n"
+    "own and runs those of the highest the CPU has;\n"
+    "DEMBOX_ISA=build|x86-64-v3|x86-64-v4|auto chooses the level (one\n"
+    "the CPU lacks is refused).\n";
 
 static const char *const usage_examples =
     "usage: dembox examples\n\nList the built-in examples.\n";
