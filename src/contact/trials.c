@@ -21,12 +21,11 @@
  * the timed passes of one variant in a trial come one after another, a
  * few tenths of a millisecond in all at N = 3375, so a moment in which
  * the host takes a vCPU away can spoil all of them, and a single trial
- * then hands the next DEM_TRIAL_EVERY steps to a slower variant. In a
- * run of `cyclic3d-paper` on a busy host the ring pass won 30 % of the
- * trials while it ran 1.2-1.8x the records pass's time in slices of the
- * same stage after the run (docs/performance-log.md, session 85). The
- * first trial needs no second one: the variant before it is a default,
- * not a choice timed. */
+ * then hands the next DEM_TRIAL_EVERY steps to a slower variant: in
+ * slices of `cyclic3d-paper` the second trial confirmed 25 of the 61
+ * changes proposed (docs/performance-log.md, session 86). The first
+ * trial needs no second one: the variant before it is a default, not a
+ * choice timed. */
 #include "contact/trials.h"
 
 #include <math.h>
