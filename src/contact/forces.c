@@ -454,10 +454,12 @@ void dem_sim_pass_tally(const struct dem_sim *s, char *buf, size_t size)
                  " (%ld of %ld changes confirmed)", C->confirmed, C->proposed);
 }
 
-static double seconds_now(void)
+/* s on clock id: CLOCK_MONOTONIC for the trials' times, CLOCK_REALTIME
+ * for their log */
+static double seconds_on(clockid_t id)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(id, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
@@ -491,13 +493,11 @@ static void trial_log(const struct dem_pass_choice *C, unsigned set, int before,
     FILE *f = path && *path ? fopen(path, "a") : NULL;
     if (!f)
         return;
-    struct timespec t;
-    clock_gettime(CLOCK_REALTIME, &t);
     long passes = 0;
     for (int v = 0; v < C->nvar; v++)
         passes += C->runs[v];
-    fprintf(f, "%.3f %ld %s %s %s %s", (double)t.tv_sec + 1e-9 * t.tv_nsec,
-            passes, second ? "second" : "first", variants(C)[before].name,
+    fprintf(f, "%.3f %ld %s %s %s %s", seconds_on(CLOCK_REALTIME), passes,
+            second ? "second" : "first", variants(C)[before].name,
             variants(C)[C->current].name,
             C->confirm >= 0 ? variants(C)[C->confirm].name : "-");
     for (int v = 0; v < C->nvar; v++)
@@ -519,18 +519,16 @@ static int run_pass(struct dem_pass_choice *C, const struct contacts *c,
     C->ran = v;
     if (!timed)
         return run_variant(C, v, c, K);
-    const double t0 = seconds_now();
+    const double t0 = seconds_on(CLOCK_MONOTONIC);
     const int moved = run_variant(C, v, c, K);
-    const double t = seconds_now() - t0;
-    if (C->trial > 1) {
-        dem_trials_time(C, t);
-        return moved;
-    }
-    /* the trial's last pass */
-    const unsigned set = dem_trials_set(C);
-    const int before = C->current, second = C->confirm >= 0;
+    const double t = seconds_on(CLOCK_MONOTONIC) - t0;
+    /* (what the log of a trial says of it before its last pass ends it) */
+    const int last = C->trial == 1, before = C->current,
+              second = C->confirm >= 0;
+    const unsigned set = last ? dem_trials_set(C) : 0u;
     dem_trials_time(C, t);
-    trial_log(C, set, before, second);
+    if (last)
+        trial_log(C, set, before, second);
     return moved;
 }
 
