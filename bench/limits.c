@@ -31,7 +31,17 @@
  * with non-temporal ones; ns per line for each side, with the ping-pong
  * before and after (docs/performance-log.md, session 43):
  *
- *     build/dembox_limits --handover */
+ *     build/dembox_limits --handover
+ *
+ * Or the ring pass's streams at N = 3375 against N = 216000 swept once
+ * for 1, 2, 4 or 8 steps (fronts FRONT_LAG layers of cells apart, each a
+ * step behind the one before; ring_streams), in a cube and in a column
+ * whose layers are N = 3375's, with and without the arrays of x, v and
+ * omega: how far sweeping memory once for several steps would bring the
+ * memory side of a step at large N towards its cost at small N (some 5
+ * minutes; docs/performance-log.md, session 88):
+ *
+ *     build/dembox_limits --fronts */
 #define _GNU_SOURCE /* pthread_setaffinity_np */
 #include <math.h>
 #include <pthread.h>
@@ -261,12 +271,13 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
  *    and, if `arrays`, the 9 they write (x, v, omega); its record
  *    written.
  * Once n is large everything but the ring streams from main memory.
- * With `fronts` 2, one sweep does two steps, as a pass that swept memory
- * once for two steps would: a second front visits the particles
+ * With `fronts` F > 1, one sweep does F steps, as a pass that swept
+ * memory once for F steps would: front f visits the particles f x
  * FRONT_LAG layers behind the first, with a ring of its own, so that the
  * data between the fronts (FRONT_LAG x L particles, about 400 B each:
  * 2.9 MB at N = 216000) may come from the caches. The fronts take turns
- * by FRONT_CHUNK particles (turns of one particle took twice as long).
+ * by FRONT_CHUNK particles (turns of one particle took twice as long);
+ * reps must be a multiple of F.
  * With row > 0 the particles lie in a column of row x row cells instead
  * of a cube (L = row^2), as they would in a pass that swept a sample
  * column by column: the data between two fronts then fit in the L2.
@@ -307,7 +318,7 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
     for (int e = 0; e < 9; e++)
         ok &= (rw[e] = calloc((size_t)n, sizeof *rw[e])) != NULL;
     double *rec = calloc(12 * (size_t)n, sizeof *rec),
-           *ring = calloc(12 * (size_t)size, sizeof *ring);
+           *ring = calloc(6 * (size_t)size * (size_t)fronts, sizeof *ring);
     ok &= rec && ring;
     double best = INFINITY;
     if (ok) {
@@ -329,19 +340,18 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
             S.ro[e] = ro[e];
         for (int e = 0; e < 9; e++)
             S.rw[e] = rw[e];
-        double *ring2 = ring + 6 * (size_t)size;
-        const int gap = fronts > 1 ? FRONT_LAG * L : 0, chunk = FRONT_CHUNK;
+        const int gap = FRONT_LAG * L, chunk = FRONT_CHUNK;
         for (int t = 0; t < 5; t++) {
             const double t0 = now();
             for (int s = 0; s < reps; s += fronts)
-                for (int c = 0; c < n + gap; c += chunk) {
-                    for (int i = c; i < c + chunk && i < n; i++)
-                        ring_visit(&S, ring, i);
-                    if (fronts > 1)
-                        for (int i = c - gap; i < c - gap + chunk && i < n; i++)
-                            if (i >= 0)
-                                ring_visit(&S, ring2, i);
-                }
+                for (int c = 0; c < n + (fronts - 1) * gap; c += chunk)
+                    for (int f = 0; f < fronts; f++) {
+                        double *rf = ring + 6 * (size_t)size * (size_t)f;
+                        const int lo = c - f * gap;
+                        for (int i = lo < 0 ? 0 : lo; i < lo + chunk && i < n;
+                             i++)
+                            ring_visit(&S, rf, i);
+                    }
             best = fmin(best, now() - t0);
         }
         sink += rec[0] + h[0][0];
@@ -550,8 +560,40 @@ int main(int argc, char **argv)
         printf("\n");
         return pingpong_line(3);
     }
+    if (argc > 1 && strcmp(argv[1], "--fronts") == 0) {
+        /* the ring pass's streams at the periodic cell's pairs per
+         * particle at both sizes, N = 3375 against 216000 swept by 1 to 8
+         * fronts (steps a sweep), in a cube and in a column; each value
+         * also over N = 3375's */
+        const double pp = 3.32;
+        const int r3 = 12 * ((int)(5e6 / 3375) + 1),
+                  r2 = 12 * ((int)(5e6 / 216000) + 1);
+        printf("ring pass's streams, no arithmetic, %.2f pairs per "
+               "particle, ns per particle-step (and over N = 3375's):\n",
+               pp);
+        for (int arrays = 1; arrays >= 0; arrays--) {
+            const double small = ring_streams(3375, pp, arrays, 1, r3, 0);
+            if (small < 0.0)
+                no_memory();
+            printf("%s the arrays of x, v, omega: N = 3375 %.1f\n",
+                   arrays ? "with" : "without", small);
+            for (int row = 0; row <= 15; row += 15) {
+                printf("  N = 216000 in a %s, 1, 2, 4, 8 steps a sweep:",
+                       row ? "column of 15 x 15 cells" : "cube");
+                for (int f = 1; f <= 8; f *= 2) {
+                    const double v =
+                        ring_streams(216000, pp, arrays, f, r2, row);
+                    if (v < 0.0)
+                        no_memory();
+                    printf(" %.1f (%.2f)%s", v, v / small, f < 8 ? "," : "\n");
+                }
+            }
+        }
+        return 0;
+    }
     if (argc > 1) {
-        fprintf(stderr, "usage: dembox_limits [--pingpong | --handover]\n");
+        fprintf(stderr,
+                "usage: dembox_limits [--pingpong | --handover | --fronts]\n");
         return 2;
     }
     printf("fma:    %.1f Gflop/s\n", 1e-9 * best(fma_rate, 2000000));
