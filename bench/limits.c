@@ -9,7 +9,12 @@
  *     build/dembox_limits      (one thread; stop other work first)
  *
  * Then the memory side of a chained step of the ring pass, at a small
- * and a large N: its streams in its order, without its arithmetic.
+ * and a large N: its streams in its order, with its requests ahead,
+ * without its arithmetic. Its arrays start at different offsets within
+ * their pages, as the engine's do; a last figure puts every one at the
+ * start of a page, as a fresh process's large allocations are (before
+ * session 88 every figure at the large N was taken so, and without the
+ * requests ahead).
  *
  * Each kernel is timed 5 times; the fastest is printed. The loops work on
  * independent lanes, so that they measure throughput, not latency; check
@@ -47,6 +52,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <stdatomic.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -200,8 +206,13 @@ struct streams {
     double *h[3];
     const double *ro[8];
     double *rw[9], *rec;
-    int mask, arrays;
+    int mask, arrays, n, np;
+    int ahead; /* ask for the streams ahead, as the ring pass does */
 };
+
+#define AHEAD_PAIRS 64     /* contact/pass.c's DEM_AHEAD_PAIRS */
+#define AHEAD_PARTICLES 32 /* and DEM_AHEAD_PARTICLES */
+#define AHEAD_RECORDS 32   /* and DEM_PREFETCH_PAIRS with 16 lanes */
 
 /* Particle i's visit: its row's pairs into ring, the row and its
  * reverse row summed back, its kicks and drift. */
@@ -215,7 +226,34 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
     double *h0 = S->h[0], *h1 = S->h[1], *h2 = S->h[2], *rec = S->rec;
     const int mask = S->mask, k0 = start[i], k1 = start[i + 1];
     double fx = 0.0, fy = 0.0;
+    if (S->ahead && i % 8 == 0 && i + AHEAD_PARTICLES < S->n) {
+        /* every 8 particles a line of each array, as particle_range */
+        const int u = i + AHEAD_PARTICLES;
+        for (int e = 0; e < 8; e++)
+            __builtin_prefetch(S->ro[e] + u, 0, 3);
+        for (int e = 0; S->arrays && e < 9; e++)
+            __builtin_prefetch(S->rw[e] + u, 1, 3);
+        __builtin_prefetch(start + u, 0, 3);
+        __builtin_prefetch(rstart + u, 0, 3);
+        __builtin_prefetch(S->wstart + u, 0, 3);
+    }
     for (int k = k0; k < k1; k++) {
+        if (S->ahead && k + AHEAD_PAIRS < S->np) {
+            /* the partners' records a round ahead, the list's streams
+             * further (every 8th pair: a line of each), as pair_range */
+            const double *r = rec + 12 * (size_t)cj[k + AHEAD_RECORDS];
+            __builtin_prefetch(r, 0, 3);
+            __builtin_prefetch(r + 8, 0, 3);
+            if ((k & 7) == 0) {
+                const int u = k + AHEAD_PAIRS;
+                __builtin_prefetch(ci + u, 0, 3);
+                __builtin_prefetch(cj + u, 0, 3);
+                __builtin_prefetch(state + u, 1, 3);
+                __builtin_prefetch(h0 + u, 1, 3);
+                __builtin_prefetch(h1 + u, 1, 3);
+                __builtin_prefetch(h2 + u, 1, 3);
+            }
+        }
         const double *a = rec + 12 * (size_t)ci[k],
                      *b = rec + 12 * (size_t)cj[k];
         const double d = a[0] + b[0] + b[11];
@@ -278,24 +316,61 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
  * 2.9 MB at N = 216000) may come from the caches. The fronts take turns
  * by FRONT_CHUNK particles (turns of one particle took twice as long);
  * reps must be a multiple of F.
+ * With `ahead`, each visit asks for the streams' lines ahead as the ring
+ * pass does (AHEAD_PAIRS, AHEAD_PARTICLES, AHEAD_RECORDS); with
+ * `stagger`, the arrays start at different offsets within their pages
+ * (struct arena), else all at the same.
  * With row > 0 the particles lie in a column of row x row cells instead
  * of a cube (L = row^2), as they would in a pass that swept a sample
  * column by column: the data between two fronts then fit in the L2.
  * Returns ns per particle-step, the fastest of 5 timings of reps steps;
  * a negative value if out of memory. */
+/* The arrays of one ring_streams, each zero and on its own pages: every
+ * one at the start of a 4 KiB page (aliased: element k of each array at
+ * the same offset in its page, as separate mappings of the C library
+ * place large arrays in a fresh process) or, with stagger, each 5 lines
+ * further on within its page than the one before (as the engine's arrays
+ * happen to lie, docs/performance-log.md, session 88). */
+#define ARENA_MAX 32
+struct arena {
+    void *base[ARENA_MAX];
+    int k, stagger;
+};
+
+static void *arena_zero(struct arena *A, size_t bytes)
+{
+    if (A->k == ARENA_MAX)
+        return NULL;
+    char *b = calloc(bytes + 2 * 4096, 1);
+    if (!b)
+        return NULL;
+    A->base[A->k] = b;
+    const size_t page = (4096 - (uintptr_t)b % 4096) % 4096,
+                 line = A->stagger ? (size_t)(5 * A->k % 64) * 64 : 0;
+    A->k++;
+    return b + page + line;
+}
+
+static void arena_free(struct arena *A)
+{
+    for (int k = 0; k < A->k; k++)
+        free(A->base[k]);
+    A->k = 0;
+}
+
 static double ring_streams(int n, double pairs, int arrays, int fronts,
-                           int reps, int row)
+                           int reps, int row, int ahead, int stagger)
 {
     const int R = row > 0 ? row : (int)lround(cbrt(n)), L = R * R;
     const int off[8] = {1, R, L - R, L, L + R, R + 1, L + 1, L - 1};
+    struct arena A = {{NULL}, 0, stagger};
     /* the three row starts are three streams, as in the pass: the
      * reverse rows' (rstart) a copy of the rows' (as many pairs as j
      * as as i), the walls' all 0 (no wall contact) */
-    int *start = malloc(((size_t)n + 1) * sizeof *start),
-        *wstart = calloc((size_t)n + 1, sizeof *wstart);
+    int *start = arena_zero(&A, ((size_t)n + 1) * sizeof *start),
+        *wstart = arena_zero(&A, ((size_t)n + 1) * sizeof *wstart);
     if (!start || !wstart) {
-        free(start);
-        free(wstart);
+        arena_free(&A);
         return -1.0;
     }
     for (int i = 0; i <= n; i++)
@@ -306,19 +381,22 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
     while (size < back + 1024)
         size *= 2;
     const int mask = size - 1;
-    int *rstart = malloc(((size_t)n + 1) * sizeof *rstart),
-        *ci = malloc(np * sizeof *ci), *cj = malloc(np * sizeof *cj),
-        *state = calloc(np, sizeof *state), *rpair = malloc(np * sizeof *rpair);
+    int *rstart = arena_zero(&A, ((size_t)n + 1) * sizeof *rstart),
+        *ci = arena_zero(&A, np * sizeof *ci),
+        *cj = arena_zero(&A, np * sizeof *cj),
+        *state = arena_zero(&A, np * sizeof *state),
+        *rpair = arena_zero(&A, np * sizeof *rpair);
     double *h[3], *ro[8], *rw[9];
     int ok = rstart && ci && cj && state && rpair;
     for (int e = 0; e < 3; e++)
-        ok &= (h[e] = calloc(np, sizeof *h[e])) != NULL;
+        ok &= (h[e] = arena_zero(&A, np * sizeof *h[e])) != NULL;
     for (int e = 0; e < 8; e++)
-        ok &= (ro[e] = calloc((size_t)n, sizeof *ro[e])) != NULL;
+        ok &= (ro[e] = arena_zero(&A, (size_t)n * sizeof *ro[e])) != NULL;
     for (int e = 0; e < 9; e++)
-        ok &= (rw[e] = calloc((size_t)n, sizeof *rw[e])) != NULL;
-    double *rec = calloc(12 * (size_t)n, sizeof *rec),
-           *ring = calloc(6 * (size_t)size * (size_t)fronts, sizeof *ring);
+        ok &= (rw[e] = arena_zero(&A, (size_t)n * sizeof *rw[e])) != NULL;
+    double *rec = arena_zero(&A, 12 * (size_t)n * sizeof *rec),
+           *ring =
+               arena_zero(&A, 6 * (size_t)size * (size_t)fronts * sizeof *ring);
     ok &= rec && ring;
     double best = INFINITY;
     if (ok) {
@@ -332,10 +410,10 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
             }
         }
         rstart[n] = start[n];
-        struct streams S = {start, rstart, wstart, ci,
-                            cj,    rpair,  state,  {h[0], h[1], h[2]},
-                            {0},   {0},    rec,    mask,
-                            arrays};
+        struct streams S = {start,  rstart, wstart,  ci,
+                            cj,     rpair,  state,   {h[0], h[1], h[2]},
+                            {0},    {0},    rec,     mask,
+                            arrays, n,      (int)np, ahead};
         for (int e = 0; e < 8; e++)
             S.ro[e] = ro[e];
         for (int e = 0; e < 9; e++)
@@ -356,21 +434,7 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
         }
         sink += rec[0] + h[0][0];
     }
-    free(start);
-    free(wstart);
-    free(rstart);
-    free(ci);
-    free(cj);
-    free(state);
-    free(rpair);
-    for (int e = 0; e < 3; e++)
-        free(h[e]);
-    for (int e = 0; e < 8; e++)
-        free(ro[e]);
-    for (int e = 0; e < 9; e++)
-        free(rw[e]);
-    free(rec);
-    free(ring);
+    arena_free(&A);
     return ok ? 1e9 * best / ((double)reps * n) : -1.0;
 }
 
@@ -572,7 +636,7 @@ int main(int argc, char **argv)
                "particle, ns per particle-step (and over N = 3375's):\n",
                pp);
         for (int arrays = 1; arrays >= 0; arrays--) {
-            const double small = ring_streams(3375, pp, arrays, 1, r3, 0);
+            const double small = ring_streams(3375, pp, arrays, 1, r3, 0, 1, 1);
             if (small < 0.0)
                 no_memory();
             printf("%s the arrays of x, v, omega: N = 3375 %.1f\n",
@@ -582,7 +646,7 @@ int main(int argc, char **argv)
                        row ? "column of 15 x 15 cells" : "cube");
                 for (int f = 1; f <= 8; f *= 2) {
                     const double v =
-                        ring_streams(216000, pp, arrays, f, r2, row);
+                        ring_streams(216000, pp, arrays, f, r2, row, 1, 1);
                     if (v < 0.0)
                         no_memory();
                     printf(" %.1f (%.2f)%s", v, v / small, f < 8 ? "," : "\n");
@@ -630,9 +694,9 @@ int main(int argc, char **argv)
     printf("ring pass's streams, no arithmetic, ns per particle-step:\n");
     for (int s = 0; s < 2; s++) {
         const int reps = 2 * ((int)(5e6 / ns[s]) + 1);
-        const double all = ring_streams(ns[s], pairs[s], 1, 1, reps, 0),
-                     rec = ring_streams(ns[s], pairs[s], 0, 1, reps, 0),
-                     two = ring_streams(ns[s], pairs[s], 1, 2, reps, 0);
+        const double all = ring_streams(ns[s], pairs[s], 1, 1, reps, 0, 1, 1),
+                     rec = ring_streams(ns[s], pairs[s], 0, 1, reps, 0, 1, 1),
+                     two = ring_streams(ns[s], pairs[s], 1, 2, reps, 0, 1, 1);
         if (all < 0.0 || rec < 0.0 || two < 0.0)
             no_memory();
         printf("  N = %d, %.2f pairs per particle: %.1f (without the "
@@ -643,13 +707,17 @@ int main(int argc, char **argv)
     /* N = 216000 in a column with the layers of N = 3375: two fronts 2
      * layers apart (2 x 225 particles) have their data in the L2 */
     const int reps = 2 * ((int)(5e6 / ns[1]) + 1);
-    const double col1 = ring_streams(ns[1], pairs[1], 1, 1, reps, 15),
-                 col2 = ring_streams(ns[1], pairs[1], 1, 2, reps, 15);
-    if (col1 < 0.0 || col2 < 0.0)
+    const double col1 = ring_streams(ns[1], pairs[1], 1, 1, reps, 15, 1, 1),
+                 col2 = ring_streams(ns[1], pairs[1], 1, 2, reps, 15, 1, 1);
+    /* and with every array at the start of a page */
+    const double alias = ring_streams(ns[1], pairs[1], 1, 1, reps, 0, 1, 0);
+    if (col1 < 0.0 || col2 < 0.0 || alias < 0.0)
         no_memory();
     printf("  N = %d in a column of 15 x 15 cells: %.1f (two steps a "
            "sweep: %.1f)\n",
            ns[1], col1, col2);
+    printf("  N = %d with every array at the start of a page: %.1f\n", ns[1],
+           alias);
     if (sysconf(_SC_NPROCESSORS_ONLN) >= 2)
         pingpong_line(5);
     return sink == 42.0;
