@@ -303,8 +303,10 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
  *    records of i and j (j one of eight neighbours ahead: the next
  *    particle, the next row, the layer above and its neighbours); a
  *    48-byte force record stored into a ring;
- *  - the row's force records summed back, and as many a layer behind
- *    (its reverse row, through a 4-byte index);
+ *  - the row's force records summed back, and those of its pairs as j
+ *    (its reverse row, through a 4-byte index: the rows of the
+ *    particles one, a row and a layer before it; before session 88
+ *    as many records a layer behind in order);
  *  - three row starts, the 8 arrays the kicks and the drift only read,
  *    and, if `arrays`, the 9 they write (x, v, omega); its record
  *    written.
@@ -365,8 +367,8 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
     const int off[8] = {1, R, L - R, L, L + R, R + 1, L + 1, L - 1};
     struct arena A = {{NULL}, 0, stagger};
     /* the three row starts are three streams, as in the pass: the
-     * reverse rows' (rstart) a copy of the rows' (as many pairs as j
-     * as as i), the walls' all 0 (no wall contact) */
+     * rows', the reverse rows' (rstart), the walls' all 0 (no wall
+     * contact) */
     int *start = arena_zero(&A, ((size_t)n + 1) * sizeof *start),
         *wstart = arena_zero(&A, ((size_t)n + 1) * sizeof *wstart);
     if (!start || !wstart) {
@@ -400,16 +402,21 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
     ok &= rec && ring;
     double best = INFINITY;
     if (ok) {
-        for (int i = 0; i < n; i++) {
-            rstart[i] = start[i];
+        for (int i = 0; i < n; i++)
             for (int k = start[i]; k < start[i + 1]; k++) {
                 const int j = i + off[(k - start[i]) % 8];
                 ci[k] = i;
                 cj[k] = j < n ? j : n - 1;
-                rpair[k] = k >= back ? k - back : k;
             }
-        }
-        rstart[n] = start[n];
+        /* the reverse rows: particle j's pairs as j, in list order (wstart
+         * counts them, then is zeroed again) */
+        for (size_t k = 0; k < np; k++)
+            rstart[cj[k] + 1]++;
+        for (int i = 0; i < n; i++)
+            rstart[i + 1] += rstart[i];
+        for (size_t k = 0; k < np; k++)
+            rpair[rstart[cj[k]] + wstart[cj[k]]++] = (int)k;
+        memset(wstart, 0, ((size_t)n + 1) * sizeof *wstart);
         struct streams S = {start,  rstart, wstart,  ci,
                             cj,     rpair,  state,   {h[0], h[1], h[2]},
                             {0},    {0},    rec,     mask,
