@@ -107,12 +107,22 @@ static void cells_find_brute_force_pairs_2d(void **state)
 }
 
 /* Every array of the particles starts on a cache line. */
+/* Every particle array on a cache line, and each at another offset in
+ * its page (core/particles.h: so that element k of the arrays a step
+ * goes down side by side do not all fall in the same cache sets). */
 static void arrays_on_lines(const struct dem_particles *p)
 {
-#define ON_LINE_(f) assert_int_equal((uintptr_t)p->f % DEM_PARTICLE_ALIGN, 0);
+    uintptr_t off[64];
+    int n = 0;
+#define ON_LINE_(f)                                                            \
+    assert_int_equal((uintptr_t)p->f % DEM_PARTICLE_ALIGN, 0);                 \
+    off[n++] = (uintptr_t)p->f % DEM_PARTICLE_PAGE;
     DEM_PARTICLE_DOUBLE_ARRAYS(ON_LINE_)
     DEM_PARTICLE_INT_ARRAYS(ON_LINE_)
 #undef ON_LINE_
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++)
+            assert_true(off[a] != off[b]);
 }
 
 /* Re-ordering the particles in cell order changes no force: a pair whose

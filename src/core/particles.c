@@ -11,19 +11,40 @@
 #include "core/particles.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 void *dem_particles_array(size_t n, size_t size)
 {
-    const size_t a = DEM_PARTICLE_ALIGN,
-                 bytes =
-                     n > (SIZE_MAX - a) / size ? 0 : (n * size + a - 1) / a * a;
-    void *q = bytes ? aligned_alloc(a, bytes) : NULL;
-    if (q)
-        memset(q, 0, bytes);
+    static atomic_uint turn;
+    const size_t a = DEM_PARTICLE_ALIGN, page = DEM_PARTICLE_PAGE,
+                 bytes = size == 0 || n > (SIZE_MAX - 2 * page) / size
+                             ? 0
+                             : (n * size + a - 1) / a * a;
+    unsigned char *b = bytes ? malloc(bytes + page + a) : NULL;
+    if (!b)
+        return NULL;
+    /* at least a line in (room for b just before the array), at the
+     * line of its page 5 lines on from the array before's: 64 arrays in
+     * turn take the 64 lines of a page */
+    const uintptr_t want =
+        (uintptr_t)(atomic_fetch_add(&turn, 1u) * 5u % (page / a)) * a;
+    unsigned char *q =
+        b + a + ((want - ((uintptr_t)b + a)) & (uintptr_t)(page - 1));
+    memcpy(q - sizeof b, &b, sizeof b);
+    memset(q, 0, bytes);
     return q;
+}
+
+void dem_particles_array_free(void *q)
+{
+    if (q) {
+        void *b;
+        memcpy(&b, (unsigned char *)q - sizeof b, sizeof b);
+        free(b);
+    }
 }
 
 int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err)
@@ -56,7 +77,7 @@ void dem_particles_free(struct dem_particles *p)
     if (!p)
         return;
 #define DEM_FREE_(f)                                                           \
-    free(p->f);                                                                \
+    dem_particles_array_free(p->f);                                            \
     p->f = NULL;
     DEM_PARTICLE_DOUBLE_ARRAYS(DEM_FREE_)
     DEM_PARTICLE_INT_ARRAYS(DEM_FREE_)

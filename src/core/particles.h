@@ -65,8 +65,17 @@ struct dem_particles {
 #define DEM_PARTICLE_INT_ARRAYS(X) X(id) X(ncontact)
 
 /* A particle array of n items of size bytes, zero, on a cache line
- * (DEM_PARTICLE_ALIGN); NULL if out of memory. free() releases it. */
+ * (DEM_PARTICLE_ALIGN); NULL if out of memory or if n or size is 0.
+ * dem_particles_array_free releases it (not free()). Each array starts
+ * at another line of its page than the arrays allocated just before
+ * it: the kicks and drifts go down some 20 of them side by side, and
+ * with all at one offset in their pages (as the C library maps large
+ * arrays apart in a fresh process) element k of each falls in the same
+ * cache sets, and a step at N = 216000 took 10-15 % longer
+ * (docs/performance-log.md, session 88). */
+#define DEM_PARTICLE_PAGE 4096
 void *dem_particles_array(size_t n, size_t size);
+void dem_particles_array_free(void *q);
 
 /* Allocate arrays for cap particles, all zero; n = 0. */
 int dem_particles_init(struct dem_particles *p, int cap, struct dem_error *err);

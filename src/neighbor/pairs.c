@@ -54,7 +54,7 @@ void dem_pairs_free(struct dem_pairs *pl)
         free(pl->rowbuf[t].v);
     free(pl->rowbuf);
     free(pl->old_of);
-    free(pl->scratch);
+    dem_particles_array_free(pl->scratch);
     free(pl->rec);
     free(pl->ring);
     free(pl->ring_wait);
@@ -187,7 +187,7 @@ static int particles_reserve(struct dem_pairs *pl, int n, int cap)
         return -1;
     /* the permutation swaps this with the particles' arrays: same length
      * and alignment */
-    free(pl->scratch);
+    dem_particles_array_free(pl->scratch);
     pl->scratch =
         dem_particles_array((size_t)(cap > c ? cap : c), sizeof *pl->scratch);
     if (!pl->scratch)
