@@ -331,8 +331,9 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
  * one at the start of a 4 KiB page (aliased: element k of each array at
  * the same offset in its page, as separate mappings of the C library
  * place large arrays in a fresh process) or, with stagger, each 5 lines
- * further on within its page than the one before (as the engine's arrays
- * happen to lie, docs/performance-log.md, session 88). */
+ * further on within its page than the one before (as the engine places
+ * its particle arrays, core/particles.c; docs/performance-log.md,
+ * session 88). */
 #define ARENA_MAX 32
 struct arena {
     void *base[ARENA_MAX];

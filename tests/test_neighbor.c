@@ -106,7 +106,6 @@ static void cells_find_brute_force_pairs_2d(void **state)
     check_same_pairs(2, 1);
 }
 
-/* Every array of the particles starts on a cache line. */
 /* Every particle array on a cache line, and each at another offset in
  * its page (core/particles.h: so that element k of the arrays a step
  * goes down side by side do not all fall in the same cache sets). */
