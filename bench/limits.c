@@ -634,9 +634,9 @@ int main(int argc, char **argv)
     }
     if (argc > 1 && strcmp(argv[1], "--fronts") == 0) {
         /* the ring pass's streams at the periodic cell's pairs per
-         * particle at both sizes, N = 3375 against 216000 swept by 1 to 8
-         * fronts (steps a sweep), in a cube and in a column; each value
-         * also over N = 3375's */
+         * particle at both sizes, N = 3375 against 216000 swept by 1, 2,
+         * 4 and 8 fronts (steps a sweep), in a cube and in a column; each
+         * value also over N = 3375's */
         const double pp = 3.32;
         const int r3 = 12 * ((int)(5e6 / 3375) + 1),
                   r2 = 12 * ((int)(5e6 / 216000) + 1);
