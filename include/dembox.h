@@ -745,6 +745,13 @@ struct dem_bench_result {
  * tenth of the steps (five rounds, the first not counted), at least 2. */
 long dem_bench_slice(int n, long steps);
 
+/* Within dem_bench_run's timed loop by turns, 1 while the second count's
+ * slices run, else 0 (also outside such a loop). For timing two
+ * variants of code by turns in one process, as two counts of threads
+ * are: a scratch build picks its variant by this, and `dembox bench
+ * --threads T,T` runs each in turn (docs/performance.md, "The tools"). */
+int dem_bench_turn(void);
+
 /* Prepare or load the packing, run the timed steps, fill r. Errors name
  * the file or the option at fault. */
 int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,

@@ -78,6 +78,9 @@ static void by_turns_same_bits_as_one_count(void **state)
         assert_true(turns.ratio[1] > 0.0 && turns.ratio[1] <= turns.ratio[0] &&
                     turns.ratio[0] <= turns.ratio[2]);
         assert_int_equal(one.turn_steps[0], steps);
+        /* the loop ended in the second count's slice (the tenth), and
+         * says it is outside a loop by turns again */
+        assert_int_equal(dem_bench_turn(), 0);
     }
     unsetenv("DEMBOX_PASS");
 }

@@ -443,6 +443,15 @@ long dem_bench_slice(int n, long steps)
     return k > 2 ? k : 2;
 }
 
+/* Which count's slice of a by-turns loop runs (timed_loop): 0 outside
+ * one. */
+static int bench_turn;
+
+int dem_bench_turn(void)
+{
+    return bench_turn;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -481,6 +490,7 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
             pc[cur] = s->pass;
             s->pass = pc[c];
             cur = c;
+            bench_turn = cur;
             omp_set_num_threads(cur ? o->versus : r->threads);
         }
         const long m = slice < steps - k ? slice : steps - k;
@@ -501,6 +511,7 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
         if (turns && si % 2 && rounds < nr)
             ratio[rounds++] = per[0] / per[1];
     }
+    bench_turn = 0;
     if (turns) {
         pc[cur] = s->pass;
         s->pass = pc[1];
