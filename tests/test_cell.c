@@ -74,7 +74,7 @@ static void check_list(const struct dem_sim *s)
 /* The reverse rows (each particle's pairs as j: those with j itself,
  * then those through an image of j, each part in list order), the reach
  * taken from the first part to the end of each particle's group's rows
- * (DEM_RING_GROUP in a cell), and the ring pass's blocks
+ * (DEM_RING_GROUP), and the ring pass's blocks
  * (dem_pairs_row_block): for one to four threads and blocks cut at
  * multiples of g, the blocks tile the particles, a particle outside the
  * waiting ranges has every pair as j in its own block's rows, one of
@@ -103,7 +103,7 @@ static void check_rows(const struct dem_sim *s)
         const int first = pl->rstart[j] < pl->rimg[j]
                               ? pl->rpair[pl->rstart[j]]
                               : L->start[j];
-        const int G = dem_ring_group(pl->periodic), ge = (j / G + 1) * G;
+        const int G = DEM_RING_GROUP, ge = (j / G + 1) * G;
         const int span = L->start[ge < n ? ge : n] - first;
         reach = span > reach ? span : reach;
     }

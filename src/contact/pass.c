@@ -1170,9 +1170,10 @@ DEM_INLINE int ring_thread(const int law, const struct contacts *c,
                 }
             kw = 0;
         }
-        /* in a cell finished in whole groups (but the last), so that the
-         * virial runs in full blocks (the list's reach counts the wait) */
-        const int G = dem_ring_group(cell), f = e < i1 ? e / G * G : e;
+        /* finished in whole groups (but the last), so that the kicks and
+         * a cell's virial run in full blocks (the list's reach counts the
+         * wait) */
+        const int G = DEM_RING_GROUP, f = e < i1 ? e / G * G : e;
         if (f > p) {
             moved |= particle_range(law, p, f, c->P, pl, ring, k0, mask, c->gb,
                                     c->gr, K, &V, &c->fr, c->rec,

@@ -766,7 +766,7 @@ int dem_pairs_reverse(struct dem_pairs *pl, int n)
      * rank sums no forces for them (decomp/halo.h), so their pairs' forces
      * need not stay in the ring (with them the reach took in most of the
      * list, as the ghosts come after all own particles) */
-    const int *start = L->start, G = dem_ring_group(cell);
+    const int *start = L->start, G = DEM_RING_GROUP;
     int reach = 0;
     for (int i = 0; i < n - pl->nghost; i++) {
         const int first = rs[i] < ri[i] ? pl->rpair[rs[i]] : start[i];

@@ -113,7 +113,7 @@ struct dem_pairs {
     int wall_start[DEM_PAIRS_WALLS + 1];
     int reach;  /* the largest span of pairs from a particle's first pair
                    as j (with j itself, not an image) to the end of the
-                   rows of its group (DEM_RING_GROUP in a cell; the ring
+                   rows of its group (DEM_RING_GROUP; the ring
                    pass's window, contact/pass.c) */
     int *cross; /* periodic cell: the pairs with an image of j other
                    than j itself, grouped by the image, each group in
@@ -191,18 +191,14 @@ struct dem_pairs {
 /* ints per thread in struct dem_pairs.ring_done: one cache line */
 #define DEM_RING_DONE 16
 
-/* In a periodic cell the ring pass finishes particles in whole groups of
- * this many, from a multiple of it (but at the end of a thread's
- * particles), so that the cell's virial runs in full SIMD blocks; a
- * particle's span in the list's reach ends with its group's rows. Between
- * walls the groups are single particles: there groups of 32 made the ring
- * pass 2-5 % slower at N = 3375 and 1-3 % faster at N = 216000 on Zen 4
- * (docs/performance-log.md). */
+/* The ring pass finishes particles in whole groups of this many, from a
+ * multiple of it (but at the end of a thread's particles): in a periodic
+ * cell so that the virial runs in full SIMD blocks, and between walls so
+ * that the kicks and drifts do (single particles there took 4-5 % more
+ * time at N = 3375 and 1-3 % at 216000 on Zen 4, one process by turns,
+ * docs/performance-log.md, session 90). A particle's span in the list's
+ * reach ends with its group's rows. */
 #define DEM_RING_GROUP 32
-static inline int dem_ring_group(int periodic)
-{
-    return periodic ? DEM_RING_GROUP : 1;
-}
 
 /* Doubles per particle record (struct dem_pairs.rec). */
 #define DEM_REC 12
