@@ -578,6 +578,19 @@ static void cell_stress(struct dem_sim *s, const struct contacts *c)
 }
 
 #if DEM_HAVE_PASS_RECORDS
+/* The ring pass's pairs per chunk (DEM_RING_CHUNK, contact/pass.h) for
+ * nt threads: a power of two. */
+static int ring_chunk(const struct dem_pairs *pl, int nt)
+{
+    if (pl->ring_chunk)
+        return pl->ring_chunk;
+    int chunk = DEM_RING_CHUNK;
+    while (chunk > DEM_RING_CHUNK_MIN &&
+           (long)chunk * DEM_RING_CHUNKS * nt > pl->cur.n)
+        chunk /= 2;
+    return chunk;
+}
+
 /* The ring pass's rings for a chained pass (contact/pass_ring.c): one per
  * thread of a power of two entries, at least the list's reach plus a
  * chunk of the given size; their size less 1 in *mask; and the threads'
@@ -728,7 +741,7 @@ static int forces(struct dem_sim *s, const struct kick K)
     dem_sim_frame(s, &c.fr);
 #if DEM_HAVE_PASS_RECORDS
     if (K.chain) {
-        c.ring_chunk = pl->ring_chunk ? pl->ring_chunk : DEM_RING_CHUNK;
+        c.ring_chunk = ring_chunk(pl, omp_get_max_threads());
         c.ring = rings(pl, c.ring_chunk, &c.ring_mask);
         c.wait = pl->ring_wait;
         c.done = pl->ring_done;

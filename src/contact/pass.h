@@ -22,10 +22,19 @@
 #include "core/sim.h"
 
 /* Pairs the ring pass (contact/pass_ring.c) computes at a time before it
- * finishes the particles whose rows they complete (unless
- * struct dem_pairs.ring_chunk says otherwise); its rings hold at least
- * the list's reach (struct dem_pairs) plus this many. */
-#define DEM_RING_CHUNK 1024
+ * finishes the particles whose rows they complete: DEM_RING_CHUNK, halved
+ * down to DEM_RING_CHUNK_MIN while a thread's share of the list would
+ * hold fewer than DEM_RING_CHUNKS chunks (unless struct
+ * dem_pairs.ring_chunk says otherwise); its rings hold at least the
+ * list's reach (struct dem_pairs) plus a chunk. Against chunks of 1024
+ * always, 4096 took 2-5 % off at N = 216000 (one and two threads,
+ * between walls and in a cell) and changed nothing at 3375 and 20000
+ * with one thread, but cost 2 % at N = 3375 with two, whose blocks then
+ * held about one chunk each (Zen 4, one process by turns,
+ * docs/performance-log.md, session 90). */
+#define DEM_RING_CHUNK 4096
+#define DEM_RING_CHUNK_MIN 1024
+#define DEM_RING_CHUNKS 8
 
 /* The arrays one pass works on, read into locals once, so that the
  * compiler need not reload an array pointer from its struct after a

@@ -180,8 +180,9 @@ struct dem_pairs {
                                   aligned: the passes' shares
                                   (struct contacts.share) */
     int share_threads;         /* threads share has room for */
-    int ring_chunk;   /* the ring pass's pairs per chunk, a power of two;
-                         0: DEM_RING_CHUNK (the tests set fewer) */
+    int ring_chunk;    /* the ring pass's pairs per chunk, a power of two;
+                          0: as DEM_RING_CHUNK says (contact/pass.h;
+                          the tests set fewer) */
     unsigned long gen; /* the list's generation: one more at each build
                           or restore (dem_pairs_reverse) */
     struct dem_blocks blocks; /* the threads' own blocks of the records
