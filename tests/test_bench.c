@@ -49,6 +49,7 @@ static void by_turns_same_bits_as_one_count(void **state)
 #if DEM_HAVE_PASS_RECORDS
         "blocks",
         "ring",
+        "single",
         "records"
 #endif
     };

@@ -233,6 +233,8 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     for (int u = 0; u < 9; u++)
         out[RUN_PARTICLES + 6 + u] = s.cell.stress[u / 3][u % 3];
     dem_sim_destroy(&s);
+    /* the run's threads, whichever team each pass ran on ("single") */
+    assert_int_equal(omp_get_max_threads(), threads);
     omp_set_num_threads(1);
     unsetenv("DEMBOX_PASS");
 }
@@ -304,6 +306,8 @@ static void force_passes_give_identical_results(void **state)
      * first particles of the second block wait for the barrier) */
     assert_same_runs(1, 1, "ring", 1, 0, "records");
     assert_same_runs(2, 1, "ring", 1, 1, "gathers");
+    /* the records pass on one of two threads, the other idle */
+    assert_same_runs(2, 1, "single", 2, 1, "blocks");
     /* with the rolling and torsion resistances, whose torques the pairs
      * keep beside their forces */
     run_resist = 1;
@@ -332,6 +336,7 @@ static void force_passes_give_identical_results(void **state)
      * the z faces from the first block) */
     assert_same_runs(1, 1, "ring", 1, 0, "records");
     assert_same_runs(2, 1, "ring", 1, 1, "records");
+    assert_same_runs(2, 1, "single", 1, 0, "gathers");
     run_cell = 0;
 #endif
     struct dem_config c;

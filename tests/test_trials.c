@@ -71,12 +71,11 @@ static void run(struct dem_pass_choice *C, const struct machine *M, long steps,
     }
 }
 
-static void setup(struct dem_pass_choice *C, int nvar, unsigned blocks,
-                  int first)
+static void setup(struct dem_pass_choice *C, int nvar, int first)
 {
     memset(C, 0, sizeof *C);
     C->forced = -1;
-    dem_trials_init(C, nvar, blocks, first);
+    dem_trials_init(C, nvar, first);
 }
 
 static long sum(const long *a, int n)
@@ -96,7 +95,7 @@ static void fastest_runs_and_far_losers_sit_out(void **state)
 {
     (void)state;
     struct dem_pass_choice C;
-    setup(&C, 4, 0u, 0);
+    setup(&C, 4, 0);
     const struct machine M = {{0.95, 0.8, 0.9, 1.6}, {0}, 1L << 40, -1, 0, 1};
     struct record R = {.watch = 1};
     const long steps = DEM_TRIAL_FIRST + 40L * DEM_TRIAL_EVERY;
@@ -132,7 +131,7 @@ static void one_spoiled_trial_changes_nothing(void **state)
 {
     (void)state;
     struct dem_pass_choice C;
-    setup(&C, 2, 0u, 1);
+    setup(&C, 2, 1);
     const struct machine M = {{1.0, 1.2}, {0}, 1L << 40, 0, 3, 3.0};
     struct record R = {.watch = 0};
     run(&C, &M, DEM_TRIAL_FIRST + 7L * DEM_TRIAL_EVERY, &R);
@@ -155,7 +154,7 @@ static void lasting_change_is_confirmed(void **state)
 {
     (void)state;
     struct dem_pass_choice C;
-    setup(&C, 2, 0u, 0);
+    setup(&C, 2, 0);
     const long from = DEM_TRIAL_FIRST + 3L * DEM_TRIAL_EVERY + 500;
     const struct machine M = {{1.0, 1.0}, {1.0, 0.7}, from, -1, 0, 1};
     struct record R = {.watch = 1};
@@ -175,31 +174,32 @@ static void lasting_change_is_confirmed(void **state)
     assert_int_equal(C.won[1], 4);
 }
 
-/* A variant that runs the threads' own blocks sits out the trials while
- * the passes have none (it would run as the records pass), even when it
+/* A variant that would run as another one (struct dem_pass_choice.alike:
+ * the one with the threads' own blocks while the passes have none, the
+ * one on one thread in a run of one) sits out the trials, even when it
  * won the trial whose second trial is to come. */
-static void variant_with_blocks_sits_out_without_them(void **state)
+static void variant_alike_another_sits_out(void **state)
 {
     (void)state;
     struct dem_pass_choice C;
-    setup(&C, 3, 1u << 2, 0);
+    setup(&C, 3, 0);
     const struct machine M = {{1.0, 1.1, 0.5}, {0}, 1L << 40, -1, 0, 1};
     struct record R = {.watch = 2};
-    C.no_blocks = 1;
+    C.alike = 1u << 2;
     run(&C, &M, DEM_TRIAL_FIRST + 2L * DEM_TRIAL_EVERY, &R);
     assert_int_equal(R.timed[2], 0);
     assert_int_equal(C.current, 0);
-    /* with blocks it wins the next trial, and its second one */
-    C.no_blocks = 0;
+    /* no longer alike, it wins the next trial, and its second one */
+    C.alike = 0;
     run(&C, &M, DEM_TRIAL_EVERY + 2L * DEM_TRIAL_RECHECK, &R);
     assert_int_equal(C.current, 2);
     assert_int_equal(C.confirmed, 1);
-    /* a second trial proposed, and the blocks gone before it runs */
-    setup(&C, 3, 1u << 2, 0);
+    /* a second trial proposed, and the variant alike again before it runs */
+    setup(&C, 3, 0);
     const struct machine N = {{1.0, 1.1, 1.2}, {1.0, 1.1, 0.5}, 100, -1, 0, 1};
     run(&C, &N, DEM_TRIAL_FIRST + DEM_TRIAL_EVERY + 50, &R);
     assert_int_equal(C.confirm, 2);
-    C.no_blocks = 1;
+    C.alike = 1u << 2;
     run(&C, &N, 2L * DEM_TRIAL_RECHECK, &R);
     assert_int_equal(C.confirm, -1);
     assert_int_equal(C.current, 0);
@@ -213,7 +213,7 @@ int main(void)
         cmocka_unit_test(fastest_runs_and_far_losers_sit_out),
         cmocka_unit_test(one_spoiled_trial_changes_nothing),
         cmocka_unit_test(lasting_change_is_confirmed),
-        cmocka_unit_test(variant_with_blocks_sits_out_without_them),
+        cmocka_unit_test(variant_alike_another_sits_out),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -216,24 +216,30 @@ struct variant {
                    own their blocks (neighbor/blocks.h), where it can:
                    faster on two L3 caches, not always on one (docs/
                    performance-log.md, session 44), so the trials choose */
+    int one;    /* runs on one thread, the run's others idle: in a small
+                   periodic cell with two threads on two L3 caches, where
+                   the blocks do not apply, one thread is faster than two
+                   (docs/performance-log.md, session 91), so the trials
+                   choose */
 };
 #if DEM_PASS_LOADS
-#define LOADS_(S) {"loads", S(dem__pass_loads), 0, 0},
+#define LOADS_(S) {"loads", S(dem__pass_loads), 0, 0, 0},
 #else
 #define LOADS_(S)
 #endif
 #define RECORDS_(S)                                                            \
-    {"records", S(dem__pass_records), 1, 0},                                   \
-        {"blocks", S(dem__pass_records), 1, 1},                                \
-        {"ring", S(dem__pass_ring), 1, 0},
+    {"records", S(dem__pass_records), 1, 0, 0},                                \
+        {"blocks", S(dem__pass_records), 1, 1, 0},                             \
+        {"ring", S(dem__pass_ring), 1, 0, 0},                                  \
+        {"single", S(dem__pass_records), 1, 0, 1},
 /* A level's variants, S naming its entry points (contact/pass.h). */
 #define VARIANTS_(S)                                                           \
-    {"gathers", S(dem__pass_gathers), 0, 0}, LOADS_(S) RECORDS_(S)
+    {"gathers", S(dem__pass_gathers), 0, 0, 0}, LOADS_(S) RECORDS_(S)
 /* (no records compilations in the sanitizer and fuzzing builds) */
 #if DEM_HAVE_PASS_RECORDS
 static const struct variant plain[] = {VARIANTS_(DEM_PASS_PLAIN_)};
 #else
-static const struct variant plain[] = {{"gathers", dem__pass_gathers, 0, 0},
+static const struct variant plain[] = {{"gathers", dem__pass_gathers, 0, 0, 0},
                                        LOADS_(DEM_PASS_PLAIN_)};
 #endif
 #if DEM_PASS_V3
@@ -361,10 +367,7 @@ int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
     int rc = choose_level(C, err);
     if (rc)
         return rc;
-    unsigned blocks = 0;
-    for (int v = 0; v < nvariants(C); v++)
-        blocks |= (unsigned)(variants(C)[v].blocks != 0) << v;
-    dem_trials_init(C, nvariants(C), blocks, first_variant(C));
+    dem_trials_init(C, nvariants(C), first_variant(C));
     C->plane = s->dim == 2;
     const char *want = getenv("DEMBOX_PASS");
     if (!want || !*want || !strcmp(want, "auto"))
@@ -469,6 +472,14 @@ static int run_variant(const struct dem_pass_choice *C, int v,
                        const struct contacts *c, const struct kick K)
 {
     const struct variant *V = &variants(C)[v];
+    const int nt = omp_get_max_threads();
+    if (V->one && nt > 1) {
+        /* (a team of one runs without the blocks: contact/pass.c) */
+        omp_set_num_threads(1);
+        const int moved = V->run(c, K);
+        omp_set_num_threads(nt);
+        return moved;
+    }
     if (c->blocks && !V->blocks) {
         struct contacts o = *c;
         o.blocks = NULL;
@@ -505,6 +516,21 @@ static void trial_log(const struct dem_pass_choice *C, unsigned set, int before,
             fprintf(f, " %s %.2f", variants(C)[v].name, 1e6 * C->best[v]);
     fputc('\n', f);
     fclose(f);
+}
+
+/* The variants that would run as another one in this pass (bit v for
+ * variant v): the one with the threads' own blocks where it has none (it
+ * runs as the records pass), the one on one thread in a run of one. */
+static unsigned alike(const struct dem_pass_choice *C, int has_blocks)
+{
+    unsigned m = 0;
+    for (int v = 0; v < nvariants(C); v++) {
+        const struct variant *V = &variants(C)[v];
+        if ((V->blocks && !has_blocks) ||
+            (V->one && omp_get_max_threads() == 1))
+            m |= 1u << v;
+    }
+    return m;
 }
 
 /* One pass in the variant in use, or the one of a timing trial that
@@ -750,7 +776,7 @@ static int forces(struct dem_sim *s, const struct kick K)
     c.share = shares(pl);
     c.blocks = own_blocks(s, K);
     if (!s->pass.trial) /* (the same variants all through a trial) */
-        s->pass.no_blocks = c.blocks == NULL;
+        s->pass.alike = alike(&s->pass, c.blocks != NULL);
     c.rec = pl->rec; /* (after own_blocks, which may move them) */
     c.rec_fresh = pl->rec_fresh && pl->rec_written;
     c.blocks_fresh = c.rec_fresh && pl->blocks.written;

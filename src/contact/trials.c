@@ -34,11 +34,9 @@
 enum { TRIAL_OUT = 7 };
 #define TRIAL_FAR 1.25
 
-void dem_trials_init(struct dem_pass_choice *C, int nvar, unsigned blocks_var,
-                     int first)
+void dem_trials_init(struct dem_pass_choice *C, int nvar, int first)
 {
     C->nvar = nvar;
-    C->blocks_var = blocks_var;
     C->current = C->ran = first;
     C->trial = 0;
     C->confirm = -1;
@@ -52,14 +50,14 @@ void dem_trials_init(struct dem_pass_choice *C, int nvar, unsigned blocks_var,
 
 /* Whether variant u runs in the trial: the one in use always does; in a
  * second trial only the winner of the first besides; else the others
- * unless they sit it out. Where the last pass had no threads' own
- * blocks, the variant with them would run as the records pass, and sits
- * out. */
+ * unless they sit it out. A variant that would run as another one
+ * (struct dem_pass_choice.alike: the one with the threads' own blocks
+ * where the passes have none) sits out. */
 static int in_trial(const struct dem_pass_choice *C, int u)
 {
     if (u == C->current)
         return 1;
-    if ((C->blocks_var >> u & 1u) && C->no_blocks)
+    if (C->alike >> u & 1u)
         return 0;
     if (C->confirm >= 0)
         return u == C->confirm;
@@ -84,9 +82,9 @@ static int trial_variant(const struct dem_pass_choice *C, int k)
 }
 
 /* The sit-outs after a first trial that w won, decided among its
- * variants. (A variant that sat out for want of blocks, and had no
- * trials to sit out, owes none: its count stays 0, so that it runs in
- * the next trial with blocks.) */
+ * variants. (A variant that sat out as alike another, and had no trials
+ * to sit out, owes none: its count stays 0, so that it runs in the next
+ * trial where it differs again.) */
 static void sit_outs(struct dem_pass_choice *C, int w)
 {
     for (int u = 0; u < C->nvar; u++) {

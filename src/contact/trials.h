@@ -22,12 +22,10 @@
  * (contact/trials.c). */
 #define DEM_TRIAL_RECHECK 100
 
-/* Set C up for nvar variants (at most DEM_MAX_PASSES), those with bit v
- * of blocks_var set running the threads' own blocks, variant first in
+/* Set C up for nvar variants (at most DEM_MAX_PASSES), variant first in
  * use until the first trial. Sets the trials' fields only (C->level,
- * forced, no_blocks, runs and the rest are the caller's). */
-void dem_trials_init(struct dem_pass_choice *C, int nvar, unsigned blocks_var,
-                     int first);
+ * forced, alike, runs and the rest are the caller's). */
+void dem_trials_init(struct dem_pass_choice *C, int nvar, int first);
 
 /* The variant the next pass with a closing kick runs; *timed is set to
  * 1 when it belongs to a trial, and then its time must be handed to

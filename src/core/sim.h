@@ -16,7 +16,7 @@
 #include "wall/wall.h"
 
 #define DEM_MAX_WALLS 6
-#define DEM_MAX_PASSES 5 /* variants of the force pass */
+#define DEM_MAX_PASSES 6 /* variants of the force pass */
 
 /* Sums gathered by the force loop when measurement is requested. */
 struct dem_contact_sums {
@@ -39,7 +39,6 @@ struct dem_pass_choice {
                     CPU level's (contact/forces.c, DEM_DISPATCH) */
     int forced;  /* -1: chosen by timing, else DEMBOX_PASS's index */
     int nvar;    /* variants in the set in use */
-    unsigned blocks_var; /* bit v: variant v runs the threads' own blocks */
     int current;         /* the variant in use */
     int ran;             /* the variant of the last pass */
     int trial;           /* passes of the running trial left, 0: none */
@@ -56,9 +55,11 @@ struct dem_pass_choice {
     int pause[DEM_MAX_PASSES]; /* trials it last had to sit out: 0 after
                                   a trial not lost by far */
     int out[DEM_MAX_PASSES];   /* trials still to sit out */
-    int no_blocks; /* 1: the last pass had no threads' own blocks to run
-                      (contact/forces.c), so the variant with them is
-                      the records pass itself and sits out the trials */
+    unsigned alike; /* bit v: in the last pass outside a trial variant
+                       v would have run as another one (the one with the
+                       threads' own blocks where there were none, the
+                       one on one thread in a run of one; contact/
+                       forces.c), so it sits out the trials */
     long runs[DEM_MAX_PASSES]; /* passes each variant ran since the set-up */
     long with_blocks; /* of them, passes with the threads' own blocks */
     int plane;        /* 1: the passes of a 2D sample (DEM_SET_PLANE), set with
