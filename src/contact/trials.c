@@ -52,7 +52,8 @@ void dem_trials_init(struct dem_pass_choice *C, int nvar, int first)
  * second trial only the winner of the first besides; else the others
  * unless they sit it out. A variant that would run as another one
  * (struct dem_pass_choice.alike: the one with the threads' own blocks
- * where the passes have none) sits out. */
+ * where the passes have none, the one on one thread in a run of one)
+ * sits out. */
 static int in_trial(const struct dem_pass_choice *C, int u)
 {
     if (u == C->current)
