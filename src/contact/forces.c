@@ -523,11 +523,11 @@ static void trial_log(const struct dem_pass_choice *C, unsigned set, int before,
  * runs as the records pass), the one on one thread in a run of one. */
 static unsigned alike(const struct dem_pass_choice *C, int has_blocks)
 {
+    const int alone = omp_get_max_threads() == 1;
     unsigned m = 0;
     for (int v = 0; v < nvariants(C); v++) {
         const struct variant *V = &variants(C)[v];
-        if ((V->blocks && !has_blocks) ||
-            (V->one && omp_get_max_threads() == 1))
+        if ((V->blocks && !has_blocks) || (V->one && alone))
             m |= 1u << v;
     }
     return m;
