@@ -472,8 +472,8 @@ static int run_variant(const struct dem_pass_choice *C, int v,
                        const struct contacts *c, const struct kick K)
 {
     const struct variant *V = &variants(C)[v];
-    const int nt = omp_get_max_threads();
-    if (V->one && nt > 1) {
+    const int nt = V->one ? omp_get_max_threads() : 1;
+    if (nt > 1) {
         /* (a team of one runs without the blocks: contact/pass.c) */
         omp_set_num_threads(1);
         const int moved = V->run(c, K);
