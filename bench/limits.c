@@ -46,7 +46,14 @@
  * memory side of a step at large N towards its cost at small N (some 5
  * minutes; docs/performance-log.md, session 88):
  *
- *     build/dembox_limits --fronts */
+ *     build/dembox_limits --fronts
+ *
+ * Or those streams with the particles' 17 arrays apart against in one
+ * array of blocks of 8 particles (each block holding 8 values of each
+ * array in turn), N = 3375 against 216000, by turns (some 6 minutes;
+ * docs/performance-log.md, session 93):
+ *
+ *     build/dembox_limits --layouts */
 #define _GNU_SOURCE /* pthread_setaffinity_np */
 #include <math.h>
 #include <pthread.h>
@@ -206,9 +213,29 @@ struct streams {
     double *h[3];
     const double *ro[8];
     double *rw[9], *rec;
+    double *blk; /* the particles' 17 values in blocks (LAYOUT_BLOCKS) */
     int mask, arrays, n, np;
     int ahead; /* ask for the streams ahead, as the ring pass does */
 };
+
+/* Where the particles' arrays lie (ring_streams): each at the start of
+ * a page (aliased), each at its own line of its page (staggered, as the
+ * engine's), or all 17 in one array of blocks of BLOCK particles, block
+ * b holding BLOCK values of each array in turn (an array of structures
+ * of arrays: one stream instead of 17, each value's lanes still whole
+ * vectors). */
+enum { LAYOUT_ALIASED, LAYOUT_STAGGERED, LAYOUT_BLOCKS };
+#define BLOCK 8
+#define BLOCK_VALUES 17 /* 8 the kicks and drift read, 9 they write */
+
+/* Particle i's value e of the 17 (the 8 only read, then x, v, omega) */
+static inline double *particle_value(const struct streams *S, int e, int i)
+{
+    if (S->blk)
+        return S->blk + (size_t)(i / BLOCK) * BLOCK * BLOCK_VALUES +
+               (size_t)e * BLOCK + (size_t)(i % BLOCK);
+    return e < 8 ? (double *)S->ro[e] + i : S->rw[e - 8] + i;
+}
 
 #define AHEAD_PAIRS 64     /* contact/pass.c's DEM_AHEAD_PAIRS */
 #define AHEAD_PARTICLES 32 /* and DEM_AHEAD_PARTICLES */
@@ -230,9 +257,9 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
         /* every 8 particles a line of each array, as particle_range */
         const int u = i + AHEAD_PARTICLES;
         for (int e = 0; e < 8; e++)
-            __builtin_prefetch(S->ro[e] + u, 0, 3);
-        for (int e = 0; S->arrays && e < 9; e++)
-            __builtin_prefetch(S->rw[e] + u, 1, 3);
+            __builtin_prefetch(particle_value(S, e, u), 0, 3);
+        for (int e = 8; S->arrays && e < BLOCK_VALUES; e++)
+            __builtin_prefetch(particle_value(S, e, u), 1, 3);
         __builtin_prefetch(start + u, 0, 3);
         __builtin_prefetch(rstart + u, 0, 3);
         __builtin_prefetch(S->wstart + u, 0, 3);
@@ -279,13 +306,14 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
     }
     fx += S->wstart[i] + S->wstart[i + 1];
     for (int e = 0; e < 8; e++)
-        fy += S->ro[e][i];
+        fy += *particle_value(S, e, i);
     const double u = 1e-300 * fx + 1e-300 * fy;
     double *w = rec + 12 * (size_t)i;
     for (int e = 0; e < 12; e++) {
         if (S->arrays && e < 9) {
-            S->rw[e][i] += u;
-            w[e] = S->rw[e][i];
+            double *v = particle_value(S, 8 + e, i);
+            *v += u;
+            w[e] = *v;
         } else {
             w[e] += u;
         }
@@ -319,9 +347,10 @@ static inline void ring_visit(const struct streams *S, double *ring, int i)
  * by FRONT_CHUNK particles (turns of one particle took twice as long);
  * reps must be a multiple of F.
  * With `ahead`, each visit asks for the streams' lines ahead as the ring
- * pass does (AHEAD_PAIRS, AHEAD_PARTICLES, AHEAD_RECORDS); with
- * `stagger`, the arrays start at different offsets within their pages
- * (struct arena), else all at the same.
+ * pass does (AHEAD_PAIRS, AHEAD_PARTICLES, AHEAD_RECORDS). `layout`
+ * places the arrays (LAYOUT_*): aliased, all at the same offset within
+ * their pages, else each at its own (struct arena); with LAYOUT_BLOCKS
+ * the particles' 17 arrays are one of blocks (BLOCK).
  * With row > 0 the particles lie in a column of row x row cells instead
  * of a cube (L = row^2), as they would in a pass that swept a sample
  * column by column: the data between two fronts then fit in the L2.
@@ -362,11 +391,11 @@ static void arena_free(struct arena *A)
 }
 
 static double ring_streams(int n, double pairs, int arrays, int fronts,
-                           int reps, int row, int ahead, int stagger)
+                           int reps, int row, int ahead, int layout)
 {
     const int R = row > 0 ? row : (int)lround(cbrt(n)), L = R * R;
     const int off[8] = {1, R, L - R, L, L + R, R + 1, L + 1, L - 1};
-    struct arena A = {{NULL}, 0, stagger};
+    struct arena A = {{NULL}, 0, layout != LAYOUT_ALIASED};
     /* the three row starts are three streams, as in the pass: the
      * rows', the reverse rows' (rstart), the walls' all 0 (no wall
      * contact) */
@@ -393,10 +422,21 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
     int ok = rstart && ci && cj && state && rpair;
     for (int e = 0; e < 3; e++)
         ok &= (h[e] = arena_zero(&A, np * sizeof *h[e])) != NULL;
-    for (int e = 0; e < 8; e++)
-        ok &= (ro[e] = arena_zero(&A, (size_t)n * sizeof *ro[e])) != NULL;
-    for (int e = 0; e < 9; e++)
-        ok &= (rw[e] = arena_zero(&A, (size_t)n * sizeof *rw[e])) != NULL;
+    double *blk = NULL;
+    if (layout == LAYOUT_BLOCKS) {
+        const size_t blocks = ((size_t)n + BLOCK - 1) / BLOCK;
+        ok &= (blk = arena_zero(&A, blocks * BLOCK * BLOCK_VALUES *
+                                        sizeof *blk)) != NULL;
+        for (int e = 0; e < 8; e++)
+            ro[e] = blk;
+        for (int e = 0; e < 9; e++)
+            rw[e] = blk;
+    } else {
+        for (int e = 0; e < 8; e++)
+            ok &= (ro[e] = arena_zero(&A, (size_t)n * sizeof *ro[e])) != NULL;
+        for (int e = 0; e < 9; e++)
+            ok &= (rw[e] = arena_zero(&A, (size_t)n * sizeof *rw[e])) != NULL;
+    }
     double *rec = arena_zero(&A, 12 * (size_t)n * sizeof *rec),
            *ring =
                arena_zero(&A, 6 * (size_t)size * (size_t)fronts * sizeof *ring);
@@ -418,10 +458,10 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
         for (size_t k = 0; k < np; k++)
             rpair[rstart[cj[k]] + wstart[cj[k]]++] = (int)k;
         memset(wstart, 0, ((size_t)n + 1) * sizeof *wstart);
-        struct streams S = {start,  rstart, wstart,  ci,
-                            cj,     rpair,  state,   {h[0], h[1], h[2]},
-                            {0},    {0},    rec,     mask,
-                            arrays, n,      (int)np, ahead};
+        struct streams S = {
+            start, rstart, wstart, ci,  cj,   rpair,  state, {h[0], h[1], h[2]},
+            {0},   {0},    rec,    blk, mask, arrays, n,     (int)np,
+            ahead};
         for (int e = 0; e < 8; e++)
             S.ro[e] = ro[e];
         for (int e = 0; e < 9; e++)
@@ -446,6 +486,56 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
     return ok ? 1e9 * best / ((double)reps * n) : -1.0;
 }
 
+/* The particles' arrays one by one (staggered) against in blocks, N =
+ * 3375 against 216000 at the periodic cell's pairs per particle, by
+ * turns over `rounds` rounds: each case's median and range of ns per
+ * particle-step, and of the ratio of the two sizes within a round. */
+#define LAYOUT_ROUNDS 7
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void print_spread(double *v, int k)
+{
+    qsort(v, (size_t)k, sizeof *v, cmp_double);
+    printf("%.2f (%.2f-%.2f)", v[k / 2], v[0], v[k - 1]);
+}
+
+static void layouts(void)
+{
+    const double pp = 3.32;
+    const int ns[2] = {3375, 216000},
+              layout[2] = {LAYOUT_STAGGERED, LAYOUT_BLOCKS};
+    double t[2][2][LAYOUT_ROUNDS], q[2][LAYOUT_ROUNDS];
+    for (int r = 0; r < LAYOUT_ROUNDS; r++)
+        for (int l = 0; l < 2; l++) {
+            for (int s = 0; s < 2; s++) {
+                const int reps = 12 * ((int)(5e6 / ns[s]) + 1);
+                t[l][s][r] =
+                    ring_streams(ns[s], pp, 1, 1, reps, 0, 1, layout[l]);
+                if (t[l][s][r] < 0.0)
+                    no_memory();
+            }
+            q[l][r] = t[l][1][r] / t[l][0][r];
+        }
+    printf("ring pass's streams, no arithmetic, %.2f pairs per particle, "
+           "%d rounds by turns, ns per particle-step, median (range):\n",
+           pp, LAYOUT_ROUNDS);
+    for (int l = 0; l < 2; l++) {
+        printf("  %s: N = 3375 ", l ? "the particles' 17 arrays in blocks "
+                                      "of 8"
+                                    : "the particles' 17 arrays apart");
+        print_spread(t[l][0], LAYOUT_ROUNDS);
+        printf(", N = 216000 ");
+        print_spread(t[l][1], LAYOUT_ROUNDS);
+        printf(", 216000 / 3375 ");
+        print_spread(q[l], LAYOUT_ROUNDS);
+        printf("\n");
+    }
+}
+
 static double best(double (*f)(long), long reps)
 {
     double m = 0.0;
@@ -456,8 +546,14 @@ static double best(double (*f)(long), long reps)
     return m;
 }
 
-static double sqrt_rate(long reps) { return divider_rate(0, reps); }
-static double div_rate(long reps) { return divider_rate(1, reps); }
+static double sqrt_rate(long reps)
+{
+    return divider_rate(0, reps);
+}
+static double div_rate(long reps)
+{
+    return divider_rate(1, reps);
+}
 
 /* The ping-pong's line: CPU 0 writes the odd counts, CPU 1 the even
  * ones, each when it sees the other's. */
@@ -644,7 +740,8 @@ int main(int argc, char **argv)
                "particle, ns per particle-step (and over N = 3375's):\n",
                pp);
         for (int arrays = 1; arrays >= 0; arrays--) {
-            const double small = ring_streams(3375, pp, arrays, 1, r3, 0, 1, 1);
+            const double small =
+                ring_streams(3375, pp, arrays, 1, r3, 0, 1, LAYOUT_STAGGERED);
             if (small < 0.0)
                 no_memory();
             printf("%s the arrays of x, v, omega: N = 3375 %.1f\n",
@@ -653,8 +750,8 @@ int main(int argc, char **argv)
                 printf("  N = 216000 in a %s, 1, 2, 4, 8 steps a sweep:",
                        row ? "column of 15 x 15 cells" : "cube");
                 for (int f = 1; f <= 8; f *= 2) {
-                    const double v =
-                        ring_streams(216000, pp, arrays, f, r2, row, 1, 1);
+                    const double v = ring_streams(216000, pp, arrays, f, r2,
+                                                  row, 1, LAYOUT_STAGGERED);
                     if (v < 0.0)
                         no_memory();
                     printf(" %.1f (%.2f)%s", v, v / small, f < 8 ? "," : "\n");
@@ -663,9 +760,13 @@ int main(int argc, char **argv)
         }
         return 0;
     }
+    if (argc == 2 && !strcmp(argv[1], "--layouts")) {
+        layouts();
+        return 0;
+    }
     if (argc > 1) {
-        fprintf(stderr,
-                "usage: dembox_limits [--pingpong | --handover | --fronts]\n");
+        fprintf(stderr, "usage: dembox_limits [--pingpong | --handover | "
+                        "--fronts | --layouts]\n");
         return 2;
     }
     printf("fma:    %.1f Gflop/s\n", 1e-9 * best(fma_rate, 2000000));
@@ -702,9 +803,12 @@ int main(int argc, char **argv)
     printf("ring pass's streams, no arithmetic, ns per particle-step:\n");
     for (int s = 0; s < 2; s++) {
         const int reps = 2 * ((int)(5e6 / ns[s]) + 1);
-        const double all = ring_streams(ns[s], pairs[s], 1, 1, reps, 0, 1, 1),
-                     rec = ring_streams(ns[s], pairs[s], 0, 1, reps, 0, 1, 1),
-                     two = ring_streams(ns[s], pairs[s], 1, 2, reps, 0, 1, 1);
+        const double all = ring_streams(ns[s], pairs[s], 1, 1, reps, 0, 1,
+                                        LAYOUT_STAGGERED),
+                     rec = ring_streams(ns[s], pairs[s], 0, 1, reps, 0, 1,
+                                        LAYOUT_STAGGERED),
+                     two = ring_streams(ns[s], pairs[s], 1, 2, reps, 0, 1,
+                                        LAYOUT_STAGGERED);
         if (all < 0.0 || rec < 0.0 || two < 0.0)
             no_memory();
         printf("  N = %d, %.2f pairs per particle: %.1f (without the "
@@ -715,10 +819,13 @@ int main(int argc, char **argv)
     /* N = 216000 in a column with the layers of N = 3375: two fronts 2
      * layers apart (2 x 225 particles) have their data in the L2 */
     const int reps = 2 * ((int)(5e6 / ns[1]) + 1);
-    const double col1 = ring_streams(ns[1], pairs[1], 1, 1, reps, 15, 1, 1),
-                 col2 = ring_streams(ns[1], pairs[1], 1, 2, reps, 15, 1, 1);
+    const double col1 = ring_streams(ns[1], pairs[1], 1, 1, reps, 15, 1,
+                                     LAYOUT_STAGGERED),
+                 col2 = ring_streams(ns[1], pairs[1], 1, 2, reps, 15, 1,
+                                     LAYOUT_STAGGERED);
     /* and with every array at the start of a page */
-    const double alias = ring_streams(ns[1], pairs[1], 1, 1, reps, 0, 1, 0);
+    const double alias =
+        ring_streams(ns[1], pairs[1], 1, 1, reps, 0, 1, LAYOUT_ALIASED);
     if (col1 < 0.0 || col2 < 0.0 || alias < 0.0)
         no_memory();
     printf("  N = %d in a column of 15 x 15 cells: %.1f (two steps a "
