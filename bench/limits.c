@@ -418,7 +418,7 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
         *cj = arena_zero(&A, np * sizeof *cj),
         *state = arena_zero(&A, np * sizeof *state),
         *rpair = arena_zero(&A, np * sizeof *rpair);
-    double *h[3], *ro[8], *rw[9];
+    double *h[3], *ro[8] = {NULL}, *rw[9] = {NULL};
     int ok = rstart && ci && cj && state && rpair;
     for (int e = 0; e < 3; e++)
         ok &= (h[e] = arena_zero(&A, np * sizeof *h[e])) != NULL;
@@ -427,11 +427,7 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
         const size_t blocks = ((size_t)n + BLOCK - 1) / BLOCK;
         ok &= (blk = arena_zero(&A, blocks * BLOCK * BLOCK_VALUES *
                                         sizeof *blk)) != NULL;
-        for (int e = 0; e < 8; e++)
-            ro[e] = blk;
-        for (int e = 0; e < 9; e++)
-            rw[e] = blk;
-    } else {
+    } else { /* (in blocks, ro and rw stay NULL: particle_value) */
         for (int e = 0; e < 8; e++)
             ok &= (ro[e] = arena_zero(&A, (size_t)n * sizeof *ro[e])) != NULL;
         for (int e = 0; e < 9; e++)
@@ -488,8 +484,8 @@ static double ring_streams(int n, double pairs, int arrays, int fronts,
 
 /* The particles' arrays one by one (staggered) against in blocks, N =
  * 3375 against 216000 at the periodic cell's pairs per particle, by
- * turns over `rounds` rounds: each case's median and range of ns per
- * particle-step, and of the ratio of the two sizes within a round. */
+ * turns over LAYOUT_ROUNDS rounds: each case's median and range of ns
+ * per particle-step, and of the ratio of the two sizes within a round. */
 #define LAYOUT_ROUNDS 7
 static int cmp_double(const void *a, const void *b)
 {
@@ -546,14 +542,8 @@ static double best(double (*f)(long), long reps)
     return m;
 }
 
-static double sqrt_rate(long reps)
-{
-    return divider_rate(0, reps);
-}
-static double div_rate(long reps)
-{
-    return divider_rate(1, reps);
-}
+static double sqrt_rate(long reps) { return divider_rate(0, reps); }
+static double div_rate(long reps) { return divider_rate(1, reps); }
 
 /* The ping-pong's line: CPU 0 writes the odd counts, CPU 1 the even
  * ones, each when it sees the other's. */
