@@ -113,27 +113,32 @@ count() {
     --threads 1 --quiet >"$out/log.$tag.$steps" 2>&1 ||
     { tail -5 "$out/log.$tag.$steps" >&2; die "valgrind $tag, $steps steps failed"; }
 }
+# each size and its two step counts (the counts' difference)
+SIZES=("3375 100 700" "216000 10 40")
 for level in L2 L3; do
   ll=${!level}
   echo "== last level $level, $(date -u +%H:%M:%S)"
   # the two step counts of a size side by side, one on each core
-  for size in 3375 216000; do
-    if [ $size = 3375 ]; then f=$DATA/pack3d_3375.data; s="100 700"
-    else f=$BIG; s="10 40"; fi
+  for c in "${SIZES[@]}"; do
+    read -r size s0 s1 <<<"$c"
+    f=$BIG; [ "$size" = 3375 ] && f=$DATA/pack3d_3375.data
     pids=()
-    for steps in $s; do
+    for steps in "$s0" "$s1"; do
       count "$level.$size" "$ll" "$steps" --data "$f" & pids+=($!)
     done
     for p in "${pids[@]}"; do wait "$p"; done
   done
 done
 
-python3 - "$out" "$LINES" <<'EOF'
+python3 - "$out" "$LINES" "${SIZES[@]}" <<'EOF'
 import collections, sys
 
 out, top = sys.argv[1], int(sys.argv[2])
-# size: (particles, the two step counts)
-runs = {'3375': (3375, 100, 700), '216000': (216000, 10, 40)}
+# size: (particles, the two step counts), from the SIZES of the script
+runs = {}
+for c in sys.argv[3:]:
+    size, s0, s1 = c.split()
+    runs[size] = (int(size), int(s0), int(s1))
 
 def load(name):
     """events and {(file, line): counts} of a cachegrind output file"""
