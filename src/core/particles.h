@@ -8,6 +8,8 @@
 #ifndef DEM_CORE_PARTICLES_H
 #define DEM_CORE_PARTICLES_H
 
+#include <math.h>
+
 #include "dembox.h"
 
 struct dem_particles {
@@ -177,5 +179,16 @@ static inline double dem_particle_overshoot(const struct dem_particles *p,
 /* Mass and moment of inertia of a particle of radius a (see dem_mass_model). */
 void dem_particle_mass(double a, double density, int mass_model, int dim,
                        double *mass, double *inertia);
+
+/* 1 if a particle of mass m and moment of inertia I can move: both and
+ * their inverses positive and finite. A finite radius and density can
+ * still give a mass that overflows to inf or underflows to 0 (a radius of
+ * 1e200 or 1e-200 m), or one so small (1e-320 kg) that its inverse is
+ * inf; such a particle would be immobile or turn the run into NaNs. */
+static inline int dem_particle_mass_in_range(double m, double I)
+{
+    return m > 0.0 && I > 0.0 && isfinite(m) && isfinite(I) &&
+           isfinite(1.0 / m) && isfinite(1.0 / I);
+}
 
 #endif

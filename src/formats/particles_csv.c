@@ -307,12 +307,9 @@ int dem_particles_read_csv_stream(struct dem_particles *p, FILE *f,
         } else {
             dem_particle_mass(a, density, mass_model, dim, &m, &I);
         }
-        /* A finite radius (and mass) can still give a mass or moment of
-         * inertia that overflows to inf or underflows to 0 (radius 1e200
-         * or 1e-200 m), or one so small (1e-320 kg) that its inverse is
-         * inf, which would make the particle immobile or NaN. */
-        const int m_ok = m > 0.0 && isfinite(m) && isfinite(1.0 / m);
-        if (!(m_ok && I > 0.0 && isfinite(I) && isfinite(1.0 / I))) {
+        if (!dem_particle_mass_in_range(m, I)) {
+            /* which of the two is out of range, for the message */
+            const int m_ok = dem_particle_mass_in_range(m, 1.0);
             if (!m_ok && has_mass)
                 rc = dem_error_set(err, DEM_ECONFIG,
                                    "%s:%d: column 'mass': %g kg is out of "
