@@ -543,6 +543,32 @@ static const struct row rows[] = {
                      "3 1 0.1 2000 0.5 0.5 0.5\n",
      {BENCH_DATA},
      "p.csv: atoms 1 and 3 overlap by 2 of the smaller radius"},
+    /* (the reader once took 4294967297 for atom 1, and a second line of
+     * an atom's velocities silently for a missing one's) */
+    {"bench: a data file's velocity id beyond an int",
+     0,
+     0,
+     BENCH_DATA_HEAD "1 1 0.1 2000 0.5 0.5 0.5\n2 1 0.1 2000 0.5 0.5 0.8\n"
+                     "3 1 0.1 2000 0.2 0.5 0.2\n\nVelocities\n\n"
+                     "4294967297 1 0 0 0 0 0\n",
+     {BENCH_DATA},
+     "p.csv:16: Velocities: bad atom id 4294967297"},
+    {"bench: a data file's velocities twice for one atom",
+     0,
+     0,
+     BENCH_DATA_HEAD "1 1 0.1 2000 0.5 0.5 0.5\n2 1 0.1 2000 0.5 0.5 0.8\n"
+                     "3 1 0.1 2000 0.2 0.5 0.2\n\nVelocities\n\n"
+                     "1 0 0 0 0 0 0\n2 0 0 0 0 0 0\n2 1 0 0 0 0 0\n",
+     {BENCH_DATA},
+     "p.csv:18: Velocities: a second line for atom 2"},
+    {"bench: a data file's atom too small to have a mass",
+     0,
+     0,
+     BENCH_DATA_HEAD "1 1 0.1 2000 0.5 0.5 0.5\n2 1 1e-300 2000 0.5 0.5 "
+                     "0.8\n3 1 0.1 2000 0.2 0.5 0.2\n",
+     {BENCH_DATA},
+     "p.csv:11: Atoms: atom 2's diameter 1e-300 and density 2000 give a "
+     "mass of 0 kg"},
 };
 
 #define NROWS (sizeof rows / sizeof rows[0])

@@ -208,6 +208,39 @@ static void malformed_files_name_file_and_line(void **state)
         {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
          "1 1 0.1 2000 0.5 1.2 0.5\n",
          ":10: Atoms: atom 1 at y = 1.2 lies outside the box"},
+        /* an id beyond an int, which would wrap onto atom 1's */
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 0.1 2000 0.5 0.5 0.5\n\nVelocities\n\n4294967297 1 0 0 0 0 "
+         "0\n",
+         ":14: Velocities: bad atom id 4294967297"},
+        /* one atom twice, the other never */
+        {"t\n\n2 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 0.1 2000 0.5 0.5 0.5\n2 1 0.1 2000 0.2 0.5 0.5\n\nVelocities\n"
+         "\n1 1 0 0 0 0 0\n1 0 0 0 0 0 0\n",
+         ":16: Velocities: a second line for atom 1"},
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 0.1 2000 0.5 0.5 0.5\n\nVelocities\n\n1 0 0 0 0 0 0\n\n"
+         "Velocities\n\n1 0 0 0 0 0 0\n",
+         ":16: second Velocities section"},
+        /* (the id table of the first was leaked: the ASan build checks) */
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 0.1 2000 0.5 0.5 0.5\n\nAtoms\n\n1 1 0.1 2000 0.5 0.5 0.5\n",
+         ":12: second Atoms section"},
+        /* a diameter whose sphere's mass underflows to 0: 1/m = inf */
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 1e-300 2000 0.5 0.5 0.5\n",
+         ":10: Atoms: atom 1's diameter 1e-300 and density "
+         "2000 give a mass of 0 kg"},
+        /* and a density whose mass overflows */
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+         "1 1 0.5 1e308 0.5 0.5 0.5\n",
+         ":10: Atoms: atom 1's diameter 0.5 and density 1e+308 give a mass "
+         "of inf kg"},
+        /* a header announcing a billion atoms in a short file: refused
+         * at its end, with memory for the atoms read only */
+        {"t\n\n1000000000 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\n"
+         "Atoms\n\n1 1 0.1 2000 0.5 0.5 0.5\n",
+         "file ends after 1 of 1000000000 atoms"},
         /* a sphere wider than the box (that slack would let it pass) */
         {"t\n\n1 atoms\n0 1 xlo xhi\n0 2 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
          "1 1 1e300 2000 0.5 1.2 0.5\n",

@@ -84,15 +84,33 @@ static int next_fields(struct reader *r, char **fields, int *nf)
     return 0;
 }
 
-static int alloc_arrays(struct dem_lammps_data *d)
+/* Room for cap atoms in the arrays of the Atoms section. They grow with
+ * the atoms read, so that a header announcing a billion atoms in a short
+ * file costs no memory. */
+static int grow_atoms(struct dem_lammps_data *d, size_t cap)
 {
-    size_t n = (size_t)d->n;
-    d->id = calloc(n, sizeof *d->id);
-    double **a[] = {&d->diameter, &d->density, &d->x,  &d->y,  &d->z, &d->vx,
-                    &d->vy,       &d->vz,      &d->wx, &d->wy, &d->wz};
-    int ok = d->id != 0;
+    int *id = realloc(d->id, cap * sizeof *id);
+    if (!id)
+        return -1;
+    d->id = id;
+    double **a[] = {&d->diameter, &d->density, &d->x, &d->y, &d->z};
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++) {
-        *a[k] = calloc(n, sizeof(double));
+        double *v = realloc(*a[k], cap * sizeof(double));
+        if (!v)
+            return -1;
+        *a[k] = v;
+    }
+    return 0;
+}
+
+/* The velocities of all d->n atoms, zero until a Velocities section sets
+ * them (after the Atoms section, which proved the count). */
+static int alloc_velocities(struct dem_lammps_data *d)
+{
+    double **a[] = {&d->vx, &d->vy, &d->vz, &d->wx, &d->wy, &d->wz};
+    int ok = 1;
+    for (size_t k = 0; k < sizeof a / sizeof a[0]; k++) {
+        *a[k] = calloc((size_t)d->n, sizeof(double));
         ok = ok && *a[k];
     }
     return ok ? 0 : -1;
@@ -132,7 +150,15 @@ static int read_atoms(struct reader *r, int *seen)
     struct dem_lammps_data *d = r->d;
     char *f[MAX_FIELDS];
     int nf, k = 0;
+    size_t cap = 0;
     while (k < d->n) {
+        if ((size_t)k == cap) {
+            const size_t more = cap ? 2 * cap : 1024;
+            cap = more < (size_t)d->n ? more : (size_t)d->n;
+            if (grow_atoms(d, cap))
+                return dem_error_set(r->err, DEM_ENOMEM,
+                                     "%s: out of memory", r->path);
+        }
         if (next_fields(r, f, &nf) < 0)
             return dem_error_set(r->err, DEM_EIO,
                                  "%s:%d: Atoms: file ends after %d of %d atoms",
@@ -180,6 +206,17 @@ static int read_atoms(struct reader *r, int *seen)
                     "box (%clo %chi %.17g %.17g) by more than its diameter",
                     r->path, r->lineno, id, "xyz"[a], v[2 + a], "xyz"[a],
                     "xyz"[a], d->lo[a], d->hi[a]);
+        /* the mass every reader of these files gives the atom (a sphere's,
+         * dem_lammps_data_sim) */
+        double m, I;
+        dem_particle_mass(0.5 * v[0], v[1], DEM_MASS_SPHERE, 3, &m, &I);
+        if (!dem_particle_mass_in_range(m, I))
+            return dem_error_set(
+                r->err, DEM_EIO,
+                "%s:%d: Atoms: atom %ld's diameter %.17g and density %.17g "
+                "give a mass of %.17g kg and a moment of inertia of %.17g "
+                "kg m^2, out of range",
+                r->path, r->lineno, id, v[0], v[1], m, I);
         d->id[k] = (int)id;
         d->diameter[k] = v[0];
         d->density[k] = v[1];
@@ -188,51 +225,72 @@ static int read_atoms(struct reader *r, int *seen)
         d->z[k] = v[4];
         k++;
     }
+    if (alloc_velocities(d))
+        return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory", r->path);
     *seen = 1;
     return DEM_OK;
 }
 
-static int read_velocities(struct reader *r, const struct id_index *map)
+/* One line of the Velocities section into done[] (blank: nothing); *k
+ * counts the atoms read. */
+static int read_velocity(struct reader *r, const struct id_index *map,
+                         unsigned char *done, int *k)
 {
     struct dem_lammps_data *d = r->d;
     char *f[MAX_FIELDS];
-    int nf, k = 0;
-    while (k < d->n) {
-        if (next_fields(r, f, &nf) < 0)
-            return dem_error_set(
-                r->err, DEM_EIO,
-                "%s:%d: Velocities: file ends after %d of %d atoms", r->path,
-                r->lineno, k, d->n);
-        if (nf == 0)
-            continue;
-        if (nf != 7)
-            return dem_error_set(r->err, DEM_EIO,
-                                 "%s:%d: Velocities: %d columns, expected 7 "
-                                 "(id vx vy vz wx wy wz)",
-                                 r->path, r->lineno, nf);
-        long id;
-        double v[6];
-        if (!integer(f[0], &id))
-            return fail(r, DEM_EIO, "Velocities: bad atom id", f[0]);
-        struct id_index key = {(int)id, 0};
-        const struct id_index *hit =
-            bsearch(&key, map, (size_t)d->n, sizeof *map, cmp_id);
-        if (!hit)
-            return fail(r, DEM_EIO, "Velocities: no atom with id", f[0]);
-        for (int c = 0; c < 6; c++)
-            if (!number(f[1 + c], &v[c]))
-                return fail(r, DEM_EIO, "Velocities: bad number", f[1 + c]);
-        int i = hit->index;
-        d->vx[i] = v[0];
-        d->vy[i] = v[1];
-        d->vz[i] = v[2];
-        d->wx[i] = v[3];
-        d->wy[i] = v[4];
-        d->wz[i] = v[5];
-        k++;
-    }
-    d->has_velocities = 1;
+    int nf;
+    if (next_fields(r, f, &nf) < 0)
+        return dem_error_set(
+            r->err, DEM_EIO, "%s:%d: Velocities: file ends after %d of %d atoms",
+            r->path, r->lineno, *k, d->n);
+    if (nf == 0)
+        return DEM_OK;
+    if (nf != 7)
+        return dem_error_set(r->err, DEM_EIO,
+                             "%s:%d: Velocities: %d columns, expected 7 "
+                             "(id vx vy vz wx wy wz)",
+                             r->path, r->lineno, nf);
+    long id;
+    double v[6];
+    /* (an id beyond an int must not wrap onto another atom's) */
+    if (!integer(f[0], &id) || id < 1 || id > 2147483647L)
+        return fail(r, DEM_EIO, "Velocities: bad atom id", f[0]);
+    struct id_index key = {(int)id, 0};
+    const struct id_index *hit =
+        bsearch(&key, map, (size_t)d->n, sizeof *map, cmp_id);
+    if (!hit)
+        return fail(r, DEM_EIO, "Velocities: no atom with id", f[0]);
+    const int i = hit->index;
+    if (done[i])
+        return fail(r, DEM_EIO, "Velocities: a second line for atom", f[0]);
+    for (int c = 0; c < 6; c++)
+        if (!number(f[1 + c], &v[c]))
+            return fail(r, DEM_EIO, "Velocities: bad number", f[1 + c]);
+    d->vx[i] = v[0];
+    d->vy[i] = v[1];
+    d->vz[i] = v[2];
+    d->wx[i] = v[3];
+    d->wy[i] = v[4];
+    d->wz[i] = v[5];
+    done[i] = 1;
+    ++*k;
     return DEM_OK;
+}
+
+/* The Velocities section: one line for each atom. */
+static int read_velocities(struct reader *r, const struct id_index *map)
+{
+    struct dem_lammps_data *d = r->d;
+    unsigned char *done = calloc((size_t)d->n, 1);
+    if (!done)
+        return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory", r->path);
+    int rc = DEM_OK, k = 0;
+    while (k < d->n && !rc)
+        rc = read_velocity(r, map, done, &k);
+    free(done);
+    if (!rc)
+        d->has_velocities = 1;
+    return rc;
 }
 
 /* Sorted id table; error on a repeated id. */
@@ -322,23 +380,26 @@ static int read_body(struct reader *r)
     int rc = read_header(r, f, &nf);
     if (rc)
         return rc;
-    if (alloc_arrays(d))
-        return dem_error_set(r->err, DEM_ENOMEM, "%s: out of memory", r->path);
     /* sections: f holds the name of the current one (comment cut) */
     for (;;) {
         if (nf == 0) {
             /* blank */
         } else if (nf == 1 && !strcmp(f[0], "Atoms")) {
-            if (atoms)
-                return fail(r, DEM_EIO, "second Atoms section", 0);
+            if (atoms) {
+                rc = fail(r, DEM_EIO, "second Atoms section", 0);
+                break;
+            }
             rc = read_atoms(r, &atoms);
             if (!rc)
                 rc = build_map(r, &map);
             if (rc)
-                return rc;
+                break;
         } else if (nf == 1 && !strcmp(f[0], "Velocities")) {
-            if (!atoms) {
-                rc = fail(r, DEM_EIO, "Velocities before Atoms", 0);
+            if (!atoms || d->has_velocities) {
+                rc = fail(r, DEM_EIO,
+                          atoms ? "second Velocities section"
+                                : "Velocities before Atoms",
+                          0);
                 break;
             }
             rc = read_velocities(r, map);
@@ -359,24 +420,32 @@ static int read_body(struct reader *r)
     return rc;
 }
 
+static int read_stream(struct dem_lammps_data *d, FILE *f, const char *path,
+                       int header_only, struct dem_error *err)
+{
+    memset(d, 0, sizeof *d);
+    struct reader r = {path, f, 0, 0, 0, d, err};
+    char *fields[MAX_FIELDS];
+    int nf;
+    int rc = header_only ? read_header(&r, fields, &nf) : read_body(&r);
+    if (!rc && ferror(f))
+        rc = dem_error_set(err, DEM_EIO, "%s: read error", path);
+    free(r.line);
+    if (rc)
+        dem_lammps_data_free(d);
+    return rc;
+}
+
 static int read_file(struct dem_lammps_data *d, const char *path,
                      int header_only, struct dem_error *err)
 {
     memset(d, 0, sizeof *d);
-    struct reader r = {path, 0, 0, 0, 0, d, err};
-    r.f = fopen(path, "r");
-    if (!r.f)
+    FILE *f = fopen(path, "r");
+    if (!f)
         return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
                              strerror(errno));
-    char *f[MAX_FIELDS];
-    int nf;
-    int rc = header_only ? read_header(&r, f, &nf) : read_body(&r);
-    if (!rc && ferror(r.f))
-        rc = dem_error_set(err, DEM_EIO, "%s: read error", path);
-    fclose(r.f);
-    free(r.line);
-    if (rc)
-        dem_lammps_data_free(d);
+    int rc = read_stream(d, f, path, header_only, err);
+    fclose(f);
     return rc;
 }
 
@@ -384,6 +453,12 @@ int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
                          struct dem_error *err)
 {
     return read_file(d, path, 0, err);
+}
+
+int dem_lammps_data_read_stream(struct dem_lammps_data *d, FILE *f,
+                                const char *path, struct dem_error *err)
+{
+    return read_stream(d, f, path, 0, err);
 }
 
 int dem_lammps_data_read_header(struct dem_lammps_data *d, const char *path,

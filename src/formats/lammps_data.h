@@ -11,9 +11,19 @@
  * Image flags are ignored: positions are taken as written (write_data
  * wraps them into the box). Units are those of `units si`: m, kg/m^3,
  * m/s, rad/s.
+ * Refused, with one line naming file and line: anything else, a count
+ * that the Atoms section does not hold, an id that is not a positive int
+ * or appears twice in a section, a second Atoms or Velocities section, a
+ * diameter or density that is not positive and finite or whose sphere's
+ * mass or inertia (or their inverses) is not (dem_particle_mass_in_range),
+ * a sphere wider than the box in x or y, a centre outside the box by more
+ * than its diameter. Memory grows with the atoms read, not with the count
+ * the header announces.
  */
 #ifndef DEM_IO_LAMMPS_DATA_H
 #define DEM_IO_LAMMPS_DATA_H
+
+#include <stdio.h>
 
 #include "core/particles.h"
 #include "dembox.h"
@@ -34,6 +44,9 @@ struct dem_lammps_data {
  * On error d is left empty and err->msg reads "PATH:LINE: ...". */
 int dem_lammps_data_read(struct dem_lammps_data *d, const char *path,
                          struct dem_error *err);
+/* The same from an open stream (not closed); path names it in messages. */
+int dem_lammps_data_read_stream(struct dem_lammps_data *d, FILE *f,
+                                const char *path, struct dem_error *err);
 /* Only the header of path: d->n, lo and hi, without reading the atoms
  * (the arrays stay NULL). The same errors as dem_lammps_data_read for a
  * bad header; a bad Atoms section is not seen. */
