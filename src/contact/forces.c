@@ -682,9 +682,10 @@ static void wall_sums(const struct dem_pairs *pl, const double *v, double *out)
     double acc[DEM_MAX_WALLS];
     int has[DEM_MAX_WALLS], least = INT_MAX;
     for (int w = 0; w < DEM_MAX_WALLS; w++) {
-        o[w] = pl->wall_order + ws[w];
         acc[w] = 0.0;
         has[w] = ws[w + 1] > ws[w];
+        /* (no wall contacts: wall_order may be NULL, never read) */
+        o[w] = has[w] ? pl->wall_order + ws[w] : NULL;
         if (has[w] && ws[w + 1] - ws[w] < least)
             least = ws[w + 1] - ws[w];
     }

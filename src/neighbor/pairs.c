@@ -202,8 +202,11 @@ static int cell_index(const struct dem_pairs *pl, const double pos[3])
 {
     int c[3];
     for (int a = 0; a < 3; a++) {
-        int k = (int)floor((pos[a] - pl->lo[a]) * pl->inv_h[a]);
-        c[a] = k < 0 ? 0 : (k >= pl->nc[a] ? pl->nc[a] - 1 : k);
+        /* clamped as a double: a position far outside the grid (or NaN,
+         * in a blow-up that the run has still to diagnose) converts to
+         * no int */
+        const double u = floor((pos[a] - pl->lo[a]) * pl->inv_h[a]);
+        c[a] = !(u >= 0.0) ? 0 : u >= pl->nc[a] ? pl->nc[a] - 1 : (int)u;
     }
     return (c[2] * pl->nc[1] + c[1]) * pl->nc[0] + c[0];
 }
@@ -252,12 +255,11 @@ static int setup_grid(struct dem_pairs *pl, const struct dem_particles *p,
     for (int a = 0; a < 3; a++) {
         const int flat = a == 2 && dim == 2;
         double span = cell ? width[a] : hi[a] - lo[a];
-        int k = flat ? 1 : (int)(span / h);
-        if (k < 1)
-            k = 1;
-        /* bound the grid's memory for very large, sparse boxes */
-        if (k > 4096)
-            k = 4096;
+        /* at least one cell; at most 4096, which bounds the grid's memory
+         * for very large, sparse boxes (compared as a double: the ratio
+         * may exceed any int) */
+        const double q = flat ? 1.0 : span / h;
+        const int k = !(q >= 1.0) ? 1 : q >= 4096.0 ? 4096 : (int)q;
         pl->nc[a] = k;
         pl->lo[a] = cell ? 0.0 : lo[a];
         pl->inv_h[a] = flat ? 0.0 : cell ? k : k / (span > 0 ? span : h);
