@@ -1,6 +1,6 @@
 #!/bin/sh
 # Build the libFuzzer harnesses (fuzz/*.c) with clang into build-fuzz and
-# run each for SECONDS (default 600), both at once, on the committed seed
+# run each for SECONDS (default 600), all at once, on the committed seed
 # corpus. New interesting inputs go to build-fuzz/corpus/NAME (the seeds in
 # fuzz/corpus/NAME are only read); a crash, leak, hang or sanitizer report
 # is saved as build-fuzz/artifacts/NAME-* and makes the script fail.
@@ -17,7 +17,8 @@ cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-600}
 B=${FUZZ_BUILD:-build-fuzz}
 CC_FUZZ=${CC_FUZZ:-$(command -v clang-14 || command -v clang)}
-HARNESSES=${FUZZ_HARNESSES:-fuzz_config fuzz_particles_csv fuzz_checkpoint}
+HARNESSES=${FUZZ_HARNESSES:-fuzz_config fuzz_particles_csv fuzz_checkpoint
+                           fuzz_lammps_data}
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 

@@ -1,7 +1,7 @@
 /* The benchmark: packing preparation and cache, the timed run, the
- * summary (see bench.h for the workload). */
+ * summary (the workload: docs/performance.md, "The timed workload"). */
 
-#include "dembox.h"
+#include "bench/bench.h"
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
@@ -252,6 +252,22 @@ static int sim_from_peer_file(struct dem_sim *s, const struct dem_config *cfg,
     }
     dem_lammps_data_free(&d);
     return rc;
+}
+
+int dem_bench_from_data(struct dem_sim *s, int dim, int periodic,
+                        const char *path, struct dem_error *err)
+{
+    if (dim != 2 && dim != 3)
+        return dem_error_set(err, DEM_EUSAGE, "bench: dimension %d", dim);
+    struct dem_lammps_data d;
+    int rc = dem_lammps_data_read_header(&d, path, err);
+    if (rc)
+        return rc;
+    const int n = d.n;
+    dem_lammps_data_free(&d);
+    struct dem_config cfg;
+    rc = make_config(&cfg, dim == 3 ? &work3 : &work2, n, periodic, err);
+    return rc ? rc : sim_from_peer_file(s, &cfg, path, err);
 }
 
 /* Progress of the preparation on stderr: one refreshed line on a
