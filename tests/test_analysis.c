@@ -568,6 +568,71 @@ static void analyze_writes_summary_of_a_biaxial_run(void **state)
     free(js);
 }
 
+/* A timeseries that no run writes is refused at its line, and no
+ * summary.json is written: a value that is not finite (a material
+ * parameter fitted through it would be silently wrong) and a stage that
+ * is not one of the config's (as a double 1e300 converts to no int). */
+static void analyze_refuses_nonfinite_values_and_foreign_stages(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *name, *column, *value, *expect;
+    } cases[] = {
+        {"nan", "sigma_yy", "nan", "not a finite number: 'nan'"},
+        {"inf", "eps_v", "-inf", "not a finite number: '-inf'"},
+        {"stage", "stage", "2", "'2' is not an integer from 0 to 1"},
+        {"huge", "stage", "1e300", "'1e300' is not an integer from 0 to 1"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char dir[128], path[160], name[32];
+        snprintf(name, sizeof name, "refused-%s", cases[k].name);
+        run_dir(dir, sizeof dir, name);
+        write_biaxial_run(dir);
+        /* the value into the 101st data row (line 102) */
+        snprintf(path, sizeof path, "%s/timeseries.csv", dir);
+        char *ts = slurp(path);
+        assert_non_null(ts);
+        FILE *f = fopen(path, "w");
+        assert_non_null(f);
+        int col = -1, line = 1, field = 0;
+        const size_t want = strlen(cases[k].column);
+        for (const char *p = ts; *p; p++) {
+            if (line == 1 && col < 0 && (p == ts || p[-1] == ',') &&
+                !strncmp(p, cases[k].column, want) &&
+                (p[want] == ',' || p[want] == '\n'))
+                col = field;
+            if (line == 102 && field == col) { /* replace this field */
+                fputs(cases[k].value, f);
+                while (*p && *p != ',' && *p != '\n')
+                    p++;
+                field++;
+                if (!*p)
+                    break;
+            }
+            fputc(*p, f);
+            if (*p == ',')
+                field++;
+            if (*p == '\n') {
+                line++;
+                field = 0;
+            }
+        }
+        assert_int_equal(fclose(f), 0);
+        free(ts);
+        assert_true(col >= 0);
+        struct dem_error err = {0};
+        if (dem_analyze(dir, &err) == 0)
+            fail_msg("case %s accepted", cases[k].name);
+        char where[64];
+        snprintf(where, sizeof where, "timeseries.csv:102: column %d (%s)",
+                 col + 1, cases[k].column);
+        if (!strstr(err.msg, where) || !strstr(err.msg, cases[k].expect))
+            fail_msg("case %s: '%s' lacks '%s' or '%s'", cases[k].name, err.msg,
+                     where, cases[k].expect);
+        snprintf(path, sizeof path, "%s/summary.json", dir);
+        assert_int_not_equal(access(path, F_OK), 0);
+    }
+}
 /* 3D triaxial box cycled along x with a known ratchet. */
 static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
 {
@@ -781,6 +846,7 @@ int main(void)
         cmocka_unit_test(loop_area_of_an_ellipse),
         cmocka_unit_test(json_writer_escapes_and_nulls),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
+        cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),
         cmocka_unit_test(analyze_rejects_a_folder_that_is_not_a_run),
     };

@@ -90,10 +90,12 @@ static void isotropic_stage_reaches_target_pressure(void **state)
                           " tolerance = 1.0e-4; max_time = 0.1; mu = 0.0; } )"};
     run_text(small_2d, "isotropic2d", sets, 1, 0, out, sizeof out);
     static const struct dem__csv_want want[] = {
-        {"xmin_force", 1},  {"xmax_force", 1},  {"ymin_force", 1},
-        {"ymax_force", 1},  {"Lx", 1},          {"Ly", 1},
-        {"sigma_lw_xx", 1}, {"sigma_lw_yy", 1}, {"e_kin", 1},
-        {"e_rot", 1},       {"e_pot", 1},       {"t", 1}};
+        DEM_CSV_FINITE("xmin_force", 1),  DEM_CSV_FINITE("xmax_force", 1),
+        DEM_CSV_FINITE("ymin_force", 1),  DEM_CSV_FINITE("ymax_force", 1),
+        DEM_CSV_FINITE("Lx", 1),          DEM_CSV_FINITE("Ly", 1),
+        DEM_CSV_FINITE("sigma_lw_xx", 1), DEM_CSV_FINITE("sigma_lw_yy", 1),
+        DEM_CSV_FINITE("e_kin", 1),       DEM_CSV_FINITE("e_rot", 1),
+        DEM_CSV_FINITE("e_pot", 1),       DEM_CSV_FINITE("t", 1)};
     struct dem__csv_table t;
     read_ts(out, want, 12, &t);
     size_t r = t.nrow - 1;
@@ -177,8 +179,9 @@ static void biaxial_fixed_walls_and_dilatancy(void **state)
     fclose(g);
     assert_true(titled);
     static const struct dem__csv_want want[] = {
-        {"stage", 1}, {"xmin_pos", 1}, {"ymin_pos", 1},
-        {"eps_v", 1}, {"eps_yy", 1},   {"sigma_xx", 1}};
+        DEM_CSV_FINITE("stage", 1),    DEM_CSV_FINITE("xmin_pos", 1),
+        DEM_CSV_FINITE("ymin_pos", 1), DEM_CSV_FINITE("eps_v", 1),
+        DEM_CSV_FINITE("eps_yy", 1),   DEM_CSV_FINITE("sigma_xx", 1)};
     struct dem__csv_table t;
     read_ts(out, want, 6, &t);
     size_t first = 0;
@@ -326,9 +329,10 @@ static void contact_history_columns_follow_the_law(void **state)
                           " tolerance = 1.0e-5; max_time = 0.1; } )",
                           "contact.kc=5.0e4"};
     run_text(small_2d, "history-cols", sets, 2, 0, out, sizeof out);
-    static const struct dem__csv_want want[] = {{"id_j", 1},  {"delta", 1},
-                                                {"fn", 1},    {"dmax", 1},
-                                                {"xi_x", 1},  {"xi_y", 1}};
+    static const struct dem__csv_want want[] = {
+        DEM_CSV_FINITE("id_j", 1), DEM_CSV_FINITE("delta", 1),
+        DEM_CSV_FINITE("fn", 1),   DEM_CSV_FINITE("dmax", 1),
+        DEM_CSV_FINITE("xi_x", 1), DEM_CSV_FINITE("xi_y", 1)};
     struct dem__csv_table t;
     struct dem_error err = {0};
     snprintf(path, sizeof path, "%s/contacts_final.csv", out);
@@ -424,8 +428,11 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     struct dem__csv_table ct, ft;
     struct dem_error err = {0};
     static const struct dem__csv_want cw[] = {
-        {"id_i", 1}, {"id_j", 1}, {"fn", 1}, {"nx", 1}, {"ny", 1}};
-    static const struct dem__csv_want fw[] = {{"fsum", 1}, {"coordination", 1}};
+        DEM_CSV_FINITE("id_i", 1), DEM_CSV_FINITE("id_j", 1),
+        DEM_CSV_FINITE("fn", 1), DEM_CSV_FINITE("nx", 1),
+        DEM_CSV_FINITE("ny", 1)};
+    static const struct dem__csv_want fw[] = {
+        DEM_CSV_FINITE("fsum", 1), DEM_CSV_FINITE("coordination", 1)};
     snprintf(path, sizeof path, "%s/contacts_final.csv", out);
     if (dem__csv_table_read(&ct, path, cw, 5, &err))
         fail_msg("%s", err.msg);

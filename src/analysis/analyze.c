@@ -138,20 +138,23 @@ enum {
     NCOL
 };
 
+/* Every value finite: a material parameter fitted through a nan or an
+ * inf would be silently wrong (a run writes none); the stage an index of
+ * the config's stages (dem_analyze sets the bound). */
 static const struct dem__csv_want wanted[NCOL] = {
-    [COL_T] = {"t", 1},
-    [COL_STAGE] = {"stage", 1},
-    [COL_EV] = {"eps_v", 1},
-    [COL_E] = {"void_ratio", 1},
-    [COL_I] = {"inertial_number", 0},
-    [COL_EPS] = {"eps_xx", 1},
-    [COL_EPS + 1] = {"eps_yy", 1},
-    [COL_EPS + 2] = {"eps_zz", 1},
-    [COL_SIG] = {"sigma_xx", 1},
-    [COL_SIG + 1] = {"sigma_yy", 1},
-    [COL_SIG + 2] = {"sigma_zz", 1},
-    [COL_GXY] = {"gamma_xy", 0},
-    [COL_SXY] = {"sigma_lw_xy", 0},
+    [COL_T] = DEM_CSV_FINITE("t", 1),
+    [COL_STAGE] = DEM_CSV_INDEX("stage", 1, 0), /* below: nstages */
+    [COL_EV] = DEM_CSV_FINITE("eps_v", 1),
+    [COL_E] = DEM_CSV_FINITE("void_ratio", 1),
+    [COL_I] = DEM_CSV_FINITE("inertial_number", 0),
+    [COL_EPS] = DEM_CSV_FINITE("eps_xx", 1),
+    [COL_EPS + 1] = DEM_CSV_FINITE("eps_yy", 1),
+    [COL_EPS + 2] = DEM_CSV_FINITE("eps_zz", 1),
+    [COL_SIG] = DEM_CSV_FINITE("sigma_xx", 1),
+    [COL_SIG + 1] = DEM_CSV_FINITE("sigma_yy", 1),
+    [COL_SIG + 2] = DEM_CSV_FINITE("sigma_zz", 1),
+    [COL_GXY] = DEM_CSV_FINITE("gamma_xy", 0),
+    [COL_SXY] = DEM_CSV_FINITE("sigma_lw_xy", 0),
 };
 
 static void get_columns(const struct dem__csv_table *tb, struct columns *c)
@@ -773,8 +776,12 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     rc = dem_config_load_file(cfg, cfg_path, NULL, 0, err);
     struct dem__csv_table tb = {0};
     struct columns c = {0};
-    if (!rc)
-        rc = dem__csv_table_read(&tb, ts_path, wanted, NCOL, err);
+    struct dem__csv_want want[NCOL];
+    memcpy(want, wanted, sizeof want);
+    if (!rc) {
+        want[COL_STAGE].below = cfg->nstages;
+        rc = dem__csv_table_read(&tb, ts_path, want, NCOL, err);
+    }
     if (!rc)
         get_columns(&tb, &c);
     const long nrow = (long)tb.nrow;

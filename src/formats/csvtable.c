@@ -1,6 +1,7 @@
 #include "formats/csvtable.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -119,7 +120,7 @@ static int map_header(struct dem__csv_table *t, char **field, int nf, int *slot,
 
 static int read_rows(struct dem__csv_table *t, struct reader *r, char **field,
                      int nf, const int *slot, const char *const *names,
-                     struct dem_error *err)
+                     const struct dem__csv_want *want, struct dem_error *err)
 {
     size_t cap = 0;
     char *s;
@@ -140,18 +141,27 @@ static int read_rows(struct dem__csv_table *t, struct reader *r, char **field,
         for (int i = 0; i < nf; i++) {
             if (slot[i] < 0)
                 continue;
-            /* nan and inf are read as such (the callers test isfinite
-             * where it matters); ERANGE on underflow gives a harmless
-             * denormal or 0. Only a missing number or trailing junk is an
-             * error. */
+            /* nan and inf are read as such where the column allows them
+             * (want.finite, want.below); ERANGE on underflow gives a
+             * harmless denormal or 0, on overflow inf. */
             char *end;
             double v = strtod(field[i], &end);
-            if (end == field[i] || *end != '\0')
+            const struct dem__csv_want *w = &want[slot[i]];
+            const char *bad = end == field[i] || *end != '\0' ? "not a number"
+                              : (w->finite || w->below > 0) && !isfinite(v)
+                                  ? "not a finite number"
+                                  : NULL;
+            if (bad)
+                return dem_error_set(
+                    err, DEM_EIO, "%s:%ld: column %d (%s): %s: '%s'", r->path,
+                    r->lineno, i + 1, names[i], bad, field[i]);
+            if (w->below > 0 &&
+                !(v >= 0.0 && v < (double)w->below && v == floor(v)))
                 return dem_error_set(err, DEM_EIO,
-                                     "%s:%ld: column %d (%s): not a number: "
-                                     "'%s'",
+                                     "%s:%ld: column %d (%s): '%s' is not an "
+                                     "integer from 0 to %ld",
                                      r->path, r->lineno, i + 1, names[i],
-                                     field[i]);
+                                     field[i], w->below - 1);
             t->col[slot[i]][t->nrow] = v;
         }
         t->nrow++;
@@ -201,7 +211,8 @@ int dem__csv_table_read(struct dem__csv_table *t, const char *path,
     if (!rc)
         rc = map_header(t, names, nf, slot, want, nwant, &r, err);
     if (!rc)
-        rc = read_rows(t, &r, field, nf, slot, (const char *const *)names, err);
+        rc = read_rows(t, &r, field, nf, slot, (const char *const *)names, want,
+                       err);
     for (int i = 0; names && i < nf; i++)
         free(names[i]);
     free(names);

@@ -20,7 +20,20 @@
 struct dem__csv_want {
     const char *name; /* header name */
     int required;     /* 1: a missing column is an error naming it */
+    int finite;       /* 1: a value that is not a finite number (nan, inf,
+                         1e999) is an error naming line and column */
+    long below;       /* > 0: each value must be an integer in [0, below)
+                         (an index: a stage), an error naming line and
+                         column otherwise; it then converts to an int */
 };
+
+/* Columns of finite numbers, of any numbers (nan and inf read as such)
+ * and of indices in [0, below). */
+/* clang-format off */
+#define DEM_CSV_FINITE(name, required) {(name), (required), 1, 0}
+#define DEM_CSV_ANY(name, required) {(name), (required), 0, 0}
+#define DEM_CSV_INDEX(name, required, below) {(name), (required), 1, (below)}
+/* clang-format on */
 
 /* The columns asked for, in the order of the request. */
 struct dem__csv_table {
@@ -32,10 +45,11 @@ struct dem__csv_table {
 /* Read path keeping only the columns in want[0..nwant); the first of
  * equal header names is used. A missing file, an empty header name, a
  * missing required column ("no column 'NAME'"), a row with the wrong
- * number of fields or a wanted field that is not a number give an error
- * whose message starts with "PATH:", then the line and, for a field, the
- * column's position and name. Unwanted fields are not parsed. A file with
- * a header and no rows is not an error here (nrow = 0); callers decide. */
+ * number of fields, a wanted field that is not a number or not what the
+ * column's finite and below ask give an error whose message starts with
+ * "PATH:", then the line and, for a field, the column's position and
+ * name. Unwanted fields are not parsed. A file with a header and no rows
+ * is not an error here (nrow = 0); callers decide. */
 int dem__csv_table_read(struct dem__csv_table *t, const char *path,
                         const struct dem__csv_want *want, int nwant,
                         struct dem_error *err);

@@ -111,9 +111,10 @@ static void fill_forces(FILE *dat, FILE *gp, const void *ctx)
         const double f = c->fn[k];
         if (f <= 0.0)
             continue;
-        const int b = (int)(f / c->mean / FBIN);
-        if (b < NB)
-            count[b]++;
+        /* (compared as a double: a mean that underflowed makes it inf) */
+        const double u = f / c->mean / FBIN;
+        if (u < NB)
+            count[(int)u]++;
         else
             beyond++;
     }
@@ -215,11 +216,12 @@ static int read_final(const char *outdir, struct net *c, struct dem_error *err)
     if (!probe)
         return DEM_OK;
     fclose(probe);
-    static const struct dem__csv_want want[C_NCOL] = {[C_J] = {"id_j", 1},
-                                                      [C_NX] = {"nx", 1},
-                                                      [C_NY] = {"ny", 1},
-                                                      [C_NZ] = {"nz", 1},
-                                                      [C_FN] = {"fn", 1}};
+    static const struct dem__csv_want want[C_NCOL] = {
+        [C_J] = DEM_CSV_FINITE("id_j", 1),
+        [C_NX] = DEM_CSV_FINITE("nx", 1),
+        [C_NY] = DEM_CSV_FINITE("ny", 1),
+        [C_NZ] = DEM_CSV_FINITE("nz", 1),
+        [C_FN] = DEM_CSV_FINITE("fn", 1)};
     struct dem__csv_table t;
     rc = dem__csv_table_read(&t, path, want, C_NCOL, err);
     if (rc)

@@ -15,9 +15,10 @@
 enum pk_col { PK_X, PK_Y, PK_Z, PK_VX, PK_VY, PK_VZ, PK_R, PK_NCOL };
 
 static const struct dem__csv_want pk_want[PK_NCOL] = {
-    [PK_X] = {"x", 1},      [PK_Y] = {"y", 1},   [PK_Z] = {"z", 0},
-    [PK_VX] = {"vx", 0},    [PK_VY] = {"vy", 0}, [PK_VZ] = {"vz", 0},
-    [PK_R] = {"radius", 1},
+    [PK_X] = DEM_CSV_FINITE("x", 1),      [PK_Y] = DEM_CSV_FINITE("y", 1),
+    [PK_Z] = DEM_CSV_FINITE("z", 0),      [PK_VX] = DEM_CSV_FINITE("vx", 0),
+    [PK_VY] = DEM_CSV_FINITE("vy", 0),    [PK_VZ] = DEM_CSV_FINITE("vz", 0),
+    [PK_R] = DEM_CSV_FINITE("radius", 1),
 };
 
 /* Extent of the packing, for a timeseries without wall positions. */
@@ -53,7 +54,7 @@ static int read_forces(const char *outdir, size_t n, double **fsum,
                    : dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
                                    strerror(errno));
     fclose(probe);
-    static const struct dem__csv_want want[1] = {{"fsum", 1}};
+    static const struct dem__csv_want want[1] = {DEM_CSV_FINITE("fsum", 1)};
     struct dem__csv_table t;
     rc = dem__csv_table_read(&t, path, want, 1, err);
     if (rc)
@@ -100,7 +101,9 @@ static int read_chains(const char *outdir, struct dem__csv_table *t,
         return 0;
     fclose(probe);
     static const struct dem__csv_want want[6] = {
-        {"id_i", 1}, {"id_j", 1}, {"fn", 1}, {"x", 1}, {"y", 1}, {"delta", 1}};
+        DEM_CSV_FINITE("id_i", 1), DEM_CSV_FINITE("id_j", 1),
+        DEM_CSV_FINITE("fn", 1),   DEM_CSV_FINITE("x", 1),
+        DEM_CSV_FINITE("y", 1),    DEM_CSV_FINITE("delta", 1)};
     struct dem_error e = {0};
     if (dem__csv_table_read(t, path, want, 6, &e)) {
         dem_warn(err, "%s; particles.png without force chains", e.msg);

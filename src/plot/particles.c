@@ -27,7 +27,7 @@ void dem__plot_colormap(double t, double rgb[3])
 {
     /* hue from 240 deg (blue) through 120 (green) to 0 (red): a straight
      * mix of the three colours would pass through muddy olive */
-    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    t = !(t > 0.0) ? 0.0 : t > 1.0 ? 1.0 : t; /* (nan: 0) */
     const double h = 4.0 * (1.0 - t); /* in sextants of the colour wheel */
     const double v = 0.92, s = 0.85;
     const int k = h >= 4.0 ? 3 : (int)h;
@@ -175,9 +175,12 @@ static double draw_chains(cairo_t *cr, const struct dem__plot_packing *pk,
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     for (int k = 0; k < pk->nchain; k++) {
         const double fn = pk->chain_fn[k];
-        const int i = (int)pk->chain_i[k], j = (int)pk->chain_j[k];
-        if (fn <= 0.0 || j < 0 || i < 0 || i >= pk->n || j >= pk->n)
+        /* the ids as read (walls' are negative), compared before they
+         * become ints: a file's 1e300 converts to none */
+        const double ci = pk->chain_i[k], cj = pk->chain_j[k];
+        if (fn <= 0.0 || !(ci >= 0.0 && ci < pk->n && cj >= 0.0 && cj < pk->n))
             continue;
+        const int i = (int)ci, j = (int)cj;
         if (pk->dim == 3 && (shown_radius(pk, i, zmid) <= 0.0 ||
                              shown_radius(pk, j, zmid) <= 0.0))
             continue;

@@ -17,6 +17,7 @@
 #include "dembox.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,30 +63,30 @@ enum ts_col {
 };
 
 static const struct dem__csv_want ts_want[TS_NCOL] = {
-    [TS_T] = {"t", 1},
-    [TS_STAGE] = {"stage", 1},
-    [TS_LZ] = {"Lz", 1},
-    [TS_EXX] = {"eps_xx", 1},
-    [TS_EYY] = {"eps_yy", 1},
-    [TS_EZZ] = {"eps_zz", 1},
-    [TS_EV] = {"eps_v", 1},
-    [TS_SXX] = {"sigma_xx", 1},
-    [TS_SYY] = {"sigma_yy", 1},
-    [TS_SZZ] = {"sigma_zz", 1},
-    [TS_EKIN] = {"e_kin", 1},
-    [TS_EROT] = {"e_rot", 1},
-    [TS_EPOT] = {"e_pot", 1},
+    [TS_T] = DEM_CSV_FINITE("t", 1),
+    [TS_STAGE] = DEM_CSV_INDEX("stage", 1, INT_MAX),
+    [TS_LZ] = DEM_CSV_FINITE("Lz", 1),
+    [TS_EXX] = DEM_CSV_FINITE("eps_xx", 1),
+    [TS_EYY] = DEM_CSV_FINITE("eps_yy", 1),
+    [TS_EZZ] = DEM_CSV_FINITE("eps_zz", 1),
+    [TS_EV] = DEM_CSV_FINITE("eps_v", 1),
+    [TS_SXX] = DEM_CSV_FINITE("sigma_xx", 1),
+    [TS_SYY] = DEM_CSV_FINITE("sigma_yy", 1),
+    [TS_SZZ] = DEM_CSV_FINITE("sigma_zz", 1),
+    [TS_EKIN] = DEM_CSV_FINITE("e_kin", 1),
+    [TS_EROT] = DEM_CSV_FINITE("e_rot", 1),
+    [TS_EPOT] = DEM_CSV_FINITE("e_pot", 1),
     /* wall positions only frame the particle picture; without them the
      * packing's extent does */
-    [TS_XMIN] = {"xmin_pos", 0},
-    [TS_XMAX] = {"xmax_pos", 0},
-    [TS_YMIN] = {"ymin_pos", 0},
-    [TS_YMAX] = {"ymax_pos", 0},
-    [TS_ZMIN] = {"zmin_pos", 0},
-    [TS_ZMAX] = {"zmax_pos", 0},
+    [TS_XMIN] = DEM_CSV_FINITE("xmin_pos", 0),
+    [TS_XMAX] = DEM_CSV_FINITE("xmax_pos", 0),
+    [TS_YMIN] = DEM_CSV_FINITE("ymin_pos", 0),
+    [TS_YMAX] = DEM_CSV_FINITE("ymax_pos", 0),
+    [TS_ZMIN] = DEM_CSV_FINITE("zmin_pos", 0),
+    [TS_ZMAX] = DEM_CSV_FINITE("zmax_pos", 0),
     /* simple shear of a periodic cell */
-    [TS_GXY] = {"gamma_xy", 0},
-    [TS_SXY] = {"sigma_lw_xy", 0},
+    [TS_GXY] = DEM_CSV_FINITE("gamma_xy", 0),
+    [TS_SXY] = DEM_CSV_FINITE("sigma_lw_xy", 0),
 };
 
 /* The timeseries with what the plots derive from it. */

@@ -95,7 +95,10 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
     r->ok = 1;
     r->dim = c->dim;
     const double ls = dem__jread_number(&js, "loading_stage");
-    const int st = isfinite(ls) ? (int)ls : -1;
+    /* an index of the config's stages, or -1 (compared as a double: a
+     * summary's 1e300 converts to no int) */
+    const int st = ls >= 0.0 && ls < c->nstages && ls == floor(ls) ? (int)ls
+                                                                    : -1;
     r->stage = st;
     r->axis = st >= 0 && st < c->nstages ? c->stages[st].axis : -1;
     r->mu = st >= 0 && st < c->nstages && c->stages[st].mu >= 0.0

@@ -4,6 +4,7 @@
  * the sweep varies what it shows.
  */
 #include "dembox.h"
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -408,8 +409,9 @@ static long read_loading(const struct dem__sweep *s,
 static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     static const struct dem__csv_want want[] = {
-        {"stage", 1},    {"void_ratio", 1}, {"sigma_xx", 1},
-        {"sigma_yy", 1}, {"sigma_zz", 1},
+        DEM_CSV_INDEX("stage", 1, INT_MAX), DEM_CSV_FINITE("void_ratio", 1),
+        DEM_CSV_FINITE("sigma_xx", 1),      DEM_CSV_FINITE("sigma_yy", 1),
+        DEM_CSV_FINITE("sigma_zz", 1),
     };
     dem__gp_head(gp, "stress_ratio_vs_void_ratio",
                  "Stress ratio versus void ratio during loading",
@@ -479,8 +481,10 @@ static int compressed(const struct dem__sweep_run *r)
 static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     static const struct dem__csv_want want[] = {
-        {"stage", 1}, {"eps_xx", 1},   {"eps_yy", 1},   {"eps_zz", 1},
-        {"eps_v", 1}, {"sigma_xx", 1}, {"sigma_yy", 1}, {"sigma_zz", 1},
+        DEM_CSV_INDEX("stage", 1, INT_MAX), DEM_CSV_FINITE("eps_xx", 1),
+        DEM_CSV_FINITE("eps_yy", 1),        DEM_CSV_FINITE("eps_zz", 1),
+        DEM_CSV_FINITE("eps_v", 1),         DEM_CSV_FINITE("sigma_xx", 1),
+        DEM_CSV_FINITE("sigma_yy", 1),      DEM_CSV_FINITE("sigma_zz", 1),
     };
     dem__gp_head(gp, "loading_curves", "", "axial strain", "");
     fprintf(gp, "set terminal pngcairo size 1000,1100 enhanced font "
