@@ -351,6 +351,29 @@ static void forces_file_of_wrong_length_is_an_error(void **state)
     remove_dir(dir);
 }
 
+/* A folder whose config is 3D and whose files hold 2D data is not one
+ * run's: its loading axis z is one the data lack (the labels once read
+ * outside an array for it; found by fuzz_run_folder). */
+static void config_of_another_dimension_is_an_error(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 10);
+    write_particles(dir, 2, 0);
+    char p[1024];
+    path_of(p, sizeof p, dir, "config.cfg");
+    FILE *f = fopen(p, "w");
+    assert_non_null(f);
+    const struct dem_example *ex = dem_example_find("triaxial3d");
+    assert_non_null(ex);
+    fputs(ex->text, f);
+    assert_int_equal(fclose(f), 0);
+    struct dem_error err = {0};
+    assert_int_not_equal(dem_plot_run(dir, &err), 0);
+    assert_non_null(strstr(err.msg, "config.cfg is not 2D"));
+    remove_dir(dir);
+}
+
 /* A cyclic run's summary.json gives a picture of the strain per cycle:
  * every cycle a row of the data file with its gain and its accumulated
  * strain, a negative gain drawn as an open circle, the verdict in the
@@ -407,6 +430,7 @@ int main(void)
         cmocka_unit_test(missing_column_names_the_column),
         cmocka_unit_test(header_only_timeseries_is_a_clear_error),
         cmocka_unit_test(forces_file_of_wrong_length_is_an_error),
+        cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

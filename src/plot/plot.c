@@ -194,7 +194,9 @@ static void stage_rows(const struct series *s, int k, size_t *lo, size_t *hi)
 }
 
 /* The loading stage from OUTDIR/config.cfg: 1 when found (s->lo, s->hi,
- * s->axis and s->stage set), 0 otherwise. */
+ * s->axis and s->stage set), 0 otherwise; -1 when the config's dimension
+ * is not the data's (s->dim: a folder whose files are not one run's, whose
+ * loading axis could be one the data lack). */
 static int find_loading_from_config(struct series *s, const char *outdir)
 {
     char path[DEM_PATH_MAX];
@@ -203,6 +205,8 @@ static int find_loading_from_config(struct series *s, const char *outdir)
     if (dem_path_join(path, sizeof path, outdir, "config.cfg", NULL) ||
         dem_config_load_file(&cfg, path, 0, 0, &e))
         return 0;
+    if (cfg.dim != s->dim)
+        return -1;
     for (int q = cfg.nstages - 1; q >= 0; q--)
         if (cfg.stages[q].type == DEM_STAGE_SHEAR && s->c[TS_GXY] &&
             s->c[TS_SXY]) {
@@ -973,7 +977,14 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     s.dim = all_zero(s.c[TS_LZ], s.n) && (prc || !dem__plot_packing_3d(&pt))
                 ? 2
                 : 3;
-    if (!find_loading_from_config(&s, outdir))
+    const int from_config = find_loading_from_config(&s, outdir);
+    if (from_config < 0)
+        rc = dem_error_set(err, DEM_EIO,
+                           "%s: config.cfg is not %dD, as timeseries.csv "
+                           "and particles_final.csv are: not one run's "
+                           "folder",
+                           outdir, s.dim);
+    if (!from_config)
         find_loading(&s);
     s.peak_sin = s.peak_strain = NAN;
     if (!dem_path_join(path, sizeof path, outdir, "summary.json", NULL)) {
