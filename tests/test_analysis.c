@@ -570,8 +570,9 @@ static void analyze_writes_summary_of_a_biaxial_run(void **state)
 
 /* A timeseries that no run writes is refused at its line, and no
  * summary.json is written: a value that is not finite (a material
- * parameter fitted through it would be silently wrong) and a stage that
- * is not one of the config's (as a double 1e300 converts to no int). */
+ * parameter fitted through it would be silently wrong), a stage that is
+ * not one of the config's (as a double 1e300 converts to no int), and
+ * data of another dimension than the config's. */
 static void analyze_refuses_nonfinite_values_and_foreign_stages(void **state)
 {
     (void)state;
@@ -582,6 +583,9 @@ static void analyze_refuses_nonfinite_values_and_foreign_stages(void **state)
         {"inf", "eps_v", "-inf", "not a finite number: '-inf'"},
         {"stage", "stage", "2", "'2' is not an integer from 0 to 1"},
         {"huge", "stage", "1e300", "'1e300' is not an integer from 0 to 1"},
+        /* (a 2D run's Lz is 0: 3D data under a 2D config) */
+        {"dimension", "Lz", "0.1", "Lz is not 0 in some rows, but config.cfg "
+                                   "is 2D"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char dir[128], path[160], name[32];
@@ -624,7 +628,11 @@ static void analyze_refuses_nonfinite_values_and_foreign_stages(void **state)
         if (dem_analyze(dir, &err) == 0)
             fail_msg("case %s accepted", cases[k].name);
         char where[64];
-        snprintf(where, sizeof where, "timeseries.csv:102: column %d (%s)",
+        /* (the dimension is the whole file's) */
+        snprintf(where, sizeof where,
+                 strcmp(cases[k].name, "dimension")
+                     ? "timeseries.csv:102: column %d (%s)"
+                     : "timeseries.csv: Lz",
                  col + 1, cases[k].column);
         if (!strstr(err.msg, where) || !strstr(err.msg, cases[k].expect))
             fail_msg("case %s: '%s' lacks '%s' or '%s'", cases[k].name, err.msg,
@@ -657,6 +665,7 @@ static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
     FILE *f = open_timeseries(dir, 3);
     struct dem_sample s;
     memset(&s, 0, sizeof s);
+    s.L[0] = s.L[1] = s.L[2] = 0.1; /* a 3D box: Lz > 0 */
     s.stage = 0; /* the isotropic stage ends at t0 */
     s.t = t0;
     s.sigma[0] = s.sigma[1] = s.sigma[2] = 1000.0;
@@ -753,6 +762,7 @@ static void one_loading_stage_for_analysis_and_plots(void **state)
     FILE *f = open_timeseries(dir, 3);
     struct dem_sample s;
     memset(&s, 0, sizeof s);
+    s.L[0] = s.L[1] = s.L[2] = 0.1; /* a 3D box: Lz > 0 */
     s.sigma[0] = s.sigma[1] = s.sigma[2] = 1000.0;
     s.void_ratio = 0.6;
     for (int k = 0; k <= 25; k++) { /* isotropic, then the compression */

@@ -135,6 +135,7 @@ enum {
     COL_SIG = COL_EPS + 3,
     COL_GXY = COL_SIG + 3,
     COL_SXY,
+    COL_LZ,
     NCOL
 };
 
@@ -155,7 +156,19 @@ static const struct dem__csv_want wanted[NCOL] = {
     [COL_SIG + 2] = DEM_CSV_FINITE("sigma_zz", 1),
     [COL_GXY] = DEM_CSV_FINITE("gamma_xy", 0),
     [COL_SXY] = DEM_CSV_FINITE("sigma_lw_xy", 0),
+    [COL_LZ] = DEM_CSV_FINITE("Lz", 0), /* 0 in 2D: the data's dimension */
 };
+
+/* 1 if the data's dimension is not the config's: Lz is 0 in every row of
+ * a 2D run and in none of a 3D one (as the plots tell the dimension). */
+static int other_dimension(const struct dem__csv_table *tb, int dim)
+{
+    const double *lz = tb->col[COL_LZ];
+    for (size_t r = 0; lz && r < tb->nrow; r++)
+        if ((lz[r] == 0.0) != (dim == 2))
+            return 1;
+    return 0;
+}
 
 static void get_columns(const struct dem__csv_table *tb, struct columns *c)
 {
@@ -782,6 +795,11 @@ int dem_analyze(const char *outdir, struct dem_error *err)
         want[COL_STAGE].below = cfg->nstages;
         rc = dem__csv_table_read(&tb, ts_path, want, NCOL, err);
     }
+    if (!rc && other_dimension(&tb, cfg->dim))
+        rc = dem_error_set(err, DEM_EIO,
+                           "%s: Lz is %s in some rows, but config.cfg is "
+                           "%dD: not one run's folder",
+                           ts_path, cfg->dim == 2 ? "not 0" : "0", cfg->dim);
     if (!rc)
         get_columns(&tb, &c);
     const long nrow = (long)tb.nrow;
