@@ -585,8 +585,12 @@ static int bench_run(const struct dem_bench_options *o,
 
     char databuf[DEM_PATH_MAX];
     const char *data = find_data(o, dim, n, databuf, sizeof databuf);
-    if (data && !file_exists(data))
-        return dem_error_set(err, DEM_EIO, "%s: no such file", data);
+    if (data) { /* (a folder, or a file that cannot be read, named now) */
+        FILE *f;
+        if ((rc = dem_open_read(&f, data, "r", "a LAMMPS data file", err)))
+            return rc;
+        fclose(f);
+    }
     rc = cache_path(o, dim, n, data, r->cache, sizeof r->cache, err);
     if (rc)
         return rc;

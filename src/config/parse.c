@@ -20,10 +20,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "config/keys.h"
 #include "contact/models.h"
+#include "io/fsutil.h"
 
 /* ---------------------------------------------------------------- errors */
 
@@ -679,17 +679,10 @@ int dem_config_load_file(struct dem_config *c, const char *path,
                          const char *const *sets, int nsets,
                          struct dem_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open (%s)", path,
-                             strerror(errno));
-    /* fopen succeeds on a folder; reading it would fail with EISDIR. */
-    struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(f);
-        return dem_error_set(err, DEM_EIO, "%s: is a folder, not a config file",
-                             path);
-    }
+    FILE *f;
+    int rc = dem_open_read(&f, path, "rb", "a config file", err);
+    if (rc)
+        return rc;
     size_t cap = 4096, len = 0, got;
     char *text = malloc(cap);
     while (text && (got = fread(text + len, 1, cap - len - 1, f)) > 0) {
@@ -722,7 +715,7 @@ int dem_config_load_file(struct dem_config *c, const char *path,
                              "%s:%d: NUL byte: a config is text, not binary",
                              path, line);
     }
-    int rc = dem_config_parse(c, text, path, sets, nsets, err);
+    rc = dem_config_parse(c, text, path, sets, nsets, err);
     free(text);
     return rc;
 }

@@ -1,10 +1,11 @@
 #include "formats/csvtable.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "io/fsutil.h"
 
 /* Strip leading and trailing blanks (and a DOS '\r') in place. */
 static char *trim(char *s)
@@ -177,11 +178,9 @@ int dem__csv_table_read(struct dem__csv_table *t, const char *path,
 {
     memset(t, 0, sizeof *t);
     struct reader r = {NULL, NULL, 0, 0, path};
-    r.f = fopen(path, "r");
-    if (!r.f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
-                             strerror(errno));
-    int rc = DEM_OK;
+    int rc = dem_open_read(&r.f, path, "r", "a CSV file", err);
+    if (rc)
+        return rc;
     char **field = NULL, **names = NULL;
     int *slot = NULL;
     t->ncol = nwant;

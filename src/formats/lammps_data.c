@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/sim.h"
+#include "io/fsutil.h"
 #include "io/outfile.h"
 
 #ifndef M_PI
@@ -440,11 +441,11 @@ static int read_file(struct dem_lammps_data *d, const char *path,
                      int header_only, struct dem_error *err)
 {
     memset(d, 0, sizeof *d);
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
-                             strerror(errno));
-    int rc = read_stream(d, f, path, header_only, err);
+    FILE *f;
+    int rc = dem_open_read(&f, path, "r", "a LAMMPS data file", err);
+    if (rc)
+        return rc;
+    rc = read_stream(d, f, path, header_only, err);
     fclose(f);
     return rc;
 }

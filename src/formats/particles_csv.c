@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/fsutil.h"
 #include "io/outfile.h"
 
 enum {
@@ -359,11 +360,11 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
     memset(p, 0, sizeof *p);
     if (lines)
         *lines = NULL;
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
-                             strerror(errno));
-    int rc = dem_particles_read_csv_stream(p, f, path, dim, density, mass_model,
+    FILE *f;
+    int rc = dem_open_read(&f, path, "r", "a particle file", err);
+    if (rc)
+        return rc;
+    rc = dem_particles_read_csv_stream(p, f, path, dim, density, mass_model,
                                            lines, err);
     fclose(f);
     return rc;

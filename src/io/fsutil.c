@@ -38,13 +38,28 @@ int dem_path_join(char *out, size_t n, const char *dir, const char *name,
     return DEM_OK;
 }
 
+int dem_open_read(FILE **f, const char *path, const char *mode,
+                  const char *what, struct dem_error *err)
+{
+    *f = fopen(path, mode);
+    if (!*f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot open: %s", path,
+                             strerror(errno));
+    struct stat st;
+    if (fstat(fileno(*f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(*f);
+        *f = NULL;
+        return dem_error_set(err, DEM_EIO, "%s: is a folder, not %s", path,
+                             what);
+    }
+    return DEM_OK;
+}
+
 char *dem_read_text(const char *path, struct dem_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        dem_error_set(err, DEM_EIO, "%s: cannot open", path);
+    FILE *f;
+    if (dem_open_read(&f, path, "rb", "a text file", err))
         return NULL;
-    }
     size_t cap = 4096, n = 0;
     char *buf = malloc(cap);
     while (buf) {

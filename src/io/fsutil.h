@@ -2,6 +2,8 @@
 #ifndef DEM_IO_FSUTIL_H
 #define DEM_IO_FSUTIL_H
 
+#include <stdio.h>
+
 #include "dembox.h"
 
 /* mkdir -p: create path and its parents (mode 0755). */
@@ -10,6 +12,13 @@ int dem_mkdir_p(const char *path, struct dem_error *err);
 /* Join dir and name into out (size n); error when it does not fit. */
 int dem_path_join(char *out, size_t n, const char *dir, const char *name,
                   struct dem_error *err);
+
+/* *f = path opened for reading (fopen's mode); or an error, *f = NULL:
+ * "PATH: cannot open: REASON", or "PATH: is a folder, not WHAT" (fopen
+ * succeeds on a folder, whose reading then fails with EISDIR; what: "a
+ * config file", "a LAMMPS data file", ...). */
+int dem_open_read(FILE **f, const char *path, const char *mode,
+                  const char *what, struct dem_error *err);
 
 /* The whole of a text file, NUL-terminated (owned by the caller), or
  * NULL with err set (cannot open, read failed, out of memory). */
