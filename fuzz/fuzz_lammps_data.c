@@ -28,6 +28,7 @@
 #include "core/particles.h"
 #include "formats/lammps_data.h"
 #include "measure/measure.h"
+#include "memfile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -81,13 +82,9 @@ static void check_data(const struct dem_lammps_data *d)
 
 static void read_from_memory(const uint8_t *data, size_t size)
 {
-    static const char empty[1] = {0};
-    FILE *f = fmemopen(size ? (void *)(uintptr_t)data : (void *)empty,
-                       size ? size : 1, "r");
+    FILE *f = fuzz_memfile(data, size);
     if (!f)
         return;
-    if (!size)
-        fgetc(f);
     struct dem_lammps_data d;
     struct dem_error err = {0};
     const int rc = dem_lammps_data_read_stream(&d, f, "fuzz.data", &err);

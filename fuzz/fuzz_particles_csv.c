@@ -13,20 +13,15 @@
 
 #include "dembox.h"
 #include "formats/particles_csv.h"
+#include "memfile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 static void read_as(const uint8_t *data, size_t size, int dim, int model)
 {
-    /* fmemopen of 0 bytes is allowed since glibc 2.22; a 1-byte buffer of
-     * which 0 are used keeps it portable. */
-    static const char empty[1] = {0};
-    FILE *f = fmemopen(size ? (void *)(uintptr_t)data : (void *)empty,
-                       size ? size : 1, "r");
+    FILE *f = fuzz_memfile(data, size);
     if (!f)
         return;
-    if (!size)
-        fgetc(f);
     struct dem_particles p;
     struct dem_error err = {0};
     int *lines = 0;
