@@ -40,6 +40,17 @@ static void path_of(char *out, size_t n, const char *dir, const char *leaf)
     assert_true(k > 0 && (size_t)k < n);
 }
 
+/* text as the file dir/leaf */
+static void write_text(const char *dir, const char *leaf, const char *text)
+{
+    char p[1024];
+    path_of(p, sizeof p, dir, leaf);
+    FILE *f = fopen(p, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
 static long file_size(const char *dir, const char *leaf)
 {
     char p[1024];
@@ -340,11 +351,7 @@ static void forces_file_of_wrong_length_is_an_error(void **state)
     char *dir = make_dir();
     write_timeseries(dir, 2, 1, 10);
     write_particles(dir, 2, 0);
-    char p[1024];
-    path_of(p, sizeof p, dir, "forces_final.csv");
-    FILE *f = fopen(p, "w");
-    fprintf(f, "fsum\n1\n2\n");
-    fclose(f);
+    write_text(dir, "forces_final.csv", "fsum\n1\n2\n");
     struct dem_error err = {0};
     assert_int_not_equal(dem_plot_run(dir, &err), 0);
     assert_non_null(strstr(err.msg, "forces_final.csv"));
@@ -360,14 +367,9 @@ static void config_of_another_dimension_is_an_error(void **state)
     char *dir = make_dir();
     write_timeseries(dir, 2, 1, 10);
     write_particles(dir, 2, 0);
-    char p[1024];
-    path_of(p, sizeof p, dir, "config.cfg");
-    FILE *f = fopen(p, "w");
-    assert_non_null(f);
     const struct dem_example *ex = dem_example_find("triaxial3d");
     assert_non_null(ex);
-    fputs(ex->text, f);
-    assert_int_equal(fclose(f), 0);
+    write_text(dir, "config.cfg", ex->text);
     struct dem_error err = {0};
     assert_int_not_equal(dem_plot_run(dir, &err), 0);
     assert_non_null(strstr(err.msg, "config.cfg is not 2D"));
