@@ -44,7 +44,7 @@ static char *written(const struct dem_config *c)
     return buf;
 }
 
-static void defaults_are_seed_000_values(void **state)
+static void defaults_are_david_et_al_values(void **state)
 {
     (void)state;
     struct dem_config c, d;
@@ -216,7 +216,7 @@ static void set_overrides_scalars_enums_arrays_and_stages(void **state)
     assert_int_equal(c.stages[0].type, DEM_STAGE_HOLD);
 }
 
-static void contact_time_matches_seed_000(void **state)
+static void contact_time_matches_david_et_al(void **state)
 {
     (void)state;
     struct dem_config c;
@@ -641,13 +641,13 @@ static void docs_key_table_matches_descriptor_table(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(defaults_are_seed_000_values),
+        cmocka_unit_test(defaults_are_david_et_al_values),
         cmocka_unit_test(two_d_defaults_resolve_by_dimension),
         cmocka_unit_test(resolved_config_reads_back_identically),
         cmocka_unit_test(resolved_config_keeps_a_long_escaped_path),
         cmocka_unit_test(resolved_config_documents_each_key),
         cmocka_unit_test(set_overrides_scalars_enums_arrays_and_stages),
-        cmocka_unit_test(contact_time_matches_seed_000),
+        cmocka_unit_test(contact_time_matches_david_et_al),
         cmocka_unit_test(auto_time_step_is_a_fiftieth_of_contact_time),
         cmocka_unit_test(every_example_parses),
         cmocka_unit_test(bad_inputs_fail_with_one_line_naming_key_and_line),
