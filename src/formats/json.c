@@ -109,8 +109,10 @@ void dem__json_close(struct dem__json *j)
 void dem__json_number(struct dem__json *j, const char *key, double v)
 {
     item(j, key);
+    /* 10 digits; within 5e-11 relative of DBL_MAX they round up past it
+     * (1.797693135e+308), which reads back as no double: those get 17 */
     if (isfinite(v))
-        fprintf(j->f, "%.10g", v);
+        fprintf(j->f, fabs(v) < 1.797693134e308 ? "%.10g" : "%.17g", v);
     else
         fputs("null", j->f);
 }

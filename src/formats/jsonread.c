@@ -49,6 +49,9 @@ static int parse_string(struct parser *p, char **out)
     p->i++; /* the quote */
     size_t start = p->i, len = 0;
     while (p->s[p->i] && p->s[p->i] != '"') {
+        if ((unsigned char)p->s[p->i] < 0x20)
+            return fail(p, "control character in a string (write it as "
+                           "\\uXXXX)");
         if (p->s[p->i] == '\\' && p->s[p->i + 1])
             p->i++;
         p->i++;
@@ -170,6 +173,49 @@ static int parse_container(struct parser *p, struct dem__jval *v, int depth)
     }
 }
 
+static int digit(char c)
+{
+    return c >= '0' && c <= '9';
+}
+
+/* A number as RFC 8259 §6 writes it,
+ * -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?, and finite: strtod alone
+ * would also take inf, nan, hexadecimal and 1e400 (as inf). */
+static int parse_number(struct parser *p, struct dem__jval *v)
+{
+    const char *s = p->s + p->i;
+    size_t k = s[0] == '-';
+    if (s[k] == '0')
+        k++;
+    else if (digit(s[k]))
+        while (digit(s[k]))
+            k++;
+    else
+        return fail(p, "a number needs a digit after '-'");
+    if (s[k] == '.') {
+        if (!digit(s[++k]))
+            return fail(p, "a number needs a digit after '.'");
+        while (digit(s[k]))
+            k++;
+    }
+    if (s[k] == 'e' || s[k] == 'E') {
+        k += s[k + 1] == '+' || s[k + 1] == '-';
+        if (!digit(s[++k]))
+            return fail(p, "a number needs a digit in its exponent");
+        while (digit(s[k]))
+            k++;
+    }
+    char *end;
+    v->type = DEM__JSON_NUMBER;
+    v->num = strtod(s, &end);
+    if (end != s + k)
+        return fail(p, "malformed number");
+    if (!isfinite(v->num))
+        return fail(p, "number out of the range of a double");
+    p->i += k;
+    return DEM_OK;
+}
+
 static int literal(struct parser *p, const char *word)
 {
     size_t n = strlen(word);
@@ -203,13 +249,8 @@ static int parse_value(struct parser *p, struct dem__jval *v, int depth)
         v->num = c == 't';
         return DEM_OK;
     }
-    if (c == '-' || (c >= '0' && c <= '9')) {
-        char *end;
-        v->type = DEM__JSON_NUMBER;
-        v->num = strtod(p->s + p->i, &end);
-        p->i = (size_t)(end - p->s);
-        return DEM_OK;
-    }
+    if (c == '-' || (c >= '0' && c <= '9'))
+        return parse_number(p, v);
     return fail(p, c ? "unexpected character" : "unexpected end");
 }
 
@@ -268,8 +309,8 @@ const struct dem__jval *dem__jread_get(const struct dem__jval *o,
     return NULL;
 }
 
-static const struct dem__jval *at_path(const struct dem__jval *o,
-                                       const char *path)
+const struct dem__jval *dem__jread_at(const struct dem__jval *o,
+                                      const char *path)
 {
     char seg[128];
     while (o && *path) {
@@ -286,12 +327,36 @@ static const struct dem__jval *at_path(const struct dem__jval *o,
 
 double dem__jread_number(const struct dem__jval *o, const char *path)
 {
-    const struct dem__jval *v = at_path(o, path);
+    const struct dem__jval *v = dem__jread_at(o, path);
     return v && v->type == DEM__JSON_NUMBER ? v->num : NAN;
 }
 
 const char *dem__jread_string(const struct dem__jval *o, const char *path)
 {
-    const struct dem__jval *v = at_path(o, path);
+    const struct dem__jval *v = dem__jread_at(o, path);
     return v && v->type == DEM__JSON_STRING ? v->str : NULL;
+}
+
+int dem__jread_number_in(const struct dem__jval *o, const char *path, double lo,
+                         double hi, const char *range, double *out, char *why,
+                         size_t n)
+{
+    static const char *const type[] = {[DEM__JSON_BOOL] = "true or false",
+                                       [DEM__JSON_STRING] = "a string",
+                                       [DEM__JSON_ARRAY] = "an array",
+                                       [DEM__JSON_OBJECT] = "an object"};
+    const struct dem__jval *v = dem__jread_at(o, path);
+    *out = NAN;
+    if (!v || v->type == DEM__JSON_NULL)
+        return DEM_OK;
+    if (v->type != DEM__JSON_NUMBER) {
+        snprintf(why, n, "%s is %s, not a number or null", path, type[v->type]);
+        return DEM_EIO;
+    }
+    if (!(v->num >= lo && v->num <= hi)) {
+        snprintf(why, n, "%s = %.10g is not %s", path, v->num, range);
+        return DEM_EIO;
+    }
+    *out = v->num;
+    return DEM_OK;
 }

@@ -41,9 +41,20 @@ void dem__jread_free(struct dem__jval *v);
 /* Member key of object o, or NULL (also when o is NULL or no object). */
 const struct dem__jval *dem__jread_get(const struct dem__jval *o,
                                        const char *key);
+/* The value at the dotted path ("peak.sin_phi") below o, or NULL. */
+const struct dem__jval *dem__jread_at(const struct dem__jval *o,
+                                      const char *path);
 /* The number at the dotted path ("peak.sin_phi") below o; NaN when
  * missing, null or not a number. */
 double dem__jread_number(const struct dem__jval *o, const char *path);
+/* The same for a file whose numbers matter: *out is NaN when the path is
+ * missing or null, the number when it is one in [lo, hi]; anything else
+ * (another type, a number out of range) is DEM_EIO with why = "PATH is a
+ * string, not a number or null" or "PATH = X is not RANGE" (range: e.g.
+ * "in [-1, 1]"). */
+int dem__jread_number_in(const struct dem__jval *o, const char *path, double lo,
+                         double hi, const char *range, double *out, char *why,
+                         size_t n);
 /* The string at the dotted path, or NULL. */
 const char *dem__jread_string(const struct dem__jval *o, const char *path);
 

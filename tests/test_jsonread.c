@@ -1,0 +1,163 @@
+/* The JSON reader (formats/jsonread.c) against the writer (formats/json.c)
+ * and RFC 8259: what the writer writes reads back to the same values, and
+ * text that is not JSON, or numbers a double cannot hold, are refused with
+ * a message naming the source and the byte. */
+#include <float.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "formats/json.h"
+#include "formats/jsonread.h"
+
+static char *written(void (*body)(struct dem__json *))
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    struct dem__json j;
+    dem__json_begin(&j, f);
+    body(&j);
+    dem__json_end(&j);
+    fclose(f);
+    return buf;
+}
+
+static void extremes(struct dem__json *j)
+{
+    dem__json_number(j, "max", DBL_MAX); /* %.10g would round it up */
+    dem__json_number(j, "tiny", 4.9406564584e-324);
+    dem__json_number(j, "neg", -2.5e-7);
+    dem__json_number(j, "nan", NAN);
+    dem__json_number(j, "inf", -INFINITY);
+    dem__json_int(j, "int", -123456789L);
+    dem__json_string(j, "ctl", "a\tb\001c\"d\\e\n");
+    dem__json_array(j, "list", 1);
+    dem__json_number(j, NULL, 0.5);
+    dem__json_null(j, NULL);
+    dem__json_close(j);
+}
+
+static void writer_output_reads_back(void **state)
+{
+    (void)state;
+    char *text = written(extremes);
+    struct dem__jval v;
+    struct dem_error err = {0};
+    if (dem__jread_text(&v, text, "t.json", &err))
+        fail_msg("%s\n%s", err.msg, text);
+    assert_true(dem__jread_number(&v, "max") == DBL_MAX);
+    assert_true(dem__jread_number(&v, "tiny") == 4.9406564584e-324);
+    assert_true(dem__jread_number(&v, "neg") == -2.5e-7);
+    /* NaN and inf are written as null, and null reads as NaN */
+    assert_int_equal(dem__jread_get(&v, "nan")->type, DEM__JSON_NULL);
+    assert_int_equal(dem__jread_get(&v, "inf")->type, DEM__JSON_NULL);
+    assert_true(dem__jread_number(&v, "int") == -123456789.0);
+    assert_string_equal(dem__jread_string(&v, "ctl"), "a\tb\001c\"d\\e\n");
+    const struct dem__jval *l = dem__jread_get(&v, "list");
+    assert_int_equal(l->n, 2);
+    assert_true(l->items[0].num == 0.5);
+    dem__jread_free(&v);
+    free(text);
+}
+
+/* What strtod would take but JSON does not: each must be refused with
+ * one line naming the source and the byte. */
+static void non_json_is_refused(void **state)
+{
+    (void)state;
+    static const char *const bad[] = {
+        "{\"a\": inf}",       "{\"a\": -inf}",
+        "{\"a\": nan}",       "{\"a\": -nan}",
+        "{\"a\": NaN}",       "{\"a\": 0x10}",
+        "{\"a\": -0x1p3}",    "{\"a\": 1e400}",
+        "{\"a\": -1e400}",    "{\"a\": 1.}",
+        "{\"a\": .5}",        "{\"a\": 1e}",
+        "{\"a\": 1e+}",       "{\"a\": +1}",
+        "{\"a\": -}",         "{\"a\": 01}",
+        "{\"a\": -infinity}", "{\"a\": \"x\ty\"}", /* a raw tab in a string */
+        "{\"a\": \"x\ny\"}",
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        struct dem__jval v;
+        struct dem_error err = {0};
+        if (dem__jread_text(&v, bad[k], "s.json", &err) == 0)
+            fail_msg("accepted: %s", bad[k]);
+        assert_non_null(strstr(err.msg, "s.json: invalid JSON at byte "));
+        assert_null(strchr(err.msg, '\n'));
+        assert_int_equal(v.type, DEM__JSON_NULL);
+    }
+    /* and what JSON does allow */
+    static const char *const good[] = {"{\"a\": -0}", "{\"a\": 0.0e-0}",
+                                       "{\"a\": 12E+2}", "{\"a\": 1e-400}"};
+    static const double value[] = {0.0, 0.0, 1200.0, 0.0};
+    for (size_t k = 0; k < sizeof good / sizeof *good; k++) {
+        struct dem__jval v;
+        struct dem_error err = {0};
+        if (dem__jread_text(&v, good[k], "g.json", &err))
+            fail_msg("%s: %s", good[k], err.msg);
+        assert_true(dem__jread_number(&v, "a") == value[k]);
+        dem__jread_free(&v);
+    }
+}
+
+/* dem__jread_number_in: null or missing is NaN; a number in range is
+ * itself; another type or a number out of range is refused, saying
+ * which. */
+static void numbers_in_range(void **state)
+{
+    (void)state;
+    struct dem__jval v;
+    struct dem_error err = {0};
+    assert_int_equal(dem__jread_text(&v,
+                                     "{\"p\": {\"s\": 0.5, \"big\": 2, "
+                                     "\"str\": \"0.5\", \"n\": null, "
+                                     "\"b\": true}}",
+                                     "r.json", &err),
+                     0);
+    char why[200];
+    double x = 0.0;
+    assert_int_equal(dem__jread_number_in(&v, "p.s", -1, 1, "in [-1, 1]", &x,
+                                          why, sizeof why),
+                     0);
+    assert_true(x == 0.5);
+    assert_int_equal(
+        dem__jread_number_in(&v, "p.n", -1, 1, "", &x, why, sizeof why), 0);
+    assert_true(isnan(x));
+    assert_int_equal(
+        dem__jread_number_in(&v, "p.missing", -1, 1, "", &x, why, sizeof why),
+        0);
+    assert_true(isnan(x));
+    assert_int_not_equal(dem__jread_number_in(&v, "p.big", -1, 1, "in [-1, 1]",
+                                              &x, why, sizeof why),
+                         0);
+    assert_string_equal(why, "p.big = 2 is not in [-1, 1]");
+    assert_true(isnan(x));
+    assert_int_not_equal(
+        dem__jread_number_in(&v, "p.str", -1, 1, "", &x, why, sizeof why), 0);
+    assert_string_equal(why, "p.str is a string, not a number or null");
+    assert_int_not_equal(
+        dem__jread_number_in(&v, "p.b", -1, 1, "", &x, why, sizeof why), 0);
+    assert_string_equal(why, "p.b is true or false, not a number or null");
+    assert_int_not_equal(
+        dem__jread_number_in(&v, "p", -1, 1, "", &x, why, sizeof why), 0);
+    assert_string_equal(why, "p is an object, not a number or null");
+    dem__jread_free(&v);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(writer_output_reads_back),
+        cmocka_unit_test(non_json_is_refused),
+        cmocka_unit_test(numbers_in_range),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
