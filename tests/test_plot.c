@@ -392,7 +392,8 @@ static void cycles_of_the_summary_are_drawn(void **state)
     path_of(p, sizeof p, dir, "summary.json");
     FILE *f = fopen(p, "w");
     assert_non_null(f);
-    fprintf(f, "{\"peak\": {\"sin_phi\": null}, \"cycles\": ["
+    fprintf(f, "{\"peak\": {\"sin_phi\": null}, \"cyclic_stage\": 1, "
+               "\"cycles\": ["
                "{\"index\": 1, \"strain_end\": 2e-05, "
                "\"strain_increment\": 2e-05},"
                "{\"index\": 2, \"strain_end\": 2.1e-05, "
@@ -421,6 +422,63 @@ static void cycles_of_the_summary_are_drawn(void **state)
     remove_dir(dir);
 }
 
+/* The warnings of a call, one per line, into a buffer of 2048 bytes. */
+static void collect_warning(const char *line, void *user)
+{
+    char *all = user;
+    const size_t len = strlen(all);
+    snprintf(all + len, 2048 - len, "%s\n", line);
+}
+
+/* A summary.json that dem_analyze did not write (an edited verdict that
+ * would end the key's string in the gnuplot script and add a command
+ * line, a sin phi above 1) is left out with one warning naming the file
+ * and the value: the pictures are drawn without it, and nothing of it
+ * reaches a script. */
+static void summary_not_written_by_analyze_is_left_out(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *summary, *warning;
+    } rows[] = {
+        {"{\"cyclic_stage\": 1, \"cycles\": [{\"strain_end\": 1e-5, "
+         "\"strain_increment\": 1e-5}], \"verdict\": \"x\\\" noenhanced\\n"
+         "system \\\"touch injected\\\"\\n#\"}",
+         "verdict is not \"ratcheting\", \"shakedown\" or null"},
+        {"{\"peak\": {\"sin_phi\": 1.5, \"strain\": 0.01}}",
+         "peak.sin_phi = 1.5 is not in [-1, 1]"},
+        {"{\"cyclic_stage\": 1, \"cycles\": [1e-5]}",
+         "cycles[0] is not an object"},
+        {"{\"peak\": {\"sin_phi\": 0.5, \"strain\": \"0.01\"}}",
+         "peak.strain is a string, not a number or null"},
+        {"{\"peak\": {\"sin_phi\": 0.5, \"strain\": 1e999}}",
+         "invalid JSON at byte 36: number out of the range of a double"},
+        /* the control: what dem_analyze writes is drawn */
+        {"{\"peak\": {\"sin_phi\": 0.5, \"strain\": 1e-3}}", NULL},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof *rows; k++) {
+        char *dir = make_dir();
+        write_timeseries(dir, 3, 0, 30);
+        write_particles(dir, 3, 0);
+        write_text(dir, "summary.json", rows[k].summary);
+        char warned[2048] = "";
+        struct dem_error err = {.warn = collect_warning, .warn_user = warned};
+        if (dem_plot_run(dir, &err))
+            fail_msg("row %zu: %s", k, err.msg);
+        const int drawn = rows[k].warning == NULL;
+        if (drawn ? strstr(warned, "summary.json") != NULL
+                  : !strstr(warned, rows[k].warning) ||
+                        !strstr(warned, "summary.json"))
+            fail_msg("row %zu: warnings '%s'", k, warned);
+        assert_int_equal(file_size(dir, "plots/strain_accumulation.dat"), -1);
+        assert_int_equal(file_size(dir, "plots/strain_accumulation.gp"), -1);
+        assert_int_equal(
+            file_contains(dir, "plots/stress_ratio.gp", "(summary.json)"),
+            drawn);
+        remove_dir(dir);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -434,6 +492,7 @@ int main(void)
         cmocka_unit_test(forces_file_of_wrong_length_is_an_error),
         cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
+        cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

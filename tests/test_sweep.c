@@ -212,6 +212,89 @@ static void collect_runs(const struct dem_sweep_grid *g, const char *cfg,
         fail_msg("%s", err.msg);
 }
 
+/* Summaries that dem_analyze did not write (edited, or from another
+ * tool) are left out of the cross-run analysis as failed runs, each with
+ * a reason naming the file and the value, rather than fitted: here a
+ * flow function from the two good circles alone (a circle with sin phi =
+ * 2 would have made the fit no Mohr-Coulomb material). */
+static void summary_not_written_by_analyze_is_left_out(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/edited", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.1.pressure=100,200,300,400,500,600,700,800");
+    static const char *const body[] = {
+        "\"confining_pressure\": 100, \"peak\": {\"sigma_axial\": 300, "
+        "\"sigma_lateral\": 100}",
+        "\"confining_pressure\": 200, \"peak\": {\"sigma_axial\": 600, "
+        "\"sigma_lateral\": 200}",
+        "\"confining_pressure\": 300, \"peak\": {\"sin_phi\": 2, "
+        "\"sigma_axial\": 900, \"sigma_lateral\": 300}",
+        "\"confining_pressure\": \"400\"",
+        "\"confining_pressure\": -500",
+        "\"confining_pressure\": 600, \"cyclic_stage\": 1, \"verdict\": "
+        "\"ratcheting?\"",
+        "\"confining_pressure\": 700, \"cyclic_stage\": 1, \"cycles\": "
+        "[{\"strain_end\": true}]",
+        "\"confining_pressure\": 800",
+    };
+    static const char *const reason[] = {
+        NULL,
+        NULL,
+        "peak.sin_phi = 2 is not in [-1, 1]",
+        "confining_pressure is a string, not a number or null",
+        "confining_pressure = -500 is not above 0",
+        "verdict is not \"ratcheting\", \"shakedown\" or null",
+        "cycles[0].strain_end is true or false, not a number or null",
+        "loading_stage = 7 is not a stage of its config.cfg (0 to 1)",
+    };
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(8 * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    for (int k = 0; k < 8; k++) {
+        char summary[512], set[64];
+        snprintf(summary, sizeof summary, "{\"loading_stage\": %d, %s}\n",
+                 k == 7 ? 7 : 1, body[k]);
+        snprintf(set, sizeof set, "stages.1.pressure=%d", 100 * (k + 1));
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[k]);
+        fake_run(dir, cfg, set, summary);
+    }
+    free(names);
+    collect_runs(&g, cfg, out);
+
+    struct dem__jval js;
+    struct dem_error err = {0};
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(&js, dir, &err))
+        fail_msg("%s", err.msg);
+    assert_close(dem__jread_number(&js, "runs_finished"), 2, 0);
+    assert_close(dem__jread_number(&js, "runs_failed"), 6, 0);
+    const struct dem__jval *runs = dem__jread_get(&js, "runs");
+    assert_int_equal(runs->n, 8);
+    for (int k = 0; k < 8; k++) {
+        const char *status = dem__jread_string(&runs->items[k], "status");
+        const char *why = dem__jread_string(&runs->items[k], "reason");
+        const char *want = reason[k];
+        if (!want) {
+            assert_string_equal(status, "finished");
+            continue;
+        }
+        assert_string_equal(status, "failed");
+        if (!why || !strstr(why, want) || !strstr(why, "summary.json: ") ||
+            !strstr(why, "dembox analyze"))
+            fail_msg("run %d: reason '%s'", k, why ? why : "(none)");
+    }
+    /* the flow function of the two good circles: sin phi = 1/2 */
+    const struct dem__jval *ff = dem__jread_get(&js, "flow_function");
+    assert_non_null(ff);
+    assert_close(dem__jread_number(&ff->items[0], "circles"), 2, 0);
+    assert_close(dem__jread_number(&ff->items[0], "sin_phi"), 0.5, 1e-9);
+    dem__jread_free(&js);
+    dem_sweep_grid_free(&g);
+}
+
 /* Circles touching tau = c + sigma tan(phi) at confining pressures p:
  * sigma_1 = p (1 + s)/(1 - s) + 2 c cos(phi)/(1 - s), s = sin(phi). The
  * initial void ratios follow e = e0 - (p/hs)^n with hs = k2. */
@@ -674,6 +757,7 @@ int main(void)
         cmocka_unit_test(bad_param_is_an_error_naming_it),
         cmocka_unit_test(bad_grid_point_is_refused_before_running),
         cmocka_unit_test(flow_function_and_void_fit_recover_known_values),
+        cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
         cmocka_unit_test(seed_ensembles_give_mean_and_standard_error),
         cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),

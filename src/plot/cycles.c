@@ -54,6 +54,8 @@ void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
             "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
             "set key inside top left box opaque font %s\n",
             what, widest > 44 ? "\",8\" width -10" : "\",10\"");
+    for (int b = 0; b < m; b++)
+        dem__gp_text(title[b]);
     for (int panel = 0; panel < 2; panel++) {
         fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
                 panel ? "unset key\n" : "",

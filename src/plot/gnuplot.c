@@ -12,6 +12,17 @@
 #include "io/fsutil.h"
 #include "plot/plot.h"
 
+void dem__gp_text(char *s)
+{
+    for (; *s; s++)
+        if (*s == '"')
+            *s = '\'';
+        else if (*s == '\\')
+            *s = '/';
+        else if ((unsigned char)*s < 0x20 || *s == 0x7f)
+            *s = ' ';
+}
+
 void dem__gp_head(FILE *f, const char *name, const char *title,
                   const char *xlabel, const char *ylabel)
 {

@@ -22,7 +22,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "analysis/summary_read.h"
 #include "formats/csvtable.h"
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
@@ -100,9 +102,7 @@ struct series {
     size_t slo, shi;          /* the last shear stage's rows (none: equal) */
     double peak_sin, peak_strain; /* summary.json's peak (smoothed, as the
                                      analysis found it), NaN if none */
-    int ncyc;         /* summary.json's cycles of a cyclic stage, or 0 */
-    double *cyc;      /* their eps_D gained [0, ncyc), at the end [ncyc, ) */
-    char verdict[32]; /* summary.json's verdict, or empty */
+    struct dem__summary_cycles cyc; /* summary.json's cycles, verdict */
 };
 
 static const char axis_name[3] = {'x', 'y', 'z'};
@@ -807,32 +807,56 @@ static int write_cycles(const struct series *s, const struct plot_spec *p,
     (void)p;
     dem__plot_cycles_head(dat, gp, "cyclic stage (summary.json; errors 0)");
     fprintf(dat, "# this run\n");
-    const struct dem__plot_cycles c = {s->ncyc,          s->cyc, NULL,
-                                       s->cyc + s->ncyc, NULL,   NULL};
+    const struct dem__plot_cycles c = {s->cyc.n,   s->cyc.inc, NULL,
+                                       s->cyc.end, NULL,       NULL};
     const int negative = dem__plot_cycles_block(dat, &c);
     dem__plot_title title[1];
     snprintf(title[0], sizeof title[0], "%s%s",
-             s->verdict[0] ? "verdict: " : "this run", s->verdict);
+             s->cyc.verdict[0] ? "verdict: " : "this run", s->cyc.verdict);
     dem__plot_cycles_panels(gp, title, 1, negative, "");
     return DEM_OK;
 }
 
-/* The cycles and the verdict of summary.json (js) into s. */
-static int read_cycles(struct series *s, const struct dem__jval *js)
+/* The peak, the cycles and the verdict of outdir's summary.json into s.
+ * The plots need none of them (`dembox plot` may run before `dembox
+ * analyze`); a summary that is there but cannot be read, or holds what
+ * dem_analyze does not write, is left out with a warning. */
+static int read_summary(struct series *s, const char *outdir,
+                        struct dem_error *err)
 {
-    const struct dem__jval *cy = dem__jread_get(js, "cycles");
-    const char *v = dem__jread_string(js, "verdict");
-    snprintf(s->verdict, sizeof s->verdict, "%s", v ? v : "");
-    if (!cy || cy->type != DEM__JSON_ARRAY || cy->n == 0)
+    char path[DEM_PATH_MAX], why[300];
+    s->peak_sin = s->peak_strain = NAN;
+    if (dem_path_join(path, sizeof path, outdir, "summary.json", NULL) ||
+        access(path, F_OK))
         return DEM_OK;
-    s->cyc = malloc(2 * (size_t)cy->n * sizeof *s->cyc);
-    if (!s->cyc)
-        return DEM_ENOMEM;
-    s->ncyc = cy->n;
-    for (int k = 0; k < cy->n; k++) {
-        s->cyc[k] = dem__jread_number(&cy->items[k], "strain_increment");
-        s->cyc[cy->n + k] = dem__jread_number(&cy->items[k], "strain_end");
+    struct dem__jval js;
+    struct dem_error jerr = {0};
+    if (dem__jread_file(&js, path, &jerr)) {
+        if (jerr.code == DEM_ENOMEM)
+            return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+        dem_warn(err, "%s; the plots go without it", jerr.msg);
+        return DEM_OK;
     }
+    double sin_phi = NAN, strain = NAN;
+    int got =
+        dem__jread_number_in(&js, "peak.sin_phi", -1.0, 1.0, "in [-1, 1]",
+                             &sin_phi, why, sizeof why) ||
+                dem__jread_number_in(&js, "peak.strain", -HUGE_VAL, HUGE_VAL,
+                                     "", &strain, why, sizeof why)
+            ? 0
+            : dem__summary_read_cycles(&js, &s->cyc, why, sizeof why);
+    dem__jread_free(&js);
+    if (got < 0)
+        return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+    if (!got) {
+        dem_warn(err,
+                 "%s: %s, which dembox analyze does not write; the plots go "
+                 "without the summary",
+                 path, why);
+        return DEM_OK;
+    }
+    s->peak_sin = sin_phi;
+    s->peak_strain = strain;
     return DEM_OK;
 }
 
@@ -900,7 +924,7 @@ static int final_box(const struct series *s, double lo[3], double hi[3])
 static int plot_wanted(const struct series *s, int k)
 {
     if (plots[k].rows == ROWS_CYCLES)
-        return s->ncyc > 0;
+        return s->cyc.n > 0;
     return plots[k].rows != ROWS_SHEAR || s->shi > s->slo;
 }
 
@@ -986,18 +1010,8 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
                            outdir, s.dim);
     if (!from_config)
         find_loading(&s);
-    s.peak_sin = s.peak_strain = NAN;
-    if (!dem_path_join(path, sizeof path, outdir, "summary.json", NULL)) {
-        struct dem__jval js;
-        struct dem_error jerr = {0};
-        if (!dem__jread_file(&js, path, &jerr)) {
-            s.peak_sin = dem__jread_number(&js, "peak.sin_phi");
-            s.peak_strain = dem__jread_number(&js, "peak.strain");
-            if (read_cycles(&s, &js))
-                rc = dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
-            dem__jread_free(&js);
-        }
-    }
+    if (!rc)
+        rc = read_summary(&s, outdir, err);
 
     if (!rc)
         rc = dem_path_join(plotdir, sizeof plotdir, outdir, "plots", err);
@@ -1025,6 +1039,6 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     if (!prc)
         dem__csv_table_free(&pt);
     dem__csv_table_free(&ts);
-    free(s.cyc);
+    dem__summary_cycles_free(&s.cyc);
     return rc;
 }

@@ -16,6 +16,13 @@
 void dem__gp_head(FILE *f, const char *name, const char *title,
                   const char *xlabel, const char *ylabel);
 
+/* Make s safe inside a gnuplot "..." string of a script: a text that
+ * came from a file or an argument (a run's name, a parameter's value)
+ * must not end the string or the line, where it could be read as a
+ * command (gnuplot runs `system`). Quotes become ', backslashes /, control
+ * characters spaces. */
+void dem__gp_text(char *s);
+
 /* 1 if the gnuplot command can be run. */
 int dem__gp_available(const char *cmd);
 

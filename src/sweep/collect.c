@@ -7,6 +7,7 @@
  * are dem_voidfit over the same groups.
  */
 #include "dembox.h"
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -40,21 +41,62 @@ static void run_init(struct dem__sweep_run *r)
     r->stage = r->axis = -1;
 }
 
-static int read_cycles(struct dem__sweep_run *r, const struct dem__jval *cyc)
+/* The numbers of summary.json that the cross-run analysis uses, each
+ * null or a number in the range dem_analyze writes it in; 1 when they
+ * are, else 0 with why (an edited or foreign file: the run is left out
+ * rather than analysed wrong), -1 when out of memory. */
+static int read_summary(struct dem__sweep_run *r, const struct dem__jval *js,
+                        const struct dem_config *c, char *why, size_t n)
 {
-    r->cyclic = 1;
-    if (!cyc || cyc->type != DEM__JSON_ARRAY || cyc->n == 0)
-        return DEM_OK;
-    r->cyc_end = malloc(2 * (size_t)cyc->n * sizeof *r->cyc_end);
-    if (!r->cyc_end)
-        return DEM_ENOMEM;
-    r->cyc_inc = r->cyc_end + cyc->n;
-    r->ncyc = cyc->n;
-    for (int k = 0; k < cyc->n; k++) {
-        r->cyc_end[k] = dem__jread_number(&cyc->items[k], "strain_end");
-        r->cyc_inc[k] = dem__jread_number(&cyc->items[k], "strain_increment");
+    const double big = HUGE_VAL;
+    double ls;
+    char stages[64];
+    snprintf(stages, sizeof stages, "a stage of its config.cfg (0 to %d)",
+             c->nstages - 1);
+    if (dem__jread_number_in(js, "loading_stage", 0.0, c->nstages - 1.0, stages,
+                             &ls, why, n))
+        return 0;
+    if (isnan(ls)) {
+        ls = -1.0; /* null: the run has no loading stage */
+    } else if (ls != floor(ls)) {
+        snprintf(why, n, "loading_stage = %.10g is not %s", ls, stages);
+        return 0;
     }
-    return DEM_OK;
+    const struct {
+        const char *path;
+        double *to;
+        double lo, hi;
+        const char *range;
+    } num[] = {
+        {"confining_pressure", &r->pressure, DBL_MIN, big, "above 0"},
+        {"peak.sin_phi", &r->peak_sin, -1.0, 1.0, "in [-1, 1]"},
+        {"peak.phi_deg", &r->peak_phi, -90.0, 90.0, "in [-90, 90]"},
+        {"peak.sigma_axial", &r->peak_s1, -big, big, ""},
+        {"peak.sigma_lateral", &r->peak_s3, -big, big, ""},
+        {"critical.sin_phi", &r->crit_sin, -1.0, 1.0, "in [-1, 1]"},
+        {"critical.phi_deg", &r->crit_phi, -90.0, 90.0, "in [-90, 90]"},
+        {"critical.sigma_axial", &r->crit_s1, -big, big, ""},
+        {"critical.sigma_lateral", &r->crit_s3, -big, big, ""},
+        {"void_ratio_initial", &r->e_init, DBL_MIN, big, "above 0"},
+        {"void_ratio_critical", &r->e_crit, DBL_MIN, big, "above 0"},
+        {"void_ratio_fit.hs", &r->hs, DBL_MIN, big, "above 0"},
+        {"cycle_increment_ratio", &r->cyc_ratio, -big, big, ""},
+    };
+    for (size_t k = 0; k < sizeof num / sizeof *num; k++)
+        if (dem__jread_number_in(js, num[k].path, num[k].lo, num[k].hi,
+                                 num[k].range, num[k].to, why, n))
+            return 0;
+    const int st = (int)ls;
+    r->stage = st;
+    r->axis = st >= 0 ? c->stages[st].axis : -1;
+    r->mu =
+        st >= 0 && c->stages[st].mu >= 0.0 ? c->stages[st].mu : c->contact.mu_s;
+    const int luding = c->contact.normal == DEM_NORMAL_LUDING;
+    r->k1 = luding ? c->contact.k1 : c->contact.k;
+    r->k2 = luding ? c->contact.k2 : c->contact.k;
+    r->kc = luding ? c->contact.kc : 0.0;
+    r->dim = c->dim;
+    return dem__summary_read_cycles(js, &r->cyc, why, n);
 }
 
 /* Fill r from rundir; a run that is not there is ok = 0 with a reason.
@@ -92,43 +134,28 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
         snprintf(r->reason, sizeof r->reason, "%s", e.msg);
         return rc == DEM_ENOMEM ? rc : DEM_OK;
     }
-    r->ok = 1;
-    r->dim = c->dim;
-    const double ls = dem__jread_number(&js, "loading_stage");
-    /* an index of the config's stages, or -1 (compared as a double: a
-     * summary's 1e300 converts to no int) */
-    const int st = ls >= 0.0 && ls < c->nstages && ls == floor(ls) ? (int)ls
-                                                                    : -1;
-    r->stage = st;
-    r->axis = st >= 0 && st < c->nstages ? c->stages[st].axis : -1;
-    r->mu = st >= 0 && st < c->nstages && c->stages[st].mu >= 0.0
-                ? c->stages[st].mu
-                : c->contact.mu_s;
-    const int luding = c->contact.normal == DEM_NORMAL_LUDING;
-    r->k1 = luding ? c->contact.k1 : c->contact.k;
-    r->k2 = luding ? c->contact.k2 : c->contact.k;
-    r->kc = luding ? c->contact.kc : 0.0;
-    r->pressure = dem__jread_number(&js, "confining_pressure");
-    r->peak_sin = dem__jread_number(&js, "peak.sin_phi");
-    r->peak_phi = dem__jread_number(&js, "peak.phi_deg");
-    r->peak_s1 = dem__jread_number(&js, "peak.sigma_axial");
-    r->peak_s3 = dem__jread_number(&js, "peak.sigma_lateral");
-    r->crit_sin = dem__jread_number(&js, "critical.sin_phi");
-    r->crit_phi = dem__jread_number(&js, "critical.phi_deg");
-    r->crit_s1 = dem__jread_number(&js, "critical.sigma_axial");
-    r->crit_s3 = dem__jread_number(&js, "critical.sigma_lateral");
-    r->e_init = dem__jread_number(&js, "void_ratio_initial");
-    r->e_crit = dem__jread_number(&js, "void_ratio_critical");
-    r->hs = dem__jread_number(&js, "void_ratio_fit.hs");
-    r->cyc_ratio = dem__jread_number(&js, "cycle_increment_ratio");
-    const char *v = dem__jread_string(&js, "verdict");
-    snprintf(r->verdict, sizeof r->verdict, "%s", v ? v : "");
-    rc = DEM_OK;
-    if (dem__jread_get(&js, "cyclic_stage"))
-        rc = read_cycles(r, dem__jread_get(&js, "cycles"));
+    char why[300];
+    const int got = read_summary(r, &js, c, why, sizeof why);
     dem__jread_free(&js);
     free(c);
-    return rc;
+    if (got < 0)
+        return DEM_ENOMEM;
+    if (!got) {
+        /* as left out: nothing of it reaches the analysis */
+        dem__summary_cycles_free(&r->cyc);
+        run_init(r);
+        r->dim = 0;
+        const int w = snprintf(r->reason, sizeof r->reason,
+                               "%s: %s, which dembox analyze does not "
+                               "write; analyse the run again (dembox "
+                               "analyze %s)",
+                               path, why, rundir);
+        if (w < 0 || (size_t)w >= sizeof r->reason) /* cut: still one */
+            r->reason[sizeof r->reason - 1] = '\0';
+        return DEM_OK;
+    }
+    r->ok = 1;
+    return DEM_OK;
 }
 
 /* ----------------------------------------------------------- grouping */
@@ -364,9 +391,9 @@ static int ensembles(struct dem__sweep *s)
             if (s->eng.gid[i] != q)
                 continue;
             e->runs++;
-            e->ncyc = r->ncyc > e->ncyc ? r->ncyc : e->ncyc;
-            e->ratcheting += !strcmp(r->verdict, "ratcheting");
-            e->shakedown += !strcmp(r->verdict, "shakedown");
+            e->ncyc = r->cyc.n > e->ncyc ? r->cyc.n : e->ncyc;
+            e->ratcheting += !strcmp(r->cyc.verdict, "ratcheting");
+            e->shakedown += !strcmp(r->cyc.verdict, "shakedown");
         }
         if (e->ncyc == 0)
             continue;
@@ -381,8 +408,8 @@ static int ensembles(struct dem__sweep *s)
                 long m = 0;
                 for (long i = 0; i < s->n; i++) {
                     const struct dem__sweep_run *r = &s->runs[i];
-                    if (s->eng.gid[i] == q && c < r->ncyc)
-                        buf[m++] = which ? r->cyc_end[c] : r->cyc_inc[c];
+                    if (s->eng.gid[i] == q && c < r->cyc.n)
+                        buf[m++] = which ? r->cyc.end[c] : r->cyc.inc[c];
                 }
                 (which ? e->cyc_end : e->cyc_inc)[c] = stat_of(buf, m);
             }
@@ -458,7 +485,7 @@ static void sweep_free(struct dem__sweep *s)
     groups_free(&s->ffg);
     groups_free(&s->mug);
     for (long i = 0; s->runs && i < s->n; i++)
-        free(s->runs[i].cyc_end);
+        dem__summary_cycles_free(&s->runs[i].cyc);
     free(s->runs);
 }
 
@@ -496,8 +523,8 @@ static int analyse(struct dem__sweep *s)
     cohesion_check(s);
     int cyclic = 0, cycles = 0;
     for (long i = 0; i < s->n; i++) {
-        cyclic += s->runs[i].ok && s->runs[i].cyclic;
-        cycles += s->runs[i].ok ? s->runs[i].ncyc : 0;
+        cyclic += s->runs[i].ok && s->runs[i].cyc.cyclic;
+        cycles += s->runs[i].ok ? s->runs[i].cyc.n : 0;
     }
     if (!cyclic)
         snprintf(s->cyc_reason, sizeof s->cyc_reason,

@@ -132,15 +132,15 @@ static void write_run(struct dem__json *j, const struct dem__sweep *s, long i)
         dem__json_close(j);
         dem__json_number(j, "void_ratio_initial", r->e_init);
         dem__json_number(j, "void_ratio_critical", r->e_crit);
-        if (r->cyclic) {
-            if (r->verdict[0])
-                dem__json_string(j, "verdict", r->verdict);
+        if (r->cyc.cyclic) {
+            if (r->cyc.verdict[0])
+                dem__json_string(j, "verdict", r->cyc.verdict);
             else
                 dem__json_null(j, "verdict");
             dem__json_number(j, "cycle_increment_ratio", r->cyc_ratio);
             dem__json_array(j, "cycle_strain_increment", 1);
-            for (int k = 0; k < r->ncyc; k++)
-                dem__json_number(j, NULL, r->cyc_inc[k]);
+            for (int k = 0; k < r->cyc.n; k++)
+                dem__json_number(j, NULL, r->cyc.inc[k]);
             dem__json_close(j);
         }
     }
@@ -301,22 +301,22 @@ static void write_cyclic(struct dem__json *j, const struct dem__sweep *s)
     dem__json_array(j, "strain_accumulation", 0);
     for (long i = 0; i < s->n; i++) {
         const struct dem__sweep_run *r = &s->runs[i];
-        if (!r->ok || !r->cyclic)
+        if (!r->ok || !r->cyc.cyclic)
             continue;
         dem__json_object(j, NULL, 0);
         dem__json_string(j, "run", r->name);
         dem__json_number(j, "mu", r->mu);
         params(j, "params", s, i, 0);
-        if (r->verdict[0])
-            dem__json_string(j, "verdict", r->verdict);
+        if (r->cyc.verdict[0])
+            dem__json_string(j, "verdict", r->cyc.verdict);
         else
             dem__json_null(j, "verdict");
         dem__json_array(j, "cycles", 0);
-        for (int k = 0; k < r->ncyc; k++) {
+        for (int k = 0; k < r->cyc.n; k++) {
             dem__json_object(j, NULL, 1);
             dem__json_int(j, "cycle", k + 1);
-            dem__json_number(j, "strain_end", r->cyc_end[k]);
-            dem__json_number(j, "strain_increment", r->cyc_inc[k]);
+            dem__json_number(j, "strain_end", r->cyc.end[k]);
+            dem__json_number(j, "strain_increment", r->cyc.inc[k]);
             dem__json_close(j);
         }
         dem__json_close(j);

@@ -32,9 +32,7 @@ static void label(const struct dem__sweep *s, long i, int role, char *out,
         snprintf(out + len, n - len, "%s%s=%s", len ? ", " : "", p->keys[0],
                  p->values[s->runs[i].idx[k]]);
     }
-    for (char *c = out; *c; c++)
-        if (*c == '"')
-            *c = '\'';
+    dem__gp_text(out);
 }
 
 /* " (label)" or "" */
@@ -469,7 +467,7 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
  * strain apply to it). */
 static int compressed(const struct dem__sweep_run *r)
 {
-    return r->ok && r->stage >= 0 && !r->cyclic && r->axis >= 0 &&
+    return r->ok && r->stage >= 0 && !r->cyc.cyclic && r->axis >= 0 &&
            r->axis < r->dim;
 }
 
@@ -604,9 +602,9 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
         const struct dem__sweep_run *r = &s->runs[i];
         const int q = s->eng.gid[i];
         /* each run, or each ensemble at its first run */
-        if (!r->ok || !r->cyclic || (ens && s->eng.rep[q] != i))
+        if (!r->ok || !r->cyc.cyclic || (ens && s->eng.rep[q] != i))
             continue;
-        const int nc = ens ? s->ens[q].ncyc : r->ncyc;
+        const int nc = ens ? s->ens[q].ncyc : r->cyc.n;
         if (nc == 0)
             continue;
         double *v = malloc(4 * (size_t)nc * sizeof *v);
@@ -619,9 +617,9 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
         }
         for (int c = 0; c < nc; c++) {
             const struct dem__sweep_ens *e = ens ? &s->ens[q] : NULL;
-            v[c] = e ? e->cyc_inc[c].mean : r->cyc_inc[c];
+            v[c] = e ? e->cyc_inc[c].mean : r->cyc.inc[c];
             v[nc + c] = e ? e->cyc_inc[c].se : 0.0;
-            v[2 * nc + c] = e ? e->cyc_end[c].mean : r->cyc_end[c];
+            v[2 * nc + c] = e ? e->cyc_end[c].mean : r->cyc.end[c];
             v[3 * nc + c] = e ? e->cyc_end[c].se : 0.0;
             runs[c] = e ? e->cyc_inc[c].n : 1;
         }
@@ -641,7 +639,7 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
                      s->ens[q].runs, s->ens[q].ratcheting);
         else
             snprintf(title[m++], sizeof *title, "μ = %.3g%s%s%s", r->mu, par,
-                     r->verdict[0] ? ": " : "", r->verdict);
+                     r->cyc.verdict[0] ? ": " : "", r->cyc.verdict);
     }
     dem__plot_cycles_panels(gp, title, m, negative,
                             ens ? ", mean ± s.e. over the seeds" : "");

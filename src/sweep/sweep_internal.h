@@ -3,6 +3,7 @@
 #define DEM_SWEEP_INTERNAL_H
 
 #include "analysis/analysis.h"
+#include "analysis/summary_read.h"
 #include "dembox.h"
 #include <pthread.h>
 
@@ -21,12 +22,9 @@ struct dem__sweep_run {
     double peak_sin, peak_phi, peak_s1, peak_s3;
     double crit_sin, crit_phi, crit_s1, crit_s3;
     double e_init, e_crit;
-    double hs;        /* hardness of the void-ratio fit (summary.json) */
-    char verdict[32]; /* "ratcheting", "shakedown", "" */
+    double hs; /* hardness of the void-ratio fit (summary.json) */
     double cyc_ratio;
-    int ncyc;                  /* complete cycles (0: no cyclic stage) */
-    int cyclic;                /* 1: the run has a cyclic stage */
-    double *cyc_end, *cyc_inc; /* eps_D at the end of / gained in a cycle */
+    struct dem__summary_cycles cyc; /* cycles and verdict */
 };
 
 /* Runs that differ only in the parameters of some role form a group. */

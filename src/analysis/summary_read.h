@@ -1,0 +1,37 @@
+/* Reading back what other modules use of a run's summary.json (written by
+ * analyze.c): the plots of a run (its peak, its cycles) and the sweep's
+ * cross-run analysis (sweep/collect.c).
+ *
+ * summary.json may have been edited, cut, or written by another version
+ * or tool. A value that is not what dem_analyze writes (another JSON
+ * type, a number out of its range, a verdict it has no word for) is
+ * refused with a one-line reason naming it, so that the file is left out
+ * rather than drawn or averaged wrong. Internal.
+ */
+#ifndef DEM_ANALYSIS_SUMMARY_READ_H
+#define DEM_ANALYSIS_SUMMARY_READ_H
+
+#include <stddef.h>
+
+#include "formats/jsonread.h"
+
+/* The cyclic stage of a summary: its complete cycles and verdict. */
+struct dem__summary_cycles {
+    int cyclic;        /* 1: the summary has a cyclic stage */
+    int n;             /* complete cycles (0: none, or no cyclic stage) */
+    double *inc, *end; /* per cycle: eps_D gained in it, at its end (NaN:
+                          null); one allocation, freed with inc */
+    char verdict[16];  /* "ratcheting", "shakedown" or "" (null) */
+};
+
+/* Fill c from summary js. Returns 1 when its cyclic part is what
+ * dem_analyze writes (cycles: an array of objects whose strain_end and
+ * strain_increment are numbers or null; verdict: "ratcheting",
+ * "shakedown" or null), 0 with why (c then empty) when it is not, -1
+ * when out of memory. */
+int dem__summary_read_cycles(const struct dem__jval *js,
+                             struct dem__summary_cycles *c, char *why,
+                             size_t n);
+void dem__summary_cycles_free(struct dem__summary_cycles *c);
+
+#endif
