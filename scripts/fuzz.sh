@@ -18,7 +18,8 @@ SECONDS_EACH=${1:-600}
 B=${FUZZ_BUILD:-build-fuzz}
 CC_FUZZ=${CC_FUZZ:-$(command -v clang-14 || command -v clang)}
 HARNESSES=${FUZZ_HARNESSES:-fuzz_config fuzz_particles_csv fuzz_checkpoint
-                           fuzz_lammps_data fuzz_run_folder}
+                           fuzz_lammps_data fuzz_run_folder
+                           fuzz_sweep_collect}
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 
