@@ -691,6 +691,11 @@ static void bad_checkpoints_are_refused_with_a_clear_message(void **state)
     remove(ckpt);
     assert_int_equal(resume(out, 0, 1, &err), DEM_EIO);
     assert_one_line_naming(&err, ckpt, "nothing to resume");
+    /* a folder in its place (fopen opens one; its reading then fails) */
+    assert_int_equal(mkdir(ckpt, 0755), 0);
+    assert_int_equal(resume(out, 0, 1, &err), DEM_EIO);
+    assert_one_line_naming(&err, ckpt, "is a folder, not a dembox checkpoint");
+    assert_int_equal(rmdir(ckpt), 0);
 
     /* the refusals damaged nothing: the good checkpoint still resumes */
     write_all(ckpt, good, len);

@@ -15,6 +15,7 @@
 #include "io/checkpoint.h"
 #include "contact/models.h"
 #include "dembox.h"
+#include "io/fsutil.h"
 
 #include <errno.h>
 #include <math.h>
@@ -595,10 +596,10 @@ static int refuse(struct dem_error *err, const char *path, const char *fmt,
 static int slurp(const char *path, unsigned char **buf, size_t *size,
                  struct dem_error *err)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return dem_error_set(err, DEM_EIO, "%s: cannot open checkpoint: %s",
-                             path, strerror(errno));
+    FILE *f;
+    const int orc = dem_open_read(&f, path, "rb", "a dembox checkpoint", err);
+    if (orc)
+        return orc;
     unsigned char h[FIXED_HEADER];
     size_t got = fread(h, 1, sizeof h, f);
     struct stat st;
