@@ -9,6 +9,7 @@
 
 #include "dembox.h"
 #include "measure/measure.h"
+#include "plot/plot.h"
 #include "testutil.h"
 
 static const char *const curve_plots[] = {
@@ -479,6 +480,17 @@ static void summary_not_written_by_analyze_is_left_out(void **state)
     }
 }
 
+/* A text bound for a gnuplot string cannot end it, end the line, or
+ * hold a backquote (gnuplot runs `...` as a shell command even inside
+ * double quotes); the rest is kept. */
+static void texts_for_gnuplot_strings_are_made_inert(void **state)
+{
+    (void)state;
+    char s[] = "mu=0.5 \"\nsystem \"touch x\"\n# `touch y` a\\b\tc\x7f";
+    dem__gp_text(s);
+    assert_string_equal(s, "mu=0.5 ' system 'touch x' # 'touch y' a/b c ");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -493,6 +505,7 @@ int main(void)
         cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
+        cmocka_unit_test(texts_for_gnuplot_strings_are_made_inert),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -15,7 +15,7 @@
 void dem__gp_text(char *s)
 {
     for (; *s; s++)
-        if (*s == '"')
+        if (*s == '"' || *s == '`')
             *s = '\'';
         else if (*s == '\\')
             *s = '/';

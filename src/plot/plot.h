@@ -19,8 +19,9 @@ void dem__gp_head(FILE *f, const char *name, const char *title,
 /* Make s safe inside a gnuplot "..." string of a script: a text that
  * came from a file or an argument (a run's name, a parameter's value)
  * must not end the string or the line, where it could be read as a
- * command (gnuplot runs `system`). Quotes become ', backslashes /, control
- * characters spaces. */
+ * command (gnuplot runs `system`), nor hold a backquote, whose text
+ * gnuplot runs as a shell command even inside double quotes. Quotes and
+ * backquotes become ', backslashes /, control characters spaces. */
 void dem__gp_text(char *s);
 
 /* 1 if the gnuplot command can be run. */
