@@ -455,20 +455,24 @@ static FILE *open_timeseries(const char *dir, int dim)
 }
 
 /* 2D biaxial: isotropic at 500 N/m, then compression along y with the
- * stress ratio and eps_v curves above. */
-static void write_biaxial_run(const char *dir)
+ * stress ratio and eps_v curves above; every stress (and the config's
+ * pressures) in units of 1/unit N/m. */
+static void write_biaxial_run_in(const char *dir, double unit)
 {
-    write_text(dir, "config.cfg",
-               "dimension = 2;\n"
-               "time_step = 1.0e-6;\n"
-               "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; "
-               "kc = 0.0; mu = 0.5; };\n"
-               "stages = (\n"
-               "  { type = \"isotropic\"; pressure = 500.0; },\n"
-               "  { type = \"compress\"; axis = \"y\"; strain = 0.1; "
-               "duration = 1.0; pressure = 500.0; }\n"
-               ");\n"
-               "output = { interval = 1.0e-3; };\n");
+    char cfg[1024];
+    snprintf(cfg, sizeof cfg,
+             "dimension = 2;\n"
+             "time_step = 1.0e-6;\n"
+             "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; "
+             "kc = 0.0; mu = 0.5; };\n"
+             "stages = (\n"
+             "  { type = \"isotropic\"; pressure = %.17g; },\n"
+             "  { type = \"compress\"; axis = \"y\"; strain = 0.1; "
+             "duration = 1.0; pressure = %.17g; }\n"
+             ");\n"
+             "output = { interval = 1.0e-3; };\n",
+             500.0 * unit, 500.0 * unit);
+    write_text(dir, "config.cfg", cfg);
     FILE *f = open_timeseries(dir, 2);
     struct dem_sample s;
     memset(&s, 0, sizeof s);
@@ -477,7 +481,7 @@ static void write_biaxial_run(const char *dir)
         s.t = 1e-3 * (i + 1);
         s.stage = 0;
         s.eps[0] = s.eps[1] = 1e-3 * i;
-        s.sigma[0] = s.sigma[1] = 500.0;
+        s.sigma[0] = s.sigma[1] = 500.0 * unit;
         s.void_ratio = e0;
         dem_sample_write_row(f, &s, 2);
     }
@@ -489,13 +493,18 @@ static void write_biaxial_run(const char *dir)
         s.eps[1] = ea;
         s.eps_v = eps_v_curve(ea);
         s.eps[0] = 1.0 - (1.0 + s.eps_v) / (1.0 - ea);
-        s.sigma[0] = 500.0;
-        s.sigma[1] = 500.0 * (1.0 + r) / (1.0 - r);
+        s.sigma[0] = 500.0 * unit;
+        s.sigma[1] = 500.0 * unit * (1.0 + r) / (1.0 - r);
         s.void_ratio = (1.0 + e0) * (1.0 + s.eps_v) - 1.0;
         s.inertial_number = 1e-4 * sin(M_PI * i / 1000.0);
         dem_sample_write_row(f, &s, 2);
     }
     assert_int_equal(fclose(f), 0);
+}
+
+static void write_biaxial_run(const char *dir)
+{
+    write_biaxial_run_in(dir, 1.0);
 }
 
 static void analyze_writes_summary_of_a_biaxial_run(void **state)
@@ -566,6 +575,71 @@ static void analyze_writes_summary_of_a_biaxial_run(void **state)
     /* one isotropic stage: no e(p) fit, and the reason says so */
     assert_non_null(strstr(js, "3 or more different pressures"));
     free(js);
+}
+
+/* The material parameters do not depend on the unit of stress: with
+ * every stress 1e-300 or 1e300 times larger (within a factor 1e8 of the
+ * smallest normal and the largest double), the dimensionless results
+ * are the same to rounding and the stresses and the modulus scale. An
+ * analysis that squared a stress, or added two near the largest double,
+ * would give inf or 0 here and report, say, a friction angle of 0. */
+static void analysis_is_invariant_to_the_unit_of_stress(void **state)
+{
+    (void)state;
+    /* block ("" the top level), key, 1 if it is a stress */
+    static const struct {
+        const char *block, *key;
+        int stress;
+    } q[] = {
+        {"\"peak\": {", "sin_phi", 0},
+        {"\"peak\": {", "phi_deg", 0},
+        {"\"peak\": {", "strain", 0},
+        {"\"peak\": {", "sigma_axial", 1},
+        {"\"peak\": {", "sigma_lateral", 1},
+        {"\"critical\": {", "sin_phi", 0},
+        {"\"critical\": {", "strain_from", 0},
+        {"\"critical\": {", "sigma_axial", 1},
+        {"", "poisson_ratio", 0},
+        {"", "dilatancy_angle_deg", 0},
+        {"", "volumetric_slope_initial", 0},
+        {"", "volumetric_slope_dilatant", 0},
+        {"", "void_ratio_initial", 0},
+        {"", "void_ratio_critical", 0},
+        {"", "inertial_number_max", 0},
+        {"", "modulus_initial", 1},
+        {"", "confining_pressure", 1},
+    };
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "unit1");
+    write_biaxial_run_in(dir, 1.0);
+    struct dem_error err = {0};
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *ref = slurp(path);
+    assert_non_null(ref);
+    const double units[] = {1e-300, 1e300};
+    for (int u = 0; u < 2; u++) {
+        char name[32];
+        snprintf(name, sizeof name, "unit%d", u + 2);
+        run_dir(dir, sizeof dir, name);
+        write_biaxial_run_in(dir, units[u]);
+        if (dem_analyze(dir, &err))
+            fail_msg("dem_analyze: %s", err.msg);
+        snprintf(path, sizeof path, "%s/summary.json", dir);
+        char *js = slurp(path);
+        assert_non_null(js);
+        for (size_t k = 0; k < sizeof q / sizeof *q; k++) {
+            const double a = json_get(strstr(ref, q[k].block), q[k].key) *
+                             (q[k].stress ? units[u] : 1.0);
+            const double v = json_get(strstr(js, q[k].block), q[k].key);
+            if (!isfinite(a) || !(fabs(v - a) <= 1e-9 * fabs(a)))
+                fail_msg("unit %g: %s%s = %.10g, not %.10g", units[u],
+                         q[k].block, q[k].key, v, a);
+        }
+        free(js);
+    }
+    free(ref);
 }
 
 /* A timeseries that no run writes is refused at its line, and no
@@ -856,6 +930,7 @@ int main(void)
         cmocka_unit_test(loop_area_of_an_ellipse),
         cmocka_unit_test(json_writer_escapes_and_nulls),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
+        cmocka_unit_test(analysis_is_invariant_to_the_unit_of_stress),
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),
         cmocka_unit_test(analyze_rejects_a_folder_that_is_not_a_run),
