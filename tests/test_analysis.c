@@ -47,6 +47,38 @@ static void mohr_fit_recovers_friction_and_cohesion(void **state)
     assert_close(f.rms, 0.0, 1e-9);
 }
 
+/* The flow function in another unit of stress: 1e-300 or 1e300 times
+ * larger stresses give the same angle and a cohesion as many times larger
+ * (the sums of squares of the fit would otherwise underflow or overflow,
+ * giving "sin phi = nan"). */
+static void mohr_fit_is_invariant_to_the_unit_of_stress(void **state)
+{
+    (void)state;
+    const double phi = 30.5 / DEG, c = 80.0;
+    const double s3[] = {100.0, 250.0, 500.0, 1000.0, 2000.0};
+    const double units[] = {1e-300, 1e300};
+    for (int cohesion = 0; cohesion < 2; cohesion++) {
+        double s1[5], a1[5], a3[5];
+        for (int k = 0; k < 5; k++)
+            s1[k] = mc_sigma1(s3[k], phi, cohesion ? c : 0.0);
+        struct dem_mohr_fit ref, f;
+        assert_int_equal(dem_mohr_fit(s1, s3, 5, cohesion, &ref), 0);
+        assert_true(ref.ok);
+        for (int u = 0; u < 2; u++) {
+            for (int k = 0; k < 5; k++) {
+                a1[k] = s1[k] * units[u];
+                a3[k] = s3[k] * units[u];
+            }
+            assert_int_equal(dem_mohr_fit(a1, a3, 5, cohesion, &f), 0);
+            if (!f.ok)
+                fail_msg("unit %g: %s", units[u], f.reason);
+            assert_close(f.phi_deg, ref.phi_deg, 1e-9);
+            assert_close(f.c, ref.c * units[u], 1e-9 * c * units[u]);
+            assert_close(f.rms, ref.rms * units[u], 1e-9 * c * units[u]);
+        }
+    }
+}
+
 static void mohr_fit_without_cohesion_passes_origin(void **state)
 {
     (void)state;
@@ -916,6 +948,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(mohr_fit_recovers_friction_and_cohesion),
+        cmocka_unit_test(mohr_fit_is_invariant_to_the_unit_of_stress),
         cmocka_unit_test(mohr_fit_without_cohesion_passes_origin),
         cmocka_unit_test(peak_and_plateau_of_noisy_ratio),
         cmocka_unit_test(too_short_run_has_no_peak),

@@ -68,9 +68,22 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     if (!s)
         return DEM_ENOMEM;
     double *t = s + n;
+    /* in a unit of the order of the largest stress, so that the sums of
+     * squares below hold any stresses a double holds: sin phi is scale
+     * free, c and the rms scale back at the end. A power of 2, so that
+     * the scaling is exact and the fit is the one in the stresses' own
+     * unit, bit for bit. */
+    double big = 0.0, unit = 1.0;
+    for (long i = 0; i < n; i++)
+        big = fmax(big, fmax(fabs(sigma1[i]), fabs(sigma3[i])));
+    if (big > 0.0 && isfinite(big)) {
+        int e;
+        frexp(big, &e);
+        unit = ldexp(1.0, e);
+    }
     for (long i = 0; i < n; i++) {
-        s[i] = 0.5 * (sigma1[i] + sigma3[i]);
-        t[i] = 0.5 * fabs(sigma1[i] - sigma3[i]);
+        s[i] = 0.5 * (sigma1[i] / unit + sigma3[i] / unit);
+        t[i] = 0.5 * fabs(sigma1[i] / unit - sigma3[i] / unit);
     }
     int fitted = 0;
     if (cohesion) {
@@ -90,6 +103,8 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
         fitted = through_origin(s, t, n, o);
     }
     free(s);
+    o->c *= unit;
+    o->rms *= unit;
     if (!fitted)
         return DEM_OK;
     if (!(fabs(o->sin_phi) < 1.0)) {
