@@ -68,6 +68,43 @@ static void writer_output_reads_back(void **state)
     free(text);
 }
 
+/* Long arrays and objects (their storage doubles as they grow): every
+ * member in place, in order. */
+static void long_containers_keep_every_member(void **state)
+{
+    (void)state;
+    const int n = 100000;
+    size_t cap = 64 + 24 * (size_t)n;
+    char *text = malloc(cap);
+    assert_non_null(text);
+    size_t k = (size_t)snprintf(text, cap, "{\"a\": [");
+    for (int i = 0; i < n; i++)
+        k += (size_t)snprintf(text + k, cap - k, "%s%d", i ? ", " : "", i);
+    k += (size_t)snprintf(text + k, cap - k, "], \"o\": {");
+    for (int i = 0; i < 1000; i++)
+        k += (size_t)snprintf(text + k, cap - k, "%s\"k%d\": %d", i ? ", " : "",
+                              i, -i);
+    snprintf(text + k, cap - k, "}}");
+    struct dem__jval v;
+    struct dem_error err = {0};
+    if (dem__jread_text(&v, text, "long.json", &err))
+        fail_msg("%s", err.msg);
+    const struct dem__jval *a = dem__jread_get(&v, "a");
+    assert_int_equal(a->n, n);
+    for (int i = 0; i < n; i++)
+        if (a->items[i].num != i)
+            fail_msg("a[%d] = %g", i, a->items[i].num);
+    const struct dem__jval *o = dem__jread_get(&v, "o");
+    assert_int_equal(o->n, 1000);
+    for (int i = 0; i < 1000; i++) {
+        char key[16];
+        snprintf(key, sizeof key, "k%d", i);
+        assert_true(dem__jread_number(o, key) == -i);
+    }
+    dem__jread_free(&v);
+    free(text);
+}
+
 /* What strtod would take but JSON does not: each must be refused with
  * one line naming the source and the byte. */
 static void non_json_is_refused(void **state)
@@ -156,6 +193,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(writer_output_reads_back),
+        cmocka_unit_test(long_containers_keep_every_member),
         cmocka_unit_test(non_json_is_refused),
         cmocka_unit_test(numbers_in_range),
     };

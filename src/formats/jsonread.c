@@ -109,20 +109,28 @@ static int parse_string(struct parser *p, char **out)
     return DEM_OK;
 }
 
+/* Room for one more member. The arrays hold max(4, the next power of 2)
+ * members, doubling when full: a cycles array of a long cyclic run is
+ * read in linear time, not copied once per member. */
 static int push(struct parser *p, struct dem__jval *v, char *key)
 {
-    void *items = realloc(v->items, (size_t)(v->n + 1) * sizeof *v->items);
-    if (!items)
-        goto oom;
-    v->items = items;
-    memset(&v->items[v->n], 0, sizeof *v->items);
-    if (v->type == DEM__JSON_OBJECT) {
-        void *keys = realloc(v->keys, (size_t)(v->n + 1) * sizeof *v->keys);
-        if (!keys)
+    const size_t n = (size_t)v->n;
+    if (n == 0 || (n >= 4 && (n & (n - 1)) == 0)) {
+        const size_t cap = n ? 2 * n : 4;
+        void *items = realloc(v->items, cap * sizeof *v->items);
+        if (!items)
             goto oom;
-        v->keys = keys;
-        v->keys[v->n] = key;
+        v->items = items;
+        if (v->type == DEM__JSON_OBJECT) {
+            void *keys = realloc(v->keys, cap * sizeof *v->keys);
+            if (!keys)
+                goto oom;
+            v->keys = keys;
+        }
     }
+    memset(&v->items[n], 0, sizeof *v->items);
+    if (v->type == DEM__JSON_OBJECT)
+        v->keys[n] = key;
     v->n++;
     return DEM_OK;
 oom:
