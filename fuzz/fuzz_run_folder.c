@@ -13,7 +13,8 @@
  * (a gnuplot started per picture took 70 ms an input); the particle
  * picture is drawn (cairo).
  * Any crash, leak or sanitizer report (float-to-int overflow included), or
- * a message that is empty or not one line, is a finding; so are a
+ * a message that is empty or not one line, is a finding; so are a plot
+ * script that could run a command (gpcheck.h), a
  * summary.json left by a refused analysis, and one that the project's own
  * JSON reader cannot read back.
  */
@@ -26,6 +27,7 @@
 
 #include "dembox.h"
 #include "formats/jsonread.h"
+#include "gpcheck.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -141,5 +143,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&err, 0, sizeof err);
     if ((data[0] & 4) && dem_plot_run(dir, &err))
         one_line(&err);
+    if (data[0] & 4) {
+        path_of(path, sizeof path, "plots");
+        fuzz_gp_scripts_inert(path);
+    }
     return 0;
 }

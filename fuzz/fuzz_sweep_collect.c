@@ -12,8 +12,9 @@
  * gnuplot is a command that does not exist (DEMBOX_GNUPLOT): their data
  * and scripts are written, not drawn.
  * Any crash, leak or sanitizer report (float-to-int overflow included), a
- * message that is empty or not one line, or a sweep.json that the
- * project's own JSON reader cannot read back, is a finding.
+ * message that is empty or not one line, a sweep.json that the project's
+ * own JSON reader cannot read back, or a plot script that could run a
+ * command (gpcheck.h), is a finding.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -24,6 +25,7 @@
 
 #include "dembox.h"
 #include "formats/jsonread.h"
+#include "gpcheck.h"
 #include "io/fsutil.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
@@ -198,5 +200,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             abort(); /* not JSON (a nan or an inf written as a number) */
         dem__jread_free(&js);
     }
+    snprintf(path, sizeof path, "%s/plots", out);
+    fuzz_gp_scripts_inert(path);
     return 0;
 }
