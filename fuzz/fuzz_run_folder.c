@@ -14,7 +14,7 @@
  * picture is drawn (cairo).
  * Any crash, leak or sanitizer report (float-to-int overflow included), or
  * a message that is empty or not one line, is a finding; so are a plot
- * script that could run a command (gpcheck.h), a
+ * script that could run a command (plots.h), a
  * summary.json left by a refused analysis, and one that the project's own
  * JSON reader cannot read back.
  */
@@ -27,7 +27,7 @@
 
 #include "dembox.h"
 #include "formats/jsonread.h"
-#include "gpcheck.h"
+#include "plots.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -44,10 +44,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    snprintf(dir, sizeof dir, "/tmp/dembox_fuzz_run_%ld", (long)getpid());
-    if (mkdir(dir, 0755) && access(dir, W_OK))
-        abort();
-    setenv("DEMBOX_GNUPLOT", "dembox-fuzz-no-gnuplot", 1);
+    fuzz_plot_folder(dir, sizeof dir, "run");
     return 0;
 }
 

@@ -14,7 +14,7 @@
  * Any crash, leak or sanitizer report (float-to-int overflow included), a
  * message that is empty or not one line, a sweep.json that the project's
  * own JSON reader cannot read back, or a plot script that could run a
- * command (gpcheck.h), is a finding.
+ * command (plots.h), is a finding.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -25,7 +25,7 @@
 
 #include "dembox.h"
 #include "formats/jsonread.h"
-#include "gpcheck.h"
+#include "plots.h"
 #include "io/fsutil.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
@@ -125,10 +125,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    snprintf(dir, sizeof dir, "/tmp/dembox_fuzz_sweep_%ld", (long)getpid());
-    if (mkdir(dir, 0755) && access(dir, W_OK))
-        abort();
-    setenv("DEMBOX_GNUPLOT", "dembox-fuzz-no-gnuplot", 1);
+    fuzz_plot_folder(dir, sizeof dir, "sweep");
     for (int g = 0; g < NGRIDS; g++)
         make_grid(g);
     return 0;
