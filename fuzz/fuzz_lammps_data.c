@@ -29,14 +29,9 @@
 #include "formats/lammps_data.h"
 #include "measure/measure.h"
 #include "memfile.h"
+#include "oracles.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static void one_line(const struct dem_error *err)
-{
-    if (err->msg[0] == '\0' || strchr(err->msg, '\n'))
-        abort();
-}
 
 static int cmp_int(const void *a, const void *b)
 {
@@ -90,7 +85,7 @@ static void read_from_memory(const uint8_t *data, size_t size)
     const int rc = dem_lammps_data_read_stream(&d, f, "fuzz.data", &err);
     fclose(f);
     if (rc != DEM_OK) {
-        one_line(&err);
+        fuzz_one_line(&err);
         if (d.n != 0 || d.id || d.x || d.vx)
             abort(); /* on error the data are left empty */
         return;
@@ -120,7 +115,7 @@ static void bench_start(const uint8_t *data, size_t size)
     int rc = dem_bench_from_data(&s, dim, periodic, path, &err);
     unlink(path);
     if (rc != DEM_OK) {
-        one_line(&err);
+        fuzz_one_line(&err);
         return;
     }
     double L0[3], V0;
@@ -131,7 +126,7 @@ static void bench_start(const uint8_t *data, size_t size)
         rc = dem_sim_step(&s, &err);
     }
     if (rc != DEM_OK)
-        one_line(&err);
+        fuzz_one_line(&err);
     else {
         struct dem_sample smp;
         dem_measure(&s, L0, V0, 0, &smp);

@@ -26,7 +26,7 @@
 #include <unistd.h>
 
 #include "dembox.h"
-#include "formats/jsonread.h"
+#include "oracles.h"
 #include "plots.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
@@ -46,12 +46,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argv;
     fuzz_plot_folder(dir, sizeof dir, "run");
     return 0;
-}
-
-static void one_line(const struct dem_error *err)
-{
-    if (err->msg[0] == '\0' || strchr(err->msg, '\n'))
-        abort();
 }
 
 static void path_of(char *out, size_t n, const char *name)
@@ -127,19 +121,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     path_of(path, sizeof path, "summary.json");
     struct dem_error err = {0};
     if (dem_analyze(dir, &err)) {
-        one_line(&err);
+        fuzz_one_line(&err);
         if (!given && access(path, F_OK) == 0)
             abort(); /* a refused analysis leaves no summary */
     } else {
-        struct dem__jval js;
-        struct dem_error jerr = {0};
-        if (dem__jread_file(&js, path, &jerr))
-            abort(); /* not JSON (a nan or an inf written as a number) */
-        dem__jread_free(&js);
+        fuzz_json_reads_back(path);
     }
     memset(&err, 0, sizeof err);
     if ((data[0] & 4) && dem_plot_run(dir, &err))
-        one_line(&err);
+        fuzz_one_line(&err);
     if (data[0] & 4) {
         path_of(path, sizeof path, "plots");
         fuzz_gp_scripts_inert(path);

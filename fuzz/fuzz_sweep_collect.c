@@ -24,9 +24,9 @@
 #include <unistd.h>
 
 #include "dembox.h"
-#include "formats/jsonread.h"
-#include "plots.h"
 #include "io/fsutil.h"
+#include "oracles.h"
+#include "plots.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -52,12 +52,6 @@ static char dir[96];
 static struct dem_sweep_grid grid[NGRIDS];
 static char names[NGRIDS][MAXRUNS][DEM_SWEEP_RUNNAME_MAX + 8];
 static int nruns[NGRIDS];
-
-static void one_line(const struct dem_error *err)
-{
-    if (err->msg[0] == '\0' || strchr(err->msg, '\n'))
-        abort();
-}
 
 static void out_of(char *out, size_t n, int g)
 {
@@ -188,15 +182,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     struct dem_sweep_options o = {
         .target = target, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
     struct dem_error err = {0};
-    if (dem_sweep_collect(&grid[g], &o, &err)) {
-        one_line(&err);
-    } else {
-        struct dem__jval js;
-        struct dem_error jerr = {0};
-        if (dem__jread_file(&js, path, &jerr))
-            abort(); /* not JSON (a nan or an inf written as a number) */
-        dem__jread_free(&js);
-    }
+    if (dem_sweep_collect(&grid[g], &o, &err))
+        fuzz_one_line(&err);
+    else
+        fuzz_json_reads_back(path);
     snprintf(path, sizeof path, "%s/plots", out);
     fuzz_gp_scripts_inert(path);
     return 0;
