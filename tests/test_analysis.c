@@ -8,7 +8,6 @@
 #include "testutil.h"
 
 #include "analysis/analysis.h"
-#include "formats/json.h"
 #include "measure/measure.h"
 #include "protocol/stage.h"
 
@@ -413,31 +412,6 @@ static void write_text(const char *dir, const char *name, const char *text)
     assert_non_null(f);
     fputs(text, f);
     assert_int_equal(fclose(f), 0);
-}
-
-static void json_writer_escapes_and_nulls(void **state)
-{
-    (void)state;
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&buf, &len);
-    assert_non_null(f);
-    struct dem__json j;
-    dem__json_begin(&j, f);
-    dem__json_number(&j, "a", NAN);
-    dem__json_number(&j, "b", INFINITY);
-    dem__json_string(&j, "s", "say \"hi\"\\\n\x01");
-    dem__json_array(&j, "v", 1);
-    dem__json_number(&j, NULL, 0.5);
-    dem__json_int(&j, NULL, 3);
-    dem__json_close(&j);
-    dem__json_end(&j);
-    fclose(f);
-    assert_non_null(strstr(buf, "\"a\": null"));
-    assert_non_null(strstr(buf, "\"b\": null"));
-    assert_non_null(strstr(buf, "\"s\": \"say \\\"hi\\\"\\\\\\n\\u0001\""));
-    assert_non_null(strstr(buf, "\"v\": [0.5, 3]"));
-    free(buf);
 }
 
 /* ------------------------------------------------ dem_analyze end to end */
@@ -961,7 +935,6 @@ int main(void)
         cmocka_unit_test(verdict_ignores_the_first_loading),
         cmocka_unit_test(one_loading_stage_for_analysis_and_plots),
         cmocka_unit_test(loop_area_of_an_ellipse),
-        cmocka_unit_test(json_writer_escapes_and_nulls),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
         cmocka_unit_test(analysis_is_invariant_to_the_unit_of_stress),
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),

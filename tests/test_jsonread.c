@@ -45,6 +45,29 @@ static void extremes(struct dem__json *j)
     dem__json_close(j);
 }
 
+static void escapes_and_nulls(struct dem__json *j)
+{
+    dem__json_number(j, "a", NAN);
+    dem__json_number(j, "b", INFINITY);
+    dem__json_string(j, "s", "say \"hi\"\\\n\x01");
+    dem__json_array(j, "v", 1);
+    dem__json_number(j, NULL, 0.5);
+    dem__json_int(j, NULL, 3);
+    dem__json_close(j);
+}
+
+/* The writer's text: no number for NaN or inf, strings escaped. */
+static void json_writer_escapes_and_nulls(void **state)
+{
+    (void)state;
+    char *buf = written(escapes_and_nulls);
+    assert_non_null(strstr(buf, "\"a\": null"));
+    assert_non_null(strstr(buf, "\"b\": null"));
+    assert_non_null(strstr(buf, "\"s\": \"say \\\"hi\\\"\\\\\\n\\u0001\""));
+    assert_non_null(strstr(buf, "\"v\": [0.5, 3]"));
+    free(buf);
+}
+
 static void writer_output_reads_back(void **state)
 {
     (void)state;
@@ -192,6 +215,7 @@ static void numbers_in_range(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(json_writer_escapes_and_nulls),
         cmocka_unit_test(writer_output_reads_back),
         cmocka_unit_test(long_containers_keep_every_member),
         cmocka_unit_test(non_json_is_refused),
