@@ -1,10 +1,43 @@
 /* summary.json read back: see summary_read.h. */
 #include "analysis/summary_read.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The ranges of the numbers of analyze.c's summary that are read back;
+ * every other number may be any (finite: the JSON reader refuses the
+ * rest). */
+static const struct {
+    const char *path;
+    double lo, hi;
+    const char *range;
+} ranges[] = {
+    {"confining_pressure", DBL_MIN, HUGE_VAL, "above 0"},
+    {"peak.sin_phi", -1.0, 1.0, "in [-1, 1]"},
+    {"peak.phi_deg", -90.0, 90.0, "in [-90, 90]"},
+    {"critical.sin_phi", -1.0, 1.0, "in [-1, 1]"},
+    {"critical.phi_deg", -90.0, 90.0, "in [-90, 90]"},
+    {"void_ratio_initial", DBL_MIN, HUGE_VAL, "above 0"},
+    {"void_ratio_critical", DBL_MIN, HUGE_VAL, "above 0"},
+    {"void_ratio_fit.hs", DBL_MIN, HUGE_VAL, "above 0"},
+};
+
+int dem__summary_number(const struct dem__jval *js, const char *path,
+                        double *out, char *why, size_t n)
+{
+    double lo = -HUGE_VAL, hi = HUGE_VAL;
+    const char *range = "";
+    for (size_t k = 0; k < sizeof ranges / sizeof *ranges; k++)
+        if (!strcmp(ranges[k].path, path)) {
+            lo = ranges[k].lo;
+            hi = ranges[k].hi;
+            range = ranges[k].range;
+        }
+    return !dem__jread_number_in(js, path, lo, hi, range, out, why, n);
+}
 
 /* The verdict words of analyze.c's write_cyclic. */
 static const char *const verdicts[] = {"ratcheting", "shakedown"};
@@ -30,10 +63,10 @@ static int cycles(const struct dem__jval *cy, struct dem__summary_cycles *c,
         const struct dem__jval *o = &cy->items[k];
         char what[160] = "is not an object";
         if (o->type != DEM__JSON_OBJECT ||
-            dem__jread_number_in(o, "strain_end", -HUGE_VAL, HUGE_VAL, "",
-                                 &c->end[k], what, sizeof what) ||
-            dem__jread_number_in(o, "strain_increment", -HUGE_VAL, HUGE_VAL, "",
-                                 &c->inc[k], what, sizeof what)) {
+            !dem__summary_number(o, "strain_end", &c->end[k], what,
+                                 sizeof what) ||
+            !dem__summary_number(o, "strain_increment", &c->inc[k], what,
+                                 sizeof what)) {
             snprintf(why, n, "cycles[%d]%s%s", k,
                      o->type == DEM__JSON_OBJECT ? "." : " ", what);
             return 0;

@@ -15,6 +15,14 @@
 
 #include "formats/jsonread.h"
 
+/* The number at the dotted path of summary js into *out (NaN when it is
+ * missing or null). The range that dem_analyze writes it in (e.g. sin
+ * phi in [-1, 1], a void ratio above 0) is kept here, one table for every
+ * reader; a path without one may be any number. Returns 1, or 0 with why
+ * (another JSON type, a number out of its range). */
+int dem__summary_number(const struct dem__jval *js, const char *path,
+                        double *out, char *why, size_t n);
+
 /* The cyclic stage of a summary: its complete cycles and verdict. */
 struct dem__summary_cycles {
     int cyclic;        /* 1: the summary has a cyclic stage */

@@ -838,13 +838,12 @@ static int read_summary(struct series *s, const char *outdir,
         return DEM_OK;
     }
     double sin_phi = NAN, strain = NAN;
-    int got =
-        dem__jread_number_in(&js, "peak.sin_phi", -1.0, 1.0, "in [-1, 1]",
-                             &sin_phi, why, sizeof why) ||
-                dem__jread_number_in(&js, "peak.strain", -HUGE_VAL, HUGE_VAL,
-                                     "", &strain, why, sizeof why)
-            ? 0
-            : dem__summary_read_cycles(&js, &s->cyc, why, sizeof why);
+    const int got =
+        dem__summary_number(&js, "peak.sin_phi", &sin_phi, why, sizeof why) &&
+                dem__summary_number(&js, "peak.strain", &strain, why,
+                                    sizeof why)
+            ? dem__summary_read_cycles(&js, &s->cyc, why, sizeof why)
+            : 0;
     dem__jread_free(&js);
     if (got < 0)
         return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);

@@ -7,7 +7,6 @@
  * are dem_voidfit over the same groups.
  */
 #include "dembox.h"
-#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -48,7 +47,6 @@ static void run_init(struct dem__sweep_run *r)
 static int read_summary(struct dem__sweep_run *r, const struct dem__jval *js,
                         const struct dem_config *c, char *why, size_t n)
 {
-    const double big = HUGE_VAL;
     double ls;
     char stages[64];
     snprintf(stages, sizeof stages, "a stage of its config.cfg (0 to %d)",
@@ -65,26 +63,23 @@ static int read_summary(struct dem__sweep_run *r, const struct dem__jval *js,
     const struct {
         const char *path;
         double *to;
-        double lo, hi;
-        const char *range;
     } num[] = {
-        {"confining_pressure", &r->pressure, DBL_MIN, big, "above 0"},
-        {"peak.sin_phi", &r->peak_sin, -1.0, 1.0, "in [-1, 1]"},
-        {"peak.phi_deg", &r->peak_phi, -90.0, 90.0, "in [-90, 90]"},
-        {"peak.sigma_axial", &r->peak_s1, -big, big, ""},
-        {"peak.sigma_lateral", &r->peak_s3, -big, big, ""},
-        {"critical.sin_phi", &r->crit_sin, -1.0, 1.0, "in [-1, 1]"},
-        {"critical.phi_deg", &r->crit_phi, -90.0, 90.0, "in [-90, 90]"},
-        {"critical.sigma_axial", &r->crit_s1, -big, big, ""},
-        {"critical.sigma_lateral", &r->crit_s3, -big, big, ""},
-        {"void_ratio_initial", &r->e_init, DBL_MIN, big, "above 0"},
-        {"void_ratio_critical", &r->e_crit, DBL_MIN, big, "above 0"},
-        {"void_ratio_fit.hs", &r->hs, DBL_MIN, big, "above 0"},
-        {"cycle_increment_ratio", &r->cyc_ratio, -big, big, ""},
+        {"confining_pressure", &r->pressure},
+        {"peak.sin_phi", &r->peak_sin},
+        {"peak.phi_deg", &r->peak_phi},
+        {"peak.sigma_axial", &r->peak_s1},
+        {"peak.sigma_lateral", &r->peak_s3},
+        {"critical.sin_phi", &r->crit_sin},
+        {"critical.phi_deg", &r->crit_phi},
+        {"critical.sigma_axial", &r->crit_s1},
+        {"critical.sigma_lateral", &r->crit_s3},
+        {"void_ratio_initial", &r->e_init},
+        {"void_ratio_critical", &r->e_crit},
+        {"void_ratio_fit.hs", &r->hs},
+        {"cycle_increment_ratio", &r->cyc_ratio},
     };
     for (size_t k = 0; k < sizeof num / sizeof *num; k++)
-        if (dem__jread_number_in(js, num[k].path, num[k].lo, num[k].hi,
-                                 num[k].range, num[k].to, why, n))
+        if (!dem__summary_number(js, num[k].path, num[k].to, why, n))
             return 0;
     const int st = (int)ls;
     r->stage = st;
