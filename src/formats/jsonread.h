@@ -1,6 +1,7 @@
 /* A small JSON reader for the files dembox writes (summary.json).
  *
- * Parses a whole document into a tree of values. Numbers become doubles,
+ * Parses a whole document into a tree of values. Numbers (as RFC 8259
+ * writes them, and finite: no inf, nan or hexadecimal) become doubles,
  * null becomes a value of type DEM__JSON_NULL (read as NaN by
  * dem__jread_number), strings are unescaped (\uXXXX below 0x80 only; other
  * code points become '?', which the files dembox writes never contain).

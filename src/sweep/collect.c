@@ -38,6 +38,7 @@ static void run_init(struct dem__sweep_run *r)
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
     r->stage = r->axis = -1;
+    r->dim = 0;
 }
 
 /* The numbers of summary.json that the cross-run analysis uses, each
@@ -139,7 +140,6 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
         /* as left out: nothing of it reaches the analysis */
         dem__summary_cycles_free(&r->cyc);
         run_init(r);
-        r->dim = 0;
         const int w = snprintf(r->reason, sizeof r->reason,
                                "%s: %s, which dembox analyze does not "
                                "write; analyse the run again (dembox "
