@@ -495,7 +495,7 @@ static int cmd_sweep(int argc, char **argv)
 {
     static struct dem_sweep_grid grid;
     const char *sets[MAX_SETS];
-    struct dem_sweep_options o = {0, 0, sets, 0, 1, 1, 0, 0, 0};
+    struct dem_sweep_options o = {.sets = sets, .jobs = 1, .threads = 1};
     struct dem_error err = {0, "", cli_warning, NULL};
     long v;
     int rc = 0, collect = 0;

@@ -267,8 +267,9 @@ struct dem_progress {
 
 struct dem_run_options {
     const char *outdir; /* output folder, created with its parents */
-    /* called about four times a second of wall-clock time and once at the
-     * end of each stage (stage_done = 1); NULL = no reports */
+    /* called about four times a second of wall-clock time, and at the
+     * end of each stage and when the run stops for *stop (stage_done =
+     * 1), in the thread that called dem_run; NULL = no reports */
     void (*progress)(const struct dem_progress *p, void *user);
     void *progress_user;
     int threads;    /* OpenMP threads; 0 = all cores */
@@ -372,8 +373,8 @@ size_t dem_config_size(void);
 
 /* sizeof(struct NAME) for the structs a binding mirrors field by field
  * ("dem_error", "dem_run_options", "dem_sweep_options",
- * "dem_sweep_report", "dem_example"), 0 for another name: python/dembox.py
- * checks its copies against them when it loads. */
+ * "dem_sweep_report", "dem_example", "dem_progress"), 0 for another name:
+ * python/dembox.py checks its copies against them when it loads. */
 size_t dem_struct_size(const char *name);
 
 /* Parse config text. source names the text in messages (a file path or
@@ -531,6 +532,14 @@ int dem_sweep_point_sets(const struct dem_sweep_grid *g, long i,
 void dem_sweep_point_names(const struct dem_sweep_grid *g,
                            char (*names)[DEM_SWEEP_RUNNAME_MAX + 8]);
 
+struct dem_sweep_report {
+    long points;  /* grid points */
+    long skipped; /* finished before this sweep started (restart) */
+    long ran;     /* run (or resumed) by this sweep */
+    long resumed; /* of these, resumed from a checkpoint */
+    long failed;  /* runs that ended with a failure */
+};
+
 struct dem_sweep_options {
     const char *target;      /* config file or built-in example name */
     const char *outdir;      /* DIR */
@@ -544,14 +553,12 @@ struct dem_sweep_options {
                            non-zero the runs under way save checkpoints
                            and stop, no new run starts, and
                            dem_sweep_run returns DEM_EINTERRUPTED */
-};
-
-struct dem_sweep_report {
-    long points;  /* grid points */
-    long skipped; /* finished before this sweep started (restart) */
-    long ran;     /* run (or resumed) by this sweep */
-    long resumed; /* of these, resumed from a checkpoint */
-    long failed;  /* runs that ended with a failure */
+    /* called in the thread that called dem_sweep_run, about four times a
+     * second while the runs go on and once after the last has ended:
+     * rep holds the counts so far (NULL on MPI ranks other than 0, which
+     * do not keep them). It may set *stop. NULL = no calls */
+    void (*progress)(const struct dem_sweep_report *rep, void *user);
+    void *progress_user;
 };
 
 /* Check every grid point's config (nothing runs when one is bad; the

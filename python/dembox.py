@@ -20,6 +20,15 @@ sweep_summary) work without it.
 Every failure raises dembox.Error with the library's one-line message
 (naming the key, the file and the line for a bad config).
 
+A run or a sweep can be stopped and taken up again, as with the dembox
+command: Ctrl-C (SIGINT) during dembox.run saves a checkpoint at the
+run's next sample and raises KeyboardInterrupt, and dembox.resume(outdir)
+goes on from it, to the same bytes as a run never stopped; SIGTERM saves
+it too, then ends the process as it would have. run, resume and sweep
+take progress=callable, called about four times a second with a
+Progress (SweepProgress) tuple; it returns True to stop the run (sweep)
+the same way, which then raises dembox.Interrupted.
+
 The readers give each column as a numpy array of float64 (an empty field
 is NaN) when numpy is installed (Debian: python3-numpy), else as a list
 of floats (an empty field is None); dembox.numpy is the module or None.
@@ -29,15 +38,21 @@ import ctypes
 import ctypes.util
 import json
 import os
+import signal
+import threading
+from collections import namedtuple
 
 try:
     import numpy
 except ImportError:  # the module works without it, with lists
     numpy = None
 
-__all__ = ["Error", "version", "examples", "example_text", "run", "analyze",
-           "plot", "timeseries", "summary", "particles", "contacts",
-           "dump_local", "DumpFrame", "sweep", "sweep_summary"]
+__all__ = ["Error", "Interrupted", "Progress", "SweepProgress", "version",
+           "examples", "example_text", "run", "resume", "analyze", "plot",
+           "timeseries", "summary", "particles", "contacts", "dump_local",
+           "DumpFrame", "sweep", "sweep_summary"]
+
+_DEM_EINTERRUPTED = -5  # include/dembox.h
 
 
 class Error(Exception):
@@ -46,6 +61,33 @@ class Error(Exception):
     def __init__(self, code, message):
         super().__init__(message)
         self.code = code
+
+
+class Interrupted(Error):
+    """A run or sweep stopped before its end because its progress
+    callback asked for it; its checkpoints are saved: resume(outdir) (a
+    run) or the same sweep call (a sweep) goes on from them. .outdir is
+    its folder."""
+
+    def __init__(self, code, message, outdir):
+        super().__init__(code, message)
+        self.outdir = outdir
+
+
+Progress = namedtuple("Progress", "stage nstages stage_type t fraction eta "
+                      "eta_is_bound speed stage_done")
+Progress.__doc__ = """Where a run stands (struct dem_progress): stage
+(1-based) of nstages, its type ("isotropic", "compress", ...), the
+simulated time t (s), the fraction of the stage done (0 to 1), eta the
+wall-clock seconds left in the stage (an upper bound when eta_is_bound,
+an isotropic stage that may end early), speed in particle-steps per
+second, stage_done True at the stage's last report."""
+
+SweepProgress = namedtuple("SweepProgress",
+                           "points skipped ran resumed failed")
+SweepProgress.__doc__ = """Where a sweep stands (struct dem_sweep_report):
+its grid points, those finished before it started (skipped), those run
+or resumed by it and ended (ran), of these the resumed and the failed."""
 
 
 def _find_library():
@@ -74,10 +116,23 @@ class _ErrorStruct(ctypes.Structure):
                 ("warn_user", ctypes.c_void_p)]
 
 
+class _ProgressStruct(ctypes.Structure):
+    # struct dem_progress (include/dembox.h)
+    _fields_ = [("stage", ctypes.c_int), ("nstages", ctypes.c_int),
+                ("stage_type", ctypes.c_char_p), ("t", ctypes.c_double),
+                ("fraction", ctypes.c_double), ("eta", ctypes.c_double),
+                ("eta_is_bound", ctypes.c_int), ("speed", ctypes.c_double),
+                ("stage_done", ctypes.c_int)]
+
+
+_RUN_PROGRESS = ctypes.CFUNCTYPE(None, ctypes.POINTER(_ProgressStruct),
+                                 ctypes.c_void_p)
+
+
 class _RunOptions(ctypes.Structure):
     # struct dem_run_options (include/dembox.h)
     _fields_ = [("outdir", ctypes.c_char_p),
-                ("progress", ctypes.c_void_p),
+                ("progress", _RUN_PROGRESS),
                 ("progress_user", ctypes.c_void_p),
                 ("threads", ctypes.c_int),
                 ("max_steps", ctypes.c_long),
@@ -85,6 +140,17 @@ class _RunOptions(ctypes.Structure):
                 ("stop_after_steps", ctypes.c_long),
                 ("split", ctypes.c_int),
                 ("timing", ctypes.c_void_p)]
+
+
+class _SweepReport(ctypes.Structure):
+    # struct dem_sweep_report (include/dembox.h)
+    _fields_ = [("points", ctypes.c_long), ("skipped", ctypes.c_long),
+                ("ran", ctypes.c_long), ("resumed", ctypes.c_long),
+                ("failed", ctypes.c_long)]
+
+
+_SWEEP_PROGRESS = ctypes.CFUNCTYPE(None, ctypes.POINTER(_SweepReport),
+                                   ctypes.c_void_p)
 
 
 class _SweepOptions(ctypes.Structure):
@@ -97,14 +163,9 @@ class _SweepOptions(ctypes.Structure):
                 ("threads", ctypes.c_int),
                 ("quiet", ctypes.c_int),
                 ("max_steps", ctypes.c_long),
-                ("stop", ctypes.c_void_p)]
-
-
-class _SweepReport(ctypes.Structure):
-    # struct dem_sweep_report (include/dembox.h)
-    _fields_ = [("points", ctypes.c_long), ("skipped", ctypes.c_long),
-                ("ran", ctypes.c_long), ("resumed", ctypes.c_long),
-                ("failed", ctypes.c_long)]
+                ("stop", ctypes.c_void_p),
+                ("progress", _SWEEP_PROGRESS),
+                ("progress_user", ctypes.c_void_p)]
 
 
 class _Example(ctypes.Structure):
@@ -137,7 +198,8 @@ def _library():
                            ("dem_run_options", _RunOptions),
                            ("dem_sweep_options", _SweepOptions),
                            ("dem_sweep_report", _SweepReport),
-                           ("dem_example", _Example)):
+                           ("dem_example", _Example),
+                           ("dem_progress", _ProgressStruct)):
         if lib.dem_struct_size(_name.encode()) != ctypes.sizeof(_mirror):
             raise OSError("dembox: struct %s of %s has %d bytes, this "
                           "module's copy %d: the module and the library do "
@@ -155,6 +217,9 @@ def _library():
                                          ctypes.POINTER(_ErrorStruct)]
     lib.dem_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_RunOptions),
                             ctypes.POINTER(_ErrorStruct)]
+    lib.dem_run_resume.argtypes = [ctypes.c_char_p,
+                                   ctypes.POINTER(_RunOptions),
+                                   ctypes.POINTER(_ErrorStruct)]
     lib.dem_analyze.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
     lib.dem_plot_run.argtypes = [ctypes.c_char_p, ctypes.POINTER(_ErrorStruct)]
     lib.dem_mpi_world.argtypes = [ctypes.POINTER(ctypes.c_int),
@@ -230,22 +295,102 @@ def _config(target, sets, err):
     return buf
 
 
-def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
-        plot=False, warnings=None, split=False):
-    """Run a built-in example or a config file into outdir, as `dembox run`
-    does: then the analysis (summary.json) and, with plot=True, the
-    pictures. sets are "KEY=VALUE" overrides; max_steps > 0 ends the run
-    early. Warnings are appended to the list warnings when given.
-    split=True: every rank of the MPI world (a script under mpirun that
-    imported mpi4py) calls run with the same arguments, the sample is
-    split over the ranks (docs/parallel.md), and rank 0 writes the
-    outputs, the analysis and the pictures. Returns outdir."""
-    warnings = [] if warnings is None else warnings
-    err = _error(warnings)
-    cfg = _config(target, list(sets), err)
+class _Stop:
+    """While a run or a sweep is in the library: SIGINT and SIGTERM (when
+    called from the main thread), a progress callback's True and its
+    exceptions set the library's stop flag, at which the runs save
+    checkpoints at their next sample and return; end() then does what
+    Python would have done. The library calls back about four times a
+    second, which is when Python runs its signal handlers."""
+
+    def __init__(self, progress, view):
+        self.flag = ctypes.c_int(0)  # volatile sig_atomic_t, an int here
+        self.user = progress
+        self.view = view  # the library's struct -> what progress gets
+        self.signum = None
+        self.raised = None
+        self.old = {}
+
+    def __enter__(self):
+        if threading.current_thread() is threading.main_thread():
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                old = signal.getsignal(sig)
+                if old in (signal.SIG_IGN, None):
+                    continue  # ignored, or a handler not set from Python
+                self.old[sig] = old
+                signal.signal(sig, self._on_signal)
+        return self
+
+    def __exit__(self, *exc):
+        for sig, old in self.old.items():
+            signal.signal(sig, old)
+        return False
+
+    def _on_signal(self, sig, frame):
+        if self.signum is not None:
+            # a second signal: its default action at once, as with the
+            # dembox command
+            signal.signal(sig, signal.SIG_DFL)
+            os.kill(os.getpid(), sig)
+            return
+        self.signum = sig
+        self.flag.value = 1
+
+    def callback(self, report, user):
+        if self.user is None or self.raised is not None:
+            return
+        try:
+            item = self.view(report)
+            if item is not None and self.user(item):
+                self.flag.value = 1
+        except BaseException as e:  # raised again after the call
+            self.raised = e
+            self.flag.value = 1
+
+    def end(self, rc, err, outdir, hint):
+        """After the call, with the handlers restored: the callback's
+        exception, the signal's action, Interrupted or Error."""
+        msg = err.msg.decode() + (hint if rc == _DEM_EINTERRUPTED else "")
+        if self.raised is not None:
+            if rc == _DEM_EINTERRUPTED and hasattr(self.raised, "add_note"):
+                self.raised.add_note("dembox: " + msg)
+            raise self.raised
+        if self.signum is not None:
+            if (rc == _DEM_EINTERRUPTED and self.old.get(self.signum)
+                    is signal.default_int_handler):
+                raise KeyboardInterrupt(msg)
+            signal.raise_signal(self.signum)  # the handler it had decides
+        if rc == _DEM_EINTERRUPTED and self.flag.value:
+            raise Interrupted(rc, msg, outdir)
+        _check(rc, err)
+
+
+def _progress(p):
+    q = p.contents
+    return Progress(q.stage, q.nstages, q.stage_type.decode(), q.t,
+                    q.fraction, q.eta, bool(q.eta_is_bound), q.speed,
+                    bool(q.stage_done))
+
+
+def _sweep_progress(p):
+    if not p:
+        return None  # an MPI rank other than 0: no counts
+    q = p.contents
+    return SweepProgress(q.points, q.skipped, q.ran, q.resumed, q.failed)
+
+
+def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
+                progress, err):
+    """call(options, err) (dem_run or dem_run_resume) stoppable, then the
+    analysis and the pictures."""
+    stop = _Stop(progress, _progress)
     opt = _RunOptions(outdir=outdir.encode(), threads=threads,
-                      max_steps=max_steps, split=int(bool(split)))
-    _check(_lib.dem_run(cfg, ctypes.byref(opt), ctypes.byref(err)), err)
+                      max_steps=max_steps, split=int(bool(split)),
+                      progress=_RUN_PROGRESS(stop.callback),
+                      stop=ctypes.addressof(stop.flag))
+    with stop:
+        rc = call(ctypes.byref(opt), ctypes.byref(err))
+    stop.end(rc, err, outdir, " (from Python: dembox.resume(%r))" % outdir)
     rank, size = ctypes.c_int(0), ctypes.c_int(1)
     if split:
         _lib.dem_mpi_world(ctypes.byref(rank), ctypes.byref(size))
@@ -254,6 +399,42 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
     if plot and rank.value == 0:
         _check(_lib.dem_plot_run(outdir.encode(), ctypes.byref(err)), err)
     return outdir
+
+
+def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
+        plot=False, warnings=None, split=False, progress=None):
+    """Run a built-in example or a config file into outdir, as `dembox run`
+    does: then the analysis (summary.json) and, with plot=True, the
+    pictures. sets are "KEY=VALUE" overrides; max_steps > 0 ends the run
+    early. Warnings are appended to the list warnings when given.
+    split=True: every rank of the MPI world (a script under mpirun that
+    imported mpi4py) calls run with the same arguments, the sample is
+    split over the ranks (docs/parallel.md), and rank 0 writes the
+    outputs, the analysis and the pictures.
+    progress: a callable given a Progress about four times a second and
+    at the end of each stage; when it returns True (or raises) the run
+    saves a checkpoint at its next sample and stops, raising Interrupted
+    (or what it raised). Ctrl-C does the same, raising KeyboardInterrupt;
+    resume(outdir) goes on. Returns outdir."""
+    warnings = [] if warnings is None else warnings
+    err = _error(warnings)
+    cfg = _config(target, list(sets), err)
+    return _run_outdir(lambda opt, e: _lib.dem_run(cfg, opt, e), outdir,
+                       threads, max_steps, split, analyze, plot, progress,
+                       err)
+
+
+def resume(outdir, threads=1, analyze=True, plot=False, warnings=None,
+           split=False, progress=None):
+    """Go on with the run stopped in outdir (Ctrl-C, SIGTERM, a progress
+    callback, a checkpoint interval) from outdir/checkpoint.bin, as
+    `dembox run --resume` does: the outputs are those of a run never
+    stopped, byte for byte, for any thread count. The rest as run()."""
+    warnings = [] if warnings is None else warnings
+    err = _error(warnings)
+    return _run_outdir(
+        lambda opt, e: _lib.dem_run_resume(outdir.encode(), opt, e), outdir,
+        threads, 0, split, analyze, plot, progress, err)
 
 
 def analyze(outdir):
@@ -361,11 +542,16 @@ def dump_local(outdir):
 
 
 def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
-          quiet=True):
+          quiet=True, progress=None):
     """What `dembox sweep` does: the runs of every combination of params
     ("KEY[,KEY...]=V1,V2,..." as --param) with the overrides sets, jobs
     at once, then outdir/sweep.json and outdir/plots/; finished runs are
-    skipped, so calling it again resumes. Returns outdir."""
+    skipped, so calling it again resumes. progress: a callable given a
+    SweepProgress about four times a second and at the end; when it
+    returns True (or raises), or on Ctrl-C, the runs under way save
+    checkpoints and stop, no other starts, and Interrupted (what it
+    raised, KeyboardInterrupt) is raised: the same call goes on from
+    them. Returns outdir."""
     err = _error([])
     grid = ctypes.create_string_buffer(_lib.dem_sweep_grid_bytes())
     try:
@@ -374,11 +560,16 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
                                             ctypes.byref(err)), err)
         enc = [s.encode() for s in sets]
         arr = (ctypes.c_char_p * max(len(enc), 1))(*enc)
+        stop = _Stop(progress, _sweep_progress)
         o = _SweepOptions(target.encode(), outdir.encode(), arr, len(enc),
-                          jobs, threads, int(quiet), max_steps, None)
+                          jobs, threads, int(quiet), max_steps,
+                          ctypes.addressof(stop.flag),
+                          _SWEEP_PROGRESS(stop.callback), None)
         rep = _SweepReport()
-        _check(_lib.dem_sweep_run(grid, ctypes.byref(o), ctypes.byref(rep),
-                                  ctypes.byref(err)), err)
+        with stop:
+            rc = _lib.dem_sweep_run(grid, ctypes.byref(o), ctypes.byref(rep),
+                                    ctypes.byref(err))
+        stop.end(rc, err, outdir, " (from Python: the same dembox.sweep call)")
     finally:
         _lib.dem_sweep_grid_free(grid)
     return outdir

@@ -5,6 +5,7 @@ PYTHONPATH and DEMBOX_LIB set; argv[1]: the dembox binary, argv[2]: a
 scratch folder."""
 import os
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -28,6 +29,104 @@ subprocess.run(args, check=True)
 with open(os.path.join(out_py, "timeseries.csv")) as a, \
         open(os.path.join(tmp, "cli", "timeseries.csv")) as b:
     assert a.read() == b.read(), "timeseries differ"
+
+
+def same_bytes(a, b):
+    with open(os.path.join(a, "timeseries.csv"), "rb") as fa, \
+            open(os.path.join(b, "timeseries.csv"), "rb") as fb:
+        return fa.read() == fb.read()
+
+
+def stopped_with_checkpoint(d):
+    return (os.path.exists(os.path.join(d, "checkpoint.bin")) and
+            not os.path.exists(os.path.join(d, "timeseries.csv")))
+
+
+# a run stopped by its progress callback (True at its first report) saves
+# a checkpoint and raises Interrupted; resume() finishes it to the bytes
+# of the run never stopped, reporting its progress
+reports = []
+out_s = os.path.join(tmp, "stopped")
+try:
+    dembox.run("biaxial2d", out_s, sets=sets, max_steps=400,
+               progress=lambda p: reports.append(p) or True)
+except dembox.Interrupted as e:
+    assert e.outdir == out_s and "dembox.resume(" in str(e), str(e)
+else:
+    raise AssertionError("a run its callback stopped did not raise")
+assert stopped_with_checkpoint(out_s), os.listdir(out_s)
+assert reports[0].stage == 1 and \
+    reports[0].nstages == 2 and reports[0].stage_type == "isotropic" and \
+    0 <= reports[0].fraction <= 1, reports
+dembox.resume(out_s, progress=reports.append)
+assert same_bytes(out_s, out_py), "resumed after a stop: timeseries differ"
+assert len(reports) >= 2 and reports[-1].stage_done, reports[-1]
+assert all(b.t >= a.t for a, b in zip(reports, reports[1:])), reports
+
+# Ctrl-C (here SIGINT sent by the callback) does the same, raising
+# KeyboardInterrupt, and leaves Python's own handler in place
+out_s = os.path.join(tmp, "sigint")
+sent = []
+
+
+def interrupt(p):
+    if not sent:  # a second SIGINT would end the process at once
+        sent.append(p)
+        os.kill(os.getpid(), signal.SIGINT)
+
+
+try:
+    dembox.run("biaxial2d", out_s, sets=sets, max_steps=400,
+               progress=interrupt)
+except KeyboardInterrupt as e:
+    assert "dembox.resume(" in str(e), str(e)
+else:
+    raise AssertionError("SIGINT did not stop the run")
+assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+assert stopped_with_checkpoint(out_s), os.listdir(out_s)
+dembox.resume(out_s)
+assert same_bytes(out_s, out_py), "resumed after SIGINT: timeseries differ"
+
+
+# an exception in the callback stops the run too and is raised as it was
+def fails(p):
+    raise ValueError("from the callback")
+
+
+out_s = os.path.join(tmp, "raises")
+try:
+    dembox.run("biaxial2d", out_s, sets=sets, max_steps=400, progress=fails)
+except ValueError as e:
+    assert str(e) == "from the callback", str(e)
+else:
+    raise AssertionError("the callback's exception was lost")
+assert stopped_with_checkpoint(out_s), os.listdir(out_s)
+dembox.resume(out_s)
+assert same_bytes(out_s, out_py), "resumed after an exception: differ"
+
+# SIGTERM (a batch system's time limit) saves the checkpoint, then ends
+# the process as it would have; a second SIGINT ends it at once
+for sig, name in ((signal.SIGTERM, "sigterm"), (signal.SIGINT, "twice")):
+    out_s = os.path.join(tmp, name)
+    times = 1 if sig == signal.SIGTERM else 2
+    code = ("import os, sys, dembox\n"
+            "sent = []\n"
+            "def kill(p):\n"
+            "    for k in range(0 if sent else %d):\n"
+            "        os.kill(os.getpid(), %d)\n"
+            "    sent.append(p)\n"
+            "dembox.run('biaxial2d', sys.argv[1], sets=%r, max_steps=400,"
+            " progress=kill)\n" % (times, sig, sets))
+    proc = subprocess.run([sys.executable, "-c", code, out_s],
+                          capture_output=True, text=True)
+    assert proc.returncode == -sig, (name, proc.returncode, proc.stderr)
+    if sig == signal.SIGTERM:
+        assert stopped_with_checkpoint(out_s), os.listdir(out_s)
+        dembox.resume(out_s)
+        assert same_bytes(out_s, out_py), "resumed after SIGTERM: differ"
+    else:
+        assert not os.path.exists(os.path.join(out_s, "timeseries.csv"))
+
 ts = dembox.timeseries(out_py)
 assert len(ts["t"]) > 10 and list(ts["t"]) == sorted(ts["t"]), ts["t"][:5]
 # columns are numpy arrays where numpy is installed (python3-numpy, which
@@ -117,11 +216,29 @@ if shutil.which("qemu-x86_64") and os.uname().machine == "x86_64":
     else:
         assert mod.stdout.strip() == dembox.version(), mod.stdout
 
-# a sweep of two runs: sweep.json lists both, finished
+# a sweep of two runs: sweep.json lists both, finished; its progress
+# reports end with both run
+seen = []
 sw = dembox.sweep("biaxial2d", os.path.join(tmp, "sw"),
-                  ["contact.mu=0.1,0.3"], sets=sets, max_steps=200)
+                  ["contact.mu=0.1,0.3"], sets=sets, max_steps=200,
+                  progress=seen.append)
 doc = dembox.sweep_summary(sw)
 assert doc["runs_finished"] == 2, doc["runs_finished"]
+assert seen and seen[-1] == dembox.SweepProgress(2, 0, 2, 0, 0), seen
+# stopped by its callback: Interrupted, no sweep.json; the same call goes
+# on and finishes
+sw = os.path.join(tmp, "sw-stopped")
+try:
+    dembox.sweep("biaxial2d", sw, ["contact.mu=0.1,0.3"], sets=sets,
+                 max_steps=200, progress=lambda p: True)
+except dembox.Interrupted as e:
+    assert "the same dembox.sweep call" in str(e), str(e)
+else:
+    raise AssertionError("a sweep its callback stopped did not raise")
+assert not os.path.exists(os.path.join(sw, "sweep.json"))
+dembox.sweep("biaxial2d", sw, ["contact.mu=0.1,0.3"], sets=sets,
+             max_steps=200)
+assert dembox.sweep_summary(sw)["runs_finished"] == 2
 try:
     dembox.sweep("biaxial2d", os.path.join(tmp, "sw2"), ["contact.mu"])
 except dembox.Error as e:

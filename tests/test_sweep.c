@@ -6,6 +6,7 @@
 #include "dembox.h"
 #include "testutil.h"
 
+#include <pthread.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -594,6 +595,32 @@ static void relaxing_cycle_is_drawn_as_an_open_circle(void **state)
     free(gp);
 }
 
+/* What a sweep's progress callback saw: how often it was called, the
+ * last counts, whether every call came from the thread that started the
+ * sweep and no count went down. */
+struct seen {
+    pthread_t caller;
+    int calls, foreign_thread, went_down;
+    struct dem_sweep_report last;
+    const char *stop_when; /* set *stop once this file exists */
+    volatile sig_atomic_t *stop;
+};
+
+static void record_progress(const struct dem_sweep_report *rep, void *user)
+{
+    struct seen *s = user;
+    assert_non_null(rep);
+    s->foreign_thread |= !pthread_equal(pthread_self(), s->caller);
+    if (s->calls)
+        s->went_down |= rep->ran < s->last.ran ||
+                        rep->failed < s->last.failed ||
+                        rep->points != s->last.points;
+    s->calls++;
+    s->last = *rep;
+    if (s->stop_when && access(s->stop_when, F_OK) == 0)
+        *s->stop = 1;
+}
+
 static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
 {
     (void)state;
@@ -616,12 +643,22 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
                                   .max_steps = 1000};
     struct dem_sweep_report rep;
     struct dem_error err = {0};
+    struct seen seen = {.caller = pthread_self()};
+    o.progress = record_progress;
+    o.progress_user = &seen;
     if (dem_sweep_run(&g, &o, &rep, &err))
         fail_msg("%s", err.msg);
+    o.progress = NULL;
     assert_int_equal(rep.points, 3);
     assert_int_equal(rep.ran, 3);
     assert_int_equal(rep.skipped, 0);
     assert_int_equal(rep.failed, 0);
+    /* the progress: in the caller's thread, counts that only grow, the
+     * last call with the final counts */
+    assert_true(seen.calls >= 1);
+    assert_false(seen.foreign_thread);
+    assert_false(seen.went_down);
+    assert_memory_equal(&seen.last, &rep, sizeof rep);
     snprintf(path, sizeof path, "%s/runs", out);
     assert_int_equal(count_entries(path), 4); /* 3 runs + index */
 
@@ -750,6 +787,61 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* A stop set by the progress callback while a run is under way (its
+ * timeseries.csv.part exists): the run saves its checkpoint and the
+ * sweep returns DEM_EINTERRUPTED without sweep.json; the same sweep
+ * again resumes the run from its checkpoint and finishes it. */
+static void stop_from_progress_saves_checkpoints_then_resumes(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], part[1200], path[1200];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/progress-stop", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.mu=0.4");
+    /* 150000 steps: about 0.8 s on a Zen 5, the stop within 0.25 s */
+    const char *const sets[] = {"output.interval=5e-6"};
+    volatile sig_atomic_t stop = 0;
+    struct seen seen = {.caller = pthread_self(), .stop = &stop};
+    struct dem_sweep_options o = {.target = cfg,
+                                  .outdir = out,
+                                  .sets = sets,
+                                  .nsets = 1,
+                                  .jobs = 1,
+                                  .threads = 1,
+                                  .quiet = 1,
+                                  .max_steps = 150000,
+                                  .stop = &stop,
+                                  .progress = record_progress,
+                                  .progress_user = &seen};
+    snprintf(part, sizeof part, "%s/runs/contact.mu=0.4/timeseries.csv.part",
+             out);
+    seen.stop_when = part;
+    struct dem_sweep_report rep;
+    struct dem_error err = {0};
+    assert_int_equal(dem_sweep_run(&g, &o, &rep, &err), DEM_EINTERRUPTED);
+    assert_non_null(strstr(err.msg, "saved checkpoints"));
+    assert_int_equal(stop, 1);
+    assert_int_equal(rep.ran, 0);
+    assert_int_equal(rep.failed, 0);
+    snprintf(path, sizeof path, "%s/runs/contact.mu=0.4/checkpoint.bin", out);
+    assert_int_equal(access(path, F_OK), 0);
+    snprintf(path, sizeof path, "%s/sweep.json", out);
+    assert_true(access(path, F_OK) != 0);
+
+    stop = 0;
+    seen = (struct seen){.caller = pthread_self()};
+    if (dem_sweep_run(&g, &o, &rep, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(rep.ran, 1);
+    assert_int_equal(rep.resumed, 1);
+    assert_int_equal(seen.last.resumed, 1);
+    assert_false(seen.foreign_thread);
+    assert_int_equal(access(path, F_OK), 0);
+    dem_sweep_grid_free(&g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -762,6 +854,7 @@ int main(void)
         cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
+        cmocka_unit_test(stop_from_progress_saves_checkpoints_then_resumes),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

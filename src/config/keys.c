@@ -561,6 +561,7 @@ size_t dem_struct_size(const char *name)
         {"dem_sweep_options", sizeof(struct dem_sweep_options)},
         {"dem_sweep_report", sizeof(struct dem_sweep_report)},
         {"dem_example", sizeof(struct dem_example)},
+        {"dem_progress", sizeof(struct dem_progress)},
     };
     for (size_t k = 0; name && k < sizeof sizes / sizeof sizes[0]; k++)
         if (!strcmp(name, sizes[k].name))

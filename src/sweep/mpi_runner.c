@@ -73,12 +73,14 @@ void dem__sweep_mpi_serve(struct dem__sweep_pool *p)
         return;
     /* every job of every other rank ends with one answer -1 */
     long open = (long)(size - 1) * (p->o->jobs > 0 ? p->o->jobs : 1);
+    double last = dem__sweep_now();
     while (open > 0) {
         int flag = 0;
         MPI_Status st;
         MPI_Iprobe(MPI_ANY_SOURCE, TAG_REQUEST, MPI_COMM_WORLD, &flag, &st);
         if (!flag) {
             nap();
+            dem__sweep_progress(p->o, p, &last, 0);
             continue;
         }
         struct request rq;
@@ -175,19 +177,18 @@ int dem__sweep_mpi_work(const struct dem_sweep_grid *g,
     char runs[DEM_PATH_MAX];
     struct remote r = {.g = g, .o = o, .runs = runs};
     r.names = malloc((size_t)n * sizeof *r.names);
-    pthread_t *tid = calloc((size_t)jobs, sizeof *tid);
     pthread_mutex_init(&r.mpi, NULL);
-    int started = 0;
-    if (!r.names || !tid)
+    struct dem__sweep_jobs team = {0};
+    int started = 0, have_team = 0;
+    if (!r.names)
         rc = dem_error_set(err, DEM_ENOMEM, "sweep: rank %d: out of memory",
                            rank);
     if (!rc)
         rc = dem_path_join(runs, sizeof runs, o->outdir, "runs", err);
     if (!rc) {
         dem_sweep_point_names(g, r.names);
-        for (; started < jobs; started++)
-            if (pthread_create(&tid[started], NULL, remote_job, &r))
-                break;
+        started = dem__sweep_jobs_start(&team, jobs, remote_job, &r);
+        have_team = 1;
         if (started < jobs)
             rc = dem_error_set(err, DEM_EINTERNAL,
                                "sweep: rank %d: cannot start a thread: %s",
@@ -199,11 +200,10 @@ int dem__sweep_mpi_work(const struct dem_sweep_grid *g,
         const struct request rq = {.prev = RETIRE};
         ask(&r, &rq);
     }
-    for (int k = 0; k < started; k++)
-        pthread_join(tid[k], NULL);
+    if (have_team)
+        dem__sweep_jobs_wait(&team, o, NULL);
     pthread_mutex_destroy(&r.mpi);
     free(r.names);
-    free(tid);
     return rc;
 }
 #else

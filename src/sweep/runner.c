@@ -174,6 +174,93 @@ double dem__sweep_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+void dem__sweep_progress(const struct dem_sweep_options *o,
+                         struct dem__sweep_pool *p, double *last, int final)
+{
+    if (!o->progress)
+        return;
+    const double now = dem__sweep_now();
+    if (!final && now - *last < 0.25)
+        return;
+    *last = now;
+    struct dem_sweep_report rep;
+    if (p) {
+        pthread_mutex_lock(&p->lock);
+        rep = *p->rep;
+        pthread_mutex_unlock(&p->lock);
+    }
+    o->progress(p ? &rep : NULL, o->progress_user);
+}
+
+static void *job_main(void *arg)
+{
+    struct dem__sweep_jobs *j = arg;
+    j->fn(j->arg);
+    pthread_mutex_lock(&j->lock);
+    j->running--;
+    pthread_cond_signal(&j->ended);
+    pthread_mutex_unlock(&j->lock);
+    return NULL;
+}
+
+int dem__sweep_jobs_start(struct dem__sweep_jobs *j, int n, void *(*fn)(void *),
+                          void *arg)
+{
+    *j = (struct dem__sweep_jobs){.fn = fn, .arg = arg};
+    pthread_mutex_init(&j->lock, NULL);
+    pthread_condattr_t ca;
+    pthread_condattr_init(&ca);
+    pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
+    pthread_cond_init(&j->ended, &ca);
+    pthread_condattr_destroy(&ca);
+    j->tid = calloc((size_t)n, sizeof *j->tid);
+    if (!j->tid) {
+        errno = ENOMEM;
+        return 0;
+    }
+    for (; j->started < n; j->started++) {
+        pthread_mutex_lock(&j->lock);
+        j->running++;
+        pthread_mutex_unlock(&j->lock);
+        const int e = pthread_create(&j->tid[j->started], NULL, job_main, j);
+        if (e) {
+            pthread_mutex_lock(&j->lock);
+            j->running--;
+            pthread_mutex_unlock(&j->lock);
+            errno = e;
+            break;
+        }
+    }
+    return j->started;
+}
+
+void dem__sweep_jobs_wait(struct dem__sweep_jobs *j,
+                          const struct dem_sweep_options *o,
+                          struct dem__sweep_pool *p)
+{
+    double last = dem__sweep_now();
+    pthread_mutex_lock(&j->lock);
+    while (j->running > 0) {
+        struct timespec ts;
+        clock_gettime(CLOCK_MONOTONIC, &ts);
+        ts.tv_nsec += 250000000L;
+        if (ts.tv_nsec >= 1000000000L) {
+            ts.tv_sec++;
+            ts.tv_nsec -= 1000000000L;
+        }
+        pthread_cond_timedwait(&j->ended, &j->lock, &ts);
+        pthread_mutex_unlock(&j->lock);
+        dem__sweep_progress(o, p, &last, 0);
+        pthread_mutex_lock(&j->lock);
+    }
+    pthread_mutex_unlock(&j->lock);
+    for (int k = 0; k < j->started; k++)
+        pthread_join(j->tid[k], NULL);
+    pthread_cond_destroy(&j->ended);
+    pthread_mutex_destroy(&j->lock);
+    free(j->tid);
+}
+
 /* A run's warnings, one line each, to its run.log. */
 static void log_warning(const char *line, void *user)
 {
@@ -358,29 +445,22 @@ static int run_points(const struct dem_sweep_grid *g,
     struct dem__sweep_pool p = {
         .g = g, .o = o, .runs = runs, .names = names, .todo = todo, .rep = rep};
     p.resume_tried = calloc((size_t)n, 1);
-    pthread_t *tid = calloc((size_t)jobs, sizeof *tid);
-    if (!p.resume_tried || !tid) {
-        free(p.resume_tried);
-        free(tid);
+    if (!p.resume_tried)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
-    }
     for (long i = 0; i < n; i++)
         p.total += todo[i];
     pthread_mutex_init(&p.lock, NULL);
-    int started = 0;
-    for (; started < jobs; started++)
-        if (pthread_create(&tid[started], NULL, worker, &p))
-            break;
-    if (!started)
+    struct dem__sweep_jobs team;
+    if (!dem__sweep_jobs_start(&team, jobs, worker, &p))
         p.rc =
             dem_error_set(&p.err, DEM_EINTERNAL,
                           "sweep: cannot start a thread: %s", strerror(errno));
     dem__sweep_mpi_serve(&p);
-    for (int k = 0; k < started; k++)
-        pthread_join(tid[k], NULL);
+    dem__sweep_jobs_wait(&team, o, &p);
+    double last = 0.0;
+    dem__sweep_progress(o, &p, &last, 1);
     pthread_mutex_destroy(&p.lock);
     free(p.resume_tried);
-    free(tid);
     if (p.rc)
         return dem_error_set(err, p.rc, "%s", p.err.msg);
     if (p.halt || (o->stop && *o->stop))

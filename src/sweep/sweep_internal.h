@@ -154,6 +154,32 @@ int dem__sweep_run_point(const struct dem_sweep_grid *g,
 /* Seconds on a monotonic clock. */
 double dem__sweep_now(void);
 
+/* The jobs of a rank: threads that each run fn(arg), counted so that
+ * the thread that started them can report progress while it waits. */
+struct dem__sweep_jobs {
+    void *(*fn)(void *);
+    void *arg;
+    pthread_t *tid;
+    int started;
+    pthread_mutex_t lock; /* guards running */
+    pthread_cond_t ended;
+    int running;
+};
+/* Start n jobs; returns how many started (fewer: out of memory or
+ * threads, errno says which). */
+int dem__sweep_jobs_start(struct dem__sweep_jobs *j, int n, void *(*fn)(void *),
+                          void *arg);
+/* Wait for the jobs to end, calling o->progress about four times a
+ * second meanwhile (with p's counts; p is NULL on ranks > 0), and free
+ * them. */
+void dem__sweep_jobs_wait(struct dem__sweep_jobs *j,
+                          const struct dem_sweep_options *o,
+                          struct dem__sweep_pool *p);
+/* o->progress with p's counts (NULL on ranks > 0), when a quarter of a
+ * second has passed since *last or final is set. */
+void dem__sweep_progress(const struct dem_sweep_options *o,
+                         struct dem__sweep_pool *p, double *last, int final);
+
 /* ------------------------------------- over MPI ranks (mpi_runner.c) */
 
 /* Rank 0: tell the other ranks whether the sweep goes on (rc = DEM_OK)
