@@ -9,9 +9,12 @@
 int dem_mkdir_p(const char *path, struct dem_error *err)
 {
     char buf[DEM_PATH_MAX];
-    size_t n = strlen(path);
-    if (n == 0 || n >= sizeof buf)
-        return dem_error_set(err, DEM_EIO, "%s: bad output folder name", path);
+    const size_t n = path ? strlen(path) : 0;
+    if (n == 0)
+        return dem_error_set(err, DEM_EUSAGE, "empty output folder name");
+    if (n >= sizeof buf)
+        return dem_error_set(err, DEM_EIO, "%.64s...: output folder name too "
+                             "long", path);
     memcpy(buf, path, n + 1);
     for (size_t k = 1; k <= n; k++) {
         if (buf[k] != '/' && buf[k] != '\0')
@@ -32,6 +35,10 @@ int dem_mkdir_p(const char *path, struct dem_error *err)
 int dem_path_join(char *out, size_t n, const char *dir, const char *name,
                   struct dem_error *err)
 {
+    /* "" + name would be /name, at the root of the file system */
+    if (!dir || !*dir)
+        return dem_error_set(err, DEM_EUSAGE, "empty folder name (before /%s)",
+                             name);
     int k = snprintf(out, n, "%s/%s", dir, name);
     if (k < 0 || (size_t)k >= n)
         return dem_error_set(err, DEM_EIO, "%s/%s: path too long", dir, name);

@@ -6,10 +6,12 @@
 
 #include "dembox.h"
 
-/* mkdir -p: create path and its parents (mode 0755). */
+/* mkdir -p: create path and its parents (mode 0755); an empty path is
+ * an error. */
 int dem_mkdir_p(const char *path, struct dem_error *err);
 
-/* Join dir and name into out (size n); error when it does not fit. */
+/* Join dir and name into out (size n); an error when it does not fit or
+ * dir is empty (the join would name /name, at the file system's root). */
 int dem_path_join(char *out, size_t n, const char *dir, const char *name,
                   struct dem_error *err);
 
