@@ -272,9 +272,10 @@ struct dem_run_options {
      * 1), in the thread that called dem_run; NULL = no reports */
     void (*progress)(const struct dem_progress *p, void *user);
     void *progress_user;
-    int threads;    /* OpenMP threads; 0 = all cores */
+    int threads;    /* OpenMP threads; 0 = all cores (< 0: DEM_EUSAGE) */
     long max_steps; /* > 0: end the run after this many steps (smoke
-                       tests); outputs are written as for a full run */
+                       tests); outputs are written as for a full run;
+                       0 = no limit (< 0: DEM_EUSAGE) */
     volatile sig_atomic_t *stop; /* may be NULL; when *stop becomes
                            non-zero (e.g. from a SIGINT handler) the run
                            writes a checkpoint at its next sample and
@@ -545,10 +546,11 @@ struct dem_sweep_options {
     const char *outdir;      /* DIR */
     const char *const *sets; /* --set KEY=VALUE for every run */
     int nsets;
-    int jobs;       /* runs at once (>= 1) */
-    int threads;    /* OpenMP threads per run (>= 1) */
+    int jobs;       /* runs at once (>= 1; else DEM_EUSAGE) */
+    int threads;    /* OpenMP threads per run (>= 1; else DEM_EUSAGE) */
     int quiet;      /* 1: no progress lines on stderr */
-    long max_steps; /* > 0: every run's dem_run_options.max_steps */
+    long max_steps; /* > 0: every run's dem_run_options.max_steps;
+                       0 = none (< 0: DEM_EUSAGE) */
     volatile sig_atomic_t *stop; /* may be NULL; when *stop becomes
                            non-zero the runs under way save checkpoints
                            and stop, no new run starts, and

@@ -304,6 +304,9 @@ class _Stop:
     second, which is when Python runs its signal handlers."""
 
     def __init__(self, progress, view):
+        if progress is not None and not callable(progress):
+            raise TypeError("progress must be a callable or None, not %s"
+                            % type(progress).__name__)
         self.flag = ctypes.c_int(0)  # volatile sig_atomic_t, an int here
         self.user = progress
         self.view = view  # the library's struct -> what progress gets

@@ -246,6 +246,26 @@ except dembox.Error as e:
 else:
     raise AssertionError("a --param without values was accepted")
 
+# arguments out of range are refused before anything is written
+for call, want in (
+        (lambda d: dembox.run("biaxial2d", d, threads=-3), "threads = -3"),
+        (lambda d: dembox.run("biaxial2d", d, max_steps=-5), "max_steps = -5"),
+        (lambda d: dembox.run("biaxial2d", d, progress=5), "progress must"),
+        (lambda d: dembox.sweep("biaxial2d", d, ["seed=1,2"], jobs=0),
+         "jobs = 0"),
+        (lambda d: dembox.sweep("biaxial2d", d, ["seed=1,2"], threads=0),
+         "threads = 0"),
+        (lambda d: dembox.sweep("biaxial2d", "", ["seed=1,2"]),
+         "empty folder name (before /runs)")):
+    d = os.path.join(tmp, "refused")
+    try:
+        call(d)
+    except (dembox.Error, TypeError) as e:
+        assert want in str(e), (want, str(e))
+    else:
+        raise AssertionError("accepted: " + want)
+    assert not os.path.exists(d), want
+
 try:
     dembox.run("biaxial2d", os.path.join(tmp, "bad"), sets=["contact.mu=-1"])
 except dembox.Error as e:

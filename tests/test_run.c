@@ -50,6 +50,49 @@ static void read_ts(const char *outdir, const struct dem__csv_want *want, int n,
     assert_true(t->nrow > 0);
 }
 
+/* Options out of range (a caller other than the CLI, e.g. Python) are
+ * refused with one line naming them, before anything is written; so is
+ * an empty output folder, which joined to a file's name would name one
+ * at the root of the file system. */
+static void bad_run_options_are_refused(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_error err = {0};
+    const struct dem_example *ex = dem_example_find("hold3d");
+    assert_non_null(ex);
+    if (dem_config_parse(&c, ex->text, "hold3d", 0, 0, &err))
+        fail_msg("%s", err.msg);
+    char out[1024];
+    snprintf(out, sizeof out, "%s/bad-options", tmpdir);
+    static const struct {
+        int threads;
+        long max_steps;
+        int empty_outdir;
+        const char *want;
+    } rows[] = {
+        {-3, 10, 0, "threads = -3: must be >= 0 (0 = every core)"},
+        {1, -5, 0, "max_steps = -5: must be >= 0 (0 = no limit)"},
+        {1, 10, 1, "empty output folder name"},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        struct dem_run_options o = {.outdir = rows[k].empty_outdir ? "" : out,
+                                    .threads = rows[k].threads,
+                                    .max_steps = rows[k].max_steps};
+        assert_int_equal(dem_run(&c, &o, &err), DEM_EUSAGE);
+        assert_string_equal(err.msg, rows[k].want);
+        if (!rows[k].empty_outdir) {
+            assert_int_equal(dem_run_resume(out, &o, &err), DEM_EUSAGE);
+            assert_string_equal(err.msg, rows[k].want);
+        }
+        assert_true(access(out, F_OK) != 0);
+    }
+    assert_int_equal(dem_run(&c, NULL, &err), DEM_EUSAGE);
+    assert_int_equal(dem_run_resume("", &(struct dem_run_options){0}, &err),
+                     DEM_EUSAGE);
+    assert_string_equal(err.msg, "empty folder name (before /checkpoint.bin)");
+}
+
 static void every_example_runs_a_few_hundred_steps(void **state)
 {
     (void)state;
@@ -518,6 +561,7 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(bad_run_options_are_refused),
         cmocka_unit_test(every_example_runs_a_few_hundred_steps),
         cmocka_unit_test(isotropic_stage_reaches_target_pressure),
         cmocka_unit_test(biaxial_fixed_walls_and_dilatancy),

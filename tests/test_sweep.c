@@ -176,6 +176,33 @@ static void bad_grid_point_is_refused_before_running(void **state)
     assert_non_null(strstr(err.msg, "contact.mu"));
     assert_int_equal(rep.ran, 0);
     assert_true(access(out, F_OK) != 0); /* nothing was even created */
+
+    /* options out of range (from Python or C), and an empty folder name,
+     * which joined to "runs" named /runs at the file system's root */
+    static const struct {
+        int jobs, threads;
+        long max_steps;
+        const char *outdir, *want;
+    } rows[] = {
+        {0, 1, 200, NULL, "sweep: jobs = 0: must be >= 1"},
+        {1, -1, 200, NULL, "sweep: threads = -1: must be >= 1"},
+        {1, 1, -7, NULL, "sweep: max_steps = -7: must be >= 0 (0 = no limit)"},
+        {1, 1, 200, "", "empty folder name (before /runs)"},
+    };
+    struct dem_sweep_grid ok;
+    memset(&ok, 0, sizeof ok);
+    add(&ok, "contact.mu=0.1,0.3");
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        struct dem_sweep_options ob = o;
+        ob.jobs = rows[k].jobs;
+        ob.threads = rows[k].threads;
+        ob.max_steps = rows[k].max_steps;
+        ob.outdir = rows[k].outdir ? rows[k].outdir : out;
+        assert_int_equal(dem_sweep_run(&ok, &ob, &rep, &err), DEM_EUSAGE);
+        assert_string_equal(err.msg, rows[k].want);
+        assert_true(access(out, F_OK) != 0);
+    }
+    dem_sweep_grid_free(&ok);
     dem_sweep_grid_free(&g);
 }
 

@@ -804,9 +804,30 @@ static int run_resumed(const char *outdir, const struct dem_run_options *opt,
     return run_and_finish(&r, rc, first, 1, err);
 }
 
+/* The options a caller can get wrong (the CLI checks its own; the
+ * library is also called from Python and C). */
+static int check_options(const struct dem_run_options *opt,
+                         struct dem_error *err)
+{
+    if (!opt)
+        return dem_error_set(err, DEM_EUSAGE, "no run options");
+    if (opt->threads < 0)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "threads = %d: must be >= 0 (0 = every core)",
+                             opt->threads);
+    if (opt->max_steps < 0)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "max_steps = %ld: must be >= 0 (0 = no limit)",
+                             opt->max_steps);
+    return DEM_OK;
+}
+
 int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
             struct dem_error *err)
 {
+    const int bad = check_options(opt, err);
+    if (bad)
+        return bad;
     struct dem_fpmode fp;
     engine_mode(opt, &fp);
     const int rc = run_new(cfg, opt, err);
@@ -817,6 +838,9 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
 int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
                    struct dem_error *err)
 {
+    const int bad = check_options(opt, err);
+    if (bad)
+        return bad;
     struct dem_fpmode fp;
     engine_mode(opt, &fp);
     const int rc = run_resumed(outdir, opt, err);

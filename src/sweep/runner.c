@@ -53,6 +53,16 @@ static int parse_with(const struct dem_sweep_options *o, char (*extra)[SET_LEN],
 int dem_sweep_validate(const struct dem_sweep_grid *g,
                        const struct dem_sweep_options *o, struct dem_error *err)
 {
+    /* the CLI checks its own; the library is also called from Python */
+    if (o->jobs < 1 || o->threads < 1)
+        return dem_error_set(err, DEM_EUSAGE, "sweep: %s = %d: must be >= 1",
+                             o->jobs < 1 ? "jobs" : "threads",
+                             o->jobs < 1 ? o->jobs : o->threads);
+    if (o->max_steps < 0)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "sweep: max_steps = %ld: must be >= 0 (0 = no "
+                             "limit)",
+                             o->max_steps);
     struct dem_config *c = malloc(sizeof *c);
     if (!c)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
