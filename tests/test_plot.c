@@ -281,8 +281,29 @@ static void missing_timeseries_names_the_file(void **state)
     write_particles(dir, 2, 0);
     struct dem_error err = {0};
     assert_int_not_equal(dem_plot_run(dir, &err), 0);
-    assert_non_null(strstr(err.msg, "timeseries.csv"));
+    char want[1200];
+    snprintf(want, sizeof want,
+             "%s: not a dembox run folder (no "
+             "timeseries.csv)",
+             dir);
+    assert_string_equal(err.msg, want);
+
+    /* a stopped run (only timeseries.csv.part) is said to be one, as by
+     * dem_analyze (which needs config.cfg too); and so is a folder that
+     * is not there */
+    write_text(dir, "timeseries.csv.part", "t\n0\n");
+    assert_int_not_equal(dem_plot_run(dir, &err), 0);
+    snprintf(want, sizeof want,
+             "%s: the run has not finished (only "
+             "timeseries.csv.part, no timeseries.csv)",
+             dir);
+    assert_string_equal(err.msg, want);
+    char gone[1024];
+    snprintf(gone, sizeof gone, "%s", dir);
     remove_dir(dir);
+    assert_int_not_equal(dem_plot_run(gone, &err), 0);
+    snprintf(want, sizeof want, "%s: no such folder", gone);
+    assert_string_equal(err.msg, want);
 }
 
 /* Drop column `name` from the header and every row of timeseries.csv. */

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "analysis/analysis.h"
+#include "analysis/summary_read.h"
 #include "formats/csvtable.h"
 #include "formats/json.h"
 #include "io/fsutil.h"
@@ -87,42 +88,6 @@ struct result {
                             quarter of the stage's time */
     struct dem_shear shear;
 };
-
-static int file_exists(const char *dir, const char *name, char *path, size_t n,
-                       struct dem_error *err)
-{
-    if (dem_path_join(path, n, dir, name, err))
-        return -1;
-    return access(path, F_OK) == 0;
-}
-
-/* One clear line when outdir is not a finished dembox run. */
-static int check_run_folder(const char *outdir, char *cfg_path, char *ts_path,
-                            struct dem_error *err)
-{
-    char part[DEM_PATH_MAX];
-    const int has_cfg =
-        file_exists(outdir, "config.cfg", cfg_path, DEM_PATH_MAX, err);
-    const int has_ts =
-        file_exists(outdir, "timeseries.csv", ts_path, DEM_PATH_MAX, err);
-    const int has_part =
-        file_exists(outdir, "timeseries.csv.part", part, sizeof part, err);
-    if (has_cfg < 0 || has_ts < 0 || has_part < 0)
-        return err->code;
-    if (has_cfg && has_ts)
-        return DEM_OK;
-    if (has_cfg && has_part)
-        return dem_error_set(err, DEM_EIO,
-                             "%s: the run has not finished (only "
-                             "timeseries.csv.part, no timeseries.csv)",
-                             outdir);
-    if (access(outdir, F_OK) != 0)
-        return dem_error_set(err, DEM_EIO, "%s: no such folder", outdir);
-    return dem_error_set(
-        err, DEM_EIO, "%s: not a dembox run folder (no %s%s%s)", outdir,
-        has_cfg ? "" : "config.cfg", !has_cfg && !has_ts ? ", no " : "",
-        has_ts ? "" : "timeseries.csv");
-}
 
 /* Positions in `wanted` of the columns read from timeseries.csv. */
 enum {
@@ -780,7 +745,7 @@ static int write_file(const char *outdir, const struct result *R,
 int dem_analyze(const char *outdir, struct dem_error *err)
 {
     char cfg_path[DEM_PATH_MAX], ts_path[DEM_PATH_MAX];
-    int rc = check_run_folder(outdir, cfg_path, ts_path, err);
+    int rc = dem__run_folder_check(outdir, 1, cfg_path, ts_path, err);
     if (rc)
         return rc;
     struct dem_config *cfg = malloc(sizeof *cfg);

@@ -6,6 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#include "io/fsutil.h"
 
 /* The ranges of the numbers of analyze.c's summary that are read back;
  * every other number may be any (finite: the JSON reader refuses the
@@ -106,4 +109,40 @@ void dem__summary_cycles_free(struct dem__summary_cycles *c)
 {
     free(c->inc);
     memset(c, 0, sizeof *c);
+}
+
+static int file_exists(const char *dir, const char *name, char *path, size_t n,
+                       struct dem_error *err)
+{
+    if (dem_path_join(path, n, dir, name, err))
+        return -1;
+    return access(path, F_OK) == 0;
+}
+
+int dem__run_folder_check(const char *outdir, int need_config, char *cfg_path,
+                          char *ts_path, struct dem_error *err)
+{
+    char part[DEM_PATH_MAX];
+    const int has_cfg =
+        file_exists(outdir, "config.cfg", cfg_path, DEM_PATH_MAX, err);
+    const int has_ts =
+        file_exists(outdir, "timeseries.csv", ts_path, DEM_PATH_MAX, err);
+    const int has_part =
+        file_exists(outdir, "timeseries.csv.part", part, sizeof part, err);
+    if (has_cfg < 0 || has_ts < 0 || has_part < 0)
+        return err->code;
+    if ((has_cfg || !need_config) && has_ts)
+        return DEM_OK;
+    if ((has_cfg || !need_config) && has_part)
+        return dem_error_set(err, DEM_EIO,
+                             "%s: the run has not finished (only "
+                             "timeseries.csv.part, no timeseries.csv)",
+                             outdir);
+    if (access(outdir, F_OK) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: no such folder", outdir);
+    const int no_cfg = need_config && !has_cfg;
+    return dem_error_set(
+        err, DEM_EIO, "%s: not a dembox run folder (no %s%s%s)", outdir,
+        no_cfg ? "config.cfg" : "", no_cfg && !has_ts ? ", no " : "",
+        has_ts ? "" : "timeseries.csv");
 }

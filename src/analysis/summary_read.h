@@ -1,6 +1,7 @@
 /* Reading back what other modules use of a run's summary.json (written by
  * analyze.c): the plots of a run (its peak, its cycles) and the sweep's
- * cross-run analysis (sweep/collect.c).
+ * cross-run analysis (sweep/collect.c); and whether a folder holds a
+ * finished run at all, for the analysis and the plots.
  *
  * summary.json may have been edited, cut, or written by another version
  * or tool. A value that is not what dem_analyze writes (another JSON
@@ -41,5 +42,12 @@ int dem__summary_read_cycles(const struct dem__jval *js,
                              struct dem__summary_cycles *c, char *why,
                              size_t n);
 void dem__summary_cycles_free(struct dem__summary_cycles *c);
+
+/* One clear line when outdir is not a finished run's folder: no such
+ * folder, "the run has not finished" (only timeseries.csv.part), not a
+ * run's folder (no timeseries.csv, or with need_config no config.cfg).
+ * cfg_path and ts_path (DEM_PATH_MAX) get the files' paths. */
+int dem__run_folder_check(const char *outdir, int need_config, char *cfg_path,
+                          char *ts_path, struct dem_error *err);
 
 #endif

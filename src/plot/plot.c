@@ -988,8 +988,13 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
 {
     struct dem__csv_table ts, pt;
     struct series s;
-    char plotdir[DEM_PATH_MAX], path[DEM_PATH_MAX];
-    int rc = read_series(outdir, &ts, &s, err);
+    char plotdir[DEM_PATH_MAX], path[DEM_PATH_MAX], cfg[DEM_PATH_MAX];
+    /* a stopped run, a folder that is not there: say so (config.cfg may
+     * be missing: the curves are drawn from the timeseries alone) */
+    int rc = dem__run_folder_check(outdir, 0, cfg, path, err);
+    if (rc)
+        return rc;
+    rc = read_series(outdir, &ts, &s, err);
     if (rc)
         return rc;
     /* the particle file is read now because it decides the dimension;
