@@ -39,7 +39,9 @@ import ctypes.util
 import json
 import os
 import signal
+import sys
 import threading
+import warnings as _warnings
 from collections import namedtuple
 
 try:
@@ -47,7 +49,7 @@ try:
 except ImportError:  # the module works without it, with lists
     numpy = None
 
-__all__ = ["Error", "Interrupted", "Progress", "SweepProgress", "version",
+__all__ = ["Error", "Interrupted", "DemboxWarning", "Progress", "SweepProgress", "version",
            "examples", "example_text", "run", "resume", "analyze", "plot",
            "timeseries", "summary", "particles", "contacts", "dump_local",
            "DumpFrame", "sweep", "sweep_summary"]
@@ -72,6 +74,12 @@ class Interrupted(Error):
     def __init__(self, code, message, outdir):
         super().__init__(code, message)
         self.outdir = outdir
+
+
+class DemboxWarning(UserWarning):
+    """A warning of the library (a time step above t_c/10, a loading that
+    is not quasi-static, an isotropic stage that ended at its max_time, a
+    summary left out of a plot, ...), when no list was given for them."""
 
 
 Progress = namedtuple("Progress", "stage nstages stage_type t fraction eta "
@@ -245,19 +253,43 @@ class _LazyLibrary:
 _lib = _LazyLibrary()
 
 
-def _error(warnings):
-    """A struct dem_error whose warnings go to the list warnings."""
+def _caller_level():
+    """The stacklevel of warnings.warn, called from here, that names the
+    first frame outside this module: the user's call."""
+    level, frame = 2, sys._getframe(2)
+    while frame is not None and frame.f_globals.get("__name__") == __name__:
+        level, frame = level + 1, frame.f_back
+    return level
+
+
+def _error(warnings=None):
+    """A struct dem_error whose warnings go to the list warnings, or, when
+    it is None, to Python's warnings as DemboxWarning. An exception from
+    those (a filter "error") is raised by _check after the call."""
     err = _ErrorStruct()
+    err.pending = None
 
     def warn(line, user):
-        warnings.append(line.decode())
+        text = line.decode()
+        if warnings is not None:
+            warnings.append(text)
+            return
+        try:
+            _warnings.warn(text, DemboxWarning, stacklevel=_caller_level())
+        except BaseException as e:  # raised in a callback: kept for later
+            if err.pending is None:
+                err.pending = e
     err.warn = _WARN(warn)
     return err
 
 
 def _check(rc, err):
+    """Raise the failure of a call, or the exception a warning became."""
     if rc != 0:
         raise Error(rc, err.msg.decode())
+    if err.pending is not None:
+        pending, err.pending = err.pending, None
+        raise pending
 
 
 def version():
@@ -409,7 +441,8 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
     """Run a built-in example or a config file into outdir, as `dembox run`
     does: then the analysis (summary.json) and, with plot=True, the
     pictures. sets are "KEY=VALUE" overrides; max_steps > 0 ends the run
-    early. Warnings are appended to the list warnings when given.
+    early. Warnings are appended to the list warnings when given, else
+    they are Python warnings of category DemboxWarning.
     split=True: every rank of the MPI world (a script under mpirun that
     imported mpi4py) calls run with the same arguments, the sample is
     split over the ranks (docs/parallel.md), and rank 0 writes the
@@ -419,7 +452,6 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
     saves a checkpoint at its next sample and stops, raising Interrupted
     (or what it raised). Ctrl-C does the same, raising KeyboardInterrupt;
     resume(outdir) goes on. Returns outdir."""
-    warnings = [] if warnings is None else warnings
     err = _error(warnings)
     cfg = _config(target, list(sets), err)
     return _run_outdir(lambda opt, e: _lib.dem_run(cfg, opt, e), outdir,
@@ -433,22 +465,21 @@ def resume(outdir, threads=1, analyze=True, plot=False, warnings=None,
     callback, a checkpoint interval) from outdir/checkpoint.bin, as
     `dembox run --resume` does: the outputs are those of a run never
     stopped, byte for byte, for any thread count. The rest as run()."""
-    warnings = [] if warnings is None else warnings
     err = _error(warnings)
     return _run_outdir(
         lambda opt, e: _lib.dem_run_resume(outdir.encode(), opt, e), outdir,
         threads, 0, split, analyze, plot, progress, err)
 
 
-def analyze(outdir):
+def analyze(outdir, warnings=None):
     """Write outdir/summary.json from a finished run's files."""
-    err = _error([])
+    err = _error(warnings)
     _check(_lib.dem_analyze(outdir.encode(), ctypes.byref(err)), err)
 
 
-def plot(outdir):
+def plot(outdir, warnings=None):
     """Draw outdir/plots/ (gnuplot and cairo)."""
-    err = _error([])
+    err = _error(warnings)
     _check(_lib.dem_plot_run(outdir.encode(), ctypes.byref(err)), err)
 
 
@@ -545,7 +576,7 @@ def dump_local(outdir):
 
 
 def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
-          quiet=True, progress=None):
+          quiet=True, progress=None, warnings=None):
     """What `dembox sweep` does: the runs of every combination of params
     ("KEY[,KEY...]=V1,V2,..." as --param) with the overrides sets, jobs
     at once, then outdir/sweep.json and outdir/plots/; finished runs are
@@ -554,8 +585,9 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
     returns True (or raises), or on Ctrl-C, the runs under way save
     checkpoints and stop, no other starts, and Interrupted (what it
     raised, KeyboardInterrupt) is raised: the same call goes on from
-    them. Returns outdir."""
-    err = _error([])
+    them. Its own warnings (each run's are in its run.log) as run()'s.
+    Returns outdir."""
+    err = _error(warnings)
     grid = ctypes.create_string_buffer(_lib.dem_sweep_grid_bytes())
     try:
         for p in params:

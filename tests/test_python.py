@@ -8,6 +8,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import warnings
 
 import dembox
 
@@ -245,6 +246,36 @@ except dembox.Error as e:
     assert "contact.mu" in str(e), str(e)
 else:
     raise AssertionError("a --param without values was accepted")
+
+# the library's warnings are Python warnings (DemboxWarning) naming the
+# caller's line, unless a list is given for them; a filter "error" raises
+# them after the call
+warm = ["particles.count=60", "stages.0.max_time=2e-5"]
+with warnings.catch_warnings(record=True) as caught:
+    warnings.simplefilter("always")
+    dembox.run("biaxial2d", os.path.join(tmp, "warn1"), sets=warm,
+               max_steps=300)
+ours = [w for w in caught if issubclass(w.category, dembox.DemboxWarning)]
+assert any("reached max_time" in str(w.message) for w in ours), \
+    [str(w.message) for w in caught]
+assert all(w.filename == __file__ for w in ours), [w.filename for w in ours]
+listed = []
+with warnings.catch_warnings(record=True) as caught:
+    warnings.simplefilter("always")
+    dembox.run("biaxial2d", os.path.join(tmp, "warn2"), sets=warm,
+               max_steps=300, warnings=listed)
+assert not caught and any("reached max_time" in w for w in listed), \
+    (caught, listed)
+with warnings.catch_warnings():
+    warnings.simplefilter("error", dembox.DemboxWarning)
+    try:
+        dembox.run("biaxial2d", os.path.join(tmp, "warn3"), sets=warm,
+                   max_steps=300)
+    except dembox.DemboxWarning as e:
+        assert "reached max_time" in str(e), str(e)
+    else:
+        raise AssertionError("a warning filtered as an error was not raised")
+assert os.path.exists(os.path.join(tmp, "warn3", "timeseries.csv"))
 
 # arguments out of range are refused before anything is written
 for call, want in (
