@@ -292,6 +292,12 @@ def _check(rc, err):
         raise pending
 
 
+def _path(p):
+    """A path (str, bytes or os.PathLike, e.g. pathlib.Path) as the bytes
+    the library takes."""
+    return os.fsencode(os.fspath(p))
+
+
 def version():
     """The library's version, e.g. "0.1.0"."""
     return _lib.dem_version().decode()
@@ -316,12 +322,15 @@ def _config(target, sets, err):
     """Parse target (a built-in example's name or a config file's path)."""
     buf = ctypes.create_string_buffer(_lib.dem_config_size())
     arr = (ctypes.c_char_p * max(len(sets), 1))(*[s.encode() for s in sets])
-    if "/" not in target and _lib.dem_example_find(target.encode()):
+    target = os.fspath(target)
+    if isinstance(target, bytes):
+        target = os.fsdecode(target)
+    if "/" not in target and _lib.dem_example_find(_path(target)):
         rc = _lib.dem_config_parse(buf, example_text(target).encode(),
                                    ("example " + target).encode(), arr,
                                    len(sets), ctypes.byref(err))
     else:
-        rc = _lib.dem_config_load_file(buf, target.encode(), arr, len(sets),
+        rc = _lib.dem_config_load_file(buf, _path(target), arr, len(sets),
                                        ctypes.byref(err))
     _check(rc, err)
     return buf
@@ -419,7 +428,7 @@ def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
     """call(options, err) (dem_run or dem_run_resume) stoppable, then the
     analysis and the pictures."""
     stop = _Stop(progress, _progress)
-    opt = _RunOptions(outdir=outdir.encode(), threads=threads,
+    opt = _RunOptions(outdir=_path(outdir), threads=threads,
                       max_steps=max_steps, split=int(bool(split)),
                       progress=_RUN_PROGRESS(stop.callback),
                       stop=ctypes.addressof(stop.flag))
@@ -430,9 +439,9 @@ def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
     if split:
         _lib.dem_mpi_world(ctypes.byref(rank), ctypes.byref(size))
     if analyze and rank.value == 0:
-        _check(_lib.dem_analyze(outdir.encode(), ctypes.byref(err)), err)
+        _check(_lib.dem_analyze(_path(outdir), ctypes.byref(err)), err)
     if plot and rank.value == 0:
-        _check(_lib.dem_plot_run(outdir.encode(), ctypes.byref(err)), err)
+        _check(_lib.dem_plot_run(_path(outdir), ctypes.byref(err)), err)
     return outdir
 
 
@@ -467,20 +476,20 @@ def resume(outdir, threads=1, analyze=True, plot=False, warnings=None,
     stopped, byte for byte, for any thread count. The rest as run()."""
     err = _error(warnings)
     return _run_outdir(
-        lambda opt, e: _lib.dem_run_resume(outdir.encode(), opt, e), outdir,
+        lambda opt, e: _lib.dem_run_resume(_path(outdir), opt, e), outdir,
         threads, 0, split, analyze, plot, progress, err)
 
 
 def analyze(outdir, warnings=None):
     """Write outdir/summary.json from a finished run's files."""
     err = _error(warnings)
-    _check(_lib.dem_analyze(outdir.encode(), ctypes.byref(err)), err)
+    _check(_lib.dem_analyze(_path(outdir), ctypes.byref(err)), err)
 
 
 def plot(outdir, warnings=None):
     """Draw outdir/plots/ (gnuplot and cairo)."""
     err = _error(warnings)
-    _check(_lib.dem_plot_run(outdir.encode(), ctypes.byref(err)), err)
+    _check(_lib.dem_plot_run(_path(outdir), ctypes.byref(err)), err)
 
 
 def timeseries(outdir):
@@ -596,7 +605,7 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
         enc = [s.encode() for s in sets]
         arr = (ctypes.c_char_p * max(len(enc), 1))(*enc)
         stop = _Stop(progress, _sweep_progress)
-        o = _SweepOptions(target.encode(), outdir.encode(), arr, len(enc),
+        o = _SweepOptions(_path(target), _path(outdir), arr, len(enc),
                           jobs, threads, int(quiet), max_steps,
                           ctypes.addressof(stop.flag),
                           _SWEEP_PROGRESS(stop.callback), None)

@@ -4,6 +4,7 @@ and a bad key raises dembox.Error naming the key. Run by CTest with
 PYTHONPATH and DEMBOX_LIB set; argv[1]: the dembox binary, argv[2]: a
 scratch folder."""
 import os
+import pathlib
 import shutil
 import signal
 import subprocess
@@ -42,6 +43,18 @@ def stopped_with_checkpoint(d):
     return (os.path.exists(os.path.join(d, "checkpoint.bin")) and
             not os.path.exists(os.path.join(d, "timeseries.csv")))
 
+
+# paths as pathlib.Path or bytes, for the output folder and a config
+# file, give the same run
+cfg_file = pathlib.Path(tmp) / "biaxial2d.cfg"
+cfg_file.write_text(dembox.example_text("biaxial2d"))
+out_pl = dembox.run(cfg_file, pathlib.Path(tmp) / "pathlib", sets=sets,
+                    max_steps=400)
+assert isinstance(out_pl, pathlib.Path) and same_bytes(out_pl, out_py)
+out_b = dembox.run("biaxial2d", os.fsencode(os.path.join(tmp, "bytes")),
+                   sets=sets, max_steps=400)
+assert same_bytes(os.fsdecode(out_b), out_py)
+assert dembox.summary(out_pl)["dimension"] == 2
 
 # a run stopped by its progress callback (True at its first report) saves
 # a checkpoint and raises Interrupted; resume() finishes it to the bytes
