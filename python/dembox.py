@@ -292,6 +292,11 @@ def _check(rc, err):
         raise pending
 
 
+def _texts(items):
+    """KEY=VALUE overrides or --param texts: a list, or one string."""
+    return [items] if isinstance(items, str) else list(items)
+
+
 def _path(p):
     """A path (str, bytes or os.PathLike, e.g. pathlib.Path) as the bytes
     the library takes."""
@@ -462,7 +467,7 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
     (or what it raised). Ctrl-C does the same, raising KeyboardInterrupt;
     resume(outdir) goes on. Returns outdir."""
     err = _error(warnings)
-    cfg = _config(target, list(sets), err)
+    cfg = _config(target, _texts(sets), err)
     return _run_outdir(lambda opt, e: _lib.dem_run(cfg, opt, e), outdir,
                        threads, max_steps, split, analyze, plot, progress,
                        err)
@@ -599,10 +604,10 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
     err = _error(warnings)
     grid = ctypes.create_string_buffer(_lib.dem_sweep_grid_bytes())
     try:
-        for p in params:
+        for p in _texts(params):
             _check(_lib.dem_sweep_param_add(grid, p.encode(),
                                             ctypes.byref(err)), err)
-        enc = [s.encode() for s in sets]
+        enc = [s.encode() for s in _texts(sets)]
         arr = (ctypes.c_char_p * max(len(enc), 1))(*enc)
         stop = _Stop(progress, _sweep_progress)
         o = _SweepOptions(_path(target), _path(outdir), arr, len(enc),

@@ -53,6 +53,12 @@ out_pl = dembox.run(cfg_file, pathlib.Path(tmp) / "pathlib", sets=sets,
 assert isinstance(out_pl, pathlib.Path) and same_bytes(out_pl, out_py)
 out_b = dembox.run("biaxial2d", os.fsencode(os.path.join(tmp, "bytes")),
                    sets=sets, max_steps=400)
+# one override as a string, not a list: the same as in a list
+out_1 = dembox.run("biaxial2d", os.path.join(tmp, "one-set"),
+                   sets="particles.count=60", max_steps=400)
+out_l = dembox.run("biaxial2d", os.path.join(tmp, "one-set-list"),
+                   sets=["particles.count=60"], max_steps=400)
+assert same_bytes(out_1, out_l)
 assert same_bytes(os.fsdecode(out_b), out_py)
 assert dembox.summary(out_pl)["dimension"] == 2
 
@@ -250,8 +256,8 @@ except dembox.Interrupted as e:
 else:
     raise AssertionError("a sweep its callback stopped did not raise")
 assert not os.path.exists(os.path.join(sw, "sweep.json"))
-dembox.sweep("biaxial2d", sw, ["contact.mu=0.1,0.3"], sets=sets,
-             max_steps=200)
+dembox.sweep("biaxial2d", sw, "contact.mu=0.1,0.3", sets=sets,
+             max_steps=200)  # one --param as a string, not a list
 assert dembox.sweep_summary(sw)["runs_finished"] == 2
 try:
     dembox.sweep("biaxial2d", os.path.join(tmp, "sw2"), ["contact.mu"])
