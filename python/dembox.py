@@ -18,7 +18,9 @@ sweep_summary) work without it.
     print(dembox.sweep_summary(sw)["friction_vs_mu"])
 
 Every failure raises dembox.Error with the library's one-line message
-(naming the key, the file and the line for a bad config).
+(naming the key, the file and the line for a bad config). The library's
+warnings are Python warnings of category dembox.DemboxWarning, or go to
+the list given as warnings=.
 
 A run or a sweep can be stopped and taken up again, as with the dembox
 command: Ctrl-C (SIGINT) during dembox.run saves a checkpoint at the
