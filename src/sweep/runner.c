@@ -352,6 +352,17 @@ long dem__sweep_take(struct dem__sweep_pool *p, int rank, int *resume,
     return i;
 }
 
+/* "; about T left" for a sweep's ETA of t seconds. */
+static void sweep_time_left(char *out, size_t n, double t)
+{
+    if (t < 120.0)
+        snprintf(out, n, "; about %.0f s left", t);
+    else if (t < 7200.0)
+        snprintf(out, n, "; about %.0f min left", t / 60.0);
+    else
+        snprintf(out, n, "; about %.1f h left", t / 3600.0);
+}
+
 void dem__sweep_done(struct dem__sweep_pool *p, long i, int resume,
                      int stopped, int rc, const char *msg, double seconds)
 {
@@ -376,12 +387,19 @@ void dem__sweep_done(struct dem__sweep_pool *p, long i, int resume,
         return;
     }
     p->done++;
+    p->seconds += seconds;
     p->rep->ran++;
     p->rep->resumed += resume;
     if (ok) {
+        char left[64] = "";
+        const long todo = p->total - p->done;
+        if (todo > 0) /* the runs left at the mean time so far */
+            sweep_time_left(left, sizeof left,
+                            (double)todo * p->seconds / (double)p->done /
+                                (double)(todo < p->slots ? todo : p->slots));
         if (!p->o->quiet)
-            fprintf(stderr, "dembox: sweep: [%ld/%ld] %s finished (%.1f s)\n",
-                    p->done, p->total, p->names[i], seconds);
+            fprintf(stderr, "dembox: sweep: [%ld/%ld] %s finished (%.1f s)%s\n",
+                    p->done, p->total, p->names[i], seconds, left);
     } else {
         p->rep->failed++;
         fprintf(stderr,
@@ -459,6 +477,9 @@ static int run_points(const struct dem_sweep_grid *g,
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
     for (long i = 0; i < n; i++)
         p.total += todo[i];
+    int rank, size;
+    dem_mpi_world(&rank, &size);
+    p.slots = jobs * size;
     pthread_mutex_init(&p.lock, NULL);
     struct dem__sweep_jobs team;
     if (!dem__sweep_jobs_start(&team, jobs, worker, &p))

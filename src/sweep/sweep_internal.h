@@ -129,6 +129,8 @@ struct dem__sweep_pool {
     char *resume_tried; /* points whose checkpoint was tried */
     long next;          /* no point before this one is to do */
     long total, done;
+    double seconds; /* taken by the runs counted in done */
+    int slots;      /* runs at once: jobs times ranks */
     struct dem_sweep_report *rep;
     int halt; /* a run was stopped by a signal: start no other */
     int rc;   /* an error of the sweep itself (not of a run) */
