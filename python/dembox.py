@@ -258,7 +258,7 @@ _lib = _LazyLibrary()
 def _caller_level():
     """The stacklevel of warnings.warn, called from here, that names the
     first frame outside this module: the user's call."""
-    level, frame = 2, sys._getframe(2)
+    level, frame = 1, sys._getframe(1)  # the frame that calls warn
     while frame is not None and frame.f_globals.get("__name__") == __name__:
         level, frame = level + 1, frame.f_back
     return level
