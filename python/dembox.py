@@ -361,6 +361,7 @@ class _Stop:
         self.signum = None
         self.raised = None
         self.old = {}
+        self.follows = False  # an MPI rank > 0 of a split run: rank 0 stops
 
     def __enter__(self):
         if threading.current_thread() is threading.main_thread():
@@ -411,7 +412,7 @@ class _Stop:
                     is signal.default_int_handler):
                 raise KeyboardInterrupt(msg)
             signal.raise_signal(self.signum)  # the handler it had decides
-        if rc == _DEM_EINTERRUPTED and self.flag.value:
+        if rc == _DEM_EINTERRUPTED and (self.flag.value or self.follows):
             raise Interrupted(rc, msg, outdir)
         _check(rc, err)
 
@@ -434,7 +435,12 @@ def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
                 progress, err):
     """call(options, err) (dem_run or dem_run_resume) stoppable, then the
     analysis and the pictures."""
-    stop = _Stop(progress, _progress)
+    rank, size = ctypes.c_int(0), ctypes.c_int(1)
+    if split:
+        _lib.dem_mpi_world(ctypes.byref(rank), ctypes.byref(size))
+    # split over ranks, rank 0 decides the stop: only its progress counts
+    stop = _Stop(progress, _progress if rank.value == 0 else lambda p: None)
+    stop.follows = rank.value != 0
     opt = _RunOptions(outdir=_path(outdir), threads=threads,
                       max_steps=max_steps, split=int(bool(split)),
                       progress=_RUN_PROGRESS(stop.callback),
@@ -442,9 +448,6 @@ def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
     with stop:
         rc = call(ctypes.byref(opt), ctypes.byref(err))
     stop.end(rc, err, outdir, " (from Python: dembox.resume(%r))" % outdir)
-    rank, size = ctypes.c_int(0), ctypes.c_int(1)
-    if split:
-        _lib.dem_mpi_world(ctypes.byref(rank), ctypes.byref(size))
     if analyze and rank.value == 0:
         _check(_lib.dem_analyze(_path(outdir), ctypes.byref(err)), err)
     if plot and rank.value == 0:
