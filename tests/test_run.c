@@ -11,6 +11,7 @@
 
 #include "contact/models.h"
 #include "formats/csvtable.h"
+#include "io/fsutil.h"
 
 #include "tmpdir.h"
 
@@ -91,6 +92,53 @@ static void bad_run_options_are_refused(void **state)
     assert_int_equal(dem_run_resume("", &(struct dem_run_options){0}, &err),
                      DEM_EUSAGE);
     assert_string_equal(err.msg, "empty folder name (before /checkpoint.bin)");
+}
+
+/* One writer per folder: while a run (here: a lock taken as dem_run
+ * takes it) writes into a folder, a second run into it and a resume of
+ * it are refused, naming the process; the files of the first are left
+ * alone. After the holder ends, the run goes on, and its lock file is
+ * left empty (two finished folders compare equal). */
+static void a_second_writer_into_a_folder_is_refused(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_error err = {0};
+    const struct dem_example *ex = dem_example_find("hold3d");
+    if (dem_config_parse(&c, ex->text, "hold3d", 0, 0, &err))
+        fail_msg("%s", err.msg);
+    char out[1024], want[2400], path[1100];
+    snprintf(out, sizeof out, "%s/locked", tmpdir);
+    assert_int_equal(dem_mkdir_p(out, &err), 0);
+    snprintf(path, sizeof path, "%s/keep.txt", out);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fclose(f);
+    int fd = -1;
+    assert_int_equal(dem_folder_lock(out, "run", &fd, &err), DEM_OK);
+    assert_true(fd >= 0);
+    snprintf(want, sizeof want,
+             "%s: another dembox run is writing into this folder (process "
+             "%ld, which holds %s/.dembox.lock); wait for it to end, or "
+             "choose another folder",
+             out, (long)getpid(), out);
+    struct dem_run_options o = {.outdir = out, .threads = 1, .max_steps = 50};
+    assert_int_equal(dem_run(&c, &o, &err), DEM_EUSAGE);
+    assert_string_equal(err.msg, want);
+    assert_int_equal(dem_run_resume(out, &o, &err), DEM_EUSAGE);
+    assert_string_equal(err.msg, want);
+    snprintf(path, sizeof path, "%s/config.cfg", out);
+    assert_true(access(path, F_OK) != 0); /* nothing written */
+    dem_folder_unlock(fd);
+
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+    snprintf(path, sizeof path, "%s/.dembox.lock", out);
+    struct stat st;
+    assert_int_equal(stat(path, &st), 0);
+    assert_int_equal(st.st_size, 0);
+    snprintf(path, sizeof path, "%s/keep.txt", out);
+    assert_int_equal(access(path, F_OK), 0); /* not a run's: kept */
 }
 
 static void every_example_runs_a_few_hundred_steps(void **state)
@@ -562,6 +610,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(bad_run_options_are_refused),
+        cmocka_unit_test(a_second_writer_into_a_folder_is_refused),
         cmocka_unit_test(every_example_runs_a_few_hundred_steps),
         cmocka_unit_test(isotropic_stage_reaches_target_pressure),
         cmocka_unit_test(biaxial_fixed_walls_and_dilatancy),

@@ -202,6 +202,17 @@ static void bad_grid_point_is_refused_before_running(void **state)
         assert_string_equal(err.msg, rows[k].want);
         assert_true(access(out, F_OK) != 0);
     }
+
+    /* a folder another sweep writes into (its lock held here): refused,
+     * naming the process, before any run */
+    int fd = -1;
+    assert_int_equal(dem_mkdir_p(out, &err), 0);
+    assert_int_equal(dem_folder_lock(out, "sweep", &fd, &err), DEM_OK);
+    assert_int_equal(dem_sweep_run(&ok, &o, &rep, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "another dembox sweep is writing into "
+                                    "this folder (process "));
+    assert_int_equal(rep.ran, 0);
+    dem_folder_unlock(fd);
     dem_sweep_grid_free(&ok);
     dem_sweep_grid_free(&g);
 }

@@ -1,10 +1,13 @@
 #include "io/fsutil.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 int dem_mkdir_p(const char *path, struct dem_error *err)
 {
@@ -92,4 +95,57 @@ char *dem_read_text(const char *path, struct dem_error *err)
     }
     buf[n] = '\0';
     return buf;
+}
+
+int dem_folder_lock(const char *dir, const char *what, int *fd,
+                    struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    *fd = -1;
+    int rc = dem_path_join(path, sizeof path, dir, DEM_LOCK_FILE, err);
+    if (rc)
+        return rc;
+    const int f = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (f < 0)
+        return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", path,
+                             strerror(errno));
+    if (flock(f, LOCK_EX | LOCK_NB) != 0) {
+        const int e = errno;
+        if (e != EWOULDBLOCK) { /* no locks on this file system: go on */
+            close(f);
+            return DEM_OK;
+        }
+        char holder[64] = "";
+        const ssize_t n = pread(f, holder, sizeof holder - 1, 0);
+        holder[n > 0 ? n : 0] = '\0';
+        holder[strcspn(holder, "\n")] = '\0';
+        close(f);
+        return dem_error_set(err, DEM_EUSAGE,
+                             "%s: another dembox %s is writing into this "
+                             "folder (%s%s%s holds %s); wait for it to end, "
+                             "or choose another folder",
+                             dir, what, holder[0] ? "process " : "", holder,
+                             holder[0] ? ", which" : "a process that", path);
+    }
+    /* who holds it, for the message of the next one */
+    char pid[32];
+    const int len = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+    if (ftruncate(f, 0) != 0 || pwrite(f, pid, (size_t)len, 0) != len) {
+        /* the lock holds all the same; only the message loses the pid */
+    }
+    *fd = f;
+    return DEM_OK;
+}
+
+void dem_folder_unlock(int fd)
+{
+    if (fd < 0)
+        return;
+    /* empty again (finished folders compare equal), and kept: removing
+     * it would let a process that opened it before and one that creates
+     * it after both lock "it" */
+    if (ftruncate(fd, 0) != 0) {
+        /* only the pid stays behind */
+    }
+    close(fd);
 }

@@ -26,4 +26,19 @@ int dem_open_read(FILE **f, const char *path, const char *mode,
  * NULL with err set (cannot open, read failed, out of memory). */
 char *dem_read_text(const char *path, struct dem_error *err);
 
+/* The file a folder's writer locks (flock, advisory). */
+#define DEM_LOCK_FILE ".dembox.lock"
+
+/* Lock folder dir (which exists) for writing, for as long as *fd stays
+ * open (dem_folder_unlock; the system releases it when the process
+ * ends, however it ends): another dembox process, or another call in
+ * this one, that asks while it is held gets DEM_EUSAGE, "DIR: another
+ * dembox WHAT is writing into this folder (process PID, which holds
+ * DIR/.dembox.lock) ...". On a file system without locks *fd is -1 and
+ * nothing is locked. The file holds the pid while locked and is empty
+ * after. */
+int dem_folder_lock(const char *dir, const char *what, int *fd,
+                    struct dem_error *err);
+void dem_folder_unlock(int fd);
+
 #endif

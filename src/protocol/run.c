@@ -58,6 +58,7 @@ struct run_ctx {
      * saved in checkpoints as st.out */
     struct dem_output out[DEM_CKPT_MAX_OUTPUTS];
     char ckpt_path[DEM_PATH_MAX]; /* checkpoint.bin */
+    int lock_fd; /* rank 0's lock on outdir (io/fsutil.h), -1 = none */
     /* MPI: this process's rank and the number of ranks (0 and 1 without);
      * several ranks split the sample once it is built */
     int rank, nranks;
@@ -498,6 +499,10 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
 {
     const char *dir = r->outdir;
     int rc = dem_mkdir_p(dir, err);
+    /* one writer per folder: a second run into it would interleave its
+     * files with this one's and rename them complete */
+    if (!rc)
+        rc = dem_folder_lock(dir, "run", &r->lock_fd, err);
     if (!rc)
         rc = ckpt_path(r, err);
     /* the results and checkpoint of an earlier run in this folder no
@@ -631,6 +636,7 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
     }
     drop_whole(r);
     close_outputs(r);
+    dem_folder_unlock(r->lock_fd);
     free(r->config_text);
     dem_halo_stop(&r->sim);
     dem_sim_destroy(&r->sim);
@@ -669,6 +675,7 @@ static int run_new(const struct dem_config *cfg,
 {
     struct run_ctx r;
     memset(&r, 0, sizeof r);
+    r.lock_fd = -1;
     r.opt = opt;
     r.outdir = opt->outdir;
     start_ranks(&r);
@@ -741,10 +748,16 @@ static int run_resumed(const char *outdir, const struct dem_run_options *opt,
 {
     struct run_ctx r;
     memset(&r, 0, sizeof r);
+    r.lock_fd = -1;
     r.opt = opt;
     r.outdir = outdir;
     start_ranks(&r);
-    int rc = read_checkpoint(&r, err);
+    /* the folder's writer is rank 0: locked before anything is read */
+    int rc = writer(&r) && access(outdir, F_OK) == 0
+                 ? dem_folder_lock(outdir, "run", &r.lock_fd, err)
+                 : DEM_OK;
+    if (!rc)
+        rc = read_checkpoint(&r, err);
     if (r.nranks > 1 && dem_halo_any(rc) && !rc) {
         rc = dem_error_set(err, DEM_EIO,
                            "%s: another rank could not read the checkpoint "
@@ -754,8 +767,10 @@ static int run_resumed(const char *outdir, const struct dem_run_options *opt,
         dem_ckpt_run_free(&r.st);
         dem_sim_destroy(&r.sim);
     }
-    if (rc)
+    if (rc) {
+        dem_folder_unlock(r.lock_fd);
         return rc;
+    }
     r.n_all = r.sim.p.n;
     bind_outputs(&r);
     rc = split(&r, rc, err);

@@ -506,7 +506,8 @@ static int run_points(const struct dem_sweep_grid *g,
 static int prepare(const struct dem_sweep_grid *g,
                    const struct dem_sweep_options *o, char *runs,
                    dem__sweep_runname *names, char *todo,
-                   struct dem_sweep_report *rep, struct dem_error *err)
+                   struct dem_sweep_report *rep, int *lock_fd,
+                   struct dem_error *err)
 {
     const long n = dem_sweep_grid_size(g);
     int rc = dem_sweep_validate(g, o, err);
@@ -514,6 +515,10 @@ static int prepare(const struct dem_sweep_grid *g,
         rc = dem_path_join(runs, DEM_PATH_MAX, o->outdir, "runs", err);
     if (!rc)
         rc = dem_mkdir_p(runs, err);
+    /* one sweep per folder: a second would run the same points into the
+     * same run folders */
+    if (!rc)
+        rc = dem_folder_lock(o->outdir, "sweep", lock_fd, err);
     if (!rc)
         rc = write_index(g, runs, names, err);
     for (long i = 0; !rc && i < n; i++) {
@@ -546,11 +551,12 @@ int dem_sweep_run(const struct dem_sweep_grid *g,
     char runs[DEM_PATH_MAX];
     dem__sweep_runname *names = malloc((size_t)n * sizeof *names);
     char *todo = malloc((size_t)n);
+    int lock_fd = -1;
     int rc = names && todo ? DEM_OK
                            : dem_error_set(err, DEM_ENOMEM, "out of memory");
     if (!rc) {
         dem_sweep_point_names(g, names);
-        rc = prepare(g, o, runs, names, todo, rep, err);
+        rc = prepare(g, o, runs, names, todo, rep, &lock_fd, err);
     }
     dem__sweep_mpi_start(rc); /* the other ranks go on or end with rc */
     if (!rc)
@@ -559,6 +565,7 @@ int dem_sweep_run(const struct dem_sweep_grid *g,
     free(todo);
     if (!rc)
         rc = dem_sweep_collect(g, o, err);
+    dem_folder_unlock(lock_fd);
     if (!rc && rep->failed)
         rc = dem_error_set(err, DEM_EINTERRUPTED,
                            "sweep: %ld of %ld runs failed (see the messages "
