@@ -119,6 +119,8 @@ int dem_folder_lock(const char *dir, const char *what, int *fd,
         const ssize_t n = pread(f, holder, sizeof holder - 1, 0);
         holder[n > 0 ? n : 0] = '\0';
         holder[strcspn(holder, "\n")] = '\0';
+        if (strspn(holder, "0123456789") != strlen(holder))
+            holder[0] = '\0'; /* not a pid: the message names none */
         close(f);
         return dem_error_set(err, DEM_EUSAGE,
                              "%s: another dembox %s is writing into this "
