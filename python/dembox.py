@@ -51,10 +51,10 @@ try:
 except ImportError:  # the module works without it, with lists
     numpy = None
 
-__all__ = ["Error", "Interrupted", "DemboxWarning", "Progress", "SweepProgress", "version",
-           "examples", "example_text", "run", "resume", "analyze", "plot",
-           "timeseries", "summary", "particles", "contacts", "dump_local",
-           "DumpFrame", "sweep", "sweep_summary"]
+__all__ = ["Error", "Interrupted", "DemboxWarning", "Progress",
+           "SweepProgress", "version", "examples", "example_text", "run",
+           "resume", "analyze", "plot", "timeseries", "summary", "particles",
+           "contacts", "dump_local", "DumpFrame", "sweep", "sweep_summary"]
 
 _DEM_EINTERRUPTED = -5  # include/dembox.h
 
