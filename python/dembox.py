@@ -38,6 +38,7 @@ of floats (an empty field is None); dembox.numpy is the module or None.
 import csv
 import ctypes
 import ctypes.util
+import errno
 import json
 import os
 import signal
@@ -502,15 +503,27 @@ def plot(outdir, warnings=None):
     _check(_lib.dem_plot_run(_path(outdir), ctypes.byref(err)), err)
 
 
+def _run_file(outdir, name):
+    """outdir/name, a file of a finished run: FileNotFoundError saying the
+    run has not finished where only its timeseries.csv.part is there."""
+    path = os.path.join(outdir, name)
+    if (not os.path.exists(path) and
+            os.path.exists(os.path.join(outdir, "timeseries.csv.part"))):
+        raise FileNotFoundError(
+            errno.ENOENT, "the run has not finished (only timeseries.csv.part"
+            "): dembox.resume(%r) finishes a stopped one" % (outdir,), path)
+    return path
+
+
 def timeseries(outdir):
     """outdir/timeseries.csv as a dict: column name -> its values (a numpy
     array, or a list without numpy)."""
-    return _csv(os.path.join(outdir, "timeseries.csv"))
+    return _csv(_run_file(outdir, "timeseries.csv"))
 
 
 def summary(outdir):
     """outdir/summary.json as a dict."""
-    with open(os.path.join(outdir, "summary.json")) as f:
+    with open(_run_file(outdir, "summary.json")) as f:
         return json.load(f)
 
 
@@ -539,7 +552,7 @@ def _csv(path):
 def particles(outdir):
     """outdir/particles_final.csv (the final state) as a dict: column ->
     its values (numpy array or list)."""
-    return _csv(os.path.join(outdir, "particles_final.csv"))
+    return _csv(_run_file(outdir, "particles_final.csv"))
 
 
 def contacts(outdir):
@@ -547,7 +560,7 @@ def contacts(outdir):
     contact point, normal, overlap, normal and tangential force, sliding,
     the history values of the models in force: xi_x.., dmax, ...)
     as a dict: column -> its values (numpy array or list)."""
-    return _csv(os.path.join(outdir, "contacts_final.csv"))
+    return _csv(_run_file(outdir, "contacts_final.csv"))
 
 
 class DumpFrame(tuple):

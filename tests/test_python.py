@@ -75,6 +75,13 @@ except dembox.Interrupted as e:
 else:
     raise AssertionError("a run its callback stopped did not raise")
 assert stopped_with_checkpoint(out_s), os.listdir(out_s)
+for read in (dembox.timeseries, dembox.summary, dembox.particles):
+    try:
+        read(out_s)
+    except FileNotFoundError as e:
+        assert "has not finished" in str(e) and "dembox.resume(" in str(e), e
+    else:
+        raise AssertionError("read a stopped run's files")
 assert reports[0].stage == 1 and \
     reports[0].nstages == 2 and reports[0].stage_type == "isotropic" and \
     0 <= reports[0].fraction <= 1, reports
