@@ -585,7 +585,9 @@ int dem_sweep_run_finished(const char *rundir);
 /* Read DIR/runs/NAME/{config.cfg,summary.json} of every point and write
  * DIR/sweep.json and DIR/plots/ (see docs/sweep.md). Runs that are
  * missing or failed are listed with their reason and left out of the
- * cross-run analysis. */
+ * cross-run analysis. DEM_EUSAGE without DIR/runs; a sweep still running
+ * into DIR is collected all the same, with a warning; collects take
+ * turns. */
 int dem_sweep_collect(const struct dem_sweep_grid *g,
                       const struct dem_sweep_options *o, struct dem_error *err);
 

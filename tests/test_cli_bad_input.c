@@ -528,6 +528,14 @@ static const struct row rows[] = {
      0,
      {"sweep", "c.cfg", "-o", "", "--param", "seed=1,2", "--collect"},
      "empty folder name (before /runs)"},
+    /* it wrote a sweep.json listing every run as missing, exit 0 */
+    {"sweep --collect of a folder no sweep ran into",
+     BASE2D,
+     0,
+     0,
+     {"sweep", "c.cfg", "-o", "nosweep", "--param", "seed=1,2", "--collect"},
+     "nosweep/runs: no such folder: nothing to collect (run the sweep "
+     "first)"},
     {"--resume of an empty folder name",
      0,
      0,

@@ -153,6 +153,12 @@ static int count_entries(const char *dir)
     return n;
 }
 
+/* A warning kept in the buffer of 512 characters at user. */
+static void keep_warning(const char *line, void *user)
+{
+    snprintf((char *)user, 512, "%s", line);
+}
+
 static void bad_grid_point_is_refused_before_running(void **state)
 {
     (void)state;
@@ -212,7 +218,32 @@ static void bad_grid_point_is_refused_before_running(void **state)
     assert_non_null(strstr(err.msg, "another dembox sweep is writing into "
                                     "this folder (process "));
     assert_int_equal(rep.ran, 0);
+    /* collected all the same (a look at a sweep under way), saying so */
+    char runs[1100], sj[1100], said[512] = "";
+    snprintf(runs, sizeof runs, "%s/runs", out);
+    snprintf(sj, sizeof sj, "%s/sweep.json", out);
+    assert_int_equal(dem_mkdir_p(runs, &err), 0);
+    struct dem_error werr = {.warn = keep_warning, .warn_user = said};
+    assert_int_equal(dem_sweep_collect(&ok, &o, &werr), DEM_OK);
+    assert_non_null(strstr(said, "refused: a dembox sweep is still running "
+                                 "into this folder: its runs not finished "
+                                 "yet are counted as failed here, and it "
+                                 "writes sweep.json again when it ends"));
+    assert_true(access(sj, F_OK) == 0);
     dem_folder_unlock(fd);
+    said[0] = '\0';
+    assert_int_equal(remove(sj), 0);
+    assert_int_equal(dem_sweep_collect(&ok, &o, &werr), DEM_OK);
+    assert_string_equal(said, "");
+    assert_true(access(sj, F_OK) == 0);
+    /* a folder no sweep ran into: nothing to collect, nothing written
+     * (it wrote a sweep.json of runs that were all missing) */
+    assert_int_equal(rmdir(runs), 0);
+    assert_int_equal(remove(sj), 0);
+    assert_int_equal(dem_sweep_collect(&ok, &o, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "/runs: no such folder: nothing to "
+                                    "collect (run the sweep first)"));
+    assert_true(access(sj, F_OK) != 0);
     dem_sweep_grid_free(&ok);
     dem_sweep_grid_free(&g);
 }

@@ -151,3 +151,24 @@ void dem_folder_unlock(int fd)
     }
     close(fd);
 }
+
+int dem_folder_wait_turn(const char *dir)
+{
+    const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0)
+        return -1;
+    int r;
+    while ((r = flock(fd, LOCK_EX)) != 0 && errno == EINTR)
+        ;
+    if (r != 0) { /* no locks on this file system: go on */
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+void dem_folder_end_turn(int fd)
+{
+    if (fd >= 0)
+        close(fd);
+}

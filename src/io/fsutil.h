@@ -41,4 +41,12 @@ int dem_folder_lock(const char *dir, const char *what, int *fd,
                     struct dem_error *err);
 void dem_folder_unlock(int fd);
 
+/* Wait for the turn of this process (or call) at folder dir, an
+ * exclusive lock on the folder itself, held until dem_folder_end_turn:
+ * for short tasks that must not overlap (collecting a sweep). Returns
+ * -1 (no turn: go on) where dir cannot be opened or the file system has
+ * no locks. */
+int dem_folder_wait_turn(const char *dir);
+void dem_folder_end_turn(int fd);
+
 #endif

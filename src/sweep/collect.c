@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
@@ -530,8 +531,8 @@ static int analyse(struct dem__sweep *s)
     return DEM_OK;
 }
 
-int dem_sweep_collect(const struct dem_sweep_grid *g,
-                      const struct dem_sweep_options *o, struct dem_error *err)
+int dem__sweep_collect(const struct dem_sweep_grid *g,
+                       const struct dem_sweep_options *o, struct dem_error *err)
 {
     struct dem__sweep s;
     memset(&s, 0, sizeof s);
@@ -549,6 +550,9 @@ int dem_sweep_collect(const struct dem_sweep_grid *g,
     char runs[DEM_PATH_MAX], path[DEM_PATH_MAX];
     if (!rc)
         rc = dem_path_join(runs, sizeof runs, o->outdir, "runs", err);
+    /* one collect at a time (the sweep's own at its end, and a look at
+     * it under way): the one that reads last writes last */
+    const int turn = rc ? -1 : dem_folder_wait_turn(runs);
     for (long i = 0; !rc && i < s.n; i++) {
         struct dem__sweep_run *r = &s.runs[i];
         snprintf(r->name, sizeof r->name, "%s", names[i]);
@@ -574,6 +578,42 @@ int dem_sweep_collect(const struct dem_sweep_grid *g,
     }
     if (!rc)
         rc = dem__sweep_plots(&s, o->outdir, err);
+    dem_folder_end_turn(turn);
     sweep_free(&s);
+    return rc;
+}
+
+int dem_sweep_collect(const struct dem_sweep_grid *g,
+                      const struct dem_sweep_options *o, struct dem_error *err)
+{
+    char runs[DEM_PATH_MAX];
+    int rc = dem_path_join(runs, sizeof runs, o->outdir, "runs", err);
+    struct stat st;
+    if (!rc && (stat(runs, &st) != 0 || !S_ISDIR(st.st_mode)))
+        rc = dem_error_set(err, DEM_EUSAGE,
+                           "%s: no such folder: nothing to collect (run the "
+                           "sweep first)",
+                           runs);
+    if (rc)
+        return rc;
+    /* a sweep still running into the folder: collected all the same (a
+     * look at a sweep under way), its unfinished runs as not finished */
+    int lock_fd;
+    rc = dem_folder_lock(o->outdir, "sweep", &lock_fd, err);
+    if (rc == DEM_EUSAGE) {
+        dem_warn(err,
+                 "%s: a dembox sweep is still running into this folder: "
+                 "its runs not finished yet are counted as failed here, and "
+                 "it writes sweep.json again when it ends",
+                 o->outdir);
+        if (err) {
+            err->code = DEM_OK;
+            err->msg[0] = '\0';
+        }
+        rc = DEM_OK;
+    }
+    if (!rc)
+        rc = dem__sweep_collect(g, o, err);
+    dem_folder_unlock(lock_fd);
     return rc;
 }

@@ -564,7 +564,7 @@ int dem_sweep_run(const struct dem_sweep_grid *g,
     free(names);
     free(todo);
     if (!rc)
-        rc = dem_sweep_collect(g, o, err);
+        rc = dem__sweep_collect(g, o, err);
     dem_folder_unlock(lock_fd);
     if (!rc && rep->failed)
         rc = dem_error_set(err, DEM_EINTERRUPTED,

@@ -200,6 +200,12 @@ int dem__sweep_mpi_work(const struct dem_sweep_grid *g,
 
 /* ------------------------------------------ collecting and plotting */
 
+/* dem_sweep_collect without the folder's lock, for dem_sweep_run, which
+ * holds it (collect.c). */
+int dem__sweep_collect(const struct dem_sweep_grid *g,
+                       const struct dem_sweep_options *o,
+                       struct dem_error *err);
+
 /* Write sweep.json of s (json_out.c). */
 
 void dem__sweep_write_json(FILE *f, const struct dem__sweep *s,
