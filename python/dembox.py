@@ -40,6 +40,7 @@ import ctypes
 import ctypes.util
 import errno
 import json
+import math
 import os
 import signal
 import sys
@@ -523,13 +524,41 @@ def timeseries(outdir):
 
 def summary(outdir):
     """outdir/summary.json as a dict."""
-    with open(_run_file(outdir, "summary.json")) as f:
-        return json.load(f)
+    return _json(_run_file(outdir, "summary.json"))
 
 
-def _number(text):
-    """A CSV field: a float, None when empty."""
-    return float(text) if text != "" else None
+def _json(path):
+    """A JSON file dembox wrote: numbers as RFC 8259 writes them (no NaN
+    or Infinity, which json.load takes); ValueError naming the file and
+    line otherwise."""
+    def constant(name):
+        raise ValueError("%s is not a number of JSON" % name)
+    with open(path) as f:
+        text = f.read()
+    try:
+        return json.loads(text, parse_constant=constant)
+    except json.JSONDecodeError as e:
+        raise ValueError("%s:%d: %s (column %d)" % (path, e.lineno, e.msg,
+                                                     e.colno)) from None
+    except ValueError as e:
+        raise ValueError("%s: %s" % (path, e)) from None
+
+
+def _number(text, path, line, name):
+    """A CSV field: a finite float, None when empty; ValueError naming
+    the file, line and column otherwise."""
+    text = text.strip()
+    if text == "":
+        return None
+    try:
+        v = float(text)
+    except ValueError:
+        v = None
+    if v is None or not math.isfinite(v):
+        raise ValueError("%s:%d: column %s: %r is not a finite number (an "
+                         "undefined value is an empty field)" %
+                         (path, line, name, text))
+    return v
 
 
 def _column(values):
@@ -542,11 +571,28 @@ def _column(values):
 
 
 def _csv(path):
+    """A CSV file of numbers under a header, read as the library reads
+    them: lines starting with # and blank lines skipped, fields trimmed;
+    ValueError naming the file and line of what is not such a file."""
+    head, cols = None, None
     with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    head, body = rows[0], rows[1:]
-    return {name: _column([_number(r[k]) for r in body])
-            for k, name in enumerate(head)}
+        rows = csv.reader(f)
+        for r in rows:
+            if not r or not "".join(r).strip() or r[0].lstrip()[:1] == "#":
+                continue
+            if head is None:
+                head = [name.strip() for name in r]
+                cols = [[] for _ in head]
+                continue
+            if len(r) != len(head):
+                raise ValueError("%s:%d: %d fields for the header's %d "
+                                 "columns" % (path, rows.line_num, len(r),
+                                              len(head)))
+            for k, text in enumerate(r):
+                cols[k].append(_number(text, path, rows.line_num, head[k]))
+    if head is None:
+        raise ValueError("%s: no header: not a CSV file dembox wrote" % path)
+    return {name: _column(c) for name, c in zip(head, cols)}
 
 
 def particles(outdir):
@@ -585,25 +631,63 @@ def dump_local(outdir):
     """outdir/dump_local.lammpstrj (written with output.dump_interval > 0):
     a list of frames, each a DumpFrame (step, dict column -> its values,
     numpy array or list) of the closed contacts at that step, with the
-    box's bounds as frame.box."""
-    frames = []
-    with open(os.path.join(outdir, "dump_local.lammpstrj")) as f:
+    box's bounds as frame.box. ValueError naming the file and line of
+    what is not such a file."""
+    path = _run_file(outdir, "dump_local.lammpstrj")
+    with open(path) as f:
         lines = f.read().splitlines()
+
+    def line(k, what):
+        if k >= len(lines):
+            raise ValueError("%s:%d: the file ends before %s" %
+                             (path, len(lines) + 1, what))
+        return lines[k]
+
+    def item(k, title):
+        text = line(k, title)
+        if not text.startswith(title):
+            raise ValueError("%s:%d: %r where %r belongs" %
+                             (path, k + 1, text[:40], title))
+        return text[len(title):].split()
+
+    def count(k, what):
+        text = line(k, what).strip()
+        if not text.isdigit():
+            raise ValueError("%s:%d: %s %r is not a count" %
+                             (path, k + 1, what, text[:40]))
+        return int(text)
+
+    def numbers(k, names, what, more=False):
+        fields = line(k, what).split()
+        if len(fields) < len(names) or (len(fields) > len(names) and
+                                        not more):
+            raise ValueError("%s:%d: %d fields for %d columns" %
+                             (path, k + 1, len(fields), len(names)))
+        return [_number(t, path, k + 1, name)
+                for t, name in zip(fields, names)]
+
+    frames = []
     k = 0
     while k < len(lines):
-        if lines[k].startswith("ITEM: TIMESTEP"):
-            step = int(lines[k + 1])
-            n = int(lines[k + 3])
-            box = tuple(tuple(float(v) for v in lines[k + 5 + a].split()[:2])
-                        for a in range(3))
-            head = lines[k + 8].split()[2:]
-            rows = [lines[k + 9 + r].split() for r in range(n)]
-            frames.append(DumpFrame(step, {
-                name: _column([float(r[c]) for r in rows])
-                for c, name in enumerate(head)}, box))
-            k += 9 + n
-        else:
+        if not lines[k].strip():
             k += 1
+            continue
+        item(k, "ITEM: TIMESTEP")
+        step = count(k + 1, "the step")
+        item(k + 2, "ITEM: NUMBER OF ENTRIES")
+        n = count(k + 3, "the number of entries")
+        item(k + 4, "ITEM: BOX BOUNDS")
+        box = tuple(tuple(numbers(k + 5 + a, (lo, hi), "the box", True))
+                    for a, (lo, hi) in enumerate((("xlo", "xhi"),
+                                                  ("ylo", "yhi"),
+                                                  ("zlo", "zhi"))))
+        head = item(k + 8, "ITEM: ENTRIES")
+        rows = [numbers(k + 9 + r, head, "entry %d of %d" % (r + 1, n))
+                for r in range(n)]
+        frames.append(DumpFrame(step, {
+            name: _column([row[c] for row in rows])
+            for c, name in enumerate(head)}, box))
+        k += 9 + n
     return frames
 
 
@@ -644,5 +728,4 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
 
 def sweep_summary(outdir):
     """outdir/sweep.json (a sweep's cross-run analysis) as a dict."""
-    with open(os.path.join(outdir, "sweep.json")) as f:
-        return json.load(f)
+    return _json(os.path.join(outdir, "sweep.json"))

@@ -323,6 +323,45 @@ for call, want in (
         raise AssertionError("accepted: " + want)
     assert not os.path.exists(d), want
 
+# files a run did not write, edited or cut short: ValueError naming the
+# file and line (it was IndexError or a float's ValueError naming
+# neither, and NaN in a summary was read as a number)
+bad = os.path.join(tmp, "badfiles")
+os.mkdir(bad)
+with open(os.path.join(out_d, "dump_local.lammpstrj")) as f:
+    dump = f.read().splitlines(True)
+for name, text, read, want in (
+        ("timeseries.csv", "t,x\n0,1\n1\n", dembox.timeseries,
+         "timeseries.csv:3: 1 fields for the header's 2 columns"),
+        ("timeseries.csv", "t,x\n0,1\n1,nan\n", dembox.timeseries,
+         "timeseries.csv:3: column x: 'nan' is not a finite number"),
+        ("particles_final.csv", "x,y\n1,abc\n", dembox.particles,
+         "particles_final.csv:2: column y: 'abc' is not a finite number"),
+        ("contacts_final.csv", "", dembox.contacts,
+         "contacts_final.csv: no header"),
+        ("summary.json", '{"a": NaN}', dembox.summary,
+         "summary.json: NaN is not a number of JSON"),
+        ("summary.json", '{"a": 1,\n}', dembox.summary,
+         "summary.json:2: Expecting property name"),
+        ("dump_local.lammpstrj", "".join(dump[:-1]), dembox.dump_local,
+         "dump_local.lammpstrj:%d: the file ends before entry" % len(dump)),
+        ("dump_local.lammpstrj", "".join(dump[:3]) + "x\n",
+         dembox.dump_local, "dump_local.lammpstrj:4: the number of entries "
+         "'x' is not a count")):
+    with open(os.path.join(bad, name), "w") as f:
+        f.write(text)
+    try:
+        read(bad)
+    except ValueError as e:
+        assert want in str(e) and bad in str(e), (want, str(e))
+    else:
+        raise AssertionError("read: " + want)
+# and what the run wrote reads back whole, comments and blanks skipped
+with open(os.path.join(bad, "timeseries.csv"), "w") as f:
+    f.write("# a note\nt, x\n\n0, 1\n1,\n")
+ts_c = dembox.timeseries(bad)
+assert list(ts_c) == ["t", "x"] and len(ts_c["t"]) == 2, ts_c
+
 try:
     dembox.run("biaxial2d", os.path.join(tmp, "bad"), sets=["contact.mu=-1"])
 except dembox.Error as e:
