@@ -3,7 +3,7 @@
 A thin ctypes layer over libdembox.so (the C API of include/dembox.h);
 nothing to compile. The library is found through the environment
 variable DEMBOX_LIB (a path), next to this file in an installed tree
-(PREFIX/lib/python3/dist-packages -> PREFIX/lib), or by the system's
+(PREFIX/lib/python3*/*-packages -> PREFIX/lib), or by the system's
 library search, and loaded at the first call that needs it: the readers
 of a run's files (timeseries, summary, particles, contacts, dump_local,
 sweep_summary) work without it.

@@ -1,9 +1,9 @@
 #!/bin/sh
 # Install the build into a temporary prefix, build tests/install_check.c
 # against it with pkg-config (the header and libdembox.so only) and run
-# it. usage: test_install.sh BUILD_DIR SOURCE_DIR [CC]
+# it. usage: test_install.sh BUILD_DIR SOURCE_DIR [CC [PYTHON3]]
 set -eu
-build=$1 src=$2 cc=${3:-cc}
+build=$1 src=$2 cc=${3:-cc} py=${4:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
@@ -29,12 +29,19 @@ done
 grep -q "contact.mu_r" "$tmp/prefix/share/man/man1/dembox.1" ||
     { echo "test_install: dembox.1 lacks the config keys" >&2; exit 1; }
 bash -n "$tmp/prefix/share/bash-completion/completions/dembox"
-# the Python module finds the installed library by itself
-if command -v python3 >/dev/null; then
-    v=$(env -u DEMBOX_LIB PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" \
-        python3 -c 'import dembox; print(dembox.version())')
-    [ "$v" = "$("$tmp/prefix/bin/dembox" --version | awk '{print $2}')" ] ||
-        { echo "test_install: python module says version '$v'" >&2; exit 1; }
+# the Python module installed where python3 looks, finding the installed
+# library by itself: into ~/.local (the README's line), python3 imports it
+# from its user site without PYTHONPATH (it went to lib/python3/
+# dist-packages, where python3 looks for neither ~/.local nor /usr/local)
+if [ -n "$py" ]; then
+    home="$tmp/home"
+    cmake --install "$build" --prefix "$home/.local" >/dev/null
+    v=$(cd "$tmp" && env -u DEMBOX_LIB -u PYTHONPATH -u PYTHONNOUSERSITE \
+        -u PYTHONUSERBASE HOME="$home" "$py" -c \
+        'import dembox; print(dembox.version(), dembox._find_library())')
+    want="$("$tmp/prefix/bin/dembox" --version | awk '{print $2}')"
+    [ "$v" = "$want $home/.local/lib/libdembox.so.0" ] ||
+        { echo "test_install: python3 from ~/.local says '$v'" >&2; exit 1; }
 fi
 # a prefix that cannot be written (below a plain file: root cannot either)
 # fails with a non-zero status naming the path
