@@ -483,6 +483,13 @@ static const struct row rows[] = {
      0,
      {RUN_CFG, "--set", "particles.file=p.csv"},
      "particles.file: given with particles.placement = \"lattice\""},
+    {"--set an array of an integer and floats",
+     BASE2D,
+     0,
+     0,
+     {RUN_CFG, "--set", "gravity=[0.0,0,-9.81]"},
+     "--set gravity: \"[0.0,0,-9.81]\": the array mixes integers and "
+     "floats; write every element as a float"},
     {"--set a number with two points",
      BASE2D,
      0,

@@ -312,9 +312,16 @@ int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
     int rc = 0;
     config_init(&tmp);
     if (!parse_value(&tmp, value, &why)) {
-        rc = dem_error_set(err, DEM_ECONFIG,
-                           "--set %s: cannot read value \"%s\" (%s)", key,
-                           value, why);
+        if (why && strstr(why, "mismatched element type"))
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "--set %s: \"%s\": the array mixes integers "
+                               "and floats; write every element as a float, "
+                               "e.g. [0.0, 0.0, -9.81]",
+                               key, value);
+        else
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "--set %s: cannot read value \"%s\" (%s)", key,
+                               value, why);
         goto out;
     }
     config_setting_t *cur = config_root_setting(cfg);
