@@ -13,6 +13,7 @@
 #include <cmocka.h>
 
 #include "contact/models.h"
+#include "tmpdir.h"
 
 #define SRC "test.cfg"
 
@@ -638,6 +639,41 @@ static void docs_key_table_matches_descriptor_table(void **state)
     free(table);
 }
 
+/* A config written on Windows (a UTF-8 byte order mark, CRLF line ends)
+ * reads as the same config written here; the mark used to be a syntax
+ * error at line 1. A mark not whole (0xEF alone) stays an error of the
+ * text at line 1. */
+static void byte_order_mark_and_crlf_are_read_through(void **state)
+{
+    (void)state;
+    static const char text[] = "seed = 7;\n"
+                               "contact = { mu = 0.3; };\n";
+    static const char win[] = "\xEF\xBB\xBFseed = 7;\r\n"
+                              "contact = { mu = 0.3; };\r\n";
+    char path[256];
+    snprintf(path, sizeof path, "%s/win.cfg", tmpdir);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    fputs(win, f);
+    fclose(f);
+    struct dem_config a, b;
+    struct dem_error err = {0};
+    parse_ok(&a, text, NULL, 0);
+    if (dem_config_load_file(&b, path, NULL, 0, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(b.seed, 7);
+    assert_true(b.contact.mu_s == 0.3 && a.contact.mu_s == 0.3);
+    assert_memory_equal(&a.contact, &b.contact, sizeof a.contact);
+
+    f = fopen(path, "wb");
+    assert_non_null(f);
+    fputs("\xEFseed = 7;\n", f);
+    fclose(f);
+    assert_int_equal(dem_config_load_file(&b, path, NULL, 0, &err),
+                     DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "win.cfg:1: "));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -658,6 +694,7 @@ int main(void)
         cmocka_unit_test(frictionless_kt_zero_is_accepted),
         cmocka_unit_test(key_help_lists_every_key),
         cmocka_unit_test(docs_key_table_matches_descriptor_table),
+        cmocka_unit_test(byte_order_mark_and_crlf_are_read_through),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

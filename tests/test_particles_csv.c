@@ -153,6 +153,16 @@ static void optional_columns_any_order_and_mass_from_density(void **state)
     assert_true(same_bits(p.inv_I[0], 1.0 / I));
     dem_particles_free(&p);
 
+    /* the same with a UTF-8 byte order mark before the header (a
+     * spreadsheet's "CSV UTF-8"): it was read as part of the first
+     * column's name, "unknown column" */
+    write_text(path, "\xEF\xBB\xBFradius,y,x\r\n0.5,2,1\r\n");
+    assert_int_equal(
+        dem_particles_read_csv(&p, path, 2, rho, DEM_MASS_SPHERE, &err),
+        DEM_OK);
+    assert_true(p.n == 1 && p.r[0] == 0.5 && p.x[0] == 1.0);
+    dem_particles_free(&p);
+
     /* Disc in 2D: m = pi rho a^2, I = m a^2 / 2. */
     dem_particle_mass(0.5, rho, DEM_MASS_DISC, 2, &m, &I);
     assert_true(fabs(m - M_PI * rho * 0.25) < 1e-12 * m);

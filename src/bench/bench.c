@@ -587,7 +587,7 @@ static int bench_run(const struct dem_bench_options *o,
     const char *data = find_data(o, dim, n, databuf, sizeof databuf);
     if (data) { /* (a folder, or a file that cannot be read, named now) */
         FILE *f;
-        if ((rc = dem_open_read(&f, data, "r", "a LAMMPS data file", err)))
+        if ((rc = dem_open_text(&f, data, "a LAMMPS data file", err)))
             return rc;
         fclose(f);
     }

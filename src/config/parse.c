@@ -680,7 +680,7 @@ int dem_config_load_file(struct dem_config *c, const char *path,
                          struct dem_error *err)
 {
     FILE *f;
-    int rc = dem_open_read(&f, path, "rb", "a config file", err);
+    int rc = dem_open_text(&f, path, "a config file", err);
     if (rc)
         return rc;
     size_t cap = 4096, len = 0, got;

@@ -178,7 +178,7 @@ int dem__csv_table_read(struct dem__csv_table *t, const char *path,
 {
     memset(t, 0, sizeof *t);
     struct reader r = {NULL, NULL, 0, 0, path};
-    int rc = dem_open_read(&r.f, path, "r", "a CSV file", err);
+    int rc = dem_open_text(&r.f, path, "a CSV file", err);
     if (rc)
         return rc;
     char **field = NULL, **names = NULL;

@@ -442,7 +442,7 @@ static int read_file(struct dem_lammps_data *d, const char *path,
 {
     memset(d, 0, sizeof *d);
     FILE *f;
-    int rc = dem_open_read(&f, path, "r", "a LAMMPS data file", err);
+    int rc = dem_open_text(&f, path, "a LAMMPS data file", err);
     if (rc)
         return rc;
     rc = read_stream(d, f, path, header_only, err);

@@ -361,7 +361,7 @@ int dem_particles_read_csv_lines(struct dem_particles *p, const char *path,
     if (lines)
         *lines = NULL;
     FILE *f;
-    int rc = dem_open_read(&f, path, "r", "a particle file", err);
+    int rc = dem_open_text(&f, path, "a particle file", err);
     if (rc)
         return rc;
     rc = dem_particles_read_csv_stream(p, f, path, dim, density, mass_model,

@@ -65,6 +65,33 @@ int dem_open_read(FILE **f, const char *path, const char *mode,
     return DEM_OK;
 }
 
+int dem_open_text(FILE **f, const char *path, const char *what,
+                  struct dem_error *err)
+{
+    int rc = dem_open_read(f, path, "r", what, err);
+    if (rc)
+        return rc;
+    const int c = getc(*f);
+    if (c != 0xEF) { /* no mark: the byte back (one is always possible) */
+        if (c != EOF)
+            ungetc(c, *f);
+        return DEM_OK;
+    }
+    const int c2 = getc(*f), c3 = getc(*f);
+    if (c2 == 0xBB && c3 == 0xBF)
+        return DEM_OK;
+    /* 0xEF without the rest of the mark (not UTF-8 text): from the start
+     * again where the file can seek, for the reader's own message */
+    if (fseek(*f, 0, SEEK_SET) != 0) {
+        fclose(*f);
+        *f = NULL;
+        return dem_error_set(err, DEM_EIO,
+                             "%s:1: not UTF-8 text (byte 0xEF at its start)",
+                             path);
+    }
+    return DEM_OK;
+}
+
 char *dem_read_text(const char *path, struct dem_error *err)
 {
     FILE *f;

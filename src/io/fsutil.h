@@ -22,6 +22,13 @@ int dem_path_join(char *out, size_t n, const char *dir, const char *name,
 int dem_open_read(FILE **f, const char *path, const char *mode,
                   const char *what, struct dem_error *err);
 
+/* dem_open_read of a text file a user may have written (a config, a
+ * particle or LAMMPS data file, a CSV file): a UTF-8 byte order mark at
+ * its start, which editors and spreadsheets on Windows write, is
+ * skipped, so that its first key or column keeps its name. */
+int dem_open_text(FILE **f, const char *path, const char *what,
+                  struct dem_error *err);
+
 /* The whole of a text file, NUL-terminated (owned by the caller), or
  * NULL with err set (cannot open, read failed, out of memory). */
 char *dem_read_text(const char *path, struct dem_error *err);
