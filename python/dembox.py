@@ -296,9 +296,65 @@ def _check(rc, err):
         raise pending
 
 
+def _value(v, key):
+    """A Python value as a config file writes it: a number (an int as an
+    integer, a float with its point or exponent), a string quoted, a
+    list or tuple of numbers as an array of floats (a config's arrays do
+    not mix integers and floats), a bool as true/false."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return repr(v)
+    if isinstance(v, str):
+        return '"%s"' % v.replace("\\", "\\\\").replace('"', '\\"')
+    if isinstance(v, (list, tuple)) and all(
+            isinstance(x, (int, float)) and not isinstance(x, bool)
+            for x in v):
+        return "[%s]" % ", ".join(repr(float(x)) for x in v)
+    raise TypeError("%s: a value of type %s (give a number, a string or a "
+                    "list of numbers)" % (key, type(v).__name__))
+
+
+def _key(k):
+    """A key of a mapping of overrides: "a.b", or linked keys as "a,b" or a
+    tuple ("a", "b")."""
+    if isinstance(k, tuple) and k and all(isinstance(x, str) for x in k):
+        return ",".join(k)
+    if isinstance(k, str):
+        return k
+    raise TypeError("%r: a key is a string such as \"contact.mu\", or a "
+                    "tuple of them (linked keys)" % (k,))
+
+
 def _texts(items):
-    """KEY=VALUE overrides or --param texts: a list, or one string."""
-    return [items] if isinstance(items, str) else list(items)
+    """KEY=VALUE overrides: a list of texts, one text, or a mapping KEY ->
+    value (a tuple of keys: each of them to the value)."""
+    if isinstance(items, str):
+        return [items]
+    if isinstance(items, dict):
+        out = []
+        for k, v in items.items():
+            _key(k)  # the check of its type
+            for key in k if isinstance(k, tuple) else (k,):
+                out.append("%s=%s" % (key, _value(v, key)))
+        return out
+    return list(items)
+
+
+def _params(items):
+    """--param texts: as _texts, or a mapping KEY (linked keys: a tuple or
+    "a,b") -> its values (an iterable)."""
+    if not isinstance(items, dict):
+        return _texts(items)
+    out = []
+    for k, vs in items.items():
+        if isinstance(vs, (str, bytes, dict)) or not hasattr(vs, "__iter__"):
+            raise TypeError("%r: the values of a swept key are a list, e.g. "
+                            "[0.1, 0.3]" % (k,))
+        out.append("%s=%s" % (_key(k), ",".join(_value(v, k) for v in vs)))
+    return out
 
 
 def _path(p):
@@ -461,8 +517,8 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
         plot=False, warnings=None, split=False, progress=None):
     """Run a built-in example or a config file into outdir, as `dembox run`
     does: then the analysis (summary.json) and, with plot=True, the
-    pictures. sets are "KEY=VALUE" overrides; max_steps > 0 ends the run
-    early. Warnings are appended to the list warnings when given, else
+    pictures. sets are "KEY=VALUE" overrides, or a mapping KEY -> value
+    ({"contact.mu": 0.3}); max_steps > 0 ends the run early. Warnings are appended to the list warnings when given, else
     they are Python warnings of category DemboxWarning.
     split=True: every rank of the MPI world (a script under mpirun that
     imported mpi4py) calls run with the same arguments, the sample is
@@ -694,7 +750,8 @@ def dump_local(outdir):
 def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
           quiet=True, progress=None, warnings=None):
     """What `dembox sweep` does: the runs of every combination of params
-    ("KEY[,KEY...]=V1,V2,..." as --param) with the overrides sets, jobs
+    ("KEY[,KEY...]=V1,V2,..." as --param, or a mapping KEY -> values,
+    {"contact.mu": [0.1, 0.3]}) with the overrides sets, jobs
     at once, then outdir/sweep.json and outdir/plots/; finished runs are
     skipped, so calling it again resumes. progress: a callable given a
     SweepProgress about four times a second and at the end; when it
@@ -706,7 +763,7 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
     err = _error(warnings)
     grid = ctypes.create_string_buffer(_lib.dem_sweep_grid_bytes())
     try:
-        for p in _texts(params):
+        for p in _params(params):
             _check(_lib.dem_sweep_param_add(grid, p.encode(),
                                             ctypes.byref(err)), err)
         enc = [s.encode() for s in _texts(sets)]

@@ -303,6 +303,44 @@ with warnings.catch_warnings():
         raise AssertionError("a warning filtered as an error was not raised")
 assert os.path.exists(os.path.join(tmp, "warn3", "timeseries.csv"))
 
+# overrides and a sweep's grid as mappings: the same configs and grid as
+# the texts (a float keeps its point, an int stays an integer, a string
+# is quoted, a list of numbers is an array of floats, a tuple of keys is
+# linked keys)
+texts = ["contact.mu=0.3", "seed=2", "gravity=[0.0, -1.0, 0.0]",
+         "particles.placement=\"random\"", "stages.0.pressure=250.0",
+         "stages.1.pressure=250.0"]
+mapping = {"contact.mu": 0.3, "seed": 2, "gravity": [0, -1, 0],
+           "particles.placement": "random",
+           ("stages.0.pressure", "stages.1.pressure"): 250.0}
+assert dembox._texts(mapping) == texts, dembox._texts(mapping)
+cfgs = []
+for sets in (texts, mapping):
+    d = dembox.run("biaxial2d", os.path.join(tmp, "map%d" % len(cfgs)),
+                   sets=sets, max_steps=5, analyze=False)
+    with open(os.path.join(d, "config.cfg")) as f:
+        cfgs.append(f.read())
+assert cfgs[0] == cfgs[1], "a mapping of overrides gave another config"
+assert "mu = 0.3" in cfgs[0] and "seed = 2;" in cfgs[0], cfgs[0]
+grid = {("stages.0.pressure", "stages.1.pressure"): [250, 500.0],
+        "contact.normal": ["linear", "luding"], "seed": range(1, 3)}
+assert dembox._params(grid) == [
+    "stages.0.pressure,stages.1.pressure=250,500.0",
+    "contact.normal=\"linear\",\"luding\"", "seed=1,2"], \
+    dembox._params(grid)
+for call, want in (
+        (lambda: dembox._texts({"contact.mu": None}),
+         "contact.mu: a value of type NoneType"),
+        (lambda: dembox._texts({3: 1.0}), "3: a key is a string"),
+        (lambda: dembox._params({"contact.mu": 0.3}),
+         "the values of a swept key are a list")):
+    try:
+        call()
+    except TypeError as e:
+        assert want in str(e), (want, str(e))
+    else:
+        raise AssertionError("accepted: " + want)
+
 # arguments out of range are refused before anything is written
 for call, want in (
         (lambda d: dembox.run("biaxial2d", d, threads=-3), "threads = -3"),
