@@ -141,6 +141,51 @@ static void a_second_writer_into_a_folder_is_refused(void **state)
     assert_int_equal(access(path, F_OK), 0); /* not a run's: kept */
 }
 
+/* A run whose config file is its output folder's config.cfg (dembox run
+ * config.cfg -o .) is refused before it writes: the run replaced the
+ * user's file by the resolved config, comments lost. A folder's own
+ * resolved config.cfg run again in place is fine. */
+static void the_config_file_is_not_overwritten_by_its_run(void **state)
+{
+    (void)state;
+    char out[512], path[1100];
+    snprintf(out, sizeof out, "%s/in-place", tmpdir);
+    assert_int_equal(dem_mkdir_p(out, &(struct dem_error){0}), 0);
+    snprintf(path, sizeof path, "%s/config.cfg", out);
+    const struct dem_example *ex = dem_example_find("hold3d");
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fprintf(f, "# my notes on this test\n%s", ex->text);
+    fclose(f);
+    struct dem_config c;
+    struct dem_error err = {0};
+    if (dem_config_load_file(&c, path, NULL, 0, &err))
+        fail_msg("%s", err.msg);
+    struct dem_run_options o = {.outdir = out, .threads = 1, .max_steps = 50};
+    assert_int_equal(dem_run(&c, &o, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "/in-place/config.cfg: the config file "
+                                    "of this run is its output folder's "
+                                    "config.cfg, which the run replaces"));
+    char *text = dem_read_text(path, &err);
+    assert_non_null(text);
+    assert_true(!strncmp(text, "# my notes on this test\n", 24));
+    free(text);
+    assert_true(!exists(out, "timeseries.csv"));
+
+    /* into another folder, then that folder's config.cfg run in place */
+    char other[512];
+    snprintf(other, sizeof other, "%s/in-place/again", tmpdir);
+    o.outdir = other;
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+    snprintf(path, sizeof path, "%s/config.cfg", other);
+    if (dem_config_load_file(&c, path, NULL, 0, &err))
+        fail_msg("%s", err.msg);
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+    assert_true(exists(other, "timeseries.csv"));
+}
+
 static void every_example_runs_a_few_hundred_steps(void **state)
 {
     (void)state;
@@ -611,6 +656,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(bad_run_options_are_refused),
         cmocka_unit_test(a_second_writer_into_a_folder_is_refused),
+        cmocka_unit_test(the_config_file_is_not_overwritten_by_its_run),
         cmocka_unit_test(every_example_runs_a_few_hundred_steps),
         cmocka_unit_test(isotropic_stage_reaches_target_pressure),
         cmocka_unit_test(biaxial_fixed_walls_and_dilatancy),

@@ -495,6 +495,38 @@ static int remove_stale(const char *dir, const char *leaf,
     return DEM_OK;
 }
 
+/* The run's config file (source) must not be dir/config.cfg, which the
+ * run replaces by its resolved config, unless it is one already (a
+ * folder run again in place): a file the user wrote would lose its
+ * comments and layout. */
+static int keeps_config_file(const char *dir, const char *source,
+                             struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    struct stat a, b;
+    if (dem_path_join(path, sizeof path, dir, "config.cfg", NULL) ||
+        stat(path, &a) != 0 || stat(source, &b) != 0 || a.st_dev != b.st_dev ||
+        a.st_ino != b.st_ino)
+        return DEM_OK;
+    char head[160] = "";
+    FILE *f = fopen(path, "r");
+    if (f) {
+        if (!fgets(head, sizeof head, f))
+            head[0] = '\0';
+        fclose(f);
+    }
+    if (!strncmp(head, "# dembox ", 9) &&
+        strstr(head, " resolved configuration of "))
+        return DEM_OK;
+    return dem_error_set(err, DEM_EUSAGE,
+                         "%s: the config file of this run is its output "
+                         "folder's config.cfg, which the run replaces by "
+                         "its resolved config (every key; your comments "
+                         "lost): copy it out of %s, or choose another "
+                         "output folder",
+                         source, dir);
+}
+
 static int create_outputs(struct run_ctx *r, struct dem_error *err)
 {
     const char *dir = r->outdir;
@@ -503,6 +535,8 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
      * files with this one's and rename them complete */
     if (!rc)
         rc = dem_folder_lock(dir, "run", &r->lock_fd, err);
+    if (!rc)
+        rc = keeps_config_file(dir, r->sim.cfg.source, err);
     if (!rc)
         rc = ckpt_path(r, err);
     /* the results and checkpoint of an earlier run in this folder no
