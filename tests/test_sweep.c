@@ -853,6 +853,22 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
         }
     fclose(f);
     assert_int_equal(notes, 1);
+
+    /* the sweep's folder given where a run's is wanted: named as such */
+    char want[2048];
+    snprintf(want, sizeof want,
+             "%s: a sweep's folder, not a run's: its runs are %s/runs/NAME "
+             "(listed in %s/runs/index); `dembox sweep ... --collect` "
+             "analyses them together",
+             out, out, out);
+    assert_int_equal(dem_analyze(out, &err), DEM_EIO);
+    assert_string_equal(err.msg, want);
+    assert_int_equal(dem_plot_run(out, &err), DEM_EIO);
+    assert_string_equal(err.msg, want);
+    struct dem_run_options ro = {.threads = 1};
+    assert_int_equal(dem_run_resume(out, &ro, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, ": a sweep's folder, not a run's: the "
+                                    "same `dembox sweep` command goes on"));
     dem_sweep_grid_free(&g);
 }
 

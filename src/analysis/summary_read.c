@@ -140,6 +140,12 @@ int dem__run_folder_check(const char *outdir, int need_config, char *cfg_path,
                              outdir);
     if (access(outdir, F_OK) != 0)
         return dem_error_set(err, DEM_EIO, "%s: no such folder", outdir);
+    if (dem_is_sweep_folder(outdir))
+        return dem_error_set(err, DEM_EIO,
+                             "%s: a sweep's folder, not a run's: its runs are "
+                             "%s/runs/NAME (listed in %s/runs/index); `dembox "
+                             "sweep ... --collect` analyses them together",
+                             outdir, outdir, outdir);
     const int no_cfg = need_config && !has_cfg;
     return dem_error_set(
         err, DEM_EIO, "%s: not a dembox run folder (no %s%s%s)", outdir,

@@ -199,3 +199,10 @@ void dem_folder_end_turn(int fd)
     if (fd >= 0)
         close(fd);
 }
+
+int dem_is_sweep_folder(const char *dir)
+{
+    char path[DEM_PATH_MAX];
+    return !dem_path_join(path, sizeof path, dir, "runs/index", NULL) &&
+           access(path, F_OK) == 0;
+}

@@ -33,6 +33,10 @@ int dem_open_text(FILE **f, const char *path, const char *what,
  * NULL with err set (cannot open, read failed, out of memory). */
 char *dem_read_text(const char *path, struct dem_error *err);
 
+/* 1 when dir is a sweep's folder (it holds runs/index): for the
+ * message of a command that wants a run's folder. */
+int dem_is_sweep_folder(const char *dir);
+
 /* The file a folder's writer locks (flock, advisory). */
 #define DEM_LOCK_FILE ".dembox.lock"
 

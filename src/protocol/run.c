@@ -768,6 +768,11 @@ static int read_checkpoint(struct run_ctx *r, struct dem_error *err)
                              "%s: the run has already finished (%s exists); "
                              "nothing to resume",
                              outdir, path);
+    if (!file_exists(r->ckpt_path) && dem_is_sweep_folder(outdir))
+        return dem_error_set(err, DEM_EUSAGE,
+                             "%s: a sweep's folder, not a run's: the same "
+                             "`dembox sweep` command goes on with its runs",
+                             outdir);
     if (!file_exists(r->ckpt_path))
         return dem_error_set(err, DEM_EIO,
                              "%s: no checkpoint (%s is missing); nothing to "
