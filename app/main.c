@@ -39,6 +39,8 @@ static const char *const usage_main =
     "  examples            list the built-in examples\n"
     "  example NAME        print a built-in example as a config file\n"
     "  help [COMMAND|config]  help on a command, or every config key\n"
+    "  help KEY|WORD       the config keys of a name (contact.mu, contact,\n"
+    "                      stages.1.pressure) or with a word (friction)\n"
     "  --version           print the version (and the MPI library)\n";
 
 static const char *const usage_run =
@@ -776,13 +778,22 @@ static int cmd_help(int argc, char **argv)
         fputs(usage_plot, stdout);
     else if (!strcmp(c, "example"))
         fputs(usage_example, stdout);
-    else if (!strcmp(c, "config"))
+    else if (!strcmp(c, "config") && argc == 1)
         dem_config_print_keys(stdout);
     else if (!strcmp(c, "help"))
         fputs(usage_main, stdout);
     else {
-        fprintf(stderr, "dembox: help: no command called '%s'\n", c);
-        return 1;
+        /* config keys: `help contact.mu`, `help config friction` */
+        const char *what = !strcmp(c, "config") ? argv[1] : c;
+        if (argc > 1 + !strcmp(c, "config"))
+            return fail("help: give one COMMAND, KEY or WORD");
+        if (!dem_config_print_keys_matching(stdout, what)) {
+            fprintf(stderr,
+                    "dembox: help: no command, config key or key meaning "
+                    "called '%s' (dembox help config lists every key)\n",
+                    what);
+            return 1;
+        }
     }
     return 0;
 }

@@ -23,7 +23,7 @@ _dembox() {
                 COMPREPLY=($(compgen -W "$(dembox examples 2>/dev/null | awk '{print $1}')" -- "$cur") $(compgen -f -X '!*.cfg' -- "$cur"))
             fi ;;
         example) COMPREPLY=($(compgen -W "$(dembox examples 2>/dev/null | awk '{print $1}')" -- "$cur")) ;;
-        help) COMPREPLY=($(compgen -W "run sweep analyze plot bench examples example config" -- "$cur")) ;;
+        help) COMPREPLY=($(compgen -W "run sweep analyze plot bench examples example config $(dembox help config 2>/dev/null | awk '/^[a-z]/ {print $1}')" -- "$cur")) ;;
         analyze|plot) COMPREPLY=($(compgen -d -- "$cur")) ;;
         bench) COMPREPLY=($(compgen -W "--dim --n --steps --threads --data --cache-dir --no-cache --quiet" -- "$cur")) ;;
     esac

@@ -400,6 +400,13 @@ int dem_config_write(const struct dem_config *c, FILE *f);
 /* Print the documentation of every key (name, type, default, unit, doc). */
 void dem_config_print_keys(FILE *f);
 
+/* The same for the keys filter names: a key ("contact.mu",
+ * "stages.1.pressure" as stages.N.pressure) or a group of them
+ * ("contact", "stages"); where no key's name matches, the keys whose
+ * name or meaning holds filter as text, in any case ("friction").
+ * Returns how many were printed (0: nothing printed). */
+int dem_config_print_keys_matching(FILE *f, const char *filter);
+
 /* The same documentation as a Markdown table (the key table of
  * docs/config.md, which a test keeps identical). */
 void dem_config_print_keys_markdown(FILE *f);

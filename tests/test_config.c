@@ -639,6 +639,43 @@ static void docs_key_table_matches_descriptor_table(void **state)
     free(table);
 }
 
+/* `dembox help KEY|WORD`: the rows of a key (a stage key by any index),
+ * of a group, or, where no name matches, of the keys whose meaning holds
+ * the word; nothing for none. */
+static void key_help_by_name_group_or_word(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *filter;
+        int at_least, at_most;
+        const char *has, *lacks;
+    } rows[] = {
+        {"contact.mu", 1, 1, "\ncontact.mu ", "contact.mu_s"},
+        {"stages.1.pressure", 1, 1, "\nstages.N.pressure ", "stages.N.strain"},
+        {"contact", 10, 60, "\ncontact.kc ", "\nparticles."},
+        {"stages", 10, 60, "\nstages.N.type ", "\ncontact."},
+        {"FRICTION", 3, 30, "\ncontact.mu_s ", "\nparticles.density"},
+        {"zzz-none", 0, 0, NULL, NULL},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        char *text = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&text, &len);
+        assert_non_null(f);
+        const int n = dem_config_print_keys_matching(f, rows[k].filter);
+        fclose(f);
+        if (n < rows[k].at_least || n > rows[k].at_most)
+            fail_msg("%s: %d keys", rows[k].filter, n);
+        if (!n)
+            assert_int_equal(len, 0);
+        if (rows[k].has)
+            assert_non_null(strstr(text, rows[k].has));
+        if (rows[k].lacks)
+            assert_null(strstr(text, rows[k].lacks));
+        free(text);
+    }
+}
+
 /* A config written on Windows (a UTF-8 byte order mark, CRLF line ends)
  * reads as the same config written here; the mark used to be a syntax
  * error at line 1. A mark not whole (0xEF alone) stays an error of the
@@ -695,6 +732,7 @@ int main(void)
         cmocka_unit_test(key_help_lists_every_key),
         cmocka_unit_test(docs_key_table_matches_descriptor_table),
         cmocka_unit_test(byte_order_mark_and_crlf_are_read_through),
+        cmocka_unit_test(key_help_by_name_group_or_word),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

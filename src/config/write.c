@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "config/keys.h"
@@ -289,8 +290,62 @@ static void key_doc(const struct key *k, struct key_doc *d)
     }
 }
 
-void dem_config_print_keys(FILE *f)
+/* The name of key k with a stage index: "stages.1.pressure" is
+ * "stages.N.pressure". */
+static void generic_name(const char *name, char *out, size_t n)
 {
+    const char *p = name + 7;
+    if (strncmp(name, "stages.", 7) != 0 || !isdigit((unsigned char)*p)) {
+        snprintf(out, n, "%s", name);
+        return;
+    }
+    while (isdigit((unsigned char)*p))
+        p++;
+    snprintf(out, n, "stages.N%s", p);
+}
+
+/* Case-insensitive substring. */
+static int has_text(const char *hay, const char *needle)
+{
+    const size_t m = strlen(needle);
+    for (; *hay; hay++)
+        if (!strncasecmp(hay, needle, m))
+            return 1;
+    return !m;
+}
+
+/* Whether key d is printed for filter: NULL (every key); a key
+ * ("contact.mu", "stages.1.pressure"); a group ("contact", "stages"); or,
+ * in words (by_name = 0), text within the key's name or meaning. */
+static int shown(const struct key_doc *d, const char *filter, int by_name)
+{
+    if (!filter)
+        return 1;
+    if (!by_name)
+        return has_text(d->name, filter) || has_text(d->doc, filter);
+    char g[DEM_NAME_MAX];
+    generic_name(filter, g, sizeof g);
+    const size_t n = strlen(g);
+    return !strcmp(d->name, g) ||
+           (!strncmp(d->name, g, n) && d->name[n] == '.');
+}
+
+int dem_config_print_keys_matching(FILE *f, const char *filter)
+{
+    /* by the key's name first; where no name matches, by words */
+    int by_name = 1, count = 0;
+    for (int pass = 0; pass < 2 && !count; pass++) {
+        by_name = !pass;
+        for (size_t k = 0; k < dem__cfg_nkeys; k++) {
+            struct key_doc d = {0};
+            key_doc(&dem__cfg_keys[k], &d);
+            count += shown(&d, filter, by_name);
+        }
+        if (!filter)
+            break;
+    }
+    if (!count)
+        return 0;
     /* Column widths from the content, so that the table stays aligned when
      * keys are added; very long enum lists may push one row out. */
     int w[3] = {(int)strlen("KEY"), (int)strlen("TYPE"),
@@ -299,6 +354,8 @@ void dem_config_print_keys(FILE *f)
     for (size_t k = 0; k < dem__cfg_nkeys; k++) {
         struct key_doc d = {0};
         key_doc(&dem__cfg_keys[k], &d);
+        if (!shown(&d, filter, by_name))
+            continue;
         const int len[3] = {(int)strlen(d.name), (int)strlen(d.type),
                             (int)strlen(d.def)};
         const int cap[3] = {32, 28, 20};
@@ -310,15 +367,28 @@ void dem_config_print_keys(FILE *f)
     }
     fprintf(f, "%-*s  %-*s  %-*s  %-*s  %s\n", w[0], "KEY", w[1], "TYPE", w[2],
             "DEFAULT", wu, "UNIT", "MEANING");
+    int stage_keys = 0;
     for (size_t k = 0; k < dem__cfg_nkeys; k++) {
         struct key_doc d = {0};
         key_doc(&dem__cfg_keys[k], &d);
+        if (!shown(&d, filter, by_name))
+            continue;
         fprintf(f, "%-*s  %-*s  %-*s  %-*s  %s\n", w[0], d.name, w[1], d.type,
                 w[2], d.def, wu, dem__cfg_keys[k].unit, d.doc);
+        stage_keys += !strncmp(d.name, "stages.N.", 9);
     }
-    fprintf(f, "\nstages.N.KEY is a key of element N (from 0) of the stages "
-               "list. Override any key with --set KEY=VALUE (e.g. "
-               "stages.1.pressure=250).\n");
+    fprintf(f,
+            "\n%sOverride any key with --set KEY=VALUE (e.g. "
+            "stages.1.pressure=250).\n",
+            stage_keys ? "stages.N.KEY is a key of element N (from 0) of the "
+                         "stages list. "
+                       : "");
+    return count;
+}
+
+void dem_config_print_keys(FILE *f)
+{
+    dem_config_print_keys_matching(f, NULL);
 }
 
 void dem_config_print_keys_markdown(FILE *f)
