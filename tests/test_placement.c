@@ -370,7 +370,7 @@ static void file_placement_box_from_bounds_or_given(void **state)
     c.box.size[0] = 0.305;
     c.box.size[1] = 0.5;
     assert_int_equal(place(&p, &c, lo, hi, &err), DEM_ECONFIG);
-    char want[1100];
+    char want[2400];
     snprintf(want, sizeof want, "%s:5:", c.particles.file);
     if (strncmp(err.msg, want, strlen(want)) != 0)
         fail_msg("message \"%s\" does not start with \"%s\"", err.msg, want);
@@ -380,7 +380,26 @@ static void file_placement_box_from_bounds_or_given(void **state)
     place_ok(&p, &c, lo, hi);
     assert_true(lo[0] == 0.0 && hi[0] == 0.4 && hi[1] == 0.5);
     dem_particles_free(&p);
-    remove(c.particles.file);
+
+    /* A relative file is relative to the folder dembox runs in; one that
+     * lies beside the config file instead is named so in the message */
+    char beside[1100];
+    snprintf(beside, sizeof beside, "%s/beside-its-config.csv", dir);
+    assert_int_equal(rename(c.particles.file, beside), 0);
+    snprintf(c.particles.file, sizeof c.particles.file,
+             "beside-its-config.csv");
+    snprintf(c.source, sizeof c.source, "%s/c.cfg", dir);
+    assert_int_equal(place(&p, &c, lo, hi, &err), DEM_EIO);
+    snprintf(want, sizeof want,
+             "beside-its-config.csv: no such file in the folder dembox runs "
+             "in (a relative particles.file is relative to it, not to the "
+             "config file's folder); %s exists: give that path",
+             beside);
+    assert_string_equal(err.msg, want);
+    snprintf(c.source, sizeof c.source, "c.cfg"); /* from here: no hint */
+    assert_int_equal(place(&p, &c, lo, hi, &err), DEM_EIO);
+    assert_non_null(strstr(err.msg, "beside-its-config.csv: cannot open: "));
+    remove(beside);
     remove(dir);
 }
 

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "io/fsutil.h"
 #include "io/outfile.h"
@@ -458,6 +459,29 @@ int dem_particles_write_forces_csv(const struct dem_particles *p,
     return dem__outfile_commit(&o, err);
 }
 
+/* A relative particles.file is relative to the folder dembox runs in.
+ * Where it is missing there but lies beside the config file (source),
+ * the message says so: the commonest slip of a config kept with its
+ * particle file in another folder. Returns rc. */
+static int not_beside_config(int rc, const char *path, const char *source,
+                             struct dem_error *err)
+{
+    const char *slash = strrchr(source, '/');
+    char near[DEM_PATH_MAX];
+    if (rc != DEM_EIO || path[0] == '/' || !slash || access(path, F_OK) == 0)
+        return rc;
+    const int n = snprintf(near, sizeof near, "%.*s/%s", (int)(slash - source),
+                           source, path);
+    if (n < 0 || (size_t)n >= sizeof near || access(near, F_OK) != 0)
+        return rc;
+    return dem_error_set(err, rc,
+                         "%s: no such file in the folder dembox runs in (a "
+                         "relative particles.file is relative to it, not "
+                         "to the config file's folder); %s exists: give "
+                         "that path",
+                         path, near);
+}
+
 int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
                        struct dem_error *err)
 {
@@ -468,7 +492,7 @@ int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
         dem_particles_read_csv_lines(p, path, dim, cfg->particles.density,
                                      cfg->particles.mass_model, &lines, err);
     if (rc)
-        return rc;
+        return not_beside_config(rc, path, cfg->source, err);
     /* a given box.size has positive lengths (config validation) */
     int given = 0;
     for (int a = 0; a < dim; a++)
