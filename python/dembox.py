@@ -41,6 +41,7 @@ import ctypes.util
 import errno
 import json
 import math
+import numbers
 import os
 import signal
 import sys
@@ -299,20 +300,21 @@ def _check(rc, err):
 def _value(v, key):
     """A Python value as a config file writes it: a number (an int as an
     integer, a float with its point or exponent), a string quoted, a
-    list or tuple of numbers as an array of floats (a config's arrays do
-    not mix integers and floats), a bool as true/false."""
+    list, tuple or array of numbers as an array of floats (a config's
+    arrays do not mix integers and floats), a bool as true/false."""
     if isinstance(v, bool):
         return "true" if v else "false"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float):
-        return repr(v)
+    if isinstance(v, numbers.Integral):  # also numpy's integers
+        return str(int(v))
+    if isinstance(v, numbers.Real):  # also numpy's floats
+        return repr(float(v))
     if isinstance(v, str):
         return '"%s"' % v.replace("\\", "\\\\").replace('"', '\\"')
-    if isinstance(v, (list, tuple)) and all(
-            isinstance(x, (int, float)) and not isinstance(x, bool)
-            for x in v):
-        return "[%s]" % ", ".join(repr(float(x)) for x in v)
+    if not isinstance(v, (bytes, dict)) and hasattr(v, "__iter__"):
+        v = list(v)  # a list, a tuple, a numpy array
+        if all(isinstance(x, numbers.Real) and not isinstance(x, bool)
+               for x in v):
+            return "[%s]" % ", ".join(repr(float(x)) for x in v)
     raise TypeError("%s: a value of type %s (give a number, a string or a "
                     "list of numbers)" % (key, type(v).__name__))
 
@@ -518,8 +520,9 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
     """Run a built-in example or a config file into outdir, as `dembox run`
     does: then the analysis (summary.json) and, with plot=True, the
     pictures. sets are "KEY=VALUE" overrides, or a mapping KEY -> value
-    ({"contact.mu": 0.3}); max_steps > 0 ends the run early. Warnings are appended to the list warnings when given, else
-    they are Python warnings of category DemboxWarning.
+    ({"contact.mu": 0.3}); max_steps > 0 ends the run early. Warnings
+    are appended to the list warnings when given, else they are Python
+    warnings of category DemboxWarning.
     split=True: every rank of the MPI world (a script under mpirun that
     imported mpi4py) calls run with the same arguments, the sample is
     split over the ranks (docs/parallel.md), and rank 0 writes the

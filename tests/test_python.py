@@ -328,6 +328,13 @@ assert dembox._params(grid) == [
     "stages.0.pressure,stages.1.pressure=250,500.0",
     "contact.normal=\"linear\",\"luding\"", "seed=1,2"], \
     dembox._params(grid)
+if dembox.numpy is not None:  # numpy's numbers and arrays as Python's
+    np = dembox.numpy
+    assert dembox._params({"contact.mu": np.array([0.1, 0.3]),
+                           "seed": np.arange(1, 3)}) == \
+        ["contact.mu=0.1,0.3", "seed=1,2"]
+    assert dembox._texts({"gravity": np.zeros(3)}) == \
+        ["gravity=[0.0, 0.0, 0.0]"]
 for call, want in (
         (lambda: dembox._texts({"contact.mu": None}),
          "contact.mu: a value of type NoneType"),
