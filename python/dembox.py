@@ -319,6 +319,20 @@ def _value(v, key):
                     "list of numbers)" % (key, type(v).__name__))
 
 
+def _int(name, v, bits=32):
+    """An int argument for a C int (or long, bits=64): TypeError for
+    another type (a float, a str, a bool), ValueError beyond the C type's
+    range, which ctypes would cut silently (threads=2**32 + 1 ran with
+    one thread)."""
+    if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+        raise TypeError("%s must be an int, not %s (%r)" %
+                        (name, type(v).__name__, v))
+    v = int(v)
+    if not -2 ** (bits - 1) <= v < 2 ** (bits - 1):
+        raise ValueError("%s = %d: out of range" % (name, v))
+    return v
+
+
 def _key(k):
     """A key of a mapping of overrides: "a.b", or linked keys as "a,b" or a
     tuple ("a", "b")."""
@@ -342,7 +356,16 @@ def _texts(items):
             for key in k if isinstance(k, tuple) else (k,):
                 out.append("%s=%s" % (key, _value(v, key)))
         return out
-    return list(items)
+    if not hasattr(items, "__iter__") or isinstance(items, bytes):
+        raise TypeError("%r: give a list of texts \"KEY=VALUE\", one such "
+                        "text, or a mapping KEY -> value" % (items,))
+    out = list(items)
+    for t in out:
+        if not isinstance(t, str):
+            raise TypeError("%r (%s) is not a text \"KEY=VALUE\" (or give "
+                            "a mapping KEY -> value)" %
+                            (t, type(t).__name__))
+    return out
 
 
 def _params(items):
@@ -501,8 +524,9 @@ def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
     # split over ranks, rank 0 decides the stop: only its progress counts
     stop = _Stop(progress, _progress if rank.value == 0 else lambda p: None)
     stop.follows = rank.value != 0
-    opt = _RunOptions(outdir=_path(outdir), threads=threads,
-                      max_steps=max_steps, split=int(bool(split)),
+    opt = _RunOptions(outdir=_path(outdir), threads=_int("threads", threads),
+                      max_steps=_int("max_steps", max_steps, 64),
+                      split=int(bool(split)),
                       progress=_RUN_PROGRESS(stop.callback),
                       stop=ctypes.addressof(stop.flag))
     with stop:
@@ -773,7 +797,8 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
         arr = (ctypes.c_char_p * max(len(enc), 1))(*enc)
         stop = _Stop(progress, _sweep_progress)
         o = _SweepOptions(_path(target), _path(outdir), arr, len(enc),
-                          jobs, threads, int(quiet), max_steps,
+                          _int("jobs", jobs), _int("threads", threads),
+                          int(quiet), _int("max_steps", max_steps, 64),
                           ctypes.addressof(stop.flag),
                           _SWEEP_PROGRESS(stop.callback), None)
         rep = _SweepReport()

@@ -358,11 +358,23 @@ for call, want in (
         (lambda d: dembox.sweep("biaxial2d", d, ["seed=1,2"], threads=0),
          "threads = 0"),
         (lambda d: dembox.sweep("biaxial2d", "", ["seed=1,2"]),
-         "empty folder name (before /runs)")):
+         "empty folder name (before /runs)"),
+        # ctypes took these as they came: a str or a float failed without
+        # the argument's name, 2**32 + 1 threads ran with one
+        (lambda d: dembox.run("biaxial2d", d, threads="2"),
+         "threads must be an int, not str"),
+        (lambda d: dembox.run("biaxial2d", d, max_steps=1.5),
+         "max_steps must be an int, not float"),
+        (lambda d: dembox.run("biaxial2d", d, threads=2 ** 32 + 1),
+         "threads = 4294967297: out of range"),
+        (lambda d: dembox.sweep("biaxial2d", d, ["seed=1,2"], jobs=2.0),
+         "jobs must be an int, not float"),
+        (lambda d: dembox.run("biaxial2d", d, sets=[1]),
+         "1 (int) is not a text \"KEY=VALUE\"")):
     d = os.path.join(tmp, "refused")
     try:
         call(d)
-    except (dembox.Error, TypeError) as e:
+    except (dembox.Error, TypeError, ValueError) as e:
         assert want in str(e), (want, str(e))
     else:
         raise AssertionError("accepted: " + want)
