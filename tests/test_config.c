@@ -198,6 +198,20 @@ static void set_overrides_scalars_enums_arrays_and_stages(void **state)
     assert_true(c.time_step_auto && c.time_step == dem_contact_time(&c) / 50);
     assert_int_equal(c.seed, 7);
 
+    /* A path as it is, the shell's quotes gone: spaces, brackets, a
+     * quote (they were "cannot read value (syntax error)") */
+    static const char *const paths[][2] = {
+        {"particles.file=my packing.csv", "my packing.csv"},
+        {"particles.file=runs/p(1)[a].csv", "runs/p(1)[a].csv"},
+        {"particles.file=q\"uote\\d.csv", "q\"uote\\d.csv"},
+        {"particles.file=\"quoted.csv\"", "quoted.csv"},
+    };
+    for (size_t k = 0; k < sizeof paths / sizeof paths[0]; k++) {
+        const char *sp[] = {"particles.placement=file", paths[k][0]};
+        parse_ok(&c, "", sp, 2);
+        assert_string_equal(c.particles.file, paths[k][1]);
+    }
+
     /* A config without stages: the default stage can be changed. */
     const char *s2[] = {"stages.0.pressure=123.0", "gravity.2=-1.5"};
     parse_ok(&c, "", s2, 2);

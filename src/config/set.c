@@ -156,18 +156,29 @@ static int set_array_elem(config_setting_t *parent, config_setting_t *arr,
 
 /* Parse VALUE as a libconfig value; a bare word is a string, so that
  * --set contact.normal=luding works without shell-quoted quotes. */
-static int parse_value(config_t *tmp, const char *value, const char **why)
+static int parse_value(config_t *tmp, const char *value, int path,
+                       const char **why)
 {
     size_t n = strlen(value);
-    char *text = malloc(n + 8);
+    /* room for the value with every byte escaped */
+    char *text = malloc(2 * n + 8);
     if (!text) {
         *why = "out of memory";
         return 0;
     }
     snprintf(text, n + 8, "v = %s;", value);
     int ok = config_read_string(tmp, text);
-    if (!ok && is_bare_word(value)) {
-        snprintf(text, n + 8, "v = \"%s\";", value);
+    if (!ok && (is_bare_word(value) || (path && !strchr(value, '\n')))) {
+        /* a word; a path as it is (--set "particles.file=my packing.csv",
+         * the shell's quotes gone), its quotes and backslashes escaped */
+        size_t k = 0;
+        k += (size_t)snprintf(text, 6, "v = \"");
+        for (const char *c = value; *c; c++) {
+            if (*c == '"' || *c == '\\')
+                text[k++] = '\\';
+            text[k++] = *c;
+        }
+        snprintf(text + k, 3, "\";");
         ok = config_read_string(tmp, text);
     }
     free(text);
@@ -311,7 +322,9 @@ int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
     void *hook = (void *)(uintptr_t)set;
     int rc = 0;
     config_init(&tmp);
-    if (!parse_value(&tmp, value, &why)) {
+    const int k = dem__cfg_find_key(key, S_TOP);
+    const int is_path = k >= 0 && dem__cfg_keys[k].kind == K_PATH;
+    if (!parse_value(&tmp, value, is_path, &why)) {
         if (why && strstr(why, "mismatched element type"))
             rc = dem_error_set(err, DEM_ECONFIG,
                                "--set %s: \"%s\": the array mixes integers "
