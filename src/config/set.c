@@ -155,7 +155,8 @@ static int set_array_elem(config_setting_t *parent, config_setting_t *arr,
 }
 
 /* Parse VALUE as a libconfig value; a bare word is a string, so that
- * --set contact.normal=luding works without shell-quoted quotes. */
+ * --set contact.normal=luding works without shell-quoted quotes, and for
+ * a path key (path = 1) so is any text of one line. */
 static int parse_value(config_t *tmp, const char *value, int path,
                        const char **why)
 {

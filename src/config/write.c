@@ -290,7 +290,7 @@ static void key_doc(const struct key *k, struct key_doc *d)
     }
 }
 
-/* The name of key k with a stage index: "stages.1.pressure" is
+/* A key's name as the table gives it: "stages.1.pressure" is
  * "stages.N.pressure". */
 static void generic_name(const char *name, char *out, size_t n)
 {
