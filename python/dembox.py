@@ -589,13 +589,21 @@ def plot(outdir, warnings=None):
 
 def _run_file(outdir, name):
     """outdir/name, a file of a finished run: FileNotFoundError saying the
-    run has not finished where only its timeseries.csv.part is there."""
+    run has not finished where only its timeseries.csv.part is there, or
+    that outdir is a sweep's folder."""
     path = os.path.join(outdir, name)
     if (not os.path.exists(path) and
             os.path.exists(os.path.join(outdir, "timeseries.csv.part"))):
         raise FileNotFoundError(
             errno.ENOENT, "the run has not finished (only timeseries.csv.part"
             "): dembox.resume(%r) finishes a stopped one" % (outdir,), path)
+    if (not os.path.exists(path) and
+            os.path.exists(os.path.join(outdir, "runs", "index"))):
+        raise FileNotFoundError(
+            errno.ENOENT, "a sweep's folder, not a run's: its runs are "
+            "%s (listed in runs/index); dembox.sweep_summary(%r) reads its "
+            "sweep.json" % (os.path.join(outdir, "runs", "NAME"), outdir),
+            path)
     return path
 
 

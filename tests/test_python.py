@@ -266,6 +266,14 @@ assert not os.path.exists(os.path.join(sw, "sweep.json"))
 dembox.sweep("biaxial2d", sw, "contact.mu=0.1,0.3", sets=sets,
              max_steps=200)  # one --param as a string, not a list
 assert dembox.sweep_summary(sw)["runs_finished"] == 2
+# a run's reader given the sweep's folder: named as such
+try:
+    dembox.summary(sw)
+except FileNotFoundError as e:
+    assert "a sweep's folder, not a run's" in str(e), str(e)
+    assert "dembox.sweep_summary" in str(e), str(e)
+else:
+    raise AssertionError("a sweep's folder read as a run's")
 try:
     dembox.sweep("biaxial2d", os.path.join(tmp, "sw2"), ["contact.mu"])
 except dembox.Error as e:
