@@ -98,6 +98,12 @@ struct ctx {
     const config_setting_t *stages;
 };
 
+/* The reading of libconfig's "mismatched element type", in the messages
+ * of a config file (parse.c) and of --set (set.c). */
+#define DEM__CFG_MIXED_ARRAY                                                   \
+    "array mixes integers and floats; write every element as a float, "        \
+    "e.g. [0.0, 0.0, -9.81]"
+
 /* keys.c */
 /* Index of the key called name in scope (enum key_scope), or -1. */
 int dem__cfg_find_key(const char *name, int scope);

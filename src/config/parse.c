@@ -583,9 +583,7 @@ static int syntax_error(const struct ctx *x, const config_t *cfg,
                            "only once in its group",
                            x->source, line, name, *name ? ": " : "");
     } else if (strstr(what, "mismatched element type")) {
-        rc = dem_error_set(err, DEM_ECONFIG,
-                           "%s:%d: array mixes integers and floats; write "
-                           "every element as a float, e.g. [0.0, 0.0, -9.81]",
+        rc = dem_error_set(err, DEM_ECONFIG, "%s:%d: " DEM__CFG_MIXED_ARRAY,
                            x->source, line);
     } else {
         rc =

@@ -328,9 +328,7 @@ int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
     if (!parse_value(&tmp, value, is_path, &why)) {
         if (why && strstr(why, "mismatched element type"))
             rc = dem_error_set(err, DEM_ECONFIG,
-                               "--set %s: \"%s\": the array mixes integers "
-                               "and floats; write every element as a float, "
-                               "e.g. [0.0, 0.0, -9.81]",
+                               "--set %s: \"%s\": the " DEM__CFG_MIXED_ARRAY,
                                key, value);
         else
             rc = dem_error_set(err, DEM_ECONFIG,
