@@ -330,19 +330,25 @@ static int shown(const struct key_doc *d, const char *filter, int by_name)
            (!strncmp(d->name, g, n) && d->name[n] == '.');
 }
 
+/* How many keys shown() prints. */
+static int count_shown(const char *filter, int by_name)
+{
+    int count = 0;
+    for (size_t k = 0; k < dem__cfg_nkeys; k++) {
+        struct key_doc d = {0};
+        key_doc(&dem__cfg_keys[k], &d);
+        count += shown(&d, filter, by_name);
+    }
+    return count;
+}
+
 int dem_config_print_keys_matching(FILE *f, const char *filter)
 {
     /* by the key's name first; where no name matches, by words */
-    int by_name = 1, count = 0;
-    for (int pass = 0; pass < 2 && !count; pass++) {
-        by_name = !pass;
-        for (size_t k = 0; k < dem__cfg_nkeys; k++) {
-            struct key_doc d = {0};
-            key_doc(&dem__cfg_keys[k], &d);
-            count += shown(&d, filter, by_name);
-        }
-        if (!filter)
-            break;
+    int by_name = 1, count = count_shown(filter, 1);
+    if (!count && filter) {
+        by_name = 0;
+        count = count_shown(filter, 0);
     }
     if (!count)
         return 0;
