@@ -25,7 +25,7 @@ static const char *const usage_main =
     "                      run a scenario (default: the "
     "example " DEFAULT_EXAMPLE ");\n"
     "                      as mpirun -np K dembox run ...: split over K ranks\n"
-    "  run --resume OUTDIR [--threads N] [--quiet]\n"
+    "  run --resume OUTDIR [--any-build] [--threads N] [--quiet]\n"
     "                      continue an interrupted run from its checkpoint\n"
     "  sweep CONFIG|EXAMPLE --param KEY[,KEY...]=V1,V2,... [--param ...]\n"
     "        [--jobs N] -o DIR [--set KEY=VALUE]... [--quiet]\n"
@@ -41,12 +41,13 @@ static const char *const usage_main =
     "  help [COMMAND|config]  help on a command, or every config key\n"
     "  help KEY|WORD       the config keys of a name (contact.mu, contact,\n"
     "                      stages.1.pressure) or with a word (friction)\n"
-    "  --version           print the version (and the MPI library)\n";
+    "  --version           print the version, source id and compiler (and\n"
+    "                      the MPI library)\n";
 
 static const char *const usage_run =
     "usage: dembox run [CONFIG|EXAMPLE] [-o OUTDIR] [--set KEY=VALUE]... "
     "[--threads N] [--quiet]\n"
-    "       dembox run --resume OUTDIR [--threads N] [--quiet]\n"
+    "       dembox run --resume OUTDIR [--any-build] [--threads N] [--quiet]\n"
     "\n"
     "Run the stages of a config file or a built-in example "
     "(default: " DEFAULT_EXAMPLE ").\n"
@@ -62,6 +63,10 @@ static const char *const usage_run =
     "  --resume OUTDIR      continue the interrupted run in OUTDIR from\n"
     "                       OUTDIR/checkpoint.bin; its outputs are byte for\n"
     "                       byte those of an uninterrupted run\n"
+    "  --any-build          with --resume: continue a checkpoint that another\n"
+    "                       build wrote (another source id or compiler, see\n"
+    "                       dembox --version); the run is then not bit for\n"
+    "                       bit either build's, as OUTDIR/timing.txt notes\n"
     "\n"
     "OUTDIR receives config.cfg (the resolved config), timeseries.csv,\n"
     "particles_final.csv and particles_NNNNN.vtu snapshots with\n"
@@ -125,6 +130,9 @@ static const char *const usage_sweep =
     "  --collect           run nothing: analyse the runs already in DIR\n"
     "                      (runs not finished count as failed) and write\n"
     "                      sweep.json and the plots\n"
+    "  --any-build         resume unfinished runs from checkpoints that\n"
+    "                      another build wrote (else they run again from\n"
+    "                      the start; see dembox help run)\n"
     "  --quiet             no progress lines\n"
     "\n"
     "Each point runs as `dembox run` into DIR/runs/NAME, NAME made of its\n"
@@ -442,6 +450,8 @@ static int cmd_run(int argc, char **argv)
             if (++k >= argc)
                 return fail("run: --resume needs an output folder");
             resume = argv[k];
+        } else if (!strcmp(a, "--any-build")) {
+            opt.any_build = 1;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             quiet = 1;
         } else if (a[0] == '-') {
@@ -457,11 +467,14 @@ static int cmd_run(int argc, char **argv)
     }
     if (resume) {
         if (target || outdir || nsets || opt.max_steps)
-            return fail("run: --resume takes only OUTDIR, --threads and "
-                        "--quiet (the run keeps its config)");
+            return fail("run: --resume takes only OUTDIR, --any-build, "
+                        "--threads and --quiet (the run keeps its config)");
         warn_oversubscribed(1, opt.threads);
         return run_with_signals(0, resume, &opt, quiet);
     }
+    if (opt.any_build)
+        return fail("run: --any-build goes with --resume OUTDIR (a new run "
+                    "is all this build's)");
     if (!target)
         target = DEFAULT_EXAMPLE;
 
@@ -536,6 +549,8 @@ static int cmd_sweep(int argc, char **argv)
             o.quiet = 1;
         } else if (!strcmp(a, "--collect")) {
             collect = 1;
+        } else if (!strcmp(a, "--any-build")) {
+            o.any_build = 1;
         } else if (a[0] == '-') {
             if (!quiet_rank)
                 fprintf(stderr,
@@ -559,6 +574,9 @@ static int cmd_sweep(int argc, char **argv)
         snprintf(outbuf, sizeof outbuf, "dembox-out/sweep-%s", name);
         o.outdir = outbuf;
     }
+    if (!rc && collect && o.any_build)
+        rc = quiet_rank || fail("sweep: --any-build goes with running the "
+                                "sweep, not with --collect");
     struct dem_sweep_report rep;
     if (!rc && collect && quiet_rank) {
         /* over MPI, rank 0 alone collects (one writer of sweep.json) */
@@ -902,10 +920,12 @@ static int dispatch(int argc, char **argv)
     if (!strcmp(c, "--help") || !strcmp(c, "-h"))
         return cmd_help(0, 0);
     if (!strcmp(c, "--version")) {
+        /* the build as checkpoints name it */
+        printf("dembox %s (%s; ", dem_version(), dem_build());
         if (dem_mpi_built())
-            printf("dembox %s (MPI: %s)\n", DEM_VERSION, dem_mpi_version());
+            printf("MPI: %s)\n", dem_mpi_version());
         else
-            printf("dembox %s (without MPI)\n", DEM_VERSION);
+            printf("without MPI)\n");
         return 0;
     }
     fprintf(stderr, "dembox: unknown command '%s' (see dembox --help)\n", c);

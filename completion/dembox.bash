@@ -18,7 +18,7 @@ _dembox() {
     case $cmd in
         run|sweep)
             if [[ $cur == -* ]]; then
-                COMPREPLY=($(compgen -W "-o --set --threads --quiet --resume --max-steps --param --jobs --collect" -- "$cur"))
+                COMPREPLY=($(compgen -W "-o --set --threads --quiet --resume --max-steps --param --jobs --collect --any-build" -- "$cur"))
             else
                 COMPREPLY=($(compgen -W "$(dembox examples 2>/dev/null | awk '{print $1}')" -- "$cur") $(compgen -f -X '!*.cfg' -- "$cur"))
             fi ;;

@@ -89,7 +89,7 @@ static void read_file(const char *path, const uint8_t *data, size_t size)
     struct dem_ckpt_run run;
     char *config = 0;
     struct dem_error err = {0};
-    int rc = dem_checkpoint_read(path, &s, &config, &run, &err);
+    int rc = dem_checkpoint_read(path, &s, &config, &run, NULL, 0, &err);
     if (rc != DEM_OK) {
         fuzz_one_line(&err);
         return;

@@ -288,6 +288,10 @@ struct dem_run_options {
                   outputs. 0: this process runs the whole sample. */
     struct dem_run_timing *timing; /* may be NULL; filled when the run
                                       ends, finished or not */
+    int any_build; /* dem_run_resume: 1 resumes a checkpoint of another
+                      build too (another dem_source_id or compiler), with
+                      a warning and a note in timing.txt: the run is then
+                      not bit for bit either build's. 0 refuses it */
 };
 
 /* Run every stage of cfg (validated) and write the outputs of SPEC §7 to
@@ -311,9 +315,10 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
  * config must equal outdir/config.cfg). opt->outdir is ignored and
  * opt->max_steps too (the limit the run started with holds). The outputs
  * are byte for byte those of a run that was never interrupted, for any
- * thread count. A checkpoint that is corrupt, truncated, foreign or from
- * another build is refused (DEM_EIO, one line naming the file and what is
- * wrong); a finished run is refused with DEM_EUSAGE. */
+ * thread count. A checkpoint that is corrupt, truncated or foreign is
+ * refused (DEM_EIO, one line naming the file and what is wrong), and so
+ * is one from another build unless opt->any_build; a finished run is
+ * refused with DEM_EUSAGE. */
 int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
                    struct dem_error *err);
 
@@ -359,6 +364,13 @@ void dem_config_defaults(struct dem_config *c);
 
 /* The library's version (DEM_VERSION of the header it was built with). */
 const char *dem_version(void);
+/* The library's source id: 12 hex digits of a SHA-256 over its source
+ * files (cmake/source_id.cmake). The same id and compiler run the same
+ * numbers; checkpoints, timing.txt and the summaries record it. */
+const char *dem_source_id(void);
+/* The build: "source ID, cc COMPILER-VERSION", as checkpoints record it
+ * (a checkpoint resumes bit for bit under the build that wrote it). */
+const char *dem_build(void);
 
 /* Whether this CPU can run this build: 0, else 1 with one line in msg
  * (len bytes) naming the instructions it lacks. A build for the CPU that
@@ -568,6 +580,9 @@ struct dem_sweep_options {
      * do not keep them). It may set *stop. NULL = no calls */
     void (*progress)(const struct dem_sweep_report *rep, void *user);
     void *progress_user;
+    int any_build; /* 1: an unfinished run's checkpoint of another build
+                      is resumed (dem_run_options.any_build); 0: that run
+                      starts again from the beginning */
 };
 
 /* Check every grid point's config (nothing runs when one is bad; the

@@ -55,8 +55,8 @@ except ImportError:  # the module works without it, with lists
     numpy = None
 
 __all__ = ["Error", "Interrupted", "DemboxWarning", "Progress",
-           "SweepProgress", "version", "examples", "example_text", "run",
-           "resume", "analyze", "plot", "timeseries", "summary", "particles",
+           "SweepProgress", "version", "build", "examples", "example_text",
+           "run", "resume", "analyze", "plot", "timeseries", "summary", "particles",
            "contacts", "dump_local", "DumpFrame", "sweep", "sweep_summary"]
 
 _DEM_EINTERRUPTED = -5  # include/dembox.h
@@ -152,7 +152,8 @@ class _RunOptions(ctypes.Structure):
                 ("stop", ctypes.c_void_p),
                 ("stop_after_steps", ctypes.c_long),
                 ("split", ctypes.c_int),
-                ("timing", ctypes.c_void_p)]
+                ("timing", ctypes.c_void_p),
+                ("any_build", ctypes.c_int)]
 
 
 class _SweepReport(ctypes.Structure):
@@ -178,7 +179,8 @@ class _SweepOptions(ctypes.Structure):
                 ("max_steps", ctypes.c_long),
                 ("stop", ctypes.c_void_p),
                 ("progress", _SWEEP_PROGRESS),
-                ("progress_user", ctypes.c_void_p)]
+                ("progress_user", ctypes.c_void_p),
+                ("any_build", ctypes.c_int)]
 
 
 class _Example(ctypes.Structure):
@@ -219,6 +221,7 @@ def _library():
                           "not match" % (_name, lib._name, lib.dem_struct_size(
                               _name.encode()), ctypes.sizeof(_mirror)))
     lib.dem_version.restype = ctypes.c_char_p
+    lib.dem_build.restype = ctypes.c_char_p
     lib.dem_example_find.restype = ctypes.POINTER(_Example)
     lib.dem_example_find.argtypes = [ctypes.c_char_p]
     lib.dem_config_parse.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
@@ -393,6 +396,12 @@ def version():
     return _lib.dem_version().decode()
 
 
+def build():
+    """The library's build, "source ID, cc COMPILER" (its source id and
+    compiler, as `dembox --version` and checkpoints name them)."""
+    return _lib.dem_build().decode()
+
+
 def examples():
     """The names of the built-in examples."""
     n = ctypes.c_int.in_dll(_library(), "dem_n_examples").value
@@ -515,7 +524,7 @@ def _sweep_progress(p):
 
 
 def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
-                progress, err):
+                progress, err, any_build=False):
     """call(options, err) (dem_run or dem_run_resume) stoppable, then the
     analysis and the pictures."""
     rank, size = ctypes.c_int(0), ctypes.c_int(1)
@@ -528,7 +537,8 @@ def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
                       max_steps=_int("max_steps", max_steps, 64),
                       split=int(bool(split)),
                       progress=_RUN_PROGRESS(stop.callback),
-                      stop=ctypes.addressof(stop.flag))
+                      stop=ctypes.addressof(stop.flag),
+                      any_build=int(bool(any_build)))
     with stop:
         rc = call(ctypes.byref(opt), ctypes.byref(err))
     stop.end(rc, err, outdir, " (from Python: dembox.resume(%r))" % outdir)
@@ -564,15 +574,18 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
 
 
 def resume(outdir, threads=1, analyze=True, plot=False, warnings=None,
-           split=False, progress=None):
+           split=False, progress=None, any_build=False):
     """Go on with the run stopped in outdir (Ctrl-C, SIGTERM, a progress
     callback, a checkpoint interval) from outdir/checkpoint.bin, as
     `dembox run --resume` does: the outputs are those of a run never
-    stopped, byte for byte, for any thread count. The rest as run()."""
+    stopped, byte for byte, for any thread count. A checkpoint another
+    build wrote (build()) is refused, unless any_build=True, as
+    --any-build: the run then goes on, with a warning, and is not bit
+    for bit either build's. The rest as run()."""
     err = _error(warnings)
     return _run_outdir(
         lambda opt, e: _lib.dem_run_resume(_path(outdir), opt, e), outdir,
-        threads, 0, split, analyze, plot, progress, err)
+        threads, 0, split, analyze, plot, progress, err, any_build)
 
 
 def analyze(outdir, warnings=None):
@@ -783,7 +796,7 @@ def dump_local(outdir):
 
 
 def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
-          quiet=True, progress=None, warnings=None):
+          quiet=True, progress=None, warnings=None, any_build=False):
     """What `dembox sweep` does: the runs of every combination of params
     ("KEY[,KEY...]=V1,V2,..." as --param, or a mapping KEY -> values,
     {"contact.mu": [0.1, 0.3]}) with the overrides sets, jobs
@@ -794,6 +807,8 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
     checkpoints and stop, no other starts, and Interrupted (what it
     raised, KeyboardInterrupt) is raised: the same call goes on from
     them. Its own warnings (each run's are in its run.log) as run()'s.
+    An unfinished run's checkpoint from another build is resumed with
+    any_build=True (as --any-build), else that run starts again.
     Returns outdir."""
     err = _error(warnings)
     grid = ctypes.create_string_buffer(_lib.dem_sweep_grid_bytes())
@@ -808,7 +823,8 @@ def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
                           _int("jobs", jobs), _int("threads", threads),
                           int(quiet), _int("max_steps", max_steps, 64),
                           ctypes.addressof(stop.flag),
-                          _SWEEP_PROGRESS(stop.callback), None)
+                          _SWEEP_PROGRESS(stop.callback), None,
+                          int(bool(any_build)))
         rep = _SweepReport()
         with stop:
             rc = _lib.dem_sweep_run(grid, ctypes.byref(o), ctypes.byref(rep),

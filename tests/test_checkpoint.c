@@ -367,7 +367,7 @@ static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
     dir_path(path, sizeof path, "roundtrip.bin");
     assert_int_equal(dem_checkpoint_write(path, text, &a, &ra, &err), 0);
     struct dem_ckpt_run rb;
-    if (dem_checkpoint_read(path, &b, &text_b, &rb, &err))
+    if (dem_checkpoint_read(path, &b, &text_b, &rb, NULL, 0, &err))
         fail_msg("%s", err.msg);
 
     assert_string_equal(text, text_b);
@@ -583,7 +583,8 @@ static void expect_refused(const char *out, const char *ckpt, const void *buf,
     struct dem_sim s;
     struct dem_ckpt_run r;
     char *text = (char *)1;
-    assert_int_equal(dem_checkpoint_read(ckpt, &s, &text, &r, &err), DEM_EIO);
+    assert_int_equal(dem_checkpoint_read(ckpt, &s, &text, &r, NULL, 0, &err),
+                     DEM_EIO);
     assert_null(s.p.x);
     assert_null(s.pairs.cur.i);
     assert_null(text);
@@ -704,6 +705,93 @@ static void bad_checkpoints_are_refused_with_a_clear_message(void **state)
     assert_same_outputs(ref, out, 1);
     free(b);
     free(good);
+}
+
+/* Warnings into a buffer of 2048 bytes, one per line. */
+static void keep_warning(const char *line, void *user)
+{
+    char *buf = user;
+    const size_t at = strlen(buf);
+    snprintf(buf + at, 2048 - at, "%s\n", line);
+}
+
+/* A checkpoint of another build (another source id) is refused, naming
+ * both builds and --any-build; with any_build it resumes, warns and notes
+ * it in timing.txt. (The "other" build is this one with its id rewritten,
+ * so the resumed run must still equal the uninterrupted one.) */
+static void another_build_is_refused_unless_any_build(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse(&c, small_2d);
+    char ref[1024], out[1024], ckpt[1100], timing[1100];
+    struct dem_error err = {0};
+    dir_path(ref, sizeof ref, "otherbuild-ref");
+    dir_path(out, sizeof out, "otherbuild");
+    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
+    file_path(timing, sizeof timing, out, "timing.txt");
+    if (run(&c, ref, 4000, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(run(&c, out, 4000, 2000, 1, &err), DEM_EINTERRUPTED);
+
+    /* this build's own checkpoint reads as this build's */
+    char other[200] = "x";
+    struct dem_sim s;
+    struct dem_ckpt_run r;
+    char *text = 0;
+    if (dem_checkpoint_read(ckpt, &s, &text, &r, other, sizeof other, &err))
+        fail_msg("%s", err.msg);
+    assert_string_equal(other, "");
+    free(text);
+    dem_ckpt_run_free(&r);
+    dem_sim_destroy(&s);
+
+    /* the build string holds "source ID, cc ...": another id */
+    size_t len = 0;
+    unsigned char *b = read_all(ckpt, &len);
+    assert_non_null(b);
+    char id[32];
+    snprintf(id, sizeof id, "source %s,", dem_source_id());
+    unsigned char *at = 0;
+    for (size_t k = 0; k + strlen(id) < len && !at; k++)
+        if (!memcmp(b + k, id, strlen(id)))
+            at = b + k;
+    assert_non_null(at);
+    memcpy(at + 7, "0123456789ab", 12);
+    fix_crc(b, len);
+    write_all(ckpt, b, len);
+    free(b);
+    assert_int_equal(resume(out, 0, 1, &err), DEM_EIO);
+    assert_one_line_naming(&err, ckpt, "another build");
+    if (!strstr(err.msg, "source 0123456789ab") ||
+        !strstr(err.msg, dem_build()) || !strstr(err.msg, "--any-build"))
+        fail_msg("should name both builds and --any-build: %s", err.msg);
+    assert_false(exists(out, "timeseries.csv"));
+
+    char warning[2048] = "";
+    struct dem_error w = {0, "", keep_warning, warning};
+    struct dem_run_options o = {.threads = 2, .any_build = 1};
+    if (dem_run_resume(out, &o, &w))
+        fail_msg("%s", w.msg);
+    if (!strstr(warning, ckpt) || !strstr(warning, "source 0123456789ab") ||
+        !strstr(warning, "not bit for bit"))
+        fail_msg("warning: \"%s\"", warning);
+    assert_same_outputs(ref, out, 1);
+    /* the resumed part's line says so; the first part's does not */
+    b = read_all(timing, &len);
+    assert_non_null(b);
+    b[len - 1] = '\0';
+    char *second = strchr((char *)b, '\n');
+    assert_non_null(second);
+    *second++ = '\0';
+    assert_null(strstr((char *)b, "another build"));
+    if (!strstr(
+            second,
+            "resumed from a checkpoint of another build, dembox " DEM_VERSION
+            ", source 0123456789ab, cc ") ||
+        !strstr(second, dem_build()))
+        fail_msg("timing.txt: %s", second);
+    free(b);
 }
 
 /* A checkpoint that cannot be written (the disk is full) stops the run with
@@ -950,6 +1038,7 @@ int main(void)
         cmocka_unit_test(resumed_hertz_run_is_bit_identical),
         cmocka_unit_test(resumed_resistance_run_is_bit_identical),
         cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
+        cmocka_unit_test(another_build_is_refused_unless_any_build),
         cmocka_unit_test(write_error_keeps_the_last_checkpoint),
         cmocka_unit_test(sigint_checkpoints_and_resumes_identically),
         cmocka_unit_test(kill_9_between_checkpoints_resumes_identically),

@@ -10,15 +10,18 @@ import signal
 import subprocess
 import sys
 import warnings
+import zlib
 
 import dembox
 
 dembox_bin, tmp = sys.argv[1], sys.argv[2]
 assert "biaxial2d" in dembox.examples(), dembox.examples()
 assert "dimension = 2" in dembox.example_text("biaxial2d")
-assert dembox.version() == subprocess.run(
-    [dembox_bin, "--version"], capture_output=True, text=True,
-    check=True).stdout.split()[1], dembox.version()
+version_line = subprocess.run([dembox_bin, "--version"], capture_output=True,
+                              text=True, check=True).stdout
+assert dembox.version() == version_line.split()[1], dembox.version()
+assert dembox.build().startswith("source ") and \
+    "(%s; " % dembox.build() in version_line, (dembox.build(), version_line)
 
 sets = ["particles.count=60", "output.interval=5.0e-6"]
 out_py = dembox.run("biaxial2d", os.path.join(tmp, "py"), sets=sets,
@@ -128,7 +131,26 @@ except ValueError as e:
 else:
     raise AssertionError("the callback's exception was lost")
 assert stopped_with_checkpoint(out_s), os.listdir(out_s)
-dembox.resume(out_s)
+# its checkpoint made another build's (another source id, a valid CRC):
+# refused, then resumed with any_build=True and a warning
+ckpt = os.path.join(out_s, "checkpoint.bin")
+with open(ckpt, "rb") as f:
+    data = f.read()
+mine = ("source %s," % dembox.build().split()[1].rstrip(",")).encode()
+assert data.count(mine) == 1, mine
+data = data.replace(mine, b"source 0123456789ab,")[:-4]
+with open(ckpt, "wb") as f:
+    f.write(data + zlib.crc32(data).to_bytes(4, sys.byteorder))
+try:
+    dembox.resume(out_s)
+except dembox.Error as e:
+    assert "another build" in str(e) and "--any-build" in str(e), str(e)
+else:
+    raise AssertionError("another build's checkpoint was resumed")
+said = []
+dembox.resume(out_s, any_build=True, warnings=said)
+assert [w for w in said if "0123456789ab" in w and "not bit for bit" in w], \
+    said
 assert same_bytes(out_s, out_py), "resumed after an exception: differ"
 
 # SIGTERM (a batch system's time limit) saves the checkpoint, then ends

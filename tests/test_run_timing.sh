@@ -97,11 +97,15 @@ fi
     fail "quiet run failed"
 [ -z "$(line c.log)" ] || fail "--quiet printed: $(line c.log)"
 # OUTDIR/timing.txt keeps the same line for each part of a run, after
-# when it ended, how, its steps, threads, CPU and vectors; a quiet run
+# when it ended, how, its steps, build, threads, CPU and vectors; a quiet run
 # keeps it too, and a new run in the folder starts the record anew
-rec() { # lines of $1/timing.txt that say "$3, steps $4, 1 thread, " and
-         # end with log $2's line
-    awk -v h="Z $3, steps $4, 1 thread, " \
+# and the build that ran it
+build=$("$BIN" --version | sed -n \
+    's/^dembox \([^ ]*\) (\(source [0-9a-f]\{12\}, cc [^;]*\);.*/dembox \1, \2/p')
+[ -n "$build" ] || fail "no source id in: $("$BIN" --version)"
+rec() { # lines of $1/timing.txt that say "$3, steps $4, $build, 1 thread, "
+         # and end with log $2's line
+    awk -v h="Z $3, steps $4, $build, 1 thread, " \
         -v b=": $(line "$2" | sed 's/^dembox: //')" '
         index($0, h) && substr($0, length($0) - length(b) + 1) == b { k++ }
         END { print k + 0 }' "$1/timing.txt"
@@ -113,7 +117,7 @@ rec() { # lines of $1/timing.txt that say "$3, steps $4, 1 thread, " and
     [ "$(rec b b.log interrupted "0 to $s1")" = 1 ] &&
     [ "$(rec b b2.log finished "$s1 to 3000")" = 1 ] ||
     fail "b/timing.txt: $(cat b/timing.txt)"
-grep -q "Z finished, steps 0 to 50, 1 thread, .*: 50 steps of 500 " \
+grep -q "Z finished, steps 0 to 50, $build, 1 thread, .*: 50 steps of 500 " \
     c/timing.txt || fail "quiet run: c/timing.txt: $(cat c/timing.txt)"
 "$BIN" run biaxial2d --max-steps 20 --threads 1 --quiet -o a 2> /dev/null ||
     fail "second run in a"

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "formats/jsonread.h"
+#include "io/checkpoint.h"
 #include "io/fsutil.h"
 
 #define DEG (180.0 / M_PI)
@@ -872,40 +873,24 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     dem_sweep_grid_free(&g);
 }
 
-/* A stop set by the progress callback while a run is under way (its
- * timeseries.csv.part exists): the run saves its checkpoint and the
- * sweep returns DEM_EINTERRUPTED without sweep.json; the same sweep
- * again resumes the run from its checkpoint and finishes it. */
-static void stop_from_progress_saves_checkpoints_then_resumes(void **state)
+/* The sweep of test stop_from_progress... into out, stopped while its one
+ * run is under way: that run has a checkpoint, the sweep no sweep.json. */
+static void stop_sweep_in_a_run(const char *out, struct dem_sweep_grid *g,
+                                struct dem_sweep_options *o)
 {
-    (void)state;
-    char cfg[512], out[512], part[1200], path[1200];
-    tiny_config(cfg, sizeof cfg);
-    snprintf(out, sizeof out, "%s/progress-stop", tmpdir);
-    struct dem_sweep_grid g;
-    memset(&g, 0, sizeof g);
-    add(&g, "contact.mu=0.4");
-    /* 150000 steps: about 0.8 s on a Zen 5, the stop within 0.25 s */
-    const char *const sets[] = {"output.interval=5e-6"};
+    char part[1200], path[1200];
     volatile sig_atomic_t stop = 0;
     struct seen seen = {.caller = pthread_self(), .stop = &stop};
-    struct dem_sweep_options o = {.target = cfg,
-                                  .outdir = out,
-                                  .sets = sets,
-                                  .nsets = 1,
-                                  .jobs = 1,
-                                  .threads = 1,
-                                  .quiet = 1,
-                                  .max_steps = 150000,
-                                  .stop = &stop,
-                                  .progress = record_progress,
-                                  .progress_user = &seen};
+    o->outdir = out;
+    o->stop = &stop;
+    o->progress = record_progress;
+    o->progress_user = &seen;
     snprintf(part, sizeof part, "%s/runs/contact.mu=0.4/timeseries.csv.part",
              out);
     seen.stop_when = part;
     struct dem_sweep_report rep;
     struct dem_error err = {0};
-    assert_int_equal(dem_sweep_run(&g, &o, &rep, &err), DEM_EINTERRUPTED);
+    assert_int_equal(dem_sweep_run(g, o, &rep, &err), DEM_EINTERRUPTED);
     assert_non_null(strstr(err.msg, "saved checkpoints"));
     assert_int_equal(stop, 1);
     assert_int_equal(rep.ran, 0);
@@ -914,16 +899,90 @@ static void stop_from_progress_saves_checkpoints_then_resumes(void **state)
     assert_int_equal(access(path, F_OK), 0);
     snprintf(path, sizeof path, "%s/sweep.json", out);
     assert_true(access(path, F_OK) != 0);
+    o->stop = NULL;
+}
 
-    stop = 0;
-    seen = (struct seen){.caller = pthread_self()};
-    if (dem_sweep_run(&g, &o, &rep, &err))
-        fail_msg("%s", err.msg);
-    assert_int_equal(rep.ran, 1);
-    assert_int_equal(rep.resumed, 1);
-    assert_int_equal(seen.last.resumed, 1);
-    assert_false(seen.foreign_thread);
-    assert_int_equal(access(path, F_OK), 0);
+/* The checkpoint of out's run made another build's: its source id
+ * rewritten, and the CRC-32 that ends the file made again. */
+static void make_another_builds(const char *out)
+{
+    char path[1200], id[32];
+    snprintf(path, sizeof path, "%s/runs/contact.mu=0.4/checkpoint.bin", out);
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    static unsigned char b[1 << 20];
+    const size_t len = fread(b, 1, sizeof b, f);
+    assert_true(len > 4 && len < sizeof b);
+    snprintf(id, sizeof id, "source %s,", dem_source_id());
+    unsigned char *at = 0;
+    for (size_t k = 0; k + strlen(id) < len && !at; k++)
+        if (!memcmp(b + k, id, strlen(id)))
+            at = b + k;
+    assert_non_null(at);
+    memcpy(at + 7, "0123456789ab", 12);
+    const uint32_t crc = dem_crc32(0, b, len - 4);
+    memcpy(b + len - 4, &crc, 4);
+    rewind(f);
+    assert_int_equal(fwrite(b, 1, len, f), len);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* A stop set by the progress callback while a run is under way (its
+ * timeseries.csv.part exists): the run saves its checkpoint and the
+ * sweep returns DEM_EINTERRUPTED without sweep.json; the same sweep
+ * again resumes the run from its checkpoint and finishes it. A checkpoint
+ * of another build is resumed with any_build, else run again. */
+static void stop_from_progress_saves_checkpoints_then_resumes(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], path[1200];
+    tiny_config(cfg, sizeof cfg);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.mu=0.4");
+    /* 150000 steps: about 0.8 s on a Zen 5, the stop within 0.25 s */
+    const char *const sets[] = {"output.interval=5e-6"};
+    struct dem_sweep_options o = {.target = cfg,
+                                  .sets = sets,
+                                  .nsets = 1,
+                                  .jobs = 1,
+                                  .threads = 1,
+                                  .quiet = 1,
+                                  .max_steps = 150000};
+    for (int any_build = 0; any_build <= 2; any_build++) {
+        /* 0: this build's checkpoint; 1, 2: another's, with any_build
+         * 1 and 0 */
+        snprintf(out, sizeof out, "%s/progress-stop-%d", tmpdir, any_build);
+        stop_sweep_in_a_run(out, &g, &o);
+        if (any_build)
+            make_another_builds(out);
+        struct seen seen = {.caller = pthread_self()};
+        o.progress_user = &seen;
+        o.any_build = any_build == 1;
+        struct dem_sweep_report rep;
+        struct dem_error err = {0};
+        if (dem_sweep_run(&g, &o, &rep, &err))
+            fail_msg("%s", err.msg);
+        assert_int_equal(rep.ran, 1);
+        assert_int_equal(rep.resumed, any_build < 2);
+        assert_int_equal(seen.last.resumed, any_build < 2);
+        assert_false(seen.foreign_thread);
+        snprintf(path, sizeof path, "%s/sweep.json", out);
+        assert_int_equal(access(path, F_OK), 0);
+        snprintf(path, sizeof path, "%s/runs/contact.mu=0.4/timing.txt", out);
+        char *timing = dem_read_text(path, NULL);
+        assert_non_null(timing);
+        /* parts: stopped and resumed, or (run again) the whole run */
+        int lines = 0;
+        for (const char *c = timing; *c; c++)
+            lines += *c == '\n';
+        assert_int_equal(lines, any_build < 2 ? 2 : 1);
+        assert_int_equal(!!strstr(timing,
+                                  "of another build, dembox " DEM_VERSION
+                                  ", source 0123456789ab"),
+                         any_build == 1);
+        free(timing);
+    }
     dem_sweep_grid_free(&g);
 }
 

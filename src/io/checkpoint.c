@@ -34,12 +34,6 @@ static const char magic[8] = {'D', 'E', 'M', 'B', 'O', 'X', 'C', 'K'};
 /* magic, version, byte-order mark, sizeof(double), file length */
 #define FIXED_HEADER (8 + 4 + 4 + 4 + 8)
 
-#ifdef __VERSION__
-#define BUILD_ID "cc " __VERSION__
-#else
-#define BUILD_ID "cc unknown"
-#endif
-
 uint32_t dem_crc32(uint32_t crc, const void *data, size_t n)
 {
     uint32_t table[256];
@@ -68,8 +62,10 @@ struct ck_io {
     /* reading */
     const unsigned char *p;
     size_t left;
-    const char *why;  /* first problem found, NULL = none */
-    char detail[400]; /* room for a why that names values */
+    const char *why;   /* first problem found, NULL = none */
+    char detail[400];  /* room for a why that names values */
+    char *other_build; /* NULL: refuse another build's checkpoint */
+    size_t other_len;
 };
 
 static void io_bytes(struct ck_io *io, void *p, size_t n)
@@ -250,23 +246,33 @@ static void printable(char *t)
 }
 
 /* Every saved field after the fixed header. When reading, s is zeroed on
- * entry and the arrays are allocated once the counts are known. */
+ * entry and the arrays are allocated once the counts are known; a
+ * checkpoint of another build is refused, unless io->other_build is set:
+ * then it gets that build's name ("" for this build). */
 static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
                   struct dem_ckpt_run *run)
 {
-    char *version = DEM_VERSION, *build = BUILD_ID;
+    const char *this_build = dem_build();
+    char *version = DEM_VERSION, *build = (char *)this_build;
     char *rversion = 0, *rbuild = 0;
     io_string(io, io->reading ? &rversion : &version);
     io_string(io, io->reading ? &rbuild : &build);
     if (io->reading && !io->why &&
-        (strcmp(rversion, DEM_VERSION) != 0 || strcmp(rbuild, BUILD_ID) != 0)) {
+        (strcmp(rversion, DEM_VERSION) != 0 ||
+         strcmp(rbuild, this_build) != 0)) {
         printable(rversion);
         printable(rbuild);
-        snprintf(io->detail, sizeof io->detail,
-                 "written by another build (dembox %.40s, %.100s; this is "
-                 "dembox %s, %s): exact resume needs the same build",
-                 rversion, rbuild, DEM_VERSION, BUILD_ID);
-        io->why = io->detail;
+        if (io->other_build)
+            snprintf(io->other_build, io->other_len, "dembox %.40s, %.100s",
+                     rversion, rbuild);
+        else {
+            snprintf(io->detail, sizeof io->detail,
+                     "written by another build (dembox %.40s, %.100s; this "
+                     "is dembox %s, %s): exact resume needs the same build "
+                     "(--any-build resumes it anyway)",
+                     rversion, rbuild, DEM_VERSION, this_build);
+            io->why = io->detail;
+        }
     }
     free(rversion);
     free(rbuild);
@@ -667,8 +673,11 @@ static int slurp(const char *path, unsigned char **buf, size_t *size,
 }
 
 int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
-                        struct dem_ckpt_run *run, struct dem_error *err)
+                        struct dem_ckpt_run *run, char *other_build,
+                        size_t other_len, struct dem_error *err)
 {
+    if (other_build && other_len)
+        other_build[0] = '\0';
     memset(s, 0, sizeof *s);
     memset(run, 0, sizeof *run);
     *config_text = 0;
@@ -687,6 +696,8 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
     io.reading = 1;
     io.p = buf + FIXED_HEADER;
     io.left = size - 4 - FIXED_HEADER;
+    io.other_build = other_len ? other_build : NULL;
+    io.other_len = other_len;
     char *text = 0;
     codec(&io, s, &text, run);
     if (!io.why && io.left != 0)

@@ -8,7 +8,8 @@
  *   u32 0x01020304             byte-order mark
  *   u32 sizeof(double) = 8
  *   u64 file length            in bytes, checksum included
- *   str dembox version, str compiler: exact resume needs the same build
+ *   str dembox version, str build ("source ID, cc COMPILER"; ID from
+ *       dem_source_id): exact resume needs the same build
  *   i32 N, i32 pairs, i32 wall contacts, i32 dim   (allocation sizes)
  *   sections, each a u32 tag followed by its fields in a fixed order:
  *     CONF  run name, config source, time_step_auto, resolved config text
@@ -86,9 +87,14 @@ int dem_checkpoint_write(const char *path, const char *config_text,
  * *config_text the stored config text and run->snap_t are malloc'ed.
  * On failure (not found, truncated, corrupt, foreign, other build)
  * nothing is allocated, s is zeroed and err is one line naming path and
- * what is wrong (DEM_EIO; DEM_ECONFIG when the stored config is invalid). */
+ * what is wrong (DEM_EIO; DEM_ECONFIG when the stored config is invalid).
+ * The build is its dembox version, source id (dem_source_id) and
+ * compiler. other_build NULL (or other_len 0): another build's checkpoint
+ * is refused. Else it is read, and other_build (other_len bytes) gets the
+ * name of the build that wrote it, or "" when it is this build. */
 int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
-                        struct dem_ckpt_run *run, struct dem_error *err);
+                        struct dem_ckpt_run *run, char *other_build,
+                        size_t other_len, struct dem_error *err);
 
 /* CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) of n bytes,
  * continuing from crc (start with 0). */

@@ -58,6 +58,8 @@ struct run_ctx {
      * saved in checkpoints as st.out */
     struct dem_output out[DEM_CKPT_MAX_OUTPUTS];
     char ckpt_path[DEM_PATH_MAX]; /* checkpoint.bin */
+    char other_build[200];        /* resumed from another build's checkpoint:
+                                     that build's name, else "" */
     int lock_fd; /* rank 0's lock on outdir (io/fsutil.h), -1 = none */
     /* MPI: this process's rank and the number of ranks (0 and 1 without);
      * several ranks split the sample once it is built */
@@ -636,7 +638,8 @@ static void report_timing(const struct run_ctx *r, int status,
         *r->opt->timing = T;
     if (writer(r))
         dem_run_timing_record(r->outdir, &T, status, r->step0,
-                              omp_get_max_threads(), r->nranks, err);
+                              omp_get_max_threads(), r->nranks, r->other_build,
+                              err);
 }
 
 /* The stages from first on, then the final outputs; releases everything
@@ -778,8 +781,17 @@ static int read_checkpoint(struct run_ctx *r, struct dem_error *err)
                              "%s: no checkpoint (%s is missing); nothing to "
                              "resume",
                              outdir, r->ckpt_path);
-    return dem_checkpoint_read(r->ckpt_path, &r->sim, &r->config_text, &r->st,
-                               err);
+    const int any = r->opt->any_build;
+    rc = dem_checkpoint_read(r->ckpt_path, &r->sim, &r->config_text, &r->st,
+                             any ? r->other_build : NULL,
+                             any ? sizeof r->other_build : 0, err);
+    if (!rc && r->other_build[0] && writer(r))
+        dem_warn(err,
+                 "%s: written by another build (%s; this is dembox %s, "
+                 "%s): resumed all the same, so the run is not bit for bit "
+                 "either build's (noted in timing.txt)",
+                 r->ckpt_path, r->other_build, DEM_VERSION, dem_build());
+    return rc;
 }
 
 static int run_resumed(const char *outdir, const struct dem_run_options *opt,

@@ -47,7 +47,7 @@ int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n)
 
 void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
                            int status, long step_from, int threads, int ranks,
-                           const struct dem_error *err)
+                           const char *other_build, const struct dem_error *err)
 {
     char path[DEM_PATH_MAX], buf[1024], when[32] = "?", cpu[160];
     struct dem_error e;
@@ -60,11 +60,17 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
     dem_cpu_model(cpu, sizeof cpu);
     const size_t n = sizeof buf;
     size_t at0 = 0, *at = &at0;
-    PUT("%s %s, steps %ld to %ld, %d thread%s", when,
+    PUT("%s %s, steps %ld to %ld", when,
         status == DEM_OK             ? "finished"
         : status == DEM_EINTERRUPTED ? "interrupted"
                                      : "failed",
-        step_from, step_from + T->steps, threads, threads == 1 ? "" : "s");
+        step_from, step_from + T->steps);
+    if (other_build && other_build[0])
+        PUT(" (resumed from a checkpoint of another build, %s: not bit for "
+            "bit either build's)",
+            other_build);
+    PUT(", dembox %s, %s, %d thread%s", DEM_VERSION, dem_build(), threads,
+        threads == 1 ? "" : "s");
     if (ranks > 1)
         PUT(" x %d ranks", ranks);
     PUT(", %s, %s: ", cpu, T->simd[0] ? T->simd : dem_simd_name());

@@ -301,6 +301,7 @@ int dem__sweep_run_point(const struct dem_sweep_grid *g,
         .threads = o->threads > 0 ? o->threads : 1,
         .max_steps = o->max_steps,
         .stop = o->stop,
+        .any_build = o->any_build,
     };
     if (resume) {
         rc = dem_run_resume(rundir, &opt, &e);
