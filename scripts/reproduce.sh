@@ -5,7 +5,8 @@
 # continue from their checkpoints.
 #
 # usage: scripts/reproduce.sh [--quick | --paper] [--jobs N] [--only NAMES]
-#                             [--numbers DIR] [--smoke] [--list] [OUTDIR]
+#                             [--numbers DIR] [--smoke] [--any-build]
+#                             [--list] [OUTDIR]
 #
 #   --quick       the scaled built-in examples, one sample per point
 #                 (default; about 25 CPU minutes)
@@ -22,18 +23,23 @@
 #                 scripts/contact-adhesion.py, from the contacts)
 #   --smoke       every run stops after 300 steps (checks the command, not
 #                 the physics; used by CTest)
+#   --any-build   resume unfinished runs from checkpoints another build of
+#                 dembox wrote (a rebuild between sessions), not bit for
+#                 bit either build's and noted in their timing.txt; else
+#                 such runs start again
 #   --list        print the parts with their CPU time and exit
 #   OUTDIR        default: reproduce-quick or reproduce-paper
 #
 # OUTDIR/reproduce.id records the mode and the parts; a folder made by
-# another mode, another set of parts or another dembox version is refused
-# (a resumed sweep must continue the same runs). A part whose runs fail is
+# another mode, another set of parts or another dembox version (its number;
+# a rebuild of the same version goes on) is refused (a resumed sweep must
+# continue the same runs). A part whose runs fail is
 # reported and the others go on; the exit status is then 1.
 set -u
 HERE=$(pwd)
 cd "$(dirname "$0")/.."
 
-MODE=quick JOBS= ONLY= NUMBERS= SMOKE= LIST= OUT=
+MODE=quick JOBS= ONLY= NUMBERS= SMOKE= ANY= LIST= OUT=
 die() { echo "reproduce.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case $1 in
@@ -43,6 +49,7 @@ while [ $# -gt 0 ]; do
     --only) ONLY=${2:-}; shift 2 || die "--only needs part names" ;;
     --numbers) NUMBERS=${2:-}; shift 2 || die "--numbers needs a folder" ;;
     --smoke) SMOKE=1; shift ;;
+    --any-build) ANY=1; shift ;;
     --list) LIST=1; shift ;;
     -h | --help) sed -n '2,/^set -u/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) die "unknown option $1 (see --help)" ;;
@@ -168,7 +175,7 @@ echo "mode --$MODE: about $total CPU minutes in all, $wall minutes with $JOBS jo
 
 [ -x "$B" ] || ./scripts/setup.sh build >/dev/null || die "build failed"
 [ -x "$B" ] || die "$B: not executable"
-VERSION=$("$B" --version 2>/dev/null | head -1)
+VERSION=$("$B" --version 2>/dev/null | head -1 | cut -d' ' -f1-2)
 ID="mode=$MODE smoke=${SMOKE:-0} version=$VERSION parts=$(echo $CHOSEN)"
 mkdir -p "$OUT" || die "$OUT: cannot create"
 if [ -f "$OUT/reproduce.id" ]; then
@@ -184,7 +191,8 @@ while IFS='|' read -r n m f a x; do
     echo "== $n ($f; about $m CPU minutes) $(date -u +%H:%M:%S)"
     # shellcheck disable=SC2086 # the arguments are split on purpose
     if ! "$B" sweep $a -o "$OUT/$n" --jobs "$JOBS" \
-        --set output.checkpoint_interval=120 ${SMOKE:+--max-steps 300}; then
+        --set output.checkpoint_interval=120 ${SMOKE:+--max-steps 300} \
+        ${ANY:+--any-build}; then
         failed="$failed $n"
     fi
     if [ -n "$NUMBERS" ] && [ -f "$OUT/$n/sweep.json" ]; then
