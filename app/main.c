@@ -281,7 +281,7 @@ static void stem(const char *path, char *out, size_t n)
 }
 
 /* The signal that asked the run to stop, 0 = none. The handler only sets
- * it; the run checks it at its next sample. A second signal while the
+ * it; the run checks it before each step. A second signal while the
  * first is being handled falls back to the default action. */
 static volatile sig_atomic_t stop_signal;
 

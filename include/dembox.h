@@ -278,7 +278,8 @@ struct dem_run_options {
                        0 = no limit (< 0: DEM_EUSAGE) */
     volatile sig_atomic_t *stop; /* may be NULL; when *stop becomes
                            non-zero (e.g. from a SIGINT handler) the run
-                           writes a checkpoint at its next sample and
+                           writes a checkpoint after the step under way
+                           (split over ranks: at its next sample) and
                            returns DEM_EINTERRUPTED */
     long stop_after_steps;       /* > 0 (tests): behave as if *stop were set
                                  once this many steps are done */
@@ -301,11 +302,12 @@ struct dem_run_options {
  * is left looking complete.
  *
  * Checkpoints: every output.checkpoint_interval seconds of wall-clock time
- * (checked at timeseries samples) the complete state is written to
- * OUTDIR/checkpoint.bin (temporary file, fsync, rename), after the .part
- * outputs have been flushed to disk. When *opt->stop is set the run writes
- * a checkpoint at its next sample and returns DEM_EINTERRUPTED with a
- * message saying how to resume. A write error (disk full, no permission)
+ * (checked at timeseries samples and every 256 steps between them) the
+ * complete state is written to OUTDIR/checkpoint.bin (temporary file,
+ * fsync, rename), after the .part outputs have been flushed to disk. When
+ * *opt->stop is set the run writes a checkpoint after the step under way
+ * (split over ranks: at its next sample) and returns DEM_EINTERRUPTED with
+ * a message saying how to resume. A write error (disk full, no permission)
  * ends the run with DEM_EIO naming the file; the last good checkpoint is
  * kept. A finished run removes its checkpoint. */
 int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,

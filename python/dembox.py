@@ -23,8 +23,8 @@ warnings are Python warnings of category dembox.DemboxWarning, or go to
 the list given as warnings=.
 
 A run or a sweep can be stopped and taken up again, as with the dembox
-command: Ctrl-C (SIGINT) during dembox.run saves a checkpoint at the
-run's next sample and raises KeyboardInterrupt, and dembox.resume(outdir)
+command: Ctrl-C (SIGINT) during dembox.run saves a checkpoint after the
+run's step under way and raises KeyboardInterrupt, and dembox.resume(outdir)
 goes on from it, to the same bytes as a run never stopped; SIGTERM saves
 it too, then ends the process as it would have. run, resume and sweep
 take progress=callable, called about four times a second with a
@@ -439,7 +439,7 @@ class _Stop:
     """While a run or a sweep is in the library: SIGINT and SIGTERM (when
     called from the main thread), a progress callback's True and its
     exceptions set the library's stop flag, at which the runs save
-    checkpoints at their next sample and return; end() then does what
+    checkpoints after their step under way and return; end() then does what
     Python would have done. The library calls back about four times a
     second, which is when Python runs its signal handlers."""
 
@@ -563,9 +563,9 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
     outputs, the analysis and the pictures.
     progress: a callable given a Progress about four times a second and
     at the end of each stage; when it returns True (or raises) the run
-    saves a checkpoint at its next sample and stops, raising Interrupted
-    (or what it raised). Ctrl-C does the same, raising KeyboardInterrupt;
-    resume(outdir) goes on. Returns outdir."""
+    saves a checkpoint after its step under way and stops, raising
+    Interrupted (or what it raised). Ctrl-C does the same, raising
+    KeyboardInterrupt; resume(outdir) goes on. Returns outdir."""
     err = _error(warnings)
     cfg = _config(target, _texts(sets), err)
     return _run_outdir(lambda opt, e: _lib.dem_run(cfg, opt, e), outdir,

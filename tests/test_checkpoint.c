@@ -479,6 +479,18 @@ static void round_trip_restores_every_field_bit_for_bit(void **state)
 
 /* Interrupted by the test hook at `stops` steps (each resume stopping at
  * the next), then resumed to the end: the same bytes as the reference. */
+/* A stop asked for once step n is done takes effect at once where step
+ * n ends a sample, else after one step more, between samples too (the
+ * step of "interrupted at t = T s (step N)"). */
+static void assert_stopped_at(const struct dem_error *err, long n)
+{
+    const char *at = strstr(err->msg, "(step ");
+    const long step = at ? strtol(at + 6, NULL, 10) : -1;
+    if (step != n && step != n + 1)
+        fail_msg("expected the stop after step %ld or %ld: %s", n, n + 1,
+                 err->msg);
+}
+
 static void stop_and_resume(const char *text, const char *const *sets,
                             int nsets, const char *name, long max_steps,
                             const long *stops, int nstops, int dump)
@@ -498,6 +510,7 @@ static void stop_and_resume(const char *text, const char *const *sets,
     if (rc != DEM_EINTERRUPTED)
         fail_msg("expected an interruption, got %d: %s", rc, err.msg);
     assert_one_line_naming(&err, out, "resume with: dembox run --resume");
+    assert_stopped_at(&err, stops[0]);
     /* threads alternate: the result does not depend on them */
     for (int k = 1; k <= nstops; k++) {
         assert_true(exists(out, "checkpoint.bin"));
@@ -506,6 +519,8 @@ static void stop_and_resume(const char *text, const char *const *sets,
         rc = resume(out, k < nstops ? stops[k] : 0, 1 + k % 2, &err);
         if (k < nstops && rc != DEM_EINTERRUPTED)
             fail_msg("expected an interruption, got %d: %s", rc, err.msg);
+        if (k < nstops)
+            assert_stopped_at(&err, stops[k]);
         if (k == nstops && rc)
             fail_msg("resume: %s", err.msg);
     }
@@ -525,9 +540,9 @@ static void stop_and_resume(const char *text, const char *const *sets,
 static void resumed_2d_run_is_bit_identical(void **state)
 {
     (void)state;
-    /* in the isotropic stage (twice: the second at the first row after
-     * resuming, before anything is appended to the dump), then twice in
-     * the compression */
+    /* in the isotropic stage (twice: the second one step after resuming,
+     * before anything is appended to the dump), then twice in the
+     * compression; all between samples */
     const long stops[] = {1000, 1001, 2600, 4100};
     stop_and_resume(small_2d, NULL, 0, "resume2d", 6000, stops, 4, 1);
 }
@@ -545,24 +560,27 @@ static void resumed_periodic_shear_run_is_bit_identical(void **state)
 static void resumed_3d_cyclic_run_is_bit_identical(void **state)
 {
     (void)state;
-    /* during the cyclic stage and during the final hold */
-    const long stops[] = {1700, 2700};
+    /* during the cyclic stage (at a sample) and during the final hold
+     * (between samples) */
+    const long stops[] = {1700, 2737};
     stop_and_resume(small_3d, NULL, 0, "resume3d", 0, stops, 2, 0);
 }
 
 static void resumed_hertz_run_is_bit_identical(void **state)
 {
     (void)state;
-    /* in the isotropic stage and in the cyclic one */
-    const long stops[] = {900, 1900};
+    /* in the isotropic stage (at a sample) and in the cyclic one
+     * (between samples) */
+    const long stops[] = {900, 1937};
     stop_and_resume(small_3d_hertz, NULL, 0, "resumehertz", 0, stops, 2, 0);
 }
 
 static void resumed_resistance_run_is_bit_identical(void **state)
 {
     (void)state;
-    /* in the isotropic stage, in the cyclic one and in the hold */
-    const long stops[] = {900, 1700, 3200};
+    /* in the isotropic stage, in the cyclic one (between samples) and in
+     * the hold */
+    const long stops[] = {900, 1713, 3200};
     stop_and_resume(small_3d, resist, NRESIST, "resumeresist", 0, stops, 3,
                     0);
 }

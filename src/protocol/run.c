@@ -308,6 +308,20 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     return DEM_OK;
 }
 
+/* The stop the caller asked for, here: a checkpoint, then
+ * DEM_EINTERRUPTED saying how to resume. */
+static int stop_here(struct run_ctx *r, struct dem_error *err)
+{
+    const int rc = write_checkpoint(r, err);
+    show_progress(r, &r->stage, 1);
+    if (rc)
+        return rc;
+    return dem_error_set(err, DEM_EINTERRUPTED,
+                         "interrupted at t = %.6g s (step %ld); "
+                         "resume with: dembox run --resume %s",
+                         r->sim.t, r->sim.step, r->outdir);
+}
+
 /* A sample of the stage under way: the measurement, the outputs, the
  * checks; then, unless it is the stage's last (*end set), a stop or a
  * checkpoint. Split over ranks, rank 0 says first what it will do, and
@@ -367,22 +381,15 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
         *end = 1;
         return DEM_OK;
     }
-    if (plan[1]) {
-        rc = write_checkpoint(r, err);
-        show_progress(r, st, 1);
-        if (rc)
-            return rc;
-        return dem_error_set(err, DEM_EINTERRUPTED,
-                             "interrupted at t = %.6g s (step %ld); "
-                             "resume with: dembox run --resume %s",
-                             s->t, s->step, r->outdir);
-    }
+    if (plan[1])
+        return stop_here(r, err);
     return plan[2] ? write_checkpoint(r, err) : DEM_OK;
 }
 
 /* The steps of the stage under way, from wherever it stands, to its end.
- * A checkpoint is taken only after a sample that does not end the stage,
- * so that resuming re-enters this loop at its top. */
+ * A checkpoint is taken after a sample that does not end the stage, or
+ * between samples, after a step that is not chained, so that resuming
+ * re-enters this loop at its top. */
 static int stage_loop(struct run_ctx *r, struct dem_error *err)
 {
     struct dem_sim *s = &r->sim;
@@ -391,6 +398,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
     const int index = st->index;
     const double dt = s->dt, out = s->cfg.output.interval;
+    const double ckpt = s->cfg.output.checkpoint_interval;
     const long max_steps = r->st.max_steps;
     int rc;
     for (;;) {
@@ -399,12 +407,29 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         int sample = last || s->t + 1.5 * dt >= r->st.next_out;
         if (sample)
             s->measure = 1;
+        /* A stop asked for, or a checkpoint due (the clock read every 256
+         * steps), between samples: after this step, unchained so that it
+         * ends whole (chained or not, the same numbers). Samples can be
+         * minutes apart in a large run. Split over ranks both wait for
+         * the next sample, where rank 0 tells the others. */
+        enum { GO_ON, STOP, CHECKPOINT } halt = GO_ON;
+        if (!sample && r->nranks < 2) {
+            if (stop_requested(r))
+                halt = STOP;
+            else if (ckpt > 0 && (s->step & 255) == 0 &&
+                     wall_clock() - r->last_ckpt >= ckpt)
+                halt = CHECKPOINT;
+        }
         /* between samples nothing looks at the particles */
-        s->chain = !sample;
+        s->chain = !sample && halt == GO_ON;
         if (ops->control)
             ops->control(s, st);
         rc = dem_sim_step(s, err);
         if (rc)
+            return rc;
+        if (halt == STOP)
+            return stop_here(r, err);
+        if (halt == CHECKPOINT && (rc = write_checkpoint(r, err)) != DEM_OK)
             return rc;
         if (!sample) {
             show_progress(r, st, 0);
