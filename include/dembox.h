@@ -156,6 +156,10 @@ enum dem_profile {
 };
 
 #define DEM_MAX_STAGES 32
+/* The most particles a sample may have: the neighbour lists count their
+ * pairs in 32-bit integers, and a sample has up to about 20 pairs per
+ * particle in them. */
+#define DEM_MAX_PARTICLES 100000000
 #define DEM_PATH_MAX 1024
 #define DEM_NAME_MAX 128
 

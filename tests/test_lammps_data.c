@@ -236,11 +236,15 @@ static void malformed_files_name_file_and_line(void **state)
          "1 1 0.5 1e308 0.5 0.5 0.5\n",
          ":10: Atoms: atom 1's diameter 0.5 and density 1e+308 give a mass "
          "of inf kg"},
-        /* a header announcing a billion atoms in a short file: refused
-         * at its end, with memory for the atoms read only */
-        {"t\n\n1000000000 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\n"
+        /* a header announcing the most atoms dembox takes in a short
+         * file: refused at its end, with memory for the atoms read only */
+        {"t\n\n100000000 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\n"
          "Atoms\n\n1 1 0.1 2000 0.5 0.5 0.5\n",
-         "file ends after 1 of 1000000000 atoms"},
+         "file ends after 1 of 100000000 atoms"},
+        /* one more than that */
+        {"t\n\n100000001 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\n"
+         "Atoms\n\n1 1 0.1 2000 0.5 0.5 0.5\n",
+         ":3: 100000001 atoms: more than the 100000000 dembox takes"},
         /* a sphere wider than the box (that slack would let it pass) */
         {"t\n\n1 atoms\n0 1 xlo xhi\n0 2 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
          "1 1 1e300 2000 0.5 1.2 0.5\n",

@@ -5,11 +5,13 @@
 #include "dembox.h"
 #include "testutil.h"
 
+#include <malloc.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "contact/models.h"
+#include "core/sim.h"
 #include "formats/csvtable.h"
 #include "io/fsutil.h"
 
@@ -651,6 +653,77 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     assert_false(exists(out, "dump.lammpstrj"));
 }
 
+/* A warning into a buffer of 1024 bytes (the last one). */
+static void keep_line(const char *line, void *user)
+{
+    snprintf((char *)user, 1024, "%s", line);
+}
+
+/* Bytes in use on the heap (glibc). */
+static double heap_in_use(void)
+{
+    const struct mallinfo2 m = mallinfo2();
+    return (double)m.uordblks + (double)m.hblkhd;
+}
+
+/* A sample too large for the machine is refused before anything is
+ * allocated, naming the key; one that may not fit is a warning. The two
+ * bytes-per-particle figures bracket what a sample takes when it is
+ * created (2D and 3D, 20000 particles: measured on the heap). */
+static void memory_a_sample_takes_is_checked_first(void **state)
+{
+    (void)state;
+    struct dem_error err = {0};
+    const double GB = 1e9;
+    assert_int_equal(dem_sim_memory_check(100000000,
+                                          "particles.count = "
+                                          "100000000",
+                                          24 * GB, 24 * GB, &err),
+                     DEM_ENOMEM);
+    assert_string_equal(err.msg,
+                        "particles.count = 100000000: a run of 100000000 "
+                        "particles takes at least 30 GB of memory (300 bytes "
+                        "per particle before its first step, about 1.2 kB "
+                        "once packed), more than this machine's 24 GB");
+    char warned[1024] = "";
+    struct dem_error w = {0, "", keep_line, warned};
+    assert_int_equal(dem_sim_memory_check(10000000, "k", 24 * GB, 8 * GB, &w),
+                     DEM_OK);
+    assert_string_equal(warned, "k: a packed sample of 10000000 particles "
+                                "takes about 12 GB of memory (1.2 kB per "
+                                "particle), more than the 8 GB available "
+                                "now: expect swapping, or the out-of-memory "
+                                "killer to end the run");
+    warned[0] = '\0';
+    assert_int_equal(dem_sim_memory_check(10000000, "k", 24 * GB, 16 * GB, &w),
+                     DEM_OK);
+    assert_int_equal(dem_sim_memory_check(100000000, "k", 0, 0, &w), DEM_OK);
+    assert_string_equal(warned, "");
+
+#if defined(__SANITIZE_ADDRESS__)
+    /* AddressSanitizer's own allocator: glibc's counts stay still */
+    print_message("(the heap is not measured under AddressSanitizer)\n");
+    return;
+#endif
+    for (int dim = 2; dim <= 3; dim++) {
+        struct dem_config c;
+        const char *sets[] = {dim == 2 ? "dimension=2" : "dimension=3",
+                              "particles.count=20000"};
+        if (dem_config_parse(&c, "", "memory", sets, 2, &err))
+            fail_msg("%s", err.msg);
+        const double before = heap_in_use();
+        struct dem_sim s;
+        if (dem_sim_create(&s, &c, NULL, &err))
+            fail_msg("%s", err.msg);
+        const double per = (heap_in_use() - before) / 20000.0;
+        dem_sim_destroy(&s);
+        if (per < DEM_SIM_BYTES_LEAST || per > DEM_SIM_BYTES_PACKED)
+            fail_msg("%dD: %.0f bytes per particle, outside [%d, %.0f]", dim,
+                     per, DEM_SIM_BYTES_LEAST, DEM_SIM_BYTES_PACKED);
+        print_message("%dD: %.0f bytes per particle when created\n", dim, per);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -665,6 +738,7 @@ int main(void)
         cmocka_unit_test(contact_history_columns_follow_the_law),
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
+        cmocka_unit_test(memory_a_sample_takes_is_checked_first),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

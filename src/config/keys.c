@@ -77,6 +77,7 @@ const struct key dem__cfg_keys[] = {
      TOP(particles.count),
      .def = 3375,
      GE(1),
+     LE(DEM_MAX_PARTICLES),
      .unit = "-",
      .doc = "number of particles"},
     {.name = "particles.density",

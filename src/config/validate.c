@@ -18,13 +18,14 @@
 
 void dem__cfg_range_text(const struct key *k, char *buf, size_t n)
 {
+    /* %.15g: an integer bound such as 100000000 as it is typed */
     if (k->has_lo && k->has_hi)
-        snprintf(buf, n, "in %c%g, %g%c", k->lo_open ? '(' : '[', k->lo, k->hi,
-                 k->hi_open ? ')' : ']');
+        snprintf(buf, n, "in %c%.15g, %.15g%c", k->lo_open ? '(' : '[', k->lo,
+                 k->hi, k->hi_open ? ')' : ']');
     else if (k->has_lo)
-        snprintf(buf, n, "%s %g", k->lo_open ? ">" : ">=", k->lo);
+        snprintf(buf, n, "%s %.15g", k->lo_open ? ">" : ">=", k->lo);
     else if (k->has_hi)
-        snprintf(buf, n, "%s %g", k->hi_open ? "<" : "<=", k->hi);
+        snprintf(buf, n, "%s %.15g", k->hi_open ? "<" : "<=", k->hi);
     else
         snprintf(buf, n, "any value");
 }
@@ -80,8 +81,8 @@ static int check_key(const struct ctx *x, const struct key *k, const void *base,
     if (!dem__cfg_in_range(k, v)) {
         char r[96];
         dem__cfg_range_text(k, r, sizeof r);
-        return dem__cfg_fail_key(x, stage, k->name, err, "must be %s (got %g)",
-                                 r, v);
+        return dem__cfg_fail_key(x, stage, k->name, err,
+                                 "must be %s (got %.15g)", r, v);
     }
     return 0;
 }

@@ -4,6 +4,7 @@
 #include "dembox.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The CPU: model name, family and model (x86 Linux), or "unknown". */
@@ -246,4 +247,88 @@ BASELINE int dem_cpu_level(void)
 #else
     return 0;
 #endif
+}
+
+/* The value in kB of the line starting with key in /proc/meminfo, -1 if
+ * absent. */
+static double meminfo_kb(const char *text, const char *key)
+{
+    const char *at = strstr(text, key);
+    return at ? strtod(at + strlen(key), NULL) : -1.0;
+}
+
+/* The number in file path ("max" or unreadable: -1). */
+static double file_number(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1.0;
+    char buf[64] = "";
+    const int ok = fgets(buf, sizeof buf, f) != NULL;
+    fclose(f);
+    char *end;
+    const double v = ok ? strtod(buf, &end) : -1.0;
+    return ok && end != buf ? v : -1.0;
+}
+
+/* A cgroup's memory limit and use (bytes) from the files max and cur of
+ * folder dir, where max is a number below *limit. */
+static void cgroup_limit(const char *dir, const char *max, const char *cur,
+                         double *limit, double *used)
+{
+    char path[800];
+    snprintf(path, sizeof path, "%s/%s", dir, max);
+    const double m = file_number(path);
+    if (m <= 0.0 || m >= *limit)
+        return;
+    *limit = m;
+    snprintf(path, sizeof path, "%s/%s", dir, cur);
+    *used = file_number(path);
+}
+
+void dem_machine_memory(double *total, double *available)
+{
+    *total = *available = 0.0;
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (!f)
+        return;
+    char text[4096];
+    const size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    const double mem = meminfo_kb(text, "MemTotal:"),
+                 swap = meminfo_kb(text, "SwapTotal:"),
+                 avail = meminfo_kb(text, "MemAvailable:");
+    if (mem <= 0.0)
+        return;
+    *total = 1024.0 * (mem + (swap > 0.0 ? swap : 0.0));
+    *available = 1024.0 * (avail > 0.0 ? avail : mem);
+    /* a container's or a batch job's limit: the process's own cgroup as
+     * /proc/self/cgroup names it ("0::/PATH" in v2, "N:memory:/PATH" in
+     * v1), or the root of the cgroup file system a container sees */
+    double limit = *total, used = -1.0;
+    char line[512], dir[700];
+    f = fopen("/proc/self/cgroup", "r");
+    while (f && fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = '\0';
+        const char *v2 = !strncmp(line, "0::", 3) ? line + 3 : NULL;
+        const char *v1 = strstr(line, ":memory:");
+        if (v2) {
+            snprintf(dir, sizeof dir, "/sys/fs/cgroup%s", v2);
+            cgroup_limit(dir, "memory.max", "memory.current", &limit, &used);
+        } else if (v1) {
+            snprintf(dir, sizeof dir, "/sys/fs/cgroup/memory%s", v1 + 8);
+            cgroup_limit(dir, "memory.limit_in_bytes", "memory.usage_in_bytes",
+                         &limit, &used);
+        }
+    }
+    if (f)
+        fclose(f);
+    cgroup_limit("/sys/fs/cgroup", "memory.max", "memory.current", &limit,
+                 &used);
+    cgroup_limit("/sys/fs/cgroup/memory", "memory.limit_in_bytes",
+                 "memory.usage_in_bytes", &limit, &used);
+    *total = limit;
+    if (used >= 0.0 && limit - used < *available)
+        *available = limit > used ? limit - used : 0.0;
 }

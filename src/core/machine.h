@@ -23,4 +23,10 @@ int dem_cpu_missing(int (*has)(const char *name), char *out, size_t len);
  * (another compiler or architecture). */
 int dem_cpu_level(void);
 
+/* This machine's memory in bytes: *total, physical plus swap, and
+ * *available, what it can give now without swapping (MemAvailable of
+ * /proc/meminfo); both within the memory limit of the process's cgroup
+ * (v2: a container's or a batch job's). 0 where it cannot tell. */
+void dem_machine_memory(double *total, double *available);
+
 #endif

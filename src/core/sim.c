@@ -14,6 +14,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "core/machine.h"
 #include "core/parallel.h"
 #include "core/placement.h"
 
@@ -53,9 +54,48 @@ static void place_walls(struct dem_sim *s, const double lo[3],
     }
 }
 
+int dem_sim_memory_check(long n, const char *what, double total,
+                         double available, struct dem_error *err)
+{
+    const double GB = 1e9, least = (double)n * DEM_SIM_BYTES_LEAST,
+                 packed = (double)n * DEM_SIM_BYTES_PACKED;
+    if (total > 0.0 && least > total)
+        return dem_error_set(err, DEM_ENOMEM,
+                             "%s: a run of %ld particles takes at least %.3g "
+                             "GB of memory (%d bytes per particle before its "
+                             "first step, about %.2g kB once packed), more "
+                             "than this machine's %.3g GB",
+                             what, n, least / GB, DEM_SIM_BYTES_LEAST,
+                             DEM_SIM_BYTES_PACKED / 1e3, total / GB);
+    if (available > 0.0 && packed > available)
+        dem_warn(err,
+                 "%s: a packed sample of %ld particles takes about %.3g GB "
+                 "of memory (%.2g kB per particle), more than the %.3g GB "
+                 "available now: expect swapping, or the out-of-memory "
+                 "killer to end the run",
+                 what, n, packed / GB, DEM_SIM_BYTES_PACKED / 1e3,
+                 available / GB);
+    return DEM_OK;
+}
+
 int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
                    struct dem_particles *given, struct dem_error *err)
 {
+    /* before the particles' arrays: a sample too large for the machine
+     * would take every page the kernel has, and the out-of-memory killer
+     * would end the process without a word */
+    char what[DEM_PATH_MAX + 64];
+    const int file = cfg->particles.placement == DEM_PLACE_FILE;
+    const long n = file ? (given ? given->n : 0) : cfg->particles.count;
+    if (file)
+        snprintf(what, sizeof what, "particles.file = %s", cfg->particles.file);
+    else
+        snprintf(what, sizeof what, "particles.count = %ld", n);
+    double total, available;
+    dem_machine_memory(&total, &available);
+    const int rc0 = dem_sim_memory_check(n, what, total, available, err);
+    if (rc0)
+        return rc0;
     sim_begin(s, cfg);
     double lo[3], hi[3];
     int rc = dem_place_particles(&s->p, cfg, &s->rng, given, lo, hi, err);

@@ -144,6 +144,22 @@ struct dem_sim {
     struct dem_timers timers;    /* s; time per phase */
 };
 
+/* The memory of a run per particle: what it takes before its first step
+ * (measured: 336 bytes per particle in both 2D and 3D, from the peak
+ * resident size of `dembox run biaxial2d` and `triaxial3d` with
+ * particles.count 20000 and 100000 and --max-steps 300), and once packed
+ * (1.22 kB: `dembox bench --n 216000` against --n 20000, a dense 3D
+ * packing, 4 pairs per particle in the lists). */
+#define DEM_SIM_BYTES_LEAST 300
+#define DEM_SIM_BYTES_PACKED 1200.0
+
+/* Whether n particles fit in memory: DEM_ENOMEM naming what (the key and
+ * its value) when even the least a run takes exceeds total (bytes of
+ * memory and swap), a warning when a packed sample would exceed
+ * available; 0 = unknown. */
+int dem_sim_memory_check(long n, const char *what, double total,
+                         double available, struct dem_error *err);
+
 /* Build the simulation from a validated config: particles placed, walls
  * around them, all fixed. given: the particles of placement "file" (read
  * by the caller, e.g. with dem_particles_load; taken over), else NULL. */

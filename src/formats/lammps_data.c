@@ -337,8 +337,14 @@ static int read_header(struct reader *r, char **f, int *nf)
         if (*nf == 0)
             continue;
         if (*nf == 2 && !strcmp(f[1], "atoms")) {
-            if (!integer(f[0], &natoms) || natoms < 1 || natoms > 1000000000L)
+            if (!integer(f[0], &natoms) || natoms < 1)
                 return fail(r, DEM_EIO, "bad atom count", f[0]);
+            if (natoms > DEM_MAX_PARTICLES)
+                return dem_error_set(r->err, DEM_EIO,
+                                     "%s:%d: %ld atoms: more than the %d "
+                                     "dembox takes",
+                                     r->path, r->lineno, natoms,
+                                     DEM_MAX_PARTICLES);
             continue;
         }
         if (*nf == 3 && !strcmp(f[1], "atom") && !strcmp(f[2], "types"))

@@ -102,10 +102,13 @@ static int reader_grow(struct reader *r, struct dem_error *err)
 {
     if (r->n < r->cap)
         return DEM_OK;
-    if (r->cap > INT_MAX / 2)
-        return dem_error_set(err, DEM_ECONFIG, "%s: too many particles",
-                             r->path);
+    if (r->n >= DEM_MAX_PARTICLES)
+        return dem_error_set(err, DEM_ECONFIG,
+                             "%s: more than %d particles, the most dembox "
+                             "takes",
+                             r->path, DEM_MAX_PARTICLES);
     int cap = r->cap ? 2 * r->cap : 256;
+    cap = cap < DEM_MAX_PARTICLES ? cap : DEM_MAX_PARTICLES;
     double *rows = realloc(r->rows, (size_t)cap * NCOL * sizeof *rows);
     if (!rows)
         return dem_error_set(err, DEM_ENOMEM, "%s: out of memory", r->path);
