@@ -93,10 +93,13 @@ int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
         snprintf(what, sizeof what, "particles.count = %ld", n);
     double total, available;
     dem_machine_memory(&total, &available);
-    const int rc0 = dem_sim_memory_check(n, what, total, available, err);
-    if (rc0)
-        return rc0;
     sim_begin(s, cfg);
+    if (dem_sim_memory_check(n, what, total, available, err)) {
+        if (given)
+            dem_particles_free(given); /* taken over, as placed ones are */
+        dem_sim_destroy(s);
+        return DEM_ENOMEM;
+    }
     double lo[3], hi[3];
     int rc = dem_place_particles(&s->p, cfg, &s->rng, given, lo, hi, err);
     if (!rc) {
