@@ -90,6 +90,18 @@ static void read_file(const char *path, const uint8_t *data, size_t size)
     char *config = 0;
     struct dem_error err = {0};
     int rc = dem_checkpoint_read(path, &s, &config, &run, NULL, 0, &err);
+    if (rc != DEM_OK && strstr(err.msg, "written by another build")) {
+        /* as --any-build reads it: then it names that build, on one
+         * printable line */
+        char other[200];
+        rc = dem_checkpoint_read(path, &s, &config, &run, other, sizeof other,
+                                 &err);
+        for (const char *c = other; rc == DEM_OK && *c; c++)
+            if ((unsigned char)*c < 32 || (unsigned char)*c > 126)
+                abort();
+        if (rc == DEM_OK && !other[0])
+            abort();
+    }
     if (rc != DEM_OK) {
         fuzz_one_line(&err);
         return;
