@@ -145,11 +145,11 @@ struct dem_sim {
 };
 
 /* The memory of a run per particle: what it takes before its first step
- * (measured: 336 bytes per particle in both 2D and 3D, from the peak
+ * (measured: 340 bytes per particle in both 2D and 3D, from the peak
  * resident size of `dembox run biaxial2d` and `triaxial3d` with
  * particles.count 20000 and 100000 and --max-steps 300), and once packed
- * (1.22 kB: `dembox bench --n 216000` against --n 20000, a dense 3D
- * packing, 4 pairs per particle in the lists). */
+ * (1.25 kB: `dembox bench --n 216000` against --n 20000, a dense 3D
+ * packing; docs/performance.md, "Memory"). */
 #define DEM_SIM_BYTES_LEAST 300
 #define DEM_SIM_BYTES_PACKED 1200.0
 
