@@ -341,15 +341,30 @@ static void warn_oversubscribed(long jobs, long threads)
         dem_warn_oversubscribed(jobs, threads, &err);
 }
 
+/* A time left of t seconds, as a person reads it. */
+static void time_left(char *out, size_t n, double t)
+{
+    if (t < 120.0)
+        snprintf(out, n, "%.0f s", t);
+    else if (t < 7200.0)
+        snprintf(out, n, "%.0f min", t / 60.0);
+    else if (t < 172800.0)
+        snprintf(out, n, "%.1f h", t / 3600.0);
+    else
+        snprintf(out, n, "%.3g days", t / 86400.0);
+}
+
 /* A run's progress, redrawn in place on a terminal. */
 static void cli_progress(const struct dem_progress *p, void *user)
 {
     (void)user;
+    char eta[32];
+    time_left(eta, sizeof eta, p->eta);
     fprintf(stderr,
-            "\r\033[Kstage %d/%d %-9s t = %.4g s  %5.1f%%  ETA %s%.0f s  "
+            "\r\033[Kstage %d/%d %-9s t = %.4g s  %5.1f%%  ETA %s%s  "
             "%.3g particle-steps/s",
             p->stage, p->nstages, p->stage_type, p->t, 100.0 * p->fraction,
-            p->eta_is_bound ? "<= " : "", p->eta, p->speed);
+            p->eta_is_bound ? "<= " : "", eta, p->speed);
     progress_shown = !p->stage_done;
     if (p->stage_done)
         fputc('\n', stderr);
