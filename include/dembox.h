@@ -276,7 +276,8 @@ struct dem_run_options {
      * 1), in the thread that called dem_run; NULL = no reports */
     void (*progress)(const struct dem_progress *p, void *user);
     void *progress_user;
-    int threads;    /* OpenMP threads; 0 = all cores (< 0: DEM_EUSAGE) */
+    int threads;    /* OpenMP threads; 0 = all cores (OMP_NUM_THREADS), at
+                       most one per 500 particles (< 0: DEM_EUSAGE) */
     long max_steps; /* > 0: end the run after this many steps (smoke
                        tests); outputs are written as for a full run;
                        0 = no limit (< 0: DEM_EUSAGE) */

@@ -6,6 +6,7 @@
 #include "testutil.h"
 
 #include <malloc.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -653,6 +654,41 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     assert_false(exists(out, "dump.lammpstrj"));
 }
 
+/* threads = 0 (every core) gives a small sample fewer threads, one per
+ * 500 particles at most; the process's count is as it was afterwards. */
+static void small_samples_take_fewer_threads_by_default(void **state)
+{
+    (void)state;
+    /* as on two cores (CTest sets OMP_NUM_THREADS=1) */
+    const int given = omp_get_max_threads(), cores = 2;
+    omp_set_num_threads(cores);
+    const int counts[] = {150, 1000};
+    for (int k = 0; k < 2; k++) {
+        char set[64], out[1024], path[1100], want[64];
+        snprintf(set, sizeof set, "particles.count=%d", counts[k]);
+        const char *sets[] = {set};
+        struct dem_config c;
+        struct dem_error err = {0};
+        if (dem_config_parse(&c, small_2d, "threads", sets, 1, &err))
+            fail_msg("%s", err.msg);
+        snprintf(out, sizeof out, "%s/threads-%d", tmpdir, counts[k]);
+        struct dem_run_options o = {.outdir = out, .max_steps = 20};
+        if (dem_run(&c, &o, &err))
+            fail_msg("%s", err.msg);
+        assert_int_equal(omp_get_max_threads(), cores);
+        snprintf(path, sizeof path, "%s/timing.txt", out);
+        char *line = dem_read_text(path, &err);
+        assert_non_null(line);
+        const int t = counts[k] < 1000 ? 1 : 2;
+        snprintf(want, sizeof want, ", %d thread%s, ", t, t == 1 ? "" : "s");
+        if (!strstr(line, want))
+            fail_msg("%d particles on %d cores: want \"%s\" in %s", counts[k],
+                     cores, want, line);
+        free(line);
+    }
+    omp_set_num_threads(given);
+}
+
 /* A warning into a buffer of 1024 bytes (the last one). */
 static void keep_line(const char *line, void *user)
 {
@@ -739,6 +775,7 @@ int main(void)
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
+        cmocka_unit_test(small_samples_take_fewer_threads_by_default),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }
