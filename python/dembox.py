@@ -56,8 +56,9 @@ except ImportError:  # the module works without it, with lists
 
 __all__ = ["Error", "Interrupted", "DemboxWarning", "Progress",
            "SweepProgress", "version", "build", "examples", "example_text",
-           "run", "resume", "analyze", "plot", "timeseries", "summary", "particles",
-           "contacts", "dump_local", "DumpFrame", "sweep", "sweep_summary"]
+           "run", "resume", "analyze", "plot", "timeseries", "summary",
+           "particles", "contacts", "dump_local", "DumpFrame", "sweep",
+           "sweep_summary"]
 
 _DEM_EINTERRUPTED = -5  # include/dembox.h
 

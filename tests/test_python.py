@@ -455,4 +455,5 @@ except dembox.Error as e:
     assert "contact.mu" in str(e), str(e)
 else:
     raise AssertionError("a negative friction was accepted")
-print("test_python: ok (%d rows, dembox %s)" % (len(ts["t"]), dembox.version()))
+print("test_python: ok (%d rows, dembox %s)"
+      % (len(ts["t"]), dembox.version()))
