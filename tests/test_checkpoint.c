@@ -617,19 +617,30 @@ static void fix_crc(unsigned char *b, size_t len)
     memcpy(b + len - 4, &crc, 4);
 }
 
+/* The small 2D run of 4000 steps into NAME-ref, and again into NAME
+ * stopped once step stop is done (its checkpoint: ckpt). */
+static void ref_and_stopped_2d(const char *name, long stop, char ref[1024],
+                               char out[1024], char ckpt[1100])
+{
+    struct dem_config c;
+    parse(&c, small_2d);
+    char n2[256];
+    struct dem_error err = {0};
+    snprintf(n2, sizeof n2, "%s-ref", name);
+    dir_path(ref, 1024, n2);
+    dir_path(out, 1024, name);
+    file_path(ckpt, 1100, out, "checkpoint.bin");
+    if (run(&c, ref, 4000, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(run(&c, out, 4000, stop, 1, &err), DEM_EINTERRUPTED);
+}
+
 static void bad_checkpoints_are_refused_with_a_clear_message(void **state)
 {
     (void)state;
-    struct dem_config c;
-    parse(&c, small_2d);
     char ref[1024], out[1024], ckpt[1100];
     struct dem_error err = {0};
-    dir_path(ref, sizeof ref, "refused-ref");
-    dir_path(out, sizeof out, "refused");
-    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
-    if (run(&c, ref, 4000, 0, 1, &err))
-        fail_msg("%s", err.msg);
-    assert_int_equal(run(&c, out, 4000, 2000, 1, &err), DEM_EINTERRUPTED);
+    ref_and_stopped_2d("refused", 2000, ref, out, ckpt);
     size_t len = 0;
     unsigned char *good = read_all(ckpt, &len);
     assert_non_null(good);
@@ -740,17 +751,10 @@ static void keep_warning(const char *line, void *user)
 static void another_build_is_refused_unless_any_build(void **state)
 {
     (void)state;
-    struct dem_config c;
-    parse(&c, small_2d);
     char ref[1024], out[1024], ckpt[1100], timing[1100];
     struct dem_error err = {0};
-    dir_path(ref, sizeof ref, "otherbuild-ref");
-    dir_path(out, sizeof out, "otherbuild");
-    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
+    ref_and_stopped_2d("otherbuild", 2000, ref, out, ckpt);
     file_path(timing, sizeof timing, out, "timing.txt");
-    if (run(&c, ref, 4000, 0, 1, &err))
-        fail_msg("%s", err.msg);
-    assert_int_equal(run(&c, out, 4000, 2000, 1, &err), DEM_EINTERRUPTED);
 
     /* this build's own checkpoint reads as this build's */
     char other[200] = "x";
@@ -813,17 +817,10 @@ static void write_error_keeps_the_last_checkpoint(void **state)
     struct stat st;
     if (stat("/dev/full", &st) != 0)
         skip();
-    struct dem_config c;
-    parse(&c, small_2d);
     char ref[1024], out[1024], ckpt[1100], tmp[1200];
     struct dem_error err = {0};
-    dir_path(ref, sizeof ref, "diskfull-ref");
-    dir_path(out, sizeof out, "diskfull");
-    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
+    ref_and_stopped_2d("diskfull", 1500, ref, out, ckpt);
     snprintf(tmp, sizeof tmp, "%s.tmp", ckpt);
-    if (run(&c, ref, 4000, 0, 1, &err))
-        fail_msg("%s", err.msg);
-    assert_int_equal(run(&c, out, 4000, 1500, 1, &err), DEM_EINTERRUPTED);
     size_t len = 0, len2 = 0;
     unsigned char *good = read_all(ckpt, &len);
     assert_non_null(good);
