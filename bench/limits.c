@@ -53,7 +53,18 @@
  * array in turn), N = 3375 against 216000, by turns (some 6 minutes;
  * docs/performance-log.md, session 93):
  *
- *     build/dembox_limits --layouts */
+ *     build/dembox_limits --layouts
+ *
+ * Or what a gathered load costs on this CPU: doubles picked by random
+ * indices from a table in the L1 cache, 8 or 4 to a vector by the
+ * hardware gather (vgatherdpd, AVX-512 or AVX2, where the build has it)
+ * against one scalar load each, and against scalar loads put into a
+ * vector (what gcc emits when told not to gather); ns per element, the
+ * fastest of 5, in rounds. On CPUs under the Gather Data Sampling
+ * mitigation (Intel Skylake to Ice Lake, CVE-2022-40982) and on Zen 1 the
+ * gather is the slow one (docs/performance.md, "The tools"):
+ *
+ *     build/dembox_limits --gathers */
 #define _GNU_SOURCE /* pthread_setaffinity_np */
 #include <math.h>
 #include <pthread.h>
@@ -542,6 +553,150 @@ static double best(double (*f)(long), long reps)
     return m;
 }
 
+/* The gathers' measurement (--gathers): GATHER_TABLE doubles picked by
+ * GATHER_PICKS random indices, both in the L1 cache; reps passes. */
+#define GATHER_TABLE 2048
+#define GATHER_PICKS 2048
+static double gather_table[GATHER_TABLE];
+static int32_t gather_index[GATHER_PICKS];
+
+/* One scalar load per element into 8 independent sums. Each index
+ * passes through an empty asm, which keeps the compiler from vectorising
+ * the loop (or it would gather here too). */
+static double gather_scalar(long reps)
+{
+    double acc[8] = {0};
+    double t = now();
+    for (long r = 0; r < reps; r++)
+        for (int j = 0; j < GATHER_PICKS; j += 8)
+            for (int k = 0; k < 8; k++) {
+                int32_t i = gather_index[j + k];
+                __asm__("" : "+r"(i));
+                acc[k] += gather_table[i];
+            }
+    t = now() - t;
+    for (int k = 0; k < 8; k++)
+        sink += acc[k];
+    return (double)reps * GATHER_PICKS / t;
+}
+
+#if defined(__AVX512F__)
+#define GATHER_WIDTH 8
+#define GATHER_NAME "vgatherdpd zmm, 8 lanes"
+typedef __m512d gvec;
+static inline gvec gather_hw(const int32_t *i)
+{
+    return _mm512_i32gather_pd(_mm256_loadu_si256((const __m256i *)i),
+                               gather_table, 8);
+}
+static inline gvec gather_sw(const int32_t *i)
+{
+    const double *a = gather_table;
+    return _mm512_set_pd(a[i[7]], a[i[6]], a[i[5]], a[i[4]], a[i[3]], a[i[2]],
+                         a[i[1]], a[i[0]]);
+}
+static inline gvec gvec_add(gvec a, gvec b)
+{
+    return _mm512_add_pd(a, b);
+}
+static inline gvec gvec_zero(void)
+{
+    return _mm512_setzero_pd();
+}
+static inline double gvec_sum(gvec a)
+{
+    return _mm512_reduce_add_pd(a);
+}
+#elif defined(__AVX2__)
+#define GATHER_WIDTH 4
+#define GATHER_NAME "vgatherdpd ymm, 4 lanes"
+typedef __m256d gvec;
+static inline gvec gather_hw(const int32_t *i)
+{
+    return _mm256_i32gather_pd(gather_table,
+                               _mm_loadu_si128((const __m128i *)i), 8);
+}
+static inline gvec gather_sw(const int32_t *i)
+{
+    const double *a = gather_table;
+    return _mm256_set_pd(a[i[3]], a[i[2]], a[i[1]], a[i[0]]);
+}
+static inline gvec gvec_add(gvec a, gvec b)
+{
+    return _mm256_add_pd(a, b);
+}
+static inline gvec gvec_zero(void)
+{
+    return _mm256_setzero_pd();
+}
+static inline double gvec_sum(gvec a)
+{
+    double v[4];
+    _mm256_storeu_pd(v, a);
+    return v[0] + v[1] + v[2] + v[3];
+}
+#endif
+
+#ifdef GATHER_WIDTH
+/* A vector of GATHER_WIDTH elements at a time, by the hardware gather
+ * (hw 1) or by scalar loads put into a vector (hw 0), into 4 sums. */
+static double gather_vector(int hw, long reps)
+{
+    gvec acc[4] = {gvec_zero(), gvec_zero(), gvec_zero(), gvec_zero()};
+    double t = now();
+    for (long r = 0; r < reps; r++)
+        for (int j = 0; j < GATHER_PICKS; j += 4 * GATHER_WIDTH)
+            for (int k = 0; k < 4; k++) {
+                const int32_t *i = gather_index + j + k * GATHER_WIDTH;
+                acc[k] = gvec_add(acc[k], hw ? gather_hw(i) : gather_sw(i));
+            }
+    t = now() - t;
+    for (int k = 0; k < 4; k++)
+        sink += gvec_sum(acc[k]);
+    return (double)reps * GATHER_PICKS / t;
+}
+static double gather_hardware(long reps)
+{
+    return gather_vector(1, reps);
+}
+static double gather_inserted(long reps)
+{
+    return gather_vector(0, reps);
+}
+#endif
+
+/* --gathers: ns per element of each way, in rounds by turns. */
+static void gathers(void)
+{
+    uint64_t x = 88172645463325252u;
+    for (int k = 0; k < GATHER_TABLE; k++)
+        gather_table[k] = 1.0 + 1e-6 * k;
+    for (int k = 0; k < GATHER_PICKS; k++) {
+        x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+        gather_index[k] = (int32_t)(x % GATHER_TABLE);
+    }
+    const long reps = 20000;
+#ifdef GATHER_WIDTH
+    printf("doubles by random indices from an L1-resident table, ns per "
+           "element (fastest of 5): %s, the same loads scalar, and scalar "
+           "loads put into a vector\n",
+           GATHER_NAME);
+    for (int round = 1; round <= 3; round++) {
+        const double hw = 1e9 / best(gather_hardware, reps),
+                     sc = 1e9 / best(gather_scalar, reps),
+                     in = 1e9 / best(gather_inserted, reps);
+        printf("round %d: gather %.3f, scalar %.3f, inserted %.3f; "
+               "gather / scalar %.2f\n",
+               round, hw, sc, in, hw / sc);
+    }
+#else
+    printf("doubles by random indices from an L1-resident table, ns per "
+           "element (fastest of 5): this build has no vector gather "
+           "(neither AVX-512 nor AVX2); scalar loads %.3f\n",
+           1e9 / best(gather_scalar, reps));
+#endif
+}
+
 static double sqrt_rate(long reps) { return divider_rate(0, reps); }
 static double div_rate(long reps) { return divider_rate(1, reps); }
 
@@ -754,9 +909,13 @@ int main(int argc, char **argv)
         layouts();
         return 0;
     }
+    if (argc == 2 && !strcmp(argv[1], "--gathers")) {
+        gathers();
+        return 0;
+    }
     if (argc > 1) {
         fprintf(stderr, "usage: dembox_limits [--pingpong | --handover | "
-                        "--fronts | --layouts]\n");
+                        "--fronts | --layouts | --gathers]\n");
         return 2;
     }
     printf("fma:    %.1f Gflop/s\n", 1e-9 * best(fma_rate, 2000000));
