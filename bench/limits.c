@@ -595,18 +595,6 @@ static inline gvec gather_sw(const int32_t *i)
     return _mm512_set_pd(a[i[7]], a[i[6]], a[i[5]], a[i[4]], a[i[3]], a[i[2]],
                          a[i[1]], a[i[0]]);
 }
-static inline gvec gvec_add(gvec a, gvec b)
-{
-    return _mm512_add_pd(a, b);
-}
-static inline gvec gvec_zero(void)
-{
-    return _mm512_setzero_pd();
-}
-static inline double gvec_sum(gvec a)
-{
-    return _mm512_reduce_add_pd(a);
-}
 #elif defined(__AVX2__)
 #define GATHER_WIDTH 4
 #define GATHER_NAME "vgatherdpd ymm, 4 lanes"
@@ -621,38 +609,26 @@ static inline gvec gather_sw(const int32_t *i)
     const double *a = gather_table;
     return _mm256_set_pd(a[i[3]], a[i[2]], a[i[1]], a[i[0]]);
 }
-static inline gvec gvec_add(gvec a, gvec b)
-{
-    return _mm256_add_pd(a, b);
-}
-static inline gvec gvec_zero(void)
-{
-    return _mm256_setzero_pd();
-}
-static inline double gvec_sum(gvec a)
-{
-    double v[4];
-    _mm256_storeu_pd(v, a);
-    return v[0] + v[1] + v[2] + v[3];
-}
 #endif
 
 #ifdef GATHER_WIDTH
 /* A vector of GATHER_WIDTH elements at a time, by the hardware gather
- * (hw 1) or by scalar loads put into a vector (hw 0), into 4 sums. */
+ * (hw 1) or by scalar loads put into a vector (hw 0), into 4 sums (the
+ * intrinsics' vector types take GCC's operators and subscripts). */
 static double gather_vector(int hw, long reps)
 {
-    gvec acc[4] = {gvec_zero(), gvec_zero(), gvec_zero(), gvec_zero()};
+    gvec acc[4] = {{0}, {0}, {0}, {0}};
     double t = now();
     for (long r = 0; r < reps; r++)
         for (int j = 0; j < GATHER_PICKS; j += 4 * GATHER_WIDTH)
             for (int k = 0; k < 4; k++) {
                 const int32_t *i = gather_index + j + k * GATHER_WIDTH;
-                acc[k] = gvec_add(acc[k], hw ? gather_hw(i) : gather_sw(i));
+                acc[k] += hw ? gather_hw(i) : gather_sw(i);
             }
     t = now() - t;
     for (int k = 0; k < 4; k++)
-        sink += gvec_sum(acc[k]);
+        for (int l = 0; l < GATHER_WIDTH; l++)
+            sink += acc[k][l];
     return (double)reps * GATHER_PICKS / t;
 }
 static double gather_hardware(long reps)
