@@ -276,8 +276,9 @@ struct dem_run_options {
      * 1), in the thread that called dem_run; NULL = no reports */
     void (*progress)(const struct dem_progress *p, void *user);
     void *progress_user;
-    int threads;    /* OpenMP threads; 0 = all cores (OMP_NUM_THREADS), at
-                       most one per 500 particles (< 0: DEM_EUSAGE) */
+    int threads;    /* OpenMP threads; 0 = all cores (OMP_NUM_THREADS) or
+                       one, whichever runs the steps faster, timed now
+                       and then in the run (< 0: DEM_EUSAGE) */
     long max_steps; /* > 0: end the run after this many steps (smoke
                        tests); outputs are written as for a full run;
                        0 = no limit (< 0: DEM_EUSAGE) */
@@ -692,6 +693,10 @@ struct dem_run_timing {
     int periodic;           /* 1: a periodic cell, whose step.walls is the
                                cell's motion and the particles' positions
                                computed from the frame (core/cell.h) */
+    char team[96];          /* threads = 0: the threads' choice by timing,
+                               e.g. "2 threads, one thread in 12 % of the
+                               steps (5 trials, 1 change)"; "" when none
+                               was timed */
 };
 
 /* T as the one line `dembox run` closes with and OUTDIR/timing.txt keeps

@@ -122,6 +122,10 @@ static int run_normal = DEM_NORMAL_LINEAR;
  * run_plane_off, the 3D passes, which compute the plane's zeros */
 static int run_dim = 3;
 static int run_plane_off;
+/* > 0: the chained steps of run_threads change their team between the
+ * given threads and one every run_team steps, as a run's team by timing
+ * does (protocol/team.h) */
+static int run_team;
 
 /* Positions and spins by particle id (512 of them) after a frictional,
  * damped run with re-ordering, between walls or (run_cell) in a periodic
@@ -195,7 +199,15 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     if (run_cell) /* shear along x by a fifth of the cell */
         dem_wall_set_strain(&s.cell.tilt[dim == 2 ? DEM_TILT_XY : DEM_TILT_XZ],
                             DEM_PROFILE_LINEAR, 0.02, 0.06, s.t);
-    if (chained) {
+    if (chained && run_team) {
+        for (int k = 0; k < 3000; k++) {
+            struct dem_error err;
+            omp_set_num_threads(k / run_team % 2 ? 1 : threads);
+            s.chain = k + 1 < 3000;
+            assert_int_equal(dem_sim_step(&s, &err), DEM_OK);
+        }
+        omp_set_num_threads(threads);
+    } else if (chained) {
         test_step(&s, 3000);
     } else {
         for (int k = 0; k < 3000; k++) {
@@ -277,6 +289,30 @@ static void chained_steps_give_identical_results(void **state)
     run_cell = 1;
     assert_same_runs(1, 1, NULL, 1, 0, NULL);
     run_cell = 0;
+}
+
+/* A run's team by timing (protocol/team.h) changes between any two
+ * steps, chained or not, a list build, the records or the rings a pass
+ * left for the next: the same run bit for bit as on one thread, with the
+ * passes chosen by timing and with each pass forced, between walls and
+ * in a cell; every 37 steps, and at every step. */
+static void teams_changing_between_steps_give_identical_results(void **state)
+{
+    (void)state;
+    static const int every[] = {37, 1};
+    for (int e = 0; e < 2; e++) {
+        run_team = every[e];
+        assert_same_runs(2, 1, NULL, 1, 1, NULL);
+        run_cell = 1;
+        assert_same_runs(2, 1, NULL, 1, 1, NULL);
+        run_cell = 0;
+#if DEM_HAVE_PASS_RECORDS
+        assert_same_runs(2, 1, "blocks", 1, 1, "gathers");
+        assert_same_runs(2, 1, "ring", 1, 1, "gathers");
+        assert_same_runs(2, 1, "single", 1, 1, "gathers");
+#endif
+    }
+    run_team = 0;
 }
 
 /* The force pass compiled with and without hardware gathers, and with
@@ -411,6 +447,7 @@ int main(void)
         cmocka_unit_test(threads_give_identical_results),
         cmocka_unit_test(chained_steps_give_identical_results),
         cmocka_unit_test(force_passes_give_identical_results),
+        cmocka_unit_test(teams_changing_between_steps_give_identical_results),
         cmocka_unit_test(plane_passes_give_the_3d_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -654,37 +654,51 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     assert_false(exists(out, "dump.lammpstrj"));
 }
 
-/* threads = 0 (every core) gives a small sample fewer threads, one per
- * 500 particles at most; the process's count is as it was afterwards. */
-static void small_samples_take_fewer_threads_by_default(void **state)
+/* threads = 0: every core or one, whichever runs the steps faster,
+ * timed now and then in the run (protocol/team.h): on two cores the
+ * timing line says what the trials chose, the outputs are those of one
+ * thread to the bit, and the process's count is as it was afterwards. */
+static void threads_left_to_the_library_are_chosen_by_timing(void **state)
 {
     (void)state;
     /* as on two cores (CTest sets OMP_NUM_THREADS=1) */
     const int given = omp_get_max_threads(), cores = 2;
     omp_set_num_threads(cores);
-    const int counts[] = {150, 1000};
-    for (int k = 0; k < 2; k++) {
-        char set[64], out[1024], path[1100], want[64];
-        snprintf(set, sizeof set, "particles.count=%d", counts[k]);
-        const char *sets[] = {set};
-        struct dem_config c;
-        struct dem_error err = {0};
-        if (dem_config_parse(&c, small_2d, "threads", sets, 1, &err))
-            fail_msg("%s", err.msg);
-        snprintf(out, sizeof out, "%s/threads-%d", tmpdir, counts[k]);
-        struct dem_run_options o = {.outdir = out, .max_steps = 20};
+    char o1[1024], o0[1024], p1[2048], p0[2048];
+    run_text(small_2d, "team-1", 0, 0, 6000, o1, sizeof o1);
+    struct dem_config c;
+    struct dem_error err = {0};
+    if (dem_config_parse(&c, small_2d, "team-0", 0, 0, &err))
+        fail_msg("%s", err.msg);
+    snprintf(o0, sizeof o0, "%s/team-0", tmpdir);
+    struct dem_run_timing T;
+    /* long enough for a trial, DEM_TEAM_FIRST s into the run, in the
+     * sanitizers' builds and on a fast CPU */
+    long steps = 6000;
+    for (;;) {
+        struct dem_run_options o = {
+            .outdir = o0, .max_steps = steps, .timing = &T};
         if (dem_run(&c, &o, &err))
             fail_msg("%s", err.msg);
         assert_int_equal(omp_get_max_threads(), cores);
-        snprintf(path, sizeof path, "%s/timing.txt", out);
-        char *line = dem_read_text(path, &err);
-        assert_non_null(line);
-        const int t = counts[k] < 1000 ? 1 : 2;
-        snprintf(want, sizeof want, ", %d thread%s, ", t, t == 1 ? "" : "s");
-        if (!strstr(line, want))
-            fail_msg("%d particles on %d cores: want \"%s\" in %s", counts[k],
-                     cores, want, line);
-        free(line);
+        if (T.team[0] || steps > 1000000)
+            break;
+        steps *= 4;
+    }
+    assert_non_null(strstr(T.team, "2 threads, one thread in "));
+    snprintf(p0, sizeof p0, "%s/timing.txt", o0);
+    char *line = dem_read_text(p0, &err);
+    assert_non_null(line);
+    assert_non_null(strstr(line, ", 2 threads, "));
+    assert_non_null(strstr(line, "; threads by timing: 2 threads, one "));
+    free(line);
+    if (steps != 6000)
+        run_text(small_2d, "team-1", 0, 0, steps, o1, sizeof o1);
+    const char *files[] = {"timeseries.csv", "particles_final.csv"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(p1, sizeof p1, "%s/%s", o1, files[k]);
+        snprintf(p0, sizeof p0, "%s/%s", o0, files[k]);
+        assert_true(same_file(p1, p0));
     }
     omp_set_num_threads(given);
 }
@@ -775,7 +789,7 @@ int main(void)
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
-        cmocka_unit_test(small_samples_take_fewer_threads_by_default),
+        cmocka_unit_test(threads_left_to_the_library_are_chosen_by_timing),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

@@ -45,6 +45,7 @@
 #include "measure/measure.h"
 #include "output/output.h"
 #include "protocol/stage.h"
+#include "protocol/team.h"
 #include "protocol/timing.h"
 
 struct run_ctx {
@@ -69,6 +70,7 @@ struct run_ctx {
                               this sample, when gathered */
     int have_whole;
     double last_ckpt;             /* wall clock of the last checkpoint */
+    struct dem_team team;         /* the threads of each step */
     /* progress */
     double wall_t0, last_show;
     long step0, nbuild0;
@@ -386,6 +388,17 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
     return plan[2] ? write_checkpoint(r, err) : DEM_OK;
 }
 
+/* The threads of the next step: the team's choice (protocol/team.h), if
+ * it chooses. */
+static void team_for_step(struct run_ctx *r)
+{
+    if (r->team.full < 2)
+        return;
+    const int nt = dem_team_next(&r->team);
+    if (nt != omp_get_max_threads())
+        omp_set_num_threads(nt);
+}
+
 /* The steps of the stage under way, from wherever it stands, to its end.
  * A checkpoint is taken after a sample that does not end the stage, or
  * between samples, after a step that is not chained, so that resuming
@@ -424,6 +437,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         s->chain = !sample && halt == GO_ON;
         if (ops->control)
             ops->control(s, st);
+        team_for_step(r);
         rc = dem_sim_step(s, err);
         if (rc)
             return rc;
@@ -637,6 +651,11 @@ static void start_progress(struct run_ctx *r)
     r->nbuild0 = r->sim.nbuild;
     r->sim.timing = 1;
     memset(&r->sim.timers, 0, sizeof r->sim.timers);
+    /* one process with the threads left to the library: the team by
+     * timing; else the threads in force */
+    const int full =
+        r->opt->threads == 0 && r->nranks < 2 ? omp_get_max_threads() : 1;
+    dem_team_init(&r->team, full, wall_clock);
 }
 
 /* Where the stage loops' time went (status: how they ended): for the
@@ -659,12 +678,14 @@ static void report_timing(const struct run_ctx *r, int status,
     dem_sim_pass_tally(&r->sim, T.pass, sizeof T.pass);
     snprintf(T.simd, sizeof T.simd, "%s", dem_sim_pass_simd(&r->sim));
     T.periodic = r->sim.cell.on;
+    dem_team_tally(&r->team, T.team, sizeof T.team);
     if (r->opt->timing)
         *r->opt->timing = T;
     if (writer(r))
         dem_run_timing_record(r->outdir, &T, status, r->step0,
-                              omp_get_max_threads(), r->nranks, r->other_build,
-                              err);
+                              r->team.full > 1 ? r->team.full
+                                               : omp_get_max_threads(),
+                              r->nranks, r->other_build, err);
 }
 
 /* The stages from first on, then the final outputs; releases everything
@@ -723,7 +744,7 @@ static void start_ranks(struct run_ctx *r)
 }
 
 /* The run's threads, and subnormal numbers flushed on each of them
- * (core/fpmode.h; restored when the run returns). */
+ * (core/fpmode.h; both restored when the run returns). */
 static void engine_mode(const struct dem_run_options *opt,
                         struct dem_fpmode *fp)
 {
@@ -732,23 +753,14 @@ static void engine_mode(const struct dem_run_options *opt,
     dem_fpmode_flush(fp);
 }
 
-/* With threads = 0 (every core), at most one thread per this many
- * particles (per MPI rank): a step of a small sample is too short for the
- * threads' meetings. `dembox bench --n N --threads 1,2` on the Zen 5
- * (2026-12-06, session 100): 2 threads ran N = 500 at 0.80 times the
- * speed of 1, N = 1000 at 1.23 times, 2000 at 1.46, 3375 at 1.58. */
-#define DEM_PARTICLES_PER_THREAD 500
-
-/* The threads for a sample of n particles when the caller left the count
- * to the library (dem_run and dem_run_resume restore it after). */
-static void fit_threads(const struct run_ctx *r, long n)
+/* After the run: the mode on the threads engine_mode set it on, and the
+ * caller's count of threads (the team by timing changes it: team.h). */
+static void engine_restore(const struct dem_run_options *opt,
+                           const struct dem_fpmode *fp, int threads)
 {
-    if (r->opt->threads != 0)
-        return;
-    const long per = (long)DEM_PARTICLES_PER_THREAD * r->nranks,
-               most = n / per > 1 ? n / per : 1;
-    if (omp_get_max_threads() > most)
-        omp_set_num_threads((int)most);
+    omp_set_num_threads(opt->threads > 0 ? opt->threads : threads);
+    dem_fpmode_restore(fp);
+    omp_set_num_threads(threads);
 }
 
 static int run_new(const struct dem_config *cfg,
@@ -766,9 +778,6 @@ static int run_new(const struct dem_config *cfg,
     int rc = cfg->particles.placement == DEM_PLACE_FILE
                  ? dem_particles_load(&given, cfg, err)
                  : DEM_OK;
-    fit_threads(&r, cfg->particles.placement == DEM_PLACE_FILE
-                        ? given.n
-                        : cfg->particles.count);
     if (!rc)
         rc = dem_sim_create(
             &r.sim, cfg,
@@ -870,7 +879,6 @@ static int run_resumed(const char *outdir, const struct dem_run_options *opt,
         return rc;
     }
     r.n_all = r.sim.p.n;
-    fit_threads(&r, r.n_all);
     bind_outputs(&r);
     rc = split(&r, rc, err);
     if (!rc && r.st.noutputs != dem_output_nkinds)
@@ -946,9 +954,7 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     const int threads = omp_get_max_threads();
     engine_mode(opt, &fp);
     const int rc = run_new(cfg, opt, err);
-    dem_fpmode_restore(&fp);
-    if (opt->threads == 0) /* as it was, after fit_threads */
-        omp_set_num_threads(threads);
+    engine_restore(opt, &fp, threads);
     return rc;
 }
 
@@ -962,8 +968,6 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
     const int threads = omp_get_max_threads();
     engine_mode(opt, &fp);
     const int rc = run_resumed(outdir, opt, err);
-    dem_fpmode_restore(&fp);
-    if (opt->threads == 0)
-        omp_set_num_threads(threads);
+    engine_restore(opt, &fp, threads);
     return rc;
 }

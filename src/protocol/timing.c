@@ -42,6 +42,8 @@ int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n)
         PUT("MPI exchanges %.1f %%, ", pc * P->exchange);
     PUT("stages, samples and outputs %.1f %%; force pass %s", pc * rest,
         T->pass);
+    if (T->team[0])
+        PUT("; threads by timing: %s", T->team);
     return 1;
 }
 

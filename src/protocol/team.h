@@ -1,0 +1,66 @@
+/* The run's team of threads when the caller leaves their number to the
+ * library (threads = 0): every thread OpenMP gives the process, or one,
+ * whichever ran the run's own steps faster in the last timing trial.
+ *
+ * Which is faster depends on the sample's size and on where the host
+ * puts the vCPUs, which can change within minutes: at N = 500, two
+ * threads ran 0.80 times as fast as one on a Zen 5 whose two vCPUs were
+ * on two L3 caches, and 1.30 times as fast on an Ice Lake server whose
+ * vCPUs shared one (docs/performance-log.md, sessions 100 and 101). A
+ * fixed rule of particles per thread suits one placement and costs the
+ * other as much. The results are the same bit for bit on any number of
+ * threads, so the team may change between any two steps.
+ *
+ * A trial: DEM_TEAM_SLICES slices of DEM_TEAM_SLICE steps, the full team
+ * and one thread by turns (full, one, one, full, ...); each team's
+ * fastest slice is its time, so that a slice with a list build, a
+ * sample, the force pass's own trials or a moment the host took away
+ * does not decide. The other team replaces the one in use when it is
+ * faster by DEM_TEAM_MARGIN. The first trial comes DEM_TEAM_FIRST s
+ * into the run, the next DEM_TEAM_EVERY s after it; while trials keep
+ * the team, the time to the next one doubles, up to DEM_TEAM_EVERY_MAX.
+ *
+ * No clock in here: the caller hands one in, so that a test can give set
+ * times (tests/test_team.c). Outside trials it is read once every
+ * DEM_TEAM_PEEK steps.
+ */
+#ifndef DEM_PROTOCOL_TEAM_H
+#define DEM_PROTOCOL_TEAM_H
+
+#define DEM_TEAM_SLICE 32
+#define DEM_TEAM_SLICES 8
+#define DEM_TEAM_FIRST 0.05
+#define DEM_TEAM_EVERY 1.0
+#define DEM_TEAM_EVERY_MAX 64.0
+#define DEM_TEAM_MARGIN 1.03
+#define DEM_TEAM_PEEK 16
+
+struct dem_team {
+    int full;              /* the full team's threads; < 2: no trials */
+    int use;               /* the team between trials: full or 1 */
+    double (*clock)(void); /* s, monotonic */
+    double next;           /* clock of the next trial */
+    double every;          /* s from this trial to the next */
+    int slice;             /* the trial's slice under way, -1: none */
+    int steps;             /* steps of it handed out */
+    int peek;              /* steps since the clock was read */
+    double t0;             /* the clock at its start */
+    double best[2];        /* the fastest slice of the full team, of one */
+    /* tallies: trials, the changes of team they made, steps handed out
+     * and those on one thread */
+    long trials, changes, steps_all, steps_one;
+};
+
+/* T for a full team of full threads (< 2: one thread, never a trial);
+ * reads the clock once. */
+void dem_team_init(struct dem_team *T, int full, double (*clock)(void));
+
+/* The threads of the next step. */
+int dem_team_next(struct dem_team *T);
+
+/* T's choices in words for the run's timing line, e.g. "2 threads, one
+ * thread in 12 % of the steps (5 trials, 1 change)"; "" when T ran no
+ * trial. */
+void dem_team_tally(const struct dem_team *T, char *buf, unsigned long n);
+
+#endif
