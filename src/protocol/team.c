@@ -83,7 +83,7 @@ int dem_team_next(struct dem_team *T)
     return nt;
 }
 
-void dem_team_tally(const struct dem_team *T, char *buf, unsigned long n)
+void dem_team_tally(const struct dem_team *T, char *buf, size_t n)
 {
     if (n == 0)
         return;

@@ -27,6 +27,8 @@
 #ifndef DEM_PROTOCOL_TEAM_H
 #define DEM_PROTOCOL_TEAM_H
 
+#include <stddef.h>
+
 #define DEM_TEAM_SLICE 32
 #define DEM_TEAM_SLICES 8
 #define DEM_TEAM_FIRST 0.05
@@ -61,6 +63,6 @@ int dem_team_next(struct dem_team *T);
 /* T's choices in words for the run's timing line, e.g. "2 threads, one
  * thread in 12 % of the steps (5 trials, 1 change)"; "" when T ran no
  * trial. */
-void dem_team_tally(const struct dem_team *T, char *buf, unsigned long n);
+void dem_team_tally(const struct dem_team *T, char *buf, size_t n);
 
 #endif
