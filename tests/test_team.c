@@ -9,6 +9,8 @@
 
 #include "protocol/team.h"
 
+#include <math.h>
+
 /* The made-up machine's clock, which each step moves on. */
 static double now;
 static double clock_here(void)
@@ -18,12 +20,15 @@ static double clock_here(void)
 
 /* A step takes full_s on the full team and one_s on one thread; from
  * step `from` on late_full and late_one; steps [spoil_from, spoil_to)
- * take spoil times as long on the team in spoiled (0 full, 1 one). */
+ * take spoil times as long on the team in spoiled (0 full, 1 one).
+ * shared > 0: another program shares a vCPU with the full team, which
+ * has it for shared s, then waits shared s (its steps then take
+ * held_s), and so on. */
 struct machine {
     double full_s, one_s, late_full, late_one;
     long from, spoil_from, spoil_to;
     int spoiled;
-    double spoil;
+    double spoil, shared, held_s;
 };
 
 /* What the steps of a run did: the steps on the full team and on one
@@ -49,6 +54,8 @@ static void run(struct dem_team *T, const struct machine *M, long steps,
                                 : (one ? M->one_s : M->full_s);
         if (k >= M->spoil_from && k < M->spoil_to && one == M->spoiled)
             t *= M->spoil;
+        if (M->shared > 0.0 && !one && fmod(now, 2.0 * M->shared) >= M->shared)
+            t = M->held_s;
         now += t;
         if (T->use != was)
             R->last_change = k;
@@ -95,10 +102,12 @@ static void the_faster_team_runs_between_trials(void **state)
     run(&T, &fast2, 1000000, &R);
     assert_int_equal(T.use, 2);
     assert_int_equal(T.changes, 0);
-    /* trials at 0.05 s, then 1, 2, 4, ... 64 s apart: 0.05 + 1 + 2 + 4 +
-     * 8 + 16 + 32 < 100 s, a seventh at 63.05 + 64 > 100 s */
+    /* a trial of 8 slices of 0.02 s takes 0.16 s, so trials come at
+     * least 0.16 / DEM_TEAM_SHARE = 4 s apart: at 0.05 s, then after 4,
+     * 4, 4, 8, 16, 32 s (37 s in), the next 64 s later, past 100 s */
     assert_int_equal(T.trials, 7);
-    assert_int_equal(R.one_steps, 7L * DEM_TEAM_SLICES / 2 * DEM_TEAM_SLICE);
+    /* a slice of one thread: 112 steps of 1.8e-4 s */
+    assert_int_equal(R.one_steps, 7L * DEM_TEAM_SLICES / 2 * 112);
     char buf[96];
     dem_team_tally(&T, buf, sizeof buf);
     assert_string_equal(buf, "2 threads, one thread in 0 % of the steps "
@@ -106,18 +115,18 @@ static void the_faster_team_runs_between_trials(void **state)
     /* one thread faster: after the first trial (0.05 s in, about 400
      * steps) on one thread */
     const struct machine fast1 = {
-        .full_s = 1.25e-4, .one_s = 1e-4, .from = 1L << 40};
+        .full_s = 1.3e-4, .one_s = 1.05e-4, .from = 1L << 40};
     setup(&T, 2);
     run(&T, &fast1, 1000000, &R);
     assert_int_equal(T.use, 1);
     assert_int_equal(T.changes, 1);
-    assert_in_range(R.last_change, 400,
-                    400 + DEM_TEAM_PEEK + DEM_TEAM_SLICES * DEM_TEAM_SLICE);
+    /* slices of 154 steps on two threads, 191 on one */
+    const long trial = DEM_TEAM_SLICES / 2 * (154 + 191);
+    assert_in_range(R.last_change, 385 + trial, 385 + DEM_TEAM_PEEK + trial);
     /* on two threads: the steps before the first trial, and the trials'
      * slices */
-    assert_int_equal(R.full_steps,
-                     R.last_change - DEM_TEAM_SLICES * DEM_TEAM_SLICE +
-                         T.trials * DEM_TEAM_SLICES / 2 * DEM_TEAM_SLICE);
+    assert_int_equal(R.full_steps, R.last_change - trial +
+                                       T.trials * DEM_TEAM_SLICES / 2 * 154);
 }
 
 /* Within DEM_TEAM_MARGIN the team in use stays. */
@@ -127,7 +136,7 @@ static void a_near_tie_keeps_the_team(void **state)
     struct dem_team T;
     struct record R;
     const struct machine tie = {
-        .full_s = 1.02e-4, .one_s = 1e-4, .from = 1L << 40};
+        .full_s = 1.03e-4, .one_s = 1.01e-4, .from = 1L << 40};
     setup(&T, 2);
     run(&T, &tie, 200000, &R);
     assert_int_equal(T.use, 2);
@@ -136,8 +145,8 @@ static void a_near_tie_keeps_the_team(void **state)
 }
 
 /* The host moves the vCPUs 30 s into the run, and one thread becomes
- * the faster: the trials, 32 s apart by then, find it at the next one,
- * and come 1, 2, 4, ... s apart again after the change. */
+ * the faster: the trials, 16 s apart by then, find it at the next one,
+ * and come 4, 4, 4, 8, 16 s apart again after the change. */
 static void a_lasting_change_is_found_at_the_next_trial(void **state)
 {
     (void)state;
@@ -152,22 +161,22 @@ static void a_lasting_change_is_found_at_the_next_trial(void **state)
     run(&T, &moved, 600000, &R);
     assert_int_equal(T.use, 1);
     assert_int_equal(T.changes, 1);
-    /* trials at 0.05, 1.05, 3.05, 7.05, 15.05, 31.05 s: the one at 31.05
-     * s, at 2e-4 s a step by then about step 305250, finds it; then
-     * trials 1, 3, 7, 15 and 31 s after it, in the 44 s left */
-    assert_in_range(R.last_change, 305000, 305000 + 2000);
+    /* trials at 0.05, 4.2, 8.4, 12.5, 20.7 and 36.9 s: the last of them,
+     * at 2e-4 s a step by then about step 334500, finds it; then trials
+     * 4, 8, 12, 20 and 36 s after it, in the 40 s left */
+    assert_in_range(R.last_change, 333000, 337000);
     assert_int_equal(T.trials, 11);
 }
 
-/* Slices that a list build or the host spoils decide nothing: each
- * team's fastest slice is its time. */
+/* Slices that a list build or the host spoils decide nothing: a team's
+ * time is its slices' median. */
 static void a_spoiled_slice_does_not_decide(void **state)
 {
     (void)state;
     struct dem_team T;
     struct record R;
     /* the first trial's first slice of two threads (the clock read
-     * after 16 steps, 0.05 s in: step 512) ten times as slow */
+     * after 16 steps, 0.05 s in: step 511) ten times as slow */
     const struct machine spoilt = {.full_s = 1e-4,
                                    .one_s = 1.5e-4,
                                    .from = 1L << 40,
@@ -180,6 +189,39 @@ static void a_spoiled_slice_does_not_decide(void **state)
     assert_true(T.trials >= 1);
     assert_int_equal(T.changes, 0);
     assert_int_equal(R.last_change, -1);
+    /* nor a lucky one: two threads slower than one but in the first
+     * trial's first slice (from step 255), twice as fast there */
+    const struct machine lucky = {.full_s = 2e-4,
+                                  .one_s = 1.5e-4,
+                                  .from = 1L << 40,
+                                  .spoil_from = 250,
+                                  .spoil_to = 460,
+                                  .spoiled = 0,
+                                  .spoil = 0.5};
+    setup(&T, 2);
+    run(&T, &lucky, 15000, &R);
+    assert_int_equal(T.trials, 1);
+    assert_int_equal(T.use, 1);
+}
+
+/* Another program shares a vCPU of the full team: for 3 ms in 6 the
+ * team's steps take 1e-4 s, for the other 3 ms 2e-3 s (1.9e-4 s a step
+ * on average), one thread's 1.5e-4 s. The fastest of short slices would
+ * see 1e-4; the trials take one thread. */
+static void a_vcpu_shared_with_another_program_is_seen(void **state)
+{
+    (void)state;
+    struct dem_team T;
+    struct record R;
+    const struct machine busy = {.full_s = 1e-4,
+                                 .one_s = 1.5e-4,
+                                 .from = 1L << 40,
+                                 .shared = 3e-3,
+                                 .held_s = 2e-3};
+    setup(&T, 2);
+    run(&T, &busy, 20000, &R);
+    assert_int_equal(T.trials, 1);
+    assert_int_equal(T.use, 1);
 }
 
 int main(void)
@@ -190,6 +232,7 @@ int main(void)
         cmocka_unit_test(a_near_tie_keeps_the_team),
         cmocka_unit_test(a_lasting_change_is_found_at_the_next_trial),
         cmocka_unit_test(a_spoiled_slice_does_not_decide),
+        cmocka_unit_test(a_vcpu_shared_with_another_program_is_seen),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -22,15 +22,29 @@ static int slice_team(int k)
     return (k + 1) / 2 % 2;
 }
 
+/* The median of the n values of v (sorted here). */
+static double median(double *v, int n)
+{
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && v[j] < v[j - 1]; j--) {
+            const double x = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = x;
+        }
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 /* The trial over at clock now: the team until the next one, and when
  * that comes. */
 static void decide(struct dem_team *T, double now)
 {
-    const double *b = T->best;
+    const int n = DEM_TEAM_SLICES / 2;
+    const double full = median(T->per_step[0], n),
+                 one = median(T->per_step[1], n);
     int use = T->use;
-    if (b[1] * DEM_TEAM_MARGIN < b[0])
+    if (one * DEM_TEAM_MARGIN < full)
         use = 1;
-    else if (b[0] * DEM_TEAM_MARGIN < b[1])
+    else if (full * DEM_TEAM_MARGIN < one)
         use = T->full;
     if (use != T->use)
         T->every = DEM_TEAM_EVERY;
@@ -39,7 +53,7 @@ static void decide(struct dem_team *T, double now)
     T->trials++;
     T->slice = -1;
     T->peek = 0;
-    T->next = now + T->every;
+    T->next = now + fmax(T->every, (now - T->start) / DEM_TEAM_SHARE);
     T->every = fmin(2.0 * T->every, DEM_TEAM_EVERY_MAX);
 }
 
@@ -58,18 +72,19 @@ static int next_team(struct dem_team *T)
             return T->use;
         T->slice = 0; /* a trial begins */
         T->steps = 0;
-        T->t0 = now;
-        T->best[0] = T->best[1] = INFINITY;
-    } else if (T->steps == DEM_TEAM_SLICE) {
+        T->start = T->t0 = now;
+    } else if (T->steps >= DEM_TEAM_SLICE_STEPS) {
         const double now = T->clock();
-        double *b = &T->best[slice_team(T->slice)];
-        *b = fmin(*b, now - T->t0);
-        if (++T->slice == DEM_TEAM_SLICES) {
-            decide(T, now);
-            return T->use;
+        if (now - T->t0 >= DEM_TEAM_SLICE_S) { /* the slice is over */
+            const int k = T->slice;
+            T->per_step[slice_team(k)][k / 2] = (now - T->t0) / T->steps;
+            if (++T->slice == DEM_TEAM_SLICES) {
+                decide(T, now);
+                return T->use;
+            }
+            T->steps = 0;
+            T->t0 = now;
         }
-        T->steps = 0;
-        T->t0 = now;
     }
     T->steps++;
     return slice_team(T->slice) ? 1 : T->full;

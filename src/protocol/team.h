@@ -11,29 +11,41 @@
  * other as much. The results are the same bit for bit on any number of
  * threads, so the team may change between any two steps.
  *
- * A trial: DEM_TEAM_SLICES slices of DEM_TEAM_SLICE steps, the full team
- * and one thread by turns (full, one, one, full, ...); each team's
- * fastest slice is its time, so that a slice with a list build, a
- * sample, the force pass's own trials or a moment the host took away
- * does not decide. The other team replaces the one in use when it is
- * faster by DEM_TEAM_MARGIN. The first trial comes DEM_TEAM_FIRST s
- * into the run, the next DEM_TEAM_EVERY s after it; while trials keep
- * the team, the time to the next one doubles, up to DEM_TEAM_EVERY_MAX.
+ * A trial: DEM_TEAM_SLICES slices, the full team and one thread by turns
+ * (full, one, one, full, ...), each of at least DEM_TEAM_SLICE_S s and
+ * DEM_TEAM_SLICE_STEPS steps; a team's time per step is the median of
+ * its slices'. Slices of that length hold a list build, a sample or the
+ * force pass's own trials in either team alike, and the median passes
+ * over a slice in which the host took a vCPU away. Not the fastest
+ * slice: a vCPU the host shares with another program runs ours some
+ * milliseconds in turn, and the fastest of short slices is then one in
+ * which it did (with a busy loop on one of the two vCPUs here, slices of
+ * 32 steps at N = 500, about 0.5 ms, kept two threads that ran 2.6
+ * times slower than one: docs/performance-log.md, session 102).
+ *
+ * The other team replaces the one in use when it is faster by
+ * DEM_TEAM_MARGIN. The first trial comes DEM_TEAM_FIRST s into the run,
+ * the next DEM_TEAM_EVERY s after it; while trials keep the team, the
+ * time to the next one doubles, up to DEM_TEAM_EVERY_MAX; and trials
+ * take at most DEM_TEAM_SHARE of the run's time (a trial of a large
+ * sample's long steps waits longer).
  *
  * No clock in here: the caller hands one in, so that a test can give set
- * times (tests/test_team.c). Outside trials it is read once every
- * DEM_TEAM_PEEK steps.
+ * times (tests/test_team.c). It is read at every step of a trial, and
+ * once every DEM_TEAM_PEEK steps between trials.
  */
 #ifndef DEM_PROTOCOL_TEAM_H
 #define DEM_PROTOCOL_TEAM_H
 
 #include <stddef.h>
 
-#define DEM_TEAM_SLICE 32
-#define DEM_TEAM_SLICES 8
+#define DEM_TEAM_SLICES 8 /* even: half of them each team's */
+#define DEM_TEAM_SLICE_S 0.02
+#define DEM_TEAM_SLICE_STEPS 2
 #define DEM_TEAM_FIRST 0.05
 #define DEM_TEAM_EVERY 1.0
 #define DEM_TEAM_EVERY_MAX 64.0
+#define DEM_TEAM_SHARE 0.04
 #define DEM_TEAM_MARGIN 1.03
 #define DEM_TEAM_PEEK 16
 
@@ -42,12 +54,14 @@ struct dem_team {
     int use;               /* the team between trials: full or 1 */
     double (*clock)(void); /* s, monotonic */
     double next;           /* clock of the next trial */
-    double every;          /* s from this trial to the next */
+    double every;          /* s from the next trial to the one after */
     int slice;             /* the trial's slice under way, -1: none */
     int steps;             /* steps of it handed out */
     int peek;              /* steps since the clock was read */
-    double t0;             /* the clock at its start */
-    double best[2];        /* the fastest slice of the full team, of one */
+    double start, t0;      /* the clock at the trial's start, the slice's */
+    /* the s per step of each team's slices so far: the full team's
+     * [0][.], one thread's [1][.] */
+    double per_step[2][DEM_TEAM_SLICES / 2];
     /* tallies: trials, the changes of team they made, steps handed out
      * and those on one thread */
     long trials, changes, steps_all, steps_one;
