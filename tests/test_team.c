@@ -3,8 +3,8 @@
  * one thread, which a test may change from a step on or spoil for some
  * steps (a list build, a moment the host takes a vCPU away). The team
  * must be the faster one between trials, find a lasting change at the
- * next trial, keep its team for spoiled slices, and space its trials
- * out while they keep the team. */
+ * next trial, keep its team for spoiled slices and a spoiled trial, and
+ * space its trials out while they keep the team. */
 #include "testutil.h"
 
 #include "protocol/team.h"
@@ -120,12 +120,14 @@ static void the_faster_team_runs_between_trials(void **state)
     run(&T, &fast1, 1000000, &R);
     assert_int_equal(T.use, 1);
     assert_int_equal(T.changes, 1);
-    /* slices of 154 steps on two threads, 191 on one */
+    /* slices of 154 steps on two threads, 191 on one; two trials, the
+     * second at once, confirming the first */
     const long trial = DEM_TEAM_SLICES / 2 * (154 + 191);
-    assert_in_range(R.last_change, 385 + trial, 385 + DEM_TEAM_PEEK + trial);
-    /* on two threads: the steps before the first trial, and the trials'
-     * slices */
-    assert_int_equal(R.full_steps, R.last_change - trial +
+    assert_in_range(R.last_change, 385 + 2 * trial,
+                    385 + 2 * DEM_TEAM_PEEK + 2 * trial);
+    /* on two threads: the steps before the first trial and between the
+     * two, and the trials' slices */
+    assert_int_equal(R.full_steps, R.last_change - 2 * trial +
                                        T.trials * DEM_TEAM_SLICES / 2 * 154);
 }
 
@@ -162,10 +164,35 @@ static void a_lasting_change_is_found_at_the_next_trial(void **state)
     assert_int_equal(T.use, 1);
     assert_int_equal(T.changes, 1);
     /* trials at 0.05, 4.2, 8.4, 12.5, 20.7 and 36.9 s: the last of them,
-     * at 2e-4 s a step by then about step 334500, finds it; then trials
-     * 4, 8, 12, 20 and 36 s after it, in the 40 s left */
+     * at 2e-4 s a step by then about step 334500, finds it, a second at
+     * once confirms it; then trials 4, 8, 12, 20 and 36 s after it, in
+     * the 40 s left */
     assert_in_range(R.last_change, 333000, 337000);
-    assert_int_equal(T.trials, 11);
+    assert_int_equal(T.trials, 12);
+}
+
+/* A moment in which the host holds a vCPU back, long enough to slow
+ * the full team in a whole trial, changes nothing: the second trial
+ * does not confirm it. */
+static void a_trial_the_host_spoils_changes_nothing(void **state)
+{
+    (void)state;
+    struct dem_team T;
+    struct record R;
+    /* the first trial, from step 511 (0.05 s in), its slices of two
+     * threads 67 steps of 3e-4 s, of one 134 of 1.5e-4 s */
+    const struct machine held = {.full_s = 1e-4,
+                                 .one_s = 1.5e-4,
+                                 .from = 1L << 40,
+                                 .spoil_from = 500,
+                                 .spoil_to = 511 + 4 * (67 + 134),
+                                 .spoiled = 0,
+                                 .spoil = 3.0};
+    setup(&T, 2);
+    run(&T, &held, 20000, &R);
+    assert_int_equal(T.trials, 2);
+    assert_int_equal(T.changes, 0);
+    assert_int_equal(R.last_change, -1);
 }
 
 /* Slices that a list build or the host spoils decide nothing: a team's
@@ -200,7 +227,7 @@ static void a_spoiled_slice_does_not_decide(void **state)
                                   .spoil = 0.5};
     setup(&T, 2);
     run(&T, &lucky, 15000, &R);
-    assert_int_equal(T.trials, 1);
+    assert_int_equal(T.trials, 2); /* (the second confirming the first) */
     assert_int_equal(T.use, 1);
 }
 
@@ -220,7 +247,7 @@ static void a_vcpu_shared_with_another_program_is_seen(void **state)
                                  .held_s = 2e-3};
     setup(&T, 2);
     run(&T, &busy, 20000, &R);
-    assert_int_equal(T.trials, 1);
+    assert_int_equal(T.trials, 2);
     assert_int_equal(T.use, 1);
 }
 
@@ -231,6 +258,7 @@ int main(void)
         cmocka_unit_test(the_faster_team_runs_between_trials),
         cmocka_unit_test(a_near_tie_keeps_the_team),
         cmocka_unit_test(a_lasting_change_is_found_at_the_next_trial),
+        cmocka_unit_test(a_trial_the_host_spoils_changes_nothing),
         cmocka_unit_test(a_spoiled_slice_does_not_decide),
         cmocka_unit_test(a_vcpu_shared_with_another_program_is_seen),
     };

@@ -35,7 +35,7 @@ static double median(double *v, int n)
 }
 
 /* The trial over at clock now: the team until the next one, and when
- * that comes. */
+ * that comes (at once when this one proposes a change). */
 static void decide(struct dem_team *T, double now)
 {
     const int n = DEM_TEAM_SLICES / 2;
@@ -46,13 +46,19 @@ static void decide(struct dem_team *T, double now)
         use = 1;
     else if (full * DEM_TEAM_MARGIN < one)
         use = T->full;
+    T->trials++;
+    T->slice = -1;
+    T->peek = 0;
+    if (use != T->use && !T->confirming) {
+        T->confirming = 1;
+        T->next = now;
+        return;
+    }
+    T->confirming = 0;
     if (use != T->use)
         T->every = DEM_TEAM_EVERY;
     T->changes += use != T->use;
     T->use = use;
-    T->trials++;
-    T->slice = -1;
-    T->peek = 0;
     T->next = now + fmax(T->every, (now - T->start) / DEM_TEAM_SHARE);
     T->every = fmin(2.0 * T->every, DEM_TEAM_EVERY_MAX);
 }

@@ -24,7 +24,12 @@
  * times slower than one: docs/performance-log.md, session 102).
  *
  * The other team replaces the one in use when it is faster by
- * DEM_TEAM_MARGIN. The first trial comes DEM_TEAM_FIRST s into the run,
+ * DEM_TEAM_MARGIN in a trial and again in a second trial at once: a
+ * vCPU the host takes away for a few tenths of a second makes one thread
+ * the faster in one trial only (in 1 202 000 steps of cyclic3d-paper,
+ * where two threads are 1.9 times as fast as one, a single trial once
+ * took one thread until the next, 4 s later: docs/performance-log.md,
+ * session 102). The first trial comes DEM_TEAM_FIRST s into the run,
  * the next DEM_TEAM_EVERY s after it; while trials keep the team, the
  * time to the next one doubles, up to DEM_TEAM_EVERY_MAX; and trials
  * take at most DEM_TEAM_SHARE of the run's time (a trial of a large
@@ -56,6 +61,8 @@ struct dem_team {
     double next;           /* clock of the next trial */
     double every;          /* s from the next trial to the one after */
     int slice;             /* the trial's slice under way, -1: none */
+    int confirming;        /* 1: the trial under way or next must confirm
+                              the change the last one proposed */
     int steps;             /* steps of it handed out */
     int peek;              /* steps since the clock was read */
     double start, t0;      /* the clock at the trial's start, the slice's */
