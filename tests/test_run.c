@@ -665,10 +665,12 @@ static void threads_left_to_the_library_are_chosen_by_timing(void **state)
     const int given = omp_get_max_threads(), cores = 2;
     omp_set_num_threads(cores);
     char o1[1024], o0[1024], p1[2048], p0[2048];
-    run_text(small_2d, "team-1", 0, 0, 6000, o1, sizeof o1);
+    /* (a compression long enough for the steps below on any CPU) */
+    const char *sets[] = {"stages.1.duration=10.0"};
+    run_text(small_2d, "team-1", sets, 1, 6000, o1, sizeof o1);
     struct dem_config c;
     struct dem_error err = {0};
-    if (dem_config_parse(&c, small_2d, "team-0", 0, 0, &err))
+    if (dem_config_parse(&c, small_2d, "team-0", sets, 1, &err))
         fail_msg("%s", err.msg);
     snprintf(o0, sizeof o0, "%s/team-0", tmpdir);
     struct dem_run_timing T;
@@ -693,7 +695,7 @@ static void threads_left_to_the_library_are_chosen_by_timing(void **state)
     assert_non_null(strstr(line, "; threads by timing: 2 threads, one "));
     free(line);
     if (steps != 6000)
-        run_text(small_2d, "team-1", 0, 0, steps, o1, sizeof o1);
+        run_text(small_2d, "team-1", sets, 1, steps, o1, sizeof o1);
     const char *files[] = {"timeseries.csv", "particles_final.csv"};
     for (int k = 0; k < 2; k++) {
         snprintf(p1, sizeof p1, "%s/%s", o1, files[k]);
