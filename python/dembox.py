@@ -550,14 +550,17 @@ def _run_outdir(call, outdir, threads, max_steps, split, analyze, plot,
     return outdir
 
 
-def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
+def run(target, outdir, sets=(), threads=0, max_steps=0, analyze=True,
         plot=False, warnings=None, split=False, progress=None):
     """Run a built-in example or a config file into outdir, as `dembox run`
     does: then the analysis (summary.json) and, with plot=True, the
     pictures. sets are "KEY=VALUE" overrides, or a mapping KEY -> value
-    ({"contact.mu": 0.3}); max_steps > 0 ends the run early. Warnings
-    are appended to the list warnings when given, else they are Python
-    warnings of category DemboxWarning.
+    ({"contact.mu": 0.3}); max_steps > 0 ends the run early.
+    threads=N runs on N OpenMP threads; threads=0 (the default) on all
+    cores or on one, whichever runs the steps faster, timed now and then
+    in the run, as `dembox run` without --threads. Warnings are appended
+    to the list warnings when given, else they are Python warnings of
+    category DemboxWarning.
     split=True: every rank of the MPI world (a script under mpirun that
     imported mpi4py) calls run with the same arguments, the sample is
     split over the ranks (docs/parallel.md), and rank 0 writes the
@@ -574,7 +577,7 @@ def run(target, outdir, sets=(), threads=1, max_steps=0, analyze=True,
                        err)
 
 
-def resume(outdir, threads=1, analyze=True, plot=False, warnings=None,
+def resume(outdir, threads=0, analyze=True, plot=False, warnings=None,
            split=False, progress=None, any_build=False):
     """Go on with the run stopped in outdir (Ctrl-C, SIGTERM, a progress
     callback, a checkpoint interval) from outdir/checkpoint.bin, as

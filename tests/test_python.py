@@ -193,6 +193,34 @@ assert "sigma_xx" in ts
 summary = dembox.summary(out_py)
 assert summary["dimension"] == 2, summary.get("dimension")
 
+# threads left out, as on two cores: the run times all cores against one
+# (docs/parallel.md), says so in timing.txt, gives the bytes of a run on
+# one thread, and leaves the caller's OpenMP thread count as it was; the
+# steps doubled until a trial, 0.05 s into the run, has come on any CPU
+code = ("import ctypes, sys, dembox\n"
+        "omp = ctypes.CDLL('libgomp.so.1')\n"
+        "dembox.run('biaxial2d', sys.argv[1], sets=['stages.1.duration=10.0'],"
+        " max_steps=int(sys.argv[2]), analyze=False)\n"
+        "print(omp.omp_get_max_threads())\n")
+steps = 40000
+while True:
+    out_t = os.path.join(tmp, "timed")
+    proc = subprocess.run([sys.executable, "-c", code, out_t, str(steps)],
+                          capture_output=True, text=True,
+                          env=dict(os.environ, OMP_NUM_THREADS="2"))
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == ["2"], proc.stdout
+    with open(os.path.join(out_t, "timing.txt")) as f:
+        timing = f.read()
+    if "threads by timing" in timing or steps > 500000:
+        break
+    steps *= 2
+assert "; threads by timing: 2 threads, one thread in " in timing, timing
+out_1 = dembox.run("biaxial2d", os.path.join(tmp, "timed-1"), threads=1,
+                   sets=["stages.1.duration=10.0"], max_steps=steps,
+                   analyze=False)
+assert same_bytes(out_t, out_1), "timed threads and one thread differ"
+
 # a packed state (60000 steps: 119 contacts, 0.5 s): the final state and
 # the contacts; each particle's coordination is its number of contacts,
 # and the dump_local frames end with contacts_final.csv
