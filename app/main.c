@@ -125,7 +125,9 @@ static const char *const usage_sweep =
     "\n"
     "  -o, --output DIR    sweep folder (default dembox-out/sweep-NAME)\n"
     "  --param SPEC        a swept parameter (at least one)\n"
-    "  --jobs N            runs at once (default 1); each uses --threads\n"
+    "  --jobs N            runs at once (default: as many as the cores take\n"
+    "                      at --threads each, and the memory; one per rank\n"
+    "                      over MPI)\n"
     "  --threads N         OpenMP threads per run (default 1)\n"
     "  --set KEY=VALUE     override a key in every run\n"
     "  --max-steps N       stop every run after N steps (smoke tests)\n"
@@ -527,7 +529,7 @@ static int cmd_sweep(int argc, char **argv)
 {
     static struct dem_sweep_grid grid;
     const char *sets[MAX_SETS];
-    struct dem_sweep_options o = {.sets = sets, .jobs = 1, .threads = 1};
+    struct dem_sweep_options o = {.sets = sets, .jobs = 0, .threads = 1};
     struct dem_error err = {0, "", cli_warning, NULL};
     long v;
     int rc = 0, collect = 0;

@@ -573,7 +573,10 @@ struct dem_sweep_options {
     const char *outdir;      /* DIR */
     const char *const *sets; /* --set KEY=VALUE for every run */
     int nsets;
-    int jobs;       /* runs at once (>= 1; else DEM_EUSAGE) */
+    int jobs;       /* runs at once (>= 1), or 0: as many as the cores
+                       take at `threads` each, no more than the runs to
+                       do or than the memory available holds, one per
+                       rank over MPI (< 0: DEM_EUSAGE) */
     int threads;    /* OpenMP threads per run (>= 1; else DEM_EUSAGE) */
     int quiet;      /* 1: no progress lines on stderr */
     long max_steps; /* > 0: every run's dem_run_options.max_steps;

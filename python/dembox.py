@@ -799,12 +799,13 @@ def dump_local(outdir):
     return frames
 
 
-def sweep(target, outdir, params, sets=(), jobs=1, threads=1, max_steps=0,
+def sweep(target, outdir, params, sets=(), jobs=0, threads=1, max_steps=0,
           quiet=True, progress=None, warnings=None, any_build=False):
     """What `dembox sweep` does: the runs of every combination of params
     ("KEY[,KEY...]=V1,V2,..." as --param, or a mapping KEY -> values,
-    {"contact.mu": [0.1, 0.3]}) with the overrides sets, jobs
-    at once, then outdir/sweep.json and outdir/plots/; finished runs are
+    {"contact.mu": [0.1, 0.3]}) with the overrides sets, jobs at once
+    (0, the default: as many as the cores take at threads each, and the
+    memory), then outdir/sweep.json and outdir/plots/; finished runs are
     skipped, so calling it again resumes. progress: a callable given a
     SweepProgress about four times a second and at the end; when it
     returns True (or raises), or on Ctrl-C, the runs under way save

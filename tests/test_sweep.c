@@ -13,6 +13,7 @@
 
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
+#include "sweep/sweep_internal.h"
 
 #define DEG (180.0 / M_PI)
 
@@ -190,7 +191,9 @@ static void bad_grid_point_is_refused_before_running(void **state)
         long max_steps;
         const char *outdir, *want;
     } rows[] = {
-        {0, 1, 200, NULL, "sweep: jobs = 0: must be >= 1"},
+        {-1, 1, 200, NULL,
+         "sweep: jobs = -1: must be >= 1 (or 0: as many as the cores and "
+         "the memory take)"},
         {1, -1, 200, NULL, "sweep: threads = -1: must be >= 1"},
         {1, 1, -7, NULL, "sweep: max_steps = -7: must be >= 0 (0 = no limit)"},
         {1, 1, 200, "", "empty folder name (before /runs)"},
@@ -690,6 +693,39 @@ static void record_progress(const struct dem_sweep_report *rep, void *user)
         *s->stop = 1;
 }
 
+/* The runs at once when the jobs are left to the library: the cores
+ * over the threads a run takes, no more than the runs to do or than the
+ * memory holds, at least one, one per rank over MPI. */
+static void jobs_left_to_the_library_take_the_cores_and_the_memory(void **state)
+{
+    (void)state;
+    const double GB = 1e9;
+    static const struct {
+        long cores;
+        int threads, ranks;
+        long todo;
+        double available, per_run;
+        int want;
+    } rows[] = {
+        {2, 1, 1, 10, 0.0, 0.0, 2},        /* memory not known */
+        {2, 1, 1, 10, 24 * GB, 0.0, 2},    /* a run's memory not known */
+        {2, 2, 1, 10, 24 * GB, 1e6, 1},    /* one run takes both cores */
+        {8, 3, 1, 10, 24 * GB, 1e6, 2},    /* 3 threads: 2 runs of 8 cores */
+        {2, 4, 1, 10, 24 * GB, 1e6, 1},    /* more threads than cores */
+        {16, 1, 1, 3, 24 * GB, 1e6, 3},    /* 3 runs to do */
+        {16, 1, 1, 0, 24 * GB, 1e6, 1},    /* none: still one */
+        {8, 1, 1, 10, 10 * GB, 4 * GB, 2}, /* the memory holds two */
+        {8, 1, 1, 10, 1 * GB, 4 * GB, 1},  /* not even one: the run says */
+        {64, 1, 4, 100, 24 * GB, 1e6, 1},  /* MPI: one per rank */
+        {5000, 1, 1, 5000, 0.0, 0.0, 1024},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++)
+        assert_int_equal(dem__sweep_jobs_auto(
+                             rows[k].cores, rows[k].threads, rows[k].ranks,
+                             rows[k].todo, rows[k].available, rows[k].per_run),
+                         rows[k].want);
+}
+
 static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
 {
     (void)state;
@@ -819,11 +855,13 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     assert_int_equal(rep.ran, 0);
     assert_int_equal(rep.skipped, 3);
 
-    /* a run without its summary is unfinished and runs again */
+    /* a run without its summary is unfinished and runs again (with the
+     * jobs left to the library) */
     snprintf(path, sizeof path,
              "%s/runs/stages.0.pressure=500_stages.1.pressure=500/summary.json",
              out);
     assert_int_equal(remove(path), 0);
+    o.jobs = 0;
     if (dem_sweep_run(&g, &o, &rep, &err))
         fail_msg("%s", err.msg);
     assert_int_equal(rep.ran, 1);
@@ -988,6 +1026,8 @@ int main(void)
         cmocka_unit_test(seed_ensembles_give_mean_and_standard_error),
         cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
+        cmocka_unit_test(
+            jobs_left_to_the_library_take_the_cores_and_the_memory),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
         cmocka_unit_test(stop_from_progress_saves_checkpoints_then_resumes),
     };

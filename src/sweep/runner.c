@@ -13,6 +13,7 @@
  */
 #include "dembox.h"
 #include <errno.h>
+#include <omp.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,6 +23,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/machine.h"
+#include "core/sim.h"
 #include "io/fsutil.h"
 #include "sweep/sweep_internal.h"
 
@@ -50,14 +53,29 @@ static int parse_with(const struct dem_sweep_options *o, char (*extra)[SET_LEN],
     return dem_config_load_file(c, o->target, sets, n, err);
 }
 
-int dem_sweep_validate(const struct dem_sweep_grid *g,
-                       const struct dem_sweep_options *o, struct dem_error *err)
+/* The particles a config places: particles.count, or 0 from a file (not
+ * known before the file is read). */
+static long placed(const struct dem_config *c)
 {
+    return c->particles.placement == DEM_PLACE_FILE ? 0 : c->particles.count;
+}
+
+/* dem_sweep_validate; *largest: the most particles a point places (0
+ * where unknown). */
+static int validate(const struct dem_sweep_grid *g,
+                    const struct dem_sweep_options *o, long *largest,
+                    struct dem_error *err)
+{
+    *largest = 0;
     /* the CLI checks its own; the library is also called from Python */
-    if (o->jobs < 1 || o->threads < 1)
-        return dem_error_set(err, DEM_EUSAGE, "sweep: %s = %d: must be >= 1",
-                             o->jobs < 1 ? "jobs" : "threads",
-                             o->jobs < 1 ? o->jobs : o->threads);
+    if (o->jobs < 0)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "sweep: jobs = %d: must be >= 1 (or 0: as many "
+                             "as the cores and the memory take)",
+                             o->jobs);
+    if (o->threads < 1)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "sweep: threads = %d: must be >= 1", o->threads);
     if (o->max_steps < 0)
         return dem_error_set(err, DEM_EUSAGE,
                              "sweep: max_steps = %ld: must be >= 0 (0 = no "
@@ -67,6 +85,8 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
     if (!c)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
     int rc = parse_with(o, NULL, 0, c, err);
+    if (!rc)
+        *largest = placed(c);
     /* each value of each parameter alone first: the message can then
      * name the --param and its key */
     for (int k = 0; !rc && k < g->nparams; k++) {
@@ -77,6 +97,8 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
                 snprintf(sets[m], SET_LEN, "%s=%s", p->keys[m], p->values[v]);
             struct dem_error e = {0};
             rc = parse_with(o, sets, p->nkeys, c, &e);
+            if (!rc && placed(c) > *largest)
+                *largest = placed(c);
             if (rc)
                 dem_error_set(
                     err, rc, "sweep: --param '%s': value %s for %s%s: %s",
@@ -91,6 +113,8 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
         const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
         struct dem_error e = {0};
         rc = parse_with(o, sets, ns, c, &e);
+        if (!rc && placed(c) > *largest)
+            *largest = placed(c);
         if (rc) {
             char what[1024] = "";
             size_t len = 0; /* (a long list is cut at the buffer's end) */
@@ -106,6 +130,26 @@ int dem_sweep_validate(const struct dem_sweep_grid *g,
     }
     free(c);
     return rc;
+}
+
+int dem_sweep_validate(const struct dem_sweep_grid *g,
+                       const struct dem_sweep_options *o, struct dem_error *err)
+{
+    long largest;
+    return validate(g, o, &largest, err);
+}
+
+int dem__sweep_jobs_auto(long cores, int threads, int ranks, long todo,
+                         double available, double per_run)
+{
+    if (ranks > 1)
+        return 1;
+    long jobs = cores / (threads > 0 ? threads : 1);
+    if (jobs > todo)
+        jobs = todo;
+    if (available > 0.0 && per_run > 0.0 && jobs > available / per_run)
+        jobs = (long)(available / per_run);
+    return jobs < 1 ? 1 : jobs > 1024 ? 1024 : (int)jobs;
 }
 
 int dem__sweep_exists(const char *dir, const char *name)
@@ -503,15 +547,17 @@ static int run_points(const struct dem_sweep_grid *g,
     return DEM_OK;
 }
 
-/* The check, DIR/runs and its index, and which points are to run. */
+/* The check, DIR/runs and its index, which points are to run, and the
+ * runs at once (*jobs: o->jobs, or the library's choice for 0). */
 static int prepare(const struct dem_sweep_grid *g,
                    const struct dem_sweep_options *o, char *runs,
                    dem__sweep_runname *names, char *todo,
-                   struct dem_sweep_report *rep, int *lock_fd,
+                   struct dem_sweep_report *rep, int *lock_fd, int *jobs,
                    struct dem_error *err)
 {
     const long n = dem_sweep_grid_size(g);
-    int rc = dem_sweep_validate(g, o, err);
+    long largest;
+    int rc = validate(g, o, &largest, err);
     if (!rc)
         rc = dem_path_join(runs, DEM_PATH_MAX, o->outdir, "runs", err);
     if (!rc)
@@ -533,8 +579,25 @@ static int prepare(const struct dem_sweep_grid *g,
                 "dembox: sweep: %ld of %ld runs already finished, "
                 "skipped\n",
                 rep->skipped, n);
+    *jobs = o->jobs;
+    if (!rc && !o->jobs) {
+        int rank, size;
+        dem_mpi_world(&rank, &size);
+        double total, available;
+        dem_machine_memory(&total, &available);
+        const long cores = omp_get_num_procs();
+        *jobs = dem__sweep_jobs_auto(cores, o->threads, size, n - rep->skipped,
+                                     available,
+                                     (double)largest * DEM_SIM_BYTES_PACKED);
+        if (!o->quiet && size < 2 && n > rep->skipped)
+            fprintf(stderr,
+                    "dembox: sweep: %d run%s at once (%ld core%s, %d "
+                    "thread%s a run; --jobs sets it)\n",
+                    *jobs, *jobs == 1 ? "" : "s", cores, cores == 1 ? "" : "s",
+                    o->threads, o->threads == 1 ? "" : "s");
+    }
     if (!rc) /* after the check: bad input still gives one line */
-        dem_warn_oversubscribed(o->jobs, o->threads, err);
+        dem_warn_oversubscribed(*jobs, o->threads, err);
     return rc;
 }
 
@@ -553,15 +616,16 @@ int dem_sweep_run(const struct dem_sweep_grid *g,
     dem__sweep_runname *names = malloc((size_t)n * sizeof *names);
     char *todo = malloc((size_t)n);
     int lock_fd = -1;
+    struct dem_sweep_options oj = *o; /* with the runs at once */
     int rc = names && todo ? DEM_OK
                            : dem_error_set(err, DEM_ENOMEM, "out of memory");
     if (!rc) {
         dem_sweep_point_names(g, names);
-        rc = prepare(g, o, runs, names, todo, rep, &lock_fd, err);
+        rc = prepare(g, o, runs, names, todo, rep, &lock_fd, &oj.jobs, err);
     }
     dem__sweep_mpi_start(rc); /* the other ranks go on or end with rc */
     if (!rc)
-        rc = run_points(g, o, runs, names, todo, rep, err);
+        rc = run_points(g, &oj, runs, names, todo, rep, err);
     free(names);
     free(todo);
     if (!rc)

@@ -116,6 +116,16 @@ int dem__sweep_exists(const char *dir, const char *name);
 
 typedef char dem__sweep_runname[DEM_SWEEP_RUNNAME_MAX + 8];
 
+/* The runs at once of a sweep whose jobs are left to the library (0):
+ * as many as the cores take at `threads` each, no more than the todo
+ * runs to do and, when the memory a run takes (per_run bytes, 0: not
+ * known) and the memory available now are known, no more than it holds
+ * (the runs start together, each checking the memory alone); at least
+ * one. One per rank over MPI (ranks > 1): the ranks share out the cores
+ * already, and every rank must run as many as rank 0 counts on. */
+int dem__sweep_jobs_auto(long cores, int threads, int ranks, long todo,
+                         double available, double per_run);
+
 /* The points of a sweep and who runs which: the jobs of rank 0 take
  * them directly, the other ranks through rank 0's serving thread. lock
  * guards every field below it. */
