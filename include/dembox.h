@@ -471,9 +471,10 @@ void dem_mpi_finalize(void);
 void dem_mpi_world(int *rank, int *size);
 /* When jobs x threads OpenMP threads, times the MPI ranks on this node
  * (OMPI_COMM_WORLD_LOCAL_SIZE), are more than this machine's cores and
- * threads > 1: one warning through err (waiting OpenMP threads spin, so
- * an oversubscribed machine runs every one of them many times slower;
- * 10-100x seen on 2 cores). */
+ * threads > 1 (threads <= 0: a run's threads left to the library, at
+ * most omp_get_max_threads()): one warning through err (waiting OpenMP
+ * threads spin, so an oversubscribed machine runs every one of them many
+ * times slower; 10-100x seen on 2 cores). */
 void dem_warn_oversubscribed(long jobs, long threads,
                              const struct dem_error *err);
 

@@ -48,6 +48,9 @@ void dem_mpi_launch(int *rank, int *size)
 void dem_warn_oversubscribed(long jobs, long threads,
                              const struct dem_error *err)
 {
+    /* a run's threads left to the library: at most its OpenMP default */
+    if (threads <= 0)
+        threads = omp_get_max_threads();
     const long local = env_int("OMPI_COMM_WORLD_LOCAL_SIZE");
     const long ranks = local > 0 ? local : 1;
     const long cores = omp_get_num_procs(), total = ranks * jobs * threads;
