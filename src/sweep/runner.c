@@ -60,6 +60,18 @@ static long placed(const struct dem_config *c)
     return c->particles.placement == DEM_PLACE_FILE ? 0 : c->particles.count;
 }
 
+/* parse_with, and *largest raised to the particles the config places. */
+static int parse_counted(const struct dem_sweep_options *o,
+                         char (*extra)[SET_LEN], int nextra,
+                         struct dem_config *c, long *largest,
+                         struct dem_error *err)
+{
+    const int rc = parse_with(o, extra, nextra, c, err);
+    if (!rc && placed(c) > *largest)
+        *largest = placed(c);
+    return rc;
+}
+
 /* dem_sweep_validate; *largest: the most particles a point places (0
  * where unknown). */
 static int validate(const struct dem_sweep_grid *g,
@@ -84,9 +96,7 @@ static int validate(const struct dem_sweep_grid *g,
     struct dem_config *c = malloc(sizeof *c);
     if (!c)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
-    int rc = parse_with(o, NULL, 0, c, err);
-    if (!rc)
-        *largest = placed(c);
+    int rc = parse_counted(o, NULL, 0, c, largest, err);
     /* each value of each parameter alone first: the message can then
      * name the --param and its key */
     for (int k = 0; !rc && k < g->nparams; k++) {
@@ -96,9 +106,7 @@ static int validate(const struct dem_sweep_grid *g,
             for (int m = 0; m < p->nkeys; m++)
                 snprintf(sets[m], SET_LEN, "%s=%s", p->keys[m], p->values[v]);
             struct dem_error e = {0};
-            rc = parse_with(o, sets, p->nkeys, c, &e);
-            if (!rc && placed(c) > *largest)
-                *largest = placed(c);
+            rc = parse_counted(o, sets, p->nkeys, c, largest, &e);
             if (rc)
                 dem_error_set(
                     err, rc, "sweep: --param '%s': value %s for %s%s: %s",
@@ -112,9 +120,7 @@ static int validate(const struct dem_sweep_grid *g,
         char sets[MAX_POINT_SETS][SET_LEN];
         const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
         struct dem_error e = {0};
-        rc = parse_with(o, sets, ns, c, &e);
-        if (!rc && placed(c) > *largest)
-            *largest = placed(c);
+        rc = parse_counted(o, sets, ns, c, largest, &e);
         if (rc) {
             char what[1024] = "";
             size_t len = 0; /* (a long list is cut at the buffer's end) */
