@@ -212,6 +212,22 @@ static void bad_grid_point_is_refused_before_running(void **state)
         assert_true(access(out, F_OK) != 0);
     }
 
+    /* a particle file that cannot be read: refused by the check, naming
+     * its line, before any run (each run read it alone, and the sweep
+     * ran every point into a failure) */
+    char csv[600], file_set[700];
+    snprintf(csv, sizeof csv, "%s/short_row.csv", tmpdir);
+    write_file(csv, "x,y,radius\n0.01,0.01,1.0e-3\n0.02,0.01\n");
+    snprintf(file_set, sizeof file_set, "particles.file=\"%s\"", csv);
+    const char *const file_sets[] = {"particles.placement=\"file\"", file_set};
+    struct dem_sweep_options of = o;
+    of.sets = file_sets;
+    of.nsets = 2;
+    assert_int_equal(dem_sweep_run(&ok, &of, &rep, &err), DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "short_row.csv:3: 2 fields"));
+    assert_int_equal(rep.ran, 0);
+    assert_true(access(out, F_OK) != 0);
+
     /* a folder another sweep writes into (its lock held here): refused,
      * naming the process, before any run */
     int fd = -1;

@@ -25,6 +25,7 @@
 
 #include "core/machine.h"
 #include "core/sim.h"
+#include "formats/particles_csv.h"
 #include "io/fsutil.h"
 #include "sweep/sweep_internal.h"
 
@@ -53,32 +54,49 @@ static int parse_with(const struct dem_sweep_options *o, char (*extra)[SET_LEN],
     return dem_config_load_file(c, o->target, sets, n, err);
 }
 
-/* The particles a config places: particles.count, or 0 from a file (not
- * known before the file is read). */
-static long placed(const struct dem_config *c)
-{
-    return c->particles.placement == DEM_PLACE_FILE ? 0 : c->particles.count;
-}
+/* The most particles a point places, for the runs at once. A particle
+ * file is read once per name (the first point's config reads it), so an
+ * unreadable or malformed file fails the check before any run; the box
+ * each point gives is checked by its run. */
+struct sizes {
+    long largest;
+    char file[DEM_PATH_MAX]; /* the last file read ("" for none) */
+    long count;              /* its particles */
+};
 
-/* parse_with, and *largest raised to the particles the config places. */
+/* parse_with, and s->largest raised to the particles the config places. */
 static int parse_counted(const struct dem_sweep_options *o,
                          char (*extra)[SET_LEN], int nextra,
-                         struct dem_config *c, long *largest,
+                         struct dem_config *c, struct sizes *s,
                          struct dem_error *err)
 {
-    const int rc = parse_with(o, extra, nextra, c, err);
-    if (!rc && placed(c) > *largest)
-        *largest = placed(c);
-    return rc;
+    int rc = parse_with(o, extra, nextra, c, err);
+    if (rc)
+        return rc;
+    long n = c->particles.count;
+    if (c->particles.placement == DEM_PLACE_FILE) {
+        if (strcmp(s->file, c->particles.file)) {
+            struct dem_particles p = {0};
+            rc = dem_particles_load(&p, c, err);
+            if (rc)
+                return rc;
+            s->count = p.n;
+            dem_particles_free(&p);
+            snprintf(s->file, sizeof s->file, "%s", c->particles.file);
+        }
+        n = s->count;
+    }
+    if (n > s->largest)
+        s->largest = n;
+    return DEM_OK;
 }
 
-/* dem_sweep_validate; *largest: the most particles a point places (0
- * where unknown). */
+/* dem_sweep_validate; s: the particles the points place. */
 static int validate(const struct dem_sweep_grid *g,
-                    const struct dem_sweep_options *o, long *largest,
+                    const struct dem_sweep_options *o, struct sizes *s,
                     struct dem_error *err)
 {
-    *largest = 0;
+    memset(s, 0, sizeof *s);
     /* the CLI checks its own; the library is also called from Python */
     if (o->jobs < 0)
         return dem_error_set(err, DEM_EUSAGE,
@@ -96,7 +114,7 @@ static int validate(const struct dem_sweep_grid *g,
     struct dem_config *c = malloc(sizeof *c);
     if (!c)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
-    int rc = parse_counted(o, NULL, 0, c, largest, err);
+    int rc = parse_counted(o, NULL, 0, c, s, err);
     /* each value of each parameter alone first: the message can then
      * name the --param and its key */
     for (int k = 0; !rc && k < g->nparams; k++) {
@@ -106,7 +124,7 @@ static int validate(const struct dem_sweep_grid *g,
             for (int m = 0; m < p->nkeys; m++)
                 snprintf(sets[m], SET_LEN, "%s=%s", p->keys[m], p->values[v]);
             struct dem_error e = {0};
-            rc = parse_counted(o, sets, p->nkeys, c, largest, &e);
+            rc = parse_counted(o, sets, p->nkeys, c, s, &e);
             if (rc)
                 dem_error_set(
                     err, rc, "sweep: --param '%s': value %s for %s%s: %s",
@@ -120,7 +138,7 @@ static int validate(const struct dem_sweep_grid *g,
         char sets[MAX_POINT_SETS][SET_LEN];
         const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
         struct dem_error e = {0};
-        rc = parse_counted(o, sets, ns, c, largest, &e);
+        rc = parse_counted(o, sets, ns, c, s, &e);
         if (rc) {
             char what[1024] = "";
             size_t len = 0; /* (a long list is cut at the buffer's end) */
@@ -141,8 +159,8 @@ static int validate(const struct dem_sweep_grid *g,
 int dem_sweep_validate(const struct dem_sweep_grid *g,
                        const struct dem_sweep_options *o, struct dem_error *err)
 {
-    long largest;
-    return validate(g, o, &largest, err);
+    struct sizes s;
+    return validate(g, o, &s, err);
 }
 
 int dem__sweep_jobs_auto(long cores, int threads, int ranks, long todo,
@@ -562,8 +580,8 @@ static int prepare(const struct dem_sweep_grid *g,
                    struct dem_error *err)
 {
     const long n = dem_sweep_grid_size(g);
-    long largest;
-    int rc = validate(g, o, &largest, err);
+    struct sizes s;
+    int rc = validate(g, o, &s, err);
     if (!rc)
         rc = dem_path_join(runs, DEM_PATH_MAX, o->outdir, "runs", err);
     if (!rc)
@@ -594,7 +612,7 @@ static int prepare(const struct dem_sweep_grid *g,
         const long cores = omp_get_num_procs();
         *jobs = dem__sweep_jobs_auto(cores, o->threads, size, n - rep->skipped,
                                      available,
-                                     (double)largest * DEM_SIM_BYTES_PACKED);
+                                     (double)s.largest * DEM_SIM_BYTES_PACKED);
         if (!o->quiet && size < 2 && n > rep->skipped)
             fprintf(stderr,
                     "dembox: sweep: %d run%s at once (%ld core%s, %d "
