@@ -49,7 +49,8 @@ void dem_warn_oversubscribed(long jobs, long threads,
                              const struct dem_error *err)
 {
     /* a run's threads left to the library: at most its OpenMP default */
-    if (threads <= 0)
+    const int left = threads <= 0;
+    if (left)
         threads = omp_get_max_threads();
     const long local = env_int("OMPI_COMM_WORLD_LOCAL_SIZE");
     const long ranks = local > 0 ? local : 1;
@@ -65,8 +66,11 @@ void dem_warn_oversubscribed(long jobs, long threads,
     dem_warn(err,
              "%s%ld threads = %ld OpenMP threads on %ld cores: waiting "
              "threads spin, so this can run 10-100 times slower; use fewer "
-             "threads",
-             what, threads, total, cores);
+             "threads%s",
+             what, threads, total, cores,
+             left ? " (--threads N; without it a run takes OMP_NUM_THREADS "
+                    "or else the cores it may use)"
+                  : "");
 }
 
 #ifdef DEM_HAVE_MPI
