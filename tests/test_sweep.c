@@ -742,6 +742,45 @@ static void jobs_left_to_the_library_take_the_cores_and_the_memory(void **state)
                          rows[k].want);
 }
 
+static void jobs_given_that_the_memory_cannot_hold_are_warned(void **state)
+{
+    (void)state;
+    const double GB = 1e9;
+    static const struct {
+        int jobs;
+        long todo, largest;
+        double available;
+        const char *want; /* the warning, or "" for none */
+    } rows[] = {
+        {4, 10, 1000000, 3.0 * GB,
+         "sweep: 4 runs at once of up to 1000000 particles take about 4.8 GB "
+         "of memory (1.2 kB per particle), more than the 3 GB available now: "
+         "expect swapping, or the out-of-memory killer to end runs; give "
+         "fewer --jobs, or none (the sweep then runs as many as the memory "
+         "holds)"},
+        {4, 2, 1000000, 2.0 * GB, /* no more at once than the runs to do */
+         "sweep: 2 runs at once of up to 1000000 particles take about 2.4 GB "
+         "of memory (1.2 kB per particle), more than the 2 GB available now"},
+        {4, 2, 1000000, 3.0 * GB, ""},
+        {4, 10, 1000000, 5.0 * GB, ""}, /* they fit */
+        {4, 1, 1000000, 1.0 * GB, ""},  /* one run: its own check says */
+        {1, 10, 1000000, 1.0 * GB, ""}, /* the same */
+        {4, 10, 1000000, 0.0, ""},      /* the memory not known */
+        {4, 10, 0, 1.0 * GB, ""},       /* the particles not known */
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        char said[512] = "";
+        struct dem_error err = {.warn = keep_warning, .warn_user = said};
+        dem__sweep_memory_warn(rows[k].jobs, rows[k].todo, rows[k].largest,
+                               rows[k].available,
+                               (double)rows[k].largest * 1200.0, &err);
+        if (!*rows[k].want)
+            assert_string_equal(said, "");
+        else
+            assert_non_null(strstr(said, rows[k].want));
+    }
+}
+
 static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
 {
     (void)state;
@@ -1044,6 +1083,7 @@ int main(void)
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
         cmocka_unit_test(
             jobs_left_to_the_library_take_the_cores_and_the_memory),
+        cmocka_unit_test(jobs_given_that_the_memory_cannot_hold_are_warned),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
         cmocka_unit_test(stop_from_progress_saves_checkpoints_then_resumes),
     };

@@ -176,6 +176,23 @@ int dem__sweep_jobs_auto(long cores, int threads, int ranks, long todo,
     return jobs < 1 ? 1 : jobs > 1024 ? 1024 : (int)jobs;
 }
 
+void dem__sweep_memory_warn(int jobs, long todo, long largest, double available,
+                            double per_run, const struct dem_error *err)
+{
+    const long at_once = jobs < todo ? jobs : todo;
+    const double GB = 1e9, need = (double)at_once * per_run;
+    if (at_once < 2 || available <= 0.0 || need <= available)
+        return;
+    dem_warn(err,
+             "sweep: %ld runs at once of up to %ld particles take about "
+             "%.3g GB of memory (%.2g kB per particle), more than the %.3g "
+             "GB available now: expect swapping, or the out-of-memory "
+             "killer to end runs; give fewer --jobs, or none (the sweep "
+             "then runs as many as the memory holds)",
+             at_once, largest, need / GB, per_run / (double)largest / 1e3,
+             available / GB);
+}
+
 int dem__sweep_exists(const char *dir, const char *name)
 {
     char path[DEM_PATH_MAX];
@@ -619,6 +636,12 @@ static int prepare(const struct dem_sweep_grid *g,
                     "thread%s a run; --jobs sets it)\n",
                     *jobs, *jobs == 1 ? "" : "s", cores, cores == 1 ? "" : "s",
                     o->threads, o->threads == 1 ? "" : "s");
+    }
+    if (!rc && o->jobs) { /* the memory of the runs at once */
+        double total, available;
+        dem_machine_memory(&total, &available);
+        dem__sweep_memory_warn(o->jobs, n - rep->skipped, s.largest, available,
+                               (double)s.largest * DEM_SIM_BYTES_PACKED, err);
     }
     if (!rc) /* after the check: bad input still gives one line */
         dem_warn_oversubscribed(*jobs, o->threads, err);
