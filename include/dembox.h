@@ -741,7 +741,12 @@ struct dem_bench_result {
     int threads;               /* OpenMP threads in force (the first
                                   count by turns) */
     int versus;                /* the second count by turns, or 0 */
-    long slice;                /* steps per slice by turns */
+    long slice;                /* steps per slice (dem_bench_slice) */
+    int spread_slices;         /* one count: its slices after the first
+                                  (which runs the first trials) */
+    double spread[3];          /* ns per particle-step of those slices:
+                                  median, fastest, slowest (the host's
+                                  unevenness in one run, and the trials') */
     double turn_seconds[2];    /* s; by turns: the slices' time with
                                   threads and with versus */
     long turn_steps[2];        /* their steps */

@@ -79,6 +79,12 @@ static void by_turns_same_bits_as_one_count(void **state)
         assert_true(turns.ratio[1] > 0.0 && turns.ratio[1] <= turns.ratio[0] &&
                     turns.ratio[0] <= turns.ratio[2]);
         assert_int_equal(one.turn_steps[0], steps);
+        /* one count: the spread of its slices after the first */
+        assert_int_equal(one.slice, 12);
+        assert_int_equal(one.spread_slices, 9);
+        assert_true(one.spread[1] > 0.0 && one.spread[1] <= one.spread[0] &&
+                    one.spread[0] <= one.spread[2]);
+        assert_int_equal(turns.spread_slices, 0);
         /* the loop ended in the second count's slice (the tenth), and
          * says it is outside a loop by turns again */
         assert_int_equal(dem_bench_turn(), 0);

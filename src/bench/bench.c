@@ -474,22 +474,30 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The median of the n values of v (sorted here), n > 0. */
+static double median_of(double *v, long n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 /* The timed steps, one chain of them (the last one unchained, as a run
- * ends), with o->versus by two counts of threads in turns, a slice of
- * steps each: the same steps, and the same bits (a chained pass reads
- * nothing the threads of the pass before left that the count changes:
- * test_bench). Each count keeps its own choice of the force pass and
- * its trials, as in a run of its own. Fills r's by-turns fields; the
+ * ends), in slices of dem_bench_slice steps; with o->versus by two
+ * counts of threads in turns, a slice each: the same steps, and the same
+ * bits (a chained pass reads nothing the threads of the pass before left
+ * that the count changes: test_bench). Each count keeps its own choice
+ * of the force pass and its trials, as in a run of its own. Fills r's
+ * by-turns fields, or with one count the spread of its slices; the
  * pass the first count chose is left in s. */
 static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
                       long steps, struct dem_bench_result *r,
                       struct dem_error *err)
 {
     const int turns = o->versus > 0;
-    const long slice = turns ? dem_bench_slice(s->p.n, steps) : steps;
-    const long nr = (steps / slice + 2) / 2;
-    double *ratio = turns ? malloc((size_t)nr * sizeof *ratio) : NULL;
-    if (turns && !ratio)
+    const long slice = dem_bench_slice(s->p.n, steps);
+    const long nr = (steps / slice + 2) / 2, ns = steps / slice + 1;
+    double *ratio = malloc((size_t)(turns ? nr : ns) * sizeof *ratio);
+    if (!ratio)
         return dem_error_set(err, DEM_ENOMEM, "bench: out of memory");
     struct dem_pass_choice pc[2] = {s->pass, s->pass};
     /* The slices run the counts in the order A B, B A, A B, ... (a
@@ -519,6 +527,8 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
         }
         const double dt = wall_clock() - ts;
         r->thread_seconds += dt * (cur ? o->versus : r->threads);
+        if (!turns && si > 0 && r->spread_slices < ns)
+            ratio[r->spread_slices++] = 1e9 * dt / ((double)m * (double)r->n);
         if (turns && si < 2)
             continue;
         r->turn_seconds[cur] += dt;
@@ -536,17 +546,18 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
         s->pass = pc[0];
         omp_set_num_threads(r->threads);
         r->versus = o->versus;
-        r->slice = slice;
         r->rounds = rounds;
         if (rounds > 0) {
-            qsort(ratio, (size_t)rounds, sizeof *ratio, cmp_double);
-            r->ratio[0] =
-                rounds % 2 ? ratio[rounds / 2]
-                           : 0.5 * (ratio[rounds / 2 - 1] + ratio[rounds / 2]);
+            r->ratio[0] = median_of(ratio, rounds);
             r->ratio[1] = ratio[0];
             r->ratio[2] = ratio[rounds - 1];
         }
+    } else if (r->spread_slices > 0) {
+        r->spread[0] = median_of(ratio, r->spread_slices);
+        r->spread[1] = ratio[0];
+        r->spread[2] = ratio[r->spread_slices - 1];
     }
+    r->slice = slice;
     free(ratio);
     return rc;
 }
@@ -752,6 +763,12 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
             "builds, axial strain %.3g\n",
             r->seconds, ps > 0 ? 1e9 * r->seconds / ps : 0.0, r->nbuild,
             r->strain);
+    if (!r->versus && r->spread_slices > 1)
+        fprintf(f,
+                "slices of %ld steps, %d after the first: median %.2f ns per "
+                "particle-step, %.2f to %.2f\n",
+                r->slice, r->spread_slices, r->spread[0], r->spread[1],
+                r->spread[2]);
     if (r->versus) {
         /* each count's time per particle-step over its slices, and the
          * rounds' ratios: the same minutes of the host for both */
