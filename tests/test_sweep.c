@@ -753,14 +753,18 @@ static void jobs_given_that_the_memory_cannot_hold_are_warned(void **state)
         const char *want; /* the warning, or "" for none */
     } rows[] = {
         {4, 10, 1000000, 3.0 * GB,
-         "sweep: 4 runs at once of up to 1000000 particles take about 4.8 GB "
-         "of memory (1.2 kB per particle), more than the 3 GB available now: "
+         "sweep: 4 runs at once of up to 1000000 particles take up to about "
+         "4.8 "
+         "GB of memory (1.2 kB per particle), more than the 3 GB available "
+         "now: "
          "expect swapping, or the out-of-memory killer to end runs; give "
          "fewer --jobs, or none (the sweep then runs as many as the memory "
          "holds)"},
         {4, 2, 1000000, 2.0 * GB, /* no more at once than the runs to do */
-         "sweep: 2 runs at once of up to 1000000 particles take about 2.4 GB "
-         "of memory (1.2 kB per particle), more than the 2 GB available now"},
+         "sweep: 2 runs at once of up to 1000000 particles take up to about "
+         "2.4 "
+         "GB of memory (1.2 kB per particle), more than the 2 GB available "
+         "now"},
         {4, 2, 1000000, 3.0 * GB, ""},
         {4, 10, 1000000, 5.0 * GB, ""}, /* they fit */
         {4, 1, 1000000, 1.0 * GB, ""},  /* one run: its own check says */

@@ -183,14 +183,15 @@ void dem__sweep_memory_warn(int jobs, long todo, long largest, double available,
     const double GB = 1e9, need = (double)at_once * per_run;
     if (at_once < 2 || available <= 0.0 || need <= available)
         return;
-    dem_warn(err,
-             "sweep: %ld runs at once of up to %ld particles take about "
-             "%.3g GB of memory (%.2g kB per particle), more than the %.3g "
-             "GB available now: expect swapping, or the out-of-memory "
-             "killer to end runs; give fewer --jobs, or none (the sweep "
-             "then runs as many as the memory holds)",
-             at_once, largest, need / GB, per_run / (double)largest / 1e3,
-             available / GB);
+    dem_warn(
+        err,
+        "sweep: %ld runs at once of up to %ld particles take up to "
+        "about %.3g GB of memory (%.2g kB per particle), more than the %.3g "
+        "GB available now: expect swapping, or the out-of-memory "
+        "killer to end runs; give fewer --jobs, or none (the sweep "
+        "then runs as many as the memory holds)",
+        at_once, largest, need / GB, per_run / (double)largest / 1e3,
+        available / GB);
 }
 
 int dem__sweep_exists(const char *dir, const char *name)
