@@ -628,15 +628,21 @@ static int prepare(const struct dem_sweep_grid *g,
         double total, available;
         dem_machine_memory(&total, &available);
         const long cores = omp_get_num_procs();
-        *jobs = dem__sweep_jobs_auto(cores, o->threads, size, n - rep->skipped,
-                                     available,
+        const long todo = n - rep->skipped;
+        *jobs = dem__sweep_jobs_auto(cores, o->threads, size, todo, available,
                                      (double)s.largest * DEM_SIM_BYTES_PACKED);
-        if (!o->quiet && size < 2 && n > rep->skipped)
+        /* fewer than the cores and the points take: the memory's cap */
+        const int capped =
+            *jobs < dem__sweep_jobs_auto(cores, o->threads, size, todo, 0, 0);
+        if (!o->quiet && size < 2 && todo > 0)
             fprintf(stderr,
                     "dembox: sweep: %d run%s at once (%ld core%s, %d "
-                    "thread%s a run; --jobs sets it)\n",
+                    "thread%s a run%s; --jobs sets it)\n",
                     *jobs, *jobs == 1 ? "" : "s", cores, cores == 1 ? "" : "s",
-                    o->threads, o->threads == 1 ? "" : "s");
+                    o->threads, o->threads == 1 ? "" : "s",
+                    capped ? ", as many as the memory available holds at "
+                             "the largest sample"
+                           : "");
     }
     if (!rc && o->jobs) { /* the memory of the runs at once */
         double total, available;
