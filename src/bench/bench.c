@@ -496,8 +496,9 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
     const int turns = o->versus > 0;
     const long slice = dem_bench_slice(s->p.n, steps);
     const long nr = (steps / slice + 2) / 2, ns = steps / slice + 1;
-    double *ratio = malloc((size_t)(turns ? nr : ns) * sizeof *ratio);
-    if (!ratio)
+    /* the rounds' ratios by turns, else the slices' ns per particle-step */
+    double *val = malloc((size_t)(turns ? nr : ns) * sizeof *val);
+    if (!val)
         return dem_error_set(err, DEM_ENOMEM, "bench: out of memory");
     struct dem_pass_choice pc[2] = {s->pass, s->pass};
     /* The slices run the counts in the order A B, B A, A B, ... (a
@@ -528,14 +529,14 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
         const double dt = wall_clock() - ts;
         r->thread_seconds += dt * (cur ? o->versus : r->threads);
         if (!turns && si > 0 && r->spread_slices < ns)
-            ratio[r->spread_slices++] = 1e9 * dt / ((double)m * (double)r->n);
+            val[r->spread_slices++] = 1e9 * dt / ((double)m * (double)r->n);
         if (turns && si < 2)
             continue;
         r->turn_seconds[cur] += dt;
         r->turn_steps[cur] += m;
         per[cur] = dt / (double)m;
         if (turns && si % 2 && rounds < nr)
-            ratio[rounds++] = per[0] / per[1];
+            val[rounds++] = per[0] / per[1];
     }
     bench_turn = 0;
     if (turns) {
@@ -548,17 +549,17 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
         r->versus = o->versus;
         r->rounds = rounds;
         if (rounds > 0) {
-            r->ratio[0] = median_of(ratio, rounds);
-            r->ratio[1] = ratio[0];
-            r->ratio[2] = ratio[rounds - 1];
+            r->ratio[0] = median_of(val, rounds);
+            r->ratio[1] = val[0];
+            r->ratio[2] = val[rounds - 1];
         }
     } else if (r->spread_slices > 0) {
-        r->spread[0] = median_of(ratio, r->spread_slices);
-        r->spread[1] = ratio[0];
-        r->spread[2] = ratio[r->spread_slices - 1];
+        r->spread[0] = median_of(val, r->spread_slices);
+        r->spread[1] = val[0];
+        r->spread[2] = val[r->spread_slices - 1];
     }
     r->slice = slice;
-    free(ratio);
+    free(val);
     return rc;
 }
 
