@@ -177,21 +177,21 @@ int dem__sweep_jobs_auto(long cores, int threads, int ranks, long todo,
 }
 
 void dem__sweep_memory_warn(int jobs, long todo, long largest, double available,
-                            double per_run, const struct dem_error *err)
+                            const struct dem_error *err)
 {
     const long at_once = jobs < todo ? jobs : todo;
-    const double GB = 1e9, need = (double)at_once * per_run;
+    const double GB = 1e9, need = (double)at_once * (double)largest *
+                                  DEM_SIM_BYTES_PACKED;
     if (at_once < 2 || available <= 0.0 || need <= available)
         return;
-    dem_warn(
-        err,
-        "sweep: %ld runs at once of up to %ld particles take up to "
-        "about %.3g GB of memory (%.2g kB per particle), more than the %.3g "
-        "GB available now: expect swapping, or the out-of-memory "
-        "killer to end runs; give fewer --jobs, or none (the sweep "
-        "then runs as many as the memory holds)",
-        at_once, largest, need / GB, per_run / (double)largest / 1e3,
-        available / GB);
+    dem_warn(err,
+             "sweep: %ld runs at once of up to %ld particles take up to "
+             "about %.3g GB of memory (%.2g kB per particle), more than the "
+             "%.3g GB available now: expect swapping, or the out-of-memory "
+             "killer to end runs; give fewer --jobs, or none (the sweep "
+             "then runs as many as the memory holds)",
+             at_once, largest, need / GB, DEM_SIM_BYTES_PACKED / 1e3,
+             available / GB);
 }
 
 int dem__sweep_exists(const char *dir, const char *name)
@@ -621,20 +621,21 @@ static int prepare(const struct dem_sweep_grid *g,
                 "dembox: sweep: %ld of %ld runs already finished, "
                 "skipped\n",
                 rep->skipped, n);
+    /* the runs at once: o->jobs, or the library's choice for 0 */
+    const long left = n - rep->skipped; /* the runs to do */
+    double total, available;
+    dem_machine_memory(&total, &available);
     *jobs = o->jobs;
     if (!rc && !o->jobs) {
         int rank, size;
         dem_mpi_world(&rank, &size);
-        double total, available;
-        dem_machine_memory(&total, &available);
         const long cores = omp_get_num_procs();
-        const long todo = n - rep->skipped;
-        *jobs = dem__sweep_jobs_auto(cores, o->threads, size, todo, available,
+        *jobs = dem__sweep_jobs_auto(cores, o->threads, size, left, available,
                                      (double)s.largest * DEM_SIM_BYTES_PACKED);
         /* fewer than the cores and the points take: the memory's cap */
         const int capped =
-            *jobs < dem__sweep_jobs_auto(cores, o->threads, size, todo, 0, 0);
-        if (!o->quiet && size < 2 && todo > 0)
+            *jobs < dem__sweep_jobs_auto(cores, o->threads, size, left, 0, 0);
+        if (!o->quiet && size < 2 && left > 0)
             fprintf(stderr,
                     "dembox: sweep: %d run%s at once (%ld core%s, %d "
                     "thread%s a run%s; --jobs sets it)\n",
@@ -643,13 +644,8 @@ static int prepare(const struct dem_sweep_grid *g,
                     capped ? ", as many as the memory available holds at "
                              "the largest sample"
                            : "");
-    }
-    if (!rc && o->jobs) { /* the memory of the runs at once */
-        double total, available;
-        dem_machine_memory(&total, &available);
-        dem__sweep_memory_warn(o->jobs, n - rep->skipped, s.largest, available,
-                               (double)s.largest * DEM_SIM_BYTES_PACKED, err);
-    }
+    } else if (!rc) /* given: a warning if the memory cannot hold them */
+        dem__sweep_memory_warn(o->jobs, left, s.largest, available, err);
     if (!rc) /* after the check: bad input still gives one line */
         dem_warn_oversubscribed(*jobs, o->threads, err);
     return rc;

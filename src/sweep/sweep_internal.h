@@ -127,12 +127,12 @@ int dem__sweep_jobs_auto(long cores, int threads, int ranks, long todo,
                          double available, double per_run);
 
 /* Given runs at once (jobs >= 1, of which no more than todo run), each
- * taking up to per_run bytes for largest particles: when two or more
- * together take more than the memory available now (0: not known), one
- * warning through err. (Each run's own check sees only the memory free
- * when it starts, not its neighbours'.) */
+ * of up to largest particles at DEM_SIM_BYTES_PACKED a particle: when two
+ * or more together take more than the memory available now (0: not
+ * known), one warning through err. (Each run's own check sees only the
+ * memory free when it starts, not its neighbours'.) */
 void dem__sweep_memory_warn(int jobs, long todo, long largest, double available,
-                            double per_run, const struct dem_error *err);
+                            const struct dem_error *err);
 
 /* The points of a sweep and who runs which: the jobs of rank 0 take
  * them directly, the other ranks through rank 0's serving thread. lock
