@@ -832,9 +832,13 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     const struct dem__jval *runs = dem__jread_get(&js, "runs");
     assert_non_null(runs);
     assert_int_equal(runs->n, 3);
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 3; k++) {
         assert_string_equal(dem__jread_string(&runs->items[k], "status"),
                             "finished");
+        /* cut short by the step limit, and said so */
+        assert_close(dem__jread_number(&runs->items[k], "max_steps"), 1000.0,
+                     0.0);
+    }
     assert_close(dem__jread_number(&runs->items[2], "confining_pressure"),
                  1000.0, 0.0);
     dem__jread_free(&js);
@@ -965,6 +969,22 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     assert_int_equal(dem_run_resume(out, &ro, &err), DEM_EUSAGE);
     assert_non_null(strstr(err.msg, ": a sweep's folder, not a run's: the "
                                     "same `dembox sweep` command goes on"));
+
+    /* runs cut short by another step limit are not this sweep's runs,
+     * though they look finished: all run again (a smoke test's runs
+     * never stand for a whole sweep's) */
+    o.max_steps = 1200;
+    if (dem_sweep_run(&g, &o, &rep, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(rep.ran, 3);
+    assert_int_equal(rep.skipped, 0);
+    snprintf(path, sizeof path, "%s/sweep.json", out);
+    if (dem__jread_file(&js, path, &err))
+        fail_msg("%s", err.msg);
+    runs = dem__jread_get(&js, "runs");
+    assert_non_null(runs);
+    assert_close(dem__jread_number(&runs->items[0], "max_steps"), 1200.0, 0.0);
+    dem__jread_free(&js);
     dem_sweep_grid_free(&g);
 }
 
@@ -1069,6 +1089,37 @@ static void stop_from_progress_saves_checkpoints_then_resumes(void **state)
                                   ", source 0123456789ab"),
                          any_build == 1);
         free(timing);
+    }
+
+    /* a checkpoint of another config (the sweep's --set changed since)
+     * or of another step limit is not resumed: the point runs again from
+     * the start, with its own config */
+    o.any_build = 0;
+    for (int change = 0; change < 2; change++) {
+        snprintf(out, sizeof out, "%s/progress-other-%d", tmpdir, change);
+        o.sets = sets;
+        o.nsets = 1;
+        o.max_steps = 150000;
+        stop_sweep_in_a_run(out, &g, &o);
+        const char *const sets2[] = {"output.interval=1e-5"};
+        if (change == 0) {
+            o.sets = sets2;
+        } else {
+            o.max_steps = 150001;
+        }
+        struct seen seen = {.caller = pthread_self()};
+        o.progress_user = &seen;
+        struct dem_sweep_report rep;
+        struct dem_error err = {0};
+        if (dem_sweep_run(&g, &o, &rep, &err))
+            fail_msg("%s", err.msg);
+        assert_int_equal(rep.ran, 1);
+        assert_int_equal(rep.resumed, 0);
+        snprintf(path, sizeof path, "%s/runs/contact.mu=0.4/config.cfg", out);
+        char *text = dem_read_text(path, NULL);
+        assert_non_null(text);
+        assert_int_equal(!!strstr(text, "interval = 1e-05;"), change == 0);
+        free(text);
     }
     dem_sweep_grid_free(&g);
 }

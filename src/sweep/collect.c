@@ -115,6 +115,7 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
     }
     char path[DEM_PATH_MAX];
     struct dem_error e = {0};
+    r->max_steps = dem__sweep_step_limit(rundir);
     struct dem_config *c = malloc(sizeof *c);
     if (!c)
         return DEM_ENOMEM;

@@ -109,6 +109,8 @@ static void write_run(struct dem__json *j, const struct dem__sweep *s, long i)
     dem__json_string(j, "status", r->ok ? "finished" : "failed");
     if (!r->ok)
         dem__json_string(j, "reason", r->reason);
+    else if (r->max_steps) /* cut short: a smoke test's run */
+        dem__json_int(j, "max_steps", r->max_steps);
     params(j, "params", s, i, 0);
     if (r->ok) {
         dem__json_int(j, "dimension", r->dim);

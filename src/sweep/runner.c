@@ -231,12 +231,53 @@ static char *config_text(struct dem_config *c)
     return buf;
 }
 
-/* 1 when rundir holds a finished run of exactly the config of point i. */
-static int finished_same(const struct dem_sweep_grid *g,
-                         const struct dem_sweep_options *o, long i,
-                         const char *rundir)
+#define STEP_LIMIT_FILE "sweep_max_steps.txt"
+
+long dem__sweep_step_limit(const char *rundir)
 {
-    if (!dem_sweep_run_finished(rundir))
+    char path[DEM_PATH_MAX];
+    if (dem_path_join(path, sizeof path, rundir, STEP_LIMIT_FILE, NULL))
+        return -1;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return errno == ENOENT ? 0 : -1;
+    long v = -1;
+    if (fscanf(f, "%ld", &v) != 1 || v < 1)
+        v = -1; /* unreadable: matches no limit */
+    fclose(f);
+    return v;
+}
+
+/* Records o->max_steps for the run about to start in rundir. */
+static int step_limit_write(const struct dem_sweep_options *o,
+                            const char *rundir, struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    int rc = dem_path_join(path, sizeof path, rundir, STEP_LIMIT_FILE, err);
+    if (rc)
+        return rc;
+    if (o->max_steps == 0) {
+        if (remove(path) != 0 && errno != ENOENT)
+            return dem_error_set(err, DEM_EIO, "%s: cannot remove: %s", path,
+                                 strerror(errno));
+        return DEM_OK;
+    }
+    FILE *f = fopen(path, "w");
+    if (!f || fprintf(f, "%ld\n", o->max_steps) < 0 || fclose(f) != 0) {
+        if (f)
+            fclose(f);
+        return dem_error_set(err, DEM_EIO, "%s: cannot write", path);
+    }
+    return DEM_OK;
+}
+
+/* 1 when rundir's run (finished or not) is of exactly the config of point
+ * i and ran with the sweep's step limit. */
+static int same_point(const struct dem_sweep_grid *g,
+                      const struct dem_sweep_options *o, long i,
+                      const char *rundir)
+{
+    if (dem__sweep_step_limit(rundir) != o->max_steps)
         return 0;
     char path[DEM_PATH_MAX], sets[MAX_POINT_SETS][SET_LEN];
     struct dem_config *a = malloc(sizeof *a), *b = malloc(sizeof *b);
@@ -256,11 +297,23 @@ static int finished_same(const struct dem_sweep_grid *g,
     return same;
 }
 
-/* Whether an unfinished run can be resumed (dem_run_resume): it has a
- * checkpoint. A resume that fails is followed by a rerun. */
-static int can_resume(const char *rundir)
+/* 1 when rundir holds a finished run of point i as the sweep runs it. */
+static int finished_same(const struct dem_sweep_grid *g,
+                         const struct dem_sweep_options *o, long i,
+                         const char *rundir)
 {
-    return dem__sweep_exists(rundir, "checkpoint.bin");
+    return dem_sweep_run_finished(rundir) && same_point(g, o, i, rundir);
+}
+
+/* Whether point i's unfinished run can be resumed (dem_run_resume): it has
+ * a checkpoint, and its config and step limit are the point's (a resume
+ * goes on with the checkpoint's own). A resume that fails is followed by
+ * a rerun. */
+static int can_resume(const struct dem__sweep_pool *p, long i,
+                      const char *rundir)
+{
+    return dem__sweep_exists(rundir, "checkpoint.bin") &&
+           same_point(p->g, p->o, i, rundir);
 }
 
 double dem__sweep_now(void)
@@ -397,6 +450,9 @@ int dem__sweep_run_point(const struct dem_sweep_grid *g,
         struct dem_config *c = malloc(sizeof *c);
         rc = c ? parse_with(o, sets, ns, c, &e)
                : dem_error_set(&e, DEM_ENOMEM, "out of memory");
+        /* the limit beside the run, before its first output */
+        if (!rc)
+            rc = step_limit_write(o, rundir, &e);
         if (!rc)
             rc = dem_run(c, &opt, &e);
         free(c);
@@ -427,7 +483,7 @@ long dem__sweep_take(struct dem__sweep_pool *p, int rank, int *resume,
     p->rc = dem_path_join(rundir, DEM_PATH_MAX, p->runs, p->names[i], &p->err);
     if (p->rc)
         return -1;
-    *resume = !p->resume_tried[i] && can_resume(rundir);
+    *resume = !p->resume_tried[i] && can_resume(p, i, rundir);
     p->resume_tried[i] |= (char)*resume;
     p->todo[i] = 0;
     if (!p->o->quiet && rank > 0)

@@ -13,6 +13,7 @@ struct dem__sweep_run {
     char name[DEM_SWEEP_RUNNAME_MAX + 8];
     int idx[DEM_SWEEP_MAX_PARAMS]; /* value index of every parameter */
     int ok;                        /* 1: finished and read */
+    long max_steps;                /* dem__sweep_step_limit (0: none) */
     char reason[DEM_ERRMSG_MAX];   /* why not, when ok = 0 */
     int dim;
     int stage, axis;   /* loading stage and its axis (-1: none) */
@@ -111,6 +112,12 @@ double dem__sweep_fmin_norm(double kc, double k1, double k2);
 
 /* 1 when dir/name exists. */
 int dem__sweep_exists(const char *dir, const char *name);
+/* The step limit (--max-steps) the sweep ran the run in rundir with, from
+ * the file sweep_max_steps.txt it writes beside the run before the run
+ * starts: a run cut short by the limit writes its outputs as a finished
+ * run does, so only this tells a smoke test's run from a whole one. 0: no
+ * file, no limit; -1: unreadable. */
+long dem__sweep_step_limit(const char *rundir);
 
 /* ------------------------------------------------ running (runner.c) */
 
