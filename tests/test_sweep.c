@@ -911,11 +911,24 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     snprintf(path, sizeof path, "%s/sweep.json", stopped);
     assert_true(access(path, F_OK) != 0);
 
+    /* the same in the finished sweep's folder: its sweep.json is gone
+     * (it no longer stands for the runs), and so is, at the next collect,
+     * a picture this sweep does not draw (no kc varied) */
+    os.outdir = out;
+    snprintf(path, sizeof path, "%s/plots/cohesion_vs_kc.png", out);
+    write_file(path, "an earlier sweep's picture");
+    assert_int_equal(dem_sweep_run(&g, &os, &rep, &err), DEM_EINTERRUPTED);
+    snprintf(path, sizeof path, "%s/sweep.json", out);
+    assert_true(access(path, F_OK) != 0);
+
     /* the restart finds every run finished */
     if (dem_sweep_run(&g, &o, &rep, &err))
         fail_msg("%s", err.msg);
     assert_int_equal(rep.ran, 0);
     assert_int_equal(rep.skipped, 3);
+    assert_int_equal(access(path, F_OK), 0);
+    snprintf(path, sizeof path, "%s/plots/cohesion_vs_kc.png", out);
+    assert_true(access(path, F_OK) != 0);
 
     /* a run without its summary is unfinished and runs again (with the
      * jobs left to the library) */

@@ -673,6 +673,16 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
     int any = 0;
     for (int k = 0; k < np; k++)
         any |= !plots[k].reason[0];
+    /* a picture this sweep does not draw is not left from an earlier
+     * collect, where it would pass for this one's */
+    static const char *const ext[] = {"png", "dat", "gp"};
+    for (int k = 0; !rc && k < np; k++)
+        for (int x = 0; plots[k].reason[0] && x < 3; x++) {
+            char leaf[64], path[DEM_PATH_MAX];
+            snprintf(leaf, sizeof leaf, "%s.%s", plots[k].name, ext[x]);
+            if (!dem_path_join(path, sizeof path, plotdir, leaf, NULL))
+                remove(path);
+        }
     if (rc || !any)
         return rc;
     char log[DEM_PATH_MAX];

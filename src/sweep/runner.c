@@ -664,6 +664,14 @@ static int prepare(const struct dem_sweep_grid *g,
      * same run folders */
     if (!rc)
         rc = dem_folder_lock(o->outdir, "sweep", lock_fd, err);
+    /* an earlier sweep.json no longer stands for the folder's runs: until
+     * this sweep's collect writes it again, there is none */
+    char json[DEM_PATH_MAX];
+    if (!rc)
+        rc = dem_path_join(json, sizeof json, o->outdir, "sweep.json", err);
+    if (!rc && remove(json) != 0 && errno != ENOENT)
+        rc = dem_error_set(err, DEM_EIO, "%s: cannot remove: %s", json,
+                           strerror(errno));
     if (!rc)
         rc = write_index(g, runs, names, err);
     for (long i = 0; !rc && i < n; i++) {
