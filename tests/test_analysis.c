@@ -174,6 +174,47 @@ static void smoothing_keeps_a_line_and_its_ends(void **state)
     assert_close(s[6], 10.0, 1e-14);
 }
 
+/* Samples that are not numbers (the stress ratio 0/0 before the walls
+ * touch, or after the stresses vanish) are left out of the smoothing and
+ * the peak, and no plateau is averaged over them. */
+static void samples_that_are_not_numbers_are_left_out(void **state)
+{
+    (void)state;
+    double y[7] = {1.0, 2.0, NAN, 4.0, 5.0, 6.0, 7.0}, s[7];
+    dem_smooth(y, 7, 1, s);
+    assert_close(s[1], 1.5, 1e-14); /* 1 and 2 */
+    assert_close(s[2], 3.0, 1e-14); /* 2 and 4 */
+    assert_close(s[3], 4.5, 1e-14);
+    assert_close(s[6], 6.5, 1e-14);
+    enum { N = 2001 };
+    static double e[N], r[N];
+    uint64_t seed = 7;
+    for (int i = 0; i < N; i++) {
+        e[i] = 0.2 * i / (N - 1);
+        r[i] = i < 50 ? NAN : ratio_curve(e[i]) + 0.005 * noise(&seed);
+    }
+    struct dem_peak pk;
+    assert_int_equal(dem_peak_find(e, r, N, dem_peak_smoothing(N), &pk), 0);
+    assert_true(pk.ok);
+    assert_close(pk.value, 0.6, 2e-3);
+    assert_close(pk.strain, 0.02, 2e-3);
+    struct dem_critical cs;
+    assert_int_equal(dem_critical_find(e, r, N, 0.25, 0.1, &cs), 0);
+    assert_true(cs.ok);
+    /* not a number near the end: no plateau, and said why */
+    r[N - 3] = NAN;
+    assert_int_equal(dem_critical_find(e, r, N, 0.25, 0.1, &cs), 0);
+    assert_false(cs.ok);
+    assert_true(isnan(cs.value));
+    assert_non_null(strstr(cs.reason, "not a number"));
+    /* none a number: no peak */
+    for (int i = 0; i < N; i++)
+        r[i] = NAN;
+    assert_int_equal(dem_peak_find(e, r, N, dem_peak_smoothing(N), &pk), 0);
+    assert_false(pk.ok);
+    assert_non_null(strstr(pk.reason, "not a number"));
+}
+
 /* eps_v(eps): slope -0.59 up to 0.02, turning linearly to +0.8 by 0.04,
  * then +0.8: the Luding et al. numbers with friction. */
 static double eps_v_curve(double x)
@@ -927,6 +968,7 @@ int main(void)
         cmocka_unit_test(peak_and_plateau_of_noisy_ratio),
         cmocka_unit_test(too_short_run_has_no_peak),
         cmocka_unit_test(smoothing_keeps_a_line_and_its_ends),
+        cmocka_unit_test(samples_that_are_not_numbers_are_left_out),
         cmocka_unit_test(volumetric_slopes_of_a_known_curve),
         cmocka_unit_test(poisson_and_dilatancy_formulas),
         cmocka_unit_test(void_ratio_fit_recovers_e0_and_n),

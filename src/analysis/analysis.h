@@ -37,7 +37,8 @@ int dem_linfit(const double *x, const double *y, long n,
 
 /* Centred moving average over 2 half + 1 samples; near the ends the window
  * is cut to the samples that exist, so the ends are averaged one-sidedly
- * rather than left raw. out may not alias y. */
+ * rather than left raw. Samples that are not finite are left out of the
+ * averages (NaN where a window has none). out may not alias y. */
 void dem_smooth(const double *y, long n, long half, double *out);
 
 /* Arithmetic mean of y[0..n-1] (NaN for n = 0). */

@@ -44,17 +44,28 @@ void dem_smooth(const double *y, long n, long half, double *out)
 {
     if (half < 0)
         half = 0;
-    /* running sum over the window [i - half, i + half] cut to [0, n) */
+    /* running sum of the finite samples over the window [i - half, i +
+     * half] cut to [0, n); a sample that is not a number (a stress ratio
+     * before the walls touch) would otherwise spoil every sum after it */
     double sum = 0.0;
+    long count = 0;
     long lo = 0, hi = -1; /* current window, inclusive */
     for (long i = 0; i < n; i++) {
         const long want_lo = i - half > 0 ? i - half : 0;
         const long want_hi = i + half < n - 1 ? i + half : n - 1;
         while (hi < want_hi)
-            sum += y[++hi];
-        while (lo < want_lo)
-            sum -= y[lo++];
-        out[i] = sum / (double)(hi - lo + 1);
+            if (isfinite(y[++hi])) {
+                sum += y[hi];
+                count++;
+            }
+        while (lo < want_lo) {
+            if (isfinite(y[lo])) {
+                sum -= y[lo];
+                count--;
+            }
+            lo++;
+        }
+        out[i] = count ? sum / (double)count : NAN;
     }
 }
 

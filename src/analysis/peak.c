@@ -42,11 +42,15 @@ int dem_peak_find(const double *strain, const double *y, long n, long half,
     if (!s)
         return DEM_ENOMEM;
     dem_smooth(y, n, half, s);
-    long k = 0;
-    for (long i = 1; i < n; i++)
-        if (s[i] > s[k])
+    long k = -1; /* the largest finite smoothed value */
+    for (long i = 0; i < n; i++)
+        if (isfinite(s[i]) && (k < 0 || s[i] > s[k]))
             k = i;
-    if (k >= n - 1 - half) {
+    if (k < 0) {
+        snprintf(out->reason, sizeof out->reason,
+                 "the stress ratio is not a number throughout the loading "
+                 "stage (no stress on the walls)");
+    } else if (k >= n - 1 - half) {
         snprintf(out->reason, sizeof out->reason,
                  "the stress ratio still rises at the end of the loading "
                  "stage (maximum within the last %ld samples): load further",
@@ -93,6 +97,15 @@ int dem_critical_find(const double *strain, const double *y, long n,
                  count, 100.0 * fraction);
         return DEM_OK;
     }
+    for (long i = first; i < n; i++)
+        if (!isfinite(y[i])) {
+            snprintf(out->reason, sizeof out->reason,
+                     "the stress ratio is not a number at sample %ld of the "
+                     "%ld in the last %.0f%% of the axial strain (no stress "
+                     "on the walls)",
+                     i - first + 1, count, 100.0 * fraction);
+            return DEM_OK;
+        }
     struct dem_linfit f;
     int rc = dem_linfit(strain + first, y + first, count, &f);
     out->value = dem_mean(y + first, count);
