@@ -501,12 +501,26 @@ static FILE *open_timeseries(const char *dir, int dim)
     return f;
 }
 
-/* 2D biaxial: isotropic at 500 N/m, then compression along y with the
+/* The loading stages the analysis reads as one monotonic loading. */
+enum loading {
+    LOAD_COMPRESS,        /* the curves below, eps_a 0 -> 0.1 */
+    LOAD_EXTENSION,       /* strain -0.1: the same curves along -eps_a,
+                             the axial stress the minor one */
+    LOAD_RETURN,          /* profile cyclic: the curves out to 0.1, then
+                             the strain back to 0 and the stress ratio down */
+    LOAD_CONSTANT_VOLUME, /* the curves of LOAD_COMPRESS under another name */
+};
+
+/* 2D biaxial: isotropic at 500 N/m, then a loading along y with the
  * stress ratio and eps_v curves above; every stress (and the config's
  * pressures) in units of 1/unit N/m. */
-static void write_biaxial_run_in(const char *dir, double unit)
+static void write_biaxial_loading(const char *dir, double unit,
+                                  enum loading how)
 {
-    char cfg[1024];
+    char cfg[1024], pressure[64] = ""; /* constant_volume has none */
+    const double sense = how == LOAD_EXTENSION ? -1.0 : 1.0;
+    if (how != LOAD_CONSTANT_VOLUME)
+        snprintf(pressure, sizeof pressure, "pressure = %.17g;", 500.0 * unit);
     snprintf(cfg, sizeof cfg,
              "dimension = 2;\n"
              "time_step = 1.0e-6;\n"
@@ -514,11 +528,13 @@ static void write_biaxial_run_in(const char *dir, double unit)
              "kc = 0.0; mu = 0.5; };\n"
              "stages = (\n"
              "  { type = \"isotropic\"; pressure = %.17g; },\n"
-             "  { type = \"compress\"; axis = \"y\"; strain = 0.1; "
-             "duration = 1.0; pressure = %.17g; }\n"
+             "  { type = \"%s\"; axis = \"y\"; strain = %g; "
+             "duration = 1.0; %s profile = \"%s\"; }\n"
              ");\n"
              "output = { interval = 1.0e-3; };\n",
-             500.0 * unit, 500.0 * unit);
+             500.0 * unit,
+             how == LOAD_CONSTANT_VOLUME ? "constant_volume" : "compress",
+             0.1 * sense, pressure, how == LOAD_RETURN ? "cyclic" : "cosine");
     write_text(dir, "config.cfg", cfg);
     FILE *f = open_timeseries(dir, 2);
     struct dem_sample s;
@@ -532,21 +548,31 @@ static void write_biaxial_run_in(const char *dir, double unit)
         s.void_ratio = e0;
         dem_sample_write_row(f, &s, 2);
     }
-    for (int i = 1; i <= 1000; i++) {
-        const double ea = 0.1 * i / 1000.0;
-        const double r = ratio_curve(ea) - 0.4 * exp(-ea / 0.002);
+    const int rows = how == LOAD_RETURN ? 2000 : 1000;
+    for (int i = 1; i <= rows; i++) {
+        /* x: the strain along the loading; back after 1000 rows */
+        const int j = i <= 1000 ? i : 2000 - i;
+        const double x = 0.1 * j / 1000.0, ea = sense * x;
+        double r = ratio_curve(x) - 0.4 * exp(-x / 0.002);
+        if (i > 1000)
+            r -= 0.5 * (i - 1000) / 1000.0; /* unloading */
         s.t = 0.02 + 1e-3 * i;
         s.stage = 1;
         s.eps[1] = ea;
-        s.eps_v = eps_v_curve(ea);
+        s.eps_v = eps_v_curve(x);
         s.eps[0] = 1.0 - (1.0 + s.eps_v) / (1.0 - ea);
         s.sigma[0] = 500.0 * unit;
-        s.sigma[1] = 500.0 * unit * (1.0 + r) / (1.0 - r);
+        s.sigma[1] = 500.0 * unit * (1.0 + sense * r) / (1.0 - sense * r);
         s.void_ratio = (1.0 + e0) * (1.0 + s.eps_v) - 1.0;
-        s.inertial_number = 1e-4 * sin(M_PI * i / 1000.0);
+        s.inertial_number = 1e-4 * sin(M_PI * j / 1000.0);
         dem_sample_write_row(f, &s, 2);
     }
     assert_int_equal(fclose(f), 0);
+}
+
+static void write_biaxial_run_in(const char *dir, double unit)
+{
+    write_biaxial_loading(dir, unit, LOAD_COMPRESS);
 }
 
 static void write_biaxial_run(const char *dir)
@@ -687,6 +713,133 @@ static void analysis_is_invariant_to_the_unit_of_stress(void **state)
         free(js);
     }
     free(ref);
+}
+
+/* The loading as the test ran it: an extension (strain < 0), a loading
+ * that returns (profile cyclic: only its way out is the loading), and a
+ * constant_volume stage (no elastic constants: its lateral stress
+ * changes) give the compression's peak, critical state and dilatancy,
+ * each read in its own frame. The old analysis took the extension's
+ * ratio as negative (a peak of 0 at the start), averaged the critical
+ * state over the whole return, and wrote nu = 0.5 for constant_volume. */
+static void analysis_follows_the_loading_as_it_ran(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"load-compress", "load-extension",
+                                        "load-return", "load-volume"};
+    char *js[4];
+    for (int k = 0; k < 4; k++) {
+        char dir[128], path[160];
+        run_dir(dir, sizeof dir, names[k]);
+        write_biaxial_loading(dir, 1.0, (enum loading)k);
+        struct dem_error err = {0};
+        if (dem_analyze(dir, &err))
+            fail_msg("%s: %s", names[k], err.msg);
+        snprintf(path, sizeof path, "%s/summary.json", dir);
+        js[k] = slurp(path);
+        assert_non_null(js[k]);
+    }
+    const char *ref = js[LOAD_COMPRESS];
+    static const char *const blocks[] = {"\"peak\": {", "\"critical\": {"};
+    for (int b = 0; b < 2; b++)
+        for (int k = 1; k < 4; k++) {
+            const char *r = strstr(ref, blocks[b]),
+                       *o = strstr(js[k], blocks[b]);
+            assert_close(json_get(o, "sin_phi"), json_get(r, "sin_phi"), 1e-9);
+            assert_true(json_get(r, "sin_phi") > 0.3);
+            /* the strain along eps_a: negative in extension */
+            const char *key = b ? "strain_from" : "strain";
+            assert_close(json_get(o, key),
+                         (k == LOAD_EXTENSION ? -1.0 : 1.0) * json_get(r, key),
+                         1e-9);
+        }
+    /* the return: every result that of its way out */
+    static const char *const same[] = {
+        "volumetric_slope_initial", "volumetric_slope_dilatant",
+        "dilatancy_angle_deg",      "poisson_ratio",
+        "modulus_initial",          "void_ratio_critical"};
+    for (size_t q = 0; q < sizeof same / sizeof *same; q++)
+        assert_close(json_get(js[LOAD_RETURN], same[q]), json_get(ref, same[q]),
+                     1e-12);
+    /* extension: the axial stress the minor one, the slopes d eps_v/d
+     * eps_a of the curves along -eps_a, psi by the extension's rule
+     * sin psi = s/(2 - s) with s = d eps_v/d(-eps_a) = 0.8 */
+    const char *ext = js[LOAD_EXTENSION];
+    const char *pk = strstr(ext, "\"peak\": {");
+    assert_true(json_get(pk, "sigma_axial") < json_get(pk, "sigma_lateral"));
+    assert_close(json_get(ext, "volumetric_slope_initial"), 0.59, 1e-6);
+    assert_close(json_get(ext, "volumetric_slope_dilatant"), -0.8, 1e-6);
+    assert_close(json_get(ext, "dilatancy_angle_deg"), asin(0.8 / 1.2) * DEG,
+                 1e-4);
+    /* constant volume: no elastic constants, and why */
+    const char *vol = js[LOAD_CONSTANT_VOLUME];
+    assert_true(isnan(json_get(vol, "poisson_ratio")));
+    assert_true(isnan(json_get(vol, "modulus_initial")));
+    assert_true(isnan(json_get(vol, "bulk_modulus")));
+    const char *why = strstr(vol, "\"poisson_ratio_reason\": ");
+    assert_non_null(why);
+    assert_non_null(strstr(why, "constant_volume: its lateral stress"));
+    assert_close(json_get(vol, "dilatancy_angle_deg"),
+                 json_get(ref, "dilatancy_angle_deg"), 1e-12);
+    for (int k = 0; k < 4; k++)
+        free(js[k]);
+}
+
+/* constant_p in 3D holds b = (s2 - s3)/(s1 - s3) with s2 on the axis
+ * after the loaded one: the stress ratio is that of the major and minor
+ * stresses, s1 and s3, not of s1 and the mean of s2 and s3 (which gave
+ * sin phi 0.39 for 0.6 here). */
+static void constant_p_reads_the_minor_stress(void **state)
+{
+    (void)state;
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "constant-p-3d");
+    write_text(dir, "config.cfg",
+               "dimension = 3;\n"
+               "time_step = 1.0e-6;\n"
+               "contact = { k = 1.0e5; mu = 0.5; };\n"
+               "stages = (\n"
+               "  { type = \"isotropic\"; pressure = 500.0; },\n"
+               "  { type = \"constant_p\"; axis = \"z\"; strain = 0.1; "
+               "duration = 1.0; pressure = 500.0; b = 0.5; }\n"
+               ");\n"
+               "output = { interval = 1.0e-3; };\n");
+    FILE *f = open_timeseries(dir, 3);
+    struct dem_sample s;
+    memset(&s, 0, sizeof s);
+    s.L[0] = s.L[1] = s.L[2] = 1.0;
+    for (int i = 0; i < 20; i++) {
+        s.t = 1e-3 * (i + 1);
+        s.sigma[0] = s.sigma[1] = s.sigma[2] = 500.0;
+        s.void_ratio = 0.5;
+        dem_sample_write_row(f, &s, 3);
+    }
+    for (int i = 1; i <= 1000; i++) {
+        const double ea = 0.1 * i / 1000.0;
+        const double r = ratio_curve(ea) - 0.4 * exp(-ea / 0.002);
+        s.t = 0.02 + 1e-3 * i;
+        s.stage = 1;
+        s.eps[2] = ea;
+        s.eps[0] = s.eps[1] = -0.5 * ea;
+        s.sigma[1] = 500.0;                                        /* s3 */
+        s.sigma[2] = 500.0 * (1.0 + r) / (1.0 - r);                /* s1 */
+        s.sigma[0] = s.sigma[1] + 0.5 * (s.sigma[2] - s.sigma[1]); /* s2 */
+        dem_sample_write_row(f, &s, 3);
+    }
+    assert_int_equal(fclose(f), 0);
+    struct dem_error err = {0};
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = slurp(path);
+    assert_non_null(js);
+    const char *pk = strstr(js, "\"peak\": {");
+    assert_close(json_get(pk, "sin_phi"), 0.6, 2e-3);
+    assert_close(json_get(pk, "sigma_lateral"), 500.0, 1e-9);
+    const char *why = strstr(js, "\"poisson_ratio_reason\": ");
+    assert_non_null(why);
+    assert_non_null(strstr(why, "constant_p: its lateral stress"));
+    free(js);
 }
 
 /* A timeseries that no run writes is refused at its line, and no
@@ -979,6 +1132,8 @@ int main(void)
         cmocka_unit_test(loop_area_of_an_ellipse),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
         cmocka_unit_test(analysis_is_invariant_to_the_unit_of_stress),
+        cmocka_unit_test(analysis_follows_the_loading_as_it_ran),
+        cmocka_unit_test(constant_p_reads_the_minor_stress),
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),
         cmocka_unit_test(analyze_rejects_a_folder_that_is_not_a_run),

@@ -412,7 +412,9 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
                  "\"no plateau\"}, \"void_ratio_initial\": %.17g, "
                  "\"void_ratio_critical\": null, \"void_ratio_fit\": {\"hs\": "
                  "%.17g}}\n",
-                 p[k], s1, p[k], e0 - pow(p[k] / hs, n), hs);
+                 /* run 1 an extension: its axial stress the minor */
+                 p[k], k == 1 ? p[k] : s1, k == 1 ? s1 : p[k],
+                 e0 - pow(p[k] / hs, n), hs);
         snprintf(set, sizeof set, "stages.1.pressure=%g", p[k]);
         snprintf(dir, sizeof dir, "%s/runs/%s", out, names[k]);
         fake_run(dir, cfg, set, summary);
@@ -441,6 +443,12 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     assert_close(dem__jread_number(&ff->items[0], "cohesion"), c, 1e-6);
     assert_close(dem__jread_number(&ff->items[0], "circles"), 4, 0);
     assert_close(dem__jread_number(&ff->items[0], "r2"), 1.0, 1e-9);
+    /* each circle as its major and minor stresses, the extension's too */
+    const struct dem__jval *circles = dem__jread_get(&ff->items[0], "runs");
+    assert_non_null(circles);
+    for (int k = 0; k < 4; k++)
+        assert_true(dem__jread_number(&circles->items[k], "sigma_1") >
+                    dem__jread_number(&circles->items[k], "sigma_3"));
     /* no critical circles: null with a reason */
     const struct dem__jval *fc = dem__jread_get(&js, "flow_function_critical");
     assert_non_null(dem__jread_string(&fc->items[0], "reason"));
@@ -460,6 +468,21 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
      * outside the ranges (from a negative c it starts below the picture;
      * with its end beyond the rounded range both were outside and the
      * line was missing) */
+    /* the circles drawn above the axis, the extension's too */
+    snprintf(dir, sizeof dir, "%s/plots/mohr_circles.dat", out);
+    FILE *circ = fopen(dir, "r");
+    assert_non_null(circ);
+    char row[256];
+    int points = 0;
+    while (fgets(row, sizeof row, circ)) {
+        double x, y;
+        if (row[0] != '#' && sscanf(row, "%lf %lf", &x, &y) == 2) {
+            assert_true(y >= 0.0);
+            points++;
+        }
+    }
+    fclose(circ);
+    assert_true(points > 4 * 100);
     snprintf(dir, sizeof dir, "%s/plots/mohr_circles.gp", out);
     char *gp = dem_read_text(dir, NULL);
     assert_non_null(gp);

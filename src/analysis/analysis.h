@@ -129,6 +129,11 @@ double dem_bulk_modulus(double E, double nu, int dim);
  * sin psi = s/(2 + s) (Vermeer & de Borst 1984, 2D and 3D); NaN if
  * s <= -1. */
 double dem_dilatancy_angle_deg(double s);
+/* The same in extension (the loaded axis the minor principal one), from
+ * s = d eps_v / d(-eps_a): the plastic rates -lambda (1 + sin psi) along
+ * the axis and lambda (1 - sin psi) summed over the others give
+ * sin psi = s/(2 - s); NaN if s > 1. */
+double dem_dilatancy_angle_extension_deg(double s);
 
 /* ---------------------------------------------------------------- mohr.c */
 

@@ -49,7 +49,8 @@ struct curves {
     double *el;       /* lateral strain (mean of the other axes) */
     double *ev;       /* eps_v, dilation positive */
     double *s1;       /* axial wall stress, Pa (2D N/m) */
-    double *s3;       /* lateral wall stress (mean of the other axes) */
+    double *s3;       /* lateral wall stress (mean of the other axes, or
+                         the minor one's: build_curves) */
     double *e;        /* void ratio */
     double *inertial; /* inertial number, NaN if not written */
 };
@@ -61,6 +62,8 @@ struct result {
     long samples;
     char none_reason[DEM_REASON_MAX]; /* why there is no loading stage */
     char mono_reason[DEM_REASON_MAX]; /* why no monotonic analysis */
+    char elastic_reason[DEM_REASON_MAX]; /* why no elastic constants from
+                                            the slopes ("" when they are) */
     int mono;  /* 1: peak, critical and slopes computed */
     long half; /* smoothing half-window, samples */
     struct dem_peak peak;
@@ -166,8 +169,10 @@ static double lateral(const double *const v[3], long r, int axis, int dim)
     return s / (dim - 1);
 }
 
+/* minor: the axis whose stress is s3, or -1 for the mean of the axes
+ * other than `axis`. */
 static int build_curves(const struct columns *c, long nrow, int stage, int axis,
-                        int dim, double interval, struct curves *cv)
+                        int minor, int dim, double interval, struct curves *cv)
 {
     memset(cv, 0, sizeof *cv);
     long first = -1, last = -1;
@@ -197,7 +202,8 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
         cv->el[i] = o ? 0.0 : lateral(c->eps, r, axis, dim);
         cv->ev[i] = o ? 0.0 : c->eps_v[r];
         cv->s1[i] = c->sigma[axis][r];
-        cv->s3[i] = lateral(c->sigma, r, axis, dim);
+        cv->s3[i] =
+            minor >= 0 ? c->sigma[minor][r] : lateral(c->sigma, r, axis, dim);
         cv->e[i] = c->void_ratio[r];
         cv->inertial[i] = c->inertial && !o ? c->inertial[r] : NAN;
     }
@@ -209,16 +215,35 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
     return DEM_OK;
 }
 
-/* Peak, critical state and the slopes of a compress stage. */
-static int analyze_monotonic(const struct curves *cv, int dim, struct result *R)
+/* Peak, critical state and the slopes of a compress, constant_p or
+ * constant_volume stage sc, over its loading branch: the whole stage, or
+ * with the profiles that return (cyclic: 0 -> D -> 0, sine: 0 -> D -> -D
+ * -> 0) the samples up to the strain's extreme towards D. In extension (D
+ * < 0) the loaded axis is the minor principal one: the stress ratio is
+ * (s3 - s1)/(s3 + s1), and the windows and slopes run along -eps_a (the
+ * slopes written are d eps_v/d eps_a all the same). */
+static int analyze_monotonic(const struct curves *cv, int dim,
+                             const struct dem_stage_config *sc,
+                             struct result *R)
 {
-    const long n = cv->n;
-    double *ratio = malloc(2 * (size_t)n * sizeof *ratio);
+    const double sense = sc->strain < 0.0 ? -1.0 : 1.0;
+    long n = cv->n;
+    if (sc->profile == DEM_PROFILE_CYCLIC || sc->profile == DEM_PROFILE_SINE) {
+        long m = 0;
+        for (long i = 1; i < cv->n; i++)
+            if (sense * cv->ea[i] > sense * cv->ea[m])
+                m = i;
+        n = m + 1;
+    }
+    double *ratio = malloc(3 * (size_t)n * sizeof *ratio);
     if (!ratio)
         return DEM_ENOMEM;
-    double *work = ratio + n;
-    for (long i = 0; i < n; i++)
-        ratio[i] = dem_mohr_sin_phi(cv->s1[i], cv->s3[i]);
+    double *work = ratio + n, *x = work + n;
+    for (long i = 0; i < n; i++) {
+        ratio[i] = sense > 0.0 ? dem_mohr_sin_phi(cv->s1[i], cv->s3[i])
+                               : dem_mohr_sin_phi(cv->s3[i], cv->s1[i]);
+        x[i] = sense * cv->ea[i];
+    }
     R->half = dem_peak_smoothing(n);
     int rc = dem_peak_find(cv->ea, ratio, n, R->half, &R->peak);
     if (!rc && R->peak.ok) {
@@ -229,11 +254,13 @@ static int analyze_monotonic(const struct curves *cv, int dim, struct result *R)
         R->peak_s3 = work[R->peak.index];
     }
     if (!rc)
-        rc = dem_critical_find(cv->ea, ratio, n, CRITICAL_FRACTION,
+        rc = dem_critical_find(x, ratio, n, CRITICAL_FRACTION,
                                PLATEAU_TOLERANCE, &R->crit);
-    free(ratio);
-    if (rc)
+    R->crit.strain_from *= sense;
+    if (rc) {
+        free(ratio);
         return rc;
+    }
     if (R->crit.ok) {
         R->crit_s1 = dem_mean(cv->s1 + R->crit.first, R->crit.count);
         R->crit_s3 = dem_mean(cv->s3 + R->crit.first, R->crit.count);
@@ -242,22 +269,36 @@ static int analyze_monotonic(const struct curves *cv, int dim, struct result *R)
 
     long w = (long)(DILATANT_WINDOW * (double)n);
     w = w < DILATANT_WINDOW_MIN ? DILATANT_WINDOW_MIN : w;
-    dem_slopes_volumetric(cv->ea, cv->ev, n, R->half, INITIAL_FRACTION, w,
-                          &R->sl);
-    if (R->sl.initial_ok) {
-        double *dev = malloc((size_t)R->sl.initial_count * sizeof *dev);
-        if (!dev)
-            return DEM_ENOMEM;
+    dem_slopes_volumetric(x, cv->ev, n, R->half, INITIAL_FRACTION, w, &R->sl);
+    /* psi from the slope along the loading; what is written, the slope
+     * and its strain along eps_a */
+    if (R->sl.dilatant_ok)
+        R->psi_deg = sense > 0.0
+                         ? dem_dilatancy_angle_deg(R->sl.dilatant)
+                         : dem_dilatancy_angle_extension_deg(R->sl.dilatant);
+    R->sl.initial *= sense;
+    R->sl.initial_strain *= sense;
+    R->sl.dilatant *= sense;
+    R->sl.dilatant_strain *= sense;
+    /* the elastic constants from the slopes hold where the lateral
+     * stress stays as it was (docs/analysis.md): a compress stage's */
+    if (sc->type == DEM_STAGE_CONSTANT_P ||
+        sc->type == DEM_STAGE_CONSTANT_VOLUME)
+        snprintf(R->elastic_reason, sizeof R->elastic_reason,
+                 "the loading stage is %s: its lateral stress changes, so "
+                 "the initial slopes give no elastic constants (they need "
+                 "a compress stage, whose lateral stress is held)",
+                 sc->type == DEM_STAGE_CONSTANT_P ? "constant_p"
+                                                  : "constant_volume");
+    else if (R->sl.initial_ok) {
         for (long i = 0; i < R->sl.initial_count; i++)
-            dev[i] = cv->s1[i] - cv->s3[i];
-        R->modulus = dem_slope_initial(cv->ea, dev, R->sl.initial_count);
-        free(dev);
+            work[i] = sense * (cv->s1[i] - cv->s3[i]);
+        R->modulus = dem_slope_initial(x, work, R->sl.initial_count);
         R->nu = dem_poisson_from_slope(R->sl.initial, dim);
         R->nu_ps = dim == 2 ? dem_poisson_plane_strain(R->sl.initial) : NAN;
         R->bulk = dem_bulk_modulus(R->modulus, R->nu, dim);
     }
-    if (R->sl.dilatant_ok)
-        R->psi_deg = dem_dilatancy_angle_deg(R->sl.dilatant);
+    free(ratio);
     R->mono = 1;
     return DEM_OK;
 }
@@ -314,7 +355,7 @@ static int analyze_cyclic(const struct dem_config *cfg, const struct columns *c,
     R->cyc_amplitude = sc->amplitude;
     R->cyc_period = sc->period;
     struct curves cv;
-    int rc = build_curves(c, nrow, R->cyc_stage, sc->axis, cfg->dim,
+    int rc = build_curves(c, nrow, R->cyc_stage, sc->axis, -1, cfg->dim,
                           cfg->output.interval, &cv);
     if (rc)
         return rc;
@@ -369,7 +410,12 @@ static int analyze_loading(const struct dem_config *cfg,
     R->axis = sc->axis;
     R->pressure = sc->pressure;
     struct curves cv;
-    int rc = build_curves(c, nrow, R->stage, sc->axis, cfg->dim,
+    /* constant_p in 3D holds b = (s2 - s3)/(s1 - s3) with s2 on the axis
+     * after `axis`: s3, the minor stress, is the third axis's, not the
+     * mean of the two */
+    const int minor =
+        type == DEM_STAGE_CONSTANT_P && cfg->dim == 3 ? (sc->axis + 2) % 3 : -1;
+    int rc = build_curves(c, nrow, R->stage, sc->axis, minor, cfg->dim,
                           cfg->output.interval, &cv);
     if (rc)
         return rc;
@@ -383,7 +429,7 @@ static int analyze_loading(const struct dem_config *cfg,
     }
     loading_scalars(&cv, R);
     if (comp)
-        rc = analyze_monotonic(&cv, cfg->dim, R);
+        rc = analyze_monotonic(&cv, cfg->dim, sc, R);
     else
         snprintf(R->mono_reason, sizeof R->mono_reason,
                  "no compress stage: the loading stage %d is cyclic; peak, "
@@ -532,7 +578,9 @@ static void write_slopes(struct dem__json *j, const struct result *R)
                      R->mono && R->sl.dilatant_ok ? R->sl.dilatant_strain
                                                   : NAN);
     char why[DEM_REASON_MAX + 64];
-    if (isfinite(si))
+    if (R->elastic_reason[0])
+        snprintf(why, sizeof why, "%s", R->elastic_reason);
+    else if (isfinite(si))
         snprintf(why, sizeof why,
                  "the initial volumetric slope %.4g gives a Poisson ratio "
                  "outside the isotropic elastic range",
@@ -543,7 +591,9 @@ static void write_slopes(struct dem__json *j, const struct result *R)
     if (R->dim == 2)
         num(j, "poisson_ratio_plane_strain", R->nu_ps, why);
     num(j, "modulus_initial", R->modulus,
-        isfinite(si) ? "the initial stress slope cannot be fitted" : why);
+        isfinite(si) && !R->elastic_reason[0]
+            ? "the initial stress slope cannot be fitted"
+            : why);
     num(j, "bulk_modulus", R->bulk,
         isfinite(R->nu) ? "the modulus and Poisson ratio give no positive "
                           "bulk modulus"

@@ -147,3 +147,10 @@ double dem_dilatancy_angle_deg(double s)
         return NAN;
     return asin(s / (2.0 + s)) * DEG;
 }
+
+double dem_dilatancy_angle_extension_deg(double s)
+{
+    if (!(s <= 1.0) || !isfinite(s))
+        return NAN;
+    return asin(s / (2.0 - s)) * DEG;
+}

@@ -181,8 +181,10 @@ static void write_flow(struct dem__json *j, const struct dem__sweep *s,
             const struct dem__sweep_run *r = &s->runs[f->members[c]];
             dem__json_object(j, NULL, 1);
             dem__json_string(j, "run", r->name);
-            dem__json_number(j, "sigma_1", state ? r->crit_s1 : r->peak_s1);
-            dem__json_number(j, "sigma_3", state ? r->crit_s3 : r->peak_s3);
+            const double a = state ? r->crit_s1 : r->peak_s1,
+                         b = state ? r->crit_s3 : r->peak_s3;
+            dem__json_number(j, "sigma_1", fmax(a, b)); /* major */
+            dem__json_number(j, "sigma_3", fmin(a, b));
             dem__json_close(j);
         }
         dem__json_close(j);

@@ -96,7 +96,8 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
     double xmax = 0.0;
     for (int q = 0; q < s->ffg.n; q++)
         for (long c = 0; c < s->ff[0][q].circles; c++)
-            xmax = fmax(xmax, s->runs[s->ff[0][q].members[c]].peak_s1);
+            xmax = fmax(xmax, fmax(s->runs[s->ff[0][q].members[c]].peak_s1,
+                                   s->runs[s->ff[0][q].members[c]].peak_s3));
     xmax *= 1.1;
     if (!(xmax > 0.0)) {
         fprintf(
@@ -134,9 +135,9 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
         for (long c = 0; c < f->circles; c++) {
             const struct dem__sweep_run *r = &s->runs[f->members[c]];
             const double m = 0.5 * (r->peak_s1 + r->peak_s3);
-            const double rad = 0.5 * (r->peak_s1 - r->peak_s3);
+            const double rad = 0.5 * fabs(r->peak_s1 - r->peak_s3);
             fprintf(dat, "# %s: sigma_1 = %.9g, sigma_3 = %.9g\n", r->name,
-                    r->peak_s1, r->peak_s3);
+                    fmax(r->peak_s1, r->peak_s3), fmin(r->peak_s1, r->peak_s3));
             for (int k = 0; k <= 180; k++)
                 fprintf(dat, "%.9g %.9g\n", m + rad * cos(M_PI * k / 180.0),
                         rad * sin(M_PI * k / 180.0));
