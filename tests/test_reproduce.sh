@@ -42,13 +42,21 @@ DEMBOX=$BIN "$R" --quick --smoke --jobs 2 --only pressure,cyclic "$out" \
     > "$T/log2" 2>&1 || fail "second call: $(tail -5 "$T/log2")"
 grep -q "skipped\|already finished" "$T/log2" || fail "second call did not skip: $(cat "$T/log2")"
 
-# dembox sweep --collect analyses what is there and runs nothing
+# dembox sweep --collect, with the sweep's own arguments, analyses what is
+# there and runs nothing; without its --set, no run is the sweep's
 rm "$out/pressure/sweep.json"
 "$BIN" sweep biaxial2d --param stages.0.pressure,stages.1.pressure=250,500,1000 \
+    --set output.checkpoint_interval=120 \
     -o "$out/pressure" --collect > "$T/log3" 2>&1 || fail "--collect: $(cat "$T/log3")"
 [ -s "$out/pressure/sweep.json" ] || fail "--collect wrote no sweep.json"
 grep -q '"runs_finished": 3' "$out/pressure/sweep.json" || fail "--collect: runs not read"
 grep -q "started" "$T/log3" && fail "--collect ran something: $(cat "$T/log3")"
+"$BIN" sweep biaxial2d --param stages.0.pressure,stages.1.pressure=250,500,1000 \
+    -o "$out/pressure" --collect > "$T/log4" 2>&1 || fail "--collect: $(cat "$T/log4")"
+grep -q '"runs_finished": 0' "$out/pressure/sweep.json" ||
+    fail "--collect without the sweep's --set read its runs"
+grep -q "is not this point's config" "$out/pressure/sweep.json" ||
+    fail "--collect without the sweep's --set: no reason"
 
 set +e
 DEMBOX=$BIN "$R" --paper --only cyclic-mu "$out" 2> "$T/err"; rc=$?

@@ -268,13 +268,23 @@ static void bad_grid_point_is_refused_before_running(void **state)
 }
 
 /* A run folder as dem_run leaves it, with a made-up summary. */
-static void fake_run(const char *dir, const char *cfgpath, const char *set,
+/* A finished run of point i of grid g for config cfgpath in dir, as the
+ * sweep writes it (its config.cfg with the point's overrides), but with
+ * the summary given. */
+static void fake_run(const char *dir, const char *cfgpath,
+                     const struct dem_sweep_grid *g, long i,
                      const char *summary)
 {
     struct dem_config c;
     struct dem_error err = {0};
-    const char *sets[] = {set};
-    if (dem_config_load_file(&c, cfgpath, sets, 1, &err))
+    char sets[DEM_SWEEP_MAX_PARAMS * DEM_SWEEP_MAX_KEYS]
+             [DEM_NAME_MAX + DEM_SWEEP_VALUE_MAX];
+    const char *setp[DEM_SWEEP_MAX_PARAMS * DEM_SWEEP_MAX_KEYS];
+    const int ns = dem_sweep_point_sets(
+        g, i, sets, DEM_SWEEP_MAX_PARAMS * DEM_SWEEP_MAX_KEYS);
+    for (int k = 0; k < ns; k++)
+        setp[k] = sets[k];
+    if (dem_config_load_file(&c, cfgpath, setp, ns, &err))
         fail_msg("%s", err.msg);
     assert_int_equal(dem_mkdir_p(dir, &err), 0);
     char path[1200];
@@ -343,12 +353,11 @@ static void summary_not_written_by_analyze_is_left_out(void **state)
     char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(8 * sizeof *names);
     dem_sweep_point_names(&g, names);
     for (int k = 0; k < 8; k++) {
-        char summary[512], set[64];
+        char summary[512];
         snprintf(summary, sizeof summary, "{\"loading_stage\": %d, %s}\n",
                  k == 7 ? 7 : 1, body[k]);
-        snprintf(set, sizeof set, "stages.1.pressure=%d", 100 * (k + 1));
         snprintf(dir, sizeof dir, "%s/runs/%s", out, names[k]);
-        fake_run(dir, cfg, set, summary);
+        fake_run(dir, cfg, &g, k, summary);
     }
     free(names);
     collect_runs(&g, cfg, out);
@@ -403,7 +412,7 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     for (int k = 0; k < 4; k++) {
         const double s = sin(phi);
         const double s1 = p[k] * (1 + s) / (1 - s) + 2 * c * cos(phi) / (1 - s);
-        char summary[1024], set[64];
+        char summary[1024];
         snprintf(summary, sizeof summary,
                  "{\"dimension\": 2, \"loading_stage\": 1, "
                  "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": 0.5,"
@@ -415,9 +424,8 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
                  /* run 1 an extension: its axial stress the minor */
                  p[k], k == 1 ? p[k] : s1, k == 1 ? s1 : p[k],
                  e0 - pow(p[k] / hs, n), hs);
-        snprintf(set, sizeof set, "stages.1.pressure=%g", p[k]);
         snprintf(dir, sizeof dir, "%s/runs/%s", out, names[k]);
-        fake_run(dir, cfg, set, summary);
+        fake_run(dir, cfg, &g, k, summary);
         /* the last run as the numbers kept of a sweep hold it, without
          * its timeseries: still collected */
         if (k == 3) {
@@ -506,6 +514,27 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     free(dat);
     snprintf(dir, sizeof dir, "%s/plots/friction_vs_mu.gp", out);
     assert_true(access(dir, F_OK) != 0);
+
+    /* collected with another --set, no folder holds this sweep's run: each
+     * is left out with why, not put to the point's values */
+    const char *const other[] = {"contact.mu=0.123"};
+    struct dem_sweep_options o2 = {.target = cfg,
+                                   .outdir = out,
+                                   .sets = other,
+                                   .nsets = 1,
+                                   .jobs = 1,
+                                   .threads = 1,
+                                   .quiet = 1};
+    if (dem_sweep_collect(&g, &o2, &err))
+        fail_msg("%s", err.msg);
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(&js, dir, &err))
+        fail_msg("%s", err.msg);
+    assert_close(dem__jread_number(&js, "runs_finished"), 0, 0);
+    const struct dem__jval *left = dem__jread_get(&js, "runs");
+    assert_non_null(strstr(dem__jread_string(&left->items[0], "reason"),
+                           "config.cfg is not this point's config"));
+    dem__jread_free(&js);
     dem_sweep_grid_free(&g);
 }
 
@@ -539,7 +568,7 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
         const double phi = (30.0 + 2.0 * d) / DEG, c = 50.0 + 10.0 * d;
         const double s = sin(phi), pr = p[idx[2]];
         const double s1 = pr * (1 + s) / (1 - s) + 2 * c * cos(phi) / (1 - s);
-        char summary[1536], set[3][64];
+        char summary[1536];
         snprintf(summary, sizeof summary,
                  "{\"dimension\": 2, \"loading_stage\": 1, "
                  "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
@@ -551,9 +580,8 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
                  pr, 0.4 + 0.1 * mus[idx[0]] + 0.01 * d, s1, pr,
                  d > 0 ? "ratcheting" : "shakedown", (d + 2) * 1e-3,
                  (d + 2) * 1e-3);
-        snprintf(set[0], sizeof set[0], "contact.mu=%g", mus[idx[0]]);
         snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
-        fake_run(dir, cfg, set[0], summary);
+        fake_run(dir, cfg, &g, i, summary);
     }
     free(names);
     collect_runs(&g, cfg, out);
@@ -635,7 +663,7 @@ static void one_cyclic_run(const char *name, const char *end2,
              "{\"cycle\": 2, \"strain_end\": %s, "
              "\"strain_increment\": %s}]}\n",
              end2, inc2);
-    fake_run(dir, cfg, "seed=1", summary);
+    fake_run(dir, cfg, &g, 0, summary);
     collect_runs(&g, cfg, out);
     dem_sweep_grid_free(&g);
 }

@@ -561,6 +561,19 @@ int dem__sweep_collect(const struct dem_sweep_grid *g,
         rc = dem_path_join(path, sizeof path, runs, names[i], err);
         if (!rc)
             rc = read_run(r, path);
+        if (!rc && r->ok && !dem__sweep_same_config(g, o, i, path)) {
+            /* a folder of another sweep under this point's name (another
+             * target, --set or order of --param): its numbers would be
+             * put to this point's values */
+            dem__summary_cycles_free(&r->cyc);
+            run_init(r);
+            r->ok = 0;
+            snprintf(r->reason, sizeof r->reason,
+                     "runs/%s/config.cfg is not this point's config (another "
+                     "config, --set or order of --param): collect with the "
+                     "sweep's own command, or run the sweep again",
+                     r->name);
+        }
     }
     free(names);
     if (!rc)

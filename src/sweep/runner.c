@@ -271,14 +271,10 @@ static int step_limit_write(const struct dem_sweep_options *o,
     return DEM_OK;
 }
 
-/* 1 when rundir's run (finished or not) is of exactly the config of point
- * i and ran with the sweep's step limit. */
-static int same_point(const struct dem_sweep_grid *g,
-                      const struct dem_sweep_options *o, long i,
-                      const char *rundir)
+int dem__sweep_same_config(const struct dem_sweep_grid *g,
+                           const struct dem_sweep_options *o, long i,
+                           const char *rundir)
 {
-    if (dem__sweep_step_limit(rundir) != o->max_steps)
-        return 0;
     char path[DEM_PATH_MAX], sets[MAX_POINT_SETS][SET_LEN];
     struct dem_config *a = malloc(sizeof *a), *b = malloc(sizeof *b);
     struct dem_error e;
@@ -295,6 +291,16 @@ static int same_point(const struct dem_sweep_grid *g,
     free(a);
     free(b);
     return same;
+}
+
+/* 1 when rundir's run (finished or not) is of exactly the config of point
+ * i and ran with the sweep's step limit. */
+static int same_point(const struct dem_sweep_grid *g,
+                      const struct dem_sweep_options *o, long i,
+                      const char *rundir)
+{
+    return dem__sweep_step_limit(rundir) == o->max_steps &&
+           dem__sweep_same_config(g, o, i, rundir);
 }
 
 /* 1 when rundir holds a finished run of point i as the sweep runs it. */

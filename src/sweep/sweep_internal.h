@@ -118,6 +118,12 @@ int dem__sweep_exists(const char *dir, const char *name);
  * run does, so only this tells a smoke test's run from a whole one. 0: no
  * file, no limit; -1: unreadable. */
 long dem__sweep_step_limit(const char *rundir);
+/* 1 when rundir/config.cfg is the resolved config of point i of the sweep
+ * (o->target with o->sets and the point's values), else 0 (another
+ * config, or one that cannot be read). */
+int dem__sweep_same_config(const struct dem_sweep_grid *g,
+                           const struct dem_sweep_options *o, long i,
+                           const char *rundir);
 
 /* ------------------------------------------------ running (runner.c) */
 
