@@ -7,6 +7,7 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "dembox.h"
 #include "tmpdir.h"
@@ -107,11 +108,56 @@ static void by_turns_needs_rounds(void **state)
     assert_int_equal(dem_bench_slice(300, 16), 2);
 }
 
+/* Copy file a to b, the first byte of its line 1 (the comment) turned to
+ * `first`: the same size, another content. */
+static void copy_with(const char *a, const char *b, char first)
+{
+    FILE *in = fopen(a, "rb"), *out = fopen(b, "wb");
+    assert_non_null(in);
+    assert_non_null(out);
+    int c, k = 0;
+    while ((c = fgetc(in)) != EOF)
+        fputc(k++ == 0 ? first : c, out);
+    fclose(in);
+    assert_int_equal(fclose(out), 0);
+}
+
+/* The cache of a packing prepared from a data file is the file's: one of
+ * the same name and size but other bytes (a packing made again) is
+ * prepared anew, not taken for the old one; the same bytes again are
+ * reused. */
+static void cache_follows_the_data_files_bytes(void **state)
+{
+    (void)state;
+    const struct dem_bench_result first = bench(1, 0, 20);
+    char a[1200], b[1200];
+    snprintf(a, sizeof a, "%s/a", tmpdir);
+    snprintf(b, sizeof b, "%s/b", tmpdir);
+    assert_int_equal(mkdir(a, 0755), 0);
+    assert_int_equal(mkdir(b, 0755), 0);
+    snprintf(a, sizeof a, "%s/a/pack.data", tmpdir);
+    snprintf(b, sizeof b, "%s/b/pack.data", tmpdir);
+    copy_with(first.cache, a, '#');
+    copy_with(first.cache, b, ' ');
+    struct dem_bench_options o = options(1, 0, 20);
+    struct dem_bench_result r;
+    struct dem_error err = {0, "", NULL, NULL};
+    const char *files[] = {a, b, a};
+    const int hit[] = {0, 0, 1};
+    for (int k = 0; k < 3; k++) {
+        o.data = files[k];
+        if (dem_bench_run(&o, &r, &err))
+            fail_msg("%s", err.msg);
+        assert_int_equal(r.cache_hit, hit[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(by_turns_same_bits_as_one_count),
         cmocka_unit_test(by_turns_needs_rounds),
+        cmocka_unit_test(cache_follows_the_data_files_bytes),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

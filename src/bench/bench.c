@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -146,8 +147,27 @@ static int cache_folder(const struct dem_bench_options *o, char *out,
     return dem_mkdir_p(out, err);
 }
 
-/* The cache key: dimension, N, the source (data file name and size, or
- * the seed of a random packing) and the boundary. */
+/* FNV-1a (64 bits) of a file's bytes into *h; 0 or an errno. */
+static int file_hash(const char *path, uint64_t *h)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return errno;
+    unsigned char buf[1 << 16];
+    size_t got;
+    *h = 14695981039346656037ULL;
+    while ((got = fread(buf, 1, sizeof buf, f)) > 0)
+        for (size_t k = 0; k < got; k++)
+            *h = (*h ^ buf[k]) * 1099511628211ULL;
+    const int e = ferror(f) ? EIO : 0;
+    fclose(f);
+    return e;
+}
+
+/* The cache key: dimension, N, the source (data file name, size and a
+ * hash of its bytes, so that a packing made again under the same name
+ * and size is not taken for the old one; or the seed of a random
+ * packing) and the boundary. */
 static int cache_path(const struct dem_bench_options *o, int dim, int n,
                       const char *data, char *out, size_t len,
                       struct dem_error *err)
@@ -168,7 +188,13 @@ static int cache_path(const struct dem_bench_options *o, int dim, int n,
         char *dot = strrchr(stem, '.');
         if (dot && dot != stem)
             *dot = '\0';
-        snprintf(tag, sizeof tag, "from-%s-%lld", stem, (long long)st.st_size);
+        uint64_t h = 0;
+        const int e = file_hash(data, &h);
+        if (e)
+            return dem_error_set(err, DEM_EIO, "%s: cannot read: %s", data,
+                                 strerror(e));
+        snprintf(tag, sizeof tag, "from-%s-%lld-%08x", stem,
+                 (long long)st.st_size, (unsigned)(h >> 32));
     } else {
         snprintf(tag, sizeof tag, "seed1");
     }
@@ -619,8 +645,17 @@ static int bench_run(const struct dem_bench_options *o,
         r->prep_seconds = wall_clock() - t0;
     }
     if (ranks > 1) {
-        dem_halo_barrier();
-        if (rank > 0 && !file_exists(r->cache))
+        /* rank 0's status reaches the others, which wait for it here:
+         * when its preparation failed they stop too, rather than load
+         * what is in the cache (with --no-cache an older packing) and
+         * wait in a collective that rank 0 never enters */
+        int v = rc;
+        dem_halo_bcast(&v, 1);
+        if (v && !rc)
+            rc = dem_error_set(err, v,
+                               "bench: stopped with rank 0 (see its "
+                               "message)");
+        else if (rank > 0 && !file_exists(r->cache))
             rc = dem_error_set(err, DEM_EIO, "%s: rank 0 did not prepare it",
                                r->cache);
     }
