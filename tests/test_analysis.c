@@ -97,6 +97,13 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_int_equal(dem_mohr_fit(s1, s3, 1, 1, &f), 0);
     assert_false(f.ok);
     assert_non_null(strstr(f.reason, "at least 2"));
+    /* circles that shrink as they move out (a material weaker under more
+     * pressure): no friction angle, and why */
+    const double a1[] = {400.0, 600.0}, a3[] = {100.0, 500.0};
+    assert_int_equal(dem_mohr_fit(a1, a3, 2, 1, &f), 0);
+    assert_false(f.ok);
+    assert_true(isnan(f.sin_phi));
+    assert_non_null(strstr(f.reason, "not between 0 and 1"));
 }
 
 /* Stress ratio y = 0.4 + 0.2 x e^(1-x), x = eps/0.02: a peak of exactly

@@ -101,6 +101,10 @@ static void by_turns_needs_rounds(void **state)
     struct dem_error err = {0, "", NULL, NULL};
     assert_int_equal(dem_bench_run(&o, &r, &err), DEM_EUSAGE);
     assert_non_null(strstr(err.msg, "--threads T,U needs --steps 16"));
+    /* and both counts: the default count against U would be U against U */
+    const struct dem_bench_options o0 = options(0, 2, 32);
+    assert_int_equal(dem_bench_run(&o0, &r, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "versus = 2 needs threads >= 1"));
     assert_int_equal(dem_bench_slice(3375, 20000), 592);
     assert_int_equal(dem_bench_slice(20000, 3000), 100);
     assert_int_equal(dem_bench_slice(216000, 20000), 9);

@@ -208,7 +208,8 @@ struct dem_cycles {
 };
 
 /* Ratcheting when the mean increment of the last third of the cycles,
- * along the first cycle's direction, is above twice its standard error
+ * along the middle third's direction (the first cycle can go the other
+ * way), is above twice its standard error
  * and at least this fraction of the middle third's. A rate falling like
  * 1/c gives (1/2)/(5/6) = 0.6 between the centres of the two thirds:
  * ratcheting means the rate falls more slowly than 1/c, so that the

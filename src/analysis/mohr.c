@@ -107,10 +107,10 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     o->rms *= unit;
     if (!fitted)
         return DEM_OK;
-    if (!(fabs(o->sin_phi) < 1.0)) {
+    if (!(o->sin_phi > 0.0 && o->sin_phi < 1.0)) {
         snprintf(o->reason, sizeof o->reason,
-                 "fitted sin phi = %.4g is not below 1: the circles have "
-                 "no common tangent of a Mohr-Coulomb material",
+                 "fitted sin phi = %.4g is not between 0 and 1: the circles "
+                 "have no common tangent of a Mohr-Coulomb material",
                  o->sin_phi);
         o->sin_phi = o->c = NAN;
         return DEM_OK;

@@ -744,6 +744,13 @@ static int bench_run(const struct dem_bench_options *o,
 int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
                   struct dem_error *err)
 {
+    /* two counts by turns need both: with threads = 0 (the default count)
+     * the pre-spawn below would make it the second count's */
+    if (o->versus > 0 && o->threads < 1)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "bench: versus = %d needs threads >= 1 (the "
+                             "count timed against it)",
+                             o->versus);
     /* the run's threads, subnormal numbers flushed on each as in a run
      * (core/fpmode.h) */
     if (o->versus > 0) {
