@@ -383,6 +383,46 @@ static void forces_file_of_wrong_length_is_an_error(void **state)
 /* A folder whose config is 3D and whose files hold 2D data is not one
  * run's: its loading axis z is one the data lack (the labels once read
  * outside an array for it; found by fuzz_run_folder). */
+/* The stress ratio drawn as the analysis takes it, major stress first:
+ * in an extension (strain < 0) the lateral stress over the axial one. */
+static void stress_ratio_of_an_extension_is_lateral_over_axial(void **state)
+{
+    (void)state;
+    for (int ext = 0; ext < 2; ext++) {
+        char *dir = make_dir();
+        write_timeseries(dir, 2, 1, 50);
+        write_particles(dir, 2, 0);
+        char cfg[512];
+        snprintf(cfg, sizeof cfg,
+                 "dimension = 2;\ntime_step = 1.0e-6;\n"
+                 "stages = (\n"
+                 "  { type = \"isotropic\"; pressure = 500.0; },\n"
+                 "  { type = \"compress\"; axis = \"y\"; strain = %s; "
+                 "duration = 1.0; pressure = 500.0; }\n"
+                 ");\n",
+                 ext ? "-0.2" : "0.2");
+        write_text(dir, "config.cfg", cfg);
+        run_ok(dir);
+        assert_true(file_contains(dir, "plots/stress_ratio.gp",
+                                  ext ? "(σ_{xx} − σ_{yy})/(σ_{xx} + σ_{yy})"
+                                      : "(σ_{yy} − σ_{xx})/(σ_{yy} + σ_{xx})"));
+        /* the data's axial stress is the larger: the ratio drawn in the
+         * extension's frame is negative */
+        char p[1024], line[512];
+        path_of(p, sizeof p, dir, "plots/stress_ratio.dat");
+        FILE *f = fopen(p, "r");
+        assert_non_null(f);
+        double x = NAN, y = NAN;
+        while (fgets(line, sizeof line, f))
+            if (line[0] != '#')
+                sscanf(line, "%lf %lf", &x, &y);
+        fclose(f);
+        assert_true(isfinite(y));
+        assert_true(ext ? y < 0.0 : y > 0.0);
+        remove_dir(dir);
+    }
+}
+
 static void config_of_another_dimension_is_an_error(void **state)
 {
     (void)state;
@@ -524,6 +564,7 @@ int main(void)
         cmocka_unit_test(header_only_timeseries_is_a_clear_error),
         cmocka_unit_test(forces_file_of_wrong_length_is_an_error),
         cmocka_unit_test(config_of_another_dimension_is_an_error),
+        cmocka_unit_test(stress_ratio_of_an_extension_is_lateral_over_axial),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
         cmocka_unit_test(texts_for_gnuplot_strings_are_made_inert),

@@ -97,6 +97,9 @@ struct series {
     int dim;                  /* 2 or 3 */
     const double *c[TS_NCOL]; /* columns (NULL: optional and absent) */
     int axis;                 /* loading axis, 0..dim-1 */
+    int sense; /* -1: an extension (the axial stress the minor), else 1 */
+    int minor; /* constant_p in 3D: the axis of sigma_3, else -1 (the
+                  lateral stress the mean of the others) */
     int stage;                /* loading stage index */
     size_t lo, hi;            /* its rows [lo, hi) */
     size_t slo, shi;          /* the last shear stage's rows (none: equal) */
@@ -117,9 +120,12 @@ static double eps(const struct series *s, int a, size_t i)
     return s->c[TS_EXX + a][i];
 }
 
-/* Mean wall stress of the axes other than the loading axis. */
+/* Mean wall stress of the axes other than the loading axis (or the minor
+ * one's: s->minor), as the analysis reads it (analysis/analyze.c). */
 static double sig_lateral(const struct series *s, size_t i)
 {
+    if (s->minor >= 0)
+        return sig(s, s->minor, i);
     double sum = 0.0;
     for (int a = 0; a < s->dim; a++)
         if (a != s->axis)
@@ -225,6 +231,16 @@ static int find_loading_from_config(struct series *s, const char *outdir)
     s->hi = hi;
     s->axis = cfg.stages[k].axis;
     s->stage = k;
+    /* the stress ratio as the analysis takes it: of the major and the
+     * minor stress */
+    const int type = cfg.stages[k].type;
+    const int mono = type == DEM_STAGE_COMPRESS ||
+                     type == DEM_STAGE_CONSTANT_P ||
+                     type == DEM_STAGE_CONSTANT_VOLUME;
+    s->sense = mono && cfg.stages[k].strain < 0.0 ? -1 : 1;
+    s->minor = type == DEM_STAGE_CONSTANT_P && cfg.dim == 3
+                   ? (cfg.stages[k].axis + 2) % 3
+                   : -1;
     return 1;
 }
 
@@ -283,7 +299,7 @@ static double q_sig_ax(const struct series *s, size_t i)
 static double q_sin_psi(const struct series *s, size_t i)
 {
     double a = sig(s, s->axis, i), l = sig_lateral(s, i);
-    return a + l != 0.0 ? (a - l) / (a + l) : NAN;
+    return a + l != 0.0 ? s->sense * (a - l) / (a + l) : NAN;
 }
 /* David et al.: eps_D = eps_xx - eps_yy, sigma_D = 2 (sigma_xx - sigma_yy)/3 */
 static double q_eps_d(const struct series *s, size_t i)
@@ -320,8 +336,9 @@ static double q_mu(const struct series *s, size_t i)
 }
 
 /* Labels are gnuplot enhanced text; "$a" stands for the loading axis
- * pair ("yy"), "$l" for the lateral stress (2D: the other wall stress,
- * 3D: the mean of the two lateral ones). */
+ * pair ("yy"), "$r" for the stress ratio's text, major stress first (the
+ * lateral stress 2D: the other wall stress, 3D: the mean of the two
+ * lateral ones, or the minor one's under constant_p). */
 struct quantity {
     const char *column; /* name in the .dat header */
     const char *label;  /* legend and axis label */
@@ -350,22 +367,29 @@ static const struct quantity qtab[Q_COUNT] = {
     [Q_MU] = {"tau_over_sigma_n", "τ/σ_n = −σ_{xy}/σ_{yy}", 2, q_mu},
 };
 
-/* Expand the "$a", "$l" and "$u" (stress unit) placeholders. */
+/* Expand the "$a", "$r" and "$u" (stress unit) placeholders. */
 static void expand(char *out, size_t n, const char *in, const struct series *s)
 {
     size_t k = 0;
     out[0] = '\0';
     for (; *in && k + 1 < n; in++) {
-        char piece[32] = "";
-        if (in[0] == '$' && in[1] == 'a') {
+        char piece[96] = "";
+        if (in[0] == '$' && in[1] == 'r') {
+            /* the stress ratio, major stress first */
+            char a[16], l[16];
+            snprintf(a, sizeof a, "σ_{%c%c}", axis_name[s->axis],
+                     axis_name[s->axis]);
+            if (s->minor >= 0 || s->dim == 2) {
+                const int m = s->minor >= 0 ? s->minor : 1 - s->axis;
+                snprintf(l, sizeof l, "σ_{%c%c}", axis_name[m], axis_name[m]);
+            } else {
+                snprintf(l, sizeof l, "σ_{lat}");
+            }
+            const char *p = s->sense < 0 ? l : a, *q = s->sense < 0 ? a : l;
+            snprintf(piece, sizeof piece, "(%s − %s)/(%s + %s)", p, q, p, q);
+        } else if (in[0] == '$' && in[1] == 'a') {
             snprintf(piece, sizeof piece, "%c%c", axis_name[s->axis],
                      axis_name[s->axis]);
-        } else if (in[0] == '$' && in[1] == 'l') {
-            if (s->dim == 2)
-                snprintf(piece, sizeof piece, "σ_{%c%c}",
-                         axis_name[1 - s->axis], axis_name[1 - s->axis]);
-            else
-                snprintf(piece, sizeof piece, "σ_{lat}");
         } else if (in[0] == '$' && in[1] == 'u') {
             snprintf(piece, sizeof piece, "%s", s->dim == 2 ? "N/m" : "Pa");
         } else {
@@ -432,7 +456,7 @@ static const struct plot_spec plots[] = {
      NULL},
     {"stress_ratio",
      "Stress ratio during loading",
-     "sin φ_m = (σ_{$a} − $l)/(σ_{$a} + $l)",
+     "sin φ_m = $r",
      ROWS_LOADING,
      Q_EPS_AX,
      {Q_SIN_PSI, Q_NONE},
@@ -978,6 +1002,8 @@ static int read_series(const char *outdir, struct dem__csv_table *ts,
                              path);
     }
     memset(s, 0, sizeof *s);
+    s->sense = 1;
+    s->minor = -1;
     s->n = ts->nrow;
     for (int k = 0; k < TS_NCOL; k++)
         s->c[k] = ts->col[k];
