@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "core/particles.h"
+#include "formats/dump.h"
 #include "formats/vtu.h"
 #include "measure/network.h"
 
@@ -344,6 +345,43 @@ static void pvd_lists_every_snapshot_in_order(void **state)
     free(text);
 }
 
+/* The LAMMPS dump's box: between walls no periodic direction; a periodic
+ * cell periodic, sheared as LAMMPS writes a triclinic box (bounds of the
+ * cell's bounding box, then the tilt), so that OVITO wraps the particles
+ * and the contacts through images; in 2D z not periodic. */
+static void dump_box_of_a_cell_is_periodic_and_triclinic(void **state)
+{
+    (void)state;
+    struct dem_particles p;
+    struct dem_error err = {0};
+    assert_int_equal(dem_particles_init(&p, 1, &err), DEM_OK);
+    dem_particles_add(&p, 0.5, 0.5, 0.5, 0.1, 2000.0, DEM_MASS_SPHERE, 3);
+    struct dem_dump_box walls = {{0, 0, 0}, {1, 2, 3}, 0, 3, {0, 0, 0}};
+    struct dem_dump_box cell = {{0, 0, 0}, {1, 2, 3}, 1, 3, {0.3, -0.2, 0.5}};
+    struct dem_dump_box flat = {{0, 0, -0.1}, {1, 2, 0.1}, 1, 2, {-0.4, 0, 0}};
+    const struct dem_dump_box *boxes[3] = {&walls, &cell, &flat};
+    static const char *const want[3] = {
+        "ITEM: BOX BOUNDS ff ff ff\n0 1\n0 2\n0 3\n",
+        /* x: 0 + min(0, 0.3, -0.2, 0.1), 1 + max(...); y: 0, 2 + 0.5 */
+        "ITEM: BOX BOUNDS xy xz yz pp pp pp\n-0.2 1.3 0.3\n0 2.5 -0.2\n"
+        "0 3 0.5\n",
+        "ITEM: BOX BOUNDS xy xz yz pp pp ff\n-0.4 1 -0.4\n0 2 0\n"
+        "-0.1 0.1 0\n"};
+    for (int k = 0; k < 3; k++) {
+        char *text = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&text, &len);
+        assert_non_null(f);
+        dem_dump_frame(f, 7, boxes[k], &p);
+        assert_int_equal(fclose(f), 0);
+        const char *b = strstr(text, "ITEM: BOX BOUNDS");
+        assert_non_null(b);
+        assert_memory_equal(b, want[k], strlen(want[k]));
+        free(text);
+    }
+    dem_particles_free(&p);
+}
+
 static void unwritable_path_is_an_io_error(void **state)
 {
     (void)state;
@@ -363,6 +401,7 @@ int main(void)
         cmocka_unit_test(contact_network_is_one_line_per_contact),
         cmocka_unit_test(pvd_lists_every_snapshot_in_order),
         cmocka_unit_test(unwritable_path_is_an_io_error),
+        cmocka_unit_test(dump_box_of_a_cell_is_periodic_and_triclinic),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

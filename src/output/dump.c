@@ -35,19 +35,21 @@ static int frame(struct dem_output *o, const struct dem_output_run *r,
     }
     o->st.count = 1;
     o->st.times[0] = s->t;
-    double lo[3], hi[3];
-    dem__output_box(s, lo, hi);
+    struct dem_dump_box box = {.periodic = s->cell.on, .dim = s->dim};
+    dem__output_box(s, box.lo, box.hi);
+    for (int k = 0; s->cell.on && k < 3; k++)
+        box.tilt[k] = s->cell.tilt[k].pos;
     if (o->kind == &dem_output_dump_local) {
         struct dem_network net;
         int rc = dem_network_build(s, &net, err);
         if (rc)
             return rc;
         errno = 0;
-        dem_dump_local_frame(o->f, s->step, lo, hi, &s->p, &net);
+        dem_dump_local_frame(o->f, s->step, &box, &s->p, &net);
         dem_network_free(&net);
     } else {
         errno = 0;
-        dem_dump_frame(o->f, s->step, lo, hi, &s->p);
+        dem_dump_frame(o->f, s->step, &box, &s->p);
     }
     return dem__part_check(o, err);
 }

@@ -263,12 +263,12 @@ static int step_limit_write(const struct dem_sweep_options *o,
         return DEM_OK;
     }
     FILE *f = fopen(path, "w");
-    if (!f || fprintf(f, "%ld\n", o->max_steps) < 0 || fclose(f) != 0) {
-        if (f)
-            fclose(f);
-        return dem_error_set(err, DEM_EIO, "%s: cannot write", path);
+    int bad = !f;
+    if (f) {
+        bad = fprintf(f, "%ld\n", o->max_steps) < 0;
+        bad |= fclose(f) != 0;
     }
-    return DEM_OK;
+    return bad ? dem_error_set(err, DEM_EIO, "%s: cannot write", path) : DEM_OK;
 }
 
 int dem__sweep_same_config(const struct dem_sweep_grid *g,
