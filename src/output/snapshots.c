@@ -5,6 +5,7 @@
  * times, so that ParaView shows each snapshot's box and contacts with its
  * particles. A new run in the folder removes the snapshots of an earlier
  * one. */
+#include <math.h>
 #include <stdlib.h>
 
 #include "formats/vtu.h"
@@ -58,13 +59,24 @@ static int write_pvd(const struct dem_output *o, const char *outdir, int which,
     return rc;
 }
 
+/* Snapshot o->st.count; final: the run's last (the cap keeps a slot for
+ * it). */
 static int write_snapshot(struct dem_output *o, const struct dem_output_run *r,
-                          struct dem_error *err)
+                          int final, struct dem_error *err)
 {
     const struct dem_sim *s = r->s;
     const int k = o->st.count;
-    if (k >= MAX_SNAPSHOTS)
+    if (k >= MAX_SNAPSHOTS || (k == MAX_SNAPSHOTS - 1 && !final)) {
+        /* said once: no snapshot is due after this one (st.next is kept
+         * in checkpoints, so a resumed run does not say it again) */
+        o->st.next = INFINITY;
+        dem_warn(err,
+                 "output.snapshot_interval = %g s: %d snapshots written at t "
+                 "= %g s, the most a run writes; the next is the final "
+                 "state's (a longer interval spreads them over the run)",
+                 s->cfg.output.snapshot_interval, k, s->t);
         return DEM_OK;
+    }
     char name[NSERIES][64], path[NSERIES][DEM_PATH_MAX];
     int rc = DEM_OK;
     for (int w = 0; !rc && w < NSERIES; w++) {
@@ -107,7 +119,7 @@ static int snap_open(struct dem_output *o, const struct dem_output_run *r,
 {
     const double every = r->s->cfg.output.snapshot_interval;
     o->st.next = every;
-    return every > 0 ? write_snapshot(o, r, err) : DEM_OK;
+    return every > 0 ? write_snapshot(o, r, 0, err) : DEM_OK;
 }
 
 static int snap_due(const struct dem_output *o, const struct dem_output_run *r)
@@ -122,9 +134,8 @@ static int snap_sample(struct dem_output *o, const struct dem_output_run *r,
 {
     if (!snap_due(o, r))
         return DEM_OK;
-    int rc = write_snapshot(o, r, err);
     o->st.next += r->s->cfg.output.snapshot_interval;
-    return rc;
+    return write_snapshot(o, r, 0, err);
 }
 
 /* The final state, unless the last snapshot shows it already. */
@@ -136,7 +147,7 @@ static int snap_finish(struct dem_output *o, const struct dem_output_run *r,
     if (s->cfg.output.snapshot_interval <= 0 ||
         (n > 0 && o->st.times[n - 1] >= s->t - 0.5 * s->dt))
         return DEM_OK;
-    return write_snapshot(o, r, err);
+    return write_snapshot(o, r, 1, err);
 }
 
 const struct dem_output_kind dem_output_snapshots = {
