@@ -706,6 +706,49 @@ static void threads_left_to_the_library_are_chosen_by_timing(void **state)
 }
 
 /* A warning into a buffer of 1024 bytes (the last one). */
+/* A stage after a shear stage does not go on shearing: every stage but
+ * hold (which keeps every mode, SPEC) fixes the cell's tilts, and only a
+ * shear stage drives one. Before, a stress-controlled tilt kept its servo
+ * through the compression that followed, which sheared the sample
+ * without a word. */
+static void a_stage_after_shear_holds_the_tilt(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("shear2d");
+    assert_non_null(ex);
+    const char *const sets[] = {
+        "particles.count=100", "output.interval=2e-5",
+        "output.snapshot_interval=0",
+        "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
+        "{type=\"shear\";shear_stress=100.0;duration=2e-4;pressure=500.0;},"
+        "{type=\"compress\";axis=\"y\";strain=0.001;duration=2e-4;"
+        "pressure=500.0;},"
+        "{type=\"hold\";duration=1e-4;})"};
+    char out[1024];
+    run_text(ex->text, "after-shear", sets, 4, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
+                                                DEM_CSV_FINITE("gamma_xy", 1),
+                                                DEM_CSV_FINITE("Ly", 1)};
+    struct dem__csv_table t;
+    read_ts(out, want, 3, &t);
+    /* the shear displacement gamma_xy Ly, the tilt's, by stage */
+    double lo[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
+    double hi[4] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (size_t r = 0; r < t.nrow; r++) {
+        const int k = (int)t.col[0][r];
+        assert_true(k >= 0 && k < 4);
+        const double d = t.col[1][r] * t.col[2][r];
+        lo[k] = fmin(lo[k], d);
+        hi[k] = fmax(hi[k], d);
+    }
+    /* the shear moved the tilt; the compression did not (to the 10
+     * digits timeseries.csv gives gamma_xy and Ly) */
+    assert_true(hi[1] - lo[1] > 1e-9);
+    assert_true(isfinite(lo[2]));
+    assert_true(hi[2] - lo[2] <= 1e-8 * fabs(hi[2]));
+    dem__csv_table_free(&t);
+}
+
 static void keep_line(const char *line, void *user)
 {
     snprintf((char *)user, 1024, "%s", line);
@@ -791,6 +834,7 @@ int main(void)
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
+        cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
         cmocka_unit_test(threads_left_to_the_library_are_chosen_by_timing),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);

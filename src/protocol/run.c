@@ -299,6 +299,12 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     double mu_s = c->mu >= 0 ? c->mu : s->cfg.contact.mu_s;
     double mu_d = c->mu >= 0 ? c->mu : s->cfg.contact.mu_d;
     dem_sim_set_friction(s, mu_s, mu_d);
+    /* a stage sets every control it does not leave as it is: a cell's
+     * tilts are fixed (a shear stage then drives its own), but for a hold,
+     * which keeps every mode (SPEC) */
+    if (s->cell.on && c->type != DEM_STAGE_HOLD)
+        for (int k = 0; k < 3; k++)
+            dem_wall_set_fixed(&s->cell.tilt[k]);
     int rc = ops->begin(s, &r->stage, err);
     if (rc)
         return rc;
