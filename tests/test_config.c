@@ -539,6 +539,34 @@ static void quotes_in_comments_and_escapes_are_not_open_strings(void **state)
 
 /* With placement = "file", particles.count is not used (the file says how
  * many there are), so its default must not fail the box fill check. */
+/* A periodic cell's width is checked against a radius the sample surely
+ * has: a gaussian's mean, not its cut (1 m by default, which refused
+ * every cell narrower than 4.4 m); a file's radii are the list's to
+ * check. */
+static void periodic_cell_width_takes_a_radius_the_sample_has(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c,
+             "dimension = 2;\nbox = { boundary = \"periodic\"; size = [0.2, "
+             "0.2, 0.0]; };\nparticles = { count = 400; };\n",
+             0, 0);
+    parse_ok(&c,
+             "dimension = 2;\nbox = { boundary = \"periodic\"; size = [0.2, "
+             "0.2, 0.0]; };\nparticles = { placement = \"file\"; file = "
+             "\"p.csv\"; };\n",
+             0, 0);
+    struct dem_error err = {0};
+    assert_int_equal(
+        dem_config_parse(&c,
+                         "dimension = 2;\nbox = { boundary = \"periodic\"; "
+                         "size = [0.02, 0.2, 0.0]; };\nparticles = { count = "
+                         "40; };\n",
+                         SRC, 0, 0, &err),
+        DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "wider than two interaction ranges"));
+}
+
 static void file_placement_ignores_count_for_box_fill(void **state)
 {
     (void)state;
@@ -740,6 +768,7 @@ int main(void)
         cmocka_unit_test(bad_inputs_fail_with_one_line_naming_key_and_line),
         cmocka_unit_test(too_many_stages_is_an_error),
         cmocka_unit_test(file_placement_ignores_count_for_box_fill),
+        cmocka_unit_test(periodic_cell_width_takes_a_radius_the_sample_has),
         cmocka_unit_test(quotes_in_comments_and_escapes_are_not_open_strings),
         cmocka_unit_test(validate_checks_a_struct_without_lines),
         cmocka_unit_test(frictionless_kt_zero_is_accepted),

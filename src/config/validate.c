@@ -197,10 +197,17 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
         return dem__cfg_fail_key(x, -1, "gravity", err,
                                  "must be 0 in a periodic cell (box.boundary "
                                  "= \"periodic\": nothing holds the weight)");
-    if (c->box.boundary == DEM_BOUNDARY_PERIODIC) {
-        const double a = c->particles.distribution == DEM_DIST_MONO
+    if (c->box.boundary == DEM_BOUNDARY_PERIODIC &&
+        c->particles.placement != DEM_PLACE_FILE) {
+        /* a radius the sample surely reaches: mono the mean, uniform the
+         * top of its range, gaussian its mean (its cut, 1 m by default,
+         * says nothing of the sample). The neighbour list checks the
+         * sample's own largest radius, a file's too. */
+        const int dist = c->particles.distribution;
+        const double a = dist == DEM_DIST_UNIFORM ? c->particles.max
+                         : dist == DEM_DIST_MONO
                              ? c->particles.mean
-                             : c->particles.max;
+                             : fmin(c->particles.mean, c->particles.max);
         for (int d = 0; d < c->dim; d++)
             if (c->box.size[d] > 0 && c->box.size[d] < 2.0 * 2.2 * a)
                 return dem__cfg_fail_key(
