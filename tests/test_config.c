@@ -341,6 +341,11 @@ static const struct bad bad_inputs[] = {
      "particles.radius.sdev", 2},
     {"stages = (\n { type = \"hold\"; duration = 0.1;\n   bogus = 1; }\n);", 0,
      "stages.0.bogus", 3},
+    /* a stage without its type: every type named */
+    {"stages = (\n { pressure = 1.0; }\n);", 0,
+     "stages.0.type: required (\"isotropic\", \"compress\", \"cyclic\", "
+     "\"hold\", \"shear\", \"constant_p\" or \"constant_volume\")",
+     2},
     /* duplicates and syntax */
     {"contact = {\n  k = 1.0;\n  k = 2.0;\n};\n", 0, "k: duplicate key", 3},
     {"dimension = 3;\ncontact = { k = ; };\n", 0, "syntax error", 2},

@@ -160,7 +160,8 @@ const struct key dem__cfg_keys[] = {
      .def = DEM_NORMAL_LINEAR,
      .names = law_names,
      .unit = "-",
-     .doc = "normal law: linear spring-dashpot or luding hysteretic"},
+     .doc = "normal law: linear spring-dashpot, luding hysteretic or hertz "
+            "(Hertz-Mindlin)"},
 /* the switches of the resistances (dembox_models.h) */
 #define RESIST_SWITCH_(TAG, name_, doc_)                                       \
     {.name = "contact." #name_,                                                \

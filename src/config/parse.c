@@ -308,10 +308,19 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
             dem__cfg_setting_kind(g));
     const int ktype = dem__cfg_find_key("type", S_STAGE);
     const config_setting_t *ts = config_setting_get_member(g, "type");
-    if (!ts)
-        return dem__cfg_fail_key(
-            x, i, "type", err, "required (%s)",
-            "\"isotropic\", \"compress\", \"cyclic\" or \"hold\"");
+    if (!ts) {
+        /* every type there is, from the names the key takes */
+        char list[256] = "";
+        size_t len = 0;
+        const char *const *nm = dem__cfg_stage_names;
+        for (int k = 0; nm[k] && len < sizeof list; k++)
+            len += (size_t)snprintf(list + len, sizeof list - len, "%s\"%s\"",
+                                    !k          ? ""
+                                    : nm[k + 1] ? ", "
+                                                : " or ",
+                                    nm[k]);
+        return dem__cfg_fail_key(x, i, "type", err, "required (%s)", list);
+    }
     snprintf(kname, sizeof kname, "stages.%d.type", i);
     if (convert(x, &dem__cfg_keys[ktype], ts, kname, st, err))
         return DEM_ECONFIG;
