@@ -143,6 +143,25 @@ static void finite_and_index_columns_refuse_at_their_line(void **state)
     assert_int_equal(dem__csv_table_read(&tb, path, want, 3, &err), 0);
     assert_close(tb.col[2][0], 2.0, 0.0);
     dem__csv_table_free(&tb);
+    /* a NUL byte in a row or in the header, which would end the line's
+     * text there: refused at its line ("1,2\0xyz" read as "1,2") */
+    static const struct {
+        const char *text;
+        size_t len;
+        const char *expect;
+    } nul[] = {{"t,s\n0,2\n1,0\0xyz\n", 16, "f.csv:3: a NUL byte"},
+               {"t,s\0,q\n0,2\n", 12, "f.csv:1: a NUL byte"}};
+    for (size_t k = 0; k < sizeof nul / sizeof nul[0]; k++) {
+        FILE *f = fopen(path, "wb");
+        assert_non_null(f);
+        assert_int_equal(fwrite(nul[k].text, 1, nul[k].len, f), nul[k].len);
+        assert_int_equal(fclose(f), 0);
+        assert_int_equal(dem__csv_table_read(&tb, path, want, 3, &err),
+                         DEM_EIO);
+        if (!strstr(err.msg, nul[k].expect))
+            fail_msg("NUL case %zu: '%s' lacks '%s'", k, err.msg,
+                     nul[k].expect);
+    }
 }
 
 int main(void)

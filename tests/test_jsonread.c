@@ -166,6 +166,20 @@ static void non_json_is_refused(void **state)
         assert_true(dem__jread_number(&v, "a") == value[k]);
         dem__jread_free(&v);
     }
+    /* a file whose document ends at a NUL byte, garbage after it (read as
+     * text, the NUL hid the garbage from the check for trailing text) */
+    char path[] = "/tmp/dembox-jsonread-XXXXXX";
+    const int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite("{\"a\": 1}\n\0garbage", 1, 18, f), 18);
+    assert_int_equal(fclose(f), 0);
+    struct dem__jval v;
+    struct dem_error err = {0};
+    assert_int_equal(dem__jread_file(&v, path, &err), DEM_EIO);
+    assert_non_null(strstr(err.msg, ":2: a NUL byte"));
+    remove(path);
 }
 
 /* dem__jread_number_in: null or missing is NaN; a number in range is

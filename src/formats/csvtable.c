@@ -49,14 +49,21 @@ struct reader {
     size_t cap;
     long lineno;
     const char *path;
+    int nul; /* 1: line lineno holds a NUL byte (no text file's) */
 };
 
 /* The next line that is neither blank nor a comment, trimmed; NULL at
- * end of file. */
+ * end of file or at a line with a NUL byte (r->nul), which would end the
+ * line's text there and hide the rest of it. */
 static char *next_line(struct reader *r)
 {
-    while (getline(&r->line, &r->cap, r->f) >= 0) {
+    ssize_t len;
+    while ((len = getline(&r->line, &r->cap, r->f)) >= 0) {
         r->lineno++;
+        if (memchr(r->line, '\0', (size_t)len)) {
+            r->nul = 1;
+            return NULL;
+        }
         char *s = trim(r->line);
         if (!skip_line(s))
             return s;
@@ -167,6 +174,9 @@ static int read_rows(struct dem__csv_table *t, struct reader *r, char **field,
         }
         t->nrow++;
     }
+    if (r->nul)
+        return dem_error_set(err, DEM_EIO, "%s:%ld: a NUL byte in the line",
+                             r->path, r->lineno);
     if (ferror(r->f))
         return dem_error_set(err, DEM_EIO, "%s: read error", r->path);
     return DEM_OK;
@@ -177,7 +187,7 @@ int dem__csv_table_read(struct dem__csv_table *t, const char *path,
                         struct dem_error *err)
 {
     memset(t, 0, sizeof *t);
-    struct reader r = {NULL, NULL, 0, 0, path};
+    struct reader r = {NULL, NULL, 0, 0, path, 0};
     int rc = dem_open_text(&r.f, path, "a CSV file", err);
     if (rc)
         return rc;
@@ -188,6 +198,9 @@ int dem__csv_table_read(struct dem__csv_table *t, const char *path,
     char *head = next_line(&r);
     if (!t->col)
         rc = dem_error_set(err, DEM_ENOMEM, "%s: out of memory", path);
+    else if (!head && r.nul)
+        rc = dem_error_set(err, DEM_EIO, "%s:%ld: a NUL byte in the line", path,
+                           r.lineno);
     else if (!head)
         rc = dem_error_set(err, DEM_EIO, "%s: empty file (no header line)",
                            path);

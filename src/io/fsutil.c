@@ -121,6 +121,17 @@ char *dem_read_text(const char *path, struct dem_error *err)
         return NULL;
     }
     buf[n] = '\0';
+    /* a NUL byte would end the text there and hide the rest of it */
+    const char *nul = memchr(buf, '\0', n);
+    if (nul) {
+        long line = 1;
+        for (const char *c = buf; c < nul; c++)
+            line += *c == '\n';
+        free(buf);
+        dem_error_set(err, DEM_EIO, "%s:%ld: a NUL byte: not a text file", path,
+                      line);
+        return NULL;
+    }
     return buf;
 }
 
