@@ -203,6 +203,14 @@ static void malformed_files_name_file_and_line(void **state)
         {"t\n\n2 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
          "4 1 0.1 2000 0.5 0.5 0.5\n4 1 0.1 2000 0.2 0.5 0.5\n",
          "atom id 4 appears twice"},
+        /* another atom style of 7 columns (peri: id type volume density
+         * x y z), and image flags that are not integers */
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms # "
+         "peri\n\n1 1 0.1 2000 0.5 0.5 0.5\n",
+         ":8: Atoms # peri: atom_style sphere expected"},
+        {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms # "
+         "sphere\n\n1 1 0.1 2000 0.5 0.5 0.5 0 0 abc\n",
+         ":10: Atoms: bad image flag abc"},
         /* further out than its diameter: a broken file (a periodic
          * cell's particles leave the box by less than a skin) */
         {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"

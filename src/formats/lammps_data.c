@@ -27,6 +27,8 @@ struct reader {
     int lineno; /* line number of line */
     struct dem_lammps_data *d;
     struct dem_error *err;
+    char style[32]; /* the line's comment's first word ("" for none): a
+                       section's atom style, as in "Atoms # sphere" */
 };
 
 /* Cut the '#' comment, split at blanks; returns the number of fields
@@ -81,6 +83,10 @@ static int next_fields(struct reader *r, char **fields, int *nf)
     if (getline(&r->line, &r->cap, r->f) < 0)
         return -1;
     r->lineno++;
+    r->style[0] = '\0';
+    const char *hash = strchr(r->line, '#');
+    if (hash)
+        sscanf(hash + 1, "%31s", r->style);
     *nf = split(r->line, fields, MAX_FIELDS);
     return 0;
 }
@@ -181,6 +187,11 @@ static int read_atoms(struct reader *r, int *seen)
         for (int c = 0; c < 5; c++)
             if (!number(f[2 + c], &v[c]))
                 return fail(r, DEM_EIO, "Atoms: bad number", f[2 + c]);
+        for (int c = 7; c < nf; c++) { /* the image flags */
+            long flag;
+            if (!integer(f[c], &flag))
+                return fail(r, DEM_EIO, "Atoms: bad image flag", f[c]);
+        }
         if (!(v[0] > 0.0))
             return fail(r, DEM_EIO, "Atoms: diameter must be > 0, got", f[2]);
         if (!(v[1] > 0.0))
@@ -396,6 +407,15 @@ static int read_body(struct reader *r)
                 rc = fail(r, DEM_EIO, "second Atoms section", 0);
                 break;
             }
+            /* another style of 7 or 10 columns (peri: id type volume
+             * density x y z) would pass the count of columns */
+            if (r->style[0] && strcmp(r->style, "sphere")) {
+                rc = dem_error_set(r->err, DEM_EIO,
+                                   "%s:%d: Atoms # %s: atom_style sphere "
+                                   "expected (id type diameter density x y z)",
+                                   r->path, r->lineno, r->style);
+                break;
+            }
             rc = read_atoms(r, &atoms);
             if (!rc)
                 rc = build_map(r, &map);
@@ -416,8 +436,8 @@ static int read_body(struct reader *r)
             rc = fail(r, DEM_EIO, "unsupported section or line:", f[0]);
             break;
         }
-        /* the comment of "Atoms # sphere" was cut by split; refuse other
-         * atom styles by their column count in read_atoms instead */
+        /* "Atoms # sphere": its style checked above; a section without
+         * one is taken for sphere, and its column count checked */
         if (next_fields(r, f, &nf) < 0)
             break;
     }
@@ -431,7 +451,7 @@ static int read_stream(struct dem_lammps_data *d, FILE *f, const char *path,
                        int header_only, struct dem_error *err)
 {
     memset(d, 0, sizeof *d);
-    struct reader r = {path, f, 0, 0, 0, d, err};
+    struct reader r = {path, f, 0, 0, 0, d, err, ""};
     char *fields[MAX_FIELDS];
     int nf;
     int rc = header_only ? read_header(&r, fields, &nf) : read_body(&r);
