@@ -341,6 +341,11 @@ static const struct bad bad_inputs[] = {
      "particles.radius.sdev", 2},
     {"stages = (\n { type = \"hold\"; duration = 0.1;\n   bogus = 1; }\n);", 0,
      "stages.0.bogus", 3},
+    /* a periodic cell from a particle file needs its period */
+    {"box = { boundary = \"periodic\"; };\nparticles = { placement = "
+     "\"file\"; file = \"p.csv\"; };\n",
+     0, "box.size: a periodic cell of particles from a file needs its size",
+     -1},
     /* a stage without its type: every type named */
     {"stages = (\n { pressure = 1.0; }\n);", 0,
      "stages.0.type: required (\"isotropic\", \"compress\", \"cyclic\", "

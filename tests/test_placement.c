@@ -381,6 +381,22 @@ static void file_placement_box_from_bounds_or_given(void **state)
     assert_true(lo[0] == 0.0 && hi[0] == 0.4 && hi[1] == 0.5);
     dem_particles_free(&p);
 
+    /* A periodic cell (a cell's particles_final.csv, whose cell need not
+     * start at 0): each centre taken modulo the period, so that a sphere
+     * may reach through a face, and one beyond it is its image's place;
+     * the pairs' distances through the nearest image stay as they were */
+    c.box.boundary = DEM_BOUNDARY_PERIODIC;
+    c.box.size[0] = 0.25;
+    c.box.size[1] = 0.5;
+    place_ok(&p, &c, lo, hi);
+    static const double wx[3] = {0.1, 0.2, 0.05}, wy[3] = {0.1, 0.15, 0.1};
+    for (int i = 0; i < 3; i++) {
+        assert_true(fabs(p.x[i] - wx[i]) < 1e-15);
+        assert_true(fabs(p.y[i] - wy[i]) < 1e-15);
+    }
+    dem_particles_free(&p);
+    c.box.boundary = DEM_BOUNDARY_WALLS;
+
     /* A relative file is relative to the folder dembox runs in; one that
      * lies beside the config file instead is named so in the message */
     char beside[1100];

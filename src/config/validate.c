@@ -217,6 +217,17 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
                     "(got %g)",
                     4.4 * a, "xyz"[d], c -> box.size[d]);
     }
+    if (c->box.boundary == DEM_BOUNDARY_PERIODIC &&
+        c->particles.placement == DEM_PLACE_FILE) {
+        int given = 1;
+        for (int d = 0; d < c->dim; d++)
+            given &= c->box.size[d] > 0;
+        if (!given)
+            return dem__cfg_fail_key(
+                x, -1, "box.size", err,
+                "a periodic cell of particles from a file needs its size "
+                "(the period; the particles' bounding box is not it)");
+    }
     if (c->particles.placement == DEM_PLACE_FILE && !c->particles.file[0])
         return dem__cfg_fail_key(x, -1, "particles.placement", err,
                                  "\"file\" needs particles.file");

@@ -500,6 +500,23 @@ int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
     int given = 0;
     for (int a = 0; a < dim; a++)
         given |= cfg->box.size[a] != 0.0;
+    /* in a periodic cell (whose size config validation requires here) a
+     * position counts modulo the period: each centre is taken into [0,
+     * L), so that a cell's particles_final.csv, whose cell need not start
+     * at 0, is read as the same packing (an unsheared one: a tilt is not
+     * in the file) */
+    if (cfg->box.boundary == DEM_BOUNDARY_PERIODIC) {
+        double *c[3] = {p->x, p->y, p->z};
+        for (int a = 0; a < dim; a++) {
+            const double L = cfg->box.size[a];
+            for (int i = 0; i < p->n; i++) {
+                c[a][i] -= L * floor(c[a][i] / L);
+                if (c[a][i] >= L) /* rounding of a centre just below 0 */
+                    c[a][i] = 0.0;
+            }
+        }
+        given = 0;
+    }
     for (int i = 0; i < p->n && given && !rc; i++) {
         const double c[3] = {p->x[i], p->y[i], p->z[i]};
         for (int a = 0; a < dim; a++)
