@@ -341,6 +341,11 @@ static const struct bad bad_inputs[] = {
      "particles.radius.sdev", 2},
     {"stages = (\n { type = \"hold\"; duration = 0.1;\n   bogus = 1; }\n);", 0,
      "stages.0.bogus", 3},
+    /* a load's period of a few time steps (here 1: the cosine sampled at
+     * its crest only) */
+    {"time_step = 1.0e-5;\nstages = (\n { type = \"cyclic\"; pressure = "
+     "100.0; amplitude = 10.0;\n   period = 1.0e-5; cycles = 3; }\n);\n",
+     0, "stages.0.period: a period of 1e-05 s is 1 time steps", 4},
     /* a periodic cell from a particle file needs its period */
     {"box = { boundary = \"periodic\"; };\nparticles = { placement = "
      "\"file\"; file = \"p.csv\"; };\n",

@@ -244,6 +244,9 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
     return 0;
 }
 
+/* The fewest time steps a load's period may span. */
+#define DEM_MIN_STEPS_PER_PERIOD 20
+
 int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
                              struct dem_error *err)
 {
@@ -258,6 +261,28 @@ int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
             "stiffest, lightest pair); use a smaller step or "
             "\"auto\"",
             dt, tc / 5, tc);
+    /* a period of a few steps samples its cosine at a few phases (at one
+     * step, only at its crest: a cyclic stage that loads nothing) */
+    for (int i = 0; i < c->nstages; i++) {
+        const struct dem_stage_config *st = &c->stages[i];
+        const int returns = st->profile == DEM_PROFILE_CYCLIC ||
+                            st->profile == DEM_PROFILE_SINE;
+        const char *key = NULL;
+        double T = INFINITY;
+        if (st->type == DEM_STAGE_CYCLIC) {
+            key = "period";
+            T = st->period;
+        } else if (st->type == DEM_STAGE_SHEAR && returns && st->cycles > 0) {
+            key = "duration";
+            T = st->duration / st->cycles;
+        }
+        if (key && !(T >= DEM_MIN_STEPS_PER_PERIOD * dt))
+            return dem__cfg_fail_key(
+                x, i, key, err,
+                "a period of %g s is %.3g time steps of %g s: at least %d "
+                "are needed to follow its cosine",
+                T, T / dt, dt, DEM_MIN_STEPS_PER_PERIOD);
+    }
     return 0;
 }
 
