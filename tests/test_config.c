@@ -346,6 +346,9 @@ static const struct bad bad_inputs[] = {
     {"time_step = 1.0e-5;\nstages = (\n { type = \"cyclic\"; pressure = "
      "100.0; amplitude = 10.0;\n   period = 1.0e-5; cycles = 3; }\n);\n",
      0, "stages.0.period: a period of 1e-05 s is 1 time steps", 4},
+    /* a wall servo whose damping reverses its velocity every step */
+    {"time_step = 1.0e-5;\nwalls = { mass = 1.0e-3;\n  gamma = 200.0; };\n", 0,
+     "walls.gamma: 200 kg/s with walls.mass = 0.001 kg", 3},
     /* a periodic cell from a particle file needs its period */
     {"box = { boundary = \"periodic\"; };\nparticles = { placement = "
      "\"file\"; file = \"p.csv\"; };\n",

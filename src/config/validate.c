@@ -261,6 +261,18 @@ int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
             "stiffest, lightest pair); use a smaller step or "
             "\"auto\"",
             dt, tc / 5, tc);
+    /* the walls' servo, m dv/dt = F - gamma v, in two half kicks a step:
+     * v becomes v (1 - gamma dt/(2m))^2 from its damping, which reverses
+     * v every step from gamma dt/m = 2 on (the wall chatters) and grows
+     * it from 4 on */
+    const double damp = c->walls.gamma * dt / c->walls.mass;
+    if (!(damp < 2.0))
+        return dem__cfg_fail_key(
+            x, -1, "walls.gamma", err,
+            "%g kg/s with walls.mass = %g kg and a time step of %g s: gamma "
+            "dt/m = %.3g, at least 2, and the walls' servo chatters or "
+            "diverges; a heavier wall, less viscosity or a smaller step",
+            c->walls.gamma, c->walls.mass, dt, damp);
     /* a period of a few steps samples its cosine at a few phases (at one
      * step, only at its crest: a cyclic stage that loads nothing) */
     for (int i = 0; i < c->nstages; i++) {
