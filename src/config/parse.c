@@ -712,14 +712,11 @@ int dem_config_load_file(struct dem_config *c, const char *path,
     }
     text[len] = '\0';
     /* The text ends at a NUL byte: anything after it would be ignored. */
-    const char *nul = memchr(text, '\0', len);
-    if (nul) {
-        int line = 1;
-        for (const char *t = text; t < nul; t++)
-            line += *t == '\n';
+    const long line = dem_text_nul_line(text, len);
+    if (line) {
         free(text);
         return dem_error_set(err, DEM_ECONFIG,
-                             "%s:%d: NUL byte: a config is text, not binary",
+                             "%s:%ld: NUL byte: a config is text, not binary",
                              path, line);
     }
     rc = dem_config_parse(c, text, path, sets, nsets, err);

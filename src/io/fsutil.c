@@ -121,18 +121,23 @@ char *dem_read_text(const char *path, struct dem_error *err)
         return NULL;
     }
     buf[n] = '\0';
-    /* a NUL byte would end the text there and hide the rest of it */
-    const char *nul = memchr(buf, '\0', n);
-    if (nul) {
-        long line = 1;
-        for (const char *c = buf; c < nul; c++)
-            line += *c == '\n';
+    const long line = dem_text_nul_line(buf, n);
+    if (line) {
         free(buf);
         dem_error_set(err, DEM_EIO, "%s:%ld: a NUL byte: not a text file", path,
                       line);
         return NULL;
     }
     return buf;
+}
+
+long dem_text_nul_line(const char *text, size_t len)
+{
+    const char *nul = memchr(text, '\0', len);
+    long line = 1;
+    for (const char *c = text; nul && c < nul; c++)
+        line += *c == '\n';
+    return nul ? line : 0;
 }
 
 int dem_folder_lock(const char *dir, const char *what, int *fd,

@@ -30,8 +30,13 @@ int dem_open_text(FILE **f, const char *path, const char *what,
                   struct dem_error *err);
 
 /* The whole of a text file, NUL-terminated (owned by the caller), or
- * NULL with err set (cannot open, read failed, out of memory). */
+ * NULL with err set (cannot open, read failed, out of memory, a NUL byte
+ * in it). */
 char *dem_read_text(const char *path, struct dem_error *err);
+
+/* The line (from 1) of the first NUL byte of text[0..len-1], 0 for none:
+ * a text read whole ends at such a byte, and the rest would be unseen. */
+long dem_text_nul_line(const char *text, size_t len);
 
 /* 1 when dir is a sweep's folder (it holds runs/index): for the
  * message of a command that wants a run's folder. */
