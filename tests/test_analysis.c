@@ -114,16 +114,25 @@ static double ratio_curve(double eps)
     return 0.4 + 0.2 * x * exp(1.0 - x);
 }
 
+/* n samples of ratio_curve over eps 0 to 0.2 with noise of 0.005 (seed
+ * 7), the first `missing` not numbers. */
+static void noisy_ratio(double *e, double *y, int n, int missing)
+{
+    uint64_t seed = 7;
+    for (int i = 0; i < n; i++) {
+        e[i] = 0.2 * i / (n - 1);
+        y[i] = ratio_curve(e[i]) + 0.005 * noise(&seed);
+        if (i < missing)
+            y[i] = NAN;
+    }
+}
+
 static void peak_and_plateau_of_noisy_ratio(void **state)
 {
     (void)state;
     enum { N = 2001 };
     static double e[N], y[N];
-    uint64_t seed = 7;
-    for (int i = 0; i < N; i++) {
-        e[i] = 0.2 * i / (N - 1);
-        y[i] = ratio_curve(e[i]) + 0.005 * noise(&seed);
-    }
+    noisy_ratio(e, y, N, 0);
     const long half = dem_peak_smoothing(N);
     assert_int_equal(half, 20);
     struct dem_peak pk;
@@ -195,11 +204,7 @@ static void samples_that_are_not_numbers_are_left_out(void **state)
     assert_close(s[6], 6.5, 1e-14);
     enum { N = 2001 };
     static double e[N], r[N];
-    uint64_t seed = 7;
-    for (int i = 0; i < N; i++) {
-        e[i] = 0.2 * i / (N - 1);
-        r[i] = i < 50 ? NAN : ratio_curve(e[i]) + 0.005 * noise(&seed);
-    }
+    noisy_ratio(e, r, N, 50);
     struct dem_peak pk;
     assert_int_equal(dem_peak_find(e, r, N, dem_peak_smoothing(N), &pk), 0);
     assert_true(pk.ok);
