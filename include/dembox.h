@@ -73,6 +73,11 @@ void dem_warn(const struct dem_error *err, const char *fmt, ...)
 #endif
     ;
 
+/* A warn function that drops the line: for a second reading of something
+ * whose warnings were given when it was first read (e.g. a run's config
+ * read back for its plots): struct dem_error e = {.warn = dem_warn_ignore}. */
+void dem_warn_ignore(const char *line, void *user);
+
 /* --------------------------------------------------------------- config */
 
 enum dem_radius_dist {

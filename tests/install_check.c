@@ -17,7 +17,7 @@ int main(int argc, char **argv)
         return 1;
     }
     struct dem_config c;
-    struct dem_error err;
+    struct dem_error err = {0};
     memset(&err, 0, sizeof err);
     const char *sets[] = {"particles.count=50"};
     if (dem_config_parse(&c, ex->text, "example biaxial2d", sets, 1, &err)) {

@@ -72,7 +72,7 @@ static void sample(struct dem_sim *s, int dim, int n)
     config(&c, dim, n);
     const double L = dim == 3 ? 0.175 : 0.6;
     const double lo[3] = {0, 0, 0}, hi[3] = {L, L, dim == 3 ? L : 0.0};
-    struct dem_error err;
+    struct dem_error err = {0};
     if (dem_sim_create_empty(s, &c, n, lo, hi, &err))
         die(&err);
     struct dem_rng g;
@@ -99,7 +99,7 @@ static void sample(struct dem_sim *s, int dim, int n)
 
 static void steps(struct dem_sim *s, long n)
 {
-    struct dem_error err;
+    struct dem_error err = {0};
     for (long k = 0; k < n; k++) {
         s->chain = k + 1 < n;
         if (dem_sim_step(s, &err))
@@ -122,7 +122,7 @@ static int rattlers(int dim, int rank)
     const double e = (m - 1) * a + 0.95 * r;
     const double hi[3] = {e, e, dim == 3 ? e : 0.0};
     struct dem_sim sims[2];
-    struct dem_error err;
+    struct dem_error err = {0};
     for (int k = 0; k < 2; k++) {
         struct dem_sim *s = &sims[k];
         if (dem_sim_create_empty(s, &c, c.particles.count, lo, hi, &err))
@@ -194,7 +194,7 @@ int main(int argc, char **argv)
     }
     const long warm = 1500, run = 2000;
     struct dem_sim ref, s;
-    struct dem_error err;
+    struct dem_error err = {0};
     sample(&s, dim, n);
     steps(&s, warm);
     if (rank == 0) {

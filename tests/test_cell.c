@@ -185,7 +185,7 @@ static void sheared_cell_list_is_brute_force(int dim)
         s.p.x[i] += 6e-3 * (dem_rng_uniform(&g) - 0.5);
         s.p.y[i] += 6e-3 * (dem_rng_uniform(&g) - 0.5);
     }
-    struct dem_error err;
+    struct dem_error err = {0};
     assert_int_equal(dem_sim_rebuild(&s, &err), 0);
     check_list(&s);
     check_rows(&s);
@@ -389,7 +389,7 @@ static void own_motion_adds_to_the_affine_one(void **state)
                         T, s.t);
     s.dt = 1e-5;
     const long steps = (long)(T / s.dt) + 10, builds = s.nbuild;
-    struct dem_error err;
+    struct dem_error err = {0};
     for (long k = 0; k < steps; k++) {
         struct dem_lattice a, b;
         dem_sim_lattice(&s, &a);
@@ -450,7 +450,7 @@ static void closing_pair_in_shrinking_cell_is_listed(void **state)
     const double T = 0.01;
     dem_wall_set_strain(&s.wall[1], DEM_PROFILE_LINEAR, -0.004, T, s.t);
     s.dt = 1e-5;
-    struct dem_error err;
+    struct dem_error err = {0};
     int touched = 0;
     for (long k = 0; k < (long)(T / s.dt); k++) {
         assert_int_equal(dem_sim_step(&s, &err), 0);
@@ -509,7 +509,7 @@ static void sheared_elastic_gas_energy_balance(void **state)
     s.dt = 2e-6;
     double work = 0.0, E0 = -1.0, E = 0.0, P_old = 0.0;
     const long steps = (long)(T / s.dt);
-    struct dem_error err;
+    struct dem_error err = {0};
     for (long k = 0; k <= steps; k++) {
         /* energy and power at the same instant: positions at t, the
          * velocities averaged over the two half steps */

@@ -17,6 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "contact/models.h"
 #include "io/checkpoint.h"
 
 #include "tmpdir.h"
@@ -811,6 +812,31 @@ static void another_build_is_refused_unless_any_build(void **state)
 /* A checkpoint that cannot be written (the disk is full) stops the run with
  * a message naming the file and the reason; the last good checkpoint is
  * kept and resumes to the uninterrupted result. */
+/* A resume reads its config again, from the checkpoint: the config's
+ * warnings (a time step above t_c/10 here) go to the caller's warn
+ * function, as the first part's did, not to stderr. */
+static void resume_gives_config_warnings_to_the_caller(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse(&c, small_2d);
+    char set[64], out[1024];
+    snprintf(set, sizeof set, "time_step=%.17g", 0.15 * dem_contact_time(&c));
+    const char *const sets[] = {set};
+    parse_set(&c, small_2d, sets, 1);
+    dir_path(out, sizeof out, "resumewarn");
+    struct dem_error err = {0};
+    assert_int_equal(run(&c, out, 400, 200, 1, &err), DEM_EINTERRUPTED);
+
+    char warning[2048] = "";
+    struct dem_error w = {0, "", keep_warning, warning};
+    struct dem_run_options o = {.threads = 1};
+    if (dem_run_resume(out, &o, &w))
+        fail_msg("%s", w.msg);
+    if (!strstr(warning, "above t_c/10"))
+        fail_msg("warning: \"%s\"", warning);
+}
+
 static void write_error_keeps_the_last_checkpoint(void **state)
 {
     (void)state;
@@ -1046,6 +1072,7 @@ int main(void)
         cmocka_unit_test(resumed_resistance_run_is_bit_identical),
         cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
         cmocka_unit_test(another_build_is_refused_unless_any_build),
+        cmocka_unit_test(resume_gives_config_warnings_to_the_caller),
         cmocka_unit_test(write_error_keeps_the_last_checkpoint),
         cmocka_unit_test(sigint_checkpoints_and_resumes_identically),
         cmocka_unit_test(kill_9_between_checkpoints_resumes_identically),

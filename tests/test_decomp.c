@@ -18,7 +18,7 @@ static void grid_follows_the_box(void **state)
 {
     (void)state;
     struct dem_decomp d;
-    struct dem_error err;
+    struct dem_error err = {0};
     const double lo[3] = {0, 0, 0};
     const double cube[3] = {1, 1, 1}, rod[3] = {4, 1, 1}, flat[3] = {3, 2, 0};
     const struct {
@@ -135,7 +135,7 @@ static void sample(struct dem_sim *s, int dim, int n)
     test_ready(s);
     test_step(s, 30);
     /* a fresh list, as a subdomain's build makes */
-    struct dem_error err;
+    struct dem_error err = {0};
     assert_int_equal(dem_sim_rebuild(s, &err), 0);
     dem_sim_forces(s);
 }
@@ -150,7 +150,7 @@ static void part_of(struct dem_sim *t, const struct dem_sim *s, const int *list,
         lo[a] = s->wall[2 * a].pos;
         hi[a] = a < s->dim ? s->wall[2 * a + 1].pos : 0.0;
     }
-    struct dem_error err;
+    struct dem_error err = {0};
     assert_int_equal(dem_sim_create_empty(t, &s->cfg, n, lo, hi, &err), 0);
     for (int k = 0; k < n; k++)
         assert_true(dem_particles_append_copy(&t->p, &s->p, list[k]) == k);
@@ -252,7 +252,7 @@ static void split(int dim, int nranks)
     for (int i = 0; i < n; i++)
         rmax = rmax > s.p.r[i] ? rmax : s.p.r[i];
     struct dem_decomp d;
-    struct dem_error err;
+    struct dem_error err = {0};
     assert_int_equal(
         dem_decomp_grid(&d, nranks, dim, lo, hi, 2 * rmax + s.skin, &err), 0);
     int *list = malloc((size_t)n * sizeof *list);

@@ -201,7 +201,7 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
                             DEM_PROFILE_LINEAR, 0.02, 0.06, s.t);
     if (chained && run_team) {
         for (int k = 0; k < 3000; k++) {
-            struct dem_error err;
+            struct dem_error err = {0};
             omp_set_num_threads(k / run_team % 2 ? 1 : threads);
             s.chain = k + 1 < 3000;
             assert_int_equal(dem_sim_step(&s, &err), DEM_OK);
@@ -211,7 +211,7 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
         test_step(&s, 3000);
     } else {
         for (int k = 0; k < 3000; k++) {
-            struct dem_error err;
+            struct dem_error err = {0};
             assert_int_equal(dem_sim_step(&s, &err), DEM_OK);
         }
     }

@@ -333,7 +333,7 @@ static void engine_matches_reference(int dim, int law, int reorder, int resist)
     double worst_f = 0.0, worst_t = 0.0;
     for (int pass = 0; pass < 300; pass++) {
         if (pass % 10 == 0) {
-            struct dem_error err;
+            struct dem_error err = {0};
             assert_int_equal(dem_sim_rebuild(&s, &err), 0);
         }
         if (pass % 50 == 0) /* steady sliding in between */

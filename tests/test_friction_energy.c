@@ -29,7 +29,7 @@ static double mass(double a)
  * positions are stored and s->sums holds the contacts' elastic energy. */
 static void step_measured(struct dem_sim *s)
 {
-    struct dem_error err;
+    struct dem_error err = {0};
     s->measure = 1;
     if (dem_sim_step(s, &err))
         fail_msg("step %ld: %s", s->step, err.msg);

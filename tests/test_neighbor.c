@@ -86,7 +86,7 @@ static void check_same_pairs(int dim, int reorder)
             s.p.y[i] += 2e-3 * (dem_rng_uniform(&g) - 0.5);
             s.p.reach[i] = 0.5 * s.skin * (0.01 + 0.99 * dem_rng_uniform(&g));
         }
-        struct dem_error err;
+        struct dem_error err = {0};
         assert_int_equal(dem_sim_rebuild(&s, &err), 0);
     }
     dem_sim_destroy(&s);
@@ -175,7 +175,7 @@ static void forces_survive_reordering(void **state)
         active += L->state[k] != 0;
     assert_true(active > 20);
     s.reorder = 1;
-    struct dem_error err;
+    struct dem_error err = {0};
     assert_int_equal(dem_sim_rebuild(&s, &err), 0);
     /* the order changed, also within pairs ... */
     int moved = 0, flipped = 0;
@@ -223,7 +223,7 @@ static void history_survives_rebuild(void **state)
     assert_int_equal(L->n, 2);
     double xi = L->xi_y[0];
     assert_true(xi != 0.0);
-    struct dem_error err;
+    struct dem_error err = {0};
     assert_int_equal(dem_sim_rebuild(&s, &err), 0);
     assert_int_equal(L->n, 2);
     assert_true(L->xi_y[0] == xi);

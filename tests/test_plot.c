@@ -3,10 +3,12 @@
  * gives errors that name the file or the column. The timeseries is
  * written with the engine's own header and row writers, so the test
  * follows the real columns. */
+#include <fcntl.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "contact/models.h"
 #include "dembox.h"
 #include "measure/measure.h"
 #include "plot/plot.h"
@@ -492,6 +494,50 @@ static void collect_warning(const char *line, void *user)
     snprintf(all + len, 2048 - len, "%s\n", line);
 }
 
+/* The config is read back for the loading stage: its warnings were the
+ * run's (a time step above t_c/10 here) and are not given again, neither
+ * to the caller nor on stderr. */
+static void config_warnings_are_not_given_again(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 50);
+    write_particles(dir, 2, 0);
+    const struct dem_example *ex = dem_example_find("biaxial2d");
+    assert_non_null(ex);
+    struct dem_config c;
+    char warned[2048] = "", set[64];
+    struct dem_error err = {.warn = collect_warning, .warn_user = warned};
+    assert_int_equal(dem_config_parse(&c, ex->text, "t", 0, 0, &err), 0);
+    snprintf(set, sizeof set, "time_step=%.17g", 0.15 * dem_contact_time(&c));
+    const char *sets[] = {set};
+    assert_int_equal(dem_config_parse(&c, ex->text, "t", sets, 1, &err), 0);
+    assert_non_null(strstr(warned, "above t_c/10"));
+    char path[512];
+    path_of(path, sizeof path, dir, "config.cfg");
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    assert_int_equal(dem_config_write(&c, f), 0);
+    assert_int_equal(fclose(f), 0);
+
+    warned[0] = '\0';
+    path_of(path, sizeof path, dir, "stderr.txt");
+    fflush(stderr);
+    const int saved = dup(2), fd = open(path, O_WRONLY | O_CREAT, 0600);
+    assert_true(saved >= 0 && fd >= 0);
+    dup2(fd, 2);
+    const int rc = dem_plot_run(dir, &err);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(fd);
+    close(saved);
+    if (rc)
+        fail_msg("dem_plot_run: %s", err.msg);
+    assert_string_equal(warned, "");
+    assert_false(file_contains(dir, "stderr.txt", "warning"));
+    remove_dir(dir);
+}
+
 /* A summary.json that dem_analyze did not write (an edited verdict that
  * would end the key's string in the gnuplot script and add a command
  * line, a sin phi above 1) is left out with one warning naming the file
@@ -566,6 +612,7 @@ int main(void)
         cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(stress_ratio_of_an_extension_is_lateral_over_axial),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
+        cmocka_unit_test(config_warnings_are_not_given_again),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
         cmocka_unit_test(texts_for_gnuplot_strings_are_made_inert),
     };

@@ -48,7 +48,7 @@ static void read_ts(const char *outdir, const struct dem__csv_want *want, int n,
 {
     char path[2048];
     snprintf(path, sizeof path, "%s/timeseries.csv", outdir);
-    struct dem_error err;
+    struct dem_error err = {0};
     if (dem__csv_table_read(t, path, want, n, &err))
         fail_msg("%s", err.msg);
     assert_true(t->nrow > 0);

@@ -71,7 +71,7 @@ static inline void test_sim(struct dem_sim *s, const struct dem_config *c,
 {
     const double L[3] = {lo, lo, c->dim == 3 ? lo : 0.0};
     const double H[3] = {hi, hi, c->dim == 3 ? hi : 0.0};
-    struct dem_error err;
+    struct dem_error err = {0};
     assert_int_equal(dem_sim_create_empty(s, c, cap, L, H, &err), 0);
 }
 
@@ -84,7 +84,7 @@ static inline int test_add(struct dem_sim *s, double x, double y, double z,
 
 static inline void test_ready(struct dem_sim *s)
 {
-    struct dem_error err;
+    struct dem_error err = {0};
     int rc = dem_sim_ready(s, &err);
     if (rc)
         fail_msg("dem_sim_ready: %s", err.msg);
@@ -92,7 +92,7 @@ static inline void test_ready(struct dem_sim *s)
 
 static inline void test_step(struct dem_sim *s, long n)
 {
-    struct dem_error err;
+    struct dem_error err = {0};
     for (long k = 0; k < n; k++) {
         s->chain = k + 1 < n;
         if (dem_sim_step(s, &err))

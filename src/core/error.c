@@ -39,3 +39,9 @@ void dem_warn(const struct dem_error *err, const char *fmt, ...)
     else
         fprintf(stderr, "dembox: warning: %s\n", line);
 }
+
+void dem_warn_ignore(const char *line, void *user)
+{
+    (void)line;
+    (void)user;
+}

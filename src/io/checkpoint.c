@@ -707,6 +707,10 @@ int dem_checkpoint_read(const char *path, struct dem_sim *s, char **config_text,
         /* the config first: the checks below compare with it */
         struct dem_config c;
         struct dem_error e2 = {0};
+        if (err) { /* its warnings go where the caller's go */
+            e2.warn = err->warn;
+            e2.warn_user = err->warn_user;
+        }
         if (dem_config_parse(&c, text, path, 0, 0, &e2)) {
             rc = dem_error_set(err, DEM_ECONFIG,
                                "%s: its config is invalid: %s", path, e2.msg);

@@ -718,7 +718,7 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
         /* keep the state for inspection, named so it is not mistaken for
          * a finished run's */
         char path[DEM_PATH_MAX];
-        struct dem_error e2;
+        struct dem_error e2 = {0};
         if (writer(r) && !dem_path_join(path, sizeof path, r->outdir,
                                         "particles_unstable.csv", &e2))
             dem_particles_write_csv(&view(r)->p, path, &e2);

@@ -52,7 +52,7 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
                            const char *other_build, const struct dem_error *err)
 {
     char path[DEM_PATH_MAX], buf[1024], when[32] = "?", cpu[160];
-    struct dem_error e;
+    struct dem_error e = {0};
     if (dem_path_join(path, sizeof path, dir, "timing.txt", &e))
         return;
     const time_t now = time(NULL);

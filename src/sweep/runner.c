@@ -277,7 +277,7 @@ int dem__sweep_same_config(const struct dem_sweep_grid *g,
 {
     char path[DEM_PATH_MAX], sets[MAX_POINT_SETS][SET_LEN];
     struct dem_config *a = malloc(sizeof *a), *b = malloc(sizeof *b);
-    struct dem_error e;
+    struct dem_error e = {.warn = dem_warn_ignore}; /* given by the run */
     int same = 0;
     const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
     if (a && b && !dem_path_join(path, sizeof path, rundir, "config.cfg", &e) &&
