@@ -5,6 +5,7 @@
 #include "dembox.h"
 #include "testutil.h"
 
+#include <glob.h>
 #include <malloc.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -299,6 +300,44 @@ static void contact_densities(const char *out, const char *suffix)
     assert_close(first_moment, 1.0, 0.05 + (double)beyond / pairs * 6.0);
 }
 
+/* Every contacts snapshot of out with the token after the first `key`
+ * (up to a quote or white space) replaced by repl; their texts before
+ * kept in keep[] (restored with repl NULL). Returns the count. */
+static int edit_snapshots(const char *out, const char *key, const char *repl,
+                          char **keep, int nkeep)
+{
+    char pat[2048];
+    snprintf(pat, sizeof pat, "%s/contacts_*.vtu", out);
+    glob_t g;
+    assert_int_equal(glob(pat, 0, NULL, &g), 0);
+    assert_true(g.gl_pathc <= (size_t)nkeep);
+    for (size_t q = 0; q < g.gl_pathc; q++) {
+        FILE *f;
+        if (!repl) {
+            f = fopen(g.gl_pathv[q], "w");
+            assert_non_null(f);
+            fputs(keep[q], f);
+            fclose(f);
+            free(keep[q]);
+            continue;
+        }
+        keep[q] = dem_read_text(g.gl_pathv[q], NULL);
+        assert_non_null(keep[q]);
+        const char *at = strstr(keep[q], key);
+        assert_non_null(at);
+        at += strlen(key);
+        at += strspn(at, " \n");
+        const char *end = at + strcspn(at, "\" \n");
+        f = fopen(g.gl_pathv[q], "w");
+        assert_non_null(f);
+        fprintf(f, "%.*s%s%s", (int)(at - keep[q]), keep[q], repl, end);
+        fclose(f);
+    }
+    const int n = (int)g.gl_pathc;
+    globfree(&g);
+    return n;
+}
+
 static void biaxial_fixed_walls_and_dilatancy(void **state)
 {
     (void)state;
@@ -346,6 +385,27 @@ static void biaxial_fixed_walls_and_dilatancy(void **state)
     /* the axial strain reached its target */
     assert_close(t.col[4][t.nrow - 1], 0.12, 1e-3);
     dem__csv_table_free(&t);
+
+    /* a damaged contacts snapshot (a cell count beyond what the file
+     * holds; a force that is not a number) is refused naming the file,
+     * not read past its arrays */
+    static const char *const edits[][2] = {
+        {"NumberOfCells=\"", "2305843009213693952"},
+        {"Name=\"normal_force\" format=\"ascii\">", "nan"}};
+    for (int e = 0; e < 2; e++) {
+        char *keep[64];
+        const int n = edit_snapshots(out, edits[e][0], edits[e][1], keep, 64);
+        assert_true(n > 2);
+        struct dem_error err = {0};
+        assert_int_equal(dem_plot_run(out, &err), DEM_EIO);
+        if (!strstr(err.msg, "contacts_") ||
+            !strstr(err.msg, "not a contacts snapshot of dembox"))
+            fail_msg("%s", err.msg);
+        edit_snapshots(out, edits[e][0], NULL, keep, 64);
+    }
+    struct dem_error err = {0};
+    if (dem_plot_run(out, &err))
+        fail_msg("%s", err.msg);
 }
 
 /* A pressure far beyond what the contacts can carry: the run stops with a

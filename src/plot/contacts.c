@@ -159,8 +159,8 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
             double th = atan2(s ? -v : v, s ? -a : a);
             if (th < 0.0)
                 th += 2.0 * M_PI;
-            int k2 = (int)(th / (2.0 * M_PI) * NROSE);
-            count[k2 < NROSE ? k2 : NROSE - 1]++;
+            const double u = th / (2.0 * M_PI) * NROSE; /* finite */
+            count[u < NROSE ? (int)u : NROSE - 1]++;
             n++;
         }
     }
@@ -256,7 +256,7 @@ static int vtu_array(const char *text, const char *name, size_t m,
     for (size_t k = 0; k < m * (size_t)comps; k++) {
         char *end;
         v[k] = strtod(p, &end);
-        if (end == p)
+        if (end == p || !isfinite(v[k]))
             return -1;
         p = end;
     }
@@ -302,7 +302,14 @@ static int read_snapshot(const char *outdir, double t, struct net *c,
     const char *cells = strstr(vtu, "NumberOfCells=\"");
     const long nc = cells ? strtol(cells + 15, NULL, 10) : -1;
     double *partner = NULL, *branch = NULL;
-    if (nc >= 0)
+    /* each cell's five numbers take two characters at least: a count
+     * beyond that is not of this file (and could overflow the sizes) */
+    if (nc > (long)(strlen(vtu) / 10))
+        rc = dem_error_set(err, DEM_EIO,
+                           "%s: not a contacts snapshot of dembox "
+                           "(NumberOfCells %ld is more than it holds)",
+                           path, nc);
+    if (nc >= 0 && !rc)
         rc = net_alloc(c, (size_t)nc, err);
     if (nc >= 0 && !rc) {
         partner = malloc(((size_t)nc + 1) * sizeof *partner);
