@@ -483,6 +483,33 @@ static void cycles_of_the_summary_are_drawn(void **state)
         path_of(plotdir, sizeof plotdir, dir, "plots");
         assert_png(plotdir, "strain_accumulation");
     }
+    /* the summary gone (a run of another kind into the folder, say): the
+     * picture of its cycles goes with it */
+    assert_int_equal(remove(p), 0);
+    run_ok(dir);
+    assert_int_equal(file_size(dir, "plots/strain_accumulation.dat"), -1);
+    assert_int_equal(file_size(dir, "plots/strain_accumulation.gp"), -1);
+    assert_int_equal(file_size(dir, "plots/strain_accumulation.png"), -1);
+    assert_outputs(dir);
+    remove_dir(dir);
+}
+
+/* A run folder named "-run", given as a relative path: gnuplot's cd does
+ * not take it for an option. */
+static void a_folder_named_like_an_option_is_plotted(void **state)
+{
+    (void)state;
+    if (!have_gnuplot())
+        skip();
+    char *dir = make_dir(), cwd[1024];
+    assert_non_null(getcwd(cwd, sizeof cwd));
+    assert_int_equal(chdir(dir), 0);
+    assert_int_equal(mkdir("-run", 0755), 0);
+    write_timeseries("-run", 2, 1, 50);
+    write_particles("-run", 2, 0);
+    run_ok("-run");
+    assert_png("-run/plots", "stress_strain");
+    assert_int_equal(chdir(cwd), 0);
     remove_dir(dir);
 }
 
@@ -612,6 +639,7 @@ int main(void)
         cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(stress_ratio_of_an_extension_is_lateral_over_axial),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
+        cmocka_unit_test(a_folder_named_like_an_option_is_plotted),
         cmocka_unit_test(config_warnings_are_not_given_again),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
         cmocka_unit_test(texts_for_gnuplot_strings_are_made_inert),

@@ -185,9 +185,26 @@ static void the_config_file_is_not_overwritten_by_its_run(void **state)
     snprintf(path, sizeof path, "%s/config.cfg", other);
     if (dem_config_load_file(&c, path, NULL, 0, &err))
         fail_msg("%s", err.msg);
+    /* a picture of the earlier run does not outlive this one's start;
+     * a file of the user's there stays */
+    snprintf(path, sizeof path, "%s/plots", other);
+    assert_int_equal(dem_mkdir_p(path, &err), 0);
+    snprintf(path, sizeof path, "%s/plots/shear.png", other);
+    f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("an old picture", f);
+    fclose(f);
+    assert_true(exists(other, "plots/shear.png"));
+    snprintf(path, sizeof path, "%s/plots/my_shear.gp", other);
+    f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("plot 'shear.dat'", f);
+    fclose(f);
     if (dem_run(&c, &o, &err))
         fail_msg("%s", err.msg);
     assert_true(exists(other, "timeseries.csv"));
+    assert_false(exists(other, "plots/shear.png"));
+    assert_true(exists(other, "plots/my_shear.gp"));
 }
 
 static void every_example_runs_a_few_hundred_steps(void **state)

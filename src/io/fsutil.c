@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <glob.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -221,4 +222,22 @@ int dem_is_sweep_folder(const char *dir)
     char path[DEM_PATH_MAX];
     return !dem_path_join(path, sizeof path, dir, "runs/index", NULL) &&
            access(path, F_OK) == 0;
+}
+
+int dem_remove_in(const char *dir, const char *leaf, struct dem_error *err)
+{
+    char path[DEM_PATH_MAX];
+    int rc = dem_path_join(path, sizeof path, dir, leaf, err);
+    if (rc)
+        return rc;
+    if (!strchr(leaf, '*')) {
+        remove(path);
+        return DEM_OK;
+    }
+    glob_t g;
+    if (glob(path, GLOB_NOSORT, NULL, &g) == 0)
+        for (size_t k = 0; k < g.gl_pathc; k++)
+            remove(g.gl_pathv[k]);
+    globfree(&g);
+    return DEM_OK;
 }

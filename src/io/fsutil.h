@@ -38,6 +38,11 @@ char *dem_read_text(const char *path, struct dem_error *err);
  * a text read whole ends at such a byte, and the rest would be unseen. */
 long dem_text_nul_line(const char *text, size_t len);
 
+/* Remove dir/leaf, if it is there; a leaf with a '*' is a pattern
+ * (glob(3)) and every file it matches goes. An error only when the path
+ * does not fit. */
+int dem_remove_in(const char *dir, const char *leaf, struct dem_error *err);
+
 /* 1 when dir is a sweep's folder (it holds runs/index): for the
  * message of a command that wants a run's folder. */
 int dem_is_sweep_folder(const char *dir);

@@ -69,6 +69,18 @@ struct dem_output {
 extern const struct dem_output_kind *const dem_output_kinds[];
 extern const int dem_output_nkinds;
 
+/* The pictures dem_plot_run draws (dembox_plot), NULL at the end: each
+ * NAME is plots/NAME.png with its NAME.dat and NAME.gp (particles: the
+ * picture only). dem_plot_run refuses to draw one that is not here. */
+extern const char *const dem_output_plot_names[];
+
+/* Remove the pictures of dem_output_plot_names, their data, scripts and
+ * temporaries, and gnuplot's logs from outdir/plots (other files there
+ * stay): a run does so when it starts, and a plotting before it draws,
+ * so that no picture of an earlier run or analysis is left looking
+ * current. */
+int dem_output_remove_plots(const char *outdir, struct dem_error *err);
+
 /* The box as [lo, hi] for snapshots and dump frames; in 2D z spans the
  * largest particle (common.c). */
 void dem__output_box(const struct dem_sim *s, double lo[3], double hi[3]);

@@ -156,7 +156,9 @@ int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
     char line[4 * DEM_PATH_MAX] = "cd ";
     char gp[DEM_NAME_MAX + 64];
     snprintf(gp, sizeof gp, " -e \"outfile='%s.png.tmp'\" %s.gp", name, name);
-    if (shell_quote(line, sizeof line, plotdir) ||
+    /* (a folder named -x would be read by cd as an option) */
+    if ((plotdir[0] == '-' && append(line, sizeof line, "./")) ||
+        shell_quote(line, sizeof line, plotdir) ||
         append(line, sizeof line, " && ") ||
         shell_quote(line, sizeof line, cmd) || append(line, sizeof line, gp) ||
         append(line, sizeof line, " >/dev/null 2>gnuplot.err"))

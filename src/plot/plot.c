@@ -29,6 +29,7 @@
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"
+#include "output/output.h"
 #include "plot/plot.h"
 #include "protocol/stage.h"
 
@@ -959,16 +960,8 @@ static int run_gnuplot_all(const struct series *s, const char *plotdir,
     const char *cmd = dem__gp_command();
     const int n = (int)NPLOTS + nextra;
     if (!dem__gp_available(cmd)) {
+        /* (the pictures of an earlier plotting are gone: dem_plot_run) */
         dem_warn(err, "%s not found; plot scripts written to %s", cmd, plotdir);
-        /* a picture of an earlier plotting would no longer match its
-         * data */
-        for (int k = 0; k < n; k++) {
-            char leaf[DEM_NAME_MAX], png[DEM_PATH_MAX];
-            snprintf(leaf, sizeof leaf, "%s.png",
-                     k < (int)NPLOTS ? plots[k].name : extra[k - NPLOTS]);
-            if (!dem_path_join(png, sizeof png, plotdir, leaf, NULL))
-                remove(png);
-        }
         return DEM_OK;
     }
     for (int k = 0; k < n; k++) {
@@ -1010,6 +1003,16 @@ static int read_series(const char *outdir, struct dem__csv_table *ts,
     return DEM_OK;
 }
 
+/* A picture a run removes when it starts (dem_output_plot_names). */
+static int registered(const char *name, struct dem_error *err)
+{
+    for (const char *const *n = dem_output_plot_names; *n; n++)
+        if (!strcmp(*n, name))
+            return DEM_OK;
+    return dem_error_set(err, DEM_EINTERNAL,
+                         "plot %s is not in dem_output_plot_names", name);
+}
+
 int dem_plot_run(const char *outdir, struct dem_error *err)
 {
     struct dem__csv_table ts, pt;
@@ -1047,8 +1050,12 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
         rc = dem_path_join(plotdir, sizeof plotdir, outdir, "plots", err);
     if (!rc)
         rc = dem_mkdir_p(plotdir, err);
-    if (!rc && !dem_path_join(path, sizeof path, plotdir, "gnuplot.log", NULL))
-        remove(path); /* the messages of an earlier plotting */
+    /* the pictures and messages of an earlier plotting: those that
+     * would not be drawn again must not stay */
+    for (size_t k = 0; !rc && k < NPLOTS; k++)
+        rc = registered(plots[k].name, err);
+    if (!rc)
+        rc = dem_output_remove_plots(outdir, err);
     for (size_t k = 0; !rc && k < NPLOTS; k++)
         if (plot_wanted(&s, (int)k))
             rc = write_plot(&s, &plots[k], plotdir, err);
@@ -1057,6 +1064,8 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     if (!rc) /* the contact network's pictures (plot/contacts.c) */
         rc = dem__plot_contacts(outdir, plotdir, s.dim, peak_time(&s), extra,
                                 &nextra, err);
+    for (int k = 0; !rc && k < nextra; k++)
+        rc = registered(extra[k], err);
     if (!rc)
         rc = run_gnuplot_all(&s, plotdir, extra, nextra, err);
     if (!rc && prc)

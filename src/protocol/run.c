@@ -26,7 +26,6 @@
  */
 #include "dembox.h"
 #include <errno.h>
-#include <glob.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -521,27 +520,6 @@ static void bind_outputs(struct run_ctx *r)
         r->out[k].kind = dem_output_kinds[k];
 }
 
-/* Remove dir/leaf; a leaf with a '*' is a pattern (glob(3)) and every
- * file it matches goes. */
-static int remove_stale(const char *dir, const char *leaf,
-                        struct dem_error *err)
-{
-    char path[DEM_PATH_MAX];
-    int rc = dem_path_join(path, sizeof path, dir, leaf, err);
-    if (rc)
-        return rc;
-    if (!strchr(leaf, '*')) {
-        remove(path);
-        return DEM_OK;
-    }
-    glob_t g;
-    if (glob(path, GLOB_NOSORT, NULL, &g) == 0)
-        for (size_t k = 0; k < g.gl_pathc; k++)
-            remove(g.gl_pathv[k]);
-    globfree(&g);
-    return DEM_OK;
-}
-
 /* The run's config file (source) must not be dir/config.cfg, which the
  * run replaces by its resolved config, unless it is one already (a
  * folder run again in place): a file the user wrote would lose its
@@ -593,11 +571,14 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
                                       "checkpoint.bin", "checkpoint.bin.tmp",
                                       "timing.txt"};
     for (size_t k = 0; !rc && k < sizeof own / sizeof own[0]; k++)
-        rc = remove_stale(dir, own[k], err);
+        rc = dem_remove_in(dir, own[k], err);
     for (int k = 0; !rc && k < dem_output_nkinds; k++)
         for (const char *const *f = dem_output_kinds[k]->files; !rc && f && *f;
              f++)
-            rc = remove_stale(dir, *f, err);
+            rc = dem_remove_in(dir, *f, err);
+    /* and the pictures of its results */
+    if (!rc)
+        rc = dem_output_remove_plots(dir, err);
     const struct dem_output_run orun = {view(r), dir, r->config_text, NULL};
     for (int k = 0; !rc && k < dem_output_nkinds; k++) {
         struct dem_output *o = &r->out[k];
