@@ -94,6 +94,17 @@ int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
     double total, available;
     dem_machine_memory(&total, &available);
     sim_begin(s, cfg);
+    /* (a fact of the config, before one of the machine) */
+    if (cfg->box.boundary == DEM_BOUNDARY_PERIODIC &&
+        n > DEM_PAIRS_PERIODIC_MAX) {
+        if (given)
+            dem_particles_free(given);
+        dem_sim_destroy(s);
+        return dem_error_set(err, DEM_ECONFIG,
+                             "%s: a periodic cell (box.boundary) takes at "
+                             "most %d particles",
+                             what, DEM_PAIRS_PERIODIC_MAX);
+    }
     if (dem_sim_memory_check(n, what, total, available, err)) {
         if (given)
             dem_particles_free(given); /* taken over, as placed ones are */

@@ -114,7 +114,7 @@ static int forces_reserve(struct dem_contact_forces *f, int cap, int axial)
 {
     if (cap <= f->cap)
         return 0;
-    if (grow_records(&f->v, f->cap, cap) || GROW(f->m, 3 * cap) ||
+    if (grow_records(&f->v, f->cap, cap) || GROW(f->m, 3 * (size_t)cap) ||
         (axial && (GROW(f->axial, cap) || GROW(f->handed, cap))))
         return -1;
     f->cap = cap;
@@ -557,6 +557,12 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
     const int longest = (zr ? 27 : 9) * occ;
     int *start = L->start;
     int failed = 0;
+    long long total = 0;
+    if (pl->periodic && n > DEM_PAIRS_PERIODIC_MAX)
+        return dem_error_set(err, DEM_ENOMEM,
+                             "a periodic cell's pair list takes at most %d "
+                             "particles, not %d",
+                             DEM_PAIRS_PERIODIC_MAX, n);
 #pragma omp parallel
     {
         const int nt = omp_get_num_threads(), t = omp_get_thread_num();
@@ -593,6 +599,10 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
 #pragma omp single
         {
             start[0] = 0;
+            for (int i = 0; !failed && i < n; i++)
+                total += start[i + 1];
+            if (!failed && total > DEM_PAIRS_MAX)
+                failed = 2;
             if (!failed) {
                 for (int i = 0; i < n; i++)
                     start[i + 1] += start[i];
@@ -614,6 +624,12 @@ static int build_pairs(struct dem_pairs *pl, const struct dem_particles *p,
                 }
         }
     }
+    if (failed == 2)
+        return dem_error_set(err, DEM_ENOMEM,
+                             "%lld particle pairs within reach, more than "
+                             "the pair list's %d: fewer particles, or "
+                             "the sample split over more MPI ranks",
+                             total, DEM_PAIRS_MAX);
     if (failed)
         return dem_error_set(err, DEM_ENOMEM, "out of memory (pair list)");
     const int np = L->n;

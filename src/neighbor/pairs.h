@@ -26,6 +26,8 @@
 #ifndef DEM_NEIGHBOR_PAIRS_H
 #define DEM_NEIGHBOR_PAIRS_H
 
+#include <limits.h>
+
 #include "core/cell.h"
 #include "dembox.h"
 #include "neighbor/blocks.h"
@@ -87,6 +89,13 @@ struct dem_row_buf {
     int *v;
     size_t cap; /* ints allocated in v */
 };
+
+/* The most particles (owned and ghosts) a periodic cell's list takes:
+ * its rows hold a partner j as j << 6 | image code in an int. */
+#define DEM_PAIRS_PERIODIC_MAX ((1 << 25) - 1)
+/* The most pairs a list takes: the kernels index the torque arrays by
+ * 3 k in an int. */
+#define DEM_PAIRS_MAX (INT_MAX / 3)
 
 /* The walls a list's wall contacts name (j), DEM_MAX_WALLS of core/sim.h. */
 #define DEM_PAIRS_WALLS 6
