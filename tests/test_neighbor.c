@@ -92,6 +92,54 @@ static void check_same_pairs(int dim, int reorder)
     dem_sim_destroy(&s);
 }
 
+/* A sparse sample in a large box between walls: 1000 spheres of radius
+ * 1 mm (with a touching neighbour each) in a cube of 1 m, whose grid of
+ * ranges, 455^3 cells, is more than the grid takes. The grid is made
+ * coarser, and the list is still the brute-force one. */
+static void sparse_box_gets_a_coarser_grid(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    c.particles.mean = c.particles.min = c.particles.max = 1e-3;
+    struct dem_sim s;
+    const int n = 1000;
+    test_sim(&s, &c, n, 0.0, 1.0);
+    struct dem_rng g;
+    dem_rng_seed(&g, 5);
+    for (int i = 0; i < n / 2; i++) {
+        const double x = 0.01 + 0.98 * dem_rng_uniform(&g),
+                     y = 0.01 + 0.98 * dem_rng_uniform(&g),
+                     z = 0.01 + 0.98 * dem_rng_uniform(&g);
+        test_add(&s, x, y, z, 1e-3);
+        test_add(&s, x + 1.9e-3, y, z, 1e-3);
+    }
+    test_ready(&s);
+    const long cells = (long)s.pairs.nc[0] * s.pairs.nc[1] * s.pairs.nc[2];
+    assert_true(cells <= 2L * n + 27 || cells <= 1L << 20);
+    int *bi, *bj;
+    const int nb =
+        dem_pairs_brute(&s.p, 3, 0.0, s.p.reach, NULL, &bi, &bj, NULL);
+    assert_true(nb >= n / 2);
+    const struct dem_contact_list *L = &s.pairs.cur;
+    assert_int_equal(L->n, nb);
+    long *a = malloc((size_t)nb * sizeof *a),
+         *b = malloc((size_t)nb * sizeof *b);
+    for (int k = 0; k < nb; k++) {
+        a[k] = (long)bi[k] * n + bj[k];
+        b[k] = (long)L->i[k] * n + L->j[k];
+    }
+    qsort(a, (size_t)nb, sizeof *a, cmp_pair);
+    qsort(b, (size_t)nb, sizeof *b, cmp_pair);
+    for (int k = 0; k < nb; k++)
+        assert_true(a[k] == b[k]);
+    free(a);
+    free(b);
+    free(bi);
+    free(bj);
+    dem_sim_destroy(&s);
+}
+
 static void cells_find_brute_force_pairs_3d(void **state)
 {
     (void)state;
@@ -499,6 +547,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(cells_find_brute_force_pairs_3d),
         cmocka_unit_test(cells_find_brute_force_pairs_2d),
+        cmocka_unit_test(sparse_box_gets_a_coarser_grid),
         cmocka_unit_test(history_survives_rebuild),
         cmocka_unit_test(forces_survive_reordering),
         cmocka_unit_test(skin_adapts_and_misses_no_contact),

@@ -265,13 +265,17 @@ static int setup_grid(struct dem_pairs *pl, const struct dem_particles *p,
         pl->inv_h[a] = flat ? 0.0 : cell ? k : k / (span > 0 ? span : h);
         ncell *= k;
     }
-    /* a periodic cell needs no more cells than particles: coarser
-     * cells are still at least one range wide */
-    while (cell && ncell > 2L * p->n + 27) {
+    /* no more cells than particles are needed: coarser cells are still
+     * at least one range wide. Between walls only grids of more than
+     * 2^20 cells are made coarser (a sparse sample in a large box, whose
+     * grid would fill memory), so that a dense sample's order of
+     * particles (dem_pairs_reorder) stays as it was. */
+    while (ncell > 2L * p->n + 27 && (cell || ncell > 1L << 20)) {
         ncell = 1;
         for (int a = 0; a < dim; a++) {
             pl->nc[a] = pl->nc[a] > 1 ? pl->nc[a] / 2 : 1;
-            pl->inv_h[a] = pl->nc[a];
+            const double span = hi[a] - lo[a];
+            pl->inv_h[a] = cell ? pl->nc[a] : pl->nc[a] / (span > 0 ? span : h);
             ncell *= pl->nc[a];
         }
     }
