@@ -192,6 +192,41 @@ static void sheared_cell_list_is_brute_force(int dim)
     dem_sim_destroy(&s);
 }
 
+/* A re-map of the yz tilt takes the third edge back by the second,
+ * (xy, Ly, 0): the edges after it span the same lattice (each new edge
+ * an integer combination of the old ones), every tilt is within half its
+ * length, and each tilt plus its re-mapped total is what it was. */
+static void yz_remap_keeps_the_lattice(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double L = 0.1, t[3] = {0.03, 0.01, 0.08};
+    cell_sim(&s, &c, 3, 4, L, t);
+    struct dem_lattice a, b;
+    dem_sim_lattice(&s, &a);
+    assert_true(dem_sim_cell_remap(&s));
+    dem_sim_lattice(&s, &b);
+    /* each new edge minus the old one, in the old edges */
+    const double e[3][3] = {
+        {b.v[0] - a.v[0], 0, 0},
+        {b.v[1] - a.v[1], b.v[3] - a.v[3], 0},
+        {b.v[2] - a.v[2], b.v[4] - a.v[4], b.v[5] - a.v[5]}};
+    for (int q = 0; q < 3; q++) {
+        const double n3 = e[q][2] / a.v[5];
+        const double n2 = (e[q][1] - n3 * a.v[4]) / a.v[3];
+        const double n1 = (e[q][0] - n2 * a.v[1] - n3 * a.v[2]) / a.v[0];
+        assert_close(n1, round(n1), 1e-9);
+        assert_close(n2, round(n2), 1e-9);
+        assert_close(n3, round(n3), 1e-9);
+    }
+    for (int k = 0; k < 3; k++) {
+        assert_true(fabs(s.cell.tilt[k].pos) <= 0.5 * L);
+        assert_close(s.cell.tilt[k].pos + s.cell.remapped[k], t[k], 1e-15);
+    }
+    dem_sim_destroy(&s);
+}
+
 static void sheared_cell_list_2d(void **state)
 {
     (void)state;
@@ -805,6 +840,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sheared_cell_list_2d),
         cmocka_unit_test(sheared_cell_list_3d),
+        cmocka_unit_test(yz_remap_keeps_the_lattice),
         cmocka_unit_test(pair_across_every_face_edge_corner),
         cmocka_unit_test(affine_motion_is_followed_exactly),
         cmocka_unit_test(own_motion_adds_to_the_affine_one),

@@ -8,6 +8,7 @@
  * torque of the undivided sample. */
 #include "testutil.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "core/rng.h"
@@ -59,6 +60,14 @@ static void grid_follows_the_box(void **state)
                 assert_true(dem_decomp_near(&d, r, o) &&
                             dem_decomp_at_face(&d, r, x));
     }
+    /* a position far outside goes to the slab at its side, NaN (a
+     * blow-up between checks) to the first: no conversion to an int out
+     * of its range */
+    const double far[3] = {1e300, 0.5, 0.5}, back[3] = {-1e300, 0.5, 0.5},
+                 nan3[3] = {NAN, NAN, NAN};
+    assert_int_equal(dem_decomp_owner(&d, far), 7);
+    assert_int_equal(dem_decomp_owner(&d, back), 0);
+    assert_int_equal(dem_decomp_owner(&d, nan3), 0);
     /* 8 slabs 0.5 wide along the rod, range 0.1: each is near its two
      * neighbours only; a point 0.05 from a cut is at a face, one in the
      * middle of a slab or 0.05 from a wall is not */

@@ -195,15 +195,27 @@ int dem_sim_cell_remap(struct dem_sim *s)
     struct dem_lattice c;
     dem_sim_lattice(s, &c);
     int changed = 0;
-    for (int k = 0; k < 3; k++) {
+    /* yz first: its re-map takes the third edge (xz, yz, Lz) back by m
+     * times the second, (xy, Ly, 0), which moves xz by m xy too (a
+     * lattice vector only so); xz is then re-mapped with the rest */
+    static const int order[3] = {DEM_TILT_YZ, DEM_TILT_XY, DEM_TILT_XZ};
+    for (int q = 0; q < 3; q++) {
+        const int k = order[q];
         struct dem_wall *T = &s->cell.tilt[k];
         const double L = tilt_length(&c, k);
         if (!(fabs(T->pos) > 0.5 * L))
             continue;
-        const double d = L * round(T->pos / L);
+        const double m = round(T->pos / L), d = L * m;
         T->pos -= d;
         T->x0 -= d; /* a strain-controlled tilt goes on from here */
         s->cell.remapped[k] += d;
+        if (k == DEM_TILT_YZ) {
+            struct dem_wall *X = &s->cell.tilt[DEM_TILT_XZ];
+            const double dx = m * s->cell.tilt[DEM_TILT_XY].pos;
+            X->pos -= dx;
+            X->x0 -= dx;
+            s->cell.remapped[DEM_TILT_XZ] += dx;
+        }
         changed = 1;
     }
     return changed;

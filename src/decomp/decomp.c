@@ -131,8 +131,10 @@ static int slab(const struct dem_decomp *d, int a, double x)
     const double L = d->hi[a] - d->lo[a];
     if (d->np[a] == 1 || !(L > 0.0))
         return 0;
-    const int k = (int)floor((x - d->lo[a]) / L * d->np[a]);
-    return k < 0 ? 0 : k >= d->np[a] ? d->np[a] - 1 : k;
+    /* clamped as a double: a position far outside (or NaN, in a
+     * blow-up the run has still to diagnose) converts to no int */
+    const double u = floor((x - d->lo[a]) / L * d->np[a]);
+    return !(u >= 0.0) ? 0 : u >= d->np[a] ? d->np[a] - 1 : (int)u;
 }
 
 int dem_decomp_owner(const struct dem_decomp *d, const double x[3])

@@ -57,6 +57,7 @@ int dem_halo_any(int flag)
 
 #else
 
+#include <limits.h>
 #include <mpi.h>
 
 /* Every array of a particle, packed as doubles (the ints are exact). */
@@ -614,16 +615,29 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
         return dem_error_set(err, DEM_EINTERNAL,
                              "domain decomposition: the sample is split "
                              "already");
+    /* the whole sample is gathered (snapshots, checkpoints) with int
+     * counts of its doubles */
+    if (s->p.n > INT_MAX / NPACK)
+        return dem_error_set(err, DEM_EUSAGE,
+                             "domain decomposition: a split sample takes at "
+                             "most %d particles (the gathers of the whole "
+                             "sample count its numbers in an int), not %d",
+                             INT_MAX / NPACK, s->p.n);
+    /* a failure of one rank is every rank's (all_ok): the others would
+     * wait for it in the first exchange */
     struct halo *H = calloc(1, sizeof *H);
-    if (!H)
-        return dem_error_set(err, DEM_ENOMEM, "out of memory (halo)");
-    MPI_Comm_rank(MPI_COMM_WORLD, &H->rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &H->size);
-    const size_t sz = (size_t)H->size;
-    H->scount = malloc(12 * sz * sizeof *H->scount);
-    H->req = malloc(2 * sz * sizeof *H->req);
-    if (!H->scount || !H->req) {
-        halo_free(H);
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const size_t sz = (size_t)size;
+    if (H) {
+        MPI_Comm_rank(MPI_COMM_WORLD, &H->rank);
+        H->size = size;
+        H->scount = malloc(12 * sz * sizeof *H->scount);
+        H->req = malloc(2 * sz * sizeof *H->req);
+    }
+    if (!all_ok(!H || !H->scount || !H->req)) {
+        if (H)
+            halo_free(H);
         return dem_error_set(err, DEM_ENOMEM, "out of memory (halo)");
     }
     H->sdispl = H->scount + sz;
@@ -656,10 +670,10 @@ int dem_halo_start(struct dem_sim *s, struct dem_error *err)
         rc = dem_records_export_marked(&H->rec, &s->pairs, &s->p, s->p.n, own);
     if (!rc)
         rc = dem_records_sort(&H->rec);
-    if (rc) {
+    if (!all_ok(rc)) {
         free(own);
         halo_free(H);
-        return dem_error_set(err, rc, "out of memory (records)");
+        return dem_error_set(err, DEM_ENOMEM, "out of memory (records)");
     }
     const int m = keep_own(H, &s->p, s->p.n, own);
     free(own);

@@ -34,8 +34,11 @@
  * the ranks: each keeps its subdomain's particles and takes its ghosts;
  * the step then exchanges what it must (s->halo). MPI must have been
  * started (dem_mpi_init). A grid whose subdomains are narrower than the
- * ghost range, a periodic cell, or a build without MPI: an error, the
- * same on every rank, and s unchanged. */
+ * ghost range, a periodic cell, a sample of more than INT_MAX / 29
+ * particles (74 million; the gathers' counts) or a build without MPI:
+ * an error, the same on every rank, and s unchanged. Out of memory on any rank:
+ * an error on every rank; s unchanged when it came before the split, else s
+ * holds this rank's part (the run is to stop). */
 int dem_halo_start(struct dem_sim *s, struct dem_error *err);
 
 /* The own particles of every rank, gathered on rank 0 in the order of
