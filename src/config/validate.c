@@ -238,6 +238,13 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
             "the file is read only with placement = "
             "\"file\"",
             c->particles.placement == DEM_PLACE_LATTICE ? "lattice" : "random");
+    /* a key of every law (resolved configs of every law hold it at 0),
+     * but only Luding's law has adhesion */
+    if (c->contact.wall_kc > 0 && c->contact.normal != DEM_NORMAL_LUDING)
+        return dem__cfg_fail_key(x, -1, "contact.wall_kc", err,
+                                 "wall adhesion is the luding law's only "
+                                 "(contact.normal = \"luding\"); the "
+                                 "other laws would ignore it");
     if (check_radii(x, c, err) || check_box(x, c, err) ||
         check_stages(x, c, err))
         return DEM_ECONFIG;
