@@ -342,6 +342,13 @@ static const struct row rows[] = {
      "x,radius\n0.1,0.01\n",
      {RUN_CFG},
      "p.csv:1: missing required column 'y'"},
+    {"particle file with a row given twice",
+     BASEFILE,
+     0,
+     "x,y,radius\n0.1,0.1,0.01\n0.2,0.1,0.01\n0.1,0.1,0.01\n",
+     {RUN_CFG},
+     "particles.file = p.csv: particles 1 and 3 have centres 0 m apart, "
+     "less than half the sum of their radii (0.01 m): a row given twice"},
     {"particle file with a short row",
      BASEFILE,
      0,

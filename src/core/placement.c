@@ -365,9 +365,88 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
 
 /* The particles read from particles.file (given, taken over), in box.size
  * or in their bounding box. */
-static void place_file(struct dem_particles *p, struct dem_particles *given,
-                       const struct dem_config *cfg, int dim, double *rmax,
-                       double lo[3], double hi[3])
+/* Particles of a file whose centres are closer than half the sum of
+ * their radii (a row given twice: centres 0 apart, whose contact normal
+ * is 0/0; or lengths in other units): an error naming both, 1-based in
+ * the file's order. No packing of a run overlaps so far. */
+static int check_file_overlaps(const struct dem_particles *p, int dim,
+                               double rmax, const char *file,
+                               struct dem_error *err)
+{
+    const int n = p->n;
+    struct grid g = {.edge = 2.0 * rmax};
+    double L[3] = {0.0, 0.0, 0.0};
+    for (int a = 0; a < 3; a++) {
+        const double *c = a == 0 ? p->x : a == 1 ? p->y : p->z;
+        double hi = c[0];
+        g.lo[a] = c[0];
+        for (int i = 1; a < dim && i < n; i++) {
+            g.lo[a] = c[i] < g.lo[a] ? c[i] : g.lo[a];
+            hi = c[i] > hi ? c[i] : hi;
+        }
+        L[a] = a < dim ? hi - g.lo[a] : 0.0;
+    }
+    for (;;) { /* no more cells than the particles need */
+        double total = 1.0;
+        for (int a = 0; a < 3; a++) {
+            const double c = floor(L[a] / g.edge);
+            g.nc[a] = !(c >= 1.0) ? 1 : c > 1e9 ? 1000000000 : (int)c;
+            total *= g.nc[a];
+        }
+        if (total <= 8.0 * n + 64.0)
+            break;
+        g.edge *= 1.25;
+    }
+    const size_t ncell = (size_t)g.nc[0] * (size_t)g.nc[1] * (size_t)g.nc[2];
+    g.head = malloc(ncell * sizeof *g.head);
+    g.next = malloc((size_t)n * sizeof *g.next);
+    int rc = g.head && g.next ? DEM_OK
+                              : dem_error_set(err, DEM_ENOMEM,
+                                              "particles: out of memory "
+                                              "checking %d particles",
+                                              n);
+    for (size_t c = 0; !rc && c < ncell; c++)
+        g.head[c] = -1;
+    for (int i = 0; !rc && i < n; i++) {
+        int c[3], c0[3], c1[3];
+        const double x[3] = {p->x[i], p->y[i], p->z[i]};
+        for (int a = 0; a < 3; a++) {
+            c[a] = grid_cell(&g, a, x[a]);
+            c0[a] = c[a] > 0 ? c[a] - 1 : 0;
+            c1[a] = c[a] < g.nc[a] - 1 ? c[a] + 1 : g.nc[a] - 1;
+        }
+        for (int k = c0[2]; !rc && k <= c1[2]; k++)
+            for (int j = c0[1]; !rc && j <= c1[1]; j++)
+                for (int m = c0[0]; !rc && m <= c1[0]; m++)
+                    for (int q = g.head[(k * g.nc[1] + j) * g.nc[0] + m];
+                         !rc && q >= 0; q = g.next[q]) {
+                        const double dx = p->x[q] - x[0], dy = p->y[q] - x[1],
+                                     dz = p->z[q] - x[2],
+                                     h = 0.5 * (p->r[q] + p->r[i]);
+                        const double d = sqrt(dx * dx + dy * dy + dz * dz);
+                        if (d < h)
+                            rc = dem_error_set(
+                                err, DEM_ECONFIG,
+                                "particles.file = %s: particles %d and %d "
+                                "have centres %g m apart, less than half "
+                                "the sum of their radii (%g m): a row given "
+                                "twice, or lengths in other units?",
+                                file, q + 1, i + 1, d, h);
+                    }
+        const int cell = (c[2] * g.nc[1] + c[1]) * g.nc[0] + c[0];
+        if (!rc) {
+            g.next[i] = g.head[cell];
+            g.head[cell] = i;
+        }
+    }
+    free(g.head);
+    free(g.next);
+    return rc;
+}
+
+static int place_file(struct dem_particles *p, struct dem_particles *given,
+                      const struct dem_config *cfg, int dim, double *rmax,
+                      double lo[3], double hi[3], struct dem_error *err)
 {
     *p = *given;
     memset(given, 0, sizeof *given);
@@ -375,12 +454,15 @@ static void place_file(struct dem_particles *p, struct dem_particles *given,
     for (int i = 0; i < p->n; i++)
         if (p->r[i] > *rmax)
             *rmax = p->r[i];
+    const int rc = check_file_overlaps(p, dim, *rmax, cfg->particles.file, err);
+    if (rc)
+        return rc;
     if (box_given(cfg, dim)) {
         for (int a = 0; a < dim; a++) {
             lo[a] = 0.0;
             hi[a] = cfg->box.size[a];
         }
-        return;
+        return DEM_OK;
     }
     /* Bounding box grown by a thousandth of the largest radius, so the
      * walls start just clear of every particle. */
@@ -398,6 +480,7 @@ static void place_file(struct dem_particles *p, struct dem_particles *given,
         lo[a] -= margin;
         hi[a] += margin;
     }
+    return DEM_OK;
 }
 
 int dem_place_particles(struct dem_particles *p, const struct dem_config *cfg,
@@ -414,7 +497,7 @@ int dem_place_particles(struct dem_particles *p, const struct dem_config *cfg,
                                  "particles.placement = \"file\": the "
                                  "particles of %s were not read",
                                  cfg->particles.file);
-        place_file(p, given, cfg, dim, &rmax, lo, hi);
+        rc = place_file(p, given, cfg, dim, &rmax, lo, hi, err);
     } else {
         rc = add_with_radii(p, cfg, dim, rng, &rmax, err);
         if (rc == DEM_OK && cfg->particles.placement == DEM_PLACE_RANDOM)
