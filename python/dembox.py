@@ -204,7 +204,8 @@ def _library():
     lib.dem_cpu_check.argtypes = [ctypes.c_char_p, ctypes.c_size_t]
     msg = ctypes.create_string_buffer(768)
     if lib.dem_cpu_check(msg, ctypes.sizeof(msg)):
-        raise OSError("dembox: %s: %s" % (lib._name, msg.value.decode()))
+        raise OSError("dembox: %s: %s" %
+                      (lib._name, msg.value.decode(errors="replace")))
     lib.dem_config_size.restype = ctypes.c_size_t
     lib.dem_struct_size.restype = ctypes.c_size_t
     lib.dem_struct_size.argtypes = [ctypes.c_char_p]
@@ -279,7 +280,7 @@ def _error(warnings=None):
     err.pending = None
 
     def warn(line, user):
-        text = line.decode()
+        text = line.decode(errors="replace")
         if warnings is not None:
             warnings.append(text)
             return
@@ -295,7 +296,7 @@ def _error(warnings=None):
 def _check(rc, err):
     """Raise the failure of a call, or the exception a warning became."""
     if rc != 0:
-        raise Error(rc, err.msg.decode())
+        raise Error(rc, err.msg.decode(errors="replace"))
     if err.pending is not None:
         pending, err.pending = err.pending, None
         raise pending
@@ -495,7 +496,8 @@ class _Stop:
     def end(self, rc, err, outdir, hint):
         """After the call, with the handlers restored: the callback's
         exception, the signal's action, Interrupted or Error."""
-        msg = err.msg.decode() + (hint if rc == _DEM_EINTERRUPTED else "")
+        msg = (err.msg.decode(errors="replace") +
+               (hint if rc == _DEM_EINTERRUPTED else ""))
         if self.raised is not None:
             if rc == _DEM_EINTERRUPTED and hasattr(self.raised, "add_note"):
                 self.raised.add_note("dembox: " + msg)
@@ -641,10 +643,16 @@ def _json(path):
     line otherwise."""
     def constant(name):
         raise ValueError("%s is not a number of JSON" % name)
+
+    def number(text):  # 1e400 would be inf
+        v = float(text)
+        if not math.isfinite(v):
+            raise ValueError("%s is beyond a double" % text[:40])
+        return v
     with open(path) as f:
         text = f.read()
     try:
-        return json.loads(text, parse_constant=constant)
+        return json.loads(text, parse_constant=constant, parse_float=number)
     except json.JSONDecodeError as e:
         raise ValueError("%s:%d: %s (column %d)" % (path, e.lineno, e.msg,
                                                      e.colno)) from None
@@ -719,11 +727,17 @@ def contacts(outdir):
 
 class DumpFrame(tuple):
     """A frame of dump_local: the pair (step, columns), with the box's
-    bounds at that step as .box, ((xlo, xhi), (ylo, yhi), (zlo, zhi))."""
+    bounds at that step as .box, ((xlo, xhi), (ylo, yhi), (zlo, zhi)); a
+    periodic cell's tilts as .tilt, (xy, xz, yz) (0 between walls; its
+    edges are (xhi - xlo, 0, 0), (xy, yhi - ylo, 0), (xz, yz, zhi -
+    zlo)), and which axes are periodic as .periodic (three bools)."""
 
-    def __new__(cls, step, columns, box):
+    def __new__(cls, step, columns, box, tilt=(0.0, 0.0, 0.0),
+                periodic=(False, False, False)):
         frame = super().__new__(cls, (step, columns))
         frame.box = box
+        frame.tilt = tilt
+        frame.periodic = periodic
         return frame
 
     @property
@@ -739,7 +753,8 @@ def dump_local(outdir):
     """outdir/dump_local.lammpstrj (written with output.dump_interval > 0):
     a list of frames, each a DumpFrame (step, dict column -> its values,
     numpy array or list) of the closed contacts at that step, with the
-    box's bounds as frame.box. ValueError naming the file and line of
+    box's bounds as frame.box (a periodic cell's tilts as frame.tilt).
+    ValueError naming the file and line of
     what is not such a file."""
     path = _run_file(outdir, "dump_local.lammpstrj")
     with open(path) as f:
@@ -784,17 +799,27 @@ def dump_local(outdir):
         step = count(k + 1, "the step")
         item(k + 2, "ITEM: NUMBER OF ENTRIES")
         n = count(k + 3, "the number of entries")
-        item(k + 4, "ITEM: BOX BOUNDS")
-        box = tuple(tuple(numbers(k + 5 + a, (lo, hi), "the box", True))
-                    for a, (lo, hi) in enumerate((("xlo", "xhi"),
-                                                  ("ylo", "yhi"),
-                                                  ("zlo", "zhi"))))
+        flags = item(k + 4, "ITEM: BOX BOUNDS")
+        tilted = flags[:3] == ["xy", "xz", "yz"]
+        rows = [numbers(k + 5 + a, names + (("tilt",) if tilted else ()),
+                        "the box", not tilted)
+                for a, names in enumerate((("xlo", "xhi"), ("ylo", "yhi"),
+                                           ("zlo", "zhi")))]
+        tilt = (0.0, 0.0, 0.0)
+        if tilted:  # LAMMPS widens the bounds by the tilts: undone
+            xy, xz, yz = tilt = tuple(r[2] for r in rows)
+            wide = ((min(0.0, xy, xz, xy + xz), max(0.0, xy, xz, xy + xz)),
+                    (min(0.0, yz), max(0.0, yz)), (0.0, 0.0))
+            rows = [(r[0] - w[0], r[1] - w[1]) for r, w in zip(rows, wide)]
+        box = tuple((r[0], r[1]) for r in rows)
+        periodic = tuple(f == "pp" for f in flags[-3:]) \
+            if len(flags) >= 3 else (False, False, False)
         head = item(k + 8, "ITEM: ENTRIES")
         rows = [numbers(k + 9 + r, head, "entry %d of %d" % (r + 1, n))
                 for r in range(n)]
         frames.append(DumpFrame(step, {
             name: _column([row[c] for row in rows])
-            for c, name in enumerate(head)}, box))
+            for c, name in enumerate(head)}, box, tilt, periodic))
         k += 9 + n
     return frames
 

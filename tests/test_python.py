@@ -458,6 +458,8 @@ for name, text, read, want in (
          "summary.json: NaN is not a number of JSON"),
         ("summary.json", '{"a": 1,\n}', dembox.summary,
          "summary.json:2: Expecting property name"),
+        ("summary.json", '{"a": 1e400}', dembox.summary,
+         "summary.json: 1e400 is beyond a double"),
         ("dump_local.lammpstrj", "".join(dump[:-1]), dembox.dump_local,
          "dump_local.lammpstrj:%d: the file ends before entry" % len(dump)),
         ("dump_local.lammpstrj", "".join(dump[:3]) + "x\n",
@@ -476,6 +478,28 @@ with open(os.path.join(bad, "timeseries.csv"), "w") as f:
     f.write("# a note\nt, x\n\n0, 1\n1,\n")
 ts_c = dembox.timeseries(bad)
 assert list(ts_c) == ["t", "x"] and len(ts_c["t"]) == 2, ts_c
+
+# a periodic cell's frame: LAMMPS's triclinic bounds, widened by the
+# tilts, give back the cell's own bounds and its tilts
+with open(os.path.join(bad, "dump_local.lammpstrj"), "w") as f:
+    f.write("ITEM: TIMESTEP\n7\nITEM: NUMBER OF ENTRIES\n1\n"
+            "ITEM: BOX BOUNDS xy xz yz pp pp pp\n"
+            "-0.5 1.25 0.25\n-0.25 2 -1\n0 3 -0.25\n"
+            "ITEM: ENTRIES id1 id2 fn\n1 2 0.5\n")
+tri = dembox.dump_local(bad)[0]
+assert tri.step == 7 and tri.tilt == (0.25, -1.0, -0.25), tri.tilt
+assert tri.box == ((0.5, 1.0), (0.0, 2.0), (0.0, 3.0)), tri.box
+assert tri.periodic == (True, True, True), tri.periodic
+assert frames[-1].tilt == (0.0, 0.0, 0.0), frames[-1].tilt
+assert frames[-1].periodic == (False, False, False), frames[-1].periodic
+
+# a message of bytes that are not UTF-8 (a path of another encoding)
+try:
+    dembox.analyze(os.path.join(os.fsencode(tmp), b"r\xe9sultats"))
+except dembox.Error as e:
+    assert "r\ufffdsultats" in str(e), str(e)
+else:
+    raise AssertionError("a missing folder was analysed")
 
 try:
     dembox.run("biaxial2d", os.path.join(tmp, "bad"), sets=["contact.mu=-1"])
