@@ -57,7 +57,7 @@ static void defaults_are_david_et_al_values(void **state)
     assert_true(c.particles.density == 2000.0);
     assert_int_equal(c.particles.distribution, DEM_DIST_GAUSSIAN);
     assert_true(c.particles.mean == 5e-3 && c.particles.std == 0.7e-3);
-    assert_true(c.particles.min == 3e-3 && c.particles.max == 1.0);
+    assert_true(c.particles.min == 3e-3 && c.particles.max == 0.0);
     assert_int_equal(c.particles.placement, DEM_PLACE_LATTICE);
     assert_true(c.particles.volume_fraction == 0.1);
     assert_int_equal(c.contact.normal, DEM_NORMAL_LINEAR);

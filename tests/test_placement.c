@@ -31,7 +31,7 @@ static void config_defaults(struct dem_config *c, int dim, int placement,
     c->particles.mean = 5.0e-3; /* m */
     c->particles.std = 0.7e-3;  /* m */
     c->particles.min = 3.0e-3;  /* m */
-    c->particles.max = 1.0;     /* m; no upper cut */
+    c->particles.max = 0.0;     /* m; not given: no upper cut */
     c->particles.placement = placement;
     c->particles.mass_model = DEM_MASS_SPHERE;
 }
@@ -203,6 +203,35 @@ static void gaussian_radii_follow_the_truncated_normal(void **state)
     /* The untruncated mean is far outside that band: the test can tell. */
     assert_true(fabs(mu - tmean) > 20.0 * se);
     assert_true(fabs(var - tvar) < 0.05 * tvar);
+    dem_particles_free(&p);
+}
+
+/* A gaussian whose max is not given has no upper cut, whatever its
+ * size: radii about 1 m (scaled units) keep their mean and spread (a
+ * default cut at 1 m made them a half-normal of mean 0.92 m). */
+static void gaussian_without_max_is_not_cut(void **state)
+{
+    (void)state;
+    const int n = 20000;
+    struct dem_config c;
+    struct dem_error err = {0};
+    const char *sets[] = {
+        "particles.count=20000", "dimension=2", "particles.radius.mean=1.0",
+        "particles.radius.std=0.1", "particles.radius.min=0.5"};
+    if (dem_config_parse(&c, "", "test", sets, 5, &err))
+        fail_msg("%s", err.msg);
+    struct dem_particles p;
+    double lo[3], hi[3], sum = 0.0, sum2 = 0.0, top = 0.0;
+    place_ok(&p, &c, lo, hi);
+    for (int i = 0; i < n; i++) {
+        sum += p.r[i];
+        sum2 += p.r[i] * p.r[i];
+        top = p.r[i] > top ? p.r[i] : top;
+    }
+    const double mean = sum / n, sd = sqrt(sum2 / n - mean * mean);
+    if (!(fabs(mean - 1.0) < 4.0 * 0.1 / sqrt(n) && fabs(sd - 0.1) < 0.005))
+        fail_msg("mean %g m, spread %g m: not a normal of 1 and 0.1", mean, sd);
+    assert_true(top > 1.3);
     dem_particles_free(&p);
 }
 
@@ -425,6 +454,7 @@ int main(void)
         cmocka_unit_test(same_seed_gives_same_radii_and_positions),
         cmocka_unit_test(uniform_radii_have_the_midpoint_mean),
         cmocka_unit_test(gaussian_radii_follow_the_truncated_normal),
+        cmocka_unit_test(gaussian_without_max_is_not_cut),
         cmocka_unit_test(lattice_has_no_overlaps_and_fits_its_box),
         cmocka_unit_test(random_placement_has_no_overlaps_in_2d_and_3d),
         cmocka_unit_test(lattice_too_big_for_the_box_names_particles_count),

@@ -90,10 +90,19 @@ static int check_key(const struct ctx *x, const struct key *k, const void *base,
 static int check_radii(const struct ctx *x, const struct dem_config *c,
                        struct dem_error *err)
 {
+    /* max not given (0): a gaussian without an upper cut */
     const double mean = c->particles.mean, lo = c->particles.min,
-                 hi = c->particles.max;
+                 hi = c->particles.max > 0 ? c->particles.max : INFINITY;
     if (c->particles.distribution == DEM_DIST_MONO)
         return 0;
+    if (c->particles.distribution == DEM_DIST_UNIFORM && isinf(hi))
+        return dem__cfg_fail_key(x, -1, "particles.radius.distribution", err,
+                                 "\"uniform\" needs particles.radius.max");
+    if (c->particles.distribution == DEM_DIST_GAUSSIAN &&
+        !(c->particles.std > 0))
+        return dem__cfg_fail_key(x, -1, "particles.radius.std", err,
+                                 "a gaussian needs std > 0 (equal radii: "
+                                 "distribution = \"mono\")");
     if (lo > hi)
         return dem__cfg_fail_key(
             x, -1, "particles.radius.min", err,
@@ -199,15 +208,13 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
                                  "= \"periodic\": nothing holds the weight)");
     if (c->box.boundary == DEM_BOUNDARY_PERIODIC &&
         c->particles.placement != DEM_PLACE_FILE) {
-        /* a radius the sample surely reaches: mono the mean, uniform the
-         * top of its range, gaussian its mean (its cut, 1 m by default,
-         * says nothing of the sample). The neighbour list checks the
-         * sample's own largest radius, a file's too. */
-        const int dist = c->particles.distribution;
-        const double a = dist == DEM_DIST_UNIFORM ? c->particles.max
-                         : dist == DEM_DIST_MONO
-                             ? c->particles.mean
-                             : fmin(c->particles.mean, c->particles.max);
+        /* a radius the sample surely reaches: mono and gaussian the mean
+         * (a gaussian's cut says nothing of the sample), uniform the top
+         * of its range. The neighbour list checks the sample's own
+         * largest radius, a file's too. */
+        const double a = c->particles.distribution == DEM_DIST_UNIFORM
+                             ? c->particles.max
+                             : c->particles.mean;
         for (int d = 0; d < c->dim; d++)
             if (c->box.size[d] > 0 && c->box.size[d] < 2.0 * 2.2 * a)
                 return dem__cfg_fail_key(

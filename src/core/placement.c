@@ -52,6 +52,8 @@ static int draw_radius(const struct dem_config *cfg, struct dem_rng *rng,
 {
     double mean = cfg->particles.mean, sd = cfg->particles.std;
     double lo = cfg->particles.min, hi = cfg->particles.max;
+    if (cfg->particles.distribution == DEM_DIST_GAUSSIAN && !(hi > 0.0))
+        hi = INFINITY; /* no upper cut */
     switch (cfg->particles.distribution) {
     case DEM_DIST_UNIFORM:
         if (!(lo > 0.0) || !(hi >= lo) || !isfinite(hi))
