@@ -4,6 +4,7 @@
  * written with the engine's own header and row writers, so the test
  * follows the real columns. */
 #include <fcntl.h>
+#include <math.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -494,6 +495,32 @@ static void cycles_of_the_summary_are_drawn(void **state)
     remove_dir(dir);
 }
 
+/* The Mohr circles' peak is summary.json's: the circle at the row of its
+ * strain, the line at its (smoothed) sin phi, as stress_ratio.png's
+ * mark; not the raw largest ratio, here at the end of loading. */
+static void mohr_peak_is_the_summary_peak(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 200);
+    write_particles(dir, 2, 0);
+    write_text(dir, "summary.json",
+               "{\"peak\": {\"sin_phi\": 0.31, \"strain\": 0.1}}\n");
+    run_ok(dir);
+    char want[128];
+    assert_true(
+        file_contains(dir, "plots/mohr_circles.dat", "# peak: t = 0.3 s,"));
+    snprintf(want, sizeof want, "phi = %.9g deg", asin(0.31) * 180.0 / M_PI);
+    assert_true(file_contains(dir, "plots/mohr_circles.dat", want));
+    /* before an analysis: the largest ratio, at the end */
+    path_of(want, sizeof want, dir, "summary.json");
+    assert_int_equal(remove(want), 0);
+    run_ok(dir);
+    assert_true(
+        file_contains(dir, "plots/mohr_circles.dat", "# peak: t = 0.4 s,"));
+    remove_dir(dir);
+}
+
 /* A run folder named "-run", given as a relative path: gnuplot's cd does
  * not take it for an option. */
 static void a_folder_named_like_an_option_is_plotted(void **state)
@@ -639,6 +666,7 @@ int main(void)
         cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(stress_ratio_of_an_extension_is_lateral_over_axial),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
+        cmocka_unit_test(mohr_peak_is_the_summary_peak),
         cmocka_unit_test(a_folder_named_like_an_option_is_plotted),
         cmocka_unit_test(config_warnings_are_not_given_again),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),

@@ -611,9 +611,9 @@ static void gp_stage_lines(FILE *gp, const struct series *s)
     }
 }
 
-/* The time of summary.json's peak of the stress ratio: of the loading
- * stage's row nearest to its strain; NaN when the analysis found none. */
-static double peak_time(const struct series *s)
+/* summary.json's peak of the stress ratio: the loading stage's row
+ * nearest to its strain; s->hi when the analysis found none. */
+static size_t peak_row(const struct series *s)
 {
     size_t best = s->hi;
     double score = INFINITY;
@@ -624,6 +624,13 @@ static double peak_time(const struct series *s)
             best = i;
         }
     }
+    return best;
+}
+
+/* The time of that row; NaN when there is none. */
+static double peak_time(const struct series *s)
+{
+    const size_t best = peak_row(s);
     return best < s->hi ? s->c[TS_T][best] : NAN;
 }
 
@@ -770,22 +777,28 @@ static void mohr_block(FILE *dat, const char *what, double t, double s1,
     fprintf(dat, "\n\n");
 }
 
-/* The circle at the peak of sin psi (the largest stress ratio) and at the
- * end of loading, with the line through the origin tangent to the peak
- * circle, tau = sigma tan phi, sin phi = (s1 - s3)/(s1 + s3): the
- * friction angle of a cohesionless material. Cohesion needs the circles
- * of several confining pressures (dembox sweep). */
+/* The circle at the peak of the stress ratio and at the end of loading,
+ * with the line through the origin, tau = sigma tan phi: the friction
+ * angle of a cohesionless material. The peak is summary.json's (its
+ * smoothed sin phi, at the row of its strain), so that the picture and
+ * the numbers agree; before an analysis, the row of the largest ratio
+ * (s1 - s3)/(s1 + s3), whose circle the line then touches. Cohesion
+ * needs the circles of several confining pressures (dembox sweep). */
 static int write_mohr(const struct series *s, const struct plot_spec *p,
                       FILE *dat, FILE *gp)
 {
-    size_t peak = s->hi;
-    double best = -INFINITY, s1, s3;
-    for (size_t i = s->lo; i < s->hi; i++) {
-        principal(s, i, &s1, &s3);
-        double v = (s1 - s3) / (s1 + s3);
-        if (s1 + s3 > 0.0 && isfinite(v) && v > best) {
-            best = v;
-            peak = i;
+    size_t peak = peak_row(s);
+    double best = s->peak_sin, s1, s3;
+    if (peak == s->hi || !(best > 0.0 && best < 1.0)) {
+        peak = s->hi;
+        best = -INFINITY;
+        for (size_t i = s->lo; i < s->hi; i++) {
+            principal(s, i, &s1, &s3);
+            double v = (s1 - s3) / (s1 + s3);
+            if (s1 + s3 > 0.0 && isfinite(v) && v > best) {
+                best = v;
+                peak = i;
+            }
         }
     }
     dat_head(dat, s, p, 1);
