@@ -496,6 +496,53 @@ static void energy_growth_is_diagnosed(void **state)
     assert_non_null(strstr(err.msg, "time step"));
 }
 
+/* time_step = "auto" with a particle file of particles ten times
+ * smaller than the distribution keys' (a thousandth of the mass): the
+ * step is t_c/50 of the file's particles, not of the keys', and the
+ * resolved config says so. */
+static void auto_step_follows_a_particle_file(void **state)
+{
+    (void)state;
+    char dir[1024], file[2048];
+    snprintf(dir, sizeof dir, "%s/autostep", tmpdir);
+    mkdir(dir, 0755);
+    snprintf(file, sizeof file, "%s/small.csv", dir);
+    FILE *f = fopen(file, "w");
+    assert_non_null(f);
+    fprintf(f, "x,y,z,radius\n");
+    for (int k = 0; k < 8; k++)
+        fprintf(f, "%g,%g,%g,5e-4\n", 0.002 + 0.002 * (k % 2),
+                0.002 + 0.002 * ((k / 2) % 2), 0.002 + 0.002 * (k / 4));
+    fclose(f);
+    char text[4096];
+    snprintf(text, sizeof text,
+             "dimension = 3; time_step = \"auto\";\n"
+             "particles = { placement = \"file\"; file = \"%s\"; "
+             "radius = { distribution = \"mono\"; mean = 5.0e-3; }; };\n"
+             "box = { size = [0.006, 0.006, 0.006]; };\n"
+             "stages = ( { type = \"hold\"; duration = 1.0e-3; } );\n",
+             file);
+    struct dem_config c;
+    struct dem_error err = {0};
+    if (dem_config_parse(&c, text, "autostep", 0, 0, &err))
+        fail_msg("%s", err.msg);
+    double m;
+    dem_particle_mass(5e-4, c.particles.density, c.particles.mass_model, 3, &m,
+                      NULL);
+    const double want = dem_contact_time_of(&c, 5e-4, m) / 50;
+    assert_true(want < 0.05 * c.time_step); /* the keys' step: 30x longer */
+    char out[1024], path[1100];
+    snprintf(out, sizeof out, "%s/autostep-run", tmpdir);
+    struct dem_run_options o = {.outdir = out, .threads = 1, .max_steps = 20};
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+    snprintf(path, sizeof path, "%s/config.cfg", out);
+    struct dem_config r;
+    if (dem_config_load_file(&r, path, NULL, 0, &err))
+        fail_msg("%s", err.msg);
+    assert_true(r.time_step == want);
+}
+
 static int same_file(const char *a, const char *b)
 {
     FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
@@ -910,6 +957,7 @@ int main(void)
         cmocka_unit_test(contact_history_columns_follow_the_law),
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
+        cmocka_unit_test(auto_step_follows_a_particle_file),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
         cmocka_unit_test(threads_left_to_the_library_are_chosen_by_timing),

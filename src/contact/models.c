@@ -89,6 +89,11 @@ double dem_contact_time(const struct dem_config *c)
     double m;
     dem_particle_mass(a, c->particles.density, c->particles.mass_model, c->dim,
                       &m, NULL);
+    return dem_contact_time_of(c, a, m);
+}
+
+double dem_contact_time_of(const struct dem_config *c, double a, double m)
+{
     const double m_ij = 0.5 * m;
     const double k = dem_contact_stiffness(&c->contact, m_ij, 0.5 * a);
     /* the viscosity contact.gamma_n of the spring laws (another law's

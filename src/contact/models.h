@@ -199,6 +199,8 @@ void dem_contact_derive(struct dem_contact_params *c);
  * period of the damped oscillation of the stiffest normal spring (or of
  * the undamped one when the pair is overdamped). */
 double dem_contact_time(const struct dem_config *c);
+/* The same for two particles of radius a and mass m each. */
+double dem_contact_time_of(const struct dem_config *c, double a, double m);
 
 /* Checks of the contact keys between each other (each key's range is
  * checked by the config layer): NULL, or the key at fault with the reason

@@ -78,6 +78,50 @@ int dem_sim_memory_check(long n, const char *what, double total,
     return DEM_OK;
 }
 
+/* The time step against the contact time of a particle file's own
+ * particles, the pair of its smallest radius and mass (the config's is
+ * of its distribution keys, which a file need not follow): "auto" takes
+ * t_c/50 of the two when that is shorter; a given step above t_c/5 is
+ * refused and one above t_c/10 warned of, as the config's are. */
+static int file_time_step(struct dem_sim *s, struct dem_error *err)
+{
+    const struct dem_particles *p = &s->p;
+    double a = INFINITY, m = INFINITY;
+    for (int i = 0; i < p->n; i++) {
+        a = fmin(a, p->r[i]);
+        m = fmin(m, p->m[i]);
+    }
+    const double tc = dem_contact_time_of(&s->cfg, a, m);
+    if (!(tc > 0.0)) /* (no particles: nothing to resolve) */
+        return DEM_OK;
+    const char *file = s->cfg.particles.file;
+    if (s->cfg.time_step_auto) {
+        if (tc / 50 < s->dt)
+            s->dt = s->cfg.time_step = tc / 50;
+        return DEM_OK;
+    }
+    /* (a step the config's own check let pass: a config built past
+     * dem_config_parse, as a test of the blow-up diagnosis, is its
+     * caller's) */
+    const double tk = dem_contact_time(&s->cfg);
+    if (s->dt > tk / 5)
+        return DEM_OK;
+    if (s->dt > tc / 5)
+        return dem_error_set(err, DEM_ECONFIG,
+                             "time_step: %g s is above t_c/5 = %g s of the "
+                             "particles of particles.file = %s (smallest "
+                             "radius %g m, mass %g kg); lower it, or "
+                             "time_step = \"auto\"",
+                             s->dt, tc / 5, file, a, m);
+    if (s->dt > tc / 10 && !(s->dt > tk / 10))
+        dem_warn(err,
+                 "time_step: %g s is above t_c/10 = %g s of the particles of "
+                 "particles.file = %s (smallest radius %g m, mass %g kg); "
+                 "collisions are resolved by fewer than 10 steps",
+                 s->dt, tc / 10, file, a, m);
+    return DEM_OK;
+}
+
 int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
                    struct dem_particles *given, struct dem_error *err)
 {
@@ -113,6 +157,8 @@ int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
     }
     double lo[3], hi[3];
     int rc = dem_place_particles(&s->p, cfg, &s->rng, given, lo, hi, err);
+    if (!rc && file)
+        rc = file_time_step(s, err);
     if (!rc) {
         place_walls(s, lo, hi);
         s->reorder = 1;

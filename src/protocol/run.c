@@ -774,7 +774,8 @@ static int run_new(const struct dem_config *cfg,
         return rc;
     r.n_all = r.sim.p.n;
     bind_outputs(&r);
-    rc = config_text(cfg, &r.config_text, err);
+    /* (the sample's: "auto" may resolve to a particle file's step) */
+    rc = config_text(&r.sim.cfg, &r.config_text, err);
     if (!rc)
         set_reference(&r);
     /* split before any output exists: a grid the box has no room for
