@@ -636,6 +636,30 @@ static void ref_and_stopped_2d(const char *name, long stop, char ref[1024],
     assert_int_equal(run(&c, out, 4000, stop, 1, &err), DEM_EINTERRUPTED);
 }
 
+/* A finish that renamed dump.lammpstrj.part and dump_local's, then
+ * failed on a later output (disk full at the final files), leaves them
+ * under their final names beside the checkpoint: the resume takes them
+ * back as .part files and ends as the uninterrupted run. */
+static void resume_after_a_finish_cut_short(void **state)
+{
+    (void)state;
+    char ref[1024], out[1024], ckpt[1100], a[1100], b[1100];
+    ref_and_stopped_2d("finishcut", 2000, ref, out, ckpt);
+    static const char *const dumps[] = {"dump.lammpstrj",
+                                        "dump_local.lammpstrj"};
+    for (int k = 0; k < 2; k++) {
+        char part[256];
+        snprintf(part, sizeof part, "%s.part", dumps[k]);
+        file_path(a, sizeof a, out, part);
+        file_path(b, sizeof b, out, dumps[k]);
+        assert_int_equal(rename(a, b), 0);
+    }
+    struct dem_error err = {0};
+    if (resume(out, 0, 1, &err))
+        fail_msg("%s", err.msg);
+    assert_same_outputs(ref, out, 1);
+}
+
 static void bad_checkpoints_are_refused_with_a_clear_message(void **state)
 {
     (void)state;
@@ -1070,6 +1094,7 @@ int main(void)
         cmocka_unit_test(resumed_periodic_shear_run_is_bit_identical),
         cmocka_unit_test(resumed_hertz_run_is_bit_identical),
         cmocka_unit_test(resumed_resistance_run_is_bit_identical),
+        cmocka_unit_test(resume_after_a_finish_cut_short),
         cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
         cmocka_unit_test(another_build_is_refused_unless_any_build),
         cmocka_unit_test(resume_gives_config_warnings_to_the_caller),

@@ -145,6 +145,29 @@ static void a_second_writer_into_a_folder_is_refused(void **state)
     assert_int_equal(access(path, F_OK), 0); /* not a run's: kept */
 }
 
+/* The files a run removes at its start are matched in its own folder
+ * only: a folder named run[12] is no pattern for run1 and run2. */
+static void removal_patterns_are_the_leaf_only(void **state)
+{
+    (void)state;
+    char d[3][256], f[512];
+    static const char *const names[] = {"run1", "run2", "run[12]"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(d[k], sizeof d[k], "%s/%s", tmpdir, names[k]);
+        assert_int_equal(mkdir(d[k], 0755), 0);
+        snprintf(f, sizeof f, "%s/%s/particles_00001.vtu", tmpdir, names[k]);
+        FILE *o = fopen(f, "w");
+        assert_non_null(o);
+        fputs("a snapshot", o);
+        fclose(o);
+    }
+    struct dem_error err = {0};
+    assert_int_equal(dem_remove_in(d[2], "particles_*.vtu", &err), 0);
+    assert_true(exists(d[0], "particles_00001.vtu"));
+    assert_true(exists(d[1], "particles_00001.vtu"));
+    assert_false(exists(d[2], "particles_00001.vtu"));
+}
+
 /* A run whose config file is its output folder's config.cfg (dembox run
  * config.cfg -o .) is refused before it writes: the run replaced the
  * user's file by the resolved config, comments lost. A folder's own
@@ -948,6 +971,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(bad_run_options_are_refused),
         cmocka_unit_test(a_second_writer_into_a_folder_is_refused),
+        cmocka_unit_test(removal_patterns_are_the_leaf_only),
         cmocka_unit_test(the_config_file_is_not_overwritten_by_its_run),
         cmocka_unit_test(every_example_runs_a_few_hundred_steps),
         cmocka_unit_test(isotropic_stage_reaches_target_pressure),

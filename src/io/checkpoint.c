@@ -527,11 +527,7 @@ static void sync_folder(const char *path)
         *slash = '\0';
     else
         snprintf(dir, sizeof dir, ".");
-    int fd = open(dir, O_RDONLY);
-    if (fd >= 0) {
-        fsync(fd);
-        close(fd);
-    }
+    dem_sync_folder(dir);
 }
 
 int dem_checkpoint_write(const char *path, const char *config_text,

@@ -234,10 +234,32 @@ int dem_remove_in(const char *dir, const char *leaf, struct dem_error *err)
         remove(path);
         return DEM_OK;
     }
+    /* the pattern is the leaf's only: the folder's *, ? and [ are
+     * escaped, so that a folder named run[12] matches none of run1 */
+    char pat[2 * DEM_PATH_MAX];
+    size_t m = 0;
+    for (const char *c = dir; *c && m + 2 < sizeof pat; c++) {
+        if (strchr("*?[\\", *c))
+            pat[m++] = '\\';
+        pat[m++] = *c;
+    }
+    pat[m] = '\0';
+    if (m + strlen(leaf) + 2 >= sizeof pat)
+        return dem_error_set(err, DEM_EUSAGE, "%s: path too long", path);
+    snprintf(pat + m, sizeof pat - m, "/%s", leaf);
     glob_t g;
-    if (glob(path, GLOB_NOSORT, NULL, &g) == 0)
+    if (glob(pat, GLOB_NOSORT, NULL, &g) == 0)
         for (size_t k = 0; k < g.gl_pathc; k++)
             remove(g.gl_pathv[k]);
     globfree(&g);
     return DEM_OK;
+}
+
+void dem_sync_folder(const char *dir)
+{
+    const int fd = open(dir, O_RDONLY);
+    if (fd >= 0) {
+        fsync(fd);
+        close(fd);
+    }
 }

@@ -38,6 +38,10 @@ char *dem_read_text(const char *path, struct dem_error *err);
  * a text read whole ends at such a byte, and the rest would be unseen. */
 long dem_text_nul_line(const char *text, size_t len);
 
+/* fsync the folder dir (its entries: renames and removals in it); a
+ * folder that cannot be opened is left as it is. */
+void dem_sync_folder(const char *dir);
+
 /* Remove dir/leaf, if it is there; a leaf with a '*' is a pattern
  * (glob(3)) and every file it matches goes. An error only when the path
  * does not fit. */

@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int dem__outfile_open(struct dem__outfile *o, const char *path,
                       struct dem_error *err)
@@ -28,9 +29,11 @@ int dem__outfile_open(struct dem__outfile *o, const char *path,
 
 int dem__outfile_commit(struct dem__outfile *o, struct dem_error *err)
 {
-    /* ferror catches any fprintf that failed earlier (e.g. disk full);
-     * fclose catches the final flush failing. */
-    int bad = ferror(o->f);
+    /* ferror catches any fprintf that failed earlier (e.g. disk full),
+     * the flush the rest, with its own errno (an earlier one may be
+     * another call's); on the disk before its name is the file's */
+    errno = 0;
+    int bad = ferror(o->f) || fflush(o->f) != 0 || fsync(fileno(o->f)) != 0;
     int e = errno;
     if (fclose(o->f) != 0 && !bad) {
         bad = 1;

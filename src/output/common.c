@@ -39,6 +39,14 @@ int dem__part_reopen(struct dem_output *o, const char *outdir, const char *leaf,
     const char *path = o->part;
     const int64_t bytes = o->st.bytes;
     struct stat sb;
+    /* finished already, by a finish a later output's failure cut short:
+     * the run goes on, so it is a .part file again */
+    char final[DEM_PATH_MAX];
+    const size_t n = strlen(path) - strlen(".part");
+    memcpy(final, path, n);
+    final[n] = '\0';
+    if (stat(path, &sb) != 0 && errno == ENOENT && stat(final, &sb) == 0)
+        rename(final, path);
     if (stat(path, &sb) != 0)
         return dem_error_set(err, DEM_EIO, "%s: %s; cannot resume", path,
                              strerror(errno));
@@ -90,7 +98,8 @@ int dem__part_finish(struct dem_output *o, const struct dem_output_run *r,
     if (!o->f)
         return DEM_OK;
     errno = 0;
-    int bad = ferror(o->f) || fflush(o->f) != 0;
+    /* on the disk before its name says finished (and the checkpoint goes) */
+    int bad = ferror(o->f) || fflush(o->f) != 0 || fsync(fileno(o->f)) != 0;
     int e = errno;
     if (fclose(o->f) != 0 && !bad) {
         bad = 1;

@@ -136,15 +136,16 @@ static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
 {
     const struct dem_sim *s = &r->sim;
     const struct dem_particles *P = &s->p;
-    /* the first bad quantity of the own particles, as 2 id + (0 position,
-     * 1 velocity); split over ranks, the largest any rank found */
+    /* the first bad quantity of the own particles, as 3 id + (0 position,
+     * 1 velocity, 2 angular velocity); split over ranks, the largest any
+     * rank found */
     double bad = -1.0;
     for (int i = 0; i < P->n - s->pairs.nghost && bad < 0.0; i++) {
-        const double q[6] = {P->x[i],  P->y[i],  P->z[i],
-                             P->vx[i], P->vy[i], P->vz[i]};
-        for (int c = 0; c < 6 && bad < 0.0; c++)
+        const double q[9] = {P->x[i],  P->y[i],  P->z[i],  P->vx[i], P->vy[i],
+                             P->vz[i], P->wx[i], P->wy[i], P->wz[i]};
+        for (int c = 0; c < 9 && bad < 0.0; c++)
             if (!isfinite(q[c]))
-                bad = 2.0 * P->id[i] + c / 3;
+                bad = 3.0 * P->id[i] + c / 3;
     }
     if (s->halo)
         s->halo->sum(s, &bad, 1, 1);
@@ -154,9 +155,13 @@ static int check_stable(struct run_ctx *r, const struct dem_sample *smp,
             "t = %.6g s (step %ld): particle %d has a non-finite %s; the "
             "time step %.3g s is probably too large for the contact "
             "stiffness (try time_step = \"auto\")",
-            s->t, s->step, (int)(bad / 2.0),
-            (long)bad % 2 ? "velocity" : "position", s->dt);
-    if (!isfinite(smp->e_kin) || !isfinite(smp->e_pot) || !isfinite(smp->p))
+            s->t, s->step, (int)(bad / 3.0),
+            (long)bad % 3 == 2   ? "angular velocity"
+            : (long)bad % 3 == 1 ? "velocity"
+                                 : "position",
+            s->dt);
+    if (!isfinite(smp->e_kin) || !isfinite(smp->e_rot) ||
+        !isfinite(smp->e_pot) || !isfinite(smp->p))
         return dem_error_set(
             err, DEM_EUNSTABLE,
             "t = %.6g s (step %ld): non-finite energy or stress; the time "
@@ -683,12 +688,14 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
 {
     if (!rc) {
         rc = run_stages(r, first, resumed, err);
-        report_timing(r, rc, err);
+        if (!rc)
+            rc = finish_outputs(r, err);
+        report_timing(r, rc, err); /* (finished only when all is written) */
     }
-    if (!rc)
-        rc = finish_outputs(r, err);
     if (!rc && writer(r)) {
-        /* finished: the outputs are complete, nothing to resume */
+        /* finished: the outputs are complete (their renames on the disk
+         * first), nothing to resume */
+        dem_sync_folder(r->outdir);
         char tmp[DEM_PATH_MAX + 8];
         remove(r->ckpt_path);
         snprintf(tmp, sizeof tmp, "%s.tmp", r->ckpt_path);
