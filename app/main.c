@@ -1,6 +1,8 @@
 /* The dembox command: argument parsing only. Everything else is in
  * libdembox; this file turns its status codes into exit statuses and
  * one-line messages on stderr. */
+#include <ctype.h>
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
@@ -256,14 +258,42 @@ static int fail(const char *msg)
     return 1;
 }
 
+/* The options that take one value and are given once at most (a
+ * second would silently win), each with its other name. */
+static const char *const once_options[][2] = {
+    {"-o", "--output"}, {"--threads", 0},   {"--max-steps", 0}, {"--resume", 0},
+    {"--jobs", "-j"},   {"--dim", 0},       {"--n", 0},         {"--steps", 0},
+    {"--data", 0},      {"--cache-dir", 0}, {"--boundary", 0}};
+
+/* 1, with one line on stderr, when option a of command cmd is one of
+ * once_options given before (*seen: a bit for each of them). */
+static int given_twice(const char *cmd, const char *a, unsigned *seen)
+{
+    const int n = (int)(sizeof once_options / sizeof once_options[0]);
+    for (int r = 0; r < n; r++)
+        if (!strcmp(a, once_options[r][0]) ||
+            (once_options[r][1] && !strcmp(a, once_options[r][1]))) {
+            if (*seen >> r & 1u) {
+                if (!quiet_rank)
+                    fprintf(stderr, "dembox: %s: %s given twice\n", cmd, a);
+                return 1;
+            }
+            *seen |= 1u << r;
+        }
+    return 0;
+}
+
 /* Option opt of command cmd: the whole string v as an integer in
- * [lo, hi] into *out (0), or one line on stderr and 1. */
+ * [lo, hi] into *out (0), or one line on stderr and 1 (digits only,
+ * with an optional minus: no blanks, no plus, nothing out of range). */
 static int parse_int(const char *cmd, const char *opt, const char *v, long lo,
                      long hi, long *out)
 {
     char *end;
+    errno = 0;
     long n = v ? strtol(v, &end, 10) : 0;
-    if (!v || !*v || *end || n < lo || n > hi) {
+    if (!v || !(isdigit((unsigned char)v[0]) || v[0] == '-') || *end ||
+        errno == ERANGE || n < lo || n > hi) {
         if (!quiet_rank)
             fprintf(stderr, "dembox: %s: %s needs an integer in [%ld, %ld]\n",
                     cmd, opt, lo, hi);
@@ -437,8 +467,11 @@ static int cmd_run(int argc, char **argv)
     int nsets = 0;
     struct dem_run_options opt = {0};
     int quiet = 0;
+    unsigned seen = 0;
     for (int k = 0; k < argc; k++) {
         const char *a = argv[k];
+        if (given_twice("run", a, &seen))
+            return 1;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             fputs(usage_run, stdout);
             return 0;
@@ -474,9 +507,11 @@ static int cmd_run(int argc, char **argv)
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             quiet = 1;
         } else if (a[0] == '-') {
-            fprintf(stderr,
-                    "dembox: run: unknown option %s (see dembox help run)\n",
-                    a);
+            if (!quiet_rank)
+                fprintf(stderr,
+                        "dembox: run: unknown option %s (see dembox help "
+                        "run)\n",
+                        a);
             return 1;
         } else if (!target) {
             target = a;
@@ -533,9 +568,14 @@ static int cmd_sweep(int argc, char **argv)
     struct dem_error err = {0, "", cli_warning, NULL};
     long v;
     int rc = 0, collect = 0;
+    unsigned seen = 0;
     for (int k = 0; k < argc && !rc; k++) {
         const char *a = argv[k];
         const int more = k + 1 < argc;
+        if (given_twice("sweep", a, &seen)) {
+            rc = 1;
+            break;
+        }
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             if (!quiet_rank)
                 fputs(usage_sweep, stdout);
@@ -638,6 +678,10 @@ static int cmd_sweep(int argc, char **argv)
 
 static int cmd_plot(int argc, char **argv)
 {
+    if (argc == 1 && (!strcmp(argv[0], "-h") || !strcmp(argv[0], "--help"))) {
+        fputs(usage_plot, stdout);
+        return 0;
+    }
     if (argc != 1 || argv[0][0] == '-')
         return fail("plot: give one OUTDIR (see dembox help plot)");
     struct dem_error err = {0, "", cli_warning, NULL};
@@ -665,9 +709,12 @@ static int cmd_bench(int argc, char **argv)
     struct dem_bench_options o;
     memset(&o, 0, sizeof o);
     o.dim = 3;
+    unsigned seen = 0;
     for (int k = 0; k < argc; k++) {
         const char *a = argv[k];
         long v = 0;
+        if (given_twice("bench", a, &seen))
+            return 1;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             fputs(usage_bench, stdout);
             return 0;
@@ -754,8 +801,15 @@ static int cmd_bench(int argc, char **argv)
     return 0;
 }
 
-static int cmd_examples(void)
+static int cmd_examples(int argc, char **argv)
 {
+    if (argc == 1 && (!strcmp(argv[0], "-h") || !strcmp(argv[0], "--help"))) {
+        fputs(usage_examples, stdout);
+        return 0;
+    }
+    if (argc > 0)
+        return fail("examples: takes no arguments (dembox example NAME "
+                    "prints one)");
     for (int k = 0; k < dem_n_examples; k++) {
         /* the first comment line of an example says what it is */
         const char *t = dem_examples[k].text;
@@ -780,6 +834,10 @@ static int cmd_examples(void)
 
 static int cmd_example(int argc, char **argv)
 {
+    if (argc == 1 && (!strcmp(argv[0], "-h") || !strcmp(argv[0], "--help"))) {
+        fputs(usage_example, stdout);
+        return 0;
+    }
     if (argc != 1)
         return fail("example: give one NAME (see dembox examples)");
     const struct dem_example *ex = dem_example_find(argv[0]);
@@ -801,6 +859,12 @@ static int cmd_help(int argc, char **argv)
         return 0;
     }
     const char *c = argv[0];
+    static const char *const commands[] = {"run",     "analyze",  "sweep",
+                                           "bench",   "examples", "plot",
+                                           "example", "help"};
+    for (size_t k = 0; k < sizeof commands / sizeof *commands; k++)
+        if (!strcmp(c, commands[k]) && argc > 1)
+            return fail("help: give one COMMAND, KEY or WORD");
     if (!strcmp(c, "run"))
         fputs(usage_run, stdout);
     else if (!strcmp(c, "analyze"))
@@ -929,7 +993,7 @@ static int dispatch(int argc, char **argv)
     if (!strcmp(c, "bench"))
         return cmd_bench(argc - 2, argv + 2);
     if (!strcmp(c, "examples"))
-        return cmd_examples();
+        return cmd_examples(argc - 2, argv + 2);
     if (!strcmp(c, "plot"))
         return cmd_plot(argc - 2, argv + 2);
     if (!strcmp(c, "example"))
@@ -939,6 +1003,8 @@ static int dispatch(int argc, char **argv)
     if (!strcmp(c, "--help") || !strcmp(c, "-h"))
         return cmd_help(0, 0);
     if (!strcmp(c, "--version")) {
+        if (argc > 2)
+            return fail("--version takes no arguments");
         /* the build as checkpoints name it */
         printf("dembox %s (%s; ", dem_version(), dem_build());
         if (dem_mpi_built())

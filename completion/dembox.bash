@@ -9,23 +9,33 @@ _dembox() {
         return
     fi
     case $prev in
-        -o|--resume) COMPREPLY=($(compgen -d -- "$cur")); return ;;
+        -o|--output|--resume|--cache-dir) COMPREPLY=($(compgen -d -- "$cur")); return ;;
+        --data) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --boundary) COMPREPLY=($(compgen -W "walls periodic" -- "$cur")); return ;;
         --set|--param)
-            COMPREPLY=($(compgen -W "$(dembox help config 2>/dev/null | awk '/^[a-z]/ {print $1"="}')" -- "$cur"))
+            # the keys of `dembox help config`; a stage's as stages.0.KEY
+            # (the parser wants the stage's index)
+            COMPREPLY=($(compgen -W "$(dembox help config 2>/dev/null | awk '/^[a-z]/ && $1 != "stages.N.KEY" {sub(/^stages\.N\./, "stages.0.", $1); print $1"="}')" -- "$cur"))
             compopt -o nospace 2>/dev/null
             return ;;
+    esac
+    local opts
+    case $cmd in
+        run) opts="-o --output --set --threads --quiet --resume --max-steps --any-build --help" ;;
+        sweep) opts="-o --output --set --param --jobs --threads --quiet --max-steps --collect --any-build --help" ;;
+        bench) opts="--dim --n --steps --threads --data --cache-dir --no-cache --boundary --quiet --help" ;;
     esac
     case $cmd in
         run|sweep)
             if [[ $cur == -* ]]; then
-                COMPREPLY=($(compgen -W "-o --set --threads --quiet --resume --max-steps --param --jobs --collect --any-build" -- "$cur"))
+                COMPREPLY=($(compgen -W "$opts" -- "$cur"))
             else
-                COMPREPLY=($(compgen -W "$(dembox examples 2>/dev/null | awk '{print $1}')" -- "$cur") $(compgen -f -X '!*.cfg' -- "$cur"))
+                COMPREPLY=($(compgen -W "$(dembox examples 2>/dev/null | awk '{print $1}')" -- "$cur") $(compgen -f -X '!*.cfg' -- "$cur") $(compgen -d -- "$cur"))
             fi ;;
         example) COMPREPLY=($(compgen -W "$(dembox examples 2>/dev/null | awk '{print $1}')" -- "$cur")) ;;
-        help) COMPREPLY=($(compgen -W "run sweep analyze plot bench examples example config $(dembox help config 2>/dev/null | awk '/^[a-z]/ {print $1}')" -- "$cur")) ;;
+        help) COMPREPLY=($(compgen -W "run sweep analyze plot bench examples example config $(dembox help config 2>/dev/null | awk '/^[a-z]/ && $1 != "stages.N.KEY" {print $1}')" -- "$cur")) ;;
         analyze|plot) COMPREPLY=($(compgen -d -- "$cur")) ;;
-        bench) COMPREPLY=($(compgen -W "--dim --n --steps --threads --data --cache-dir --no-cache --quiet" -- "$cur")) ;;
+        bench) COMPREPLY=($(compgen -W "$opts" -- "$cur")) ;;
     esac
 }
 complete -F _dembox dembox
