@@ -143,6 +143,24 @@ static void a_second_writer_into_a_folder_is_refused(void **state)
     assert_int_equal(st.st_size, 0);
     snprintf(path, sizeof path, "%s/keep.txt", out);
     assert_int_equal(access(path, F_OK), 0); /* not a run's: kept */
+
+    /* the analysis and the plots of the finished run are writers too: a
+     * run started into the folder meanwhile (here: its lock) makes them
+     * stop, naming it, and a run is refused while they write */
+    assert_int_equal(dem_folder_lock(out, "run", &fd, &err), DEM_OK);
+    assert_int_equal(dem_analyze(out, &err), DEM_EUSAGE);
+    assert_string_equal(err.msg, want);
+    assert_int_equal(dem_plot_run(out, &err), DEM_EUSAGE);
+    assert_string_equal(err.msg, want);
+    snprintf(path, sizeof path, "%s/summary.json", out);
+    assert_true(access(path, F_OK) != 0);
+    dem_folder_unlock(fd);
+    assert_int_equal(dem_folder_lock(out, "analysis", &fd, &err), DEM_OK);
+    assert_int_equal(dem_run(&c, &o, &err), DEM_EUSAGE);
+    assert_non_null(strstr(err.msg, "another dembox analysis is writing"));
+    dem_folder_unlock(fd);
+    if (dem_analyze(out, &err))
+        fail_msg("%s", err.msg);
 }
 
 /* The files a run removes at its start are matched in its own folder

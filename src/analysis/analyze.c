@@ -792,12 +792,28 @@ static int write_file(const char *outdir, const struct result *R,
     return dem__outfile_commit(&o, err);
 }
 
+static int analyze_folder(const char *outdir, const char *cfg_path,
+                          const char *ts_path, struct dem_error *err);
+
 int dem_analyze(const char *outdir, struct dem_error *err)
 {
     char cfg_path[DEM_PATH_MAX], ts_path[DEM_PATH_MAX];
     int rc = dem__run_folder_check(outdir, 1, cfg_path, ts_path, err);
-    if (rc)
-        return rc;
+    /* one writer into a run's folder at a time: a run started into it
+     * meanwhile would mix its files with summary.json */
+    int lock = -1;
+    if (!rc)
+        rc = dem_folder_lock(outdir, "analysis", &lock, err);
+    if (!rc)
+        rc = analyze_folder(outdir, cfg_path, ts_path, err);
+    dem_folder_unlock(lock);
+    return rc;
+}
+
+static int analyze_folder(const char *outdir, const char *cfg_path,
+                          const char *ts_path, struct dem_error *err)
+{
+    int rc = DEM_OK;
     struct dem_config *cfg = malloc(sizeof *cfg);
     if (!cfg)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");

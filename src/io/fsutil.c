@@ -159,23 +159,30 @@ int dem_folder_lock(const char *dir, const char *what, int *fd,
             close(f);
             return DEM_OK;
         }
-        char holder[64] = "";
+        /* "PID WHAT" of the holder */
+        char holder[64] = "", *kind;
         const ssize_t n = pread(f, holder, sizeof holder - 1, 0);
         holder[n > 0 ? n : 0] = '\0';
         holder[strcspn(holder, "\n")] = '\0';
-        if (strspn(holder, "0123456789") != strlen(holder))
-            holder[0] = '\0'; /* not a pid: the message names none */
+        kind = holder + strspn(holder, "0123456789");
+        if (*kind == ' ' && kind > holder &&
+            strspn(kind + 1, "abcdefghijklmnopqrstuvwxyz") == strlen(kind + 1))
+            *kind++ = '\0';
+        else if (*kind) /* not ours: the message names neither */
+            holder[0] = '\0', kind = holder;
         close(f);
         return dem_error_set(err, DEM_EUSAGE,
                              "%s: another dembox %s is writing into this "
                              "folder (%s%s%s holds %s); wait for it to end, "
                              "or choose another folder",
-                             dir, what, holder[0] ? "process " : "", holder,
+                             dir, *kind ? kind : "process",
+                             holder[0] ? "process " : "", holder,
                              holder[0] ? ", which" : "a process that", path);
     }
     /* who holds it, for the message of the next one */
-    char pid[32];
-    const int len = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+    char pid[32 + 32];
+    const int len =
+        snprintf(pid, sizeof pid, "%ld %.31s\n", (long)getpid(), what);
     if (ftruncate(f, 0) != 0 || pwrite(f, pid, (size_t)len, 0) != len) {
         /* the lock holds all the same; only the message loses the pid */
     }

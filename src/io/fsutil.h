@@ -60,8 +60,8 @@ int dem_is_sweep_folder(const char *dir);
  * this one, that asks while it is held gets DEM_EUSAGE, "DIR: another
  * dembox WHAT is writing into this folder (process PID, which holds
  * DIR/.dembox.lock) ...". On a file system without locks *fd is -1 and
- * nothing is locked. The file holds the pid while locked and is empty
- * after. */
+ * nothing is locked. The file holds "PID WHAT" while locked and is
+ * empty after. */
 int dem_folder_lock(const char *dir, const char *what, int *fd,
                     struct dem_error *err);
 void dem_folder_unlock(int fd);

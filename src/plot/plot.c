@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "analysis/summary_read.h"
@@ -1026,7 +1027,23 @@ static int registered(const char *name, struct dem_error *err)
                          "plot %s is not in dem_output_plot_names", name);
 }
 
+static int plot_folder(const char *outdir, struct dem_error *err);
+
 int dem_plot_run(const char *outdir, struct dem_error *err)
+{
+    /* one writer into a run's folder at a time (a folder that is not
+     * there is plot_folder's message) */
+    struct stat st;
+    int lock = -1, rc = DEM_OK;
+    if (stat(outdir, &st) == 0 && S_ISDIR(st.st_mode))
+        rc = dem_folder_lock(outdir, "plot", &lock, err);
+    if (!rc)
+        rc = plot_folder(outdir, err);
+    dem_folder_unlock(lock);
+    return rc;
+}
+
+static int plot_folder(const char *outdir, struct dem_error *err)
 {
     struct dem__csv_table ts, pt;
     struct series s;
