@@ -1,3 +1,7 @@
+/* syncfs (Linux) */
+#if defined(__linux__) && !defined(_GNU_SOURCE)
+#define _GNU_SOURCE
+#endif
 #include "io/fsutil.h"
 
 #include <errno.h>
@@ -8,6 +12,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 int dem_mkdir_p(const char *path, struct dem_error *err)
@@ -153,6 +158,15 @@ int dem_folder_lock(const char *dir, const char *what, int *fd,
     if (f < 0)
         return dem_error_set(err, DEM_EIO, "%s: cannot write: %s", path,
                              strerror(errno));
+    /* a lock held for a moment by this process's own child between its
+     * fork and its exec (gnuplot started by another job of a sweep: the
+     * child holds copies of every descriptor, the lock's of a folder just
+     * released among them) goes with the exec: it is waited for, up to
+     * half a second, as another writer's is not */
+    int tries = 0;
+    while (flock(f, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK &&
+           tries++ < 50)
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
     if (flock(f, LOCK_EX | LOCK_NB) != 0) {
         const int e = errno;
         if (e != EWOULDBLOCK) { /* no locks on this file system: go on */
@@ -269,4 +283,18 @@ void dem_sync_folder(const char *dir)
         fsync(fd);
         close(fd);
     }
+}
+
+void dem_sync_file_system(const char *dir)
+{
+#if defined(__linux__)
+    const int fd = open(dir, O_RDONLY);
+    if (fd >= 0) {
+        syncfs(fd);
+        close(fd);
+        return;
+    }
+#endif
+    (void)dir;
+    sync();
 }

@@ -42,6 +42,11 @@ long dem_text_nul_line(const char *text, size_t len);
  * folder that cannot be opened is left as it is. */
 void dem_sync_folder(const char *dir);
 
+/* Everything written to the file system of folder dir onto the disk
+ * (syncfs on Linux; sync elsewhere): once, when a run has finished and
+ * before its checkpoint goes. */
+void dem_sync_file_system(const char *dir);
+
 /* Remove dir/leaf, if it is there; a leaf with a '*' is a pattern
  * (glob(3)) and every file it matches goes. An error only when the path
  * does not fit. */

@@ -3,7 +3,6 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 int dem__outfile_open(struct dem__outfile *o, const char *path,
                       struct dem_error *err)
@@ -31,9 +30,10 @@ int dem__outfile_commit(struct dem__outfile *o, struct dem_error *err)
 {
     /* ferror catches any fprintf that failed earlier (e.g. disk full),
      * the flush the rest, with its own errno (an earlier one may be
-     * another call's); on the disk before its name is the file's */
+     * another call's). (No fsync here: a run syncs its file system once
+     * it has finished, dem_sync_file_system.) */
     errno = 0;
-    int bad = ferror(o->f) || fflush(o->f) != 0 || fsync(fileno(o->f)) != 0;
+    int bad = ferror(o->f) || fflush(o->f) != 0;
     int e = errno;
     if (fclose(o->f) != 0 && !bad) {
         bad = 1;

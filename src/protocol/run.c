@@ -695,7 +695,7 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
     if (!rc && writer(r)) {
         /* finished: the outputs are complete (their renames on the disk
          * first), nothing to resume */
-        dem_sync_folder(r->outdir);
+        dem_sync_file_system(r->outdir);
         char tmp[DEM_PATH_MAX + 8];
         remove(r->ckpt_path);
         snprintf(tmp, sizeof tmp, "%s.tmp", r->ckpt_path);
