@@ -15,6 +15,35 @@ static int cmp_pair(const void *a, const void *b)
     return (*x > *y) - (*x < *y);
 }
 
+/* s's pair list is the brute-force one, kept sorted by (i, j) with
+ * i < j (which the history merge needs); returns its length. */
+static int same_as_brute_force(const struct dem_sim *s, int dim)
+{
+    const int n = s->p.n;
+    int *bi, *bj;
+    const int nb =
+        dem_pairs_brute(&s->p, dim, 0.0, s->p.reach, NULL, &bi, &bj, NULL);
+    const struct dem_contact_list *L = &s->pairs.cur;
+    assert_int_equal(L->n, nb);
+    long *a = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *a),
+         *b = malloc((size_t)(nb > 0 ? nb : 1) * sizeof *b);
+    for (int k = 0; k < nb; k++) {
+        a[k] = (long)bi[k] * n + bj[k];
+        b[k] = (long)L->i[k] * n + L->j[k];
+        assert_true(L->i[k] < L->j[k]);
+    }
+    qsort(a, (size_t)nb, sizeof *a, cmp_pair);
+    for (int k = 1; k < nb; k++)
+        assert_true(b[k - 1] < b[k]);
+    for (int k = 0; k < nb; k++)
+        assert_true(a[k] == b[k]);
+    free(a);
+    free(b);
+    free(bi);
+    free(bj);
+    return nb;
+}
+
 static void check_same_pairs(int dim, int reorder)
 {
     struct dem_config c;
@@ -35,29 +64,7 @@ static void check_same_pairs(int dim, int reorder)
     }
     test_ready(&s);
     for (int round = 0; round < 2; round++) {
-        int *bi, *bj;
-        int nb =
-            dem_pairs_brute(&s.p, dim, 0.0, s.p.reach, NULL, &bi, &bj, NULL);
-        assert_true(nb > 100);
-        const struct dem_contact_list *L = &s.pairs.cur;
-        assert_int_equal(L->n, nb);
-        long *a = malloc((size_t)nb * sizeof *a),
-             *b = malloc((size_t)nb * sizeof *b);
-        for (int k = 0; k < nb; k++) {
-            a[k] = (long)bi[k] * n + bj[k];
-            b[k] = (long)L->i[k] * n + L->j[k];
-            assert_true(L->i[k] < L->j[k]);
-        }
-        qsort(a, (size_t)nb, sizeof *a, cmp_pair);
-        /* the list is kept sorted by (i, j), which the history merge needs */
-        for (int k = 1; k < nb; k++)
-            assert_true(b[k - 1] < b[k]);
-        for (int k = 0; k < nb; k++)
-            assert_true(a[k] == b[k]);
-        free(a);
-        free(b);
-        free(bi);
-        free(bj);
+        assert_true(same_as_brute_force(&s, dim) > 100);
         /* a wall contact is listed when the gap is below the particle's
          * reach plus the wall's half of the skin */
         const struct dem_contact_list *W = &s.pairs.wcur;
@@ -117,26 +124,7 @@ static void sparse_box_gets_a_coarser_grid(void **state)
     test_ready(&s);
     const long cells = (long)s.pairs.nc[0] * s.pairs.nc[1] * s.pairs.nc[2];
     assert_true(cells <= 2L * n + 27 || cells <= 1L << 20);
-    int *bi, *bj;
-    const int nb =
-        dem_pairs_brute(&s.p, 3, 0.0, s.p.reach, NULL, &bi, &bj, NULL);
-    assert_true(nb >= n / 2);
-    const struct dem_contact_list *L = &s.pairs.cur;
-    assert_int_equal(L->n, nb);
-    long *a = malloc((size_t)nb * sizeof *a),
-         *b = malloc((size_t)nb * sizeof *b);
-    for (int k = 0; k < nb; k++) {
-        a[k] = (long)bi[k] * n + bj[k];
-        b[k] = (long)L->i[k] * n + L->j[k];
-    }
-    qsort(a, (size_t)nb, sizeof *a, cmp_pair);
-    qsort(b, (size_t)nb, sizeof *b, cmp_pair);
-    for (int k = 0; k < nb; k++)
-        assert_true(a[k] == b[k]);
-    free(a);
-    free(b);
-    free(bi);
-    free(bj);
+    assert_true(same_as_brute_force(&s, 3) >= n / 2);
     dem_sim_destroy(&s);
 }
 
