@@ -595,6 +595,11 @@ static int cmd_sweep(int argc, char **argv)
                 rc = fail("sweep: --set needs KEY=VALUE (at most 256)");
             else
                 sets[o.nsets++] = argv[++k];
+        } else if (!strncmp(a, "--set=", 6)) { /* as run takes it */
+            if (o.nsets >= MAX_SETS)
+                rc = fail("sweep: too many --set options");
+            else
+                sets[o.nsets++] = a + 6;
         } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
             rc = parse_int("sweep", a, more ? argv[++k] : 0, 1, 1024, &v);
             o.jobs = (int)v;
