@@ -224,8 +224,10 @@ static int grid_cell(const struct grid *g, int a, double x)
     return c;
 }
 
-static int overlaps(const struct grid *g, const struct dem_particles *p,
-                    double x, double y, double z, double r)
+/* The first particle in g closer to the sphere (x, y, z, r) than scale
+ * times the sum of their radii (touching counts), or -1. */
+static int within(const struct grid *g, const struct dem_particles *p, double x,
+                  double y, double z, double r, double scale)
 {
     int c[3] = {grid_cell(g, 0, x), grid_cell(g, 1, y), grid_cell(g, 2, z)};
     int c0[3], c1[3];
@@ -239,12 +241,57 @@ static int overlaps(const struct grid *g, const struct dem_particles *p,
                 int cell = (k * g->nc[1] + j) * g->nc[0] + i;
                 for (int q = g->head[cell]; q >= 0; q = g->next[q]) {
                     double dx = p->x[q] - x, dy = p->y[q] - y, dz = p->z[q] - z,
-                           s = p->r[q] + r;
+                           s = scale * (p->r[q] + r);
                     if (dx * dx + dy * dy + dz * dz <= s * s)
-                        return 1;
+                        return q;
                 }
             }
+    return -1;
+}
+
+/* g over [lo, lo + L] (L 0 on an axis without extent) for n particles:
+ * cells of edge g->edge (set by the caller: >= 2 r_max), coarsened when
+ * the box is so large that the grid would hold many more cells than
+ * particles; every cell empty. 0, or -1 out of memory. */
+static int grid_make(struct grid *g, const double lo[3], const double L[3],
+                     int n)
+{
+    for (;;) {
+        double total = 1.0;
+        for (int a = 0; a < 3; a++) {
+            double c = floor(L[a] / g->edge);
+            g->nc[a] = !(c >= 1.0) ? 1 : (c > 1e9 ? 1000000000 : (int)c);
+            total *= g->nc[a];
+        }
+        if (total <= 8.0 * n + 64.0)
+            break;
+        g->edge *= 1.25;
+    }
+    for (int a = 0; a < 3; a++)
+        g->lo[a] = lo[a];
+    const size_t ncell = (size_t)g->nc[0] * (size_t)g->nc[1] * (size_t)g->nc[2];
+    g->head = malloc(ncell * sizeof *g->head);
+    g->next = malloc((size_t)(n > 0 ? n : 1) * sizeof *g->next);
+    if (!g->head || !g->next) {
+        free(g->head);
+        free(g->next);
+        g->head = g->next = NULL;
+        return -1;
+    }
+    for (size_t c = 0; c < ncell; c++)
+        g->head[c] = -1;
     return 0;
+}
+
+/* Particle i, at its position, into g. */
+static void grid_insert(struct grid *g, const struct dem_particles *p, int i)
+{
+    const int cell =
+        (grid_cell(g, 2, p->z[i]) * g->nc[1] + grid_cell(g, 1, p->y[i])) *
+            g->nc[0] +
+        grid_cell(g, 0, p->x[i]);
+    g->next[i] = g->head[cell];
+    g->head[cell] = i;
 }
 
 static int place_random(struct dem_particles *p, const struct dem_config *cfg,
@@ -276,29 +323,13 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
     }
     double volume = dim == 3 ? L[0] * L[1] * L[2] : L[0] * L[1];
 
-    /* Cells of edge 2 r_max, coarsened when the box is so large that the
-     * grid would hold many more cells than particles. */
+    /* Cells of edge 2 r_max; the grid starts at the box's corner (2D: z
+     * spans the slab of one largest diameter) */
     struct grid g = {.edge = 2.0 * rmax};
-    double max_cells = 8.0 * n + 64.0;
-    for (;;) {
-        double total = 1.0;
-        for (int a = 0; a < 3; a++) {
-            double c = a < dim ? floor(L[a] / g.edge) : 1.0;
-            g.nc[a] = c < 1.0 ? 1 : (c > 1e9 ? 1000000000 : (int)c);
-            total *= g.nc[a];
-        }
-        if (total <= max_cells)
-            break;
-        g.edge *= 1.25;
-    }
-    g.lo[0] = g.lo[1] = g.lo[2] = 0.0;
-    if (dim == 2)
-        g.lo[2] = -rmax;
-    size_t ncell = (size_t)g.nc[0] * (size_t)g.nc[1] * (size_t)g.nc[2];
-    g.head = malloc(ncell * sizeof *g.head);
-    g.next = malloc((size_t)n * sizeof *g.next);
+    const double glo[3] = {0.0, 0.0, dim == 2 ? -rmax : 0.0};
+    const double gL[3] = {L[0], L[1], dim == 3 ? L[2] : 0.0};
     struct by_radius *order = malloc((size_t)n * sizeof *order);
-    if (!g.head || !g.next || !order) {
+    if (grid_make(&g, glo, gL, n) || !order) {
         free(g.head);
         free(g.next);
         free(order);
@@ -306,8 +337,6 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
                              "particles: out of memory placing %d particles",
                              n);
     }
-    for (size_t c = 0; c < ncell; c++)
-        g.head[c] = -1;
     for (int i = 0; i < n; i++) {
         order[i].r = p->r[i];
         order[i].i = i;
@@ -328,7 +357,7 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
                 pos[a] = r + free_len * dem_rng_uniform(rng);
                 fits = fits && free_len >= 0.0;
             }
-            placed = fits && !overlaps(&g, p, pos[0], pos[1], pos[2], r);
+            placed = fits && within(&g, p, pos[0], pos[1], pos[2], r, 1.0) < 0;
         }
         if (!placed) {
             double vs = 0.0;
@@ -346,12 +375,7 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
         p->x[i] = pos[0];
         p->y[i] = pos[1];
         p->z[i] = pos[2];
-        int cell =
-            (grid_cell(&g, 2, pos[2]) * g.nc[1] + grid_cell(&g, 1, pos[1])) *
-                g.nc[0] +
-            grid_cell(&g, 0, pos[0]);
-        g.next[i] = g.head[cell];
-        g.head[cell] = i;
+        grid_insert(&g, p, i);
     }
     free(g.head);
     free(g.next);
@@ -376,69 +400,37 @@ static int check_file_overlaps(const struct dem_particles *p, int dim,
                                struct dem_error *err)
 {
     const int n = p->n;
-    struct grid g = {.edge = 2.0 * rmax};
-    double L[3] = {0.0, 0.0, 0.0};
-    for (int a = 0; a < 3; a++) {
+    double lo[3] = {0.0, 0.0, 0.0}, L[3] = {0.0, 0.0, 0.0};
+    for (int a = 0; a < dim; a++) { /* the centres' bounding box */
         const double *c = a == 0 ? p->x : a == 1 ? p->y : p->z;
         double hi = c[0];
-        g.lo[a] = c[0];
-        for (int i = 1; a < dim && i < n; i++) {
-            g.lo[a] = c[i] < g.lo[a] ? c[i] : g.lo[a];
+        lo[a] = c[0];
+        for (int i = 1; i < n; i++) {
+            lo[a] = c[i] < lo[a] ? c[i] : lo[a];
             hi = c[i] > hi ? c[i] : hi;
         }
-        L[a] = a < dim ? hi - g.lo[a] : 0.0;
+        L[a] = hi - lo[a];
     }
-    for (;;) { /* no more cells than the particles need */
-        double total = 1.0;
-        for (int a = 0; a < 3; a++) {
-            const double c = floor(L[a] / g.edge);
-            g.nc[a] = !(c >= 1.0) ? 1 : c > 1e9 ? 1000000000 : (int)c;
-            total *= g.nc[a];
-        }
-        if (total <= 8.0 * n + 64.0)
-            break;
-        g.edge *= 1.25;
-    }
-    const size_t ncell = (size_t)g.nc[0] * (size_t)g.nc[1] * (size_t)g.nc[2];
-    g.head = malloc(ncell * sizeof *g.head);
-    g.next = malloc((size_t)n * sizeof *g.next);
-    int rc = g.head && g.next ? DEM_OK
-                              : dem_error_set(err, DEM_ENOMEM,
-                                              "particles: out of memory "
-                                              "checking %d particles",
-                                              n);
-    for (size_t c = 0; !rc && c < ncell; c++)
-        g.head[c] = -1;
+    struct grid g = {.edge = 2.0 * rmax};
+    if (grid_make(&g, lo, L, n))
+        return dem_error_set(err, DEM_ENOMEM,
+                             "particles: out of memory checking %d particles",
+                             n);
+    int rc = DEM_OK;
     for (int i = 0; !rc && i < n; i++) {
-        int c[3], c0[3], c1[3];
-        const double x[3] = {p->x[i], p->y[i], p->z[i]};
-        for (int a = 0; a < 3; a++) {
-            c[a] = grid_cell(&g, a, x[a]);
-            c0[a] = c[a] > 0 ? c[a] - 1 : 0;
-            c1[a] = c[a] < g.nc[a] - 1 ? c[a] + 1 : g.nc[a] - 1;
-        }
-        for (int k = c0[2]; !rc && k <= c1[2]; k++)
-            for (int j = c0[1]; !rc && j <= c1[1]; j++)
-                for (int m = c0[0]; !rc && m <= c1[0]; m++)
-                    for (int q = g.head[(k * g.nc[1] + j) * g.nc[0] + m];
-                         !rc && q >= 0; q = g.next[q]) {
-                        const double dx = p->x[q] - x[0], dy = p->y[q] - x[1],
-                                     dz = p->z[q] - x[2],
-                                     h = 0.5 * (p->r[q] + p->r[i]);
-                        const double d = sqrt(dx * dx + dy * dy + dz * dz);
-                        if (d < h)
-                            rc = dem_error_set(
-                                err, DEM_ECONFIG,
-                                "particles.file = %s: particles %d and %d "
-                                "have centres %g m apart, less than half "
-                                "the sum of their radii (%g m): a row given "
-                                "twice, or lengths in other units?",
-                                file, q + 1, i + 1, d, h);
-                    }
-        const int cell = (c[2] * g.nc[1] + c[1]) * g.nc[0] + c[0];
-        if (!rc) {
-            g.next[i] = g.head[cell];
-            g.head[cell] = i;
+        const int q = within(&g, p, p->x[i], p->y[i], p->z[i], p->r[i], 0.5);
+        if (q >= 0) {
+            const double dx = p->x[q] - p->x[i], dy = p->y[q] - p->y[i],
+                         dz = p->z[q] - p->z[i];
+            rc = dem_error_set(
+                err, DEM_ECONFIG,
+                "particles.file = %s: particles %d and %d have centres %g m "
+                "apart, less than half the sum of their radii (%g m): a row "
+                "given twice, or lengths in other units?",
+                file, q + 1, i + 1, sqrt(dx * dx + dy * dy + dz * dz),
+                0.5 * (p->r[q] + p->r[i]));
+        } else {
+            grid_insert(&g, p, i);
         }
     }
     free(g.head);
