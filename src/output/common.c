@@ -17,6 +17,14 @@ static int part_path(struct dem_output *o, const char *outdir, const char *leaf,
     return dem_path_join(o->part, sizeof o->part, outdir, name, err);
 }
 
+/* final = the name of .part file part without its ".part" */
+static void final_of(const char *part, char final[DEM_PATH_MAX])
+{
+    const size_t n = strlen(part) - strlen(".part");
+    memcpy(final, part, n);
+    final[n] = '\0';
+}
+
 int dem__part_create(struct dem_output *o, const char *outdir, const char *leaf,
                      struct dem_error *err)
 {
@@ -42,9 +50,7 @@ int dem__part_reopen(struct dem_output *o, const char *outdir, const char *leaf,
     /* finished already, by a finish a later output's failure cut short:
      * the run goes on, so it is a .part file again */
     char final[DEM_PATH_MAX];
-    const size_t n = strlen(path) - strlen(".part");
-    memcpy(final, path, n);
-    final[n] = '\0';
+    final_of(path, final);
     if (stat(path, &sb) != 0 && errno == ENOENT && stat(final, &sb) == 0)
         rename(final, path);
     if (stat(path, &sb) != 0)
@@ -110,9 +116,7 @@ int dem__part_finish(struct dem_output *o, const struct dem_output_run *r,
         return dem_error_set(err, DEM_EIO, "%s: write failed: %s", o->part,
                              e ? strerror(e) : "I/O error");
     char final[DEM_PATH_MAX];
-    size_t n = strlen(o->part) - strlen(".part");
-    memcpy(final, o->part, n);
-    final[n] = '\0';
+    final_of(o->part, final);
     if (rename(o->part, final) != 0)
         return dem_error_set(err, DEM_EIO, "%s: cannot rename: %s", o->part,
                              strerror(errno));
