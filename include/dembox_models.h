@@ -126,13 +126,17 @@
  * into j < i): -1 for a spring stretched by a velocity of i relative to
  * j that changes sign with it (tangential: v_ij; torsion: a (n . dw) n),
  * +1 for one that does not (rolling: -a n x dw, both factors change
- * sign; dmax). The contact's state bits (contact/state.h) are carried
- * with them. */
+ * sign; dmax, kt_last). The contact's state bits (contact/state.h) are
+ * carried with them. A model that keeps kt_last has a tangential
+ * stiffness that follows the overlap: its spring is rescaled as that
+ * stiffness grows (dem_spring_rescale, src/contact/tangential.h). */
 #define DEM_CONTACT_HISTORY(H)                                                 \
     H(ANY, xi_x, "m", -1, "tangential spring, x")                              \
     H(ANY, xi_y, "m", -1, "tangential spring, y")                              \
     H(ANY, xi_z, "m", -1, "tangential spring, z")                              \
     H(LUDING, dmax, "m", 1, "largest overlap reached")                         \
+    H(HERTZ, kt_last, "N/m", 1,                                                \
+      "tangential stiffness of the last step (the spring's rescaling)")        \
     H(ROLLING, xr_x, "m", 1, "rolling spring, x")                              \
     H(ROLLING, xr_y, "m", 1, "rolling spring, y")                              \
     H(ROLLING, xr_z, "m", 1, "rolling spring, z")                              \

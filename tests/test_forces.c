@@ -18,6 +18,7 @@
 struct ref_hist {
     struct dem_vec3 xi, xr, xo; /* tangential, rolling, torsion springs */
     double dmax;
+    double kt; /* Hertz-Mindlin: k_t of the last step */
     int state;
 };
 
@@ -88,6 +89,14 @@ static void ref_contact(const struct dem_sim *s, struct ref *R,
         fc = fn > 0.0 ? fn : 0.0;
         T.kt = 8 * gs * sqrt(a12 * delta);
         T.gamma_t = cp->hertz_alpha * sqrt(T.kt * m12 / 1.5);
+        /* the spring scaled by k_t,old/k_t,new where k_t grew */
+        if (h->kt < T.kt) {
+            const double r = h->kt / T.kt;
+            h->xi.x *= r;
+            h->xi.y *= r;
+            h->xi.z *= r;
+        }
+        h->kt = T.kt;
     } else {
         fn = cp->k * delta + cp->gamma_n * ddot;
         fc = fn > 0.0 ? fn : 0.0;

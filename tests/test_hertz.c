@@ -8,10 +8,16 @@
  * collision at relative speed v lasts t_c = 2.868 (m*^2/(R* E*^2 v))^(1/5)
  * (from 1/2 m* v^2 = 2/5 K delta_max^(5/2), K = 4/3 E* sqrt(R*), and
  * t_c = 2.9432 delta_max / v): 1.1486 ms for the pair at 1 m/s.
+ *
+ * And the tangential spring, one pair driven along a path of overlaps
+ * and tangential displacements: it never gives back more work than it
+ * took (its stiffness follows the overlap, so it is rescaled as the
+ * contact loads: dem_spring_rescale).
  */
 #include "testutil.h"
 
 #include "contact/models.h"
+#include "contact/pair.h"
 
 #define A 5e-3
 
@@ -131,12 +137,156 @@ static void derived_damping_inverts_the_restitution(void **state)
     }
 }
 
+/* One pair, sphere i driven at a given velocity against a resting j, by
+ * the engine's kernel (pair_vals): the tangential force's work on the
+ * driver and the spring's energy. */
+struct drive {
+    double h[DEM_NHISTORY];
+    int state, ci, cj;
+    struct pass q;
+    struct pv pi, pj;
+    struct dem_contact_params cp;
+    struct dem_tangential T;
+    double dt;
+    double work;  /* J, done by the driver against the tangential force */
+    double worst; /* the least of work - energy seen, J */
+    double emax;  /* the largest spring energy seen, J */
+    double ft;    /* |f_t| of the last step, N */
+    int slid;     /* steps that ended sliding */
+};
+
+static void drive_init(struct drive *D, double mu, double delta)
+{
+    memset(D, 0, sizeof *D);
+    struct dem_config c;
+    hertz_config(&c, 1.0); /* elastic: no dashpot, only the spring */
+    c.contact.mu_s = c.contact.mu_d = mu;
+    D->cp = c.contact;
+    dem_contact_derive(&D->cp);
+    D->T = (struct dem_tangential){D->cp.kt, D->cp.gamma_t, mu, mu};
+    D->dt = 1e-6;
+    D->worst = INFINITY;
+    D->cj = 1;
+    D->q.ci = &D->ci;
+    D->q.cj = D->q.cjr = &D->cj;
+    D->q.state = &D->state;
+    int k = 0;
+#define DRIVE_HIST_(MODEL, name, unit, swap, doc) D->q.name = &D->h[k++];
+    DEM_CONTACT_HISTORY(DRIVE_HIST_)
+#undef DRIVE_HIST_
+    const double m = 4.0 / 3.0 * M_PI * A * A * A * 2000.0;
+    D->pi = (struct pv){.r = A, .m = m};
+    D->pj = (struct pv){.x = -(2.0 * A - delta), .r = A, .m = m};
+}
+
+/* Moves i by (ux, uy) in n steps at constant velocity (the drift, then
+ * the force at the new positions with the velocity of the drift, as a
+ * velocity-Verlet step). */
+static void drive_leg(struct drive *D, double ux, double uy, int n)
+{
+    const double zero[6] = {0.0};
+    D->pi.vx = ux / (n * D->dt);
+    D->pi.vy = uy / (n * D->dt);
+    for (int s = 0; s < n; s++) {
+        D->pi.x += D->pi.vx * D->dt;
+        D->pi.y += D->pi.vy * D->dt;
+        const struct dem_contact_force o =
+            pair_vals(DEM_NORMAL_HERTZ, &D->q, 0, D->pi, D->pj, &D->cp, D->dt,
+                      &D->T, zero, zero);
+        const double bx = D->pi.x - D->pj.x, by = D->pi.y - D->pj.y,
+                     d = sqrt(bx * bx + by * by), nx = bx / d, ny = by / d;
+        const double fn = o.f[0] * nx + o.f[1] * ny;
+        const double ftx = o.f[0] - fn * nx, fty = o.f[1] - fn * ny;
+        D->work -= (ftx * D->pi.vx + fty * D->pi.vy) * D->dt;
+        const struct dem_vec3 xi = {D->q.xi_x[0], D->q.xi_y[0], D->q.xi_z[0]};
+        const double e = dem_tangential_energy(xi, D->q.kt_last[0]);
+        D->ft = sqrt(ftx * ftx + fty * fty);
+        D->slid += (D->state & DEM_CONTACT_SLIDING) != 0;
+        D->emax = e > D->emax ? e : D->emax;
+        D->worst = D->work - e < D->worst ? D->work - e : D->worst;
+    }
+}
+
+/* The pair's overlap, m. */
+static double drive_overlap(const struct drive *D)
+{
+    const double bx = D->pi.x - D->pj.x, by = D->pi.y - D->pj.y;
+    return 2.0 * A - sqrt(bx * bx + by * by);
+}
+
+/* Presses i by dd towards j along their normal in n steps (dd < 0:
+ * draws it away), so that the tangential spring is not stretched. */
+static void drive_press(struct drive *D, double dd, int n)
+{
+    const double bx = D->pi.x - D->pj.x, by = D->pi.y - D->pj.y,
+                 d = sqrt(bx * bx + by * by);
+    drive_leg(D, -dd * bx / d, -dd * by / d, n);
+}
+
+/* A spring stretched at overlap delta and the contact then loaded to 4
+ * delta keeps its force (k_t doubles, the spring halves); unloaded back
+ * to delta, the force halves with k_t (the spring kept). Round the
+ * cycle stretch, load, stretch back, unload, the driver has put in at
+ * least the energy the spring holds, at every step: with the spring kept
+ * as a displacement at the current k_t, stretching it back at 4 delta
+ * gave twice the work that stretching it at delta took. Again with
+ * friction that lets it slide, over cycles of other sizes. */
+static void tangential_spring_gives_back_no_more_than_it_took(void **state)
+{
+    (void)state;
+    const double d1 = 1e-5, s1 = 2e-6; /* m: f_t / f_n about 0.26 */
+    struct drive D;
+    drive_init(&D, 10.0, d1);
+    drive_leg(&D, 0.0, s1, 200);
+    const double f1 = D.ft, w1 = D.work;
+    assert_rel(w1, 0.5 * f1 * s1, 0.01); /* 1/2 k_t s^2 */
+    drive_press(&D, 3.0 * d1, 200);      /* loaded to 4 delta */
+    const double d4 = drive_overlap(&D);
+    print_message("stretched at delta: |f_t| = %.6g N; loaded to 4 delta: "
+                  "%.6g N\n",
+                  f1, D.ft);
+    assert_rel(D.ft, f1, 1e-6);
+    assert_true(D.emax <= w1 * (1.0 + 1e-9));
+    drive_press(&D, -3.0 * d1, 200); /* and back */
+    print_message("unloaded to delta: %.6g N\n", D.ft);
+    /* k_t falls as sqrt(delta): the force to about half (the stretch
+     * moved i off its line and left an overlap s^2/(2 d) below delta) */
+    assert_rel(D.ft, f1 * sqrt(drive_overlap(&D) / d4), 1e-9);
+    assert_rel(D.ft, 0.5 * f1, 1e-4);
+    drive_press(&D, 3.0 * d1, 200);
+    drive_leg(&D, 0.0, -s1, 200); /* stretched back at 4 delta */
+    drive_press(&D, -3.0 * d1, 200);
+    print_message("cycle: work put in %.6g J, least margin over the "
+                  "spring's energy %.3g J\n",
+                  D.work, D.worst);
+    assert_true(D.worst >= -1e-9 * D.emax && D.slid == 0);
+    assert_true(D.work > 0.2 * w1); /* most of it still held */
+    /* cycles of other sizes, sticking (mu = 10) and sliding (mu = 0.3) */
+    for (int f = 0; f < 2; f++) {
+        drive_init(&D, f ? 0.3 : 10.0, d1);
+        for (int c = 1; c <= 6; c++) {
+            const double dd = d1 * c / 2.0, ss = s1 * (c % 3 + 1) / 2.0;
+            drive_leg(&D, 0.0, ss, 100);
+            drive_press(&D, dd, 100);
+            drive_leg(&D, 0.0, -2.0 * ss, 100);
+            drive_press(&D, -dd, 100);
+            drive_leg(&D, 0.0, ss, 100);
+        }
+        print_message("mu = %g: work put in %.6g J, least margin %.3g J, "
+                      "largest energy %.3g J, %d of 3000 steps sliding\n",
+                      f ? 0.3 : 10.0, D.work, D.worst, D.emax, D.slid);
+        assert_true(D.worst >= -1e-9 * D.emax && D.emax > 0.0);
+        assert_true(f ? D.slid > 100 : D.slid == 0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(derived_damping_inverts_the_restitution),
         cmocka_unit_test(elastic_collision_lasts_the_hertz_time),
         cmocka_unit_test(restitution_is_the_one_asked_for_at_any_speed),
+        cmocka_unit_test(tangential_spring_gives_back_no_more_than_it_took),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

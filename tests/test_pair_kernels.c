@@ -87,9 +87,11 @@ static double urand(unsigned *s, double lo, double hi)
 /* The pairs' particle records and their histories and states before the
  * step, at random: the gaps from 6 % overlap to 6 % apart, the springs
  * from 1e-7 to 1e-3 m (the largest slide), Luding's largest overlaps
- * from 0 to 9 % (h[3]: below and above the overlaps), every combination
- * of the state bits. */
-#define NH 4 /* history values: xi_x, xi_y, xi_z, dmax */
+ * from 0 to 9 % (h[3]: below and above the overlaps), Hertz-Mindlin's
+ * last tangential stiffness from 0 to 3000 N/m (h[4]: about the k_t of
+ * hertz()'s contacts, below and above; every seventh 0, a new contact),
+ * every combination of the state bits. */
+#define NH 5 /* history values: xi_x, xi_y, xi_z, dmax, kt_last */
 struct pairs_data {
     double *rec, h[NH][NP];
     int ci[NP], cj[NP], state[NP];
@@ -125,6 +127,7 @@ static void make_pairs(struct pairs_data *D)
             D->h[e][k] = urand(&s, -1.0, 1.0) * pow(10.0, urand(&s, -7, -3));
         }
         D->h[3][k] = (ra + rb) * urand(&s, 0.0, 0.09);
+        D->h[4][k] = k % 7 ? urand(&s, 0.0, 3000.0) : 0.0;
         a[3] = ra;
         b[3] = rb;
         a[7] = b[7] = 1e-5;
@@ -168,6 +171,7 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st,
     q.xi_y = h[1];
     q.xi_z = h[2];
     q.dmax = h[3];
+    q.kt_last = h[4];
     q.state = st;
     return q;
 }
@@ -176,9 +180,10 @@ static struct pass pass_of(const struct pairs_data *D, double (*h)[NP], int *st,
  * open ones, the groups in which none slid; with Luding's law the
  * touching contacts whose largest overlap grew (virgin loading), stayed
  * (on their un-/re-loading line) and fell (re-mapped on the adhesive
- * branch). */
+ * branch); with Hertz-Mindlin's those whose tangential stiffness grew
+ * (their springs rescaled) and fell (kept). */
 struct counts {
-    int stick, slide, open, calm, virgin, line, remap;
+    int stick, slide, open, calm, virgin, line, remap, stiffer, softer;
 };
 
 /* One parameter set cp (its normal law cp.normal): the groups of width w
@@ -244,6 +249,8 @@ static struct counts compare(const struct pairs_data *D,
             ++*(h0[3][k] > D->h[3][k]   ? &c.virgin
                 : h0[3][k] < D->h[3][k] ? &c.remap
                                         : &c.line);
+        if (law == DEM_NORMAL_HERTZ)
+            ++*(h0[4][k] > D->h[4][k] ? &c.stiffer : &c.softer);
     }
     return c;
 }
@@ -358,6 +365,8 @@ static void pairs_match(struct dem_contact_params cp0, const double *cell,
                 struct counts c = compare(D, cp, cell, w, two, 0, skip);
                 /* every branch of the law taken by many pairs */
                 assert_true(c.stick > many && c.slide > many && c.open > 100);
+                if (cp.normal == DEM_NORMAL_HERTZ)
+                    assert_true(c.stiffer > 100 && c.softer > 100);
                 /* high friction: few slide, and most groups have none
                  * that does (their sliding case skipped with skip 1) */
                 cp.mu_s = cp.mu_d = 50.0;
@@ -444,6 +453,8 @@ static void wall_groups_match_wall_vals(void **state)
                                                           : cp0;
                 struct counts c = compare(&D, cp, NULL, w, 0, 1, skip);
                 assert_true(c.stick > 100 && c.slide > 100 && c.open > 100);
+                if (law == 2)
+                    assert_true(c.stiffer > 100 && c.softer > 100);
                 cp.mu_s = cp.mu_d = 50.0;
                 c = compare(&D, cp, NULL, w, 0, 1, skip);
                 if (law) {

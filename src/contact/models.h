@@ -98,6 +98,19 @@ static inline int dem_owner_used(int set, int owner)
  * the model set; a constant when set is one. */
 #define DEM_MODEL_USES(set, MODEL) dem_owner_used((set), DEM_OWNER_##MODEL)
 
+/* The owner of each history value (its MODEL column) by the value's
+ * name: DEM_HIST_OWNER_name. */
+enum {
+#define DEM_HIST_OWNER_(MODEL, name, unit, swap, doc)                          \
+    DEM_HIST_OWNER_##name = DEM_OWNER_##MODEL,
+    DEM_CONTACT_HISTORY(DEM_HIST_OWNER_)
+#undef DEM_HIST_OWNER_
+};
+
+/* Whether the model set keeps the history value name (computed, carried
+ * and stored), whichever model owns it; a constant when set is one. */
+#define DEM_KEEPS(set, name) dem_owner_used((set), DEM_HIST_OWNER_##name)
+
 /* The history values the model set keeps: bit k for the k-th line of
  * DEM_CONTACT_HISTORY (struct dem_pairs.hist). */
 static inline unsigned dem_contact_history_mask(int set)

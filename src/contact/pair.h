@@ -91,6 +91,13 @@ finish_contact(const int law, const struct pass *q, int k, int touch,
                const struct dem_tangential *T)
 {
     const int plane = DEM_SET_IN_PLANE(law);
+    if (DEM_KEEPS(law, kt_last)) { /* k_t follows the overlap */
+        const double s = dem_spring_rescale(h.kt_last, T->kt);
+        h.xi_x *= s;
+        h.xi_y *= s;
+        h.xi_z *= s;
+        h.kt_last = T->kt;
+    }
     struct dem_vec3 xi = {h.xi_x, h.xi_y, h.xi_z};
     const struct dem_vec3 ft =
         dem_tangential_force_in(plane, n, vij, fc, dt, T, &xi, &st);

@@ -325,10 +325,11 @@ DEM_INLINE LV LIN_(lin_dot_in)(const int plane, LV ax, LV ay, LV az, LV bx,
 
 /* The tangential law's stiffness and viscosity at LIN_W contacts
  * (dem_normal_shear): the law's own, in every lane, or with vary set
- * (Hertz-Mindlin) each contact's. */
+ * (Hertz-Mindlin) each contact's; with rescale set (the law keeps
+ * kt_last) the springs are rescaled (dem_spring_rescale). */
 struct LIN_(lin_shear) {
     LV kt, gt;
-    int vary;
+    int vary, rescale;
 };
 
 /* The tangential law of LIN_W contacts up to the Coulomb test
@@ -364,6 +365,16 @@ DEM_INLINE int LIN_(lin_test)(const int plane, const struct pass *q, int k,
              gt = sh.vary ? sh.gt : LV_SET1(T->gamma_t);
     t->sh = sh;
     const LV zero = LV_ZERO();
+    if (sh.rescale) { /* finish_contact's rescaling, k_t kept for the next */
+        const LV kl = LV_LOADU(q->kt_last + k);
+        const LV s = LV_BLEND(LV_SET1(1.0), LV_DIV(kl, sh.kt),
+                              LV_CMP(kl, sh.kt, _CMP_LT_OQ));
+        hx = LV_MUL(hx, s);
+        hy = LV_MUL(hy, s);
+        if (!plane)
+            hz = LV_MUL(hz, s);
+        LV_STOREU(q->kt_last + k, LV_KEEP(sh.kt, touch));
+    }
     const LV nv = LIN_(lin_dot_in)(plane, nx, ny, nz, vx, vy, vz);
     const LV nxi = LIN_(lin_dot_in)(plane, nx, ny, nz, hx, hy, hz);
     t->vtx = LV_SUB(vx, LV_MUL(nx, nv));
@@ -570,6 +581,7 @@ DEM_INLINE LV LIN_(lin_normal)(const int law, const struct pass *q, int k,
     sh->kt = LV_SET1(T->kt);
     sh->gt = LV_SET1(T->gamma_t);
     sh->vary = 0;
+    sh->rescale = DEM_KEEPS(law, kt_last);
     if ((law & DEM_SET_NORMAL) == DEM_NORMAL_HERTZ) {
         /* dem_model_hertz_force and _shear, their roots shared */
         const LV d = LV_MAX(delta, zero); /* delta > 0 ? delta : 0 */

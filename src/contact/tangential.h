@@ -103,6 +103,25 @@ dem_coulomb_spring(double sx, double sy, double sz, double vx, double vy,
                                  slip_bit);
 }
 
+/* The factor of the stored spring of a contact whose tangential
+ * stiffness follows its overlap (Hertz-Mindlin: k_t = 8 G* sqrt(R* delta)),
+ * k_t of the last step kt_last and of this one kt, taken before the spring
+ * is projected and stretched: kt_last/kt where the stiffness grew, 1 where
+ * it fell or stayed. While the contact loads, its force -k_t xi is then
+ * kept (the incremental law of Mindlin and Deresiewicz: a normal load adds
+ * no tangential force); while it unloads, the force falls with k_t
+ * (C. Thornton and K. K. Yin, Powder Technol. 65 (1991) 153; LAMMPS's
+ * tangential mindlin_rescale/force). Either way the spring's energy
+ * 1/2 k_t |xi|^2 never rises but by the work of the tangential force
+ * (test_hertz): kept as a displacement with the current k_t, a spring
+ * stretched at overlap delta and released at 4 delta gave back twice the
+ * work it took. A new contact (kt_last = 0) has no spring to scale. With
+ * kt = 0 (an open gap) the factor is 1 and no division is made. */
+static inline double dem_spring_rescale(double kt_last, double kt)
+{
+    return kt_last < kt ? kt_last / kt : 1.0;
+}
+
 /* a . b, in the plane (plane, a literal: a.z = b.z = 0) without its
  * z term: the same value. */
 static inline double dem_dot_in(const int plane, struct dem_vec3 a,

@@ -22,9 +22,10 @@
  *     PART  every particle array (DEM_PARTICLE_*_ARRAYS; the reaches
  *           since version 9, a periodic cell's positions in the frame
  *           of the last build since version 11)
- *     PAIR  the pair list with its history, row starts, stored forces
- *           and (periodic cell) the pairs' images; the reverse rows are
- *           derived on reading (since version 10)
+ *     PAIR  the pair list with its history (Hertz-Mindlin's kt_last
+ *           since version 12), row starts, stored forces and (periodic
+ *           cell) the pairs' images; the reverse rows are derived on
+ *           reading (since version 10)
  *     WALC  the particle-wall list with its history and stored forces
  *     NBR   wall positions at the last neighbour-list build
  *     END
@@ -40,7 +41,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 11u
+#define DEM_CKPT_VERSION 12u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {
