@@ -58,9 +58,14 @@ struct dem_peak {
     char reason[DEM_REASON_MAX]; /* why not, when ok = 0 */
 };
 
+/* The end of the loading where a maximum means the curve still rises:
+ * this fraction of the strain range (and the last smoothing window). */
+#define DEM_PEAK_END_FRACTION 0.05
+
 /* Peak of a noisy curve y(strain): the maximum of y smoothed with a half
  * window of `half` samples. There is no peak when the maximum lies within
- * the last half + 1 samples: the curve still rises at the end. */
+ * the last half + 1 samples or the last DEM_PEAK_END_FRACTION of the
+ * strain range: the curve still rises at the end. */
 int dem_peak_find(const double *strain, const double *y, long n, long half,
                   struct dem_peak *out);
 
@@ -71,17 +76,35 @@ struct dem_critical {
     double value;       /* mean of y over the window */
     double drift;       /* change of the fitted line across the window divided
                            by |value|; NaN when it cannot be computed */
+    double drift_stderr; /* its standard error (residuals' lag-one
+                            autocorrelation counted); NaN as drift */
     double strain_from; /* axial strain where the window starts */
     char reason[DEM_REASON_MAX];
 };
 
 /* Critical state of y(strain): the mean of y over the last `fraction` of
  * the axial strain range, provided that the line fitted there changes y by
- * at most `tolerance` times its mean, or by at most twice the scatter of y
- * about the line, across the window (a plateau). */
+ * at most `tolerance` times its mean, or by at most twice that change's
+ * standard error, across the window (a plateau). */
 int dem_critical_find(const double *strain, const double *y, long n,
                       double fraction, double tolerance,
                       struct dem_critical *out);
+
+/* How far a peak must stand above the critical state's plateau: this
+ * many times the plateau's own largest excursion above its fitted line.
+ * (The largest fluctuation of a flat stretch twice as long as the
+ * plateau's window typically exceeds the window's by 10-30 %.) */
+#define DEM_PEAK_DISTINCT 1.5
+
+/* Whether the peak of y(strain) (dem_peak_find with half) stands out of
+ * the plateau of the critical state crit (both found): it must lie before
+ * the plateau's window and above the higher end of the line fitted there
+ * by more than DEM_PEAK_DISTINCT times the largest excursion of y,
+ * smoothed alike, above that line within the window. Else it is one of
+ * the plateau's fluctuations: made "not found", with that reason.
+ * DEM_ENOMEM or DEM_OK. */
+int dem_peak_distinct(struct dem_peak *peak, const struct dem_critical *crit,
+                      const double *strain, const double *y, long n, long half);
 
 /* -------------------------------------------------------------- slopes.c */
 

@@ -261,6 +261,11 @@ static int analyze_monotonic(const struct curves *cv, int dim,
         free(ratio);
         return rc;
     }
+    rc = dem_peak_distinct(&R->peak, &R->crit, x, ratio, n, R->half);
+    if (rc) {
+        free(ratio);
+        return rc;
+    }
     if (R->crit.ok) {
         R->crit_s1 = dem_mean(cv->s1 + R->crit.first, R->crit.count);
         R->crit_s3 = dem_mean(cv->s3 + R->crit.first, R->crit.count);
@@ -560,6 +565,7 @@ static void write_critical(struct dem__json *j, const struct result *R)
     dem__json_number(j, "sigma_lateral", ok ? R->crit_s3 : NAN);
     dem__json_number(j, "strain_from", R->mono ? R->crit.strain_from : NAN);
     dem__json_number(j, "drift", R->mono ? R->crit.drift : NAN);
+    dem__json_number(j, "drift_stderr", R->mono ? R->crit.drift_stderr : NAN);
     dem__json_int(j, "samples", R->mono ? R->crit.count : 0);
     if (!ok)
         dem__json_string(j, "reason", why);
@@ -676,6 +682,8 @@ static void write_criteria(struct dem__json *j, const struct result *R)
                      R->mono ? (double)R->half : NAN);
     dem__json_number(j, "critical_strain_fraction", CRITICAL_FRACTION);
     dem__json_number(j, "plateau_tolerance", PLATEAU_TOLERANCE);
+    dem__json_number(j, "peak_end_fraction", DEM_PEAK_END_FRACTION);
+    dem__json_number(j, "peak_distinct", DEM_PEAK_DISTINCT);
     dem__json_number(j, "initial_fraction", INITIAL_FRACTION);
     dem__json_number(j, "dilatant_window_samples",
                      R->mono ? (double)R->sl.window : NAN);
@@ -724,6 +732,7 @@ static void write_shear(struct dem__json *j, const struct result *R)
         none ? none : S->crit.reason);
     num(j, "gamma_from", S->n ? S->crit.strain_from : NAN, none);
     num(j, "drift", S->n ? S->crit.drift : NAN, none);
+    num(j, "drift_stderr", S->n ? S->crit.drift_stderr : NAN, none);
     dem__json_close(j);
     const int dl = S->n && S->slopes.dilatant_ok;
     num(j, "dilatancy_max", dl ? S->slopes.dilatant : NAN,

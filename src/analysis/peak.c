@@ -3,15 +3,22 @@
  *
  * Peak: the maximum of the curve after a light centred moving average, so
  * that one noisy sample does not make the peak. A maximum within the last
- * smoothing window means the curve still rises when the loading stops,
- * i.e. the run is too short to show a peak.
+ * smoothing window or the last DEM_PEAK_END_FRACTION of the strain means
+ * the curve still rises when the loading stops, i.e. the run is too short
+ * to show a peak (a fraction of the strain as well as of the samples: the
+ * cosine profile crowds its samples at the slow end, where the last 1 %
+ * of them spans a tiny strain). Where the end is a plateau, the peak must
+ * stand out of it (dem_peak_distinct): above the plateau's line by more
+ * than DEM_PEAK_DISTINCT times the largest excursion of the plateau itself
+ * above that line, smoothed alike; else it is one of the fluctuations of a
+ * curve that rose to its critical state without a peak (a loose packing).
  *
  * Critical state: the mean over the end of the loading, but only when the
  * end is a plateau. A straight line fitted there must not change the value
- * by more than a tolerance (or by more than twice the scatter of the
- * samples about the line, whichever is larger) across the window,
- * otherwise the run is still softening (or hardening) and the "critical"
- * value would depend on where it was cut.
+ * by more than a tolerance across the window, or by no more than twice
+ * that change's standard error (a trend the fluctuations do not let one
+ * tell from none), otherwise the run is still softening (or hardening) and
+ * the "critical" value would depend on where it was cut.
  */
 #include <math.h>
 #include <stdio.h>
@@ -50,11 +57,14 @@ int dem_peak_find(const double *strain, const double *y, long n, long half,
         snprintf(out->reason, sizeof out->reason,
                  "the stress ratio is not a number throughout the loading "
                  "stage (no stress on the walls)");
-    } else if (k >= n - 1 - half) {
+    } else if (k >= n - 1 - half ||
+               fabs(strain[n - 1] - strain[k]) <
+                   DEM_PEAK_END_FRACTION * fabs(strain[n - 1] - strain[0])) {
         snprintf(out->reason, sizeof out->reason,
                  "the stress ratio still rises at the end of the loading "
-                 "stage (maximum within the last %ld samples): load further",
-                 half + 1);
+                 "stage (maximum within the last %ld samples or %.0f%% of "
+                 "the strain): load further",
+                 half + 1, 100.0 * DEM_PEAK_END_FRACTION);
     } else {
         out->ok = 1;
         out->index = k;
@@ -65,6 +75,70 @@ int dem_peak_find(const double *strain, const double *y, long n, long half,
     return DEM_OK;
 }
 
+int dem_peak_distinct(struct dem_peak *peak, const struct dem_critical *crit,
+                      const double *strain, const double *y, long n, long half)
+{
+    if (!peak->ok || !crit->ok)
+        return DEM_OK;
+    struct dem_linfit f;
+    if (dem_linfit(strain + crit->first, y + crit->first, crit->count, &f))
+        return DEM_OK; /* (dem_critical_find has fitted it) */
+    double *s = malloc((size_t)n * sizeof *s);
+    if (!s)
+        return DEM_ENOMEM;
+    dem_smooth(y, n, half, s);
+    /* the plateau's largest excursion above its line, smoothed alike */
+    double excess = 0.0;
+    for (long i = crit->first; i < n; i++) {
+        const double e = s[i] - (f.a + f.b * strain[i]);
+        excess = isfinite(e) && e > excess ? e : excess;
+    }
+    free(s);
+    const double l0 = f.a + f.b * strain[crit->first],
+                 l1 = f.a + f.b * strain[n - 1], top = l0 > l1 ? l0 : l1;
+    if (peak->index < crit->first &&
+        peak->value - top > DEM_PEAK_DISTINCT * excess)
+        return DEM_OK;
+    snprintf(peak->reason, sizeof peak->reason,
+             "no peak distinct from the critical state: the largest stress "
+             "ratio, %.4g, is above the plateau, %.4g, by less than %.1f "
+             "times the plateau's largest excursion, %.3g",
+             peak->value, top, DEM_PEAK_DISTINCT, excess);
+    peak->ok = 0;
+    peak->index = -1;
+    peak->value = peak->strain = NAN;
+    return DEM_OK;
+}
+
+/* The standard error of the slope b of the line fitted to (x, y) (its
+ * residuals' variance over n - 2 degrees of freedom, inflated by
+ * (1 + rho)/(1 - rho) for their lag-one autocorrelation rho, clamped to
+ * [0, 0.99]: the samples of a flowing packing are correlated over many
+ * rows, and taking them as independent would call any slow fluctuation a
+ * trend). */
+static double slope_stderr(const double *x, const double *y, long n,
+                           const struct dem_linfit *f)
+{
+    if (n < 3)
+        return NAN;
+    double mx = 0.0;
+    for (long i = 0; i < n; i++)
+        mx += x[i];
+    mx /= (double)n;
+    double sxx = 0.0, rr = 0.0, r1 = 0.0, prev = 0.0;
+    for (long i = 0; i < n; i++) {
+        const double r = y[i] - (f->a + f->b * x[i]);
+        sxx += (x[i] - mx) * (x[i] - mx);
+        rr += r * r;
+        if (i > 0)
+            r1 += r * prev;
+        prev = r;
+    }
+    double rho = rr > 0.0 ? r1 / rr : 0.0;
+    rho = rho < 0.0 ? 0.0 : rho > 0.99 ? 0.99 : rho;
+    return sqrt(rr / (double)(n - 2) / sxx * (1.0 + rho) / (1.0 - rho));
+}
+
 int dem_critical_find(const double *strain, const double *y, long n,
                       double fraction, double tolerance,
                       struct dem_critical *out)
@@ -72,7 +146,7 @@ int dem_critical_find(const double *strain, const double *y, long n,
     out->ok = 0;
     out->first = -1;
     out->count = 0;
-    out->value = out->drift = out->strain_from = NAN;
+    out->value = out->drift = out->drift_stderr = out->strain_from = NAN;
     out->reason[0] = '\0';
     if (n < 2) {
         snprintf(out->reason, sizeof out->reason,
@@ -118,17 +192,19 @@ int dem_critical_find(const double *strain, const double *y, long n,
     }
     const double span = strain[n - 1] - strain[first];
     out->drift = f.b * span / fabs(out->value);
-    /* a trend smaller than the fluctuations themselves (twice the scatter
-     * about the line) is not a trend: critical-state flow fluctuates
-     * strongly in small samples (Luding et al. Sec. 3.2) */
-    const double noise = 2.0 * f.rms / fabs(out->value);
-    if (fabs(out->drift) > tolerance && fabs(out->drift) > noise) {
+    out->drift_stderr = slope_stderr(strain + first, y + first, count, &f) *
+                        span / fabs(out->value);
+    /* a trend within twice its standard error is not told from none:
+     * critical-state flow fluctuates strongly in small samples (Luding et
+     * al. Sec. 3.2) */
+    const double noise = 2.0 * out->drift_stderr;
+    if (fabs(out->drift) > tolerance && !(fabs(out->drift) <= noise)) {
         snprintf(out->reason, sizeof out->reason,
-                 "no plateau: the stress ratio changes by %.1f%% over the "
-                 "last %.0f%% of the axial strain (tolerance %.0f%%, or "
-                 "twice its scatter, %.0f%%)",
-                 100.0 * out->drift, 100.0 * fraction, 100.0 * tolerance,
-                 100.0 * noise);
+                 "no plateau: the stress ratio changes by %.1f%% (+- %.1f%%) "
+                 "over the last %.0f%% of the axial strain (tolerance %.0f%%, "
+                 "or twice its standard error)",
+                 100.0 * out->drift, 100.0 * out->drift_stderr,
+                 100.0 * fraction, 100.0 * tolerance);
         out->value = NAN;
         return DEM_OK;
     }

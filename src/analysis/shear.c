@@ -2,6 +2,7 @@
  * tau/sigma_n at its peak and in the critical state, and the dilatancy
  * d eps_v / d gamma (docs/analysis.md). */
 #include <math.h>
+#include <stdio.h>
 
 #include "analysis/analysis.h"
 
@@ -13,6 +14,10 @@ void dem_shear_analyze(const double *gamma, const double *mu,
     dem_peak_find(gamma, mu, n, half, &out->peak);
     dem_critical_find(gamma, mu, n, DEM_SHEAR_CRITICAL_FRACTION,
                       DEM_SHEAR_PLATEAU_TOLERANCE, &out->crit);
+    if (dem_peak_distinct(&out->peak, &out->crit, gamma, mu, n, half)) {
+        out->peak.ok = 0; /* out of memory: said so, not a false peak */
+        snprintf(out->peak.reason, sizeof out->peak.reason, "out of memory");
+    }
     long window = n / 10;
     if (window < 5)
         window = 5;
