@@ -482,6 +482,13 @@ static const struct bad bad_inputs[] = {
     {"contact = 5;", "contact.k=1.0", "--set contact.k: the config has a value",
      0},
     {"box = { size = 5; };", "box.size.1=1.0", "--set box.size.1", 0},
+    /* integers beyond int, which libconfig wraps to another value
+     * (4294967316 read as 20) unless written with an L */
+    {"seed = 1;\nparticles = { count = 4294967316; };", 0,
+     "integer 4294967316 is beyond 2147483647", 2},
+    {"seed = 4294967297; # 1", 0, "(4294967297L)", 1},
+    {"", "particles.count=4294967316", "--set particles.count: integer", 0},
+    {"", "stages.0.cycles=-4294967295", "beyond 2147483647", 0},
     {"dimension = 2;\n",
      "stages.0={ type = \"compress\"; axis = \"z\"; "
      "strain = 0.1; duration = 0.1; pressure = 1.0; }",
@@ -553,6 +560,14 @@ static void quotes_in_comments_and_escapes_are_not_open_strings(void **state)
              0, 0);
     assert_int_equal(c.seed, 2);
     assert_string_equal(c.particles.file, "a\"b /* #");
+    /* nor does a wide integer in a comment, a string, a real number or
+     * with its L */
+    parse_ok(&c,
+             "seed = 3000000000L; # 4294967297\n"
+             "/* 4294967297 */ box = { size = [0.02, 0.02, 3000000000.0]; };\n"
+             "particles = { placement = \"file\"; file = \"4294967297\"; };\n",
+             0, 0);
+    assert_true(c.seed == 3000000000u);
 }
 
 /* With placement = "file", particles.count is not used (the file says how

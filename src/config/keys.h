@@ -145,6 +145,12 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
 int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
                              struct dem_error *err);
 
+/* parse.c: the first decimal integer of text (outside strings and
+ * comments) beyond the range of int, without libconfig's L suffix, which
+ * libconfig would wrap to another value (4294967316 reads as 20): its
+ * digits in tok and its line in *line; 0 when there is none. */
+int dem__cfg_wide_integer(const char *text, int *line, char *tok, size_t n);
+
 /* set.c: apply one --set KEY=VALUE to the tree. */
 int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err);
 

@@ -526,6 +526,53 @@ static const char *unterminated(const char *t, int *at)
     return 0;
 }
 
+int dem__cfg_wide_integer(const char *text, int *line, char *tok, size_t n)
+{
+    int l = 1;
+    for (const char *t = text; *t; t++) {
+        if (*t == '\n') {
+            l++;
+        } else if (*t == '"') { /* a string, its escapes skipped */
+            for (t++; *t && *t != '"'; t++) {
+                if (*t == '\n')
+                    l++;
+                else if (*t == '\\' && t[1])
+                    t++;
+            }
+            if (!*t)
+                return 0;
+        } else if (*t == '#' || (*t == '/' && t[1] == '/')) {
+            while (t[1] && t[1] != '\n')
+                t++;
+        } else if (*t == '/' && t[1] == '*') {
+            for (t += 2; *t && !(*t == '*' && t[1] == '/'); t++)
+                l += *t == '\n';
+            if (!*t)
+                return 0;
+            t++;
+        } else if (isdigit((unsigned char)*t) &&
+                   (t == text || !(isalnum((unsigned char)t[-1]) ||
+                                   t[-1] == '_' || t[-1] == '.'))) {
+            const char *b = t;
+            while (isdigit((unsigned char)t[1]))
+                t++;
+            const char next = t[1];
+            if (next == '.' || next == 'e' || next == 'E' || next == 'L' ||
+                next == 'x' || next == 'X' || isalpha((unsigned char)next))
+                continue; /* a real number, an int64, hex or a name */
+            while (*b == '0' && b < t)
+                b++;
+            const size_t len = (size_t)(t - b) + 1;
+            if (len > 10 || (len == 10 && strncmp(b, "2147483647", 10) > 0)) {
+                snprintf(tok, n, "%.*s", (int)len, b);
+                *line = l;
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 /* The key assigned on line `line` of text that is a duplicate: the name
  * assigned twice on that line, or the only name assigned on it. */
 static void duplicate_name(const char *text, int line, char *out, size_t n)
@@ -652,6 +699,15 @@ int dem_config_parse(struct dem_config *c, const char *text, const char *source,
                            "%s:%d: unterminated %s (it runs to the end of the "
                            "text)",
                            x->source, open_line, open_kind);
+        goto out;
+    }
+    char wide[32];
+    if (dem__cfg_wide_integer(text, &open_line, wide, sizeof wide)) {
+        rc = dem_error_set(err, DEM_ECONFIG,
+                           "%s:%d: integer %s is beyond 2147483647, and "
+                           "libconfig would read another value: write it "
+                           "with an L suffix (%sL)",
+                           x->source, open_line, wide, wide);
         goto out;
     }
     if (!config_read_string(&cfg, text)) {

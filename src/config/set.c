@@ -325,6 +325,16 @@ int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
     config_init(&tmp);
     const int k = dem__cfg_find_key(key, S_TOP);
     const int is_path = k >= 0 && dem__cfg_keys[k].kind == K_PATH;
+    char wide[32];
+    int wline;
+    if (!is_path && dem__cfg_wide_integer(value, &wline, wide, sizeof wide)) {
+        rc = dem_error_set(err, DEM_ECONFIG,
+                           "--set %s: integer %s is beyond 2147483647, and "
+                           "libconfig would read another value: write it "
+                           "with an L suffix (%sL)",
+                           key, wide, wide);
+        goto out;
+    }
     if (!parse_value(&tmp, value, is_path, &why)) {
         if (why && strstr(why, "mismatched element type"))
             rc = dem_error_set(err, DEM_ECONFIG,
