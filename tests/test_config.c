@@ -267,12 +267,25 @@ static void contact_time_matches_david_et_al(void **state)
              0, 0);
     assert_float_equal(dem_contact_time(&c), M_PI / sqrt(2e4 / mij), 1e-12);
 
-    /* overdamped: the undamped half period */
+    /* overdamped: the undamped half period; "auto" then takes half the
+     * step at which the dashpot reaches gamma_n dt/m_ij = 1 (a given
+     * 2e-5 s, 3.8, is refused: bad_inputs) */
     parse_ok(&c,
-             "contact = { gamma_n = 100.0; };\nparticles = { radius = { "
-             "distribution = \"mono\"; mean = 5e-3; }; };",
+             "time_step = \"auto\"; contact = { gamma_n = 100.0; };\n"
+             "particles = { radius = { distribution = \"mono\"; mean = 5e-3; "
+             "}; };",
              0, 0);
     assert_float_equal(dem_contact_time(&c), M_PI / sqrt(5000 / mij), 1e-12);
+    assert_float_equal(c.time_step, 0.5 * mij / 100.0, 1e-15);
+
+    /* a tangential spring stiffer than k/3.5: two spheres sliding and
+     * spinning against each other, omega_t^2 = 7 k_t/m, set it */
+    parse_ok(&c,
+             "contact = { kt = 5000.0; };\nparticles = { radius = { "
+             "distribution = \"mono\"; mean = 5e-3; }; };",
+             0, 0);
+    assert_float_equal(dem_contact_time(&c),
+                       M_PI / sqrt(3.5 * 5000 / mij - eta * eta), 1e-12);
 
     /* disc mass in 2D: m = pi rho a^2 */
     parse_ok(&c,
@@ -482,6 +495,13 @@ static const struct bad bad_inputs[] = {
     {"contact = 5;", "contact.k=1.0", "--set contact.k: the config has a value",
      0},
     {"box = { size = 5; };", "box.size.1=1.0", "--set box.size.1", 0},
+    /* explicit viscosities that reverse the velocity every step */
+    {"contact = { gamma_n = 100.0; };", 0,
+     "contact.gamma_n: with a time step of 2e-05 s this viscosity reaches "
+     "gamma dt/m = ",
+     1},
+    {"damping = { gamma_b = 200.0; };", 0, "damping.gamma_b: with a time", 1},
+    {"damping = { gamma_br = 100.0; };", 0, "damping.gamma_br: with a time", 1},
     /* integers beyond int, which libconfig wraps to another value
      * (4294967316 read as 20) unless written with an L */
     {"seed = 1;\nparticles = { count = 4294967316; };", 0,

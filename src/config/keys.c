@@ -64,7 +64,8 @@ const struct key dem__cfg_keys[] = {
      .def = 2e-5,
      GT(0),
      .unit = "s",
-     .doc = "integration time step, or \"auto\" = t_c/50 (must be <= t_c/5)"},
+     .doc = "integration time step, or \"auto\" = t_c/50 (or half the "
+            "viscosities' limit; must be <= t_c/5)"},
     {.name = "gravity",
      .kind = K_VEC3,
      TOP(gravity),

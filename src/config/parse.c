@@ -727,8 +727,12 @@ int dem_config_parse(struct dem_config *c, const char *text, const char *source,
         c->particles.volume_fraction = c->dim == 2 ? 0.2 : 0.1;
     if ((rc = dem__cfg_validate_body(x, c, err)) != 0)
         goto out;
-    if (c->time_step_auto)
-        c->time_step = dem_contact_time(c) / 50;
+    if (c->time_step_auto) {
+        const char *vkey;
+        double m;
+        c->time_step = fmin(dem_contact_time(c) / 50,
+                            0.5 * dem_damping_step(c, &vkey, &m));
+    }
     if ((rc = dem__cfg_check_time_step(x, c, err)) != 0)
         goto out;
     warn_time_step(x, c, err);

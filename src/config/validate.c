@@ -275,6 +275,18 @@ int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
             "stiffest, lightest pair); use a smaller step or "
             "\"auto\"",
             dt, tc / 5, tc);
+    const char *vkey;
+    double m;
+    const double vlim = dem_damping_step(c, &vkey, &m);
+    if (!(dt < vlim))
+        return dem__cfg_fail_key(
+            x, -1, vkey, err,
+            "with a time step of %g s this viscosity reaches gamma dt/m = "
+            "%.3g (at least 1) at the lightest particle (%g kg): the "
+            "explicit step reverses the velocity instead of damping it; "
+            "less viscosity or a step below %g s (\"auto\" takes at most "
+            "half of it)",
+            dt, dt / vlim, m, vlim);
     /* the walls' servo, m dv/dt = F - gamma v, in two half kicks a step:
      * v becomes v (1 - gamma dt/(2m))^2 from its damping, which reverses
      * v every step from gamma dt/m = 2 on (the wall chatters) and grows

@@ -78,24 +78,45 @@ double dem_contact_stiffness(const struct dem_contact_params *c, double m12,
     return k;
 }
 
+/* The smallest particle of the config's keys: its radius and mass. */
+static void lightest(const struct dem_config *c, double *a, double *m)
+{
+    *a = c->particles.distribution == DEM_DIST_MONO ? c->particles.mean
+                                                    : c->particles.min;
+    dem_particle_mass(*a, c->particles.density, c->particles.mass_model, c->dim,
+                      m, NULL);
+}
+
+/* m a^2 / I of the particles' mass model: 2.5 for spheres, 2 for discs. */
+static double spin_factor(const struct dem_config *c)
+{
+    double m, I;
+    dem_particle_mass(1.0, 1.0, c->particles.mass_model, c->dim, &m, &I);
+    return m / I;
+}
+
 /* The pair of two smallest particles has reduced mass m/2; a particle on a
  * wall has m_ij = m (the wall is an infinite mass), so its contact lasts
  * sqrt(2) times longer and never limits the step. */
 double dem_contact_time(const struct dem_config *c)
 {
-    const double a = c->particles.distribution == DEM_DIST_MONO
-                         ? c->particles.mean
-                         : c->particles.min;
-    double m;
-    dem_particle_mass(a, c->particles.density, c->particles.mass_model, c->dim,
-                      &m, NULL);
+    double a, m;
+    lightest(c, &a, &m);
     return dem_contact_time_of(c, a, m);
 }
 
 double dem_contact_time_of(const struct dem_config *c, double a, double m)
 {
     const double m_ij = 0.5 * m;
-    const double k = dem_contact_stiffness(&c->contact, m_ij, 0.5 * a);
+    double k = dem_contact_stiffness(&c->contact, m_ij, 0.5 * a);
+    /* the spring laws' tangential spring contact.kt: two equal particles
+     * sliding against each other move and spin, omega_t^2 = k_t (2/m +
+     * 2 a^2/I) against omega_n^2 = 2 k/m, so k_t counts (1 + m a^2/I)
+     * times (3.5 for spheres, 3 for discs); a larger k_t than k/3.5 had
+     * the tangential mode unresolved at a step the normal one allowed
+     * (Hertz's k_t is part of its collision time's margin, t_c/50) */
+    if (dem_owner_used(c->contact.normal, DEM_OWNER_SPRINGS))
+        k = fmax(k, c->contact.kt * (1.0 + spin_factor(c)));
     /* the viscosity contact.gamma_n of the spring laws (another law's
      * damping is in its stiffness's contact time, or neglected) */
     const double eta = dem_owner_used(c->contact.normal, DEM_OWNER_SPRINGS)
@@ -107,6 +128,36 @@ double dem_contact_time_of(const struct dem_config *c, double a, double m)
     if (eta * eta >= w0sq)
         return M_PI / sqrt(w0sq);
     return M_PI / sqrt(w0sq - eta * eta);
+}
+
+double dem_damping_step(const struct dem_config *c, const char **key,
+                        double *mass)
+{
+    double a, m;
+    lightest(c, &a, &m);
+    *mass = m;
+    const int springs = dem_owner_used(c->contact.normal, DEM_OWNER_SPRINGS);
+    /* the rate x/dt of each viscosity at the lightest particle (a pair of
+     * two: the reduced mass m/2, and for the tangential dashpot the spins
+     * too, as k_t above) */
+    const struct {
+        const char *key;
+        double rate;
+    } v[] = {
+        {"damping.gamma_b", c->damping.gamma_b / m},
+        {"damping.gamma_br", c->damping.gamma_br * spin_factor(c) / m},
+        {"contact.gamma_n", springs ? 2.0 * c->contact.gamma_n / m : 0.0},
+        {"contact.gamma_t",
+         springs ? c->contact.gamma_t * (2.0 + 2.0 * spin_factor(c)) / m : 0.0},
+    };
+    double top = 0.0;
+    *key = NULL;
+    for (size_t k = 0; k < sizeof v / sizeof *v; k++)
+        if (v[k].rate > top) {
+            top = v[k].rate;
+            *key = v[k].key;
+        }
+    return top > 0.0 ? 1.0 / top : INFINITY;
 }
 
 /* k_t = 0 is well defined without friction: no spring, no tangential

@@ -215,6 +215,16 @@ double dem_contact_time(const struct dem_config *c);
 /* The same for two particles of radius a and mass m each. */
 double dem_contact_time_of(const struct dem_config *c, double a, double m);
 
+/* The explicit viscosities' limit on the time step, s: the step at which
+ * the strongest of them, at the lightest particle of the keys, takes
+ * gamma dt/m = 1 (gamma_b; gamma_br with the spin's inertia; the spring
+ * laws' gamma_n and gamma_t at a pair of two, the reduced mass and for
+ * gamma_t the spins counted), its key in *key and that particle's mass
+ * in *mass; INFINITY without viscosity. From 1 on the velocity is
+ * reversed each step instead of damped, from 2 on it grows. */
+double dem_damping_step(const struct dem_config *c, const char **key,
+                        double *mass);
+
 /* Checks of the contact keys between each other (each key's range is
  * checked by the config layer): NULL, or the key at fault with the reason
  * in msg. A stage key is returned without its "stages.N." prefix and
