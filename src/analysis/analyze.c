@@ -26,6 +26,9 @@
 /* Criteria (docs/analysis.md); written into summary.json as "criteria". */
 #define CRITICAL_FRACTION 0.25 /* last quarter of the axial strain */
 #define PLATEAU_TOLERANCE 0.10 /* fitted change across it <= 10% */
+/* the elastic constants need the lateral stress held over the initial
+ * part: its slope at most this fraction of the deviator's */
+#define LATERAL_HELD 0.05
 #define INITIAL_FRACTION 0.25  /* first quarter of the way to min eps_v */
 #define DILATANT_WINDOW 0.10   /* moving window: 10% of the samples... */
 #define DILATANT_WINDOW_MIN 5  /* ...but at least 5 */
@@ -296,12 +299,28 @@ static int analyze_monotonic(const struct curves *cv, int dim,
                  sc->type == DEM_STAGE_CONSTANT_P ? "constant_p"
                                                   : "constant_volume");
     else if (R->sl.initial_ok) {
-        for (long i = 0; i < R->sl.initial_count; i++)
+        const long m = R->sl.initial_count;
+        for (long i = 0; i < m; i++)
             work[i] = sense * (cv->s1[i] - cv->s3[i]);
-        R->modulus = dem_slope_initial(x, work, R->sl.initial_count);
-        R->nu = dem_poisson_from_slope(R->sl.initial, dim);
-        R->nu_ps = dim == 2 ? dem_poisson_plane_strain(R->sl.initial) : NAN;
-        R->bulk = dem_bulk_modulus(R->modulus, R->nu, dim);
+        const double dq = dem_slope_initial(x, work, m);
+        for (long i = 0; i < m; i++)
+            work[i] = sense * cv->s3[i];
+        const double ds3 = dem_slope_initial(x, work, m);
+        if (!(fabs(ds3) <= LATERAL_HELD * fabs(dq))) {
+            /* the lateral stress not held: the stage's pressure differs
+             * from where the previous stage left it, and the walls move
+             * to it during the initial part */
+            snprintf(R->elastic_reason, sizeof R->elastic_reason,
+                     "the lateral stress moves over the initial part (%.2g "
+                     "times the deviator's slope): the pressure, %g, is not "
+                     "where the previous stage left it, %.4g",
+                     ds3 / dq, sc->pressure, cv->s3[0]);
+        } else {
+            R->modulus = dq;
+            R->nu = dem_poisson_from_slope(R->sl.initial, dim);
+            R->nu_ps = dim == 2 ? dem_poisson_plane_strain(R->sl.initial) : NAN;
+            R->bulk = dem_bulk_modulus(R->modulus, R->nu, dim);
+        }
     }
     free(ratio);
     R->mono = 1;
