@@ -726,6 +726,82 @@ static void elastic_constants_need_the_lateral_stress_held(void **state)
     free(js);
 }
 
+/* A 2D periodic cell sheared to gamma = sense (linear, 1000 rows) at
+ * sigma_yy = 500: tau/sigma_n = ratio_curve(gamma/10) (a peak of 0.6 at
+ * gamma 0.2, relaxing to 0.4), eps_v = eps_v_curve(gamma/10) (dilating
+ * at 0.08 per unit of gamma), both along the shear as driven. */
+static void write_shear_run(const char *dir, double sense)
+{
+    char cfg[1024];
+    snprintf(cfg, sizeof cfg,
+             "dimension = 2;\n"
+             "time_step = 1.0e-6;\n"
+             "box = { boundary = \"periodic\"; };\n"
+             "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; "
+             "mu = 0.5; };\n"
+             "stages = (\n"
+             "  { type = \"isotropic\"; pressure = 500.0; },\n"
+             "  { type = \"shear\"; shear_strain = %g; duration = 1.0; "
+             "profile = \"linear\"; pressure = 500.0; }\n"
+             ");\n"
+             "output = { interval = 1.0e-3; };\n",
+             sense);
+    write_text(dir, "config.cfg", cfg);
+    FILE *f = open_timeseries(dir, 2);
+    struct dem_sample s;
+    memset(&s, 0, sizeof s);
+    for (int i = 0; i <= 1000; i++) {
+        const double x = 1e-3 * i; /* |gamma| */
+        s.t = 0.02 + 1e-3 * i;
+        s.stage = i ? 1 : 0;
+        s.gamma_xy = sense * x;
+        s.sigma[0] = s.sigma[1] = 500.0;
+        s.sigma_lw[0][1] = s.sigma_lw[1][0] =
+            -sense * ratio_curve(x / 10.0) * 500.0;
+        s.eps_v = eps_v_curve(x / 10.0);
+        s.void_ratio = 0.2;
+        dem_sample_write_row(f, &s, 2);
+    }
+    assert_int_equal(fclose(f), 0);
+}
+
+/* Simple shear either way gives the same mobilised friction, peak,
+ * critical state and dilatancy; the strains keep their sign. A negative
+ * shear_strain read as a loading that grows gave a "peak" of -1.2 deg at
+ * gamma = 0 and no critical state (a read-only review, session 107). */
+static void shear_either_way_gives_the_same_friction(void **state)
+{
+    (void)state;
+    char *js[2];
+    for (int k = 0; k < 2; k++) {
+        char dir[128], path[160];
+        run_dir(dir, sizeof dir, k ? "shear-neg" : "shear-pos");
+        write_shear_run(dir, k ? -1.0 : 1.0);
+        struct dem_error err = {0};
+        if (dem_analyze(dir, &err))
+            fail_msg("%s", err.msg);
+        snprintf(path, sizeof path, "%s/summary.json", dir);
+        js[k] = slurp(path);
+        assert_non_null(js[k]);
+    }
+    for (int k = 0; k < 2; k++) {
+        const double sense = k ? -1.0 : 1.0;
+        const char *sh = strstr(js[k], "\"shear\": {");
+        assert_non_null(sh);
+        const char *pk = strstr(sh, "\"peak\": {"),
+                   *cr = strstr(sh, "\"critical\": {");
+        assert_close(json_get(pk, "tau_over_sigma_n"), 0.6, 2e-3);
+        assert_close(json_get(pk, "gamma"), 0.2 * sense, 0.01);
+        /* (the mean of the curve over gamma 0.75 to 1, still 0.03 above
+         * its plateau) */
+        assert_close(json_get(cr, "tau_over_sigma_n"), 0.431, 2e-3);
+        assert_close(json_get(cr, "gamma_from"), 0.75 * sense, 2e-3);
+        assert_close(json_get(sh, "dilatancy_max"), 0.08, 1e-3);
+    }
+    free(js[0]);
+    free(js[1]);
+}
+
 static void write_biaxial_run_in(const char *dir, double unit)
 {
     write_biaxial_loading(dir, unit, LOAD_COMPRESS);
@@ -1292,6 +1368,7 @@ int main(void)
         cmocka_unit_test(analysis_is_invariant_to_the_unit_of_stress),
         cmocka_unit_test(analysis_follows_the_loading_as_it_ran),
         cmocka_unit_test(elastic_constants_need_the_lateral_stress_held),
+        cmocka_unit_test(shear_either_way_gives_the_same_friction),
         cmocka_unit_test(constant_p_reads_the_minor_stress),
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),

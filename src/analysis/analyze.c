@@ -499,7 +499,32 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
         mu[k] = c->sigma[1][r] > 0.0 ? -c->sigma_xy[r] / c->sigma[1][r] : NAN;
         ev[k] = k == 0 && origin < first ? 0.0 : c->eps_v[r];
     }
-    dem_shear_analyze(g, mu, ev, n, &R->shear);
+    /* along the shear as it was driven: a negative shear_strain (or
+     * shear_stress) has gamma and tau/sigma_n negative, and a returning
+     * profile (cyclic, sine) is analysed over its way out, as
+     * analyze_monotonic does; the strains written keep their sign */
+    const struct dem_stage_config *sc = &cfg->stages[R->shear_stage];
+    const double sense = sc->shear_strain < 0.0 || (isnan(sc->shear_strain) &&
+                                                    sc->shear_stress < 0.0)
+                             ? -1.0
+                             : 1.0;
+    long out = n;
+    if (sc->profile == DEM_PROFILE_CYCLIC || sc->profile == DEM_PROFILE_SINE) {
+        long m = 0;
+        for (long k = 1; k < n; k++)
+            if (sense * g[k] > sense * g[m])
+                m = k;
+        out = m + 1;
+    }
+    for (long k = 0; k < n; k++) {
+        g[k] *= sense;
+        mu[k] *= sense;
+    }
+    dem_shear_analyze(g, mu, ev, out, &R->shear);
+    for (long k = 0; k < n; k++)
+        g[k] *= sense;
+    R->shear.peak.strain *= sense;
+    R->shear.crit.strain_from *= sense;
     R->gamma_end = g[n - 1];
     /* creep: the slope of gamma(t) over the last quarter of the time */
     const double t1 = c->t[origin + n - 1],
