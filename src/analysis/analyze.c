@@ -278,6 +278,16 @@ static int analyze_monotonic(const struct curves *cv, int dim,
     long w = (long)(DILATANT_WINDOW * (double)n);
     w = w < DILATANT_WINDOW_MIN ? DILATANT_WINDOW_MIN : w;
     dem_slopes_volumetric(x, cv->ev, n, R->half, INITIAL_FRACTION, w, &R->sl);
+    if (sc->type == DEM_STAGE_CONSTANT_VOLUME) {
+        /* eps_v is held at 0: its slopes are 0 by construction, and
+         * neither a Poisson ratio nor a dilatancy angle (the dilatancy
+         * shows in the pressure the stage builds) */
+        R->sl.initial_ok = R->sl.dilatant_ok = 0;
+        snprintf(R->sl.initial_reason, sizeof R->sl.initial_reason,
+                 "the loading stage is constant_volume: eps_v is held at 0");
+        snprintf(R->sl.dilatant_reason, sizeof R->sl.dilatant_reason, "%s",
+                 R->sl.initial_reason);
+    }
     /* psi from the slope along the loading; what is written, the slope
      * and its strain along eps_a */
     if (R->sl.dilatant_ok)
@@ -443,6 +453,10 @@ static int analyze_loading(const struct dem_config *cfg,
                           cfg->output.interval, &cv);
     if (rc)
         return rc;
+    /* constant_volume has no pressure key: its confinement is the
+     * lateral stress it starts from */
+    if (type == DEM_STAGE_CONSTANT_VOLUME && cv.n > 0)
+        R->pressure = cv.s3[0];
     if (cv.n == 0) {
         snprintf(R->none_reason, sizeof R->none_reason,
                  "stage %d has no rows in timeseries.csv (the run stopped "
