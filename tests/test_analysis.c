@@ -104,6 +104,24 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_false(f.ok);
     assert_true(isnan(f.sin_phi));
     assert_non_null(strstr(f.reason, "not between 0 and 1"));
+    /* circles whose free tangent would cross below the origin, (1500,
+     * 500) and (3200, 800): t = 0.7 s - 200, a cohesion of -280 (a
+     * read-only review, session 107); bounded by c >= 0, the tangent
+     * through the origin, least squares t = B s, and a note */
+    const double b1[] = {1500.0, 3200.0}, b3[] = {500.0, 800.0};
+    assert_int_equal(dem_mohr_fit(b1, b3, 2, 1, &f), 0);
+    assert_true(f.ok);
+    assert_close(f.c, 0.0, 0.0);
+    /* B = (1000 * 500 + 2000 * 1200) / (1000^2 + 2000^2) = 0.58 */
+    assert_close(f.sin_phi, 0.58, 1e-12);
+    assert_non_null(strstr(f.note, "cohesion, -280"));
+    /* a positive cohesion leaves no note */
+    const double c3[] = {100.0, 300.0};
+    double c1[2] = {mc_sigma1(c3[0], phi, 50.0), mc_sigma1(c3[1], phi, 50.0)};
+    assert_int_equal(dem_mohr_fit(c1, c3, 2, 1, &f), 0);
+    assert_true(f.ok);
+    assert_close(f.c, 50.0, 1e-9);
+    assert_string_equal(f.note, "");
 }
 
 /* Stress ratio y = 0.4 + 0.2 x e^(1-x), x = eps/0.02: a peak of exactly

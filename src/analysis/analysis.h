@@ -172,6 +172,7 @@ struct dem_mohr_fit {
     double r2;      /* R^2 of radius vs centre (NaN with one circle) */
     double rms;     /* rms of radius residuals, Pa */
     char reason[DEM_REASON_MAX];
+    char note[DEM_REASON_MAX]; /* with ok: how the fit was bounded, or "" */
 };
 
 /* Common tangent tau = c + sigma tan phi of n Mohr circles (sigma1 >=

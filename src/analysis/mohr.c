@@ -56,7 +56,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     o->ok = 0;
     o->n = n;
     o->sin_phi = o->phi_deg = o->c = o->r2 = o->rms = NAN;
-    o->reason[0] = '\0';
+    o->reason[0] = o->note[0] = '\0';
     if (n < 1 || (cohesion && n < 2)) {
         snprintf(o->reason, sizeof o->reason,
                  "%ld Mohr circle(s): a tangent with cohesion needs at "
@@ -101,6 +101,20 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
         }
     } else {
         fitted = through_origin(s, t, n, o);
+    }
+    /* A cohesion below 0 is no material's (a tensile strength below
+     * none): the intercept of circles of a cohesionless material that
+     * scatter or bend the envelope. The least squares bounded by c >= 0
+     * is then the tangent through the origin, and the note says so. */
+    if (cohesion && fitted && o->c < 0.0 && o->sin_phi > 0.0 &&
+        o->sin_phi < 1.0) {
+        const double cfree = o->c / cos(asin(o->sin_phi)) * unit,
+                     sfree = o->sin_phi;
+        fitted = through_origin(s, t, n, o);
+        snprintf(o->note, sizeof o->note,
+                 "the free fit's cohesion, %.4g, is below 0 (its sin phi "
+                 "%.4g): the tangent through the origin, c = 0",
+                 cfree, sfree);
     }
     free(s);
     o->c *= unit;

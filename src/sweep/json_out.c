@@ -159,6 +159,8 @@ static void write_fit(struct dem__json *j, const struct dem_mohr_fit *f)
     dem__json_number(j, "rms", f->ok ? f->rms : NAN);
     if (!f->ok)
         dem__json_string(j, "reason", f->reason);
+    else if (f->note[0])
+        dem__json_string(j, "note", f->note);
 }
 
 static void write_flow(struct dem__json *j, const struct dem__sweep *s,
