@@ -820,6 +820,48 @@ static void shear_either_way_gives_the_same_friction(void **state)
     free(js[1]);
 }
 
+static void count_warning(const char *line, void *user)
+{
+    (void)line;
+    ++*(int *)user;
+}
+
+/* The analysis reads the run's resolved config without repeating its
+ * warnings (a time step above t_c/10 was said twice by every run, the
+ * second time naming the folder's config.cfg; a read-only review,
+ * session 107). */
+static void analysis_repeats_no_config_warning(void **state)
+{
+    (void)state;
+    char dir[128];
+    run_dir(dir, sizeof dir, "warned");
+    write_biaxial_loading(dir, 1.0, LOAD_COMPRESS);
+    write_text(dir, "config.cfg",
+               "dimension = 2;\n"
+               "time_step = 1.0e-6;\n"
+               "particles = { radius = { distribution = \"uniform\"; "
+               "min = 0.5e-3; max = 1.5e-3; }; };\n"
+               "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; "
+               "kc = 0.0; mu = 0.5; };\n"
+               "stages = (\n"
+               "  { type = \"isotropic\"; pressure = 500.0; },\n"
+               "  { type = \"compress\"; axis = \"y\"; strain = 0.1; "
+               "duration = 1.0; pressure = 500.0; }\n"
+               ");\n"
+               "output = { interval = 1.0e-3; };\n");
+    int n = 0;
+    struct dem_config c;
+    struct dem_error err = {.warn = count_warning, .warn_user = &n};
+    char path[160];
+    snprintf(path, sizeof path, "%s/config.cfg", dir);
+    assert_int_equal(dem_config_load_file(&c, path, NULL, 0, &err), 0);
+    assert_int_equal(n, 1); /* the config does warn */
+    n = 0;
+    if (dem_analyze(dir, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(n, 0);
+}
+
 static void write_biaxial_run_in(const char *dir, double unit)
 {
     write_biaxial_loading(dir, unit, LOAD_COMPRESS);
@@ -1395,6 +1437,7 @@ int main(void)
         cmocka_unit_test(analysis_follows_the_loading_as_it_ran),
         cmocka_unit_test(elastic_constants_need_the_lateral_stress_held),
         cmocka_unit_test(shear_either_way_gives_the_same_friction),
+        cmocka_unit_test(analysis_repeats_no_config_warning),
         cmocka_unit_test(constant_p_reads_the_minor_stress),
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),

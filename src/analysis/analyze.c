@@ -884,7 +884,11 @@ static int analyze_folder(const char *outdir, const char *cfg_path,
     struct dem_config *cfg = malloc(sizeof *cfg);
     if (!cfg)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
-    rc = dem_config_load_file(cfg, cfg_path, NULL, 0, err);
+    /* the run's resolved config: its warnings were the run's to give */
+    struct dem_error ce = {.warn = dem_warn_ignore};
+    rc = dem_config_load_file(cfg, cfg_path, NULL, 0, &ce);
+    if (rc)
+        dem_error_set(err, rc, "%s", ce.msg);
     struct dem__csv_table tb = {0};
     struct columns c = {0};
     struct dem__csv_want want[NCOL];

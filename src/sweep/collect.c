@@ -114,7 +114,8 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
         return DEM_OK;
     }
     char path[DEM_PATH_MAX];
-    struct dem_error e = {0};
+    /* (each run's config warned when it ran) */
+    struct dem_error e = {.warn = dem_warn_ignore};
     r->max_steps = dem__sweep_step_limit(rundir);
     struct dem_config *c = malloc(sizeof *c);
     if (!c)

@@ -123,7 +123,8 @@ static int validate(const struct dem_sweep_grid *g,
             char sets[DEM_SWEEP_MAX_KEYS][SET_LEN];
             for (int m = 0; m < p->nkeys; m++)
                 snprintf(sets[m], SET_LEN, "%s=%s", p->keys[m], p->values[v]);
-            struct dem_error e = {0};
+            /* (the first parse said its warnings) */
+            struct dem_error e = {.warn = dem_warn_ignore};
             rc = parse_counted(o, sets, p->nkeys, c, s, &e);
             if (rc)
                 dem_error_set(
@@ -137,7 +138,7 @@ static int validate(const struct dem_sweep_grid *g,
     for (long i = 0; !rc && i < n && g->nparams > 1; i++) {
         char sets[MAX_POINT_SETS][SET_LEN];
         const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
-        struct dem_error e = {0};
+        struct dem_error e = {.warn = dem_warn_ignore};
         rc = parse_counted(o, sets, ns, c, s, &e);
         if (rc) {
             char what[1024] = "";
