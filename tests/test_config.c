@@ -161,6 +161,33 @@ static void resolved_config_documents_each_key(void **state)
     free(out);
 }
 
+/* A group given by --set is merged into the config's group of that name:
+ * its other keys stay (it used to replace the whole group: the luding law
+ * of the file fell back to the default linear one, and damping.gamma_br
+ * to its default; a read-only review, session 107). */
+static void set_group_merges_into_the_group(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    const char *text =
+        "time_step = \"auto\";\n"
+        "contact = { normal = \"luding\"; k1 = 1.0e4; k2 = 2.0e4; mu = 0.5; "
+        "};\n"
+        "damping = { gamma_b = 0.2; gamma_br = 0.05; };\n"
+        "particles = { radius = { distribution = \"uniform\"; min = 1.0e-3;"
+        " max = 2.0e-3; }; };\n";
+    const char *sets[] = {"contact={ mu = 0.3; }", "damping={ gamma_b = 0.1; }",
+                          "particles={ radius = { max = 3.0e-3; }; }"};
+    parse_ok(&c, text, sets, 3);
+    assert_int_equal(c.contact.normal, DEM_NORMAL_LUDING);
+    assert_float_equal(c.contact.k2, 2.0e4, 0.0);
+    assert_float_equal(c.contact.mu_s, 0.3, 0.0);
+    assert_float_equal(c.damping.gamma_b, 0.1, 0.0);
+    assert_float_equal(c.damping.gamma_br, 0.05, 0.0);
+    assert_float_equal(c.particles.min, 1.0e-3, 0.0);
+    assert_float_equal(c.particles.max, 3.0e-3, 0.0);
+}
+
 static void set_overrides_scalars_enums_arrays_and_stages(void **state)
 {
     (void)state;
@@ -815,6 +842,7 @@ int main(void)
         cmocka_unit_test(resolved_config_keeps_a_long_escaped_path),
         cmocka_unit_test(resolved_config_documents_each_key),
         cmocka_unit_test(set_overrides_scalars_enums_arrays_and_stages),
+        cmocka_unit_test(set_group_merges_into_the_group),
         cmocka_unit_test(contact_time_matches_david_et_al),
         cmocka_unit_test(auto_time_step_is_a_fiftieth_of_contact_time),
         cmocka_unit_test(every_example_parses),

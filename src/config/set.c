@@ -233,7 +233,22 @@ static int assign(config_setting_t *cur, const char *seg,
 {
     config_setting_t *dst;
     if (config_setting_is_group(cur)) {
-        if (config_setting_get_member(cur, seg))
+        /* a group given for a group the config has is merged into it,
+         * member by member: --set 'contact={ mu = 0.3; }' sets contact.mu
+         * and keeps the law's other keys (it used to replace the whole
+         * group, the normal law falling back to its default) */
+        config_setting_t *old = config_setting_get_member(cur, seg);
+        if (old && config_setting_is_group(old) &&
+            config_setting_is_group(val)) {
+            for (int m = 0; m < config_setting_length(val); m++) {
+                const config_setting_t *v = config_setting_get_elem(val, m);
+                int rc = assign(old, config_setting_name(v), v, hook, key, err);
+                if (rc)
+                    return rc;
+            }
+            return 0;
+        }
+        if (old)
             config_setting_remove(cur, seg);
         if (!(dst = copy_setting(cur, seg, val)))
             return dem_error_set(err, DEM_ECONFIG, "--set %s: cannot apply",
