@@ -914,6 +914,46 @@ static void a_stage_after_shear_holds_the_tilt(void **state)
     dem__csv_table_free(&t);
 }
 
+/* A hold after a cyclic stage keeps the walls as they are: the cyclic
+ * target stops at its value (here p0, after whole cycles) instead of
+ * cycling on. Before, sigma_xx rose from 960 to 1510 over the hold of
+ * half a period, following the next cycle (a read-only review, session
+ * 107). */
+static void a_hold_after_cycles_stops_the_cycling(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("hold3d");
+    assert_non_null(ex);
+    const char *const sets[] = {
+        "output.interval=5e-3", "output.snapshot_interval=0",
+        "stages=({type=\"isotropic\";pressure=1000.0;tolerance=1e-4;"
+        "max_time=0.05;},"
+        "{type=\"cyclic\";axis=\"x\";pressure=1000.0;amplitude=500.0;"
+        "period=0.1;cycles=1;},"
+        "{type=\"hold\";duration=0.05;})"};
+    char out[1024];
+    run_text(ex->text, "cycles-hold", sets, 3, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
+                                                DEM_CSV_FINITE("sigma_xx", 1)};
+    struct dem__csv_table t;
+    read_ts(out, want, 2, &t);
+    double top1 = 0.0, top2 = 0.0;
+    int n2 = 0;
+    for (size_t r = 0; r < t.nrow; r++) {
+        const double sx = t.col[1][r];
+        if (t.col[0][r] == 1.0)
+            top1 = fmax(top1, sx);
+        if (t.col[0][r] == 2.0) {
+            top2 = fmax(top2, sx);
+            n2++;
+        }
+    }
+    assert_true(n2 >= 5);
+    assert_true(top1 > 1350.0); /* the cycle reached p0 + amplitude */
+    assert_true(top2 < 1100.0); /* the hold stayed about p0 */
+    dem__csv_table_free(&t);
+}
+
 static void keep_line(const char *line, void *user)
 {
     snprintf((char *)user, 1024, "%s", line);
@@ -1002,6 +1042,7 @@ int main(void)
         cmocka_unit_test(auto_step_follows_a_particle_file),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
+        cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
         cmocka_unit_test(threads_left_to_the_library_are_chosen_by_timing),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);

@@ -1,17 +1,34 @@
 /* hold: run for `duration` with the walls as they are (fixed if no stage
- * moved them); strains stay referred to the previous loading stage. */
+ * moved them); strains stay referred to the previous loading stage.
+ *
+ * A wall keeps its mode, but a target that moves in time stops where it
+ * is: a cyclic stress target keeps its value at the start of the hold,
+ * and a wall on a returning strain profile (cyclic, sine), which never
+ * ends by itself, stays where it is. Without this a hold after a cyclic
+ * stage went on cycling (SPEC's example: "walls stay as they are"; a
+ * read-only review, session 107). Stress-controlled walls still servo
+ * to their (now constant) target: the sample relaxes under them. */
 #include "protocol/stage.h"
 
 static int begin(struct dem_sim *s, struct dem_stage_state *st,
                  struct dem_error *err)
 {
     (void)err;
+    for (int w = 0; w < s->nwall; w++) {
+        struct dem_wall *W = &s->wall[w];
+        if (W->mode == DEM_WALL_STRESS && W->amp != 0.0) {
+            W->p0 = dem_wall_target_stress(W, s->t);
+            W->amp = 0.0;
+        } else if (W->mode == DEM_WALL_STRAIN &&
+                   (W->profile == DEM_PROFILE_CYCLIC ||
+                    W->profile == DEM_PROFILE_SINE)) {
+            dem_wall_set_fixed(W);
+        }
+    }
     st->t_end = s->t + st->cfg->duration;
     st->sets_reference = 0;
     return DEM_OK;
 }
 
 const struct dem_stage_ops dem_stage_hold = {
-    "hold", "run for duration with the walls in their current modes",
-    begin,  0,
-    0,      0};
+    "hold", "run for duration with the walls as they are", begin, 0, 0, 0};
