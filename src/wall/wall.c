@@ -55,13 +55,12 @@ void dem_wall_strain_state(const struct dem_wall *w, double t, double *pos,
     double g, dg; /* profile value and its time derivative (1/s) */
     switch (w->profile) {
     case DEM_PROFILE_LINEAR:
-        if (tau >= T) {
-            g = 1.0;
-            dg = 0.0;
-        } else {
-            g = tau / T;
-            dg = 1.0 / T;
-        }
+        /* the step that ends at T moves at D/T all the way: its end,
+         * t + dt - t_start, rounds to either side of T (a ramp of one
+         * step, constant_volume's lateral walls, read a velocity of 0 in
+         * 43 % of its steps) */
+        g = tau >= T ? 1.0 : tau / T;
+        dg = tau <= T * (1.0 + 1e-9) ? 1.0 / T : 0.0;
         break;
     case DEM_PROFILE_CYCLIC:
         g = 0.5 * (1.0 - cos(2.0 * M_PI * tau / T));
