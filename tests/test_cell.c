@@ -616,6 +616,41 @@ static void cell_stress_is_the_contacts_sum(void **state)
     dem_sim_destroy(&s);
 }
 
+/* The inertial number of a sheared cell counts the shear rate of its
+ * tilt, t_xy'/L_y: it read 0.04 for a true 0.97 in a fast shear, which
+ * was never warned about (a read-only review, session 107). */
+static void inertial_number_counts_the_shear_rate(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    triangular_cell(&s, &c, 7, 0);
+    test_ready(&s);
+    const double T = 4e-4, D = 0.004; /* a tilt speed of 10 m/s */
+    dem_wall_set_strain(&s.cell.tilt[DEM_TILT_XY], DEM_PROFILE_LINEAR, D, T,
+                        s.t);
+    s.dt = 2e-6;
+    test_step(&s, 50);
+    s.measure = 1;
+    dem_sim_forces(&s);
+    double L[3], V;
+    dem_sim_box(&s, L, &V);
+    struct dem_sample smp;
+    dem_measure(&s, L, V, 0, &smp);
+    double m = 0.0, d = 0.0;
+    for (int i = 0; i < s.p.n; i++) {
+        m += s.p.m[i];
+        d += 2.0 * s.p.r[i];
+    }
+    m /= s.p.n;
+    d /= s.p.n;
+    assert_true(smp.p > 0.0);
+    const double rate = (D / T) / L[1];
+    assert_close(smp.inertial_number, rate * sqrt(m * d / (smp.p * d)),
+                 1e-12 * smp.inertial_number);
+    dem_sim_destroy(&s);
+}
+
 /* The servo: with no stress in the cell (no contact, no motion) each
  * face moves inward under the target sigma with m v' = -sigma A -
  * gamma v, so v(t) = -(sigma A/gamma)(1 - exp(-gamma t/m)). */
@@ -847,6 +882,7 @@ int main(void)
         cmocka_unit_test(closing_pair_in_shrinking_cell_is_listed),
         cmocka_unit_test(sheared_elastic_gas_energy_balance),
         cmocka_unit_test(cell_stress_is_the_contacts_sum),
+        cmocka_unit_test(inertial_number_counts_the_shear_rate),
         cmocka_unit_test(servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_holds_the_shear_stress),

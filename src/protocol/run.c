@@ -375,7 +375,8 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
         rc = check_stable(r, &smp, err);
     if (rc)
         return rc;
-    if (ops->loading && !r->st.warned_inertia && smp.inertial_number > 1e-3) {
+    if ((ops->loading || st->cfg->type == DEM_STAGE_SHEAR) &&
+        !r->st.warned_inertia && smp.inertial_number > 1e-3) {
         r->st.warned_inertia = 1;
         dem_warn(err,
                  "stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
