@@ -522,6 +522,17 @@ static const struct bad bad_inputs[] = {
     {"contact = 5;", "contact.k=1.0", "--set contact.k: the config has a value",
      0},
     {"box = { size = 5; };", "box.size.1=1.0", "--set box.size.1", 0},
+    /* stage keys a combination would ignore, at another value than
+     * their default: a shear's cycles without a returning profile (one
+     * ramp ran, config.cfg saying cycles = 7), b in 2D */
+    {"dimension = 2; box = { boundary = \"periodic\"; };\n"
+     "stages = ( { type = \"shear\"; shear_strain = 0.5; duration = 0.1; "
+     "pressure = 500.0; profile = \"linear\"; cycles = 3; } );",
+     0, "stages.0.cycles: only with profile = \"cyclic\" or \"sine\"", 2},
+    {"dimension = 2;\n"
+     "stages = ( { type = \"constant_p\"; axis = \"y\"; strain = 0.1; "
+     "duration = 0.1; pressure = 500.0; b = 0.9; } );",
+     0, "stages.0.b: is for 3D", 2},
     /* explicit viscosities that reverse the velocity every step */
     {"contact = { gamma_n = 100.0; };", 0,
      "contact.gamma_n: with a time step of 2e-05 s this viscosity reaches "
