@@ -1136,6 +1136,16 @@ static void constant_p_reads_the_minor_stress(void **state)
     const char *pk = strstr(js, "\"peak\": {");
     assert_close(json_get(pk, "sin_phi"), 0.6, 2e-3);
     assert_close(json_get(pk, "sigma_lateral"), 500.0, 1e-9);
+    /* the critical state's mean stress is that of the three axes,
+     * (s1 + s2 + s3)/3 with s2 = s3 + b (s1 - s3), not (s1 + 2 s3)/3 of
+     * the minor one, which the sweep's void-ratio envelope used (a
+     * read-only review, session 107) */
+    const char *cr = strstr(js, "\"critical\": {");
+    const double s1 = json_get(cr, "sigma_axial"),
+                 s3 = json_get(cr, "sigma_lateral");
+    assert_true(s1 > s3);
+    assert_close(json_get(cr, "mean_stress"),
+                 (s1 + s3 + s3 + 0.5 * (s1 - s3)) / 3.0, 1e-9 * s1);
     const char *why = strstr(js, "\"poisson_ratio_reason\": ");
     assert_non_null(why);
     assert_non_null(strstr(why, "constant_p: its lateral stress"));

@@ -56,6 +56,7 @@ struct curves {
                          the minor one's: build_curves) */
     double *e;        /* void ratio */
     double *inertial; /* inertial number, NaN if not written */
+    double *pm;       /* mean stress of the walls (every axis), Pa */
 };
 
 struct result {
@@ -72,7 +73,7 @@ struct result {
     struct dem_peak peak;
     double peak_s1, peak_s3;
     struct dem_critical crit;
-    double crit_s1, crit_s3, crit_e;
+    double crit_s1, crit_s3, crit_e, crit_p;
     struct dem_slopes sl;
     double modulus, nu, nu_ps, bulk, psi_deg;
     double e_init, inertial_max;
@@ -189,11 +190,11 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
         return DEM_OK;
     const int origin = first > 0 && (int)c->stage[first - 1] < stage;
     const long n = last - first + 1 + origin;
-    double *blk = malloc(8 * (size_t)n * sizeof *blk);
+    double *blk = malloc(9 * (size_t)n * sizeof *blk);
     if (!blk)
         return DEM_ENOMEM;
     double **arr[] = {&cv->t,  &cv->ea, &cv->el,       &cv->ev, &cv->s1,
-                      &cv->s3, &cv->e,  &cv->inertial, NULL};
+                      &cv->s3, &cv->e,  &cv->inertial, &cv->pm, NULL};
     for (int k = 0; arr[k]; k++)
         *arr[k] = blk + (size_t)k * (size_t)n;
     cv->n = n;
@@ -205,6 +206,9 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
         cv->el[i] = o ? 0.0 : lateral(c->eps, r, axis, dim);
         cv->ev[i] = o ? 0.0 : c->eps_v[r];
         cv->s1[i] = c->sigma[axis][r];
+        cv->pm[i] = 0.0;
+        for (int a = 0; a < dim; a++)
+            cv->pm[i] += c->sigma[a][r] / dim;
         cv->s3[i] =
             minor >= 0 ? c->sigma[minor][r] : lateral(c->sigma, r, axis, dim);
         cv->e[i] = c->void_ratio[r];
@@ -272,6 +276,7 @@ static int analyze_monotonic(const struct curves *cv, int dim,
     if (R->crit.ok) {
         R->crit_s1 = dem_mean(cv->s1 + R->crit.first, R->crit.count);
         R->crit_s3 = dem_mean(cv->s3 + R->crit.first, R->crit.count);
+        R->crit_p = dem_mean(cv->pm + R->crit.first, R->crit.count);
         R->crit_e = dem_mean(cv->e + R->crit.first, R->crit.count);
     }
 
@@ -565,12 +570,12 @@ static void result_init(struct result *R, int dim)
     memset(R, 0, sizeof *R);
     R->dim = dim;
     R->stage = R->type = R->axis = R->cyc_stage = R->shear_stage = -1;
-    double *nan[] = {&R->pressure,     &R->peak_s1,   &R->peak_s3,
-                     &R->crit_s1,      &R->crit_s3,   &R->crit_e,
-                     &R->modulus,      &R->nu,        &R->nu_ps,
-                     &R->bulk,         &R->psi_deg,   &R->e_init,
-                     &R->inertial_max, &R->hs,        &R->shear_stress,
-                     &R->gamma_end,    &R->creep_rate};
+    double *nan[] = {&R->pressure,     &R->peak_s1,      &R->peak_s3,
+                     &R->crit_s1,      &R->crit_s3,      &R->crit_e,
+                     &R->crit_p,       &R->modulus,      &R->nu,
+                     &R->nu_ps,        &R->bulk,         &R->psi_deg,
+                     &R->e_init,       &R->inertial_max, &R->hs,
+                     &R->shear_stress, &R->gamma_end,    &R->creep_rate};
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
     R->peak.value = R->crit.value = NAN;
@@ -621,6 +626,7 @@ static void write_critical(struct dem__json *j, const struct result *R)
     dem__json_number(j, "phi_deg", ok ? asin(R->crit.value) * DEG : NAN);
     dem__json_number(j, "sigma_axial", ok ? R->crit_s1 : NAN);
     dem__json_number(j, "sigma_lateral", ok ? R->crit_s3 : NAN);
+    dem__json_number(j, "mean_stress", ok ? R->crit_p : NAN);
     dem__json_number(j, "strain_from", R->mono ? R->crit.strain_from : NAN);
     dem__json_number(j, "drift", R->mono ? R->crit.drift : NAN);
     dem__json_number(j, "drift_stderr", R->mono ? R->crit.drift_stderr : NAN);

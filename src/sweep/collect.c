@@ -31,11 +31,11 @@ double dem__sweep_fmin_norm(double kc, double k1, double k2)
 
 static void run_init(struct dem__sweep_run *r)
 {
-    double *nan[] = {&r->mu,       &r->k1,       &r->k2,       &r->kc,
-                     &r->pressure, &r->peak_sin, &r->peak_phi, &r->peak_s1,
-                     &r->peak_s3,  &r->crit_sin, &r->crit_phi, &r->crit_s1,
-                     &r->crit_s3,  &r->e_init,   &r->e_crit,   &r->hs,
-                     &r->cyc_ratio};
+    double *nan[] = {&r->mu,        &r->k1,       &r->k2,       &r->kc,
+                     &r->pressure,  &r->peak_sin, &r->peak_phi, &r->peak_s1,
+                     &r->peak_s3,   &r->crit_sin, &r->crit_phi, &r->crit_s1,
+                     &r->crit_s3,   &r->e_init,   &r->e_crit,   &r->hs,
+                     &r->cyc_ratio, &r->crit_p};
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
     r->stage = r->axis = -1;
@@ -75,6 +75,7 @@ static int read_summary(struct dem__sweep_run *r, const struct dem__jval *js,
         {"critical.phi_deg", &r->crit_phi},
         {"critical.sigma_axial", &r->crit_s1},
         {"critical.sigma_lateral", &r->crit_s3},
+        {"critical.mean_stress", &r->crit_p},
         {"void_ratio_initial", &r->e_init},
         {"void_ratio_critical", &r->e_crit},
         {"void_ratio_fit.hs", &r->hs},
@@ -306,10 +307,16 @@ static int void_ratios(struct dem__sweep *s)
                 if (s->ffg.gid[i] != q)
                     continue;
                 /* initial state: the isotropic confining pressure;
-                 * critical state: the mean stress there */
+                 * critical state: the mean stress there (of every
+                 * axis: with constant_p's b the two lateral stresses
+                 * differ, and (s1 + 2 s3)/3 of the minor one read p
+                 * low by b (s1 - s3)/3; older summaries have only
+                 * that) */
                 const double p =
                     k == 0 ? r->pressure
-                           : (r->crit_s1 + (r->dim - 1) * r->crit_s3) / r->dim;
+                    : isfinite(r->crit_p)
+                        ? r->crit_p
+                        : (r->crit_s1 + (r->dim - 1) * r->crit_s3) / r->dim;
                 const double e = k == 0 ? r->e_init : r->e_crit;
                 if (!isfinite(p) || !isfinite(e))
                     continue;

@@ -22,6 +22,8 @@ struct dem__sweep_run {
     double pressure;   /* confining pressure of the loading stage */
     double peak_sin, peak_phi, peak_s1, peak_s3;
     double crit_sin, crit_phi, crit_s1, crit_s3;
+    double crit_p; /* the walls' mean stress in the critical state (NaN in
+                      summaries older than it) */
     double e_init, e_crit;
     double hs; /* hardness of the void-ratio fit (summary.json) */
     double cyc_ratio;
