@@ -188,6 +188,29 @@ static void set_group_merges_into_the_group(void **state)
     assert_float_equal(c.particles.max, 3.0e-3, 0.0);
 }
 
+/* --set of contact.mu replaces a given mu_s and mu_d, and of mu_s or mu_d
+ * a given mu (the resolved config.cfg writes mu where they are equal):
+ * the later override wins, as everywhere (both used to be refused as
+ * "give either"). A path key takes its text as it is, even when it reads
+ * as a number (particles.file=123 was "must be a string"). */
+static void set_friction_aliases_and_paths(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    const char *one[] = {"contact.mu=0.3"};
+    parse_ok(&c, "contact = { mu_s = 0.6; mu_d = 0.4; };", one, 1);
+    assert_float_equal(c.contact.mu_s, 0.3, 0.0);
+    assert_float_equal(c.contact.mu_d, 0.3, 0.0);
+    const char *two[] = {"contact.mu_s=0.6", "contact.mu_d=0.4"};
+    parse_ok(&c, "contact = { mu = 0.5; };", two, 2);
+    assert_float_equal(c.contact.mu_s, 0.6, 0.0);
+    assert_float_equal(c.contact.mu_d, 0.4, 0.0);
+    const char *path[] = {"particles.file=123"};
+    parse_ok(&c, "particles = { placement = \"file\"; file = \"a.csv\"; };",
+             path, 1);
+    assert_string_equal(c.particles.file, "123");
+}
+
 static void set_overrides_scalars_enums_arrays_and_stages(void **state)
 {
     (void)state;
@@ -522,6 +545,10 @@ static const struct bad bad_inputs[] = {
     {"contact = 5;", "contact.k=1.0", "--set contact.k: the config has a value",
      0},
     {"box = { size = 5; };", "box.size.1=1.0", "--set box.size.1", 0},
+    /* @include (read relative to the working folder, its errors named
+     * with the includer's name and the included file's line) */
+    {"seed = 1;\n  @include \"other.cfg\"\n", 0, "@include is not supported",
+     2},
     /* stage keys a combination would ignore, at another value than
      * their default: a shear's cycles without a returning profile (one
      * ramp ran, config.cfg saying cycles = 7), b in 2D */
@@ -854,6 +881,7 @@ int main(void)
         cmocka_unit_test(resolved_config_documents_each_key),
         cmocka_unit_test(set_overrides_scalars_enums_arrays_and_stages),
         cmocka_unit_test(set_group_merges_into_the_group),
+        cmocka_unit_test(set_friction_aliases_and_paths),
         cmocka_unit_test(contact_time_matches_david_et_al),
         cmocka_unit_test(auto_time_step_is_a_fiftieth_of_contact_time),
         cmocka_unit_test(every_example_parses),

@@ -701,6 +701,26 @@ int dem_config_parse(struct dem_config *c, const char *text, const char *source,
                            x->source, open_line, open_kind);
         goto out;
     }
+    /* libconfig's @include read a file relative to the working folder,
+     * and an error in it was reported with the includer's name and the
+     * included file's line: a config is one self-contained file (as the
+     * run's config.cfg, which must rebuild the run) */
+    int line = 1;
+    for (const char *t = text; *t; line++) {
+        while (*t == ' ' || *t == '\t')
+            t++;
+        if (strncmp(t, "@include", 8) == 0) {
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "%s:%d: @include is not supported: give the "
+                               "whole config in one file (or --set)",
+                               x->source, line);
+            goto out;
+        }
+        const char *nl = strchr(t, '\n');
+        if (!nl)
+            break;
+        t = nl + 1;
+    }
     char wide[32];
     if (dem__cfg_wide_integer(text, &open_line, wide, sizeof wide)) {
         rc = dem_error_set(err, DEM_ECONFIG,

@@ -168,7 +168,9 @@ static int parse_value(config_t *tmp, const char *value, int path,
         return 0;
     }
     snprintf(text, n + 8, "v = %s;", value);
-    int ok = config_read_string(tmp, text);
+    /* a path is its text as it is unless quoted: particles.file=123 is
+     * the file "123", not an integer */
+    int ok = !(path && value[0] != '"') && config_read_string(tmp, text);
     if (!ok && (is_bare_word(value) || (path && !strchr(value, '\n')))) {
         /* a word; a path as it is (--set "particles.file=my packing.csv",
          * the shell's quotes gone), its quotes and backslashes escaped */
@@ -325,6 +327,43 @@ static int split_set(const char *set, char *key, size_t keysz, char *path,
 
 /* Apply one "KEY=VALUE" to the tree; the new setting's hook is the set
  * text, so that messages about it name the override. */
+/* contact.mu sets mu_s and mu_d, which may not be given with it: a --set
+ * of the one replaces the other in the tree (the later override wins, as
+ * everywhere). A --set of mu drops mu_s and mu_d; a --set of mu_s or mu_d
+ * turns a given mu into both (each then overridden in turn): the resolved
+ * config.cfg writes mu where mu_s = mu_d, and --set contact.mu_s=0.6
+ * --set contact.mu_d=0.4 on it used to be refused as "both given". */
+static void friction_alias(config_t *cfg, const char *key, void *hook)
+{
+    config_setting_t *g = config_lookup(cfg, "contact");
+    if (!g || !config_setting_is_group(g))
+        return;
+    if (strcmp(key, "contact.mu") == 0) {
+        if (config_setting_get_member(g, "mu_s"))
+            config_setting_remove(g, "mu_s");
+        if (config_setting_get_member(g, "mu_d"))
+            config_setting_remove(g, "mu_d");
+        return;
+    }
+    if (strcmp(key, "contact.mu_s") && strcmp(key, "contact.mu_d"))
+        return;
+    config_setting_t *mu = config_setting_get_member(g, "mu");
+    double v;
+    if (!mu || !dem__cfg_setting_number(mu, &v))
+        return;
+    config_setting_remove(g, "mu");
+    static const char *const both[] = {"mu_s", "mu_d"};
+    for (int k = 0; k < 2; k++)
+        if (!config_setting_get_member(g, both[k])) {
+            config_setting_t *m =
+                config_setting_add(g, both[k], CONFIG_TYPE_FLOAT);
+            if (m) {
+                config_setting_set_float(m, v);
+                config_setting_set_hook(m, hook);
+            }
+        }
+}
+
 int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
 {
     enum { MAXSEG = 4 };
@@ -361,6 +400,7 @@ int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
                                value, why);
         goto out;
     }
+    friction_alias(cfg, key, hook);
     config_setting_t *cur = config_root_setting(cfg);
     for (int i = 0; i < n - 1; i++) {
         config_setting_t *next = 0;

@@ -193,7 +193,7 @@ int dem_config_write(const struct dem_config *c, FILE *f)
         }
         note[0] = '\0';
         if (dem__cfg_keys[k].kind == K_TIME_STEP && c->time_step_auto)
-            snprintf(note, sizeof note, " [resolved from \"auto\" = t_c/50]");
+            snprintf(note, sizeof note, " [resolved from \"auto\"]");
         write_line(f, depth, segs[n - 1], v, &dem__cfg_keys[k], note);
     }
     while (depth > 0)
