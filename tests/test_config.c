@@ -205,6 +205,15 @@ static void set_friction_aliases_and_paths(void **state)
     parse_ok(&c, "contact = { mu = 0.5; };", two, 2);
     assert_float_equal(c.contact.mu_s, 0.6, 0.0);
     assert_float_equal(c.contact.mu_d, 0.4, 0.0);
+    /* the default stage made a hold: its default pressure goes with its
+     * type (it was refused as "not used by a hold stage", a key the user
+     * never wrote); made a compression it keeps it */
+    const char *hold[] = {"stages.0.type=hold", "stages.0.duration=1e-4"};
+    parse_ok(&c, "", hold, 2);
+    assert_int_equal(c.stages[0].type, DEM_STAGE_HOLD);
+    const char *iso[] = {"stages.0.type=isotropic"};
+    parse_ok(&c, "", iso, 1);
+    assert_float_equal(c.stages[0].pressure, 1000.0, 0.0);
     const char *path[] = {"particles.file=123"};
     parse_ok(&c, "particles = { placement = \"file\"; file = \"a.csv\"; };",
              path, 1);

@@ -96,6 +96,21 @@ static config_setting_t *copy_setting(config_setting_t *parent,
     return d;
 }
 
+/* The hook of the default stage's pressure: a --set of that stage's type
+ * drops it (it was the default isotropic stage's; a hold has none). */
+static const char default_stage[] = "stages.0 (the default stage)";
+
+/* Whether a stage of type name (a config string, or NULL) has a pressure
+ * key (unknown names: yes, so that their error is the type's). */
+static int stage_uses_pressure(const char *name)
+{
+    const int k = dem__cfg_find_key("pressure", S_STAGE);
+    for (int t = 0; name && k >= 0 && t < DEM_STAGE_NTYPES; t++)
+        if (strcmp(name, dem__cfg_stage_names[t]) == 0)
+            return (dem__cfg_keys[k].uses & (1u << t)) != 0;
+    return 1;
+}
+
 /* The default stages as a tree, so that --set stages.0.KEY works on a
  * config that does not list its stages. */
 static config_setting_t *add_default_stages(config_setting_t *root)
@@ -112,6 +127,7 @@ static config_setting_t *add_default_stages(config_setting_t *root)
         return 0;
     config_setting_set_string(t, dem__cfg_stage_names[d.stages[0].type]);
     config_setting_set_float(p, d.stages[0].pressure);
+    config_setting_set_hook(p, (void *)(uintptr_t)default_stage);
     return l;
 }
 
@@ -252,6 +268,11 @@ static int assign(config_setting_t *cur, const char *seg,
         }
         if (old)
             config_setting_remove(cur, seg);
+        config_setting_t *dp = config_setting_get_member(cur, "pressure");
+        if (strcmp(seg, "type") == 0 && dp &&
+            config_setting_get_hook(dp) == (const void *)default_stage &&
+            !stage_uses_pressure(config_setting_get_string(val)))
+            config_setting_remove(cur, "pressure");
         if (!(dst = copy_setting(cur, seg, val)))
             return dem_error_set(err, DEM_ECONFIG, "--set %s: cannot apply",
                                  key);
