@@ -1054,6 +1054,57 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
 
 /* The sweep of test stop_from_progress... into out, stopped while its one
  * run is under way: that run has a checkpoint, the sweep no sweep.json. */
+/* A sweep over a config whose particles come from a file, its step
+ * "auto": a run resolves the step against the file's particles (smaller
+ * than the radius keys say), and the restart compares the config with
+ * the run's config.cfg at that step too: both runs are finished and
+ * skipped. They used to run again at every restart (a read-only review,
+ * session 107). */
+static void restart_skips_runs_of_a_particle_file(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], text[2048], src[512];
+    tiny_config(cfg, sizeof cfg);
+    /* the particles: a tiny run's final state */
+    snprintf(src, sizeof src, "%s/file-src", tmpdir);
+    struct dem_config c;
+    struct dem_error err = {.warn = dem_warn_ignore};
+    const char *const iso[] = {"stages.0.max_time=1e-5"};
+    if (dem_config_load_file(&c, cfg, iso, 1, &err))
+        fail_msg("%s", err.msg);
+    struct dem_run_options ro = {.outdir = src, .threads = 1, .max_steps = 200};
+    if (dem_run(&c, &ro, &err))
+        fail_msg("%s", err.msg);
+    snprintf(text, sizeof text,
+             "dimension = 2;\ntime_step = \"auto\";\n"
+             "particles = { radius = { distribution = \"mono\"; "
+             "mean = 2.0e-3; }; placement = \"file\";\n"
+             "  file = \"%s/particles_final.csv\"; };\n"
+             "stages = ( { type = \"hold\"; duration = 1.0e-4; } );\n"
+             "output = { interval = 1.0e-5; snapshot_interval = 0.0; };\n",
+             src);
+    snprintf(cfg, sizeof cfg, "%s/filecfg.cfg", tmpdir);
+    write_file(cfg, text);
+    snprintf(out, sizeof out, "%s/file-sweep", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.mu=0.3,0.4");
+    struct dem_sweep_options o = {.target = cfg,
+                                  .outdir = out,
+                                  .jobs = 1,
+                                  .threads = 1,
+                                  .quiet = 1,
+                                  .max_steps = 50};
+    struct dem_sweep_report rep;
+    if (dem_sweep_run(&g, &o, &rep, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(rep.ran, 2);
+    if (dem_sweep_run(&g, &o, &rep, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(rep.ran, 0);
+    assert_int_equal(rep.skipped, 2);
+}
+
 static void stop_sweep_in_a_run(const char *out, struct dem_sweep_grid *g,
                                 struct dem_sweep_options *o)
 {
@@ -1203,6 +1254,7 @@ int main(void)
             jobs_left_to_the_library_take_the_cores_and_the_memory),
         cmocka_unit_test(jobs_given_that_the_memory_cannot_hold_are_warned),
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
+        cmocka_unit_test(restart_skips_runs_of_a_particle_file),
         cmocka_unit_test(stop_from_progress_saves_checkpoints_then_resumes),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);

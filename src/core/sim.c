@@ -83,21 +83,38 @@ int dem_sim_memory_check(long n, const char *what, double total,
  * of its distribution keys, which a file need not follow): "auto" takes
  * t_c/50 of the two when that is shorter; a given step above t_c/5 is
  * refused and one above t_c/10 warned of, as the config's are. */
+/* The contact time of the pair of p's smallest radius and mass, s; its
+ * radius and mass in *a and *m (0 without particles). */
+static double file_contact_time(const struct dem_config *c,
+                                const struct dem_particles *p, double *a,
+                                double *m)
+{
+    *a = *m = INFINITY;
+    for (int i = 0; i < p->n; i++) {
+        *a = fmin(*a, p->r[i]);
+        *m = fmin(*m, p->m[i]);
+    }
+    return p->n > 0 ? dem_contact_time_of(c, *a, *m) : 0.0;
+}
+
+double dem_sim_file_auto_step(const struct dem_config *c,
+                              const struct dem_particles *p)
+{
+    double a, m;
+    const double tc = file_contact_time(c, p, &a, &m);
+    return tc > 0.0 && tc / 50 < c->time_step ? tc / 50 : c->time_step;
+}
+
 static int file_time_step(struct dem_sim *s, struct dem_error *err)
 {
     const struct dem_particles *p = &s->p;
-    double a = INFINITY, m = INFINITY;
-    for (int i = 0; i < p->n; i++) {
-        a = fmin(a, p->r[i]);
-        m = fmin(m, p->m[i]);
-    }
-    const double tc = dem_contact_time_of(&s->cfg, a, m);
+    double a, m;
+    const double tc = file_contact_time(&s->cfg, p, &a, &m);
     if (!(tc > 0.0)) /* (no particles: nothing to resolve) */
         return DEM_OK;
     const char *file = s->cfg.particles.file;
     if (s->cfg.time_step_auto) {
-        if (tc / 50 < s->dt)
-            s->dt = s->cfg.time_step = tc / 50;
+        s->dt = s->cfg.time_step = dem_sim_file_auto_step(&s->cfg, p);
         return DEM_OK;
     }
     /* (a step the config's own check let pass: a config built past

@@ -171,6 +171,14 @@ void dem_sim_destroy(struct dem_sim *s);
  * particle yet, walls at lo/hi, no re-ordering (particle indices stay as
  * added unless s->reorder is set). Add particles with dem_particles_add,
  * then call dem_sim_ready. */
+/* The time step "auto" resolves to for config c (time_step_auto, its
+ * time_step the keys' t_c/50) whose particles are p, those of its
+ * particle file: t_c/50 of p's smallest radius and mass where that is
+ * shorter (dem_sim_create does the same; the sweep, to compare a config
+ * with a run's resolved one). */
+double dem_sim_file_auto_step(const struct dem_config *c,
+                              const struct dem_particles *p);
+
 int dem_sim_create_empty(struct dem_sim *s, const struct dem_config *cfg,
                          int cap, const double lo[3], const double hi[3],
                          struct dem_error *err);

@@ -284,6 +284,14 @@ int dem__sweep_same_config(const struct dem_sweep_grid *g,
     if (a && b && !dem_path_join(path, sizeof path, rundir, "config.cfg", &e) &&
         !dem_config_load_file(a, path, NULL, 0, &e) &&
         !parse_with(o, sets, ns, b, &e)) {
+        /* "auto" with a particle file resolves against the file's
+         * particles when the run starts (config.cfg holds that step) */
+        if (b->time_step_auto && b->particles.placement == DEM_PLACE_FILE) {
+            struct dem_particles p = {0};
+            if (!dem_particles_load(&p, b, &e))
+                b->time_step = dem_sim_file_auto_step(b, &p);
+            dem_particles_free(&p);
+        }
         char *ta = config_text(a), *tb = config_text(b);
         same = ta && tb && !strcmp(ta, tb);
         free(ta);
