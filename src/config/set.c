@@ -346,8 +346,6 @@ static int split_set(const char *set, char *key, size_t keysz, char *path,
     return 0;
 }
 
-/* Apply one "KEY=VALUE" to the tree; the new setting's hook is the set
- * text, so that messages about it name the override. */
 /* contact.mu sets mu_s and mu_d, which may not be given with it: a --set
  * of the one replaces the other in the tree (the later override wins, as
  * everywhere). A --set of mu drops mu_s and mu_d; a --set of mu_s or mu_d
@@ -385,6 +383,8 @@ static void friction_alias(config_t *cfg, const char *key, void *hook)
         }
 }
 
+/* Apply one "KEY=VALUE" to the tree; the new setting's hook is the set
+ * text, so that messages about it name the override. */
 int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
 {
     enum { MAXSEG = 4 };
