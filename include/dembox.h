@@ -172,6 +172,7 @@ struct dem_stage_config {
     int type;         /* enum dem_stage_type */
     double pressure;  /* Pa (2D: N/m); isotropic target, confining or p0 */
     double tolerance; /* isotropic: stop when E_kin/E_pot < tolerance */
+    double relax;     /* hold: stop also when E_kin/E_pot < relax (0: no) */
     double max_time;  /* s; isotropic: give up relaxing after this time */
     int axis;         /* 0 = x, 1 = y, 2 = z; compress and cyclic */
     double strain;    /* compress: total axial strain (compression > 0) */

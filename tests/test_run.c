@@ -954,6 +954,38 @@ static void a_hold_after_cycles_stops_the_cycling(void **state)
     dem__csv_table_free(&t);
 }
 
+/* A hold with relax ends when the packing is at rest (E_kin/E_pot below
+ * it; SPEC's "relax / hold ... until a criterion holds"), long before
+ * its duration; without relax it runs the whole duration. */
+static void a_hold_with_relax_ends_at_rest(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("hold3d");
+    assert_non_null(ex);
+    static const struct dem__csv_want want[] = {
+        DEM_CSV_FINITE("t", 1), DEM_CSV_FINITE("stage", 1),
+        DEM_CSV_FINITE("e_kin", 1), DEM_CSV_FINITE("e_rot", 1),
+        DEM_CSV_FINITE("e_pot", 1)};
+    double end[2];
+    for (int k = 0; k < 2; k++) {
+        const char *const sets[] = {
+            "output.snapshot_interval=0", "stages.1.duration=0.5",
+            k ? "stages.1.relax=1e-3" : "stages.1.relax=0"};
+        char out[1024];
+        run_text(ex->text, k ? "hold-relax" : "hold-full", sets, 3, 0, out,
+                 sizeof out);
+        struct dem__csv_table t;
+        read_ts(out, want, 5, &t);
+        const size_t r = t.nrow - 1;
+        assert_true(t.col[1][r] == 1.0);
+        end[k] = t.col[0][r];
+        if (k) /* at rest where it ended */
+            assert_true(t.col[2][r] + t.col[3][r] < 1e-3 * t.col[4][r]);
+        dem__csv_table_free(&t);
+    }
+    assert_true(end[1] < 0.5 * end[0]);
+}
+
 static void keep_line(const char *line, void *user)
 {
     snprintf((char *)user, 1024, "%s", line);
@@ -1043,6 +1075,7 @@ int main(void)
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
+        cmocka_unit_test(a_hold_with_relax_ends_at_rest),
         cmocka_unit_test(threads_left_to_the_library_are_chosen_by_timing),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
