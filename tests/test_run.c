@@ -954,6 +954,43 @@ static void a_hold_after_cycles_stops_the_cycling(void **state)
     dem__csv_table_free(&t);
 }
 
+/* The same for a periodic cell's tilt: a hold after a cyclic shear
+ * keeps the shear where it stands (the tilt went on cycling). */
+static void a_hold_after_a_cyclic_shear_stops_the_tilt(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("shear2d");
+    assert_non_null(ex);
+    const char *const sets[] = {
+        "particles.count=100", "output.interval=2e-5",
+        "output.snapshot_interval=0",
+        "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
+        "{type=\"shear\";shear_strain=0.01;duration=4e-4;profile="
+        "\"sine\";cycles=1;pressure=500.0;},"
+        "{type=\"hold\";duration=2e-4;})"};
+    char out[1024];
+    run_text(ex->text, "shear-hold", sets, 4, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
+                                                DEM_CSV_FINITE("gamma_xy", 1)};
+    struct dem__csv_table t;
+    read_ts(out, want, 2, &t);
+    double lo1 = INFINITY, hi1 = -INFINITY, lo2 = INFINITY, hi2 = -INFINITY;
+    for (size_t r = 0; r < t.nrow; r++) {
+        const double g = t.col[1][r];
+        if (t.col[0][r] == 1.0) {
+            lo1 = fmin(lo1, g);
+            hi1 = fmax(hi1, g);
+        } else if (t.col[0][r] == 2.0) {
+            lo2 = fmin(lo2, g);
+            hi2 = fmax(hi2, g);
+        }
+    }
+    assert_true(hi1 - lo1 > 0.015); /* the shear went both ways */
+    assert_true(isfinite(lo2));
+    assert_true(hi2 - lo2 <= 1e-8); /* the hold kept it */
+    dem__csv_table_free(&t);
+}
+
 /* A hold with relax ends when the packing is at rest (E_kin/E_pot below
  * it; SPEC's "relax / hold ... until a criterion holds"), long before
  * its duration; without relax it runs the whole duration. */
@@ -1075,6 +1112,7 @@ int main(void)
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
+        cmocka_unit_test(a_hold_after_a_cyclic_shear_stops_the_tilt),
         cmocka_unit_test(a_hold_with_relax_ends_at_rest),
         cmocka_unit_test(threads_left_to_the_library_are_chosen_by_timing),
     };

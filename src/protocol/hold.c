@@ -25,8 +25,16 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
                  struct dem_error *err)
 {
     (void)err;
-    for (int w = 0; w < s->nwall; w++) {
-        struct dem_wall *W = &s->wall[w];
+    /* the walls, and a periodic cell's tilts (controlled coordinates of
+     * the same kind, which a shear stage may cycle) */
+    struct dem_wall *all[DEM_MAX_WALLS + 3];
+    int n = 0;
+    for (int w = 0; w < s->nwall; w++)
+        all[n++] = &s->wall[w];
+    for (int k = 0; s->cell.on && k < 3; k++)
+        all[n++] = &s->cell.tilt[k];
+    for (int w = 0; w < n; w++) {
+        struct dem_wall *W = all[w];
         if (W->mode == DEM_WALL_STRESS && W->amp != 0.0) {
             W->p0 = dem_wall_target_stress(W, s->t);
             W->amp = 0.0;
