@@ -37,18 +37,21 @@ static void strain_profiles_start_and_end_at_rest(void **state)
      * step's end: its velocity D/dt whichever way t + dt - t rounds (it
      * read 0 in 43 % of the steps of a run; a read-only review, session
      * 107) */
-    const double dt = 2e-5;
     int zero = 0;
-    for (int k = 0; k < 10000; k++) {
-        const double t = 0.0631 + k * 1.37e-5;
+    for (int k = 0; k < 20000; k++) {
+        /* early, and at t = 8 to 48 s of a step of 1.47e-7 s (where an
+         * ulp of t is 4e-9 to 2e-8 of the step) */
+        const double dt = k < 10000 ? 2e-5 : 1.4733e-7,
+                     t = k < 10000 ? 0.0631 + k * 1.37e-5
+                                   : 8.0 + (k - 10000) * 4.00013e-3;
         w.pos = 1.0;
         dem_wall_set_strain(&w, DEM_PROFILE_LINEAR, D, dt, t);
         dem_wall_strain_state(&w, t + dt, &x, &v);
         zero += v == 0.0;
-        assert_close(x, 1.0 + D, 1e-12);
+        /* (late, t + dt - t itself is off by an ulp of t: 1e-8 of D) */
+        assert_close(x, 1.0 + D, k < 10000 ? 1e-12 : 1e-7 * fabs(D));
     }
     assert_int_equal(zero, 0);
-    w.pos = 1.0;
     w.pos = 1.0;
     dem_wall_set_strain(&w, DEM_PROFILE_CYCLIC, D, T, 0.0);
     dem_wall_strain_state(&w, 1.0, &x, &v);
