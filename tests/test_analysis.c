@@ -270,7 +270,7 @@ static void rising_or_flat_end_has_no_peak(void **state)
  * against the samples' scatter: a ratio that falls by 19 % across the
  * window under white noise of a few times that size per sample is still
  * softening (about 10 standard errors; the scatter rule took it for a
- * plateau), while slow fluctuations (an AR(1) series, correlation 0.995
+ * plateau), while slow fluctuations (an AR(1) series, correlation 0.98
  * from row to row) whose fitted line moves by more than the tolerance
  * are not told from none, and the mean is the critical state. */
 static void plateau_weighs_a_trend_against_its_standard_error(void **state)

@@ -1052,8 +1052,6 @@ static void three_runs_in_two_jobs_then_restart_skips_them(void **state)
     dem_sweep_grid_free(&g);
 }
 
-/* The sweep of test stop_from_progress... into out, stopped while its one
- * run is under way: that run has a checkpoint, the sweep no sweep.json. */
 /* A sweep over a config whose particles come from a file, its step
  * "auto": a run resolves the step against the file's particles (smaller
  * than the radius keys say), and the restart compares the config with
@@ -1105,6 +1103,8 @@ static void restart_skips_runs_of_a_particle_file(void **state)
     assert_int_equal(rep.skipped, 2);
 }
 
+/* The sweep of test stop_from_progress... into out, stopped while its one
+ * run is under way: that run has a checkpoint, the sweep no sweep.json. */
 static void stop_sweep_in_a_run(const char *out, struct dem_sweep_grid *g,
                                 struct dem_sweep_options *o)
 {
