@@ -186,6 +186,19 @@ static void set_group_merges_into_the_group(void **state)
     assert_float_equal(c.damping.gamma_br, 0.05, 0.0);
     assert_float_equal(c.particles.min, 1.0e-3, 0.0);
     assert_float_equal(c.particles.max, 3.0e-3, 0.0);
+    /* the friction keys merge as --set gives them (mu replaces mu_s and
+     * mu_d), and a contact group that names its law replaces the group:
+     * the old law's keys go with it */
+    const char *mu[] = {"contact={ mu = 0.3; }"};
+    parse_ok(&c,
+             "time_step = \"auto\";\n"
+             "contact = { mu_s = 0.6; mu_d = 0.4; };\n",
+             mu, 1);
+    assert_float_equal(c.contact.mu_d, 0.3, 0.0);
+    const char *law[] = {"contact={ normal = \"hertz\"; E = 7.0e7; }"};
+    parse_ok(&c, text, law, 1);
+    assert_int_equal(c.contact.normal, DEM_NORMAL_HERTZ);
+    assert_float_equal(c.contact.E, 7.0e7, 0.0);
 }
 
 /* --set of contact.mu replaces a given mu_s and mu_d, and of mu_s or mu_d

@@ -244,6 +244,43 @@ static config_setting_t *member_of(config_setting_t *cur, const char *seg,
     return next;
 }
 
+/* contact.mu sets mu_s and mu_d, which may not be given with it: a --set
+ * of the one replaces the other in the tree (the later override wins, as
+ * everywhere). A --set of mu drops mu_s and mu_d; a --set of mu_s or mu_d
+ * turns a given mu into both (each then overridden in turn): the resolved
+ * config.cfg writes mu where mu_s = mu_d, and --set contact.mu_s=0.6
+ * --set contact.mu_d=0.4 on it used to be refused as "both given". g is
+ * the contact group, name the member a --set (or a merged group) gives. */
+static void friction_alias(config_setting_t *g, const char *name, void *hook)
+{
+    if (!g || !config_setting_is_group(g))
+        return;
+    if (strcmp(name, "mu") == 0) {
+        if (config_setting_get_member(g, "mu_s"))
+            config_setting_remove(g, "mu_s");
+        if (config_setting_get_member(g, "mu_d"))
+            config_setting_remove(g, "mu_d");
+        return;
+    }
+    if (strcmp(name, "mu_s") && strcmp(name, "mu_d"))
+        return;
+    config_setting_t *mu = config_setting_get_member(g, "mu");
+    double v;
+    if (!mu || !dem__cfg_setting_number(mu, &v))
+        return;
+    config_setting_remove(g, "mu");
+    static const char *const both[] = {"mu_s", "mu_d"};
+    for (int k = 0; k < 2; k++)
+        if (!config_setting_get_member(g, both[k])) {
+            config_setting_t *m =
+                config_setting_add(g, both[k], CONFIG_TYPE_FLOAT);
+            if (m) {
+                config_setting_set_float(m, v);
+                config_setting_set_hook(m, hook);
+            }
+        }
+}
+
 /* Put val at the last segment seg below cur. */
 static int assign(config_setting_t *cur, const char *seg,
                   const config_setting_t *val, void *hook, const char *key,
@@ -256,10 +293,17 @@ static int assign(config_setting_t *cur, const char *seg,
          * and keeps the law's other keys (it used to replace the whole
          * group, the normal law falling back to its default) */
         config_setting_t *old = config_setting_get_member(cur, seg);
+        const int contact =
+            config_setting_is_root(cur) && strcmp(seg, "contact") == 0;
+        /* (a contact group that names its normal law is a law of its
+         * own: it replaces the group, the old law's keys with it) */
         if (old && config_setting_is_group(old) &&
-            config_setting_is_group(val)) {
+            config_setting_is_group(val) &&
+            !(contact && config_setting_get_member(val, "normal"))) {
             for (int m = 0; m < config_setting_length(val); m++) {
                 const config_setting_t *v = config_setting_get_elem(val, m);
+                if (contact)
+                    friction_alias(old, config_setting_name(v), hook);
                 int rc = assign(old, config_setting_name(v), v, hook, key, err);
                 if (rc)
                     return rc;
@@ -346,43 +390,6 @@ static int split_set(const char *set, char *key, size_t keysz, char *path,
     return 0;
 }
 
-/* contact.mu sets mu_s and mu_d, which may not be given with it: a --set
- * of the one replaces the other in the tree (the later override wins, as
- * everywhere). A --set of mu drops mu_s and mu_d; a --set of mu_s or mu_d
- * turns a given mu into both (each then overridden in turn): the resolved
- * config.cfg writes mu where mu_s = mu_d, and --set contact.mu_s=0.6
- * --set contact.mu_d=0.4 on it used to be refused as "both given". */
-static void friction_alias(config_t *cfg, const char *key, void *hook)
-{
-    config_setting_t *g = config_lookup(cfg, "contact");
-    if (!g || !config_setting_is_group(g))
-        return;
-    if (strcmp(key, "contact.mu") == 0) {
-        if (config_setting_get_member(g, "mu_s"))
-            config_setting_remove(g, "mu_s");
-        if (config_setting_get_member(g, "mu_d"))
-            config_setting_remove(g, "mu_d");
-        return;
-    }
-    if (strcmp(key, "contact.mu_s") && strcmp(key, "contact.mu_d"))
-        return;
-    config_setting_t *mu = config_setting_get_member(g, "mu");
-    double v;
-    if (!mu || !dem__cfg_setting_number(mu, &v))
-        return;
-    config_setting_remove(g, "mu");
-    static const char *const both[] = {"mu_s", "mu_d"};
-    for (int k = 0; k < 2; k++)
-        if (!config_setting_get_member(g, both[k])) {
-            config_setting_t *m =
-                config_setting_add(g, both[k], CONFIG_TYPE_FLOAT);
-            if (m) {
-                config_setting_set_float(m, v);
-                config_setting_set_hook(m, hook);
-            }
-        }
-}
-
 /* Apply one "KEY=VALUE" to the tree; the new setting's hook is the set
  * text, so that messages about it name the override. */
 int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
@@ -421,7 +428,8 @@ int dem__cfg_apply_set(config_t *cfg, const char *set, struct dem_error *err)
                                value, why);
         goto out;
     }
-    friction_alias(cfg, key, hook);
+    if (n == 2 && strcmp(seg[0], "contact") == 0)
+        friction_alias(config_lookup(cfg, "contact"), seg[1], hook);
     config_setting_t *cur = config_root_setting(cfg);
     for (int i = 0; i < n - 1; i++) {
         config_setting_t *next = 0;
