@@ -417,6 +417,15 @@ int dem_config_load_file(struct dem_config *c, const char *path,
                          const char *const *sets, int nsets,
                          struct dem_error *err);
 
+/* Read a run folder's resolved config.cfg for its analysis and plots: as
+ * dem_config_load_file, but the checks a run passes before it starts
+ * (the time step against t_c and the viscosities, keys a stage would
+ * ignore) are left out: the run ran with them under the version that
+ * wrote it, and a later version's stricter checks must not make its
+ * results unreadable. Its warnings are not repeated either. */
+int dem_config_load_record(struct dem_config *c, const char *path,
+                           struct dem_error *err);
+
 /* Check physical validity (also called by dem_config_parse). */
 int dem_config_validate(const struct dem_config *c, struct dem_error *err);
 

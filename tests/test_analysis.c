@@ -862,6 +862,42 @@ static void analysis_repeats_no_config_warning(void **state)
     assert_int_equal(n, 0);
 }
 
+/* A run folder written by an earlier version stays analysable when a
+ * later one checks configs more strictly before a run: its config.cfg
+ * here has a step at which gamma_n reaches gamma dt/m = 3.8, refused
+ * since session 107 for a new run (test_config), and a 2D constant_p
+ * stage's b, which 2D refuses now. */
+static void older_run_folders_stay_readable(void **state)
+{
+    (void)state;
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "older");
+    write_biaxial_loading(dir, 1.0, LOAD_COMPRESS);
+    const char *cfg = "dimension = 2;\n"
+                      "time_step = 2.0e-5;\n"
+                      "particles = { radius = { distribution = \"mono\"; "
+                      "mean = 5.0e-3; }; };\n"
+                      "contact = { k = 5000.0; gamma_n = 100.0; mu = 0.5; };\n"
+                      "stages = (\n"
+                      "  { type = \"isotropic\"; pressure = 500.0; },\n"
+                      "  { type = \"compress\"; axis = \"y\"; strain = 0.1; "
+                      "duration = 1.0; pressure = 500.0; },\n"
+                      "  { type = \"constant_p\"; axis = \"y\"; "
+                      "strain = 0.1; duration = 1.0; pressure = 500.0; "
+                      "b = 0.0; }\n"
+                      ");\n"
+                      "output = { interval = 1.0e-3; };\n";
+    write_text(dir, "config.cfg", cfg);
+    struct dem_config c;
+    struct dem_error err = {0};
+    snprintf(path, sizeof path, "%s/config.cfg", dir);
+    assert_int_equal(dem_config_load_file(&c, path, NULL, 0, &err),
+                     DEM_ECONFIG); /* a new run: refused */
+    assert_int_equal(dem_config_load_record(&c, path, &err), 0);
+    if (dem_analyze(dir, &err))
+        fail_msg("%s", err.msg);
+}
+
 static void write_biaxial_run_in(const char *dir, double unit)
 {
     write_biaxial_loading(dir, unit, LOAD_COMPRESS);
@@ -1448,6 +1484,7 @@ int main(void)
         cmocka_unit_test(elastic_constants_need_the_lateral_stress_held),
         cmocka_unit_test(shear_either_way_gives_the_same_friction),
         cmocka_unit_test(analysis_repeats_no_config_warning),
+        cmocka_unit_test(older_run_folders_stay_readable),
         cmocka_unit_test(constant_p_reads_the_minor_stress),
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),

@@ -890,11 +890,9 @@ static int analyze_folder(const char *outdir, const char *cfg_path,
     struct dem_config *cfg = malloc(sizeof *cfg);
     if (!cfg)
         return dem_error_set(err, DEM_ENOMEM, "out of memory");
-    /* the run's resolved config: its warnings were the run's to give */
-    struct dem_error ce = {.warn = dem_warn_ignore};
-    rc = dem_config_load_file(cfg, cfg_path, NULL, 0, &ce);
-    if (rc)
-        dem_error_set(err, rc, "%s", ce.msg);
+    /* the run's resolved config: its warnings and its checks before a
+     * run were the run's */
+    rc = dem_config_load_record(cfg, cfg_path, err);
     struct dem__csv_table tb = {0};
     struct columns c = {0};
     struct dem__csv_want want[NCOL];

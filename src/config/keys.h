@@ -96,6 +96,7 @@ struct ctx {
     const config_setting_t *stage_at[DEM_MAX_STAGES][DEM_CFG_MAX_KEYS];
     const config_setting_t *stage_grp[DEM_MAX_STAGES];
     const config_setting_t *stages;
+    int recorded; /* a run's own config.cfg (dem_config_load_record) */
 };
 
 /* The reading of libconfig's "mismatched element type", in the messages

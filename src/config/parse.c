@@ -674,12 +674,14 @@ static void warn_time_step(const struct ctx *x, const struct dem_config *c,
                  x->source, c->time_step, tc / 10);
 }
 
-int dem_config_parse(struct dem_config *c, const char *text, const char *source,
-                     const char *const *sets, int nsets, struct dem_error *err)
+static int parse_text(struct dem_config *c, const char *text,
+                      const char *source, const char *const *sets, int nsets,
+                      int recorded, struct dem_error *err)
 {
     struct ctx *x = calloc(1, sizeof *x);
     if (!x)
         return dem_error_set(err, DEM_ENOMEM, "config: out of memory");
+    x->recorded = recorded;
     x->source = source ? source : "config";
     dem_config_defaults(c);
     snprintf(c->source, sizeof c->source, "%s", x->source);
@@ -753,18 +755,25 @@ int dem_config_parse(struct dem_config *c, const char *text, const char *source,
         c->time_step = fmin(dem_contact_time(c) / 50,
                             0.5 * dem_damping_step(c, &vkey, &m));
     }
-    if ((rc = dem__cfg_check_time_step(x, c, err)) != 0)
+    if (!recorded && (rc = dem__cfg_check_time_step(x, c, err)) != 0)
         goto out;
-    warn_time_step(x, c, err);
+    if (!recorded)
+        warn_time_step(x, c, err);
 out:
     config_destroy(&cfg);
     free(x);
     return rc;
 }
 
-int dem_config_load_file(struct dem_config *c, const char *path,
-                         const char *const *sets, int nsets,
-                         struct dem_error *err)
+int dem_config_parse(struct dem_config *c, const char *text, const char *source,
+                     const char *const *sets, int nsets, struct dem_error *err)
+{
+    return parse_text(c, text, source, sets, nsets, 0, err);
+}
+
+static int load_file(struct dem_config *c, const char *path,
+                     const char *const *sets, int nsets, int recorded,
+                     struct dem_error *err)
 {
     FILE *f;
     int rc = dem_open_text(&f, path, "a config file", err);
@@ -799,7 +808,24 @@ int dem_config_load_file(struct dem_config *c, const char *path,
                              "%s:%ld: NUL byte: a config is text, not binary",
                              path, line);
     }
-    rc = dem_config_parse(c, text, path, sets, nsets, err);
+    rc = parse_text(c, text, path, sets, nsets, recorded, err);
     free(text);
+    return rc;
+}
+
+int dem_config_load_file(struct dem_config *c, const char *path,
+                         const char *const *sets, int nsets,
+                         struct dem_error *err)
+{
+    return load_file(c, path, sets, nsets, 0, err);
+}
+
+int dem_config_load_record(struct dem_config *c, const char *path,
+                           struct dem_error *err)
+{
+    struct dem_error e = {.warn = dem_warn_ignore};
+    const int rc = load_file(c, path, NULL, 0, 1, &e);
+    if (rc)
+        dem_error_set(err, rc, "%s", e.msg);
     return rc;
 }

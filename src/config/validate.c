@@ -178,15 +178,16 @@ static int check_stages(const struct ctx *x, const struct dem_config *c,
          * config.cfg writes, and which changes nothing) */
         const int kcyc = dem__cfg_find_key("cycles", S_STAGE),
                   kb = dem__cfg_find_key("b", S_STAGE);
-        if (st->type == DEM_STAGE_SHEAR && kcyc >= 0 && x->stage_at[i][kcyc] &&
-            st->cycles != 1 && st->profile != DEM_PROFILE_CYCLIC &&
+        if (!x->recorded && st->type == DEM_STAGE_SHEAR && kcyc >= 0 &&
+            x->stage_at[i][kcyc] && st->cycles != 1 &&
+            st->profile != DEM_PROFILE_CYCLIC &&
             st->profile != DEM_PROFILE_SINE)
             return dem__cfg_fail_key(
                 x, i, "cycles", err,
                 "only with profile = \"cyclic\" or \"sine\": with this "
                 "profile the shear is one ramp, and cycles would be ignored");
-        if (st->type == DEM_STAGE_CONSTANT_P && c->dim == 2 && kb >= 0 &&
-            x->stage_at[i][kb] && st->b != dem__cfg_keys[kb].def)
+        if (!x->recorded && st->type == DEM_STAGE_CONSTANT_P && c->dim == 2 &&
+            kb >= 0 && x->stage_at[i][kb] && st->b != dem__cfg_keys[kb].def)
             return dem__cfg_fail_key(
                 x, i, "b", err,
                 "is for 3D: a 2D constant_p stage has one lateral axis, "

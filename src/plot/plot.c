@@ -211,7 +211,7 @@ static int find_loading_from_config(struct series *s, const char *outdir)
     struct dem_config cfg;
     struct dem_error e = {.warn = dem_warn_ignore}; /* given by the run */
     if (dem_path_join(path, sizeof path, outdir, "config.cfg", NULL) ||
-        dem_config_load_file(&cfg, path, 0, 0, &e))
+        dem_config_load_record(&cfg, path, &e))
         return 0;
     if (cfg.dim != s->dim)
         return -1;

@@ -124,7 +124,7 @@ static int read_run(struct dem__sweep_run *r, const char *rundir)
     struct dem__jval js;
     int rc = dem_path_join(path, sizeof path, rundir, "config.cfg", &e);
     if (!rc)
-        rc = dem_config_load_file(c, path, NULL, 0, &e);
+        rc = dem_config_load_record(c, path, &e);
     if (!rc)
         rc = dem_path_join(path, sizeof path, rundir, "summary.json", &e);
     if (!rc)

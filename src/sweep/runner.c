@@ -282,7 +282,7 @@ int dem__sweep_same_config(const struct dem_sweep_grid *g,
     int same = 0;
     const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
     if (a && b && !dem_path_join(path, sizeof path, rundir, "config.cfg", &e) &&
-        !dem_config_load_file(a, path, NULL, 0, &e) &&
+        !dem_config_load_record(a, path, &e) &&
         !parse_with(o, sets, ns, b, &e)) {
         /* "auto" with a particle file resolves against the file's
          * particles when the run starts (config.cfg holds that step) */
