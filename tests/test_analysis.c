@@ -114,7 +114,8 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_close(f.c, 0.0, 0.0);
     /* B = (1000 * 500 + 2000 * 1200) / (1000^2 + 2000^2) = 0.58 */
     assert_close(f.sin_phi, 0.58, 1e-12);
-    assert_non_null(strstr(f.note, "cohesion, -280"));
+    /* (the intercept A = c cos phi = -200: c = -280 at sin phi 0.7) */
+    assert_non_null(strstr(f.note, "intercept c cos phi, -200"));
     /* a positive cohesion leaves no note */
     const double c3[] = {100.0, 300.0};
     double c1[2] = {mc_sigma1(c3[0], phi, 50.0), mc_sigma1(c3[1], phi, 50.0)};

@@ -12,6 +12,7 @@
 
 #include <cmocka.h>
 
+#include "config/keys.h"
 #include "contact/models.h"
 #include "tmpdir.h"
 
@@ -675,6 +676,13 @@ static void quotes_in_comments_and_escapes_are_not_open_strings(void **state)
              "particles = { placement = \"file\"; file = \"4294967297\"; };\n",
              0, 0);
     assert_true(c.seed == 3000000000u);
+    /* INT_MIN is an int */
+    assert_int_equal(
+        dem__cfg_wide_integer("x = -2147483648;", &(int){0}, (char[32]){0}, 32),
+        0);
+    assert_int_equal(
+        dem__cfg_wide_integer("x = -2147483649;", &(int){0}, (char[32]){0}, 32),
+        1);
 }
 
 /* With placement = "file", particles.count is not used (the file says how

@@ -106,15 +106,16 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
      * none): the intercept of circles of a cohesionless material that
      * scatter or bend the envelope. The least squares bounded by c >= 0
      * is then the tangent through the origin, and the note says so. */
-    if (cohesion && fitted && o->c < 0.0 && o->sin_phi > 0.0 &&
-        o->sin_phi < 1.0) {
-        const double cfree = o->c / cos(asin(o->sin_phi)) * unit,
-                     sfree = o->sin_phi;
+    if (cohesion && fitted && o->c < 0.0) {
+        /* (o->c is still the intercept A = c cos phi; whatever the free
+         * slope, the bounded fit may be a valid tangent) */
+        const double afree = o->c * unit, sfree = o->sin_phi;
         fitted = through_origin(s, t, n, o);
         snprintf(o->note, sizeof o->note,
-                 "the free fit's cohesion, %.4g, is below 0 (its sin phi "
-                 "%.4g): the tangent through the origin, c = 0",
-                 cfree, sfree);
+                 "the free fit's intercept c cos phi, %.4g, is below 0 (its "
+                 "sin phi %.4g): the tangent through the origin, c = 0 (r2 "
+                 "then about zero, not the mean)",
+                 afree, sfree);
     }
     free(s);
     o->c *= unit;

@@ -526,8 +526,28 @@ static const char *unterminated(const char *t, int *at)
     return 0;
 }
 
+/* Whether this libconfig wraps a decimal integer beyond int to 32 bits
+ * (1.5, Debian 12's) rather than reading it as a 64-bit one (later
+ * versions): asked once. */
+static int libconfig_wraps(void)
+{
+    static int wraps = -1;
+    if (wraps < 0) {
+        config_t t;
+        config_init(&t);
+        const config_setting_t *v = config_read_string(&t, "v = 4294967316;")
+                                        ? config_lookup(&t, "v")
+                                        : NULL;
+        wraps = !(v && config_setting_type(v) == CONFIG_TYPE_INT64);
+        config_destroy(&t);
+    }
+    return wraps;
+}
+
 int dem__cfg_wide_integer(const char *text, int *line, char *tok, size_t n)
 {
+    if (!libconfig_wraps())
+        return 0;
     int l = 1;
     for (const char *t = text; *t; t++) {
         if (*t == '\n') {
@@ -554,6 +574,7 @@ int dem__cfg_wide_integer(const char *text, int *line, char *tok, size_t n)
                    (t == text || !(isalnum((unsigned char)t[-1]) ||
                                    t[-1] == '_' || t[-1] == '.'))) {
             const char *b = t;
+            const int minus = t > text && t[-1] == '-';
             while (isdigit((unsigned char)t[1]))
                 t++;
             const char next = t[1];
@@ -563,7 +584,9 @@ int dem__cfg_wide_integer(const char *text, int *line, char *tok, size_t n)
             while (*b == '0' && b < t)
                 b++;
             const size_t len = (size_t)(t - b) + 1;
-            if (len > 10 || (len == 10 && strncmp(b, "2147483647", 10) > 0)) {
+            /* (INT_MIN, -2147483648, is an int) */
+            const char *lim = minus ? "2147483648" : "2147483647";
+            if (len > 10 || (len == 10 && strncmp(b, lim, 10) > 0)) {
                 snprintf(tok, n, "%.*s", (int)len, b);
                 *line = l;
                 return 1;
