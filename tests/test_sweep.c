@@ -1101,6 +1101,7 @@ static void restart_skips_runs_of_a_particle_file(void **state)
         fail_msg("%s", err.msg);
     assert_int_equal(rep.ran, 0);
     assert_int_equal(rep.skipped, 2);
+    dem_sweep_grid_free(&g);
 }
 
 /* The sweep of test stop_from_progress... into out, stopped while its one
