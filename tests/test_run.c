@@ -871,6 +871,25 @@ static void threads_left_to_the_library_are_chosen_by_timing(void **state)
 }
 
 /* A warning into a buffer of 1024 bytes (the last one). */
+/* The range of column 1 of t (times column 2 where with2 is set) in
+ * each of the stages 0..n-1 (column 0): lo[k], hi[k] (+-INFINITY in a
+ * stage without rows). */
+static void stage_ranges(const struct dem__csv_table *t, int with2, int n,
+                         double *lo, double *hi)
+{
+    for (int k = 0; k < n; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (size_t r = 0; r < t->nrow; r++) {
+        const int k = (int)t->col[0][r];
+        assert_true(k >= 0 && k < n);
+        const double v = with2 ? t->col[1][r] * t->col[2][r] : t->col[1][r];
+        lo[k] = fmin(lo[k], v);
+        hi[k] = fmax(hi[k], v);
+    }
+}
+
 /* A stage after a shear stage does not go on shearing: every stage but
  * hold (which keeps every mode, SPEC) fixes the cell's tilts, and only a
  * shear stage drives one. Before, a stress-controlled tilt kept its servo
@@ -897,15 +916,8 @@ static void a_stage_after_shear_holds_the_tilt(void **state)
     struct dem__csv_table t;
     read_ts(out, want, 3, &t);
     /* the shear displacement gamma_xy Ly, the tilt's, by stage */
-    double lo[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
-    double hi[4] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    for (size_t r = 0; r < t.nrow; r++) {
-        const int k = (int)t.col[0][r];
-        assert_true(k >= 0 && k < 4);
-        const double d = t.col[1][r] * t.col[2][r];
-        lo[k] = fmin(lo[k], d);
-        hi[k] = fmax(hi[k], d);
-    }
+    double lo[4], hi[4];
+    stage_ranges(&t, 1, 4, lo, hi);
     /* the shear moved the tilt; the compression did not (to the 10
      * digits timeseries.csv gives gamma_xy and Ly) */
     assert_true(hi[1] - lo[1] > 1e-9);
@@ -974,20 +986,11 @@ static void a_hold_after_a_cyclic_shear_stops_the_tilt(void **state)
                                                 DEM_CSV_FINITE("gamma_xy", 1)};
     struct dem__csv_table t;
     read_ts(out, want, 2, &t);
-    double lo1 = INFINITY, hi1 = -INFINITY, lo2 = INFINITY, hi2 = -INFINITY;
-    for (size_t r = 0; r < t.nrow; r++) {
-        const double g = t.col[1][r];
-        if (t.col[0][r] == 1.0) {
-            lo1 = fmin(lo1, g);
-            hi1 = fmax(hi1, g);
-        } else if (t.col[0][r] == 2.0) {
-            lo2 = fmin(lo2, g);
-            hi2 = fmax(hi2, g);
-        }
-    }
-    assert_true(hi1 - lo1 > 0.015); /* the shear went both ways */
-    assert_true(isfinite(lo2));
-    assert_true(hi2 - lo2 <= 1e-8); /* the hold kept it */
+    double lo[3], hi[3];
+    stage_ranges(&t, 0, 3, lo, hi);
+    assert_true(hi[1] - lo[1] > 0.015); /* the shear went both ways */
+    assert_true(isfinite(lo[2]));
+    assert_true(hi[2] - lo[2] <= 1e-8); /* the hold kept it */
     dem__csv_table_free(&t);
 }
 
