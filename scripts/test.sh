@@ -3,12 +3,12 @@
 #   1. Release build in build/ (warnings are errors), ctest;
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/,
 #      the same ctest there (skip with DEM_TEST_ASAN=0);
-#   3. the libFuzzer harnesses for FUZZ_SECONDS each (default 30) on the
+#   3. the libFuzzer harnesses for FUZZ_SECONDS each (default 20) on the
 #      committed corpus (skip with FUZZ_SECONDS=0).
 # This is what CI (.ci/run) runs.
 set -eu
 cd "$(dirname "$0")/.."
-FUZZ_SECONDS=${FUZZ_SECONDS:-30}
+FUZZ_SECONDS=${FUZZ_SECONDS:-20}
 J=$(nproc)
 t0=$(date +%s)
 
