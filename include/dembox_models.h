@@ -85,12 +85,12 @@
     P(ROLLING, kr, "N/m", 500, "rolling spring stiffness", GT(0))              \
     P(ROLLING, gamma_r, "kg/s", 0.005, "rolling viscosity", GE(0))             \
     P(ROLLING, mu_r, "-", 0.1,                                                 \
-      "rolling friction: torque at most mu_r f_n a_i a_j/(a_i + a_j)", GE(0))  \
+      "rolling friction: torque at most mu_r f_C a_i a_j/(a_i + a_j)", GE(0))  \
     P(ROLLING, wall_mu_r, "-", 0, "particle-wall rolling friction", GE(0))     \
     P(TORSION, ko, "N/m", 500, "torsion spring stiffness", GT(0))              \
     P(TORSION, gamma_o, "kg/s", 0.005, "torsion viscosity", GE(0))             \
     P(TORSION, mu_o, "-", 0.1,                                                 \
-      "torsion friction: torque at most mu_o f_n a_i a_j/(a_i + a_j)", GE(0))  \
+      "torsion friction: torque at most mu_o f_C a_i a_j/(a_i + a_j)", GE(0))  \
     P(TORSION, wall_mu_o, "-", 0, "particle-wall torsion friction", GE(0))
 
 /* Parameters a particle-wall contact takes from another field:

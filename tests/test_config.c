@@ -590,6 +590,12 @@ static const struct bad bad_inputs[] = {
      1},
     {"damping = { gamma_b = 200.0; };", 0, "damping.gamma_b: with a time", 1},
     {"damping = { gamma_br = 100.0; };", 0, "damping.gamma_br: with a time", 1},
+    /* the resistances' dashpots turn the spin as gamma_br does (a
+     * read-only review, session 108) */
+    {"contact = { rolling = \"luding\"; gamma_r = 100.0; };", 0,
+     "contact.gamma_r: with a time", 1},
+    {"contact = { torsion = \"luding\"; gamma_o = 100.0; };", 0,
+     "contact.gamma_o: with a time", 1},
     /* integers beyond int, which libconfig wraps to another value
      * (4294967316 read as 20) unless written with an L */
     {"seed = 1;\nparticles = { count = 4294967316; };", 0,

@@ -541,11 +541,13 @@ static void energy_growth_is_diagnosed(void **state)
  * smaller than the distribution keys' (a thousandth of the mass): the
  * step is t_c/50 of the file's particles, not of the keys', and the
  * resolved config says so. */
-static void auto_step_follows_a_particle_file(void **state)
+/* A config of 5 mm mono radius keys over a file of eight 0.5 mm spheres
+ * in folder NAME, with `step` as its time_step and `extra` added. */
+static void small_file_config(struct dem_config *c, const char *name,
+                              const char *step, const char *extra)
 {
-    (void)state;
     char dir[1024], file[2048];
-    snprintf(dir, sizeof dir, "%s/autostep", tmpdir);
+    snprintf(dir, sizeof dir, "%s/%s", tmpdir, name);
     mkdir(dir, 0755);
     snprintf(file, sizeof file, "%s/small.csv", dir);
     FILE *f = fopen(file, "w");
@@ -557,16 +559,23 @@ static void auto_step_follows_a_particle_file(void **state)
     fclose(f);
     char text[4096];
     snprintf(text, sizeof text,
-             "dimension = 3; time_step = \"auto\";\n"
+             "dimension = 3; time_step = %s;\n"
              "particles = { placement = \"file\"; file = \"%s\"; "
              "radius = { distribution = \"mono\"; mean = 5.0e-3; }; };\n"
              "box = { size = [0.006, 0.006, 0.006]; };\n"
-             "stages = ( { type = \"hold\"; duration = 1.0e-3; } );\n",
-             file);
+             "stages = ( { type = \"hold\"; duration = 1.0e-3; } );\n%s",
+             step, file, extra);
+    struct dem_error err = {0};
+    if (dem_config_parse(c, text, name, 0, 0, &err))
+        fail_msg("%s", err.msg);
+}
+
+static void auto_step_follows_a_particle_file(void **state)
+{
+    (void)state;
     struct dem_config c;
     struct dem_error err = {0};
-    if (dem_config_parse(&c, text, "autostep", 0, 0, &err))
-        fail_msg("%s", err.msg);
+    small_file_config(&c, "autostep", "\"auto\"", "");
     double m;
     dem_particle_mass(5e-4, c.particles.density, c.particles.mass_model, 3, &m,
                       NULL);
@@ -582,6 +591,45 @@ static void auto_step_follows_a_particle_file(void **state)
     if (dem_config_load_file(&r, path, NULL, 0, &err))
         fail_msg("%s", err.msg);
     assert_true(r.time_step == want);
+}
+
+/* The explicit viscosities' limit, gamma dt/m < 1, is taken at a
+ * particle file's lightest particle too: a background viscosity the
+ * keys' 5 mm spheres take at gamma dt/m = 0.002 is 2 at the file's
+ * 0.5 mm ones, at a step of t_c/20 of theirs. Given, that step is
+ * refused naming the key and the file; "auto" takes half the limit. */
+static void viscosity_limit_follows_a_particle_file(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_error err = {0};
+    small_file_config(&c, "viscfile", "\"auto\"", "");
+    double m;
+    dem_particle_mass(5e-4, c.particles.density, c.particles.mass_model, 3, &m,
+                      NULL);
+    const double dt = dem_contact_time_of(&c, 5e-4, m) / 20,
+                 gamma = 2.0 * m / dt;
+    char extra[256], step[64];
+    snprintf(extra, sizeof extra, "damping = { gamma_b = %.17g; };\n", gamma);
+    snprintf(step, sizeof step, "%.17g", dt);
+    small_file_config(&c, "viscfile", step, extra);
+    char out[1024], path[1100];
+    snprintf(out, sizeof out, "%s/viscfile-given", tmpdir);
+    struct dem_run_options o = {.outdir = out, .threads = 1, .max_steps = 20};
+    assert_int_equal(dem_run(&c, &o, &err), DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "damping.gamma_b"));
+    assert_non_null(strstr(err.msg, "particles.file"));
+    small_file_config(&c, "viscfile", "\"auto\"", extra);
+    snprintf(out, sizeof out, "%s/viscfile-auto", tmpdir);
+    err = (struct dem_error){0};
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+    snprintf(path, sizeof path, "%s/config.cfg", out);
+    struct dem_config r;
+    if (dem_config_load_file(&r, path, NULL, 0, &err))
+        fail_msg("%s", err.msg);
+    const double want = 0.5 * m / gamma; /* 0.25 dt, below t_c/50 */
+    assert_true(fabs(r.time_step - want) <= 1e-12 * want);
 }
 
 static int same_file(const char *a, const char *b)
@@ -1112,6 +1160,7 @@ int main(void)
         cmocka_unit_test(overlap_blow_up_is_diagnosed),
         cmocka_unit_test(energy_growth_is_diagnosed),
         cmocka_unit_test(auto_step_follows_a_particle_file),
+        cmocka_unit_test(viscosity_limit_follows_a_particle_file),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),

@@ -133,9 +133,14 @@ double dem_contact_time_of(const struct dem_config *c, double a, double m)
 double dem_damping_step(const struct dem_config *c, const char **key,
                         double *mass)
 {
-    double a, m;
-    lightest(c, &a, &m);
-    *mass = m;
+    double a;
+    lightest(c, &a, mass);
+    return dem_damping_step_of(c, *mass, key);
+}
+
+double dem_damping_step_of(const struct dem_config *c, double m,
+                           const char **key)
+{
     const int springs = dem_owner_used(c->contact.normal, DEM_OWNER_SPRINGS);
     /* the rate x/dt of each viscosity at the lightest particle (a pair of
      * two: the reduced mass m/2, and for the tangential dashpot the spins
@@ -149,6 +154,15 @@ double dem_damping_step(const struct dem_config *c, const char **key,
         {"contact.gamma_n", springs ? 2.0 * c->contact.gamma_n / m : 0.0},
         {"contact.gamma_t",
          springs ? c->contact.gamma_t * (2.0 + 2.0 * spin_factor(c)) / m : 0.0},
+        /* the resistances' dashpots turn the spin alone, at a lever of
+         * the reduced radius: a_i itself at a wall, or where a small
+         * particle meets a much larger one, as gamma_br's */
+        {"contact.gamma_r", c->contact.rolling != DEM_RESIST_NONE
+                                ? c->contact.gamma_r * spin_factor(c) / m
+                                : 0.0},
+        {"contact.gamma_o", c->contact.torsion != DEM_RESIST_NONE
+                                ? c->contact.gamma_o * spin_factor(c) / m
+                                : 0.0},
     };
     double top = 0.0;
     *key = NULL;

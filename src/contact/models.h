@@ -224,6 +224,9 @@ double dem_contact_time_of(const struct dem_config *c, double a, double m);
  * reversed each step instead of damped, from 2 on it grows. */
 double dem_damping_step(const struct dem_config *c, const char **key,
                         double *mass);
+/* The same at a particle of mass m (the lightest of a particle file). */
+double dem_damping_step_of(const struct dem_config *c, double m,
+                           const char **key);
 
 /* Checks of the contact keys between each other (each key's range is
  * checked by the config layer): NULL, or the key at fault with the reason

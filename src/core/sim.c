@@ -82,7 +82,10 @@ int dem_sim_memory_check(long n, const char *what, double total,
  * particles, the pair of its smallest radius and mass (the config's is
  * of its distribution keys, which a file need not follow): "auto" takes
  * t_c/50 of the two when that is shorter; a given step above t_c/5 is
- * refused and one above t_c/10 warned of, as the config's are. */
+ * refused and one above t_c/10 warned of, as the config's are. The
+ * explicit viscosities' limit (gamma dt/m < 1, dem_damping_step) is
+ * taken at the file's lightest particle the same way: "auto" takes at
+ * most half of it, a given step at or above it is refused. */
 /* The contact time of the pair of p's smallest radius and mass, s; its
  * radius and mass in *a and *m (0 without particles). */
 static double file_contact_time(const struct dem_config *c,
@@ -102,7 +105,11 @@ double dem_sim_file_auto_step(const struct dem_config *c,
 {
     double a, m;
     const double tc = file_contact_time(c, p, &a, &m);
-    return tc > 0.0 && tc / 50 < c->time_step ? tc / 50 : c->time_step;
+    if (!(tc > 0.0))
+        return c->time_step;
+    const char *vkey;
+    return fmin(c->time_step,
+                fmin(tc / 50, 0.5 * dem_damping_step_of(c, m, &vkey)));
 }
 
 static int file_time_step(struct dem_sim *s, struct dem_error *err)
@@ -130,6 +137,20 @@ static int file_time_step(struct dem_sim *s, struct dem_error *err)
                              "radius %g m, mass %g kg); lower it, or "
                              "time_step = \"auto\"",
                              s->dt, tc / 5, file, a, m);
+    const char *vkey;
+    double mk;
+    const double vk = dem_damping_step(&s->cfg, &vkey, &mk),
+                 vf = dem_damping_step_of(&s->cfg, m, &vkey);
+    if (s->dt < vk && !(s->dt < vf))
+        return dem_error_set(err, DEM_ECONFIG,
+                             "%s: with a time step of %g s this viscosity "
+                             "reaches gamma dt/m = %.3g (at least 1) at the "
+                             "lightest particle of particles.file = %s (%g "
+                             "kg): the explicit step reverses the velocity "
+                             "instead of damping it; less viscosity or a "
+                             "step below %g s (\"auto\" takes at most half "
+                             "of it)",
+                             vkey, s->dt, s->dt / vf, file, m, vf);
     if (s->dt > tc / 10 && !(s->dt > tk / 10))
         dem_warn(err,
                  "time_step: %g s is above t_c/10 = %g s of the particles of "
