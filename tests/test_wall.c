@@ -191,6 +191,12 @@ static void love_weber_equals_wall_stress(void **state)
         assert_rel(smp.sigma_lw[a3][a3], smp.sigma[a3], 0.01);
     }
     assert_true(smp.coordination > 3.0);
+    /* at rest few contacts slide (9 of the 241 pairs sit at their
+     * Coulomb limit): the frictionless walls' contacts (wall_mu = 0), at
+     * their zero limit every step, are not counted (they set a floor of
+     * n_pw/(n_pp + n_pw), here 98 of 339, 0.29: 0.32 in all) */
+    assert_true(smp.n_pw > 0.2 * (smp.n_pp + smp.n_pw));
+    assert_true(smp.sliding_fraction < 0.1);
     dem_sim_destroy(&s);
 }
 

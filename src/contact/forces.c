@@ -126,7 +126,9 @@ static void measure_contacts(struct dem_sim *s)
             dem_normal_energy(cp->normal, cp, delta, P->r[i] * P->r[j] / R, &h);
         S->e_pot += e;
         S->n_pp++;
-        if (L->state[k] & DEM_CONTACT_SLIDING)
+        /* (a frictionless contact is "sliding" at its zero limit every
+         * step: not counted, dem_measure leaves it out of the whole) */
+        if ((L->state[k] & DEM_CONTACT_SLIDING) && cp->mu_s > 0.0)
             S->n_sliding++;
         const double amin = P->r[i] < P->r[j] ? P->r[i] : P->r[j];
         if (delta / amin > S->max_overlap_ratio) {
@@ -155,7 +157,7 @@ static void measure_contacts(struct dem_sim *s)
         e += dem_normal_energy(cpw.normal, &cpw, delta, P->r[i], &h);
         S->e_pot += e;
         S->n_pw++;
-        if (WL->state[k] & DEM_CONTACT_SLIDING)
+        if ((WL->state[k] & DEM_CONTACT_SLIDING) && cpw.mu_s > 0.0)
             S->n_sliding++;
         if (delta / P->r[i] > S->max_overlap_ratio) {
             S->max_overlap_ratio = delta / P->r[i];
