@@ -116,13 +116,25 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_close(f.sin_phi, 0.58, 1e-12);
     /* (the intercept A = c cos phi = -200: c = -280 at sin phi 0.7) */
     assert_non_null(strstr(f.note, "intercept c cos phi, -200"));
-    /* a positive cohesion leaves no note */
-    const double c3[] = {100.0, 300.0};
-    double c1[2] = {mc_sigma1(c3[0], phi, 50.0), mc_sigma1(c3[1], phi, 50.0)};
+    assert_int_equal(f.bounded, 1);
+    /* a positive cohesion of three circles leaves no note */
+    const double c3[] = {100.0, 300.0, 600.0};
+    double c1[3] = {mc_sigma1(c3[0], phi, 50.0), mc_sigma1(c3[1], phi, 50.0),
+                    mc_sigma1(c3[2], phi, 50.0)};
+    assert_int_equal(dem_mohr_fit(c1, c3, 3, 1, &f), 0);
+    assert_true(f.ok);
+    assert_close(f.c, 50.0, 1e-9);
+    assert_close(f.r2, 1.0, 1e-12);
+    assert_string_equal(f.note, "");
+    assert_int_equal(f.bounded, 0);
+    /* two circles fix the tangent, which touches both: r2 = 1 and rms =
+     * 0 would read as a perfect fit; null, and a note (a read-only
+     * review, session 108) */
     assert_int_equal(dem_mohr_fit(c1, c3, 2, 1, &f), 0);
     assert_true(f.ok);
     assert_close(f.c, 50.0, 1e-9);
-    assert_string_equal(f.note, "");
+    assert_true(isnan(f.r2) && isnan(f.rms));
+    assert_non_null(strstr(f.note, "2 circles fix the tangent"));
 }
 
 /* Stress ratio y = 0.4 + 0.2 x e^(1-x), x = eps/0.02: a peak of exactly
@@ -514,17 +526,66 @@ static void shakedown_recognised(void **state)
     assert_non_null(strstr(sum.reason, "at least 6"));
 }
 
-/* The verdict of increments inc[0..C) (30 cycles). */
-static int verdict_of(const double *inc)
+/* The verdict of increments inc[0..nc) (at most 100 cycles). */
+static int verdict_n(const double *inc, int nc)
 {
-    enum { C = 30, PER = 50 };
-    static double t[C * PER + 1], ed[C * PER + 1], sd[C * PER + 1];
-    const long n = make_cycles(0.0, inc, C, PER, t, ed, sd);
-    struct dem_cycle cyc[C];
+    enum { CMAX = 100, PER = 50 };
+    static double t[CMAX * PER + 1], ed[CMAX * PER + 1], sd[CMAX * PER + 1];
+    assert_true(nc <= CMAX);
+    const long n = make_cycles(0.0, inc, nc, PER, t, ed, sd);
+    struct dem_cycle cyc[CMAX];
     struct dem_cycles sum;
     assert_int_equal(
-        dem_cycles_analyze(t, ed, sd, n, 0.0, 1.0, 1e-6, C, cyc, &sum), C);
+        dem_cycles_analyze(t, ed, sd, n, 0.0, 1.0, 1e-6, nc, cyc, &sum), nc);
     return sum.verdict;
+}
+
+/* The verdict of increments inc[0..30). */
+static int verdict_of(const double *inc)
+{
+    return verdict_n(inc, 30);
+}
+
+/* A rate exactly 1/c accumulates a strain growing as ln c, without
+ * bound: ratcheting at any count of cycles, and a rate falling faster,
+ * c^-1.1, shakedown. (Against a fixed 0.6 of the middle third's mean,
+ * the means of 1/c fell below it from 18 cycles on: shakedown at the
+ * paper's 100; a read-only review, session 108.) */
+static void a_rate_of_one_over_c_ratchets_at_any_count(void **state)
+{
+    (void)state;
+    const int counts[] = {6, 9, 30, 31, 100};
+    double inc[100];
+    for (size_t q = 0; q < sizeof counts / sizeof *counts; q++) {
+        const int nc = counts[q];
+        for (int k = 0; k < nc; k++)
+            inc[k] = 1e-4 / (k + 1);
+        assert_int_equal(verdict_n(inc, nc), DEM_VERDICT_RATCHETING);
+        for (int k = 0; k < nc; k++)
+            inc[k] = 1e-4 * pow(k + 1, -1.1);
+        if (nc >= 30)
+            assert_int_equal(verdict_n(inc, nc), DEM_VERDICT_SHAKEDOWN);
+    }
+    assert_close(dem_ratchet_fraction(6), 0.6285714285714, 1e-12);
+    assert_close(dem_ratchet_fraction(100), 0.5930561088414, 1e-12);
+}
+
+/* The direction of the accumulation is the middle third's only where it
+ * stands out of the scatter: a middle third flat but for a back-step of
+ * 1e-8 set the direction against a last third of +1e-5 per cycle, which
+ * was then called shakedown (with a step of +1e-8, ratcheting; a
+ * read-only review, session 108). Either way it ratchets now. */
+static void a_flat_middle_third_sets_no_direction(void **state)
+{
+    (void)state;
+    for (int sign = -1; sign <= 1; sign += 2) {
+        double inc[30] = {0};
+        inc[0] = 1e-4;
+        inc[14] = sign * 1e-8;
+        for (int k = 20; k < 30; k++)
+            inc[k] = 1e-5;
+        assert_int_equal(verdict_of(inc), DEM_VERDICT_RATCHETING);
+    }
 }
 
 /* The first cycle holds the response to the first loading and can be ten
@@ -586,6 +647,20 @@ static void loop_area_of_an_ellipse(void **state)
     assert_int_equal(
         dem_cycles_analyze(t, ed, sd, N, 0.1234, 1.0, 1e-9, C, cyc, &sum), 2);
     assert_rel(cyc[0].loop_area, M_PI * a * b, 1e-3);
+    /* sampled once or twice a period, a cycle's rows see only its
+     * turning points (the trapezoids gave about 0): no loop area */
+    for (int per = 1; per <= 2; per++) {
+        const int m = C * per + 1;
+        for (int i = 0; i < m; i++) {
+            t[i] = (double)i / per + 0.25; /* at the turning points */
+            ed[i] = a * sin(2.0 * M_PI * t[i]);
+            sd[i] = b * cos(2.0 * M_PI * t[i]);
+        }
+        assert_int_equal(
+            dem_cycles_analyze(t, ed, sd, m, 0.25, 1.0, 1e-9, C, cyc, &sum), C);
+        for (int k = 0; k < C; k++)
+            assert_true(isnan(cyc[k].loop_area));
+    }
 }
 
 static void write_text(const char *dir, const char *name, const char *text)
@@ -749,7 +824,9 @@ static void elastic_constants_need_the_lateral_stress_held(void **state)
  * sigma_yy = 500: tau/sigma_n = ratio_curve(gamma/10) (a peak of 0.6 at
  * gamma 0.2, relaxing to 0.4), eps_v = eps_v_curve(gamma/10) (dilating
  * at 0.08 per unit of gamma), both along the shear as driven. */
-static void write_shear_run(const char *dir, double sense)
+/* A simple shear to |gamma| = 1 along sense; with `back`, the profile
+ * "cyclic" that returns to 0 over as many samples again, tau reversed. */
+static void write_shear_run_profile(const char *dir, double sense, int back)
 {
     char cfg[1024];
     snprintf(cfg, sizeof cfg,
@@ -760,23 +837,25 @@ static void write_shear_run(const char *dir, double sense)
              "mu = 0.5; };\n"
              "stages = (\n"
              "  { type = \"isotropic\"; pressure = 500.0; },\n"
-             "  { type = \"shear\"; shear_strain = %g; duration = 1.0; "
-             "profile = \"linear\"; pressure = 500.0; }\n"
+             "  { type = \"shear\"; shear_strain = %g; duration = %g; "
+             "profile = \"%s\"; pressure = 500.0; }\n"
              ");\n"
              "output = { interval = 1.0e-3; };\n",
-             sense);
+             sense, back ? 2.0 : 1.0, back ? "cyclic" : "linear");
     write_text(dir, "config.cfg", cfg);
     FILE *f = open_timeseries(dir, 2);
     struct dem_sample s;
     memset(&s, 0, sizeof s);
-    for (int i = 0; i <= 1000; i++) {
-        const double x = 1e-3 * i; /* |gamma| */
+    for (int i = 0; i <= (back ? 2000 : 1000); i++) {
+        const double x = 1e-3 * (i <= 1000 ? i : 2000 - i); /* |gamma| */
         s.t = 0.02 + 1e-3 * i;
         s.stage = i ? 1 : 0;
         s.gamma_xy = sense * x;
         s.sigma[0] = s.sigma[1] = 500.0;
+        /* on the way back the shear stress reverses: -0.3 sigma_n */
         s.sigma_lw[0][1] = s.sigma_lw[1][0] =
-            -sense * ratio_curve(x / 10.0) * 500.0;
+            i <= 1000 ? -sense * ratio_curve(x / 10.0) * 500.0
+                      : sense * 0.3 * 500.0;
         s.eps_v = eps_v_curve(x / 10.0);
         s.void_ratio = 0.2;
         dem_sample_write_row(f, &s, 2);
@@ -788,14 +867,15 @@ static void write_shear_run(const char *dir, double sense)
  * critical state and dilatancy; the strains keep their sign. A negative
  * shear_strain read as a loading that grows gave a "peak" of -1.2 deg at
  * gamma = 0 and no critical state (a read-only review, session 107). */
-static void shear_either_way_gives_the_same_friction(void **state)
+static void check_shear_either_way(int back)
 {
-    (void)state;
     char *js[2];
     for (int k = 0; k < 2; k++) {
         char dir[128], path[160];
-        run_dir(dir, sizeof dir, k ? "shear-neg" : "shear-pos");
-        write_shear_run(dir, k ? -1.0 : 1.0);
+        run_dir(dir, sizeof dir,
+                back ? (k ? "shear-back-neg" : "shear-back-pos")
+                     : (k ? "shear-neg" : "shear-pos"));
+        write_shear_run_profile(dir, k ? -1.0 : 1.0, back);
         struct dem_error err = {0};
         if (dem_analyze(dir, &err))
             fail_msg("%s", err.msg);
@@ -819,6 +899,22 @@ static void shear_either_way_gives_the_same_friction(void **state)
     }
     free(js[0]);
     free(js[1]);
+}
+
+static void shear_either_way_gives_the_same_friction(void **state)
+{
+    (void)state;
+    check_shear_either_way(0);
+}
+
+/* A returning shear profile (cyclic: 0 -> gamma -> 0) is analysed over
+ * its way out, up to the extreme of gamma, as a returning compress is:
+ * the same friction, peak, critical state and dilatancy as the one-way
+ * shear, whatever the way back does (here tau reversed at once). */
+static void returning_shear_is_analysed_on_its_way_out(void **state)
+{
+    (void)state;
+    check_shear_either_way(1);
 }
 
 static void count_warning(const char *line, void *user)
@@ -1479,11 +1575,14 @@ int main(void)
         cmocka_unit_test(verdict_ignores_the_first_loading),
         cmocka_unit_test(one_loading_stage_for_analysis_and_plots),
         cmocka_unit_test(loop_area_of_an_ellipse),
+        cmocka_unit_test(a_rate_of_one_over_c_ratchets_at_any_count),
+        cmocka_unit_test(a_flat_middle_third_sets_no_direction),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
         cmocka_unit_test(analysis_is_invariant_to_the_unit_of_stress),
         cmocka_unit_test(analysis_follows_the_loading_as_it_ran),
         cmocka_unit_test(elastic_constants_need_the_lateral_stress_held),
         cmocka_unit_test(shear_either_way_gives_the_same_friction),
+        cmocka_unit_test(returning_shear_is_analysed_on_its_way_out),
         cmocka_unit_test(analysis_repeats_no_config_warning),
         cmocka_unit_test(older_run_folders_stay_readable),
         cmocka_unit_test(constant_p_reads_the_minor_stress),

@@ -173,6 +173,7 @@ struct dem_mohr_fit {
     double rms;     /* rms of radius residuals, Pa */
     char reason[DEM_REASON_MAX];
     char note[DEM_REASON_MAX]; /* with ok: how the fit was bounded, or "" */
+    int bounded; /* 1: the free fit's cohesion was below 0, bounded to 0 */
 };
 
 /* Common tangent tau = c + sigma tan phi of n Mohr circles (sigma1 >=
@@ -226,19 +227,26 @@ struct dem_cycles {
                          thirds, from their second differences, over
                          sqrt(late_count) */
     double ratio;     /* late_mean / first, signed along the first one */
+    double fraction;  /* dem_ratchet_fraction(n): the verdict's f */
     int late_count;   /* cycles in the last (and in the middle) third */
     int verdict;      /* enum dem_verdict */
     char reason[DEM_REASON_MAX];
 };
 
 /* Ratcheting when the mean increment of the last third of the cycles,
- * along the middle third's direction (the first cycle can go the other
- * way), is above twice its standard error
- * and at least this fraction of the middle third's. A rate falling like
- * 1/c gives (1/2)/(5/6) = 0.6 between the centres of the two thirds:
- * ratcheting means the rate falls more slowly than 1/c, so that the
- * accumulated strain grows without bound. */
-#define DEM_RATCHET_FRACTION 0.6
+ * along the direction of the accumulation (the first cycle can go the
+ * other way), is above twice its standard error and at least the
+ * fraction dem_ratchet_fraction(n) of the middle third's: the ratio of
+ * the two thirds' means of a rate exactly 1/c over the same cycles,
+ * (H_n - H_{n-L})/(H_{n-L} - H_{n-2L}) with L = n/3 and H the harmonic
+ * numbers (0.629 at n = 6, 0.593 at 100, ln 1.5/ln 2 = 0.585 in the
+ * limit). Ratcheting means the rate falls more slowly than 1/c, so that
+ * the accumulated strain grows without bound. (Until session 108 a fixed
+ * 0.6, the ratio at the thirds' centres: a rate 1/c of 100 cycles, whose
+ * strain grows as ln c without bound, fell below it.) */
+double dem_ratchet_fraction(int n);
+/* A cycle's loop area needs at least this many samples inside it. */
+#define DEM_LOOP_MIN_SAMPLES 20
 /* ... and at least this fraction of the first cycle's increment: below
  * it, a thousand cycles add less strain than the first loading did. */
 #define DEM_RATCHET_MIN_RATE 1e-3

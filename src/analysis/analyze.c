@@ -579,6 +579,7 @@ static void result_init(struct result *R, int dim)
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
     R->peak.value = R->crit.value = NAN;
+    R->csum.fraction = NAN;
     R->sl.initial = R->sl.dilatant = NAN;
 }
 
@@ -695,14 +696,18 @@ static void write_void_fit(struct dem__json *j, const struct result *R)
 static const char *const verdict_criterion =
     "eps_D = eps_axis - mean(eps_lateral) is read at the end of every "
     "cycle (t0 + k period); its increments per cycle, taken along the sign "
-    "of the middle third's accumulation, are averaged over the last third "
+    "of the middle third's accumulation (of the last two thirds' where the "
+    "middle third's is within twice the standard error), are averaged over the "
+    "last third "
     "and over the middle third of the cycles: ratcheting if the last "
     "third's mean is "
     "above twice its standard error (from the second differences of the "
     "increments of the last two thirds) and not "
-    "below 0.6 times the middle third's by more than twice the standard "
-    "error of that difference (the rate falls more slowly than 1/c, so "
-    "the accumulated strain grows without bound), and at least 1e-3 times "
+    "below f times the middle third's by more than twice the standard "
+    "error of that difference, f (criteria.ratchet_fraction) the ratio "
+    "of the two means of a rate 1/c over the same cycles (the rate falls "
+    "more slowly than 1/c, so the accumulated strain grows without "
+    "bound), and at least 1e-3 times "
     "the first cycle's increment; shakedown otherwise; no "
     "verdict with fewer than 6 complete cycles";
 
@@ -751,7 +756,8 @@ static void write_criteria(struct dem__json *j, const struct result *R)
     dem__json_number(j, "initial_fraction", INITIAL_FRACTION);
     dem__json_number(j, "dilatant_window_samples",
                      R->mono ? (double)R->sl.window : NAN);
-    dem__json_number(j, "ratchet_fraction", DEM_RATCHET_FRACTION);
+    /* (of the cycles found: null without a verdict) */
+    dem__json_number(j, "ratchet_fraction", R->csum.fraction);
     dem__json_number(j, "ratchet_min_rate", DEM_RATCHET_MIN_RATE);
     dem__json_close(j);
 }

@@ -8,7 +8,8 @@
  * on where the output interval happens to fall. The loop area is the
  * trapezoid sum of sigma_D d eps_D over the cycle: the work per unit
  * volume done in the deviatoric mode, which for a closed loop is the
- * hysteresis area (energy dissipated per cycle).
+ * hysteresis area (energy dissipated per cycle); a cycle of fewer than
+ * DEM_LOOP_MIN_SAMPLES samples has none.
  */
 #include <math.h>
 #include <stdio.h>
@@ -75,13 +76,28 @@ static double scatter_of(const struct dem_cycle *c, int k0, int k1)
     return sqrt(ss / (6.0 * (k1 - k0 - 2)));
 }
 
+double dem_ratchet_fraction(int nc)
+{
+    const int L = nc / 3;
+    if (L < 1)
+        return NAN;
+    /* the sums of 1/c over the last third and over the middle third */
+    double late = 0.0, mid = 0.0;
+    for (int c = nc - L + 1; c <= nc; c++)
+        late += 1.0 / c;
+    for (int c = nc - 2 * L + 1; c <= nc - L; c++)
+        mid += 1.0 / c;
+    return late / mid;
+}
+
 /* Ratcheting: the strain accumulated per cycle in the last third of the
  * cycles is significantly above zero (more than twice its standard error
- * from the cycle-to-cycle scatter) and not significantly below
- * DEM_RATCHET_FRACTION of the middle third's, both taken in the
- * direction of the middle third's accumulation. Shakedown otherwise: the
- * accumulation has stopped, or is dying out faster than 1/c. The first
- * cycle, which holds the response to the first loading, is not used. */
+ * from the cycle-to-cycle scatter) and not significantly below the
+ * fraction of the middle third's that a rate falling like 1/c keeps
+ * (dem_ratchet_fraction), both taken in the direction of the
+ * accumulation. Shakedown otherwise: the accumulation has stopped, or is
+ * dying out faster than 1/c. The first cycle, which holds the response to
+ * the first loading, is not used. */
 static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
 {
     o->verdict = DEM_VERDICT_NONE;
@@ -99,12 +115,17 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     /* one scatter for both thirds, so both means have this error */
     o->late_se = scatter_of(c, nc - 2 * L, nc) / sqrt(L);
     o->ratio = o->first != 0.0 ? o->late_mean / o->first : NAN;
-    /* along the middle third's accumulation (the first cycle can go the
-     * other way, e.g. a dense packing that extends under the first load
-     * and then creeps back) */
-    const double dir = o->mid_mean >= 0.0 ? 1.0 : -1.0;
+    o->fraction = dem_ratchet_fraction(nc);
+    const double f = o->fraction, se = o->late_se;
+    /* along the middle third's accumulation where it stands out of the
+     * scatter, else along the last two thirds' (the first cycle can go
+     * the other way, e.g. a dense packing that extends under the first
+     * load and then creeps back; and a middle third of noise about zero
+     * must not set the direction of a last third that accumulates) */
+    const double lead =
+        fabs(o->mid_mean) > 2.0 * se ? o->mid_mean : o->mid_mean + o->late_mean;
+    const double dir = lead >= 0.0 ? 1.0 : -1.0;
     const double late = dir * o->late_mean, mid = dir * o->mid_mean;
-    const double f = DEM_RATCHET_FRACTION, se = o->late_se;
     const int significant =
         late > 2.0 * se && late >= DEM_RATCHET_MIN_RATE * fabs(o->first);
     /* the decay counts only where it stands out of the scatter: twice the
@@ -114,7 +135,7 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
         significant && steady ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
     snprintf(o->reason, sizeof o->reason,
              "last %d cycles: %.4g +- %.2g per cycle, %s 2 s.e. and %g "
-             "of cycle 1 (%.4g); %s %g x the middle %d (%.4g)",
+             "of cycle 1 (%.4g); %s %.4g x the middle %d (%.4g)",
              L, o->late_mean, se, significant ? "above" : "not above",
              DEM_RATCHET_MIN_RATE, o->first, steady ? "not below" : "below", f,
              L, o->mid_mean);
@@ -126,7 +147,8 @@ int dem_cycles_analyze(const double *t, const double *eps_d,
                        struct dem_cycles *o)
 {
     o->n = 0;
-    o->first = o->mid_mean = o->late_mean = o->late_se = o->ratio = NAN;
+    o->first = o->mid_mean = o->late_mean = o->late_se = o->ratio =
+        o->fraction = NAN;
     o->late_count = 0;
     o->verdict = DEM_VERDICT_NONE;
     o->reason[0] = '\0';
@@ -148,7 +170,14 @@ int dem_cycles_analyze(const double *t, const double *eps_d,
         cyc[nc].index = k;
         cyc[nc].strain_end = end;
         cyc[nc].strain_increment = end - prev;
-        cyc[nc].loop_area = loop_work(t, eps_d, sigma_d, n, ta, tb, i);
+        long inside = 0;
+        while (i + inside < n && t[i + inside] < tb)
+            inside++;
+        /* too few samples to draw the loop (an output interval of the
+         * period or half of it sees only its turning points): none */
+        cyc[nc].loop_area = inside >= DEM_LOOP_MIN_SAMPLES
+                                ? loop_work(t, eps_d, sigma_d, n, ta, tb, i)
+                                : NAN;
         prev = end;
         nc++;
     }

@@ -57,6 +57,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     o->n = n;
     o->sin_phi = o->phi_deg = o->c = o->r2 = o->rms = NAN;
     o->reason[0] = o->note[0] = '\0';
+    o->bounded = 0;
     if (n < 1 || (cohesion && n < 2)) {
         snprintf(o->reason, sizeof o->reason,
                  "%ld Mohr circle(s): a tangent with cohesion needs at "
@@ -111,11 +112,21 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
          * slope, the bounded fit may be a valid tangent) */
         const double afree = o->c * unit, sfree = o->sin_phi;
         fitted = through_origin(s, t, n, o);
+        o->bounded = 1;
         snprintf(o->note, sizeof o->note,
                  "the free fit's intercept c cos phi, %.4g, is below 0 (its "
                  "sin phi %.4g): the tangent through the origin, c = 0 (r2 "
                  "then about zero, not the mean)",
                  afree, sfree);
+    }
+    /* two circles fix the free tangent: it touches both, whatever the
+     * material, and its r2 = 1 and rms = 0 would read as a perfect fit */
+    if (cohesion && fitted && n == 2 && !o->note[0]) {
+        o->r2 = o->rms = NAN;
+        snprintf(o->note, sizeof o->note,
+                 "2 circles fix the tangent, which touches both: no "
+                 "goodness of fit (r2 and rms null); a third confining "
+                 "pressure would test the line");
     }
     free(s);
     o->c *= unit;
