@@ -94,10 +94,13 @@ static void bad_param_is_an_error_naming_it(void **state)
 {
     (void)state;
     static const char *const bad[] = {
-        "contact.mu",                /* no '=' */
-        "contact.mu=",               /* no values */
-        "contact.mu=0.1,,0.3",       /* empty value */
-        "contact.mu=0.1,0.1",        /* duplicate value */
+        "contact.mu",          /* no '=' */
+        "contact.mu=",         /* no values */
+        "contact.mu=0.1,,0.3", /* empty value */
+        "contact.mu=0.1,0.1",  /* duplicate value */
+        /* the same number written two ways: one point run twice, its
+         * circle counted twice (a read-only review, session 108) */
+        "stages.0.pressure,stages.1.pressure=500,1e3,500.0",
         "=0.1,0.2",                  /* no key */
         "contact..mu=0.1",           /* malformed key */
         "contact.mu,contact.mu=1,2", /* key twice */
@@ -389,6 +392,109 @@ static void summary_not_written_by_analyze_is_left_out(void **state)
     assert_non_null(ff);
     assert_close(dem__jread_number(&ff->items[0], "circles"), 2, 0);
     assert_close(dem__jread_number(&ff->items[0], "sin_phi"), 0.5, 1e-9);
+    /* two circles fix the tangent: no goodness of fit, said so (it was
+     * r2 = 1, rms = 0; a read-only review, session 108) */
+    assert_true(isnan(dem__jread_number(&ff->items[0], "r2")));
+    assert_true(isnan(dem__jread_number(&ff->items[0], "rms")));
+    assert_non_null(strstr(dem__jread_string(&ff->items[0], "note"),
+                           "2 circles fix the tangent"));
+    dem__jread_free(&js);
+    dem_sweep_grid_free(&g);
+}
+
+/* Fake runs of grid g, run k's loading stage 1 with its peak circle
+ * (s1[k], s3[k]) and its initial void ratio e[k]; collected, then read. */
+static void fake_circles(struct dem_sweep_grid *g, const char *name, int nrun,
+                         const double *s1, const double *s3, const double *e,
+                         struct dem__jval *js)
+{
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/%s", tmpdir, name);
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(nrun * sizeof *names);
+    dem_sweep_point_names(g, names);
+    for (int k = 0; k < nrun; k++) {
+        char summary[1024];
+        snprintf(summary, sizeof summary,
+                 "{\"dimension\": 2, \"loading_stage\": 1, "
+                 "\"confining_pressure\": %.17g, \"peak\": {\"sigma_axial\":"
+                 " %.17g, \"sigma_lateral\": %.17g}, \"void_ratio_initial\": "
+                 "%.17g, \"void_ratio_fit\": {\"hs\": 1e5}}\n",
+                 s3[k], s1[k], s3[k], e[k]);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[k]);
+        fake_run(dir, cfg, g, k, summary);
+    }
+    free(names);
+    collect_runs(g, cfg, out);
+    struct dem_error err = {0};
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(js, dir, &err))
+        fail_msg("%s", err.msg);
+}
+
+/* A swept preparation pressure (stages.0.pressure, the isotropic stage)
+ * changes the sample, not the circle's confinement: with it alone there
+ * is no flow function (its circles, all at sigma_3 = 500, were fitted as
+ * one, bounded to the line through the origin: the runs' mean friction);
+ * beside the loading pressure it groups the runs, and the initial void
+ * ratios are of the pressure the samples were prepared at (a read-only
+ * review, session 108). */
+static void a_preparation_pressure_is_no_confinement(void **state)
+{
+    (void)state;
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.0.pressure=250,500,1000");
+    const double a1[3] = {1500, 1700, 1900}, a3[3] = {495, 500, 505},
+                 ae[3] = {0.3, 0.25, 0.2};
+    struct dem__jval js;
+    fake_circles(&g, "prep-only", 3, a1, a3, ae, &js);
+    assert_int_equal(dem__jread_get(&js, "flow_function")->type,
+                     DEM__JSON_NULL);
+    assert_non_null(strstr(dem__jread_string(&js, "flow_function_reason"),
+                           "loading stage's confining pressure"));
+    dem__jread_free(&js);
+    dem_sweep_grid_free(&g);
+
+    /* two preparations, each loaded at three pressures: two envelopes of
+     * three circles, each of its own sin phi; the initial void ratios of
+     * a preparation all at its pressure */
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.0.pressure=250,1000");
+    add(&g, "stages.1.pressure=200,400,800");
+    double b1[6], b3[6], be[6];
+    for (int k = 0; k < 6; k++) { /* point k: stage 0 k / 3, stage 1 k % 3 */
+        const double p = 200.0 * (1 << (k % 3)), sn = k / 3 ? 0.6 : 0.4;
+        b3[k] = p;
+        b1[k] = p * (1 + sn) / (1 - sn);
+        be[k] = k / 3 ? 0.2 : 0.3;
+    }
+    fake_circles(&g, "prep-and-load", 6, b1, b3, be, &js);
+    const struct dem__jval *ff = dem__jread_get(&js, "flow_function");
+    assert_int_equal(ff->type, DEM__JSON_ARRAY);
+    assert_int_equal(ff->n, 2);
+    for (int q = 0; q < 2; q++) {
+        const struct dem__jval *grp = dem__jread_get(&ff->items[q], "group");
+        assert_non_null(grp);
+        const struct dem__jval *p0v = dem__jread_get(grp, "stages.0.pressure");
+        assert_non_null(p0v);
+        const double p0 = p0v->num;
+        assert_close(dem__jread_number(&ff->items[q], "circles"), 3, 0);
+        assert_close(dem__jread_number(&ff->items[q], "sin_phi"),
+                     p0 > 500 ? 0.6 : 0.4, 1e-9);
+    }
+    const struct dem__jval *vr = dem__jread_get(&js, "void_ratio_vs_pressure");
+    assert_int_equal(vr->n, 2);
+    for (int q = 0; q < 2; q++) {
+        const struct dem__jval *pts =
+            dem__jread_at(&vr->items[q], "initial.points");
+        const double p0 = dem__jread_get(dem__jread_get(&vr->items[q], "group"),
+                                         "stages.0.pressure")
+                              ->num;
+        assert_int_equal(pts->n, 3);
+        for (int m = 0; m < 3; m++)
+            assert_close(dem__jread_number(&pts->items[m], "p"), p0, 0);
+    }
     dem__jread_free(&js);
     dem_sweep_grid_free(&g);
 }
@@ -404,7 +510,9 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     snprintf(out, sizeof out, "%s/synthetic", tmpdir);
     struct dem_sweep_grid g;
     memset(&g, 0, sizeof g);
-    add(&g, "stages.1.pressure=100,200,400,800");
+    /* (prepared at the pressure they are loaded at: the initial void
+     * ratios are of the preparation stage's pressure) */
+    add(&g, "stages.0.pressure,stages.1.pressure=100,200,400,800");
     const double phi = 30.0 / DEG, c = 50.0, e0 = 0.25, n = 0.6, hs = 1e5;
     const double p[4] = {100, 200, 400, 800};
     char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(4 * sizeof *names);
@@ -627,6 +735,8 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
                      1e-6);
         assert_close(dem__jread_number(&fe->items[q], "cohesion.se"),
                      10.0 / sqrt(3.0), 1e-6);
+        assert_close(dem__jread_number(&fe->items[q], "cohesion_bounded"), 0,
+                     0);
     }
     dem__jread_free(&js);
     /* the pictures of an ensemble sweep draw error bars */
@@ -1240,6 +1350,51 @@ static void stop_from_progress_saves_checkpoints_then_resumes(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* A resume that fails once under way (here the analysis after it, whose
+ * summary.json cannot be written; a full disk or a blow-up alike) is a
+ * failed run: it is not run again from the start, which would first
+ * remove the checkpoint a fixed cause could resume from (a read-only
+ * review, session 108). */
+static void a_resume_failing_under_way_is_not_rerun(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], path[1200];
+    tiny_config(cfg, sizeof cfg);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.mu=0.4");
+    const char *const sets[] = {"output.interval=5e-6"};
+    struct dem_sweep_options o = {.target = cfg,
+                                  .sets = sets,
+                                  .nsets = 1,
+                                  .jobs = 1,
+                                  .threads = 1,
+                                  .quiet = 1,
+                                  .max_steps = 150000};
+    snprintf(out, sizeof out, "%s/resume-fails", tmpdir);
+    stop_sweep_in_a_run(out, &g, &o);
+    snprintf(path, sizeof path, "%s/runs/contact.mu=0.4/summary.json", out);
+    assert_int_equal(mkdir(path, 0755), 0);
+    struct seen seen = {.caller = pthread_self()};
+    o.progress_user = &seen;
+    struct dem_sweep_report rep;
+    struct dem_error err = {0};
+    dem_sweep_run(&g, &o, &rep, &err);
+    assert_int_equal(rep.ran, 1);
+    assert_int_equal(rep.resumed, 1);
+    assert_int_equal(rep.failed, 1);
+    /* two parts, stopped and resumed: no third from the start */
+    snprintf(path, sizeof path, "%s/runs/contact.mu=0.4/timing.txt", out);
+    char *timing = dem_read_text(path, NULL);
+    assert_non_null(timing);
+    int lines = 0;
+    for (const char *c = timing; *c; c++)
+        lines += *c == '\n';
+    assert_int_equal(lines, 2);
+    free(timing);
+    dem_sweep_grid_free(&g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1247,6 +1402,7 @@ int main(void)
         cmocka_unit_test(bad_param_is_an_error_naming_it),
         cmocka_unit_test(bad_grid_point_is_refused_before_running),
         cmocka_unit_test(flow_function_and_void_fit_recover_known_values),
+        cmocka_unit_test(a_preparation_pressure_is_no_confinement),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
         cmocka_unit_test(seed_ensembles_give_mean_and_standard_error),
         cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
@@ -1257,6 +1413,7 @@ int main(void)
         cmocka_unit_test(three_runs_in_two_jobs_then_restart_skips_them),
         cmocka_unit_test(restart_skips_runs_of_a_particle_file),
         cmocka_unit_test(stop_from_progress_saves_checkpoints_then_resumes),
+        cmocka_unit_test(a_resume_failing_under_way_is_not_rerun),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);
 }

@@ -35,7 +35,7 @@ static void run_init(struct dem__sweep_run *r)
                      &r->pressure,  &r->peak_sin, &r->peak_phi, &r->peak_s1,
                      &r->peak_s3,   &r->crit_sin, &r->crit_phi, &r->crit_s1,
                      &r->crit_s3,   &r->e_init,   &r->e_crit,   &r->hs,
-                     &r->cyc_ratio, &r->crit_p};
+                     &r->cyc_ratio, &r->crit_p,   &r->p_init};
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
     r->stage = r->axis = -1;
@@ -86,6 +86,14 @@ static int read_summary(struct dem__sweep_run *r, const struct dem__jval *js,
             return 0;
     const int st = (int)ls;
     r->stage = st;
+    r->p_init = r->pressure;
+    for (int k = st - 1; k >= 0; k--) {
+        if (c->stages[k].type == DEM_STAGE_HOLD)
+            continue;
+        if (c->stages[k].type == DEM_STAGE_ISOTROPIC)
+            r->p_init = c->stages[k].pressure;
+        break;
+    }
     r->axis = st >= 0 ? c->stages[st].axis : -1;
     r->mu =
         st >= 0 && c->stages[st].mu >= 0.0 ? c->stages[st].mu : c->contact.mu_s;
@@ -204,8 +212,9 @@ static int flow_functions(struct dem__sweep *s)
 {
     if (!(s->roles & DEM_SWEEP_ROLE_PRESSURE)) {
         snprintf(s->ff_reason, sizeof s->ff_reason,
-                 "the sweep does not vary a confining pressure (a --param "
-                 "with a key ending in .pressure)");
+                 "the sweep does not vary the loading stage's confining "
+                 "pressure (a --param on its stages.N.pressure; a "
+                 "preparation stage's pressure alone groups the runs)");
         return DEM_OK;
     }
     const int G = s->ffg.n;
@@ -243,6 +252,24 @@ static int flow_functions(struct dem__sweep *s)
                          "flow function needs at least 2 confining "
                          "pressures",
                          f->circles, state ? "critical-state" : "peak");
+                continue;
+            }
+            /* circles of one sigma_3 (within 1 %) give no envelope: the
+             * fit would be bounded to the line through the origin, the
+             * runs' mean friction, and look like one */
+            double lo = INFINITY, hi = -INFINITY;
+            for (long k = 0; k < f->circles; k++) { /* the minor stress */
+                lo = fmin(lo, fmin(s1[k], s3[k]));
+                hi = fmax(hi, fmin(s1[k], s3[k]));
+            }
+            if (!(hi - lo > 0.01 * fmax(fabs(lo), fabs(hi)))) {
+                f->fit.ok = 0;
+                f->fit.n = f->circles;
+                snprintf(f->fit.reason, sizeof f->fit.reason,
+                         "the %ld %s circles of this group have sigma_3 "
+                         "within 1%% (%.4g to %.4g): the flow function needs "
+                         "at least 2 confining pressures",
+                         f->circles, state ? "critical-state" : "peak", lo, hi);
                 continue;
             }
             dem_mohr_fit(s1, s3, f->circles, 1, &f->fit);
@@ -285,8 +312,9 @@ static int void_ratios(struct dem__sweep *s)
 {
     if (!(s->roles & DEM_SWEEP_ROLE_PRESSURE)) {
         snprintf(s->void_reason, sizeof s->void_reason,
-                 "the sweep does not vary a confining pressure (a --param "
-                 "with a key ending in .pressure)");
+                 "the sweep does not vary the loading stage's confining "
+                 "pressure (a --param on its stages.N.pressure; a "
+                 "preparation stage's pressure alone groups the runs)");
         return DEM_OK;
     }
     const int G = s->ffg.n;
@@ -306,14 +334,15 @@ static int void_ratios(struct dem__sweep *s)
                 const struct dem__sweep_run *r = &s->runs[i];
                 if (s->ffg.gid[i] != q)
                     continue;
-                /* initial state: the isotropic confining pressure;
+                /* initial state: the pressure it was prepared at, of
+                 * the isotropic stage before the loading one;
                  * critical state: the mean stress there (of every
                  * axis: with constant_p's b the two lateral stresses
                  * differ, and (s1 + 2 s3)/3 of the minor one read p
                  * low by b (s1 - s3)/3; older summaries have only
                  * that) */
                 const double p =
-                    k == 0 ? r->pressure
+                    k == 0 ? r->p_init
                     : isfinite(r->crit_p)
                         ? r->crit_p
                         : (r->crit_s1 + (r->dim - 1) * r->crit_s3) / r->dim;
@@ -439,6 +468,7 @@ static int ensembles(struct dem__sweep *s)
                 b[s->ffg.n + m] = tan(f->phi_deg / DEG);
                 b[2 * s->ffg.n + m] = f->c;
                 m++;
+                s->ffe[state][q].bounded += f->bounded;
             }
             struct dem__sweep_ffens *e = &s->ffe[state][q];
             e->fits = (int)m;
@@ -540,6 +570,45 @@ static int analyse(struct dem__sweep *s)
     return DEM_OK;
 }
 
+/* A stage key "stages.N.LEAF": N, else -1. */
+static int stage_of_key(const char *key)
+{
+    int st, len = 0;
+    if (sscanf(key, "stages.%d.%n", &st, &len) == 1 && len > 0 && st >= 0)
+        return st;
+    return -1;
+}
+
+/* The roles of the grid's parameters as the finished runs give them: a
+ * stage's pressure or friction is the envelope's confining pressure or
+ * the friction of friction_vs_mu only for the loading stage (that of the
+ * runs' summaries). A swept preparation pressure (stages.0.pressure of an
+ * isotropic stage) changes the sample, not the circle's confinement: it
+ * groups the runs, as any other parameter does, instead of putting
+ * circles of one sigma_3 and differently prepared samples into one
+ * envelope. Without a loading stage the key names decide, as before. */
+static void loading_roles(struct dem_sweep_grid *g,
+                          const struct dem__sweep_run *runs, long n)
+{
+    int ls = -1;
+    for (long i = 0; i < n && ls < 0; i++)
+        if (runs[i].ok)
+            ls = runs[i].stage;
+    if (ls < 0)
+        return;
+    for (int k = 0; k < g->nparams; k++) {
+        struct dem_sweep_param *p = &g->params[k];
+        const int staged = DEM_SWEEP_ROLE_PRESSURE | DEM_SWEEP_ROLE_MU;
+        int keep = 0;
+        for (int m = 0; m < p->nkeys; m++) {
+            const int st = stage_of_key(p->keys[m]);
+            if (st < 0 || st == ls) /* contact.mu, or the loading stage's */
+                keep |= p->roles & staged;
+        }
+        p->roles = (p->roles & ~staged) | keep;
+    }
+}
+
 int dem__sweep_collect(const struct dem_sweep_grid *g,
                        const struct dem_sweep_options *o, struct dem_error *err)
 {
@@ -584,8 +653,19 @@ int dem__sweep_collect(const struct dem_sweep_grid *g,
         }
     }
     free(names);
-    if (!rc)
+    /* (a shallow copy: the values stay the caller's) */
+    struct dem_sweep_grid *gl = rc ? NULL : malloc(sizeof *gl);
+    if (!rc && !gl)
+        rc = DEM_ENOMEM;
+    if (!rc) {
+        *gl = *g;
+        loading_roles(gl, s.runs, s.n);
+        s.g = gl;
+        s.roles = 0;
+        for (int k = 0; k < gl->nparams; k++)
+            s.roles |= gl->params[k].roles;
         rc = analyse(&s);
+    }
     if (rc == DEM_ENOMEM)
         dem_error_set(err, rc, "sweep: out of memory");
     if (!rc)
@@ -602,6 +682,7 @@ int dem__sweep_collect(const struct dem_sweep_grid *g,
         rc = dem__sweep_plots(&s, o->outdir, err);
     dem_folder_end_turn(turn);
     sweep_free(&s);
+    free(gl);
     return rc;
 }
 

@@ -22,6 +22,18 @@ static const char *leaf(const char *key)
     return d ? d + 1 : key;
 }
 
+/* Two values of a parameter that give the same config: the same text,
+ * or the same number written two ways (500 and 500.0, 1e3 and 1000),
+ * which would run one point twice and count its circle twice. */
+static int same_value(const char *a, const char *b)
+{
+    if (!strcmp(a, b))
+        return 1;
+    char *ea, *eb;
+    const double x = strtod(a, &ea), y = strtod(b, &eb);
+    return ea != a && !*ea && eb != b && !*eb && x == y;
+}
+
 static int key_roles(const char *key)
 {
     const char *l = leaf(key);
@@ -118,9 +130,12 @@ static int parse_values(struct dem_sweep_param *p, const char *s,
         memcpy(dst, v, len);
         dst[len] = '\0';
         for (int q = 0; q < p->nvalues; q++)
-            if (!strcmp(p->values[q], dst)) {
-                char msg[DEM_SWEEP_VALUE_MAX + 40];
-                snprintf(msg, sizeof msg, "value %s given twice", dst);
+            if (same_value(p->values[q], dst)) {
+                char msg[2 * DEM_SWEEP_VALUE_MAX + 40];
+                snprintf(msg, sizeof msg, "value %s given twice%s%s%s", dst,
+                         strcmp(p->values[q], dst) ? " (as " : "",
+                         strcmp(p->values[q], dst) ? p->values[q] : "",
+                         strcmp(p->values[q], dst) ? ")" : "");
                 return bad(err, arg, msg);
             }
         p->nvalues++;

@@ -398,6 +398,7 @@ static void write_ensembles(struct dem__json *j, const struct dem__sweep *s)
             write_stat(j, "phi_deg", e->phi_deg);
             write_stat(j, "tan_phi", e->tan_phi);
             write_stat(j, "cohesion", e->c);
+            dem__json_int(j, "cohesion_bounded", e->bounded);
             write_stat(j, "void_ratio_e0", e->e0);
             write_stat(j, "void_ratio_n", e->n);
             dem__json_close(j);

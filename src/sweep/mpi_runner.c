@@ -146,11 +146,12 @@ static void *remote_job(void *arg)
         const double t0 = dem__sweep_now();
         int rc = dem_path_join(rundir, sizeof rundir, r->runs, r->names[a.i],
                                &e);
+        int resumed = a.resume;
         if (!rc)
-            rc = dem__sweep_run_point(r->g, r->o, a.i, rundir, a.resume, &e);
+            rc = dem__sweep_run_point(r->g, r->o, a.i, rundir, &resumed, &e);
         memset(&rq, 0, sizeof rq);
         rq.prev = a.i;
-        rq.resume = a.resume;
+        rq.resume = resumed;
         rq.stopped = r->o->stop && *r->o->stop;
         rq.rc = rc;
         rq.seconds = dem__sweep_now() - t0;

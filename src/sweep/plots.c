@@ -165,12 +165,15 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                     "%.9g %.9g\n\n\n",
                     par, f->fit.phi_deg, f->fit.c, f->fit.c, xmax,
                     f->fit.c + xmax * t);
+            char gof[48] = ", 2 circles"; /* (no goodness of fit) */
+            if (isfinite(f->fit.r2))
+                snprintf(gof, sizeof gof, ", R² = %.3f", f->fit.r2);
             fprintf(gp,
                     "  \"mohr_circles.dat\" index %d with lines "
                     "dashtype %d linewidth 2 linecolor \"black\" title "
-                    "\"flow function φ = %.1f°, c = %.3g, R² = %.3f%s\" "
+                    "\"flow function φ = %.1f°, c = %.3g%s%s\" "
                     "noenhanced, \\\n",
-                    block++, q + 2, f->fit.phi_deg, f->fit.c, f->fit.r2, par);
+                    block++, q + 2, f->fit.phi_deg, f->fit.c, gof, par);
         }
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
@@ -239,9 +242,14 @@ static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 ens ? &s->ens[s->eng.gid[i]] : NULL;
             if (e && s->eng.rep[s->eng.gid[i]] != i)
                 continue; /* an ensemble is written at its first run */
-            const double v[4] = {
+            double v[4] = {
                 e ? e->peak_sin.mean : r->peak_sin, e ? e->peak_sin.se : 0.0,
                 e ? e->crit_sin.mean : r->crit_sin, e ? e->crit_sin.se : 0.0};
+            /* a mean of one seed has no standard error: 0, since gnuplot
+             * skips a point whose error bar is missing (as cycles do) */
+            for (int c = 0; c < 4; c += 2)
+                if (isfinite(v[c]) && !isfinite(v[c + 1]))
+                    v[c + 1] = 0.0;
             fprintf(dat, "%.9g", r->mu);
             for (int c = 0; c < 4; c++)
                 isfinite(v[c]) ? fprintf(dat, " %.9g", v[c])
@@ -275,6 +283,7 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
                  "function)  3 its standard error over the seeds (0 without "
                  "seeds)\n");
     double xmax = 0.0, k1k2 = NAN;
+    int one_ratio = 1; /* every group of one k1/k2: the curve is theirs */
     const int G = ens ? s->ffeg.n : s->ffg.n;
     for (int q = 0; q < G; q++) {
         const struct dem__sweep_run *r =
@@ -289,28 +298,50 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
         xmax = fmax(xmax, r->kc / r->k2);
         if (!isfinite(k1k2))
             k1k2 = r->k1 / r->k2;
+        else if (fabs(r->k1 / r->k2 - k1k2) > 1e-9 * fabs(k1k2))
+            one_ratio = 0;
     }
-    fprintf(dat,
-            "\n\n# block 1: the analytic curve, columns 1 kc/k2  "
-            "2 scale * |f_min|/(k2 delta_max), |f_min|/(k2 delta_max) = "
-            "x (1 - k1/k2)/(1 + x), k1/k2 = %.6g, scale = %.9g (least "
-            "squares)\n",
-            k1k2, s->kc_scale);
     xmax = xmax > 0.0 ? 1.1 * xmax : 1.0;
-    for (int k = 0; k <= 100 && isfinite(s->kc_scale); k++) {
-        const double x = xmax * k / 100.0;
-        fprintf(dat, "%.9g %.9g\n", x,
-                s->kc_scale * dem__sweep_fmin_norm(x, k1k2, 1.0));
+    if (one_ratio) {
+        fprintf(dat,
+                "\n\n# block 1: the analytic curve, columns 1 kc/k2  "
+                "2 scale * |f_min|/(k2 delta_max), |f_min|/(k2 delta_max) = "
+                "x (1 - k1/k2)/(1 + x), k1/k2 = %.6g, scale = %.9g (least "
+                "squares)\n",
+                k1k2, s->kc_scale);
+        for (int k = 0; k <= 100 && isfinite(s->kc_scale); k++) {
+            const double x = xmax * k / 100.0;
+            fprintf(dat, "%.9g %.9g\n", x,
+                    s->kc_scale * dem__sweep_fmin_norm(x, k1k2, 1.0));
+        }
+    } else {
+        /* the groups differ in k1/k2: no one curve is the fitted model,
+         * which is drawn at each group's own kc, k1 and k2 */
+        fprintf(dat,
+                "\n\n# block 1: the fitted model at each group, columns 1 "
+                "kc/k2  2 scale * |f_min|/(k2 delta_max) of its kc, k1, k2 "
+                "(k1/k2 differs between groups), scale = %.9g (least "
+                "squares)\n",
+                s->kc_scale);
+        for (int q = 0; q < G && isfinite(s->kc_scale); q++) {
+            const struct dem__sweep_run *r =
+                &s->runs[ens ? s->ffeg.rep[q] : s->ffg.rep[q]];
+            fprintf(dat, "%.9g %.9g\n", r->kc / r->k2,
+                    s->kc_scale * dem__sweep_fmin_norm(r->kc, r->k1, r->k2));
+        }
     }
     fprintf(gp,
             "set xrange [0:%.6g]\nplot \"cohesion_vs_kc.dat\" index 0 "
             "using 1:2:3 with yerrorbars pointtype 7 pointsize 1.5 title "
             "\"flow functions%s\"%s\n",
             xmax, ens ? ", mean ± s.e. over the seeds" : "",
-            isfinite(s->kc_scale)
+            !isfinite(s->kc_scale) ? ""
+            : one_ratio
                 ? ", \\\n  \"\" index 1 with lines linewidth 2 title "
                   "\"A |f_{min}|/(k_2 δ_{max}) (A fitted)\""
-                : "");
+                : ", \\\n  \"\" index 1 with points pointtype 6 pointsize 2 "
+                  "title \"A |f_{min}|/(k_2 δ_{max}) at each group's k_1/k_2 "
+                  "(A fitted)\"");
     return DEM_OK;
 }
 
@@ -440,11 +471,14 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
         for (size_t k = 0; k < t.nrow; k++) {
             if ((int)t.col[0][k] != r->stage || seen++ % every)
                 continue;
-            const double s1 = t.col[2 + r->axis][k];
-            double s3 = 0.0;
-            for (int a = 0; a < r->dim; a++)
-                if (a != r->axis)
-                    s3 += t.col[2 + a][k] / (r->dim - 1);
+            /* of the major and the minor stress, as summary.json's
+             * (the axial against the mean lateral one read low with
+             * constant_p's b, and negative in extension) */
+            double s1 = t.col[2][k], s3 = t.col[2][k];
+            for (int a = 1; a < r->dim; a++) {
+                s1 = fmax(s1, t.col[2 + a][k]);
+                s3 = fmin(s3, t.col[2 + a][k]);
+            }
             if (s1 + s3 > 0.0)
                 fprintf(dat, "%.9g %.9g\n", t.col[1][k], (s1 - s3) / (s1 + s3));
         }

@@ -437,9 +437,10 @@ static void log_warning(const char *line, void *user)
  * failure to rundir/run.log. Returns the status; err gets the failure. */
 int dem__sweep_run_point(const struct dem_sweep_grid *g,
                          const struct dem_sweep_options *o, long i,
-                         const char *rundir, int resume,
+                         const char *rundir, int *resumed,
                          struct dem_error *err)
 {
+    int resume = *resumed;
     char log[DEM_PATH_MAX];
     int rc = dem_mkdir_p(rundir, err);
     if (!rc)
@@ -458,8 +459,33 @@ int dem__sweep_run_point(const struct dem_sweep_grid *g,
         .any_build = o->any_build,
     };
     if (resume) {
+        /* the stages report their timing once they have started: a
+         * resume that fails before (another build, a checkpoint that
+         * does not read) runs the point again from the start below; one
+         * that fails after (a full disk, a blow-up) is a failed run with
+         * its checkpoint kept, to be resumed once the cause is fixed
+         * (rerun, it removed that checkpoint first and lost its hours) */
+        struct dem_run_timing T = {.steps = -1};
+        opt.timing = &T;
         rc = dem_run_resume(rundir, &opt, &e);
-    } else {
+        opt.timing = NULL;
+        if (rc && rc != DEM_EINTERRUPTED && T.steps < 0) {
+            fprintf(f,
+                    "dembox: resuming failed (%s); running the point again "
+                    "from the start\n",
+                    e.msg);
+            if (!o->quiet)
+                fprintf(stderr,
+                        "dembox: sweep: resuming %s failed (%s), running it "
+                        "again\n",
+                        rundir, e.msg);
+            e.code = DEM_OK;
+            e.msg[0] = '\0';
+            resume = 0;
+        }
+    }
+    *resumed = resume;
+    if (!resume) {
         char sets[MAX_POINT_SETS][SET_LEN];
         const int ns = dem_sweep_point_sets(g, i, sets, MAX_POINT_SETS);
         struct dem_config *c = malloc(sizeof *c);
@@ -498,8 +524,7 @@ long dem__sweep_take(struct dem__sweep_pool *p, int rank, int *resume,
     p->rc = dem_path_join(rundir, DEM_PATH_MAX, p->runs, p->names[i], &p->err);
     if (p->rc)
         return -1;
-    *resume = !p->resume_tried[i] && can_resume(p, i, rundir);
-    p->resume_tried[i] |= (char)*resume;
+    *resume = can_resume(p, i, rundir);
     p->todo[i] = 0;
     if (!p->o->quiet && rank > 0)
         fprintf(stderr, "dembox: sweep: %s %s on rank %d\n",
@@ -531,18 +556,6 @@ void dem__sweep_done(struct dem__sweep_pool *p, long i, int resume,
     if (rc == DEM_EINTERRUPTED && stopped) {
         p->halt = 1; /* the sweep stops where one of its runs was stopped */
         return; /* stopped with a checkpoint: neither done nor failed */
-    }
-    if (!ok && resume) {
-        /* the resume did not work: run the point again from the start */
-        if (!p->o->quiet)
-            fprintf(stderr,
-                    "dembox: sweep: resuming %s failed (%s), running it "
-                    "again\n",
-                    p->names[i], msg);
-        p->todo[i] = 1;
-        if (i < p->next)
-            p->next = i;
-        return;
     }
     p->done++;
     p->seconds += seconds;
@@ -580,7 +593,7 @@ static void *worker(void *arg)
             break;
         const double t0 = dem__sweep_now();
         struct dem_error e = {0};
-        const int rc = dem__sweep_run_point(p->g, p->o, i, rundir, resume, &e);
+        const int rc = dem__sweep_run_point(p->g, p->o, i, rundir, &resume, &e);
         const int stopped = p->o->stop && *p->o->stop;
         pthread_mutex_lock(&p->lock);
         dem__sweep_done(p, i, resume, stopped, rc, e.msg,
@@ -630,9 +643,6 @@ static int run_points(const struct dem_sweep_grid *g,
     int jobs = o->jobs > 0 ? o->jobs : 1;
     struct dem__sweep_pool p = {
         .g = g, .o = o, .runs = runs, .names = names, .todo = todo, .rep = rep};
-    p.resume_tried = calloc((size_t)n, 1);
-    if (!p.resume_tried)
-        return dem_error_set(err, DEM_ENOMEM, "out of memory");
     for (long i = 0; i < n; i++)
         p.total += todo[i];
     int rank, size;
@@ -649,7 +659,6 @@ static int run_points(const struct dem_sweep_grid *g,
     double last = 0.0;
     dem__sweep_progress(o, &p, &last, 1);
     pthread_mutex_destroy(&p.lock);
-    free(p.resume_tried);
     if (p.rc)
         return dem_error_set(err, p.rc, "%s", p.err.msg);
     if (p.halt || (o->stop && *o->stop))

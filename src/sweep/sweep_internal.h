@@ -20,6 +20,9 @@ struct dem__sweep_run {
     double mu;         /* friction of the loading stage */
     double k1, k2, kc; /* N/m; luding stiffnesses (linear: k1 = k2 = k) */
     double pressure;   /* confining pressure of the loading stage */
+    double p_init;     /* pressure the sample was prepared at: of the
+                          isotropic stage before the loading one (holds
+                          between them skipped), else `pressure` */
     double peak_sin, peak_phi, peak_s1, peak_s3;
     double crit_sin, crit_phi, crit_s1, crit_s3;
     double crit_p; /* the walls' mean stress in the critical state (NaN in
@@ -73,7 +76,10 @@ struct dem__sweep_ens {
 /* The flow functions of the seeds of one ensemble (runs differing in
  * pressure and seed): their friction angle, slope and cohesion. */
 struct dem__sweep_ffens {
-    int fits; /* seeds whose flow function was fitted */
+    int fits;    /* seeds whose flow function was fitted */
+    int bounded; /* of them, those whose cohesion was bounded to 0 (their
+                    free fits' intercepts below 0): c's mean and s.e. are
+                    of the bounded values */
     struct dem__sweep_stat phi_deg, tan_phi, c;
     /* the void-ratio fits e = e0 - (p/hs)^n of the same seeds (state as
      * the flow function: initial with [0], critical with [1]) */
@@ -159,7 +165,6 @@ struct dem__sweep_pool {
     dem__sweep_runname *names;
     pthread_mutex_t lock;
     char *todo;         /* points still to run */
-    char *resume_tried; /* points whose checkpoint was tried */
     long next;          /* no point before this one is to do */
     long total, done;
     double seconds; /* taken by the runs counted in done */
@@ -176,15 +181,18 @@ struct dem__sweep_pool {
 long dem__sweep_take(struct dem__sweep_pool *p, int rank, int *resume,
                      char *rundir);
 /* After point i ran (resumed or not) with status rc and message msg, in
- * seconds; stopped: its rank was asked to stop (a signal). Counts it,
- * reports it, and puts it back when a resume failed. Under p->lock. */
+ * seconds; stopped: its rank was asked to stop (a signal). Counts it and
+ * reports it. Under p->lock. */
 void dem__sweep_done(struct dem__sweep_pool *p, long i, int resume,
                      int stopped, int rc, const char *msg, double seconds);
 /* Point i in rundir, as `dembox run` would do it (run or resume,
- * analysis, pictures), its warnings and failure to rundir/run.log. */
+ * analysis, pictures), its warnings and failure to rundir/run.log. With
+ * *resumed set it resumes the run from its checkpoint; a resume refused
+ * before its first step runs the point from the start instead, and
+ * *resumed becomes 0. */
 int dem__sweep_run_point(const struct dem_sweep_grid *g,
                          const struct dem_sweep_options *o, long i,
-                         const char *rundir, int resume,
+                         const char *rundir, int *resumed,
                          struct dem_error *err);
 /* Seconds on a monotonic clock. */
 double dem__sweep_now(void);
