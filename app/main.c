@@ -546,6 +546,16 @@ static int cmd_run(int argc, char **argv)
         rc = dem_config_load_file(&cfg, target, sets, nsets, &err);
         stem(target, name, sizeof name);
     }
+    /* under MPI a rank that cannot read the config (a file only some
+     * nodes see) stops the others, which would wait for it in the run */
+    if (mpi_world && dem_mpi_any(rc) && !rc) {
+        char msg[DEM_PATH_MAX + 128];
+        snprintf(msg, sizeof msg,
+                 "run: another MPI rank could not read the config %s "
+                 "(every rank must see it)",
+                 target);
+        return fail(msg);
+    }
     if (rc)
         return fail(err.msg);
     snprintf(cfg.name, sizeof cfg.name, "%s", name);

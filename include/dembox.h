@@ -465,8 +465,9 @@ const struct dem_example *dem_example_find(const char *name);
 
 /* dembox over MPI (docs/parallel.md). Built with MPI when CMake found it
  * (Debian: libopenmpi-dev); without it every function below still
- * exists and MPI is simply never started. Today `dembox sweep` spreads
- * its runs over the ranks (dem_sweep_run); one run is not decomposed. */
+ * exists and MPI is simply never started. `dembox sweep` spreads its
+ * runs over the ranks (dem_sweep_run); `dembox run` and `dembox bench`
+ * split one sample over them (docs/parallel.md). */
 
 /* 1 when this library was built with MPI. */
 int dem_mpi_built(void);
@@ -484,6 +485,11 @@ int dem_mpi_init(int *argc, char ***argv, struct dem_error *err);
 void dem_mpi_finalize(void);
 /* Rank and size of MPI_COMM_WORLD; 0 and 1 while MPI is not started. */
 void dem_mpi_world(int *rank, int *size);
+/* 1 on every rank when flag is set on some rank (flag while MPI is not
+ * started): a collective every rank must call, so that a rank that fails
+ * on its own (a file only some nodes see) stops the others instead of
+ * leaving them waiting in a collective it never enters. */
+int dem_mpi_any(int flag);
 /* When jobs x threads OpenMP threads, times the MPI ranks on this node
  * (OMPI_COMM_WORLD_LOCAL_SIZE), are more than this machine's cores and
  * threads > 1 (threads <= 0: a run's threads left to the library, at

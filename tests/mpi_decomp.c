@@ -289,6 +289,13 @@ int main(int argc, char **argv)
                nw.n, nr.n, fabs(fw - fr) / fr, dfp / fps);
         failed |= nw.n != nr.n || !(fabs(fw - fr) / fr < 1e-6) ||
                   !(dfp / fps < 1e-6);
+        /* what a checkpoint of a split run holds re-orders as the run
+         * did (it was left off for good: a read-only review, session 108) */
+        if (whole.reorder != s.reorder) {
+            fprintf(stderr, "gathered sample: reorder %d, the run's %d\n",
+                    whole.reorder, s.reorder);
+            failed = 1;
+        }
         dem_network_free(&nw);
         dem_network_free(&nr);
         failed |= !(dsig / ssig < 1e-6 &&

@@ -75,4 +75,30 @@ set -e
 [ $rc -ne 0 ] || fail "16 ranks: status 0"
 [ "$(grep -c "narrower than the ghost range" logm)" -eq 1 ] || fail "16 ranks: $(cat logm)"
 [ ! -e many ] || fail "16 ranks: outputs written: $(ls many)"
-echo "split runs over 2 and 4 ranks as serial; stop and resume across rank counts; refusal"
+# a rank that fails on its own before the split (a config, particle file
+# or packing only some nodes see; here each rank given its own command)
+# stops every rank with one line from rank 0, instead of leaving the
+# others waiting in the split's first collective for ever
+lone() {
+    name=$1; shift
+    set +e
+    timeout 120 "$MPIRUN" --oversubscribe -np 1 "$BIN" "$@" : \
+        -np 1 "$BIN" "$@" $LONE > "log.$name" 2>&1; rc=$?
+    set -e
+    [ $rc -ne 0 ] && [ $rc -ne 124 ] || fail "$name: status $rc: $(cat "log.$name")"
+    [ "$(grep -c '^dembox: ' "log.$name")" -eq 1 ] &&
+        grep -q "another MPI rank could not" "log.$name" ||
+        fail "$name: $(cat "log.$name")"
+}
+printf 'x,y,radius\n0.01,0.01,0.004\n0.03,0.01,0.004\n' > p.csv
+LONE="--set particles.file=nosuch.csv"
+lone particle-file run biaxial2d --max-steps 10 --quiet -o lone1 \
+    --set particles.placement=file --set particles.file=p.csv \
+    --set box.size=[0.04,0.04,0.0]
+[ ! -e lone1/timeseries.csv ] || fail "particle file: outputs written"
+LONE="--set nosuch.key=1"
+lone config run biaxial2d --max-steps 10 --quiet -o lone2
+[ ! -e lone2 ] || fail "config: outputs written"
+LONE="--data nosuch.data"
+lone bench bench --n 300 --steps 20 --threads 1 --quiet --cache-dir "$T/cache"
+echo "split runs over 2 and 4 ranks as serial; stop and resume across rank counts; refusals"

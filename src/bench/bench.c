@@ -621,25 +621,28 @@ static int bench_run(const struct dem_bench_options *o,
     if (rc)
         return rc;
 
+    /* under MPI the sample is split over the ranks (decomp/halo.h):
+     * rank 0 prepares the packing, every rank loads it; a rank that
+     * fails on its own (a data file or cache that only some nodes see)
+     * must not leave the others waiting in a collective it never enters,
+     * so every step up to the split ends with the ranks agreeing */
+    int rank = 0, ranks = 1;
+    dem_mpi_world(&rank, &ranks);
     char databuf[DEM_PATH_MAX];
     const char *data = find_data(o, dim, n, databuf, sizeof databuf);
     if (data) { /* (a folder, or a file that cannot be read, named now) */
         FILE *f;
-        if ((rc = dem_open_text(&f, data, "a LAMMPS data file", err)))
-            return rc;
-        fclose(f);
+        if (!(rc = dem_open_text(&f, data, "a LAMMPS data file", err)))
+            fclose(f);
     }
-    rc = cache_path(o, dim, n, data, r->cache, sizeof r->cache, err);
-    if (rc)
-        return rc;
-    snprintf(r->source, sizeof r->source, "%s",
-             data ? data : "random placement, seed 1");
-    /* under MPI the sample is split over the ranks (decomp/halo.h):
-     * rank 0 prepares the packing, every rank loads it */
-    int rank = 0, ranks = 1;
-    dem_mpi_world(&rank, &ranks);
-    r->cache_hit = !o->no_cache && file_exists(r->cache);
-    if (!r->cache_hit && rank == 0) {
+    if (!rc)
+        rc = cache_path(o, dim, n, data, r->cache, sizeof r->cache, err);
+    if (!rc) {
+        snprintf(r->source, sizeof r->source, "%s",
+                 data ? data : "random placement, seed 1");
+        r->cache_hit = !o->no_cache && file_exists(r->cache);
+    }
+    if (!rc && !r->cache_hit && rank == 0) {
         double t0 = wall_clock();
         rc = prepare(&cfg, w, data, r->cache, o, err);
         r->prep_seconds = wall_clock() - t0;
@@ -647,16 +650,21 @@ static int bench_run(const struct dem_bench_options *o,
     if (ranks > 1) {
         /* rank 0's status reaches the others, which wait for it here:
          * when its preparation failed they stop too, rather than load
-         * what is in the cache (with --no-cache an older packing) and
-         * wait in a collective that rank 0 never enters */
+         * what is in the cache (with --no-cache an older packing) */
         int v = rc;
         dem_halo_bcast(&v, 1);
         if (v && !rc)
             rc = dem_error_set(err, v,
                                "bench: stopped with rank 0 (see its "
                                "message)");
-        else if (rank > 0 && !file_exists(r->cache))
+        else if (!rc && rank > 0 && !file_exists(r->cache))
             rc = dem_error_set(err, DEM_EIO, "%s: rank 0 did not prepare it",
+                               r->cache);
+        if (dem_mpi_any(rc != 0) && !rc)
+            rc = dem_error_set(err, DEM_EIO,
+                               "bench: another MPI rank could not find or "
+                               "prepare the packing (every rank must see "
+                               "the data file and %s)",
                                r->cache);
     }
     if (rc)
@@ -664,6 +672,12 @@ static int bench_run(const struct dem_bench_options *o,
 
     struct dem_sim s;
     rc = load_cache(&s, &cfg, r->cache, err);
+    if (ranks > 1 && dem_mpi_any(rc != 0) && !rc) {
+        dem_sim_destroy(&s);
+        rc = dem_error_set(err, DEM_EIO,
+                           "bench: another MPI rank could not load %s",
+                           r->cache);
+    }
     if (rc)
         return rc;
     struct dem_sample smp;

@@ -110,6 +110,15 @@ void dem_mpi_finalize(void)
         MPI_Finalize();
 }
 
+int dem_mpi_any(int flag)
+{
+    int init = 0, fin = 0, any = flag != 0;
+    if (MPI_Initialized(&init) == MPI_SUCCESS && init &&
+        MPI_Finalized(&fin) == MPI_SUCCESS && !fin)
+        MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+    return any;
+}
+
 void dem_mpi_world(int *rank, int *size)
 {
     int init = 0, fin = 0;
@@ -136,6 +145,11 @@ int dem_mpi_init(int *argc, char ***argv, struct dem_error *err)
 }
 
 void dem_mpi_finalize(void) {}
+
+int dem_mpi_any(int flag)
+{
+    return flag != 0;
+}
 
 void dem_mpi_world(int *rank, int *size)
 {

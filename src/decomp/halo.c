@@ -50,11 +50,6 @@ void dem_halo_bcast(int *v, int n)
     (void)n;
 }
 
-int dem_halo_any(int flag)
-{
-    return flag != 0;
-}
-
 #else
 
 #include <limits.h>
@@ -168,7 +163,7 @@ static int displs(const int *count, int *displ, int n)
 /* Whether every rank succeeded (rc == 0 on all). */
 static int all_ok(int rc)
 {
-    return !dem_halo_any(rc != 0);
+    return !dem_mpi_any(rc != 0);
 }
 
 /* At a rebuild, an all-to-all of doubles: cnt[r] items of width w to
@@ -837,6 +832,11 @@ int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
             dem_records_import(&rec, &whole->pairs, &whole->p);
             whole->nbuild = s->nbuild;
             whole->build_step = s->build_step;
+            /* (kept in id order for the import; a checkpoint of it
+             * resumes re-ordering its particles as the run did, which
+             * left off ran every later build on the slower unordered
+             * rows) */
+            whole->reorder = s->reorder;
         } else {
             dem_sim_destroy(whole);
             memset(whole, 0, sizeof *whole);
@@ -854,15 +854,6 @@ void dem_halo_bcast(int *v, int n)
     MPI_Initialized(&started);
     if (started)
         MPI_Bcast(v, n, MPI_INT, 0, MPI_COMM_WORLD);
-}
-
-int dem_halo_any(int flag)
-{
-    int started = 0, any = flag != 0;
-    MPI_Initialized(&started);
-    if (started)
-        MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
-    return any;
 }
 
 void dem_halo_barrier(void)

@@ -60,8 +60,7 @@ int dem_halo_collect(const struct dem_sim *s, struct dem_sim *whole,
 
 /* Rank 0's v[0..n) on every rank (nothing without MPI). */
 void dem_halo_bcast(int *v, int n);
-/* 1 on every rank when flag is set on some rank (flag without MPI). */
-int dem_halo_any(int flag);
+/* (dem_mpi_any: 1 on every rank when flag is set on some rank) */
 
 /* Wait for every rank of the MPI world (nothing without MPI or before
  * it started). */

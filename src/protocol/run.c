@@ -778,6 +778,19 @@ static int run_new(const struct dem_config *cfg,
             &r.sim, cfg,
             cfg->particles.placement == DEM_PLACE_FILE ? &given : NULL, err);
     dem_particles_free(&given);
+    /* a rank that could not build it (a particle file only some nodes
+     * see) stops the others, which would wait for it in the split */
+    if (r.nranks > 1 && dem_mpi_any(rc) && !rc) {
+        dem_sim_destroy(&r.sim);
+        rc = dem_error_set(
+            err, DEM_EIO,
+            "another MPI rank could not build the sample "
+            "(every rank must see the config's files%s%s)",
+            cfg->particles.placement == DEM_PLACE_FILE ? ": particles.file = "
+                                                       : "",
+            cfg->particles.placement == DEM_PLACE_FILE ? cfg->particles.file
+                                                       : "");
+    }
     if (rc)
         return rc;
     r.n_all = r.sim.p.n;
@@ -861,7 +874,7 @@ static int run_resumed(const char *outdir, const struct dem_run_options *opt,
                  : DEM_OK;
     if (!rc)
         rc = read_checkpoint(&r, err);
-    if (r.nranks > 1 && dem_halo_any(rc) && !rc) {
+    if (r.nranks > 1 && dem_mpi_any(rc) && !rc) {
         rc = dem_error_set(err, DEM_EIO,
                            "%s: another rank could not read the checkpoint "
                            "(every rank must see the folder)",
