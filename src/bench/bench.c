@@ -524,8 +524,11 @@ static int timed_loop(const struct dem_bench_options *o, struct dem_sim *s,
     const long nr = (steps / slice + 2) / 2, ns = steps / slice + 1;
     /* the rounds' ratios by turns, else the slices' ns per particle-step */
     double *val = malloc((size_t)(turns ? nr : ns) * sizeof *val);
-    if (!val)
+    /* (split over ranks, all stop or none: the loop is collective) */
+    if (s->halo ? dem_mpi_any(!val) : !val) {
+        free(val);
         return dem_error_set(err, DEM_ENOMEM, "bench: out of memory");
+    }
     struct dem_pass_choice pc[2] = {s->pass, s->pass};
     /* The slices run the counts in the order A B, B A, A B, ... (a
      * count's slice is as often first in its round as second, so that

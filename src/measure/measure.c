@@ -100,6 +100,12 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     o->max_overlap = S->max_overlap_ratio;
 
     int *scratch = malloc((size_t)(P->n ? P->n : 1) * sizeof *scratch);
+    /* split over ranks the rattlers are counted by all together: all of
+     * them or none (a rank alone would leave the others in a collective) */
+    if (s->halo && dem_mpi_any(!scratch)) {
+        free(scratch);
+        scratch = NULL;
+    }
     o->rattler_fraction = o->coordination_nr = NAN; /* out of memory */
     if (scratch) {
         long c_nr = 0;
