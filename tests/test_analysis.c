@@ -1358,18 +1358,21 @@ static void analyze_refuses_nonfinite_values_and_foreign_stages(void **state)
         assert_int_not_equal(access(path, F_OK), 0);
     }
 }
-/* 3D triaxial box cycled along x with a known ratchet. */
-static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
+/* 3D triaxial box cycled along x with a known ratchet; with alone, the
+ * cyclic stage is the run's first (a particle file's sample), whose rows
+ * begin one interval after t = 0, as a run writes them. */
+static void write_cyclic_run_as(const char *dir, int ncyc, const double *inc,
+                                int alone)
 {
     char cfg[1024];
     snprintf(cfg, sizeof cfg,
              "dimension = 3;\n"
-             "stages = (\n"
-             "  { type = \"isotropic\"; pressure = 1000.0; },\n"
+             "stages = (\n%s"
              "  { type = \"cyclic\"; axis = \"x\"; pressure = 1000.0; "
              "amplitude = 200.0; period = 1.0; cycles = %d; }\n"
              ");\n"
              "output = { interval = 0.02; };\n",
+             alone ? "" : "  { type = \"isotropic\"; pressure = 1000.0; },\n",
              ncyc);
     write_text(dir, "config.cfg", cfg);
     enum { PER = 50 };
@@ -1377,7 +1380,7 @@ static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
     double *t = malloc(3 * (size_t)cap * sizeof *t);
     assert_non_null(t);
     double *ed = t + cap, *sd = ed + cap;
-    const double t0 = 0.5;
+    const double t0 = alone ? 0.0 : 0.5;
     const long n = make_cycles(t0, inc, ncyc, PER, t, ed, sd);
     FILE *f = open_timeseries(dir, 3);
     struct dem_sample s;
@@ -1387,10 +1390,11 @@ static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
     s.t = t0;
     s.sigma[0] = s.sigma[1] = s.sigma[2] = 1000.0;
     s.void_ratio = 0.6;
-    dem_sample_write_row(f, &s, 3);
+    if (!alone)
+        dem_sample_write_row(f, &s, 3);
     for (long i = 1; i < n; i++) {
         s.t = t[i];
-        s.stage = 1;
+        s.stage = alone ? 0 : 1;
         /* split eps_D over the axes: eps_x - (eps_y + eps_z)/2 = eps_D */
         s.eps[0] = 0.5 * ed[i];
         s.eps[1] = s.eps[2] = -0.5 * ed[i];
@@ -1399,6 +1403,38 @@ static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
     }
     assert_int_equal(fclose(f), 0);
     free(t);
+}
+
+static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
+{
+    write_cyclic_run_as(dir, ncyc, inc, 0);
+}
+
+/* A cyclic stage that is the run's first counts its strains from t = 0,
+ * where they are 0, not from its first row one output interval later
+ * (cycle 1 lost that interval's strain; a read-only review, session
+ * 108). */
+static void a_first_cyclic_stage_starts_at_zero_strain(void **state)
+{
+    (void)state;
+    enum { C = 6 };
+    double inc[C];
+    for (int k = 0; k < C; k++)
+        inc[k] = 1e-3 * (1.0 + 1.0 / (k + 1));
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "cyclic-alone");
+    write_cyclic_run_as(dir, C, inc, 1);
+    struct dem_error err = {0};
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = slurp(path);
+    assert_non_null(js);
+    assert_close(json_get(js, "cycle_increment_first"), 2e-3, 1e-9);
+    const char *c1 = strstr(js, "\"index\": 1,");
+    assert_non_null(c1);
+    assert_close(json_get(c1, "strain_end"), 2e-3, 1e-9);
+    free(js);
 }
 
 static void analyze_counts_cycles_of_a_cyclic_run(void **state)
@@ -1588,6 +1624,7 @@ int main(void)
         cmocka_unit_test(constant_p_reads_the_minor_stress),
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),
+        cmocka_unit_test(a_first_cyclic_stage_starts_at_zero_strain),
         cmocka_unit_test(analyze_rejects_a_folder_that_is_not_a_run),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);

@@ -174,9 +174,12 @@ static double lateral(const double *const v[3], long r, int axis, int dim)
 }
 
 /* minor: the axis whose stress is s3, or -1 for the mean of the axes
- * other than `axis`. */
+ * other than `axis`. zero_start: a first stage (no row at t = 0) starts
+ * with a sample at t = 0 of zero strains, the stresses of its first row
+ * (the cycles' strains are counted from the stage's start). */
 static int build_curves(const struct columns *c, long nrow, int stage, int axis,
-                        int minor, int dim, double interval, struct curves *cv)
+                        int minor, int dim, double interval, int zero_start,
+                        struct curves *cv)
 {
     memset(cv, 0, sizeof *cv);
     long first = -1, last = -1;
@@ -189,7 +192,9 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
     if (first < 0)
         return DEM_OK;
     const int origin = first > 0 && (int)c->stage[first - 1] < stage;
-    const long n = last - first + 1 + origin;
+    const int start =
+        !origin && first == 0 && stage == 0 && zero_start && c->t[0] > 0.0;
+    const long n = last - first + 1 + origin + start;
     double *blk = malloc(9 * (size_t)n * sizeof *blk);
     if (!blk)
         return DEM_ENOMEM;
@@ -199,9 +204,9 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
         *arr[k] = blk + (size_t)k * (size_t)n;
     cv->n = n;
     for (long i = 0; i < n; i++) {
-        const long r = first - origin + i;
-        const int o = origin && i == 0;
-        cv->t[i] = c->t[r];
+        const long r = first - origin + (start ? (i > 0 ? i - 1 : 0) : i);
+        const int o = (origin || start) && i == 0;
+        cv->t[i] = start && i == 0 ? 0.0 : c->t[r];
         cv->ea[i] = o ? 0.0 : c->eps[axis][r];
         cv->el[i] = o ? 0.0 : lateral(c->eps, r, axis, dim);
         cv->ev[i] = o ? 0.0 : c->eps_v[r];
@@ -395,7 +400,7 @@ static int analyze_cyclic(const struct dem_config *cfg, const struct columns *c,
     R->cyc_period = sc->period;
     struct curves cv;
     int rc = build_curves(c, nrow, R->cyc_stage, sc->axis, -1, cfg->dim,
-                          cfg->output.interval, &cv);
+                          cfg->output.interval, 1, &cv);
     if (rc)
         return rc;
     R->cycles =
@@ -455,7 +460,7 @@ static int analyze_loading(const struct dem_config *cfg,
     const int minor =
         type == DEM_STAGE_CONSTANT_P && cfg->dim == 3 ? (sc->axis + 2) % 3 : -1;
     int rc = build_curves(c, nrow, R->stage, sc->axis, minor, cfg->dim,
-                          cfg->output.interval, &cv);
+                          cfg->output.interval, 0, &cv);
     if (rc)
         return rc;
     /* constant_volume has no pressure key: its confinement is the
