@@ -549,8 +549,8 @@ static int verdict_of(const double *inc)
 /* A rate exactly 1/c accumulates a strain growing as ln c, without
  * bound: ratcheting at any count of cycles, and a rate falling faster,
  * c^-1.1, shakedown. (Against a fixed 0.6 of the middle third's mean,
- * the means of 1/c fell below it from 18 cycles on: shakedown at the
- * paper's 100; a read-only review, session 108.) */
+ * the means of 1/c fell below it at 18, 21, ... cycles and from 90 on:
+ * shakedown at the paper's 100; a read-only review, session 108.) */
 static void a_rate_of_one_over_c_ratchets_at_any_count(void **state)
 {
     (void)state;

@@ -80,10 +80,11 @@ set -e
 # stops every rank with one line from rank 0, instead of leaving the
 # others waiting in the split's first collective for ever
 lone() {
-    name=$1; shift
+    name=$1
     set +e
-    timeout 120 "$MPIRUN" --oversubscribe -np 1 "$BIN" "$@" : \
-        -np 1 "$BIN" "$@" $LONE > "log.$name" 2>&1; rc=$?
+    # shellcheck disable=SC2086 # (the two commands' words)
+    timeout 120 "$MPIRUN" --oversubscribe -np 1 "$BIN" $2 : \
+        -np 1 "$BIN" $3 > "log.$name" 2>&1; rc=$?
     set -e
     [ $rc -ne 0 ] && [ $rc -ne 124 ] || fail "$name: status $rc: $(cat "log.$name")"
     [ "$(grep -c '^dembox: ' "log.$name")" -eq 1 ] &&
@@ -91,14 +92,13 @@ lone() {
         fail "$name: $(cat "log.$name")"
 }
 printf 'x,y,radius\n0.01,0.01,0.004\n0.03,0.01,0.004\n' > p.csv
-LONE="--set particles.file=nosuch.csv"
-lone particle-file run biaxial2d --max-steps 10 --quiet -o lone1 \
-    --set particles.placement=file --set particles.file=p.csv \
-    --set box.size=[0.04,0.04,0.0]
+F="run biaxial2d --max-steps 10 --quiet -o lone1 --set particles.placement=file --set box.size=[0.04,0.04,0.0]"
+lone particle-file "$F --set particles.file=p.csv" "$F --set particles.file=nosuch.csv"
 [ ! -e lone1/timeseries.csv ] || fail "particle file: outputs written"
-LONE="--set nosuch.key=1"
-lone config run biaxial2d --max-steps 10 --quiet -o lone2
+C="run biaxial2d --max-steps 10 --quiet -o lone2"
+lone config "$C" "$C --set nosuch.key=1"
 [ ! -e lone2 ] || fail "config: outputs written"
-LONE="--data nosuch.data"
-lone bench bench --n 300 --steps 20 --threads 1 --quiet --cache-dir "$T/cache"
+B="bench --steps 20 --threads 1 --quiet --cache-dir $T/cache"
+lone bench "$B --n 300" "$B --n 300 --data nosuch.data"
+lone bench-header "$B --n 300" "$B --data nosuch.data"
 echo "split runs over 2 and 4 ranks as serial; stop and resume across rank counts; refusals"

@@ -242,8 +242,8 @@ struct dem_cycles {
  * numbers (0.629 at n = 6, 0.593 at 100, ln 1.5/ln 2 = 0.585 in the
  * limit). Ratcheting means the rate falls more slowly than 1/c, so that
  * the accumulated strain grows without bound. (Until session 108 a fixed
- * 0.6, the ratio at the thirds' centres: a rate 1/c of 100 cycles, whose
- * strain grows as ln c without bound, fell below it.) */
+ * 0.6, the ratio at the thirds' centres: the means of a rate 1/c fell
+ * below it at 18, 21, 24, ... cycles and at every count from 90.) */
 double dem_ratchet_fraction(int n);
 /* A cycle's loop area needs at least this many samples inside it. */
 #define DEM_LOOP_MIN_SAMPLES 20

@@ -605,13 +605,24 @@ static int bench_run(const struct dem_bench_options *o,
     int n = o->n > 0 ? o->n
                      : (dim == 3 ? DEM_BENCH_DEFAULT_N3 : DEM_BENCH_DEFAULT_N2);
     if (o->data && o->n <= 0) {
-        /* --data without --n: the file's header says how many */
+        /* --data without --n: the file's header says how many (split
+         * over ranks, a rank that cannot read it stops them all, as
+         * below) */
         struct dem_lammps_data d;
         int rc = dem_lammps_data_read_header(&d, o->data, err);
+        if (!rc) {
+            n = d.n;
+            dem_lammps_data_free(&d);
+        }
+        int rank = 0, ranks = 1;
+        dem_mpi_world(&rank, &ranks);
+        if (ranks > 1 && dem_mpi_any(rc != 0) && !rc)
+            rc = dem_error_set(err, DEM_EIO,
+                               "bench: another MPI rank could not read the "
+                               "header of %s (every rank must see it)",
+                               o->data);
         if (rc)
             return rc;
-        n = d.n;
-        dem_lammps_data_free(&d);
     }
     const long steps = o->steps > 0 ? o->steps : DEM_BENCH_DEFAULT_STEPS;
     if (o->versus > 0 && steps < 16)

@@ -39,7 +39,7 @@ struct dem_sample {
     double inertial_number;  /* I = rate sqrt(m d / (p d^(dim-1))): rate the
                                 fastest axial strain rate of the box, m and d
                                 the mean particle mass and diameter */
-    double sliding_fraction; /* sliding / all contacts (walls included) */
+    double sliding_fraction; /* sliding / contacts with friction */
     double solid_fraction;   /* V_solid / V */
     double void_ratio;       /* (V - V_solid)/V_solid */
     double fabric[3][3];     /* (1/N_pp) sum n (x) n over pair contacts */

@@ -799,6 +799,10 @@ static int run_new(const struct dem_config *cfg,
     rc = config_text(&r.sim.cfg, &r.config_text, err);
     if (!rc)
         set_reference(&r);
+    if (r.nranks > 1 && dem_mpi_any(rc) && !rc) /* (out of memory alone) */
+        rc = dem_error_set(err, DEM_ENOMEM,
+                           "another MPI rank ran out of "
+                           "memory");
     /* split before any output exists: a grid the box has no room for
      * must fail first */
     rc = split(&r, rc, err);

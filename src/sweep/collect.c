@@ -550,7 +550,7 @@ static int analyse(struct dem__sweep *s)
     if (!(s->roles & DEM_SWEEP_ROLE_MU))
         snprintf(s->mu_reason, sizeof s->mu_reason,
                  "the sweep does not vary the friction (contact.mu, mu_s, "
-                 "mu_d or stages.N.mu)");
+                 "mu_d or the loading stage's stages.N.mu)");
     else if (!monotonic)
         snprintf(s->mu_reason, sizeof s->mu_reason,
                  "no finished run has a peak or a critical state (a "

@@ -30,6 +30,10 @@ static int same_value(const char *a, const char *b)
     if (!strcmp(a, b))
         return 1;
     char *ea, *eb;
+    /* integers as integers: seeds beyond 2^53 are distinct doubles' */
+    const long long i = strtoll(a, &ea, 10), j = strtoll(b, &eb, 10);
+    if (ea != a && !*ea && eb != b && !*eb)
+        return i == j;
     const double x = strtod(a, &ea), y = strtod(b, &eb);
     return ea != a && !*ea && eb != b && !*eb && x == y;
 }

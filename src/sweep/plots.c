@@ -166,7 +166,7 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                     par, f->fit.phi_deg, f->fit.c, f->fit.c, xmax,
                     f->fit.c + xmax * t);
             char gof[48] = ", 2 circles"; /* (no goodness of fit) */
-            if (isfinite(f->fit.r2))
+            if (f->fit.n != 2)
                 snprintf(gof, sizeof gof, ", R² = %.3f", f->fit.r2);
             fprintf(gp,
                     "  \"mohr_circles.dat\" index %d with lines "
