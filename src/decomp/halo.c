@@ -298,8 +298,9 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
     }
     for (int k = 0; k < nin; k++)
         unpack(p, p->n++, H->rbuf + (size_t)k * NPACK);
-    /* the records: counts in records, sent as bytes */
-    const int rec_bytes = (int)sizeof(struct dem_contact_record);
+    /* the records: counts and displacements in records, of a datatype
+     * of one record (in bytes they passed INT_MAX from about 12 million
+     * records moved by one rank) */
     int *rin = malloc(4 * (size_t)size * sizeof *rin);
     if (!rin)
         rc = DEM_ENOMEM;
@@ -312,26 +313,24 @@ static int migrate(struct dem_sim *s, struct halo *H, int nown)
         if (records_reserve(&keep, nkeep + tin))
             rc = DEM_ENOMEM;
         if (all_ok(rc)) {
-            int *sb = malloc((size_t)size * sizeof *sb);
-            if (sb) {
-                for (int r = 0; r < size; r++) {
-                    sb[r] = rcnt[r] * rec_bytes;
-                    sd[r] = tout * rec_bytes;
-                    tout += rcnt[r];
-                }
-                int t = 0;
-                for (int r = 0; r < size; r++) {
-                    rcb[r] = rin[r] * rec_bytes;
-                    rd[r] = t * rec_bytes; /* after the kept ones */
-                    t += rin[r];
-                }
-                MPI_Alltoallv(out.v, sb, sd, MPI_BYTE, keep.v + nkeep, rcb, rd,
-                              MPI_BYTE, MPI_COMM_WORLD);
-                keep.n = nkeep + tin;
-                free(sb);
-            } else {
-                rc = DEM_ENOMEM;
+            MPI_Datatype rt;
+            MPI_Type_contiguous((int)sizeof(struct dem_contact_record),
+                                MPI_BYTE, &rt);
+            MPI_Type_commit(&rt);
+            for (int r = 0; r < size; r++) {
+                sd[r] = tout;
+                tout += rcnt[r];
             }
+            int t = 0;
+            for (int r = 0; r < size; r++) {
+                rcb[r] = rin[r];
+                rd[r] = t; /* after the kept ones */
+                t += rin[r];
+            }
+            MPI_Alltoallv(out.v, rcnt, sd, rt, keep.v + nkeep, rcb, rd, rt,
+                          MPI_COMM_WORLD);
+            MPI_Type_free(&rt);
+            keep.n = nkeep + tin;
         }
     }
     free(rin);
