@@ -1437,6 +1437,41 @@ static void a_first_cyclic_stage_starts_at_zero_strain(void **state)
     free(js);
 }
 
+/* In 3D the granular hardness hs = k/d takes the mean diameter of the
+ * run's particles (particles_final.csv), not of the radius keys, which a
+ * particle file's spheres need not follow: 0.5 mm spheres under the
+ * default 5 mm keys gave an hs ten times too small (a read-only review,
+ * session 108). */
+static void hardness_takes_the_particles_diameter(void **state)
+{
+    (void)state;
+    enum { C = 6 };
+    double inc[C];
+    for (int k = 0; k < C; k++)
+        inc[k] = 1e-4;
+    char dir[128], path[160];
+    run_dir(dir, sizeof dir, "hardness");
+    write_cyclic_run(dir, C, inc);
+    struct dem_error err = {0};
+    double hs[2];
+    for (int k = 0; k < 2; k++) {
+        if (k)
+            write_text(dir, "particles_final.csv",
+                       "x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n"
+                       "0.01,0.01,0.01,0,0,0,0,0,0,4e-4,1e-6\n"
+                       "0.02,0.01,0.01,0,0,0,0,0,0,6e-4,1e-6\n");
+        if (dem_analyze(dir, &err))
+            fail_msg("dem_analyze: %s", err.msg);
+        snprintf(path, sizeof path, "%s/summary.json", dir);
+        char *js = slurp(path);
+        assert_non_null(js);
+        hs[k] = json_get(strstr(js, "\"void_ratio_fit\""), "hs");
+        free(js);
+    }
+    /* the keys' mean diameter 10 mm, the particles' 1 mm */
+    assert_close(hs[1] / hs[0], 10.0, 1e-9);
+}
+
 static void analyze_counts_cycles_of_a_cyclic_run(void **state)
 {
     (void)state;
@@ -1625,6 +1660,7 @@ int main(void)
         cmocka_unit_test(analyze_refuses_nonfinite_values_and_foreign_stages),
         cmocka_unit_test(analyze_counts_cycles_of_a_cyclic_run),
         cmocka_unit_test(a_first_cyclic_stage_starts_at_zero_strain),
+        cmocka_unit_test(hardness_takes_the_particles_diameter),
         cmocka_unit_test(analyze_rejects_a_folder_that_is_not_a_run),
     };
     return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);

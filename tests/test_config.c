@@ -590,6 +590,11 @@ static const struct bad bad_inputs[] = {
      1},
     {"damping = { gamma_b = 200.0; };", 0, "damping.gamma_b: with a time", 1},
     {"damping = { gamma_br = 100.0; };", 0, "damping.gamma_br: with a time", 1},
+    /* Hertz's force of spheres on discs' masses per metre (a read-only
+     * review, session 108) */
+    {"dimension = 2;\nparticles = { mass_model = \"disc\"; };\n"
+     "contact = { normal = \"hertz\"; };",
+     0, "contact.normal: \"hertz\" is a law of spheres", 3},
     /* the resistances' dashpots turn the spin as gamma_br does (a
      * read-only review, session 108) */
     {"contact = { rolling = \"luding\"; gamma_r = 100.0; };", 0,

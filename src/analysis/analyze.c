@@ -347,18 +347,56 @@ static int analyze_monotonic(const struct curves *cv, int dim,
     return DEM_OK;
 }
 
+/* The mean diameter of the run's particles, m, from outdir's
+ * particles_final.csv (a particle file's spheres need not follow the
+ * radius keys); NAN without it. */
+static double final_mean_diameter(const char *outdir)
+{
+    char path[DEM_PATH_MAX];
+    struct dem_error e = {.warn = dem_warn_ignore};
+    if (dem_path_join(path, sizeof path, outdir, "particles_final.csv", &e))
+        return NAN;
+    const struct dem__csv_want want[] = {DEM_CSV_FINITE("radius", 1)};
+    struct dem__csv_table t;
+    if (dem__csv_table_read(&t, path, want, 1, &e))
+        return NAN;
+    double sum = 0.0;
+    for (size_t r = 0; r < t.nrow; r++)
+        sum += 2.0 * t.col[0][r];
+    const double d = t.nrow ? sum / (double)t.nrow : NAN;
+    dem__csv_table_free(&t);
+    return d;
+}
+
 /* Granular hardness hs of e = e0 - (p/hs)^n: Luding et al. sets hs = k2 (2D,
  * where p and k2 are both N/m). In 3D p is in Pa, so k2 is divided by the
- * mean diameter to keep p/hs dimensionless (our extension). */
-static double hardness(const struct dem_config *cfg)
+ * mean diameter to keep p/hs dimensionless (our extension): of the run's
+ * particles (particles_final.csv), else of the radius keys, which a
+ * particle file's need not follow (NAN then). Hertz's law has no constant
+ * stiffness: NAN, and why. */
+static double hardness(const struct dem_config *cfg, const char *outdir,
+                       char *why, size_t n)
 {
+    if (cfg->contact.normal == DEM_NORMAL_HERTZ) {
+        snprintf(why, n,
+                 "contact.normal = \"hertz\" has no constant stiffness for "
+                 "the granular hardness hs (k2 of Luding's law, k of the "
+                 "linear one)");
+        return NAN;
+    }
     const double k = cfg->contact.normal == DEM_NORMAL_LUDING ? cfg->contact.k2
                                                               : cfg->contact.k;
     if (cfg->dim == 2)
         return k;
-    const double d = cfg->particles.distribution == DEM_DIST_UNIFORM
-                         ? cfg->particles.min + cfg->particles.max
-                         : 2.0 * cfg->particles.mean;
+    double d = final_mean_diameter(outdir);
+    if (!(d > 0.0) && cfg->particles.placement != DEM_PLACE_FILE)
+        d = cfg->particles.distribution == DEM_DIST_UNIFORM
+                ? cfg->particles.min + cfg->particles.max
+                : 2.0 * cfg->particles.mean;
+    if (!(d > 0.0))
+        snprintf(why, n,
+                 "no particles_final.csv to take the mean diameter of a "
+                 "particle file's spheres from (hs = k2/d in 3D)");
     return d > 0.0 ? k / d : NAN;
 }
 
@@ -366,7 +404,7 @@ static double hardness(const struct dem_config *cfg)
  * pressures in one run, the fit of Luding et al. Eq. 6. */
 static int analyze_void_fit(const struct dem_config *cfg,
                             const struct columns *c, long nrow,
-                            struct result *R)
+                            const char *outdir, struct result *R)
 {
     double p[DEM_MAX_STAGES], e[DEM_MAX_STAGES];
     long m = 0;
@@ -386,9 +424,13 @@ static int analyze_void_fit(const struct dem_config *cfg,
         e[m] = c->void_ratio[last];
         m++;
     }
-    R->hs = hardness(cfg);
+    char why[DEM_REASON_MAX] = "";
+    R->hs = hardness(cfg, outdir, why, sizeof why);
     R->vfit_points = m;
-    return dem_voidfit(p, e, m, R->hs, &R->vfit);
+    const int rc = dem_voidfit(p, e, m, R->hs, &R->vfit);
+    if (!rc && why[0])
+        snprintf(R->vfit.reason, sizeof R->vfit.reason, "%s", why);
+    return rc;
 }
 
 static int analyze_cyclic(const struct dem_config *cfg, const struct columns *c,
@@ -925,7 +967,7 @@ static int analyze_folder(const char *outdir, const char *cfg_path,
     if (!rc)
         rc = analyze_loading(cfg, &c, nrow, &R);
     if (!rc)
-        rc = analyze_void_fit(cfg, &c, nrow, &R);
+        rc = analyze_void_fit(cfg, &c, nrow, outdir, &R);
     if (!rc && R.cyc_stage >= 0)
         rc = analyze_cyclic(cfg, &c, nrow, &R);
     if (!rc)

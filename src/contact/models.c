@@ -227,6 +227,17 @@ const char *dem_contact_check(const struct dem_config *c, int *stage, char *msg,
                  "normals in the plane): leave it \"none\"");
         return "contact.torsion";
     }
+    if (c->dim == 2 && cp->normal == DEM_NORMAL_HERTZ &&
+        c->particles.mass_model == DEM_MASS_DISC) {
+        /* Hertz's force is of two spheres, in newtons: on discs' masses
+         * per metre of thickness it is some 10^4 times too soft */
+        snprintf(msg, n,
+                 "\"hertz\" is a law of spheres (its force in newtons): "
+                 "with particles.mass_model = \"disc\" (masses per metre of "
+                 "thickness) it would be far too soft; in 2D use it with "
+                 "mass_model = \"sphere\" (spheres in a plane)");
+        return "contact.normal";
+    }
 #define DEM_CHECK_(TAG, name)                                                  \
     if (cp->normal == DEM_NORMAL_##TAG)                                        \
         return dem_model_##name##_check(cp, msg, n);
