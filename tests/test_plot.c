@@ -426,6 +426,41 @@ static void stress_ratio_of_an_extension_is_lateral_over_axial(void **state)
     }
 }
 
+/* The deviatoric plot is of the loading axis against the mean of the
+ * others, as summary.json's cycles: a 3D loading along z drew x against
+ * y, two lateral axes, a line about 0 (a read-only review, session 108). */
+static void deviatoric_plot_follows_the_loading_axis(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 3, 2, 50);
+    write_particles(dir, 3, 0);
+    write_text(dir, "config.cfg",
+               "dimension = 3;\ntime_step = 1.0e-6;\n"
+               "stages = (\n"
+               "  { type = \"isotropic\"; pressure = 500.0; },\n"
+               "  { type = \"compress\"; axis = \"z\"; strain = 0.2; "
+               "duration = 1.0; pressure = 500.0; }\n"
+               ");\n");
+    run_ok(dir);
+    char p[1024], line[512];
+    path_of(p, sizeof p, dir, "plots/deviatoric_stress_strain.dat");
+    FILE *f = fopen(p, "r");
+    assert_non_null(f);
+    double x = NAN, y = NAN;
+    while (fgets(line, sizeof line, f))
+        if (line[0] != '#' && line[0] != '\n')
+            sscanf(line, "%lf %lf", &x, &y);
+    fclose(f);
+    /* the last row: eps_z 0.2, the laterals' 0; sigma_z = 500 (1 + 0.4
+     * / 0.22), the laterals' 500 */
+    assert_close(x, 0.2, 1e-9);
+    assert_close(y, 2.0 / 3.0 * 500.0 * 0.4 / 0.22, 1e-6);
+    assert_true(file_contains(dir, "plots/deviatoric_stress_strain.gp",
+                              "σ_D = 2(σ_{zz} − σ_{lat})/3"));
+    remove_dir(dir);
+}
+
 static void config_of_another_dimension_is_an_error(void **state)
 {
     (void)state;
@@ -665,6 +700,7 @@ int main(void)
         cmocka_unit_test(forces_file_of_wrong_length_is_an_error),
         cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(stress_ratio_of_an_extension_is_lateral_over_axial),
+        cmocka_unit_test(deviatoric_plot_follows_the_loading_axis),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
         cmocka_unit_test(mohr_peak_is_the_summary_peak),
         cmocka_unit_test(a_folder_named_like_an_option_is_plotted),

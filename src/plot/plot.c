@@ -303,14 +303,25 @@ static double q_sin_psi(const struct series *s, size_t i)
     double a = sig(s, s->axis, i), l = sig_lateral(s, i);
     return a + l != 0.0 ? s->sense * (a - l) / (a + l) : NAN;
 }
-/* David et al.: eps_D = eps_xx - eps_yy, sigma_D = 2 (sigma_xx - sigma_yy)/3 */
+/* David et al.: eps_D = eps_xx - eps_yy, sigma_D = 2 (sigma_xx - sigma_yy)/3
+ * for cycles along x; as the analysis reads them (analysis/analyze.c),
+ * the loading axis against the mean of the others (triaxial3d's cycles
+ * along z drew two lateral axes against each other) */
+static double mean_other(const struct series *s, int col, size_t i)
+{
+    double sum = 0.0;
+    for (int a = 0; a < s->dim; a++)
+        if (a != s->axis)
+            sum += s->c[col + a][i];
+    return sum / (s->dim - 1);
+}
 static double q_eps_d(const struct series *s, size_t i)
 {
-    return eps(s, 0, i) - eps(s, 1, i);
+    return eps(s, s->axis, i) - mean_other(s, TS_EXX, i);
 }
 static double q_sig_d(const struct series *s, size_t i)
 {
-    return 2.0 * (sig(s, 0, i) - sig(s, 1, i)) / 3.0;
+    return 2.0 * (sig(s, s->axis, i) - mean_other(s, TS_SXX, i)) / 3.0;
 }
 static double q_ekin(const struct series *s, size_t i)
 {
@@ -359,7 +370,7 @@ static const struct quantity qtab[Q_COUNT] = {
     /* the mobilised friction, sin phi_m (Luding et al. write sin psi; psi
      * is the dilatancy angle in summary.json, docs/analysis.md) */
     [Q_SIN_PSI] = {"sin_psi", "sin φ_m", 2, q_sin_psi},
-    [Q_EPS_D] = {"eps_D", "deviatoric strain ε_D = ε_{xx} − ε_{yy}", 2,
+    [Q_EPS_D] = {"eps_D", "deviatoric strain ε_D = ε_{$a} − ε_{lat}", 2,
                  q_eps_d},
     [Q_SIG_D] = {"sigma_D", "σ_D", 2, q_sig_d},
     [Q_EKIN] = {"e_kin", "kinetic E_{kin}", 2, q_ekin},
@@ -467,7 +478,7 @@ static const struct plot_spec plots[] = {
      NULL},
     {"deviatoric_stress_strain",
      "Deviatoric stress versus deviatoric strain during loading",
-     "deviatoric stress σ_D = 2(σ_{xx} − σ_{yy})/3 ($u)",
+     "deviatoric stress σ_D = 2(σ_{$a} − σ_{lat})/3 ($u)",
      ROWS_LOADING,
      Q_EPS_D,
      {Q_SIG_D, Q_NONE},
