@@ -461,6 +461,49 @@ static void deviatoric_plot_follows_the_loading_axis(void **state)
     remove_dir(dir);
 }
 
+/* The 3D rose of the contact normals is on the plane of the loading
+ * axis (up) and the first other one: normals along y, a loading along y,
+ * all in the sectors at 90 and 270 degrees (projected on x-z, as always
+ * until session 108, they were points at the origin: no rose at all). */
+static void contact_rose_is_on_the_loading_axis(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 3, 1, 50);
+    write_particles(dir, 3, 0);
+    write_text(dir, "config.cfg",
+               "dimension = 3;\ntime_step = 1.0e-6;\n"
+               "stages = (\n"
+               "  { type = \"isotropic\"; pressure = 500.0; },\n"
+               "  { type = \"compress\"; axis = \"y\"; strain = 0.2; "
+               "duration = 1.0; pressure = 500.0; }\n"
+               ");\n");
+    write_text(dir, "contacts_final.csv",
+               "id_i,id_j,x,y,z,nx,ny,nz,delta,fn,ft_x,ft_y,ft_z,sliding\n"
+               "0,1,0.01,0.01,0.01,0,1,0,1e-6,1.0,0,0,0,0\n"
+               "2,3,0.03,0.01,0.01,0,-1,0,1e-6,2.0,0,0,0,0\n");
+    run_ok(dir);
+    assert_true(file_contains(dir, "plots/contact_normals.dat",
+                              "from x towards y (3D normals projected on x-y)"));
+    char p[1024], line[512];
+    path_of(p, sizeof p, dir, "plots/contact_normals.dat");
+    FILE *f = fopen(p, "r");
+    assert_non_null(f);
+    double best = -1.0, at = NAN;
+    while (fgets(line, sizeof line, f)) {
+        double th, e;
+        if (line[0] != '#' && sscanf(line, "%lf %lf", &th, &e) == 2 &&
+            e > best) {
+            best = e;
+            at = th;
+        }
+    }
+    fclose(f);
+    assert_true(best > 0.0);
+    assert_close(at, 90.0, 1e-9); /* the sector [90, 100) */
+    remove_dir(dir);
+}
+
 static void config_of_another_dimension_is_an_error(void **state)
 {
     (void)state;
@@ -701,6 +744,7 @@ int main(void)
         cmocka_unit_test(config_of_another_dimension_is_an_error),
         cmocka_unit_test(stress_ratio_of_an_extension_is_lateral_over_axial),
         cmocka_unit_test(deviatoric_plot_follows_the_loading_axis),
+        cmocka_unit_test(contact_rose_is_on_the_loading_axis),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
         cmocka_unit_test(mohr_peak_is_the_summary_peak),
         cmocka_unit_test(a_folder_named_like_an_option_is_plotted),

@@ -2,7 +2,8 @@
  * force_distribution, the probability density of the normal force f/<f>
  * (log scale, with exp(-f/<f>) for comparison), and contact_normals, the
  * rose of the contact normals' directions in the x-y plane (2D) or
- * projected on the x-z plane (3D): the fabric. Each is NAME.dat and
+ * projected on the plane of the loading axis and the first other one
+ * (3D): the fabric. Each is NAME.dat and
  * NAME.gp run by gnuplot, as the other plots.
  *
  * Drawn for the final state (contacts_final.csv) and for the peak of the
@@ -57,10 +58,11 @@ static int write_pair(const char *plotdir, const char *name,
 }
 
 /* The particle pairs of a contact network: normal force and the normal's
- * two components in the plane of the rose (x and y in 2D, x and z in 3D;
- * any length, either sense). */
+ * two components in the plane of the rose (x and y in 2D; in 3D the
+ * first lateral axis and the loading axis; any length, either sense). */
 struct net {
     int dim;
+    int ax[2];          /* the rose's axes: a (across), b (up) */
     size_t m;           /* pairs */
     double *fn, *a, *b; /* per pair (owned) */
     double mean;        /* N; mean normal force of the pairs in compression */
@@ -164,13 +166,15 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
             n++;
         }
     }
-    const char *ax = c->dim == 2 ? "y" : "z";
+    static const char xyz[] = "xyz";
+    const char a0 = xyz[c->ax[0]], a1 = xyz[c->ax[1]];
+    char plane[48];
+    snprintf(plane, sizeof plane, "3D normals projected on %c-%c", a0, a1);
     fprintf(dat,
             "# %s: density E(theta) of the contact normals' "
-            "angle theta from x towards %s (%s), both senses, %d sectors; "
+            "angle theta from %c towards %c (%s), both senses, %d sectors; "
             "isotropic: 1/(2 pi) = 0.159\n# theta_deg  E(theta)\n",
-            c->name[1], ax,
-            c->dim == 2 ? "2D" : "3D normals projected on x-z", NROSE);
+            c->name[1], a0, a1, c->dim == 2 ? "2D" : plane, NROSE);
     for (int k = 0; k <= NROSE; k++) {
         const int q = k % NROSE;
         const double e =
@@ -182,12 +186,13 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
         if (k < NROSE)
             fprintf(dat, "%.1f %.9g\n", 360.0 * (k + 1) / NROSE, e);
     }
-    char title[320];
+    char title[320], on[48] = "";
+    if (c->dim == 3)
+        snprintf(on, sizeof on, ", projected on the %c-%c plane", a0, a1);
     snprintf(title, sizeof title, "Contact normals at %s (%zu pairs)%s",
-             c->state, c->m,
-             c->dim == 2 ? "" : ", projected on the x-z plane");
+             c->state, c->m, on);
     char xl[64];
-    snprintf(xl, sizeof xl, "x; up: %s", ax);
+    snprintf(xl, sizeof xl, "%c; up: %c", a0, a1);
     dem__gp_head(gp, c->name[1], title, xl, "");
     fprintf(gp,
             "set polar\n"
@@ -228,12 +233,11 @@ static int read_final(const char *outdir, struct net *c, struct dem_error *err)
         return rc;
     rc = net_alloc(c, t.nrow, err);
     size_t m = 0;
-    const int b = c->dim == 2 ? C_NY : C_NZ; /* the second axis */
     for (size_t k = 0; !rc && k < t.nrow; k++)
         if (t.col[C_J][k] >= 0) {
             c->fn[m] = t.col[C_FN][k];
-            c->a[m] = t.col[C_NX][k];
-            c->b[m] = t.col[b][k];
+            c->a[m] = t.col[C_NX + c->ax[0]][k];
+            c->b[m] = t.col[C_NX + c->ax[1]][k];
             m++;
         }
     c->m = m;
@@ -324,12 +328,11 @@ static int read_snapshot(const char *outdir, double t, struct net *c,
         rc = dem_error_set(err, DEM_EIO,
                            "%s: not a contacts snapshot of dembox", path);
     size_t m = 0;
-    const int b = c->dim == 2 ? 1 : 2;
     for (long k = 0; nc >= 0 && !rc && k < nc; k++)
         if (partner[k] >= 0) { /* a particle pair (walls: -1 - w) */
             c->fn[m] = c->fn[k];
-            c->a[m] = branch[3 * k];
-            c->b[m] = branch[3 * k + b];
+            c->a[m] = branch[3 * k + c->ax[0]];
+            c->b[m] = branch[3 * k + c->ax[1]];
             m++;
         }
     if (nc >= 0)
@@ -360,20 +363,28 @@ static int draw(const char *plotdir, struct net *c, const char **names,
 }
 
 int dem__plot_contacts(const char *outdir, const char *plotdir, int dim,
-                       double tpeak, const char **names, int *count,
+                       int axis, double tpeak, const char **names, int *count,
                        struct dem_error *err)
 {
     *count = 0;
-    struct net c = {.dim = dim, .name = {"force_distribution",
-                                         "contact_normals"}};
+    /* the rose's plane: x-y in 2D; in 3D the loading axis (up) and the
+     * first other one (a loading along y seen on x-z showed only the
+     * lateral plane) */
+    const int up = dim == 2 ? 1 : axis >= 0 && axis < 3 ? axis : 2;
+    const int across = dim == 2 ? 0 : up == 0 ? 1 : 0;
+    struct net c = {.dim = dim,
+                    .ax = {across, up},
+                    .name = {"force_distribution", "contact_normals"}};
     int rc = read_final(outdir, &c, err);
     if (!rc && c.m > 0)
         rc = draw(plotdir, &c, names, count, err);
     net_free(&c);
     const int final = *count > 0;
     if (!rc && final && isfinite(tpeak)) {
-        struct net pk = {.dim = dim, .name = {"force_distribution_peak",
-                                              "contact_normals_peak"}};
+        struct net pk = {
+            .dim = dim,
+            .ax = {across, up},
+            .name = {"force_distribution_peak", "contact_normals_peak"}};
         rc = read_snapshot(outdir, tpeak, &pk, err);
         if (!rc && pk.m > 0)
             rc = draw(plotdir, &pk, names, count, err);

@@ -1103,8 +1103,8 @@ static int plot_folder(const char *outdir, struct dem_error *err)
     const char *extra[4];
     int nextra = 0;
     if (!rc) /* the contact network's pictures (plot/contacts.c) */
-        rc = dem__plot_contacts(outdir, plotdir, s.dim, peak_time(&s), extra,
-                                &nextra, err);
+        rc = dem__plot_contacts(outdir, plotdir, s.dim, s.axis, peak_time(&s),
+                                extra, &nextra, err);
     for (int k = 0; !rc && k < nextra; k++)
         rc = registered(extra[k], err);
     if (!rc)

@@ -91,11 +91,12 @@ int dem__plot_particles(const struct dem__plot_packing *pk,
 
 /* force_distribution and contact_normals (plot/contacts.c): their .dat
  * and .gp in plotdir from OUTDIR/contacts_final.csv, when it exists and
- * has pairs in compression, and the same with _peak from the contacts
+ * has pairs in compression (the rose in 3D on the plane of the loading
+ * axis, up, and the first other one), and the same with _peak from the contacts
  * snapshot nearest to time tpeak (s; NaN: none); names[0..*count) get
  * their names (at most 4) for gnuplot to draw. */
 int dem__plot_contacts(const char *outdir, const char *plotdir, int dim,
-                       double tpeak, const char **names, int *count,
+                       int axis, double tpeak, const char **names, int *count,
                        struct dem_error *err);
 
 /* particles.png of a run (plot/packing.c). */
