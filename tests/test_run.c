@@ -974,6 +974,54 @@ static void a_stage_after_shear_holds_the_tilt(void **state)
     dem__csv_table_free(&t);
 }
 
+struct warnings {
+    int n;
+    char text[4096];
+};
+
+static void keep_warnings(const char *line, void *user)
+{
+    struct warnings *w = user;
+    w->n++;
+    const size_t len = strlen(w->text);
+    snprintf(w->text + len, sizeof w->text - len, "%s\n", line);
+}
+
+/* A stress servo held at walls.max_speed does not follow its target: a
+ * shear_stress of 400 N/m met 245 on average at the cap, and the
+ * summary said that tau followed it, without a word (a read-only review,
+ * session 108). The stage now ends with a warning naming the servo; the
+ * isotropic stage, which compresses a gas at the cap by design, does
+ * not warn. */
+static void a_servo_at_its_speed_cap_is_warned_of(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("shear2d");
+    assert_non_null(ex);
+    const char *const sets[] = {
+        "particles.count=100", "output.interval=2e-5",
+        "output.snapshot_interval=0", "walls.max_speed=1e-4",
+        "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
+        "{type=\"shear\";shear_stress=400.0;duration=2e-3;pressure=500.0;})"};
+    struct dem_config c;
+    struct warnings w = {0};
+    struct dem_error err = {.warn = keep_warnings, .warn_user = &w};
+    if (dem_config_parse(&c, ex->text, "capped", sets, 5, &err))
+        fail_msg("%s", err.msg);
+    w.n = 0;
+    w.text[0] = '\0';
+    char out[1024];
+    snprintf(out, sizeof out, "%s/capped", tmpdir);
+    struct dem_run_options o = {.outdir = out, .threads = 1};
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+    if (!strstr(w.text, "stage 1: stress servos at walls.max_speed = "
+                        "0.0001 m/s") ||
+        !strstr(w.text, "the xy tilt (100 %)"))
+        fail_msg("warnings: %s", w.text);
+    assert_null(strstr(w.text, "stage 0: stress servos"));
+}
+
 /* A hold after a cyclic stage keeps the walls as they are: the cyclic
  * target stops at its value (here p0, after whole cycles) instead of
  * cycling on. Before, sigma_xx rose from 960 to 1510 over the hold of
@@ -1163,6 +1211,7 @@ int main(void)
         cmocka_unit_test(viscosity_limit_follows_a_particle_file),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
+        cmocka_unit_test(a_servo_at_its_speed_cap_is_warned_of),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
         cmocka_unit_test(a_hold_after_a_cyclic_shear_stops_the_tilt),
         cmocka_unit_test(a_hold_with_relax_ends_at_rest),

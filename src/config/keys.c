@@ -250,8 +250,10 @@ const struct key dem__cfg_keys[] = {
      .def = 0,
      GE(0),
      .unit = "m/s",
-     .doc = "speed limit of a stress-controlled wall (0 = none); lets a "
-            "light, weakly damped servo compress a gas gently"},
+     .doc = "speed limit of a stress-controlled wall or tilt (0 = none); "
+            "lets a light, weakly damped servo compress a gas gently (a "
+            "stage other than isotropic whose servo spends more than 5 % "
+            "of its steps at it is warned of)"},
 
     {.name = "stages",
      .kind = K_STAGES,

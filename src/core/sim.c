@@ -520,8 +520,11 @@ static double tilt_acc(const struct dem_sim *s, int k)
 static void kick_wall(struct dem_wall *W, double dv)
 {
     W->vel += dv;
-    if (W->vmax > 0.0 && fabs(W->vel) > W->vmax)
+    W->kicks++;
+    if (W->vmax > 0.0 && fabs(W->vel) > W->vmax) {
         W->vel = W->vel > 0.0 ? W->vmax : -W->vmax;
+        W->capped++;
+    }
 }
 
 static void walls_kick(struct dem_sim *s, double h)

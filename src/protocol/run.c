@@ -410,6 +410,47 @@ static void team_for_step(struct run_ctx *r)
         omp_set_num_threads(nt);
 }
 
+/* The share of its half kicks a stress servo may spend at walls.max_speed
+ * before the stage's end says that its stress did not follow the target. */
+#define SERVO_CAPPED_SHARE 0.05
+
+/* A stress-controlled wall or tilt held at walls.max_speed for much of
+ * the stage has not followed its target (a shear_stress of 400 N/m met
+ * 245 on average at the cap, without a word): one warning a stage,
+ * naming each such servo and its share of steps at the cap. */
+static void servo_capped(const struct run_ctx *r, int index,
+                         struct dem_error *err)
+{
+    const struct dem_sim *s = &r->sim;
+    static const char *const wall_name[6] = {"x min", "x max", "y min",
+                                             "y max", "z min", "z max"};
+    static const char *const tilt_name[3] = {"xy", "xz", "yz"};
+    char list[512] = "";
+    double vmax = 0.0;
+    for (int k = 0; k < s->nwall + 3; k++) {
+        const int tilt = k >= s->nwall;
+        const struct dem_wall *W =
+            tilt ? &s->cell.tilt[k - s->nwall] : &s->wall[k];
+        if ((tilt && !s->cell.on) || W->mode != DEM_WALL_STRESS ||
+            W->kicks < 100 ||
+            !((double)W->capped > SERVO_CAPPED_SHARE * (double)W->kicks))
+            continue;
+        const size_t len = strlen(list);
+        snprintf(list + len, sizeof list - len, "%sthe %s %s (%.0f %%)",
+                 len ? ", " : "", tilt ? tilt_name[k - s->nwall] : wall_name[k],
+                 tilt ? "tilt" : "wall",
+                 100.0 * (double)W->capped / (double)W->kicks);
+        vmax = W->vmax;
+    }
+    if (list[0])
+        dem_warn(err,
+                 "stage %d: stress servos at walls.max_speed = %g m/s for "
+                 "much of their steps, so their stresses did not follow "
+                 "their targets there: %s; raise walls.max_speed, or load "
+                 "more slowly",
+                 index, vmax, list);
+}
+
 /* The steps of the stage under way, from wherever it stands, to its end.
  * A checkpoint is taken after a sample that does not end the stage, or
  * between samples, after a step that is not chained, so that resuming
@@ -470,6 +511,10 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             break;
     }
     show_progress(r, st, 1);
+    /* (an isotropic stage compresses a gas at the cap by design, and
+     * ends when its stress has reached the target) */
+    if (c->type != DEM_STAGE_ISOTROPIC)
+        servo_capped(r, index, err);
     if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
         dem_warn(err,
                  "stage %d (isotropic) reached max_time %.4g s before "

@@ -44,6 +44,9 @@ struct dem_wall {
     double p0;    /* Pa (2D: N/m); mean target stress */
     double amp;   /* Pa; Dsigma of the cyclic target, 0 = constant */
     double t0;    /* s; period of the cyclic target */
+    /* the servo's half kicks since it was set, and those clipped at vmax
+     * (a diagnosis of the stage, not kept in checkpoints) */
+    long kicks, capped;
 };
 
 /* Outward direction of wall w along its axis: -1 for side 0, +1 for side 1. */
