@@ -1410,6 +1410,19 @@ static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
     write_cyclic_run_as(dir, ncyc, inc, 0);
 }
 
+/* dem_analyze of the run folder dir, then its summary.json (malloc'd). */
+static char *analyzed_summary(const char *dir)
+{
+    char path[160];
+    struct dem_error err = {0};
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = slurp(path);
+    assert_non_null(js);
+    return js;
+}
+
 /* A cyclic stage that is the run's first counts its strains from t = 0,
  * where they are 0, not from its first row one output interval later
  * (cycle 1 lost that interval's strain; a read-only review, session
@@ -1421,15 +1434,10 @@ static void a_first_cyclic_stage_starts_at_zero_strain(void **state)
     double inc[C];
     for (int k = 0; k < C; k++)
         inc[k] = 1e-3 * (1.0 + 1.0 / (k + 1));
-    char dir[128], path[160];
+    char dir[128];
     run_dir(dir, sizeof dir, "cyclic-alone");
     write_cyclic_run_as(dir, C, inc, 1);
-    struct dem_error err = {0};
-    if (dem_analyze(dir, &err))
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *js = slurp(path);
-    assert_non_null(js);
+    char *js = analyzed_summary(dir);
     assert_close(json_get(js, "cycle_increment_first"), 2e-3, 1e-9);
     const char *c1 = strstr(js, "\"index\": 1,");
     assert_non_null(c1);
@@ -1449,10 +1457,9 @@ static void hardness_takes_the_particles_diameter(void **state)
     double inc[C];
     for (int k = 0; k < C; k++)
         inc[k] = 1e-4;
-    char dir[128], path[160];
+    char dir[128];
     run_dir(dir, sizeof dir, "hardness");
     write_cyclic_run(dir, C, inc);
-    struct dem_error err = {0};
     double hs[2];
     for (int k = 0; k < 2; k++) {
         if (k)
@@ -1460,11 +1467,7 @@ static void hardness_takes_the_particles_diameter(void **state)
                        "x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n"
                        "0.01,0.01,0.01,0,0,0,0,0,0,4e-4,1e-6\n"
                        "0.02,0.01,0.01,0,0,0,0,0,0,6e-4,1e-6\n");
-        if (dem_analyze(dir, &err))
-            fail_msg("dem_analyze: %s", err.msg);
-        snprintf(path, sizeof path, "%s/summary.json", dir);
-        char *js = slurp(path);
-        assert_non_null(js);
+        char *js = analyzed_summary(dir);
         hs[k] = json_get(strstr(js, "\"void_ratio_fit\""), "hs");
         free(js);
     }

@@ -426,22 +426,33 @@ static void stress_ratio_of_an_extension_is_lateral_over_axial(void **state)
     }
 }
 
+/* A 3D run folder in a new dir whose compression is along axis (0, 1,
+ * 2), its particles and config; returns the dir. */
+static char *write_3d_loading(int axis)
+{
+    char *dir = make_dir();
+    write_timeseries(dir, 3, axis, 50);
+    write_particles(dir, 3, 0);
+    char cfg[512];
+    snprintf(cfg, sizeof cfg,
+             "dimension = 3;\ntime_step = 1.0e-6;\n"
+             "stages = (\n"
+             "  { type = \"isotropic\"; pressure = 500.0; },\n"
+             "  { type = \"compress\"; axis = \"%c\"; strain = 0.2; "
+             "duration = 1.0; pressure = 500.0; }\n"
+             ");\n",
+             "xyz"[axis]);
+    write_text(dir, "config.cfg", cfg);
+    return dir;
+}
+
 /* The deviatoric plot is of the loading axis against the mean of the
  * others, as summary.json's cycles: a 3D loading along z drew x against
  * y, two lateral axes, a line about 0 (a read-only review, session 108). */
 static void deviatoric_plot_follows_the_loading_axis(void **state)
 {
     (void)state;
-    char *dir = make_dir();
-    write_timeseries(dir, 3, 2, 50);
-    write_particles(dir, 3, 0);
-    write_text(dir, "config.cfg",
-               "dimension = 3;\ntime_step = 1.0e-6;\n"
-               "stages = (\n"
-               "  { type = \"isotropic\"; pressure = 500.0; },\n"
-               "  { type = \"compress\"; axis = \"z\"; strain = 0.2; "
-               "duration = 1.0; pressure = 500.0; }\n"
-               ");\n");
+    char *dir = write_3d_loading(2);
     run_ok(dir);
     char p[1024], line[512];
     path_of(p, sizeof p, dir, "plots/deviatoric_stress_strain.dat");
@@ -468,16 +479,7 @@ static void deviatoric_plot_follows_the_loading_axis(void **state)
 static void contact_rose_is_on_the_loading_axis(void **state)
 {
     (void)state;
-    char *dir = make_dir();
-    write_timeseries(dir, 3, 1, 50);
-    write_particles(dir, 3, 0);
-    write_text(dir, "config.cfg",
-               "dimension = 3;\ntime_step = 1.0e-6;\n"
-               "stages = (\n"
-               "  { type = \"isotropic\"; pressure = 500.0; },\n"
-               "  { type = \"compress\"; axis = \"y\"; strain = 0.2; "
-               "duration = 1.0; pressure = 500.0; }\n"
-               ");\n");
+    char *dir = write_3d_loading(1);
     write_text(dir, "contacts_final.csv",
                "id_i,id_j,x,y,z,nx,ny,nz,delta,fn,ft_x,ft_y,ft_z,sliding\n"
                "0,1,0.01,0.01,0.01,0,1,0,1e-6,1.0,0,0,0,0\n"
