@@ -1482,15 +1482,10 @@ static void analyze_counts_cycles_of_a_cyclic_run(void **state)
     double inc[C];
     for (int k = 0; k < C; k++)
         inc[k] = 1e-3 * (1.0 + 1.0 / (k + 1));
-    char dir[128], path[160];
+    char dir[128];
     run_dir(dir, sizeof dir, "cyclic");
     write_cyclic_run(dir, C, inc);
-    struct dem_error err = {0};
-    if (dem_analyze(dir, &err))
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *js = slurp(path);
-    assert_non_null(js);
+    char *js = analyzed_summary(dir);
     assert_non_null(strstr(js, "\"cycles\": ["));
     assert_non_null(strstr(js, "\"verdict\": \"ratcheting\""));
     assert_non_null(strstr(js, "\"verdict_criterion\""));
@@ -1510,10 +1505,7 @@ static void analyze_counts_cycles_of_a_cyclic_run(void **state)
         inc[k] = 1e-3 * pow(0.5, k + 1);
     run_dir(dir, sizeof dir, "shakedown");
     write_cyclic_run(dir, C, inc);
-    if (dem_analyze(dir, &err))
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    js = slurp(path);
+    js = analyzed_summary(dir);
     assert_non_null(js);
     assert_non_null(strstr(js, "\"verdict\": \"shakedown\""));
     free(js);

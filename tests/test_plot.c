@@ -386,6 +386,20 @@ static void forces_file_of_wrong_length_is_an_error(void **state)
 /* A folder whose config is 3D and whose files hold 2D data is not one
  * run's: its loading axis z is one the data lack (the labels once read
  * outside an array for it; found by fuzz_run_folder). */
+/* The first two numbers of the last data row of dir/leaf. */
+static void last_row(const char *dir, const char *leaf, double *x, double *y)
+{
+    char p[1024], line[512];
+    path_of(p, sizeof p, dir, leaf);
+    FILE *f = fopen(p, "r");
+    assert_non_null(f);
+    *x = *y = NAN;
+    while (fgets(line, sizeof line, f))
+        if (line[0] != '#' && line[0] != '\n')
+            sscanf(line, "%lf %lf", x, y);
+    fclose(f);
+}
+
 /* The stress ratio drawn as the analysis takes it, major stress first:
  * in an extension (strain < 0) the lateral stress over the axial one. */
 static void stress_ratio_of_an_extension_is_lateral_over_axial(void **state)
@@ -411,15 +425,8 @@ static void stress_ratio_of_an_extension_is_lateral_over_axial(void **state)
                                       : "(σ_{yy} − σ_{xx})/(σ_{yy} + σ_{xx})"));
         /* the data's axial stress is the larger: the ratio drawn in the
          * extension's frame is negative */
-        char p[1024], line[512];
-        path_of(p, sizeof p, dir, "plots/stress_ratio.dat");
-        FILE *f = fopen(p, "r");
-        assert_non_null(f);
-        double x = NAN, y = NAN;
-        while (fgets(line, sizeof line, f))
-            if (line[0] != '#')
-                sscanf(line, "%lf %lf", &x, &y);
-        fclose(f);
+        double x, y;
+        last_row(dir, "plots/stress_ratio.dat", &x, &y);
         assert_true(isfinite(y));
         assert_true(ext ? y < 0.0 : y > 0.0);
         remove_dir(dir);
@@ -454,15 +461,8 @@ static void deviatoric_plot_follows_the_loading_axis(void **state)
     (void)state;
     char *dir = write_3d_loading(2);
     run_ok(dir);
-    char p[1024], line[512];
-    path_of(p, sizeof p, dir, "plots/deviatoric_stress_strain.dat");
-    FILE *f = fopen(p, "r");
-    assert_non_null(f);
-    double x = NAN, y = NAN;
-    while (fgets(line, sizeof line, f))
-        if (line[0] != '#' && line[0] != '\n')
-            sscanf(line, "%lf %lf", &x, &y);
-    fclose(f);
+    double x, y;
+    last_row(dir, "plots/deviatoric_stress_strain.dat", &x, &y);
     /* the last row: eps_z 0.2, the laterals' 0; sigma_z = 500 (1 + 0.4
      * / 0.22), the laterals' 500 */
     assert_close(x, 0.2, 1e-9);
