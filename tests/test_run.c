@@ -927,12 +927,11 @@ static void threads_left_to_the_library_are_chosen_by_timing(void **state)
     omp_set_num_threads(given);
 }
 
-/* A warning into a buffer of 1024 bytes (the last one). */
-/* The range of column 1 of t (times column 2 where with2 is set) in
+/* The range of column 1 of t in
  * each of the stages 0..n-1 (column 0): lo[k], hi[k] (+-INFINITY in a
  * stage without rows). */
-static void stage_ranges(const struct dem__csv_table *t, int with2, int n,
-                         double *lo, double *hi)
+static void stage_ranges(const struct dem__csv_table *t, int n, double *lo,
+                         double *hi)
 {
     for (int k = 0; k < n; k++) {
         lo[k] = INFINITY;
@@ -941,7 +940,7 @@ static void stage_ranges(const struct dem__csv_table *t, int with2, int n,
     for (size_t r = 0; r < t->nrow; r++) {
         const int k = (int)t->col[0][r];
         assert_true(k >= 0 && k < n);
-        const double v = with2 ? t->col[1][r] * t->col[2][r] : t->col[1][r];
+        const double v = t->col[1][r];
         lo[k] = fmin(lo[k], v);
         hi[k] = fmax(hi[k], v);
     }
@@ -968,18 +967,50 @@ static void a_stage_after_shear_holds_the_tilt(void **state)
     char out[1024];
     run_text(ex->text, "after-shear", sets, 4, 0, out, sizeof out);
     static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
-                                                DEM_CSV_FINITE("gamma_xy", 1),
-                                                DEM_CSV_FINITE("Ly", 1)};
+                                                DEM_CSV_FINITE("gamma_xy", 1)};
     struct dem__csv_table t;
-    read_ts(out, want, 3, &t);
-    /* the shear displacement gamma_xy Ly, the tilt's, by stage */
+    read_ts(out, want, 2, &t);
+    /* gamma_xy by stage: the tilt over the stage's fixed reference L_y */
     double lo[4], hi[4];
-    stage_ranges(&t, 1, 4, lo, hi);
+    stage_ranges(&t, 4, lo, hi);
     /* the shear moved the tilt; the compression did not (to the 10
-     * digits timeseries.csv gives gamma_xy and Ly) */
+     * digits timeseries.csv gives gamma_xy) */
     assert_true(hi[1] - lo[1] > 1e-9);
     assert_true(isfinite(lo[2]));
     assert_true(hi[2] - lo[2] <= 1e-8 * fabs(hi[2]));
+    dem__csv_table_free(&t);
+}
+
+/* A strain-controlled shear stage ends at its shear_strain while the
+ * sample dilates: gamma_xy is the tilt over the reference L_y, the one
+ * the control scales shear_strain by. Before, gamma_xy divided the tilt
+ * by the current L_y, and shear2d's stage ended 3.5 % short of its
+ * shear_strain (a read-only review, session 108). */
+static void a_shear_stage_ends_at_its_shear_strain(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("shear2d");
+    assert_non_null(ex);
+    const char *const sets[] = {
+        "particles.count=100", "output.interval=2e-5",
+        "output.snapshot_interval=0",
+        "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
+        "{type=\"shear\";shear_strain=0.05;duration=4e-4;pressure=500.0;})"};
+    char out[1024];
+    run_text(ex->text, "shear-strain", sets, 4, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
+                                                DEM_CSV_FINITE("Ly", 1),
+                                                DEM_CSV_FINITE("gamma_xy", 1)};
+    struct dem__csv_table t;
+    read_ts(out, want, 3, &t);
+    double lo[2], hi[2];
+    stage_ranges(&t, 2, lo, hi); /* L_y by stage */
+    const size_t r = t.nrow - 1;
+    assert_true(t.col[0][r] == 1.0);
+    /* L_y moved during the shear (so that the old measure would miss) */
+    assert_true(hi[1] - lo[1] > 1e-4 * hi[1]);
+    /* the tilt started at 0; timeseries.csv gives 10 digits */
+    assert_close(t.col[2][r], 0.05, 1e-9);
     dem__csv_table_free(&t);
 }
 
@@ -1092,7 +1123,7 @@ static void a_hold_after_a_cyclic_shear_stops_the_tilt(void **state)
     struct dem__csv_table t;
     read_ts(out, want, 2, &t);
     double lo[3], hi[3];
-    stage_ranges(&t, 0, 3, lo, hi);
+    stage_ranges(&t, 3, lo, hi);
     assert_true(hi[1] - lo[1] > 0.015); /* the shear went both ways */
     assert_true(isfinite(lo[2]));
     assert_true(hi[2] - lo[2] <= 1e-8); /* the hold kept it */
@@ -1220,6 +1251,7 @@ int main(void)
         cmocka_unit_test(viscosity_limit_follows_a_particle_file),
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
+        cmocka_unit_test(a_shear_stage_ends_at_its_shear_strain),
         cmocka_unit_test(a_servo_at_its_speed_cap_is_warned_of),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
         cmocka_unit_test(a_hold_after_a_cyclic_shear_stops_the_tilt),

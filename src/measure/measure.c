@@ -20,10 +20,14 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     for (int a = 0; a < dim; a++)
         o->eps[a] = L0[a] > 0.0 ? 1.0 - o->L[a] / L0[a] : 0.0;
     o->eps_v = V0 > 0.0 ? o->V / V0 - 1.0 : 0.0;
-    o->gamma_xy = s->cell.on ? (s->cell.tilt[DEM_TILT_XY].pos +
-                                s->cell.remapped[DEM_TILT_XY]) /
-                                   o->L[1]
-                             : 0.0;
+    /* engineering shear strain, over the reference L_y as eps is over
+     * L0: what a shear stage's strain control drives (shear_strain L0_y
+     * of tilt), whatever L_y does meanwhile */
+    o->gamma_xy =
+        s->cell.on && L0[1] > 0.0
+            ? (s->cell.tilt[DEM_TILT_XY].pos + s->cell.remapped[DEM_TILT_XY]) /
+                  L0[1]
+            : 0.0;
 
     for (int w = 0; w < s->nwall; w++) {
         const struct dem_wall *W = &s->wall[w];

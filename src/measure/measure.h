@@ -50,8 +50,9 @@ struct dem_sample {
     double wall_vel[6];   /* m/s */
     double wall_force[6]; /* N; outward force of the particles on each wall */
     double gamma_xy;      /* periodic cell: shear strain, the x edges'
-                             tilt along y since the start over Ly,
-                             re-maps included; 0 with walls */
+                             tilt along y since the start over the
+                             reference L0_y (as eps), re-maps included;
+                             0 with walls */
 };
 
 /* Sample the state; requires that the last force pass measured (set
