@@ -44,6 +44,11 @@ void dem_smooth(const double *y, long n, long half, double *out);
 /* Arithmetic mean of y[0..n-1] (NaN for n = 0). */
 double dem_mean(const double *y, long n);
 
+/* The quantile of Student's t distribution with nu > 0 (not necessarily
+ * whole) degrees of freedom at probability 0.5 < p < 1, to 1e-9 relative
+ * (NaN outside those ranges; infinite where it lies beyond 1e3). */
+double dem_t_quantile(double p, double nu);
+
 /* ---------------------------------------------------------------- peak.c */
 
 /* Smoothing half-window for a loading of n samples: 1% of the samples,
@@ -226,6 +231,9 @@ struct dem_cycles {
                          the scatter of the increments of the last two
                          thirds, from their second differences, over
                          sqrt(late_count) */
+    double late_k;    /* the bounds' multiple of late_se: Student's
+                         quantile at DEM_VERDICT_LEVEL for the scatter's
+                         dem_scatter_dof(2 late_count - 2) */
     double ratio;     /* late_mean / first, signed along the first one */
     double fraction;  /* dem_ratchet_fraction(n): the verdict's f */
     int late_count;   /* cycles in the last (and in the middle) third */
@@ -235,8 +243,8 @@ struct dem_cycles {
 
 /* Ratcheting when the mean increment of the last third of the cycles,
  * along the direction of the accumulation (the first cycle can go the
- * other way), is above twice its standard error and at least the
- * fraction dem_ratchet_fraction(n) of the middle third's: the ratio of
+ * other way), is above late_k times its standard error and at least
+ * the fraction dem_ratchet_fraction(n) of the middle third's: the ratio of
  * the two thirds' means of a rate exactly 1/c over the same cycles,
  * (H_n - H_{n-L})/(H_{n-L} - H_{n-2L}) with L = n/3 and H the harmonic
  * numbers (0.629 at n = 6, 0.593 at 100, ln 1.5/ln 2 = 0.585 in the
@@ -251,6 +259,17 @@ double dem_ratchet_fraction(int n);
  * it, a thousand cycles add less strain than the first loading did. */
 #define DEM_RATCHET_MIN_RATE 1e-3
 #define DEM_VERDICT_MIN_CYCLES 6 /* two cycles in each third */
+/* The level of the verdict's bounds, two-sided since the data choose
+ * the direction of the accumulation: noise passes them by chance as
+ * often (2.3 %) as it passes a normal's one-sided two standard errors
+ * in a direction known beforehand; reached with Student's quantile for
+ * the few degrees of freedom of the scatter. */
+#define DEM_VERDICT_LEVEL 0.988625
+
+/* The degrees of freedom of a variance estimated from the squares of m
+ * overlapping second differences of independent noise (Satterthwaite's:
+ * 1.38 for m = 2, about m/1.94 for many). */
+double dem_scatter_dof(int m);
 
 /* Split samples (t, eps_D, sigma_D) of a cyclic stage that starts at t0
  * into cycles of `period` s; eps_D and sigma_D are interpolated linearly at

@@ -744,14 +744,17 @@ static const char *const verdict_criterion =
     "eps_D = eps_axis - mean(eps_lateral) is read at the end of every "
     "cycle (t0 + k period); its increments per cycle, taken along the sign "
     "of the middle third's accumulation (of the last two thirds' where the "
-    "middle third's is within twice the standard error), are averaged over the "
+    "middle third's is within q standard errors), are averaged over the "
     "last third "
     "and over the middle third of the cycles: ratcheting if the last "
     "third's mean is "
-    "above twice its standard error (from the second differences of the "
-    "increments of the last two thirds) and not "
-    "below f times the middle third's by more than twice the standard "
-    "error of that difference, f (criteria.ratchet_fraction) the ratio "
+    "above q times its standard error (from the second differences of the "
+    "increments of the last two thirds; q Student's quantile at 0.988625 "
+    "for their degrees of freedom, two-sided: noise passes it as often as "
+    "a normal's one-sided 2 s.e.) and "
+    "not below f times the middle third's by more than q times the "
+    "standard error of that difference, f (criteria.ratchet_fraction) the "
+    "ratio "
     "of the two means of a rate 1/c over the same cycles (the rate falls "
     "more slowly than 1/c, so the accumulated strain grows without "
     "bound), and at least 1e-3 times "
@@ -788,6 +791,7 @@ static void write_cyclic(struct dem__json *j, const struct result *R)
     dem__json_number(j, "cycle_increment_middle", R->csum.mid_mean);
     dem__json_number(j, "cycle_increment_late", R->csum.late_mean);
     dem__json_number(j, "cycle_increment_late_se", R->csum.late_se);
+    dem__json_number(j, "cycle_increment_late_k", R->csum.late_k);
     dem__json_number(j, "cycle_increment_ratio", R->csum.ratio);
 }
 
