@@ -1062,6 +1062,34 @@ static void a_servo_at_its_speed_cap_is_warned_of(void **state)
     assert_null(strstr(w.text, "stage 0: stress servos"));
 }
 
+/* A hold after an isotropic stage counts its own steps at the speed
+ * cap: it keeps the walls' modes, and before it counted the isotropic
+ * compression of the gas at the cap as its own, warning of 39 % at the
+ * cap in biaxial2d's walls that moved at 0.015 m/s (session 109). */
+static void a_hold_counts_only_its_own_servo_steps(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("biaxial2d");
+    assert_non_null(ex);
+    const char *const sets[] = {"particles.count=100",
+                                "output.snapshot_interval=0",
+                                "stages.1={type=\"hold\";duration=0.005;}"};
+    struct dem_config c;
+    struct warnings w = {0};
+    struct dem_error err = {.warn = keep_warnings, .warn_user = &w};
+    if (dem_config_parse(&c, ex->text, "hold-servo", sets, 3, &err))
+        fail_msg("%s", err.msg);
+    w.n = 0;
+    w.text[0] = '\0';
+    char out[1024];
+    snprintf(out, sizeof out, "%s/hold-servo", tmpdir);
+    struct dem_run_options o = {.outdir = out, .threads = 1};
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+    if (strstr(w.text, "stress servos at walls.max_speed"))
+        fail_msg("warnings: %s", w.text);
+}
+
 /* A hold after a cyclic stage keeps the walls as they are: the cyclic
  * target stops at its value (here p0, after whole cycles) instead of
  * cycling on. Before, sigma_xx rose from 960 to 1510 over the hold of
@@ -1253,6 +1281,7 @@ int main(void)
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
         cmocka_unit_test(a_shear_stage_ends_at_its_shear_strain),
         cmocka_unit_test(a_servo_at_its_speed_cap_is_warned_of),
+        cmocka_unit_test(a_hold_counts_only_its_own_servo_steps),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
         cmocka_unit_test(a_hold_after_a_cyclic_shear_stops_the_tilt),
         cmocka_unit_test(a_hold_with_relax_ends_at_rest),

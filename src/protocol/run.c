@@ -312,6 +312,13 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     int rc = ops->begin(s, &r->stage, err);
     if (rc)
         return rc;
+    /* the servos' counts at walls.max_speed are the stage's (a hold keeps
+     * the modes, and counted the isotropic stage's compression at the cap
+     * before it as its own) */
+    for (int w = 0; w < s->nwall; w++)
+        s->wall[w].kicks = s->wall[w].capped = 0;
+    for (int k = 0; k < 3; k++)
+        s->cell.tilt[k].kicks = s->cell.tilt[k].capped = 0;
     if (r->stage.sets_reference)
         set_reference(r);
     r->st.stage = index;

@@ -32,7 +32,6 @@ void dem_wall_set_stress(struct dem_wall *w, double mass, double gamma,
     if (w->mode != DEM_WALL_STRESS)
         w->vel = 0.0;
     w->mode = DEM_WALL_STRESS;
-    w->kicks = w->capped = 0;
     w->mass = mass;
     w->gamma = gamma;
     w->vmax = vmax;

@@ -44,8 +44,8 @@ struct dem_wall {
     double p0;    /* Pa (2D: N/m); mean target stress */
     double amp;   /* Pa; Dsigma of the cyclic target, 0 = constant */
     double t0;    /* s; period of the cyclic target */
-    /* the servo's half kicks since it was set, and those clipped at vmax
-     * (a diagnosis of the stage, not kept in checkpoints) */
+    /* the servo's half kicks since the stage began, and those clipped at
+     * vmax (a diagnosis of the stage, not kept in checkpoints) */
     long kicks, capped;
 };
 
