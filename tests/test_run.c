@@ -1062,6 +1062,39 @@ static void a_servo_at_its_speed_cap_is_warned_of(void **state)
     assert_null(strstr(w.text, "stage 0: stress servos"));
 }
 
+/* An isotropic stage ends at rest, its walls' servos included: the
+ * particles' kinetic energy with the walls' 1/2 walls.mass v^2 below
+ * tolerance times E_pot at the stage's last row. Before, the particles'
+ * alone counted, and biaxial2d's stage ended with the walls swinging at
+ * 0.015 m/s, their stresses ringing by 3 % about the target through the
+ * stage after (session 109). */
+static void an_isotropic_stage_ends_with_its_walls_at_rest(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("biaxial2d");
+    assert_non_null(ex);
+    const char *const sets[] = {"output.snapshot_interval=0",
+                                "stages.1={type=\"hold\";duration=1e-3;}"};
+    char out[1024];
+    run_text(ex->text, "iso-rest", sets, 2, 0, out, sizeof out);
+    static const struct dem__csv_want want[] = {
+        DEM_CSV_FINITE("stage", 1),    DEM_CSV_FINITE("e_kin", 1),
+        DEM_CSV_FINITE("e_rot", 1),    DEM_CSV_FINITE("e_pot", 1),
+        DEM_CSV_FINITE("xmin_vel", 1), DEM_CSV_FINITE("xmax_vel", 1),
+        DEM_CSV_FINITE("ymin_vel", 1), DEM_CSV_FINITE("ymax_vel", 1)};
+    struct dem__csv_table t;
+    read_ts(out, want, 8, &t);
+    size_t r = 0; /* the isotropic stage's last row */
+    while (r + 1 < t.nrow && t.col[0][r + 1] == 0.0)
+        r++;
+    assert_true(t.col[0][r] == 0.0 && r + 1 < t.nrow);
+    double e = t.col[1][r] + t.col[2][r];
+    for (int w = 0; w < 4; w++) /* walls.mass = 0.01 kg in biaxial2d */
+        e += 0.5 * 0.01 * t.col[4 + w][r] * t.col[4 + w][r];
+    assert_true(e < 1e-4 * t.col[3][r]);
+    dem__csv_table_free(&t);
+}
+
 /* A hold after an isotropic stage counts its own steps at the speed
  * cap: it keeps the walls' modes, and before it counted the isotropic
  * compression of the gas at the cap as its own, warning of 39 % at the
@@ -1282,6 +1315,7 @@ int main(void)
         cmocka_unit_test(a_shear_stage_ends_at_its_shear_strain),
         cmocka_unit_test(a_servo_at_its_speed_cap_is_warned_of),
         cmocka_unit_test(a_hold_counts_only_its_own_servo_steps),
+        cmocka_unit_test(an_isotropic_stage_ends_with_its_walls_at_rest),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
         cmocka_unit_test(a_hold_after_a_cyclic_shear_stops_the_tilt),
         cmocka_unit_test(a_hold_with_relax_ends_at_rest),

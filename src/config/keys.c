@@ -340,7 +340,9 @@ const struct key dem__cfg_keys[] = {
      GT(0),
      .uses = T_ISO,
      .unit = "-",
-     .doc = "isotropic: done when E_kin/E_pot < tolerance"},
+     .doc = "isotropic: done when E_kin/E_pot < tolerance (E_kin with "
+            "rotation and the stress servos' 1/2 walls.mass v^2) and every "
+            "wall stress within 1 % of pressure"},
     {.name = "relax",
      .kind = K_DOUBLE,
      STG(relax),
@@ -348,8 +350,9 @@ const struct key dem__cfg_keys[] = {
      GE(0),
      .uses = T_HOLD,
      .unit = "-",
-     .doc = "hold: done also when E_kin/E_pot < relax, the packing at "
-            "rest before duration (0: run the whole duration)"},
+     .doc = "hold: done also when E_kin/E_pot < relax (E_kin as for "
+            "tolerance), the packing at rest before duration (0: run the "
+            "whole duration)"},
     {.name = "max_time",
      .kind = K_DOUBLE,
      STG(max_time),

@@ -11,14 +11,13 @@
 #include "protocol/stage.h"
 
 /* With relax > 0 the hold ends as soon as the packing is at rest,
- * E_kin/E_pot < relax (kinetic energy with rotation, the isotropic
- * stage's measure): SPEC's "relax / hold ... until a criterion holds". */
+ * E_kin/E_pot < relax (kinetic energy with rotation and the servos', the
+ * isotropic stage's measure): SPEC's "relax / hold ... until a criterion
+ * holds". */
 static int done(const struct dem_sim *s, const struct dem_stage_state *st,
                 const struct dem_sample *smp)
 {
-    (void)s;
-    return st->cfg->relax > 0.0 && smp->e_pot > 0.0 &&
-           smp->e_kin + smp->e_rot < st->cfg->relax * smp->e_pot;
+    return st->cfg->relax > 0.0 && dem__stage_at_rest(s, smp, st->cfg->relax);
 }
 
 static int begin(struct dem_sim *s, struct dem_stage_state *st,

@@ -1,7 +1,7 @@
 /* isotropic: every wall stress-controlled at `pressure`, until the packing
  * is relaxed: E_kin/E_pot < tolerance (the seeds' criterion, kinetic
- * energy including rotation) and every wall's stress within 1% of the
- * target, or until max_time. */
+ * energy including rotation and the walls' servos, dem__stage_at_rest)
+ * and every wall's stress within 1% of the target, or until max_time. */
 #include <math.h>
 
 #include "protocol/stage.h"
@@ -20,9 +20,7 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 static int done(const struct dem_sim *s, const struct dem_stage_state *st,
                 const struct dem_sample *smp)
 {
-    if (!(smp->e_pot > 0.0))
-        return 0;
-    if (smp->e_kin + smp->e_rot >= st->cfg->tolerance * smp->e_pot)
+    if (!dem__stage_at_rest(s, smp, st->cfg->tolerance))
         return 0;
     for (int w = 0; w < s->nwall; w++)
         if (fabs(smp->sigma_wall[w] / st->cfg->pressure - 1.0) > 0.01)

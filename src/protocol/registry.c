@@ -35,6 +35,20 @@ int dem_stage_loading_index(const struct dem_config *c)
     return -1;
 }
 
+int dem__stage_at_rest(const struct dem_sim *s, const struct dem_sample *smp,
+                       double tol)
+{
+    double servo = 0.0;
+    for (int k = 0; k < s->nwall + 3; k++) {
+        const struct dem_wall *W =
+            k < s->nwall ? &s->wall[k] : &s->cell.tilt[k - s->nwall];
+        if (W->mode == DEM_WALL_STRESS)
+            servo += 0.5 * W->mass * W->vel * W->vel;
+    }
+    return smp->e_pot > 0.0 &&
+           smp->e_kin + smp->e_rot + servo < tol * smp->e_pot;
+}
+
 void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                              double t0)
 {

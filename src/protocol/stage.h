@@ -48,6 +48,13 @@ const struct dem_stage_ops *dem_stage_lookup(int type);
 int dem_stage_loading_index(const struct dem_config *c);
 
 /* Helpers shared by the stage types. */
+/* At rest: the kinetic energy of the particles (with rotation) and of
+ * the stress servos (walls and tilts, 1/2 walls.mass v^2 each) below tol
+ * times the elastic energy. The servos count: a stage that ended on the
+ * particles' energy alone left biaxial2d's walls ringing by 3 % of
+ * their stress about the target. */
+int dem__stage_at_rest(const struct dem_sim *s, const struct dem_sample *smp,
+                       double tol);
 void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                              double t0);
 /* The compression of compress, constant_p and constant_volume: the max
