@@ -244,6 +244,15 @@ static const struct row rows[] = {
      0,
      {RUN_CFG},
      "c.cfg:4: stages.0.shear_stress: given with shear_strain"},
+    /* a ramp of the stress ran as a step (the closing note of session
+     * 108) */
+    {"shear_stress with a linear profile",
+     CELL2D "stages = ( { type = \"shear\"; shear_stress = 20.0;\n"
+            "  profile = \"linear\"; duration = 0.1; pressure = 100.0; } );\n",
+     0,
+     0,
+     {RUN_CFG},
+     "c.cfg:4: stages.0.profile: not with shear_stress"},
     {"shear with neither a strain nor a stress target",
      CELL2D "stages = ( { type = \"shear\"; duration = 0.1;\n"
             "  pressure = 100.0; } );\n",

@@ -458,8 +458,9 @@ const struct key dem__cfg_keys[] = {
      .def_text = "this or shear_strain",
      .doc = "shear: stress control of the tilt instead: its servo (walls' "
             "mass and viscosity) holds tau = -sigma_xy at this value for "
-            "duration (a creep test), or with profile \"cyclic\" cycles it "
-            "0 -> shear_stress -> 0"},
+            "duration (a creep test: profile cosine, the default; "
+            "\"linear\" is refused), or with profile \"cyclic\" cycles it "
+            "0 -> shear_stress -> 0, with \"sine\" between +-shear_stress"},
     {.name = "mu",
      .kind = K_DOUBLE,
      STG(mu),

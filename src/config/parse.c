@@ -366,6 +366,19 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
                                      "a shear stage needs shear_strain "
                                      "(strain control) or shear_stress "
                                      "(stress control)");
+        /* the stress target is held from the start (a creep test; the
+         * default profile, cosine, which a run's config.cfg writes out) or
+         * cycled: a linear ramp asked for would run as a step */
+        const config_setting_t *profile =
+            x->stage_at[i][dem__cfg_find_key("profile", S_STAGE)];
+        if (stress && profile && st->profile == DEM_PROFILE_LINEAR) {
+            snprintf(kname, sizeof kname, "stages.%d.profile", i);
+            return dem__cfg_fail_at(x, profile, kname, err,
+                                    "not with shear_stress, which is held "
+                                    "from the stage's start (a creep test) "
+                                    "or cycled (\"cyclic\", \"sine\"): a "
+                                    "ramp of the stress is not offered");
+        }
     }
     return 0;
 }
