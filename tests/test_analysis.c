@@ -118,6 +118,9 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     /* (the intercept A = c cos phi = -200: c = -280 at sin phi 0.7) */
     assert_non_null(strstr(f.note, "intercept c cos phi, -200"));
     assert_int_equal(f.bounded, 1);
+    /* the free fit kept for averages over samples: c = -200/cos phi */
+    assert_close(sin(f.phi_free_deg / DEG), 0.7, 1e-12);
+    assert_close(f.c_free, -200.0 / sqrt(1.0 - 0.49), 1e-9);
     /* a positive cohesion of three circles leaves no note */
     const double c3[] = {100.0, 300.0, 600.0};
     double c1[3] = {mc_sigma1(c3[0], phi, 50.0), mc_sigma1(c3[1], phi, 50.0),
@@ -128,6 +131,7 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_close(f.r2, 1.0, 1e-12);
     assert_string_equal(f.note, "");
     assert_int_equal(f.bounded, 0);
+    assert_true(f.c_free == f.c && f.phi_free_deg == f.phi_deg);
     /* two circles fix the tangent, which touches both: r2 = 1 and rms =
      * 0 would read as a perfect fit; null, and a note (a read-only
      * review, session 108) */

@@ -179,6 +179,12 @@ struct dem_mohr_fit {
     char reason[DEM_REASON_MAX];
     char note[DEM_REASON_MAX]; /* with ok: how the fit was bounded, or "" */
     int bounded; /* 1: the free fit's cohesion was below 0, bounded to 0 */
+    /* the free fit's friction angle and cohesion (below 0 where bounded):
+     * equal to phi_deg and c unless bounded; NaN where the free fit is no
+     * tangent of a Mohr-Coulomb material or not asked for. What an
+     * average over samples takes: the bounded values' mean leans above a
+     * cohesion near 0. */
+    double phi_free_deg, c_free;
 };
 
 /* Common tangent tau = c + sigma tan phi of n Mohr circles (sigma1 >=

@@ -56,6 +56,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     o->ok = 0;
     o->n = n;
     o->sin_phi = o->phi_deg = o->c = o->r2 = o->rms = NAN;
+    o->phi_free_deg = o->c_free = NAN;
     o->reason[0] = o->note[0] = '\0';
     o->bounded = 0;
     if (n < 1 || (cohesion && n < 2)) {
@@ -111,6 +112,10 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
         /* (o->c is still the intercept A = c cos phi; whatever the free
          * slope, the bounded fit may be a valid tangent) */
         const double afree = o->c * unit, sfree = o->sin_phi;
+        if (sfree > 0.0 && sfree < 1.0) {
+            o->phi_free_deg = asin(sfree) * DEG;
+            o->c_free = afree / cos(asin(sfree));
+        }
         fitted = through_origin(s, t, n, o);
         o->bounded = 1;
         snprintf(o->note, sizeof o->note,
@@ -144,6 +149,10 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     const double phi = asin(o->sin_phi);
     o->c /= cos(phi);
     o->phi_deg = phi * DEG;
+    if (cohesion && !o->bounded) {
+        o->phi_free_deg = o->phi_deg;
+        o->c_free = o->c;
+    }
     o->ok = 1;
     return DEM_OK;
 }

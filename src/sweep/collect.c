@@ -464,9 +464,15 @@ static int ensembles(struct dem__sweep *s)
                 const struct dem_mohr_fit *f = &s->ff[state][g].fit;
                 if (s->ffeg.gid[s->ffg.rep[g]] != q || !f->ok)
                     continue;
-                b[m] = f->phi_deg;
-                b[s->ffg.n + m] = tan(f->phi_deg / DEG);
-                b[2 * s->ffg.n + m] = f->c;
+                /* the free fits' values, a cohesion below 0 included:
+                 * the bounded ones' mean leans above a cohesion near 0
+                 * (0, 15, 0 of free fits -20, 15, -5); the bounded values
+                 * where the free fit is no tangent at all */
+                const int free_ok = !isnan(f->c_free);
+                const double phi = free_ok ? f->phi_free_deg : f->phi_deg;
+                b[m] = phi;
+                b[s->ffg.n + m] = tan(phi / DEG);
+                b[2 * s->ffg.n + m] = free_ok ? f->c_free : f->c;
                 m++;
                 s->ffe[state][q].bounded += f->bounded;
             }
