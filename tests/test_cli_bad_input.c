@@ -272,7 +272,7 @@ static const struct row rows[] = {
      0,
      0,
      {"run", "c.cfg", "-o", "out", "--quiet", "--max-steps", "5", "--set",
-      "particles.count=33554432", "--set", "particles.volume_fraction=0.3"},
+      "particles.count=33554432"},
      "particles.count = 33554432: a periodic cell (box.boundary) takes at "
      "most 33554431 particles"},
     {"periodic cell thinner than two ranges",
@@ -358,6 +358,30 @@ static const struct row rows[] = {
      {RUN_CFG, "--set", "particles.radius.distribution=uniform", "--set",
       "particles.radius.min=0.5e-3"},
      "particles.radius.distribution: \"uniform\" needs particles.radius.max"},
+    /* keys the chosen distribution or placement never reads ran without
+     * a word (the closing note of session 108) */
+    {"a uniform distribution's unused mean",
+     BASE2D,
+     0,
+     0,
+     {RUN_CFG, "--set", "particles.radius.distribution=uniform", "--set",
+      "particles.radius.max=2.0e-3", "--set", "particles.radius.min=0.5e-3"},
+     "c.cfg:2: particles.radius.mean: not used by "
+     "particles.radius.distribution = \"uniform\""},
+    {"a mono distribution's unused cut",
+     BASE2D,
+     0,
+     0,
+     {RUN_CFG, "--set", "particles.radius.max=2.0e-3"},
+     "--set particles.radius.max=2.0e-3: particles.radius.max: not used by "
+     "particles.radius.distribution = \"mono\""},
+    {"a lattice's unused volume fraction",
+     BASE2D,
+     0,
+     0,
+     {RUN_CFG, "--set", "particles.volume_fraction=0.3"},
+     "particles.volume_fraction: not used with particles.placement = "
+     "\"lattice\""},
     {"gaussian radii of no spread",
      BASE2D,
      0,

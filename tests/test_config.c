@@ -92,8 +92,10 @@ static void two_d_defaults_resolve_by_dimension(void **state)
     struct dem_config c;
     parse_ok(&c, "dimension = 2;", 0, 0);
     assert_true(c.particles.volume_fraction == 0.2);
-    parse_ok(&c, "dimension = 2; particles = { volume_fraction = 0.3; };", 0,
-             0);
+    parse_ok(&c,
+             "dimension = 2; particles = { placement = \"random\"; "
+             "volume_fraction = 0.3; };",
+             0, 0);
     assert_true(c.particles.volume_fraction == 0.3);
     parse_ok(&c, "dimension = 2; particles = { mass_model = \"disc\"; };", 0,
              0);

@@ -117,6 +117,65 @@ static int check_radii(const struct ctx *x, const struct dem_config *c,
     return 0;
 }
 
+/* A particles key given at another value than its default (which every
+ * resolved config.cfg writes, and which changes nothing) where this
+ * combination of keys never reads it: refused, as a law's keys given with
+ * another law are, rather than ignored without a word (the closing note
+ * of session 108). */
+static int unused_key(const struct ctx *x, const struct dem_config *c,
+                      const char *name, double def, const char *why,
+                      struct dem_error *err)
+{
+    const int k = dem__cfg_find_key(name, S_TOP);
+    if (k < 0 || !x->at[k] || dem__cfg_key_value(c, &dem__cfg_keys[k]) == def)
+        return 0;
+    return dem__cfg_fail_key(x, -1, name, err, "not used %s: remove it", why);
+}
+
+static double key_default(const char *name)
+{
+    return dem__cfg_keys[dem__cfg_find_key(name, S_TOP)].def;
+}
+
+static int check_unused(const struct ctx *x, const struct dem_config *c,
+                        struct dem_error *err)
+{
+    /* with a particle file the count and the radii are the file's; the
+     * radius keys still set the config's own checks (docs/config.md),
+     * and an example turned to a file by --set keeps its keys */
+    if (c->particles.placement == DEM_PLACE_FILE)
+        return 0;
+    static const char *const radius[4] = {
+        "particles.radius.mean", "particles.radius.std", "particles.radius.min",
+        "particles.radius.max"};
+    /* which radius keys each distribution reads: mono the mean, uniform
+     * min and max, gaussian all four */
+    const int dist = c->particles.distribution;
+    const int reads[4] = {dist != DEM_DIST_UNIFORM, dist == DEM_DIST_GAUSSIAN,
+                          dist != DEM_DIST_MONO, dist != DEM_DIST_MONO};
+    for (int q = 0; q < 4; q++)
+        if (!reads[q] &&
+            unused_key(x, c, radius[q], key_default(radius[q]),
+                       dist == DEM_DIST_MONO
+                           ? "by particles.radius.distribution = \"mono\" "
+                             "(every radius is the mean)"
+                           : "by particles.radius.distribution = "
+                             "\"uniform\" (radii drawn from [min, max])",
+                       err))
+            return DEM_ECONFIG;
+    int box = 0;
+    for (int d = 0; d < c->dim; d++)
+        box |= c->box.size[d] > 0;
+    if (c->particles.placement == DEM_PLACE_LATTICE || box)
+        return unused_key(
+            x, c, "particles.volume_fraction", c->dim == 2 ? 0.2 : 0.1,
+            box ? "with box.size given (the box sets the gas's fraction)"
+                : "with particles.placement = \"lattice\" (a spacing of "
+                  "2 r_max)",
+            err);
+    return 0;
+}
+
 static int check_box(const struct ctx *x, const struct dem_config *c,
                      struct dem_error *err)
 {
@@ -271,8 +330,8 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
                                  "wall adhesion is the luding law's only "
                                  "(contact.normal = \"luding\"); the "
                                  "other laws would ignore it");
-    if (check_radii(x, c, err) || check_box(x, c, err) ||
-        check_stages(x, c, err))
+    if (check_radii(x, c, err) || (!x->recorded && check_unused(x, c, err)) ||
+        check_box(x, c, err) || check_stages(x, c, err))
         return DEM_ECONFIG;
     return 0;
 }
