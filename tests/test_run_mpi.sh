@@ -5,8 +5,9 @@
 # every final particle within 1e-8 of the column's scale over 3000 steps
 # (biaxial2d, 500 discs, walls servo-controlled). A split run stopped at
 # step 1500 leaves a checkpoint that resumes at 4 ranks and without MPI,
-# each to the same outputs. Too many ranks for the box: one line from
-# rank 0, status 1, no outputs.
+# each to the same outputs. A box that shrinks until its ranks have no
+# room stops with a checkpoint that resumes on fewer ranks. Too many
+# ranks for the box: one line from rank 0, status 1, no outputs.
 # Status 77 (skipped): no mpirun, or it cannot start two ranks here.
 set -eu
 BIN=${DEMBOX_BIN:?run through ctest}
@@ -40,7 +41,7 @@ close() {
                   print what ": row " FNR " column " k ": " $k " against " a[FNR, k]
                   bad = 1; exit } } }
         END { if (!bad && FNR != n) { print what ": " FNR " rows, " n " serial"; bad = 1 }
-              exit bad }' "serial/$1" "$3/$1"
+              exit bad }' "${4:-serial}/$1" "$3/$1"
 }
 same() {
     (cd serial && ls | grep -v '^plots$' | sort) > files.serial
@@ -67,6 +68,25 @@ mpi 4 run --resume cut --threads 1 --quiet > logr 2>&1 || fail "resume over 4 ra
 same cut
 "$BIN" run --resume cut1 --threads 1 --quiet > logr1 2>&1 || fail "resume without MPI: $(cat logr1)"
 same cut1
+
+# a box that shrinks until its 8 ranks have no grid of subdomains wider
+# than the ghost range: one line and a checkpoint before the rebuild that
+# would fail, and the checkpoint resumed on 2 ranks gives the serial run
+K="biaxial2d --set particles.count=24 --max-steps 30000 --threads 1 --quiet"
+"$BIN" run $K -o kserial > logks 2>&1 || fail "24 serial: $(tail -3 logks)"
+set +e
+mpi 8 run $K -o cramped > logk 2>&1; rc=$?
+set -e
+[ $rc -ne 0 ] && [ "$(grep -c '^dembox: ' logk)" -eq 1 ] &&
+    grep -q "ranks can no longer cut it into subdomains" logk ||
+    fail "cramped: status $rc: $(cat logk)"
+[ -f cramped/checkpoint.bin ] && [ ! -e cramped/timeseries.csv ] ||
+    fail "cramped: no checkpoint, or a complete-looking timeseries"
+mpi 2 run --resume cramped --threads 1 --quiet > logkr 2>&1 ||
+    fail "cramped, resumed over 2 ranks: $(cat logkr)"
+for f in timeseries.csv particles_final.csv; do
+    close "$f" "cramped/$f" cramped kserial || fail "cramped/$f differs"
+done
 
 # too many ranks for the box: refused before any output
 set +e
@@ -101,4 +121,4 @@ lone config "$C" "$C --set nosuch.key=1"
 B="bench --steps 20 --threads 1 --quiet --cache-dir $T/cache"
 lone bench "$B --n 300" "$B --n 300 --data nosuch.data"
 lone bench-header "$B --n 300" "$B --data nosuch.data"
-echo "split runs over 2 and 4 ranks as serial; stop and resume across rank counts; refusals"
+echo "split runs over 2 and 4 ranks as serial; stop and resume across rank counts; a cramped box checkpointed; refusals"

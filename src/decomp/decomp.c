@@ -125,6 +125,15 @@ int dem_decomp_resize(struct dem_decomp *d, const double lo[3],
     return regrid;
 }
 
+double dem_decomp_room(const struct dem_decomp *d, const double lo[3],
+                       const double hi[3])
+{
+    double L[3];
+    int best[3];
+    edges(lo, hi, L);
+    return choose(d->nranks, d->dim, L, d->range, best) / d->range;
+}
+
 /* Index along axis a of the slab holding coordinate x. */
 static int slab(const struct dem_decomp *d, int a, double x)
 {

@@ -53,6 +53,12 @@ int dem_decomp_grid(struct dem_decomp *d, int nranks, int dim,
 int dem_decomp_resize(struct dem_decomp *d, const double lo[3],
                       const double hi[3], struct dem_error *err);
 
+/* The widest subdomains any grid of d's ranks cuts the box [lo, hi]
+ * into, over the ghost range: below 1 no grid fits it (a rebuild would
+ * fail). */
+double dem_decomp_room(const struct dem_decomp *d, const double lo[3],
+                       const double hi[3]);
+
 /* The rank whose subdomain holds the point. */
 int dem_decomp_owner(const struct dem_decomp *d, const double x[3]);
 

@@ -1,6 +1,7 @@
 /* A sample split over MPI ranks (decomp/halo.h). */
 #include "decomp/halo.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -48,6 +49,12 @@ void dem_halo_bcast(int *v, int n)
 {
     (void)v;
     (void)n;
+}
+
+double dem_halo_room(const struct dem_sim *s)
+{
+    (void)s;
+    return INFINITY;
 }
 
 #else
@@ -510,6 +517,16 @@ static int halo_sync(struct dem_sim *s, int rebuild, int agreed,
         p->wz[i] = o[8];
     }
     return 0;
+}
+
+double dem_halo_room(const struct dem_sim *s)
+{
+    const struct halo *H = s->halo_ctx;
+    if (!s->halo || !H)
+        return INFINITY;
+    double lo[3], hi[3];
+    box_of(s, lo, hi);
+    return dem_decomp_room(&H->d, lo, hi);
 }
 
 static int halo_rebuild(struct dem_sim *s, struct dem_error *err)

@@ -66,6 +66,11 @@ void dem_halo_bcast(int *v, int n);
  * it started). */
 void dem_halo_barrier(void);
 
+/* How much room the box leaves the ranks' subdomains, as
+ * dem_decomp_room: below 1 the next rebuild fails. The same on every
+ * rank (every rank holds the walls); infinite for a sample not split. */
+double dem_halo_room(const struct dem_sim *s);
+
 /* Free what dem_halo_start allocated; s->halo becomes NULL. */
 void dem_halo_stop(struct dem_sim *s);
 

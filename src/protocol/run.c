@@ -341,6 +341,33 @@ static int stop_here(struct run_ctx *r, struct dem_error *err)
                          r->sim.t, r->sim.step, r->outdir);
 }
 
+/* The room the box must leave the ranks' subdomains, over the ghost
+ * range, for a step to go on: a step shrinks the box by far less than
+ * this margin, so the next rebuild still finds a grid. */
+#define DEM_ROOM_MIN 1.02
+
+/* A split run whose box has shrunk until its ranks are about to have no
+ * grid of subdomains wide enough (the next rebuild would fail and lose
+ * everything since the last checkpoint): a checkpoint, which resumes on
+ * any number of ranks, then an error saying so. */
+static int stop_cramped(struct run_ctx *r, struct dem_error *err)
+{
+    int rc = gather_whole(r, err); /* (the checkpoint holds the whole) */
+    if (!rc)
+        rc = write_checkpoint(r, err);
+    drop_whole(r);
+    show_progress(r, &r->stage, 1);
+    if (rc)
+        return rc;
+    return dem_error_set(
+        err, DEM_EUSAGE,
+        "stage %d: at t = %.6g s (step %ld) the box has shrunk so that %d "
+        "ranks can no longer cut it into subdomains wider than the ghost "
+        "range; checkpoint written: resume on fewer ranks with: mpirun -np "
+        "K dembox run --resume %s",
+        r->stage.index, r->sim.t, r->sim.step, r->nranks, r->outdir);
+}
+
 /* A sample of the stage under way: the measurement, the outputs, the
  * checks; then, unless it is the stage's last (*end set), a stop or a
  * checkpoint. Split over ranks, rank 0 says first what it will do, and
@@ -494,8 +521,12 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
                      wall_clock() - r->last_ckpt >= ckpt)
                 halt = CHECKPOINT;
         }
+        /* a split box about to leave its ranks too little room: this
+         * step unchained, then a checkpoint (the same on every rank:
+         * every rank holds the walls) */
+        const int cramped = r->nranks > 1 && dem_halo_room(s) < DEM_ROOM_MIN;
         /* between samples nothing looks at the particles */
-        s->chain = !sample && halt == GO_ON;
+        s->chain = !sample && halt == GO_ON && !cramped;
         if (ops->control)
             ops->control(s, st);
         team_for_step(r);
@@ -506,6 +537,8 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             return stop_here(r, err);
         if (halt == CHECKPOINT && (rc = write_checkpoint(r, err)) != DEM_OK)
             return rc;
+        if (cramped && !sample)
+            return stop_cramped(r, err);
         if (!sample) {
             show_progress(r, st, 0);
             continue;
@@ -518,6 +551,8 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             return rc;
         if (end)
             break;
+        if (cramped)
+            return stop_cramped(r, err);
     }
     show_progress(r, st, 1);
     /* (an isotropic stage compresses a gas at the cap by design, and
