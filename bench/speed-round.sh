@@ -99,8 +99,11 @@ bench() {
   local label=$1 a b ns
   shift
   a=$(pp)
-  ns=$("$DEMBOX" bench "$@" --quiet 2>&1 |
-       sed -n 's/.*, \([0-9.]*\) ns per particle-step.*/\1/p')
+  # (the log kept, so that a failing bench says why: in a pipeline
+  # under pipefail its status would end the script without a word)
+  "$DEMBOX" bench "$@" --quiet >"$out/bench.log" 2>&1 ||
+    { cat "$out/bench.log" >&2; die "dembox bench $* failed"; }
+  ns=$(sed -n 's/.*, \([0-9.]*\) ns per particle-step.*/\1/p' "$out/bench.log")
   b=$(pp)
   [ -n "$ns" ] || die "dembox bench $* gave no figure"
   echo "$ns"
@@ -111,7 +114,8 @@ bench() {
 turns() {
   local a b log=$out/turns.log v
   a=$(pp)
-  "$DEMBOX" bench --n 20000 --steps 3000 --threads 1,2 --quiet >"$log" 2>&1 ||
+  "$DEMBOX" bench --data "$DATA/pack3d_20000.data" --steps 3000 \
+    --threads 1,2 --quiet >"$log" 2>&1 ||
     { cat "$log" >&2; die "dembox bench --threads 1,2 failed"; }
   b=$(pp)
   v=$(sed -n 's/^by turns.*: 1 thread \([0-9.]*\) ns, 2 threads \([0-9.]*\) ns.*; \([0-9.]*\) times as fast (rounds: \(.*\))$/\1 \2 \3 \4/p' "$log")

@@ -530,6 +530,13 @@ static const struct row rows[] = {
      0,
      {"bench", "--threads", ",2", "--quiet"},
      "--threads"},
+    /* (a million steps crushed the box: its wall reached the other) */
+    {"bench over more steps than its box can take",
+     0,
+     0,
+     0,
+     {"bench", "--steps", "1000000", "--quiet", "--cache-dir", "."},
+     "bench: --steps 1000000 would compress the 3D box by a strain of 1"},
     {"bench --threads T,U over too few steps",
      BASE2D,
      0,

@@ -36,6 +36,10 @@ struct workload {
     double rate;         /* 1/s; axial strain rate of the timed run */
 };
 
+/* The largest axial strain a timed run may reach (the peers' workload:
+ * 2 % over 20000 steps in 3D). */
+#define BENCH_MAX_STRAIN 0.2
+
 static const struct workload work3 = {
     "dimension = 3; seed = 1; time_step = 2.0e-5;\n"
     "particles = { count = %d; density = 2000.0;\n"
@@ -326,8 +330,10 @@ static void progress(const struct dem_bench_options *o, const char *what,
  * damping: the isotropic stage's begin and done, run here without the
  * outputs of a run. */
 static int relax(struct dem_sim *s, const struct workload *w,
-                 const struct dem_bench_options *o, struct dem_error *err)
+                 const struct dem_bench_options *o, int *relaxed,
+                 struct dem_error *err)
 {
+    *relaxed = 0;
     const double gamma_b = s->cfg.damping.gamma_b;
     const double mu_s = s->cp.mu_s, mu_d = s->cp.mu_d;
     const double gamma_w = s->cfg.walls.gamma;
@@ -373,24 +379,23 @@ static int relax(struct dem_sim *s, const struct workload *w,
             if (s->sums.max_overlap_j >= 0)
                 snprintf(partner, sizeof partner, "particle %d",
                          s->sums.max_overlap_j);
+            /* (indices from 0 in the order of the packing's file, not
+             * its atom ids) */
             return dem_error_set(err, DEM_EUNSTABLE,
                                  "bench: preparation unstable at t = %.4g s: "
                                  "particle %d overlaps %s by %.2f of a radius "
-                                 "(at most %.2g)",
+                                 "(at most %.2g; particles counted from 0 in "
+                                 "the packing's order)",
                                  s->t, s->sums.max_overlap_i, partner,
                                  smp.max_overlap, PREP_MAX_OVERLAP);
         }
         progress(o, "preparing", &smp, w->p0, 0, &last);
-        if (ops->done(s, &st, &smp))
-            break;
-        if (s->t > st.t_end) {
-            if (!o->quiet)
-                fprintf(stderr,
-                        "bench: warning: preparation stopped at max time "
-                        "%.3g s before relaxing\n",
-                        w->prep_time);
+        if (ops->done(s, &st, &smp)) {
+            *relaxed = 1;
             break;
         }
+        if (s->t > st.t_end) /* (said in the summary: bench_prepared) */
+            break;
     }
     progress(o, "prepared", &smp, w->p0, 1, &last);
     s->cfg.damping.gamma_b = gamma_b;
@@ -422,20 +427,51 @@ static int write_cache(const struct dem_sim *s, const char *path,
     return dem_lammps_data_write(path, &s->p, lo, hi, comment, err);
 }
 
-/* Build the packing and write it to the cache. */
+/* The name of a packing not relaxed within the preparation's max time:
+ * beside the cache, not reused (the next bench prepares again and says
+ * so again). */
+#define UNRELAXED_SUFFIX ".unrelaxed"
+
+/* Where the packing prepared went: r->cache, or where not relaxed, its
+ * name with UNRELAXED_SUFFIX. */
+static void unrelaxed_name(struct dem_bench_result *r, int relaxed)
+{
+    r->unrelaxed = !relaxed;
+    if (r->unrelaxed) {
+        const size_t k = strlen(r->cache);
+        snprintf(r->cache + k, sizeof r->cache - k, "%s", UNRELAXED_SUFFIX);
+    }
+}
+
+/* Build the packing and write it to the cache (*relaxed = 0: to the
+ * cache's name with UNRELAXED_SUFFIX). */
 static int prepare(const struct dem_config *cfg, const struct workload *w,
                    const char *data, const char *cache,
-                   const struct dem_bench_options *o, struct dem_error *err)
+                   const struct dem_bench_options *o, int *relaxed,
+                   struct dem_error *err)
 {
     struct dem_sim s;
     int rc = data ? sim_from_peer_file(&s, cfg, data, err)
                   : dem_sim_create(&s, cfg, NULL, err);
     if (rc)
         return rc;
-    rc = relax(&s, w, o, err);
+    rc = relax(&s, w, o, relaxed, err);
+    /* written under a name of this process's, then renamed: two benches
+     * preparing the same packing at once (bench/cache-counts.sh starts
+     * two) each rename a whole file, where a common temporary name let
+     * one empty the file the other was writing */
+    char path[DEM_PATH_MAX + sizeof UNRELAXED_SUFFIX], mine[sizeof path + 32];
+    snprintf(path, sizeof path, "%s%s", cache,
+             *relaxed ? "" : UNRELAXED_SUFFIX);
+    snprintf(mine, sizeof mine, "%s.%ld", path, (long)getpid());
     if (!rc)
-        rc = write_cache(&s, cache, data ? data : "random placement, seed 1",
+        rc = write_cache(&s, mine, data ? data : "random placement, seed 1",
                          err);
+    if (!rc && rename(mine, path) != 0)
+        rc = dem_error_set(err, DEM_EIO, "%s: cannot rename to %s: %s", mine,
+                           path, strerror(errno));
+    if (rc)
+        remove(mine);
     dem_sim_destroy(&s);
     return rc;
 }
@@ -634,6 +670,20 @@ static int bench_run(const struct dem_bench_options *o,
     int rc = make_config(&cfg, w, n, o->periodic, err);
     if (rc)
         return rc;
+    /* the timed run compresses at the workload's rate: beyond a strain
+     * of BENCH_MAX_STRAIN it would time a crushed packing (at 1 the wall
+     * reaches the other), not the benchmark's */
+    const double strain = w->rate * (double)steps * cfg.time_step;
+    if (strain > BENCH_MAX_STRAIN)
+        return dem_error_set(
+            err, DEM_EUSAGE,
+            "bench: --steps %ld would compress the %dD box by a strain of "
+            "%.3g at the workload's rate; at most %ld steps (a strain of "
+            "%g)",
+            steps, dim, strain,
+            (long)(BENCH_MAX_STRAIN / (w->rate * cfg.time_step) *
+                   (1.0 + 1e-12)),
+            BENCH_MAX_STRAIN);
 
     /* under MPI the sample is split over the ranks (decomp/halo.h):
      * rank 0 prepares the packing, every rank loads it; a rank that
@@ -656,19 +706,22 @@ static int bench_run(const struct dem_bench_options *o,
                  data ? data : "random placement, seed 1");
         r->cache_hit = !o->no_cache && file_exists(r->cache);
     }
+    int relaxed = 1;
     if (!rc && !r->cache_hit && rank == 0) {
         double t0 = wall_clock();
-        rc = prepare(&cfg, w, data, r->cache, o, err);
+        rc = prepare(&cfg, w, data, r->cache, o, &relaxed, err);
         r->prep_seconds = wall_clock() - t0;
     }
     if (ranks > 1) {
         /* rank 0's status reaches the others, which wait for it here:
          * when its preparation failed they stop too, rather than load
          * what is in the cache (with --no-cache an older packing) */
-        int v = rc;
-        dem_halo_bcast(&v, 1);
-        if (v && !rc)
-            rc = dem_error_set(err, v,
+        int v[2] = {rc, relaxed};
+        dem_halo_bcast(v, 2);
+        relaxed = v[1];
+        unrelaxed_name(r, relaxed);
+        if (v[0] && !rc)
+            rc = dem_error_set(err, v[0],
                                "bench: stopped with rank 0 (see its "
                                "message)");
         else if (!rc && rank > 0 && !file_exists(r->cache))
@@ -683,6 +736,8 @@ static int bench_run(const struct dem_bench_options *o,
     }
     if (rc)
         return rc;
+    if (ranks < 2)
+        unrelaxed_name(r, relaxed);
 
     struct dem_sim s;
     rc = load_cache(&s, &cfg, r->cache, err);
@@ -780,22 +835,24 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
                              "count timed against it)",
                              o->versus);
     /* the run's threads, subnormal numbers flushed on each as in a run
-     * (core/fpmode.h) */
-    if (o->versus > 0) {
-        /* the threads of both counts started before the timed loop, not
-         * in the first slice of the larger count */
-        omp_set_num_threads(o->versus > o->threads ? o->versus : o->threads);
-#pragma omp parallel
-        {
-            (void)0;
-        }
-    }
-    if (o->threads > 0)
-        omp_set_num_threads(o->threads);
+     * (core/fpmode.h); by turns the threads of both counts, started
+     * before the timed loop (not in the first slice of the larger count)
+     * and flushed all: the flush reaches the team in force and threads
+     * created later, not those already started and idle (until session
+     * 109 the second thread of --threads 1,2 was not flushed) */
+    const int most = o->versus > o->threads ? o->versus : o->threads;
+    if (most > 0)
+        omp_set_num_threads(most);
     struct dem_fpmode fp;
     const int flushed = dem_fpmode_flush(&fp);
+    if (o->threads > 0)
+        omp_set_num_threads(o->threads);
     const int rc = bench_run(o, r, err);
+    if (most > 0)
+        omp_set_num_threads(most);
     dem_fpmode_restore(&fp);
+    if (o->threads > 0)
+        omp_set_num_threads(o->threads);
     const size_t k = strlen(r->simd);
     if (flushed)
         snprintf(r->simd + k, sizeof r->simd - k,
@@ -826,7 +883,11 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
     fprintf(f, "machine: %s; %s\n", r->cpu, r->simd);
     fprintf(f, "packing: %s\n", r->source);
     fprintf(f, "cache:   %s (%s)\n", r->cache,
-            r->cache_hit ? "reused" : "prepared now");
+            r->cache_hit   ? "reused"
+            : r->unrelaxed ? "prepared now, NOT relaxed within the "
+                             "preparation's max time: another packing than "
+                             "the benchmark's, not kept for reuse"
+                           : "prepared now");
     if (!r->cache_hit)
         fprintf(f, "preparation: %.2f s (not timed)\n", r->prep_seconds);
     fprintf(f,
