@@ -660,6 +660,26 @@ static void resume_after_a_finish_cut_short(void **state)
     assert_same_outputs(ref, out, 1);
 }
 
+/* A timeseries.csv.part whose columns are not this build's (another
+ * build's, resumed with --any-build) is refused: the rows would go on
+ * under another header, longer than it or under other names (a read-only
+ * review of the outputs, session 109). */
+static void resume_under_other_columns_is_refused(void **state)
+{
+    (void)state;
+    char ref[1024], out[1024], ckpt[1100], ts[1100];
+    ref_and_stopped_2d("othercols", 2000, ref, out, ckpt);
+    file_path(ts, sizeof ts, out, "timeseries.csv.part");
+    FILE *f = fopen(ts, "r+");
+    assert_non_null(f);
+    assert_int_equal(fputc('T', f), 'T'); /* the first column, t -> T */
+    assert_int_equal(fclose(f), 0);
+    struct dem_error err = {0};
+    assert_int_equal(resume(out, 0, 1, &err), DEM_EIO);
+    assert_non_null(strstr(err.msg, "timeseries.csv.part: its columns are "
+                                    "not those this build writes"));
+}
+
 static void bad_checkpoints_are_refused_with_a_clear_message(void **state)
 {
     (void)state;
@@ -1095,6 +1115,7 @@ int main(void)
         cmocka_unit_test(resumed_hertz_run_is_bit_identical),
         cmocka_unit_test(resumed_resistance_run_is_bit_identical),
         cmocka_unit_test(resume_after_a_finish_cut_short),
+        cmocka_unit_test(resume_under_other_columns_is_refused),
         cmocka_unit_test(bad_checkpoints_are_refused_with_a_clear_message),
         cmocka_unit_test(another_build_is_refused_unless_any_build),
         cmocka_unit_test(resume_gives_config_warnings_to_the_caller),
