@@ -43,8 +43,8 @@ long dem_text_nul_line(const char *text, size_t len);
 void dem_sync_folder(const char *dir);
 
 /* Everything written to the file system of folder dir onto the disk
- * (syncfs on Linux; sync elsewhere): once, when a run has finished and
- * before its checkpoint goes. */
+ * (syncfs on Linux; sync elsewhere): before each checkpoint, and when a
+ * run has finished, before its checkpoint goes. */
 void dem_sync_file_system(const char *dir);
 
 /* Remove dir/leaf, if it is there; a leaf with a '*' is a pattern

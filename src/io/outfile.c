@@ -30,8 +30,9 @@ int dem__outfile_commit(struct dem__outfile *o, struct dem_error *err)
 {
     /* ferror catches any fprintf that failed earlier (e.g. disk full),
      * the flush the rest, with its own errno (an earlier one may be
-     * another call's). (No fsync here: a run syncs its file system once
-     * it has finished, dem_sync_file_system.) */
+     * another call's). (No fsync here: a run syncs its file system
+     * before each checkpoint and once it has finished,
+     * dem_sync_file_system.) */
     errno = 0;
     int bad = ferror(o->f) || fflush(o->f) != 0;
     int e = errno;

@@ -274,6 +274,12 @@ static int write_checkpoint(struct run_ctx *r, struct dem_error *err)
     r->st.stage_t_start = r->stage.t_start;
     r->st.stage_t_end = r->stage.t_end;
     r->st.sets_reference = r->stage.sets_reference;
+    /* the files written whole since the last checkpoint (snapshots,
+     * config.cfg: renamed into place, not synced one by one) on the disk
+     * before a checkpoint counts them: after a power loss it must not
+     * find them empty (the .part files are synced above) */
+    if (!rc)
+        dem_sync_file_system(r->outdir);
     if (!rc)
         rc = dem_checkpoint_write(r->ckpt_path, r->config_text, view(r),
                                   &r->st, err);
