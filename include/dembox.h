@@ -664,9 +664,10 @@ int dem_sweep_collect(const struct dem_sweep_grid *g,
  *   3D (David et al. material): k = 5000, kt = 1000 N/m, gamma_n = 0.05,
  *      gamma_t = 0.005 kg/s, mu = 0.5, gamma_b = 0.001 kg/s, dt = 2e-5 s,
  *      radii N(5, 0.7) mm cut at 3 mm, density 2000 kg/m^3.
- *   2D (Luding et al. geometry, linear law as the peers): k = 1e5, kt = 2e4
- * N/m, gamma_n = 0.0211, gamma_t = 0.00211 kg/s, mu = 0.5, gamma_b = 0.0004
- * kg/s, dt = 2e-7 s, radii U[0.5, 1.5] mm, sphere masses.
+ *   2D (Luding et al. geometry, linear law as the peers): k = 1e5, kt = 2e4 N/m,
+ *      gamma_n = 0.0211, gamma_t = 0.00211 kg/s, mu = 0.5,
+ *      gamma_b = 0.0004 kg/s, dt = 2e-7 s, radii U[0.5, 1.5] mm, sphere
+ *      masses.
  *
  * Packing: with a LAMMPS data file (the peers' periodic packing of the
  * same N) the particles keep their radii, masses and positions and the

@@ -394,7 +394,7 @@ static int relax(struct dem_sim *s, const struct workload *w,
             *relaxed = 1;
             break;
         }
-        if (s->t > st.t_end) /* (said in the summary: bench_prepared) */
+        if (s->t > st.t_end) /* (the summary's cache line says so) */
             break;
     }
     progress(o, "prepared", &smp, w->p0, 1, &last);
