@@ -5,8 +5,10 @@ set -eu
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}
 # (qemu-user: the tests run the build on an emulated older CPU, which it
-# must refuse with one line, tests/test_machine.c)
-PKGS="build-essential cmake pkg-config libconfig-dev libcairo2-dev libcmocka-dev libomp-dev gnuplot-nox clang libclang-rt-14-dev python3 python3-numpy libopenmpi-dev openmpi-bin qemu-user"
+# must refuse with one line, tests/test_machine.c; locales: a locale with a
+# decimal comma made by localedef, under which the library must write the
+# same files, tests/test_run.c)
+PKGS="build-essential cmake pkg-config libconfig-dev libcairo2-dev libcmocka-dev libomp-dev gnuplot-nox clang libclang-rt-14-dev python3 python3-numpy libopenmpi-dev openmpi-bin qemu-user locales"
 missing=""
 for p in $PKGS; do
     dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"

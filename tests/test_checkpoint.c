@@ -667,14 +667,17 @@ static void resume_after_a_finish_cut_short(void **state)
 static void resume_under_other_columns_is_refused(void **state)
 {
     (void)state;
-    char ref[1024], out[1024], ckpt[1100], ts[1100];
-    ref_and_stopped_2d("othercols", 2000, ref, out, ckpt);
+    char out[1024], ts[1100];
+    struct dem_config c;
+    parse(&c, small_2d);
+    dir_path(out, sizeof out, "othercols");
+    struct dem_error err = {0};
+    assert_int_equal(run(&c, out, 4000, 500, 1, &err), DEM_EINTERRUPTED);
     file_path(ts, sizeof ts, out, "timeseries.csv.part");
     FILE *f = fopen(ts, "r+");
     assert_non_null(f);
     assert_int_equal(fputc('T', f), 'T'); /* the first column, t -> T */
     assert_int_equal(fclose(f), 0);
-    struct dem_error err = {0};
     assert_int_equal(resume(out, 0, 1, &err), DEM_EIO);
     assert_non_null(strstr(err.msg, "timeseries.csv.part: its columns are "
                                     "not those this build writes"));

@@ -6,6 +6,7 @@
 #include "testutil.h"
 
 #include <glob.h>
+#include <locale.h>
 #include <malloc.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -946,6 +947,60 @@ static void stage_ranges(const struct dem__csv_table *t, int n, double *lo,
     }
 }
 
+/* A program that set a locale with a decimal comma (Python's
+ * locale.setlocale(LC_ALL, "de_DE.UTF-8"), a Qt application) gets the
+ * same files as the C locale: the library writes and reads its numbers
+ * in the C locale's (core/numeric.h). Before, timeseries.csv had "0,5",
+ * summary.json was no JSON and the analysis refused the run's own files
+ * (a read-only review of the outputs, session 109). Skipped where no
+ * such locale can be made (localedef and Debian's locales package). */
+static void a_decimal_comma_locale_writes_the_same_files(void **state)
+{
+    (void)state;
+    char dir[1024], cmd[2300];
+    snprintf(dir, sizeof dir, "%s/locales", tmpdir);
+    mkdir(dir, 0755);
+    snprintf(cmd, sizeof cmd,
+             "localedef -i de_DE -f UTF-8 %s/de_DE.UTF-8 >/dev/null 2>&1", dir);
+    char comma[16] = "";
+    if (system(cmd) == 0 && setenv("LOCPATH", dir, 1) == 0 &&
+        setlocale(LC_ALL, "de_DE.UTF-8"))
+        snprintf(comma, sizeof comma, "%g", 0.5);
+    if (strcmp(comma, "0,5") != 0) {
+        setlocale(LC_ALL, "C");
+        unsetenv("LOCPATH");
+        print_message("no locale with a decimal comma here: skipped\n");
+        skip();
+    }
+    char out[2][1024];
+    for (int k = 0; k < 2; k++) {
+        if (k) {
+            setlocale(LC_ALL, "C");
+            unsetenv("LOCPATH");
+        }
+        /* (one source name for both: config.cfg names it) */
+        struct dem_config c;
+        struct dem_error err = {0};
+        snprintf(out[k], sizeof out[k], "%s/%s", tmpdir, k ? "point" : "comma");
+        struct dem_run_options o = {
+            .outdir = out[k], .threads = 1, .max_steps = 1000};
+        if (dem_config_parse(&c, small_2d, "locale", NULL, 0, &err) ||
+            dem_run(&c, &o, &err) || dem_analyze(out[k], &err) ||
+            dem_plot_run(out[k], &err))
+            fail_msg("%s: %s", out[k], err.msg);
+    }
+    static const char *const files[] = {"timeseries.csv", "summary.json",
+                                        "config.cfg", "particles_final.csv",
+                                        "plots/stress_strain.gp"};
+    for (size_t k = 0; k < sizeof files / sizeof *files; k++) {
+        char a[1100], b[1100];
+        snprintf(a, sizeof a, "%s/%s", out[0], files[k]);
+        snprintf(b, sizeof b, "%s/%s", out[1], files[k]);
+        if (!same_file(a, b))
+            fail_msg("%s differs from the C locale's", a);
+    }
+}
+
 /* A stage after a shear stage does not go on shearing: every stage but
  * hold (which keeps every mode, SPEC) fixes the cell's tilts, and only a
  * shear stage drives one. Before, a stress-controlled tilt kept its servo
@@ -1073,10 +1128,11 @@ static void an_isotropic_stage_ends_with_its_walls_at_rest(void **state)
     (void)state;
     const struct dem_example *ex = dem_example_find("biaxial2d");
     assert_non_null(ex);
-    const char *const sets[] = {"output.snapshot_interval=0",
+    const char *const sets[] = {"particles.count=100",
+                                "output.snapshot_interval=0",
                                 "stages.1={type=\"hold\";duration=1e-3;}"};
     char out[1024];
-    run_text(ex->text, "iso-rest", sets, 2, 0, out, sizeof out);
+    run_text(ex->text, "iso-rest", sets, 3, 0, out, sizeof out);
     static const struct dem__csv_want want[] = {
         DEM_CSV_FINITE("stage", 1),    DEM_CSV_FINITE("e_kin", 1),
         DEM_CSV_FINITE("e_rot", 1),    DEM_CSV_FINITE("e_pot", 1),
@@ -1313,6 +1369,7 @@ int main(void)
         cmocka_unit_test(memory_a_sample_takes_is_checked_first),
         cmocka_unit_test(a_stage_after_shear_holds_the_tilt),
         cmocka_unit_test(a_shear_stage_ends_at_its_shear_strain),
+        cmocka_unit_test(a_decimal_comma_locale_writes_the_same_files),
         cmocka_unit_test(a_servo_at_its_speed_cap_is_warned_of),
         cmocka_unit_test(a_hold_counts_only_its_own_servo_steps),
         cmocka_unit_test(an_isotropic_stage_ends_with_its_walls_at_rest),

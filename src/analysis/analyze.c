@@ -15,6 +15,7 @@
 
 #include "analysis/analysis.h"
 #include "analysis/summary_read.h"
+#include "core/numeric.h"
 #include "formats/csvtable.h"
 #include "formats/json.h"
 #include "io/fsutil.h"
@@ -927,6 +928,8 @@ static int analyze_folder(const char *outdir, const char *cfg_path,
 
 int dem_analyze(const char *outdir, struct dem_error *err)
 {
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
     char cfg_path[DEM_PATH_MAX], ts_path[DEM_PATH_MAX];
     int rc = dem__run_folder_check(outdir, 1, cfg_path, ts_path, err);
     /* one writer into a run's folder at a time: a run started into it
@@ -937,6 +940,7 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     if (!rc)
         rc = analyze_folder(outdir, cfg_path, ts_path, err);
     dem_folder_unlock(lock);
+    dem__numeric_leave(&nc);
     return rc;
 }
 

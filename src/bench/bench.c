@@ -2,6 +2,7 @@
  * summary (the workload: docs/performance.md, "The timed workload"). */
 
 #include "bench/bench.h"
+#include "core/numeric.h"
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
@@ -824,8 +825,8 @@ static int bench_run(const struct dem_bench_options *o,
     return DEM_OK;
 }
 
-int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
-                  struct dem_error *err)
+static int bench_run_c(const struct dem_bench_options *o,
+                       struct dem_bench_result *r, struct dem_error *err)
 {
     /* two counts by turns need both: with threads = 0 (the default count)
      * the pre-spawn below would make it the second count's */
@@ -860,7 +861,18 @@ int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
     return rc;
 }
 
-void dem_bench_print(FILE *f, const struct dem_bench_result *r)
+/* (in the C locale's numbers: core/numeric.h) */
+int dem_bench_run(const struct dem_bench_options *o, struct dem_bench_result *r,
+                  struct dem_error *err)
+{
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
+    const int rc = bench_run_c(o, r, err);
+    dem__numeric_leave(&nc);
+    return rc;
+}
+
+static void bench_print_c(FILE *f, const struct dem_bench_result *r)
 {
     const double ps = (double)r->n * (double)r->steps;
     const struct dem_timers *T = &r->timers;
@@ -972,4 +984,13 @@ void dem_bench_print(FILE *f, const struct dem_bench_result *r)
             r->rss_peak / 1048576.0, r->bytes_per_particle);
     fprintf(f, "particle_steps_per_second=%.6g\n",
             r->particle_steps_per_second);
+}
+
+/* (in the C locale's numbers: core/numeric.h) */
+void dem_bench_print(FILE *f, const struct dem_bench_result *r)
+{
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
+    bench_print_c(f, r);
+    dem__numeric_leave(&nc);
 }

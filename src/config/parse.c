@@ -23,6 +23,7 @@
 
 #include "config/keys.h"
 #include "contact/models.h"
+#include "core/numeric.h"
 #include "io/fsutil.h"
 
 /* ---------------------------------------------------------------- errors */
@@ -710,9 +711,9 @@ static void warn_time_step(const struct ctx *x, const struct dem_config *c,
                  x->source, c->time_step, tc / 10);
 }
 
-static int parse_text(struct dem_config *c, const char *text,
-                      const char *source, const char *const *sets, int nsets,
-                      int recorded, struct dem_error *err)
+static int parse_text_c(struct dem_config *c, const char *text,
+                        const char *source, const char *const *sets, int nsets,
+                        int recorded, struct dem_error *err)
 {
     struct ctx *x = calloc(1, sizeof *x);
     if (!x)
@@ -798,6 +799,18 @@ static int parse_text(struct dem_config *c, const char *text,
 out:
     config_destroy(&cfg);
     free(x);
+    return rc;
+}
+
+/* (in the C locale's numbers: core/numeric.h) */
+static int parse_text(struct dem_config *c, const char *text,
+                      const char *source, const char *const *sets, int nsets,
+                      int recorded, struct dem_error *err)
+{
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
+    const int rc = parse_text_c(c, text, source, sets, nsets, recorded, err);
+    dem__numeric_leave(&nc);
     return rc;
 }
 

@@ -15,6 +15,7 @@
 
 #include "config/keys.h"
 #include "contact/models.h"
+#include "core/numeric.h"
 
 /* --------------------------------------------------------------- writing */
 
@@ -148,7 +149,7 @@ static void write_stages(const struct dem_config *c, FILE *f)
     fprintf(f, ");\n");
 }
 
-int dem_config_write(const struct dem_config *c, FILE *f)
+static int config_write_c(const struct dem_config *c, FILE *f)
 {
     char open[4][DEM_NAME_MAX]; /* currently open groups, outermost first */
     int depth = 0;
@@ -199,6 +200,16 @@ int dem_config_write(const struct dem_config *c, FILE *f)
     while (depth > 0)
         fprintf(f, "%*s};\n", 2 * --depth, "");
     return ferror(f) ? DEM_EIO : DEM_OK;
+}
+
+/* (in the C locale's numbers: core/numeric.h) */
+int dem_config_write(const struct dem_config *c, FILE *f)
+{
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
+    const int rc = config_write_c(c, f);
+    dem__numeric_leave(&nc);
+    return rc;
 }
 
 /* ------------------------------------------------------ documenting

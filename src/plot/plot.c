@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "analysis/summary_read.h"
+#include "core/numeric.h"
 #include "formats/csvtable.h"
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
@@ -1044,6 +1045,8 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
 {
     /* one writer into a run's folder at a time (a folder that is not
      * there is plot_folder's message) */
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
     struct stat st;
     int lock = -1, rc = DEM_OK;
     if (stat(outdir, &st) == 0 && S_ISDIR(st.st_mode))
@@ -1051,6 +1054,7 @@ int dem_plot_run(const char *outdir, struct dem_error *err)
     if (!rc)
         rc = plot_folder(outdir, err);
     dem_folder_unlock(lock);
+    dem__numeric_leave(&nc);
     return rc;
 }
 

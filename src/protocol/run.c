@@ -36,6 +36,7 @@
 #include <unistd.h>
 
 #include "core/fpmode.h"
+#include "core/numeric.h"
 #include "core/sim.h"
 #include "decomp/halo.h"
 #include "formats/particles_csv.h"
@@ -1059,10 +1060,13 @@ int dem_run(const struct dem_config *cfg, const struct dem_run_options *opt,
     if (bad)
         return bad;
     struct dem_fpmode fp;
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
     const int threads = omp_get_max_threads();
     engine_mode(opt, &fp);
     const int rc = run_new(cfg, opt, err);
     engine_restore(opt, &fp, threads);
+    dem__numeric_leave(&nc);
     return rc;
 }
 
@@ -1073,9 +1077,12 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
     if (bad)
         return bad;
     struct dem_fpmode fp;
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
     const int threads = omp_get_max_threads();
     engine_mode(opt, &fp);
     const int rc = run_resumed(outdir, opt, err);
     engine_restore(opt, &fp, threads);
+    dem__numeric_leave(&nc);
     return rc;
 }

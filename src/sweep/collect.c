@@ -14,6 +14,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/numeric.h"
 #include "formats/jsonread.h"
 #include "io/fsutil.h"
 #include "io/outfile.h"
@@ -692,8 +693,9 @@ int dem__sweep_collect(const struct dem_sweep_grid *g,
     return rc;
 }
 
-int dem_sweep_collect(const struct dem_sweep_grid *g,
-                      const struct dem_sweep_options *o, struct dem_error *err)
+static int sweep_collect_c(const struct dem_sweep_grid *g,
+                           const struct dem_sweep_options *o,
+                           struct dem_error *err)
 {
     char runs[DEM_PATH_MAX];
     int rc = dem_path_join(runs, sizeof runs, o->outdir, "runs", err);
@@ -724,5 +726,16 @@ int dem_sweep_collect(const struct dem_sweep_grid *g,
     if (!rc)
         rc = dem__sweep_collect(g, o, err);
     dem_folder_unlock(lock_fd);
+    return rc;
+}
+
+/* (in the C locale's numbers: core/numeric.h) */
+int dem_sweep_collect(const struct dem_sweep_grid *g,
+                      const struct dem_sweep_options *o, struct dem_error *err)
+{
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
+    const int rc = sweep_collect_c(g, o, err);
+    dem__numeric_leave(&nc);
     return rc;
 }

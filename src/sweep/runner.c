@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include "core/machine.h"
+#include "core/numeric.h"
 #include "core/sim.h"
 #include "formats/particles_csv.h"
 #include "io/fsutil.h"
@@ -739,9 +740,9 @@ static int prepare(const struct dem_sweep_grid *g,
     return rc;
 }
 
-int dem_sweep_run(const struct dem_sweep_grid *g,
-                  const struct dem_sweep_options *o,
-                  struct dem_sweep_report *rep, struct dem_error *err)
+static int sweep_run_c(const struct dem_sweep_grid *g,
+                       const struct dem_sweep_options *o,
+                       struct dem_sweep_report *rep, struct dem_error *err)
 {
     memset(rep, 0, sizeof *rep);
     int rank, size;
@@ -774,5 +775,17 @@ int dem_sweep_run(const struct dem_sweep_grid *g,
                            "sweep: %ld of %ld runs failed (see the messages "
                            "above and %s/sweep.json)",
                            rep->failed, n, o->outdir);
+    return rc;
+}
+
+/* (in the C locale's numbers: core/numeric.h) */
+int dem_sweep_run(const struct dem_sweep_grid *g,
+                  const struct dem_sweep_options *o,
+                  struct dem_sweep_report *rep, struct dem_error *err)
+{
+    struct dem_numeric nc;
+    dem__numeric_enter(&nc);
+    const int rc = sweep_run_c(g, o, rep, err);
+    dem__numeric_leave(&nc);
     return rc;
 }
