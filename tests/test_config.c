@@ -204,6 +204,39 @@ static void set_group_merges_into_the_group(void **state)
     assert_float_equal(c.contact.E, 7.0e7, 0.0);
 }
 
+/* A given Hertz step is checked against Mindlin's tangential mode too:
+ * at the largest overlap of the impact at v_impact its half period is
+ * about t_c/2.2 (k_t is 2(1 - nu)/(2 - nu) of the local normal stiffness,
+ * and the spins add to it), so a step of t_c/6, which passed the check
+ * against t_c/5, is refused; "auto" (t_c/50) is about 22 steps of that
+ * mode. (A read-only review of Hertz-Mindlin, session 109.) */
+static void hertz_step_counts_the_tangential_mode(void **state)
+{
+    (void)state;
+    static const char *const base =
+        "particles = { radius = { distribution = \"mono\"; mean = 5.0e-3; }; "
+        "};\n"
+        "contact = { normal = \"hertz\"; E = 1.0e7; nu = 0.25; };\n";
+    struct dem_config c;
+    char text[512];
+    snprintf(text, sizeof text, "%stime_step = \"auto\";\n", base);
+    parse_ok(&c, text, 0, 0);
+    const double tc = dem_contact_time(&c), ts = dem_step_time(&c);
+    /* omega_t^2 / omega_n^2 about 3 at the largest overlap, against the
+     * collision's pi/t_c: measured 2.2 */
+    assert_true(ts > tc / 2.6 && ts < tc / 1.9);
+    assert_true(fabs(c.time_step - tc / 50) <= 1e-12 * tc);
+    struct dem_error err = {0};
+    snprintf(text, sizeof text, "%stime_step = %.17g;\n", base, tc / 6);
+    assert_int_equal(dem_config_parse(&c, text, "t", 0, 0, &err), DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "time_step"));
+    assert_non_null(strstr(err.msg, "is above t_c/5"));
+    /* and the linear law's step time is its contact time */
+    snprintf(text, sizeof text, "contact = { normal = \"linear\"; };\n");
+    parse_ok(&c, text, 0, 0);
+    assert_true(dem_step_time(&c) == dem_contact_time(&c));
+}
+
 /* --set of contact.mu replaces a given mu_s and mu_d, and of mu_s or mu_d
  * a given mu (the resolved config.cfg writes mu where they are equal):
  * the later override wins, as everywhere (both used to be refused as
@@ -925,6 +958,7 @@ int main(void)
         cmocka_unit_test(set_overrides_scalars_enums_arrays_and_stages),
         cmocka_unit_test(set_group_merges_into_the_group),
         cmocka_unit_test(set_friction_aliases_and_paths),
+        cmocka_unit_test(hertz_step_counts_the_tangential_mode),
         cmocka_unit_test(contact_time_matches_david_et_al),
         cmocka_unit_test(auto_time_step_is_a_fiftieth_of_contact_time),
         cmocka_unit_test(every_example_parses),

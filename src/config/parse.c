@@ -703,7 +703,7 @@ static void set_name(struct dem_config *c, const char *source)
 static void warn_time_step(const struct ctx *x, const struct dem_config *c,
                            struct dem_error *err)
 {
-    const double tc = dem_contact_time(c);
+    const double tc = dem_step_time(c);
     if (c->time_step > tc / 10)
         dem_warn(err,
                  "%s: time_step: %g s is above t_c/10 = %g s; collisions "

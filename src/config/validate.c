@@ -342,7 +342,7 @@ int dem__cfg_validate_body(const struct ctx *x, const struct dem_config *c,
 int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
                              struct dem_error *err)
 {
-    const double dt = c->time_step, tc = dem_contact_time(c);
+    const double dt = c->time_step, tc = dem_step_time(c);
     if (!isfinite(dt) || !(dt > 0))
         return dem__cfg_fail_key(x, -1, "time_step", err,
                                  "must be > 0 and finite (got %g)", dt);

@@ -215,6 +215,17 @@ double dem_contact_time(const struct dem_config *c);
 /* The same for two particles of radius a and mass m each. */
 double dem_contact_time_of(const struct dem_config *c, double a, double m);
 
+/* The shortest half period a given time step is checked against
+ * (refused above a fifth of it, warned of above a tenth): the contact
+ * time, and with Hertz-Mindlin the half period of the tangential mode at
+ * the largest overlap of an impact at contact.v_impact, which is shorter
+ * (its k_t is 2(1 - nu)/(2 - nu) of the local normal stiffness and the
+ * spins add to it). "auto" still takes the contact time's fiftieth,
+ * about 22 steps of that mode. Before session 109 a given Hertz step
+ * was accepted up to t_c/5, omega_t dt about 1.4. */
+double dem_step_time(const struct dem_config *c);
+double dem_step_time_of(const struct dem_config *c, double a, double m);
+
 /* The explicit viscosities' limit on the time step, s: the step at which
  * the strongest of them, at the lightest particle of the keys, takes
  * gamma dt/m = 1 (gamma_b; gamma_br with the spin's inertia; the spring

@@ -127,16 +127,19 @@ static int file_time_step(struct dem_sim *s, struct dem_error *err)
     /* (a step the config's own check let pass: a config built past
      * dem_config_parse, as a test of the blow-up diagnosis, is its
      * caller's) */
-    const double tk = dem_contact_time(&s->cfg);
+    /* (checked against the step time, Hertz-Mindlin's tangential mode
+     * counted: dem_step_time) */
+    const double tk = dem_step_time(&s->cfg),
+                 ts = dem_step_time_of(&s->cfg, a, m);
     if (s->dt > tk / 5)
         return DEM_OK;
-    if (s->dt > tc / 5)
+    if (s->dt > ts / 5)
         return dem_error_set(err, DEM_ECONFIG,
                              "time_step: %g s is above t_c/5 = %g s of the "
                              "particles of particles.file = %s (smallest "
                              "radius %g m, mass %g kg); lower it, or "
                              "time_step = \"auto\"",
-                             s->dt, tc / 5, file, a, m);
+                             s->dt, ts / 5, file, a, m);
     const char *vkey;
     double mk;
     const double vk = dem_damping_step(&s->cfg, &vkey, &mk),
@@ -151,12 +154,12 @@ static int file_time_step(struct dem_sim *s, struct dem_error *err)
                              "step below %g s (\"auto\" takes at most half "
                              "of it)",
                              vkey, s->dt, s->dt / vf, file, m, vf);
-    if (s->dt > tc / 10 && !(s->dt > tk / 10))
+    if (s->dt > ts / 10 && !(s->dt > tk / 10))
         dem_warn(err,
                  "time_step: %g s is above t_c/10 = %g s of the particles of "
                  "particles.file = %s (smallest radius %g m, mass %g kg); "
                  "collisions are resolved by fewer than 10 steps",
-                 s->dt, tc / 10, file, a, m);
+                 s->dt, ts / 10, file, a, m);
     return DEM_OK;
 }
 
