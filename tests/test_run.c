@@ -1082,6 +1082,24 @@ static void keep_warnings(const char *line, void *user)
     snprintf(w->text + len, sizeof w->text - len, "%s\n", line);
 }
 
+/* Run text with sets into tmpdir/name: the warnings of the run (not of
+ * the config's parsing) in *w. */
+static void run_warnings(const char *text, const char *name,
+                         const char *const *sets, int nsets, struct warnings *w)
+{
+    struct dem_config c;
+    struct dem_error err = {.warn = keep_warnings, .warn_user = w};
+    memset(w, 0, sizeof *w);
+    if (dem_config_parse(&c, text, name, sets, nsets, &err))
+        fail_msg("%s", err.msg);
+    memset(w, 0, sizeof *w);
+    char out[1024];
+    snprintf(out, sizeof out, "%s/%s", tmpdir, name);
+    struct dem_run_options o = {.outdir = out, .threads = 1};
+    if (dem_run(&c, &o, &err))
+        fail_msg("%s", err.msg);
+}
+
 /* A stress servo held at walls.max_speed does not follow its target: a
  * shear_stress of 400 N/m met 245 on average at the cap, and the
  * summary said that tau followed it, without a word (a read-only review,
@@ -1098,18 +1116,8 @@ static void a_servo_at_its_speed_cap_is_warned_of(void **state)
         "output.snapshot_interval=0", "walls.max_speed=1e-4",
         "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
         "{type=\"shear\";shear_stress=400.0;duration=2e-3;pressure=500.0;})"};
-    struct dem_config c;
-    struct warnings w = {0};
-    struct dem_error err = {.warn = keep_warnings, .warn_user = &w};
-    if (dem_config_parse(&c, ex->text, "capped", sets, 5, &err))
-        fail_msg("%s", err.msg);
-    w.n = 0;
-    w.text[0] = '\0';
-    char out[1024];
-    snprintf(out, sizeof out, "%s/capped", tmpdir);
-    struct dem_run_options o = {.outdir = out, .threads = 1};
-    if (dem_run(&c, &o, &err))
-        fail_msg("%s", err.msg);
+    struct warnings w;
+    run_warnings(ex->text, "capped", sets, 5, &w);
     if (!strstr(w.text, "stage 1: stress servos at walls.max_speed = "
                         "0.0001 m/s") ||
         !strstr(w.text, "the xy tilt (100 %)"))
@@ -1163,18 +1171,8 @@ static void a_hold_counts_only_its_own_servo_steps(void **state)
     const char *const sets[] = {"particles.count=100",
                                 "output.snapshot_interval=0",
                                 "stages.1={type=\"hold\";duration=0.005;}"};
-    struct dem_config c;
-    struct warnings w = {0};
-    struct dem_error err = {.warn = keep_warnings, .warn_user = &w};
-    if (dem_config_parse(&c, ex->text, "hold-servo", sets, 3, &err))
-        fail_msg("%s", err.msg);
-    w.n = 0;
-    w.text[0] = '\0';
-    char out[1024];
-    snprintf(out, sizeof out, "%s/hold-servo", tmpdir);
-    struct dem_run_options o = {.outdir = out, .threads = 1};
-    if (dem_run(&c, &o, &err))
-        fail_msg("%s", err.msg);
+    struct warnings w;
+    run_warnings(ex->text, "hold-servo", sets, 3, &w);
     if (strstr(w.text, "stress servos at walls.max_speed"))
         fail_msg("warnings: %s", w.text);
 }
