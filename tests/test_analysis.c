@@ -747,6 +747,19 @@ static char *slurp(const char *path)
     return s;
 }
 
+/* dem_analyze of the run folder dir, then its summary.json (malloc'd). */
+static char *analyzed_summary(const char *dir)
+{
+    char path[160];
+    struct dem_error err = {0};
+    if (dem_analyze(dir, &err))
+        fail_msg("dem_analyze: %s", err.msg);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = slurp(path);
+    assert_non_null(js);
+    return js;
+}
+
 /* The number after "key": at its first occurrence (NaN if null). */
 static double json_get(const char *json, const char *key)
 {
@@ -856,15 +869,10 @@ static void write_biaxial_loading(const char *dir, double unit,
 static void elastic_constants_need_the_lateral_stress_held(void **state)
 {
     (void)state;
-    char dir[128], path[160];
+    char dir[128];
     run_dir(dir, sizeof dir, "lateral-moves");
     write_biaxial_loading(dir, 1.0, LOAD_LATERAL_MOVES);
-    struct dem_error err = {0};
-    if (dem_analyze(dir, &err))
-        fail_msg("%s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *js = slurp(path);
-    assert_non_null(js);
+    char *js = analyzed_summary(dir);
     assert_true(isnan(json_get(js, "poisson_ratio")));
     assert_true(isnan(json_get(js, "modulus_initial")));
     assert_true(isnan(json_get(js, "bulk_modulus")));
@@ -927,17 +935,12 @@ static void check_shear_either_way(int back)
 {
     char *js[2];
     for (int k = 0; k < 2; k++) {
-        char dir[128], path[160];
+        char dir[128];
         run_dir(dir, sizeof dir,
                 back ? (k ? "shear-back-neg" : "shear-back-pos")
                      : (k ? "shear-neg" : "shear-pos"));
         write_shear_run_profile(dir, k ? -1.0 : 1.0, back);
-        struct dem_error err = {0};
-        if (dem_analyze(dir, &err))
-            fail_msg("%s", err.msg);
-        snprintf(path, sizeof path, "%s/summary.json", dir);
-        js[k] = slurp(path);
-        assert_non_null(js[k]);
+        js[k] = analyzed_summary(dir);
     }
     for (int k = 0; k < 2; k++) {
         const double sense = k ? -1.0 : 1.0;
@@ -1064,16 +1067,10 @@ static void write_biaxial_run(const char *dir)
 static void analyze_writes_summary_of_a_biaxial_run(void **state)
 {
     (void)state;
-    char dir[128], path[160];
+    char dir[128];
     run_dir(dir, sizeof dir, "biaxial");
     write_biaxial_run(dir);
-    struct dem_error err = {0};
-    int rc = dem_analyze(dir, &err);
-    if (rc)
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *js = slurp(path);
-    assert_non_null(js);
+    char *js = analyzed_summary(dir);
     static const char *const keys[] = {"\"peak\": {",
                                        "\"critical\": {",
                                        "\"sin_phi\"",
@@ -1163,25 +1160,17 @@ static void analysis_is_invariant_to_the_unit_of_stress(void **state)
         {"", "modulus_initial", 1},
         {"", "confining_pressure", 1},
     };
-    char dir[128], path[160];
+    char dir[128];
     run_dir(dir, sizeof dir, "unit1");
     write_biaxial_run_in(dir, 1.0);
-    struct dem_error err = {0};
-    if (dem_analyze(dir, &err))
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *ref = slurp(path);
-    assert_non_null(ref);
+    char *ref = analyzed_summary(dir);
     const double units[] = {1e-300, 1e300};
     for (int u = 0; u < 2; u++) {
         char name[32];
         snprintf(name, sizeof name, "unit%d", u + 2);
         run_dir(dir, sizeof dir, name);
         write_biaxial_run_in(dir, units[u]);
-        if (dem_analyze(dir, &err))
-            fail_msg("dem_analyze: %s", err.msg);
-        snprintf(path, sizeof path, "%s/summary.json", dir);
-        char *js = slurp(path);
+        char *js = analyzed_summary(dir);
         assert_non_null(js);
         for (size_t k = 0; k < sizeof q / sizeof *q; k++) {
             const double a = json_get(strstr(ref, q[k].block), q[k].key) *
@@ -1464,19 +1453,6 @@ static void write_cyclic_run_as(const char *dir, int ncyc, const double *inc,
 static void write_cyclic_run(const char *dir, int ncyc, const double *inc)
 {
     write_cyclic_run_as(dir, ncyc, inc, 0);
-}
-
-/* dem_analyze of the run folder dir, then its summary.json (malloc'd). */
-static char *analyzed_summary(const char *dir)
-{
-    char path[160];
-    struct dem_error err = {0};
-    if (dem_analyze(dir, &err))
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *js = slurp(path);
-    assert_non_null(js);
-    return js;
 }
 
 /* A cyclic stage that is the run's first counts its strains from t = 0,

@@ -1001,6 +1001,23 @@ static void a_decimal_comma_locale_writes_the_same_files(void **state)
     }
 }
 
+/* shear2d of 100 discs, a sample every 2e-5 s, no snapshots: an
+ * isotropic stage of at most 2e-4 s, then the stages of after (libconfig
+ * groups, comma-separated), into tmpdir/name (its path in out). */
+static void run_small_shear(const char *name, const char *after, char *out,
+                            size_t n)
+{
+    const struct dem_example *ex = dem_example_find("shear2d");
+    assert_non_null(ex);
+    char stages[1024];
+    snprintf(stages, sizeof stages,
+             "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},%s)",
+             after);
+    const char *const sets[] = {"particles.count=100", "output.interval=2e-5",
+                                "output.snapshot_interval=0", stages};
+    run_text(ex->text, name, sets, 4, 0, out, n);
+}
+
 /* A stage after a shear stage does not go on shearing: every stage but
  * hold (which keeps every mode, SPEC) fixes the cell's tilts, and only a
  * shear stage drives one. Before, a stress-controlled tilt kept its servo
@@ -1009,18 +1026,14 @@ static void a_decimal_comma_locale_writes_the_same_files(void **state)
 static void a_stage_after_shear_holds_the_tilt(void **state)
 {
     (void)state;
-    const struct dem_example *ex = dem_example_find("shear2d");
-    assert_non_null(ex);
-    const char *const sets[] = {
-        "particles.count=100", "output.interval=2e-5",
-        "output.snapshot_interval=0",
-        "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
-        "{type=\"shear\";shear_stress=100.0;duration=2e-4;pressure=500.0;},"
-        "{type=\"compress\";axis=\"y\";strain=0.001;duration=2e-4;"
-        "pressure=500.0;},"
-        "{type=\"hold\";duration=1e-4;})"};
     char out[1024];
-    run_text(ex->text, "after-shear", sets, 4, 0, out, sizeof out);
+    run_small_shear("after-shear",
+                    "{type=\"shear\";shear_stress=100.0;duration=2e-4;"
+                    "pressure=500.0;},"
+                    "{type=\"compress\";axis=\"y\";strain=0.001;"
+                    "duration=2e-4;pressure=500.0;},"
+                    "{type=\"hold\";duration=1e-4;}",
+                    out, sizeof out);
     static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
                                                 DEM_CSV_FINITE("gamma_xy", 1)};
     struct dem__csv_table t;
@@ -1044,15 +1057,11 @@ static void a_stage_after_shear_holds_the_tilt(void **state)
 static void a_shear_stage_ends_at_its_shear_strain(void **state)
 {
     (void)state;
-    const struct dem_example *ex = dem_example_find("shear2d");
-    assert_non_null(ex);
-    const char *const sets[] = {
-        "particles.count=100", "output.interval=2e-5",
-        "output.snapshot_interval=0",
-        "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
-        "{type=\"shear\";shear_strain=0.05;duration=4e-4;pressure=500.0;})"};
     char out[1024];
-    run_text(ex->text, "shear-strain", sets, 4, 0, out, sizeof out);
+    run_small_shear("shear-strain",
+                    "{type=\"shear\";shear_strain=0.05;duration=4e-4;"
+                    "pressure=500.0;}",
+                    out, sizeof out);
     static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
                                                 DEM_CSV_FINITE("Ly", 1),
                                                 DEM_CSV_FINITE("gamma_xy", 1)};
@@ -1222,17 +1231,12 @@ static void a_hold_after_cycles_stops_the_cycling(void **state)
 static void a_hold_after_a_cyclic_shear_stops_the_tilt(void **state)
 {
     (void)state;
-    const struct dem_example *ex = dem_example_find("shear2d");
-    assert_non_null(ex);
-    const char *const sets[] = {
-        "particles.count=100", "output.interval=2e-5",
-        "output.snapshot_interval=0",
-        "stages=({type=\"isotropic\";pressure=500.0;max_time=2e-4;},"
-        "{type=\"shear\";shear_strain=0.01;duration=4e-4;profile="
-        "\"sine\";cycles=1;pressure=500.0;},"
-        "{type=\"hold\";duration=2e-4;})"};
     char out[1024];
-    run_text(ex->text, "shear-hold", sets, 4, 0, out, sizeof out);
+    run_small_shear("shear-hold",
+                    "{type=\"shear\";shear_strain=0.01;duration=4e-4;"
+                    "profile=\"sine\";cycles=1;pressure=500.0;},"
+                    "{type=\"hold\";duration=2e-4;}",
+                    out, sizeof out);
     static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
                                                 DEM_CSV_FINITE("gamma_xy", 1)};
     struct dem__csv_table t;

@@ -114,7 +114,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
         const double afree = o->c * unit, sfree = o->sin_phi;
         if (sfree > 0.0 && sfree < 1.0) {
             o->phi_free_deg = asin(sfree) * DEG;
-            o->c_free = afree / cos(asin(sfree));
+            o->c_free = afree / sqrt(1.0 - sfree * sfree);
         }
         fitted = through_origin(s, t, n, o);
         o->bounded = 1;

@@ -48,6 +48,12 @@ static inline double dem_hertz_estar(const struct dem_contact_params *c)
     return c->E / (2.0 * (1.0 - c->nu * c->nu));
 }
 
+/* G* of two bodies of the material: G / (2 (2 - nu)), G = E / (2 (1 + nu)). */
+static inline double dem_hertz_gstar(const struct dem_contact_params *c)
+{
+    return c->E / (2.0 * (1.0 + c->nu)) / (2.0 * (2.0 - c->nu));
+}
+
 /* The force and the shear law of a contact share their roots: sqrt(R*),
  * sqrt(delta), delta^(1/4) and sqrt(sqrt(R*) m*), so that, with the
  * material's constants derived once (dem_model_hertz_derive), a contact
@@ -144,10 +150,8 @@ static inline double dem_hertz_restitution(double alpha)
 static inline void dem_model_hertz_derive(struct dem_contact_params *c)
 {
     const double e = c->restitution;
-    const double G = c->E / (2.0 * (1.0 + c->nu)),
-                 gstar = G / (2.0 * (2.0 - c->nu));
     c->hertz_kn = 4.0 / 3.0 * dem_hertz_estar(c);
-    c->hertz_kt = 8.0 * gstar;
+    c->hertz_kt = 8.0 * dem_hertz_gstar(c);
     double lo = 0.0, hi = 1.0;
     if (e >= 1.0) {
         c->hertz_alpha = c->hertz_gn = c->hertz_gt = 0.0;

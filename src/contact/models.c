@@ -149,8 +149,7 @@ double dem_step_time_of(const struct dem_config *c, double a, double m)
      * stiffness, its mode about 2.2 times faster than the collision */
     const struct dem_contact_params *p = &c->contact;
     const double m12 = 0.5 * m, a12 = 0.5 * a, v = p->v_impact;
-    const double es = p->E / (2.0 * (1.0 - p->nu * p->nu)),
-                 gs = p->E / (2.0 * (1.0 + p->nu)) / (2.0 * (2.0 - p->nu));
+    const double es = dem_hertz_estar(p), gs = dem_hertz_gstar(p);
     const double dmax = pow(15.0 * m12 * v * v / (16.0 * es * sqrt(a12)), 0.4);
     const double kt = 8.0 * gs * sqrt(a12 * dmax);
     const double tt = M_PI / sqrt(kt * (1.0 + spin_factor(c)) / m12);
