@@ -345,6 +345,48 @@ static void pvd_lists_every_snapshot_in_order(void **state)
     free(text);
 }
 
+/* Appending a snapshot writes the same file as rewriting the whole list;
+ * a file that does not end as a PVD is refused and left as it was. */
+static void pvd_append_writes_what_a_rewrite_writes(void **state)
+{
+    (void)state;
+    const char *files[] = {"a_00000.vtu", "a_00001.vtu", "odd & <b>.vtu"};
+    const double times[] = {0.0, 0.1, 1.0 / 3.0};
+    struct dem_error err = {0};
+    char whole[128], grown[128];
+    snprintf(whole, sizeof whole, "%s/whole.pvd", tmpdir);
+    snprintf(grown, sizeof grown, "%s/grown.pvd", tmpdir);
+    assert_int_equal(dem_pvd_write(whole, 3, times, files, &err), DEM_OK);
+    assert_int_equal(dem_pvd_write(grown, 1, times, files, &err), DEM_OK);
+    for (int k = 1; k < 3; k++)
+        assert_int_equal(dem_pvd_append(grown, times[k], files[k], &err),
+                         DEM_OK);
+    char *a = slurp(whole), *b = slurp(grown);
+    assert_string_equal(a, b);
+    free(a);
+    free(b);
+    /* cut by one byte: refused, unchanged */
+    FILE *f = fopen(grown, "w");
+    assert_non_null(f);
+    fputs("<VTKFile>\n  <Collection>\n  </Collection>\n</VTKFile>", f);
+    fclose(f);
+    assert_int_equal(dem_pvd_append(grown, 0.5, "x.vtu", &err), DEM_EIO);
+    assert_non_null(strstr(err.msg, "grown.pvd"));
+    b = slurp(grown);
+    assert_string_equal(b, "<VTKFile>\n  <Collection>\n  </Collection>\n"
+                           "</VTKFile>");
+    free(b);
+    /* a file shorter than the tags */
+    f = fopen(grown, "w");
+    assert_non_null(f);
+    fputs("x", f);
+    fclose(f);
+    assert_int_equal(dem_pvd_append(grown, 0.5, "x.vtu", &err), DEM_EIO);
+    remove(grown);
+    assert_int_equal(dem_pvd_append(grown, 0.5, "x.vtu", &err), DEM_EIO);
+    remove(whole);
+}
+
 /* The LAMMPS dump's box: between walls no periodic direction; a periodic
  * cell periodic, sheared as LAMMPS writes a triclinic box (bounds of the
  * cell's bounding box, then the tilt), so that OVITO wraps the particles
@@ -400,6 +442,7 @@ int main(void)
         cmocka_unit_test(box_is_twelve_edges_in_3d_and_a_closed_outline_in_2d),
         cmocka_unit_test(contact_network_is_one_line_per_contact),
         cmocka_unit_test(pvd_lists_every_snapshot_in_order),
+        cmocka_unit_test(pvd_append_writes_what_a_rewrite_writes),
         cmocka_unit_test(unwritable_path_is_an_io_error),
         cmocka_unit_test(dump_box_of_a_cell_is_periodic_and_triclinic),
     };

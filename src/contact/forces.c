@@ -52,7 +52,9 @@ static struct dem_history list_history(const struct dem_contact_list *L, int k,
 }
 
 /* Elastic energy of a contact's tangential, rolling and torsion springs,
- * J (the resistances' springs are zero while off), at overlap delta. */
+ * J (the resistances' springs are zero while off), at overlap delta. A
+ * frictionless contact's tangential spring holds only the dashpot's share
+ * -gamma_t v_t/k_t (dem_coulomb_spring_in), no elastic energy. */
 static double shear_energy(const struct dem_history *h,
                            const struct dem_contact_params *cp, double delta,
                            double a12, double m12)
@@ -62,7 +64,8 @@ static double shear_energy(const struct dem_history *h,
     const struct dem_vec3 xi = {h->xi_x, h->xi_y, h->xi_z};
     const struct dem_vec3 xr = {h->xr_x, h->xr_y, h->xr_z};
     const struct dem_vec3 xo = {h->xo_x, h->xo_y, h->xo_z};
-    return dem_tangential_energy(xi, T.kt) + dem_resistance_energy(xr, cp->kr) +
+    const double et = T.mu_s > 0.0 ? dem_tangential_energy(xi, T.kt) : 0.0;
+    return et + dem_resistance_energy(xr, cp->kr) +
            dem_resistance_energy(xo, cp->ko);
 }
 

@@ -1,9 +1,11 @@
 /* VTK XML writers (format: "VTK File Formats", Kitware, XML section). */
 #include "formats/vtu.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "io/outfile.h"
 #include "measure/network.h"
@@ -309,6 +311,20 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
     return dem__outfile_commit(&o, err);
 }
 
+/* The end of every PVD file dem_pvd_write and dem_pvd_append write. */
+static const char pvd_tail[] = "  </Collection>\n"
+                               "</VTKFile>\n";
+
+static void pvd_dataset(FILE *f, double time, const char *file)
+{
+    fprintf(f,
+            "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" "
+            "file=\"",
+            time);
+    put_attr(f, file);
+    fputs("\"/>\n", f);
+}
+
 int dem_pvd_write(const char *path, int n, const double *times,
                   const char *const *files, struct dem_error *err)
 {
@@ -319,16 +335,44 @@ int dem_pvd_write(const char *path, int n, const double *times,
     FILE *f = o.f;
     header(f, "Collection");
     fputs("  <Collection>\n", f);
-    for (int k = 0; k < n; k++) {
-        fprintf(f,
-                "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" "
-                "file=\"",
-                times[k]);
-        put_attr(f, files[k]);
-        fputs("\"/>\n", f);
-    }
-    fputs("  </Collection>\n"
-          "</VTKFile>\n",
-          f);
+    for (int k = 0; k < n; k++)
+        pvd_dataset(f, times[k], files[k]);
+    fputs(pvd_tail, f);
     return dem__outfile_commit(&o, err);
+}
+
+int dem_pvd_append(const char *path, double time, const char *file,
+                   struct dem_error *err)
+{
+    FILE *f = fopen(path, "r+");
+    if (!f)
+        return dem_error_set(err, DEM_EIO, "%s: cannot open for appending: %s",
+                             path, strerror(errno));
+    const long len = (long)sizeof pvd_tail - 1;
+    char end[sizeof pvd_tail];
+    int bad = fseek(f, -len, SEEK_END) != 0 ||
+              fread(end, 1, (size_t)len, f) != (size_t)len ||
+              memcmp(end, pvd_tail, (size_t)len) != 0;
+    if (bad) {
+        fclose(f);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: does not end as a PVD collection", path);
+    }
+    /* (a seek between the read and the writes, as C requires) */
+    errno = 0;
+    bad = fseek(f, -len, SEEK_END) != 0;
+    if (!bad) {
+        pvd_dataset(f, time, file);
+        fputs(pvd_tail, f);
+        bad = ferror(f) || fflush(f) != 0;
+    }
+    int e = errno;
+    if (fclose(f) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    if (bad)
+        return dem_error_set(err, DEM_EIO, "%s: write failed: %s", path,
+                             e ? strerror(e) : "I/O error");
+    return DEM_OK;
 }

@@ -40,8 +40,18 @@ int dem_vtu_write_contacts(const struct dem_particles *p,
                            struct dem_error *err);
 
 /* PVD collection of n datasets: files[k] (written as given, normally
- * relative to the .pvd) at times[k] (s). Rewritten completely each call. */
+ * relative to the .pvd) at times[k] (s). Rewritten completely each call
+ * (a temporary renamed into place). */
 int dem_pvd_write(const char *path, int n, const double *times,
                   const char *const *files, struct dem_error *err);
+
+/* One more dataset, file at time (s), at the end of the PVD collection
+ * path, written in place over its closing tags: a run's k-th snapshot
+ * writes one line instead of k (rewritten whole, 100000 snapshots of
+ * three series wrote over a terabyte of PVD). An error, the file
+ * unchanged, when it does not end as dem_pvd_write ends it; after a
+ * failed write it may be cut short (its writer writes it whole again). */
+int dem_pvd_append(const char *path, double time, const char *file,
+                   struct dem_error *err);
 
 #endif

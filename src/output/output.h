@@ -62,6 +62,9 @@ struct dem_output {
     struct dem_output_state st; /* saved in checkpoints */
     FILE *f;                    /* its .part file, or NULL */
     char part[DEM_PATH_MAX];    /* the .part file's path */
+    int listed; /* the entries of its index files (snapshots: the PVDs)
+                   this process wrote; 0: write them whole (not saved: a
+                   resumed run's may list snapshots after the checkpoint) */
 };
 
 /* The kinds of a run, in the order they are called (the timeseries last:

@@ -32,7 +32,9 @@ static void series_name(char *buf, size_t n, int which, int k)
     snprintf(buf, n, "%s_%05d.vtu", series[which], k);
 }
 
-/* The PVD of one series for the snapshots 0 .. count-1. */
+/* The PVD of one series for the snapshots 0 .. count-1: the last one
+ * appended when the file this process wrote lists the others (o->listed),
+ * else the whole list. */
 static int write_pvd(const struct dem_output *o, const char *outdir, int which,
                      struct dem_error *err)
 {
@@ -42,6 +44,13 @@ static int write_pvd(const struct dem_output *o, const char *outdir, int which,
     int rc = dem_path_join(path, sizeof path, outdir, leaf, err);
     if (rc)
         return rc;
+    if (o->listed > 0 && o->listed == n - 1) {
+        char name[32];
+        struct dem_error e2 = {0};
+        series_name(name, sizeof name, which, n - 1);
+        if (dem_pvd_append(path, o->st.times[n - 1], name, &e2) == DEM_OK)
+            return DEM_OK;
+    }
     char(*names)[32] = malloc((size_t)(n > 0 ? n : 1) * sizeof *names);
     const char **ptr = malloc((size_t)(n > 0 ? n : 1) * sizeof *ptr);
     if (!names || !ptr) {
@@ -111,6 +120,7 @@ static int write_snapshot(struct dem_output *o, const struct dem_output_run *r,
     o->st.count++;
     for (int w = 0; !rc && w < NSERIES; w++)
         rc = write_pvd(o, r->outdir, w, err);
+    o->listed = rc ? 0 : o->st.count;
     return rc;
 }
 
