@@ -182,6 +182,68 @@ static void non_json_is_refused(void **state)
     remove(path);
 }
 
+/* Strings beyond ASCII: UTF-8 is written as it is and \u escapes read
+ * back as UTF-8 (a surrogate pair as one code point); bytes that are not
+ * UTF-8 are written as U+FFFD, so the file stays JSON; escapes JSON does
+ * not have, lone surrogates and \u0000 (which a C string cannot hold)
+ * are refused. */
+static void strings_beyond_ascii(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *in, *out;
+    } w[] = {
+        {"caf\xc3\xa9 \xe2\x9c\x93 \xf0\x9d\x84\x9e", /* é ✓ 𝄞 */
+         "\"caf\xc3\xa9 \xe2\x9c\x93 \xf0\x9d\x84\x9e\""},
+        {"caf\xe9", "\"caf\\ufffd\""},                   /* Latin-1 */
+        {"\xc0\xaf", "\"\\ufffd\\ufffd\""},              /* overlong */
+        {"\xed\xa0\x80", "\"\\ufffd\\ufffd\\ufffd\""},   /* a surrogate */
+        {"\xf4\x90\x80\x80", "\"\\ufffd\\ufffd\\ufffd\\ufffd\""}, /* > U+10FFFF */
+        {"a\xe2\x9c", "\"a\\ufffd\\ufffd\""},            /* cut short */
+    };
+    for (size_t k = 0; k < sizeof w / sizeof *w; k++) {
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&buf, &len);
+        assert_non_null(f);
+        dem__json_write_string(f, w[k].in);
+        fclose(f);
+        assert_string_equal(buf, w[k].out);
+        free(buf);
+    }
+    static const struct {
+        const char *text, *value;
+    } good[] = {
+        {"{\"a\": \"caf\\u00e9\"}", "caf\xc3\xa9"},
+        {"{\"a\": \"\\u2713\\/\"}", "\xe2\x9c\x93/"},
+        {"{\"a\": \"\\ud834\\udd1e!\"}", "\xf0\x9d\x84\x9e!"},
+        {"{\"a\": \"\\u007f\\u0001\"}", "\x7f\x01"},
+        {"{\"a\": \"\xe2\x9c\x93\"}", "\xe2\x9c\x93"},
+    };
+    for (size_t k = 0; k < sizeof good / sizeof *good; k++) {
+        struct dem__jval v;
+        struct dem_error err = {0};
+        if (dem__jread_text(&v, good[k].text, "u.json", &err))
+            fail_msg("%s: %s", good[k].text, err.msg);
+        assert_string_equal(dem__jread_string(&v, "a"), good[k].value);
+        dem__jread_free(&v);
+    }
+    static const char *const bad[] = {
+        "{\"a\": \"x\\u0000y\"}", "{\"a\\u0000b\": 1}",
+        "{\"a\": \"\\ud834\"}",   "{\"a\": \"\\ud834x\"}",
+        "{\"a\": \"\\ud834\\u0041\"}", "{\"a\": \"\\udd1e\"}",
+        "{\"a\": \"\\x41\"}",     "{\"a\": \"\\u12\"}",
+        "{\"a\": \"\\'\"}",
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        struct dem__jval v;
+        struct dem_error err = {0};
+        if (dem__jread_text(&v, bad[k], "b.json", &err) == 0)
+            fail_msg("accepted: %s", bad[k]);
+        assert_non_null(strstr(err.msg, "b.json: invalid JSON at byte "));
+    }
+}
+
 /* dem__jread_number_in: null or missing is NaN; a number in range is
  * itself; another type or a number out of range is refused, saying
  * which. */
@@ -233,6 +295,7 @@ int main(void)
         cmocka_unit_test(writer_output_reads_back),
         cmocka_unit_test(long_containers_keep_every_member),
         cmocka_unit_test(non_json_is_refused),
+        cmocka_unit_test(strings_beyond_ascii),
         cmocka_unit_test(numbers_in_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

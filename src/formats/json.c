@@ -2,6 +2,35 @@
 
 #include <math.h>
 
+/* The length of the well-formed UTF-8 sequence at p (RFC 3629: no
+ * overlong forms, no surrogates, nothing beyond U+10FFFF), 0 if none. */
+static int utf8_length(const unsigned char *p)
+{
+    const unsigned c = p[0];
+    int n;
+    unsigned lo = 0x80, hi = 0xBF; /* the second byte's range */
+    if (c < 0x80)
+        return 1;
+    if (c >= 0xC2 && c <= 0xDF)
+        n = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        lo = c == 0xE0 ? 0xA0 : 0x80;
+        hi = c == 0xED ? 0x9F : 0xBF;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        lo = c == 0xF0 ? 0x90 : 0x80;
+        hi = c == 0xF4 ? 0x8F : 0xBF;
+    } else
+        return 0;
+    if (p[1] < lo || p[1] > hi)
+        return 0;
+    for (int k = 2; k < n; k++)
+        if (p[k] < 0x80 || p[k] > 0xBF)
+            return 0;
+    return n;
+}
+
 void dem__json_write_string(FILE *f, const char *s)
 {
     fputc('"', f);
@@ -23,10 +52,20 @@ void dem__json_write_string(FILE *f, const char *s)
             fputs("\\t", f);
             break;
         default:
-            if (*p < 0x20)
+            if (*p < 0x20) {
                 fprintf(f, "\\u%04x", *p);
-            else
-                fputc(*p, f); /* UTF-8 passes through unchanged */
+                break;
+            }
+            /* UTF-8 passes through unchanged; a byte that is not (a path
+             * or a name in Latin-1) becomes U+FFFD, so that the file stays
+             * JSON (RFC 8259 asks for UTF-8; Python's json refuses it) */
+            const int n = utf8_length(p);
+            if (n == 0)
+                fputs("\\ufffd", f);
+            else {
+                fwrite(p, 1, (size_t)n, f);
+                p += n - 1;
+            }
         }
     }
     fputc('"', f);

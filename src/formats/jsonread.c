@@ -43,7 +43,49 @@ static int hexval(char c)
     return -1;
 }
 
-/* A string starting at the opening quote; *out is malloc'd. */
+/* The four hex digits at s, or -1. */
+static long hex4(const char *s)
+{
+    long code = 0;
+    for (int h = 0; h < 4; h++) {
+        const int d = hexval(s[h]);
+        if (d < 0)
+            return -1;
+        code = 16 * code + d;
+    }
+    return code;
+}
+
+/* Code point c (below 0x110000) in UTF-8 at r; the bytes written. */
+static size_t put_utf8(char *r, long c)
+{
+    if (c < 0x80) {
+        r[0] = (char)c;
+        return 1;
+    }
+    if (c < 0x800) {
+        r[0] = (char)(0xC0 | c >> 6);
+        r[1] = (char)(0x80 | (c & 0x3F));
+        return 2;
+    }
+    if (c < 0x10000) {
+        r[0] = (char)(0xE0 | c >> 12);
+        r[1] = (char)(0x80 | (c >> 6 & 0x3F));
+        r[2] = (char)(0x80 | (c & 0x3F));
+        return 3;
+    }
+    r[0] = (char)(0xF0 | c >> 18);
+    r[1] = (char)(0x80 | (c >> 12 & 0x3F));
+    r[2] = (char)(0x80 | (c >> 6 & 0x3F));
+    r[3] = (char)(0x80 | (c & 0x3F));
+    return 4;
+}
+
+/* A string starting at the opening quote; *out is malloc'd, UTF-8 (a
+ * \uXXXX escape, or a pair of them for a code point beyond U+FFFF, in
+ * UTF-8). Refused: an escape JSON does not have, a lone surrogate, and
+ * \u0000, which a C string cannot hold (a key "a\u0000b" would read as
+ * "a"). */
 static int parse_string(struct parser *p, char **out)
 {
     p->i++; /* the quote */
@@ -59,52 +101,82 @@ static int parse_string(struct parser *p, char **out)
     }
     if (p->s[p->i] != '"')
         return fail(p, "unterminated string");
+    /* (an escape \uXXXX counts 5 bytes here and writes at most 3; a pair,
+     * 10 and 4) */
     char *r = malloc(len + 1);
     if (!r)
         return dem_error_set(p->err, DEM_ENOMEM, "out of memory");
+    const size_t end = p->i;
     size_t k = 0;
-    for (size_t j = start; j < p->i; j++) {
+    for (size_t j = start; j < end; j++) {
         char c = p->s[j];
-        if (c == '\\') {
-            c = p->s[++j];
-            switch (c) {
-            case 'n':
-                c = '\n';
+        if (c != '\\') {
+            r[k++] = c;
+            continue;
+        }
+        c = p->s[++j];
+        const char *bad = NULL;
+        switch (c) {
+        case 'n':
+            c = '\n';
+            break;
+        case 't':
+            c = '\t';
+            break;
+        case 'r':
+            c = '\r';
+            break;
+        case 'b':
+            c = '\b';
+            break;
+        case 'f':
+            c = '\f';
+            break;
+        case '"':
+        case '\\':
+        case '/':
+            break;
+        case 'u': {
+            long code = hex4(p->s + j + 1);
+            if (code < 0) {
+                bad = "bad \\u escape";
                 break;
-            case 't':
-                c = '\t';
+            }
+            j += 4;
+            if (code == 0) {
+                bad = "\\u0000 in a string";
                 break;
-            case 'r':
-                c = '\r';
+            }
+            if (code >= 0xDC00 && code <= 0xDFFF) {
+                bad = "a lone low surrogate \\u escape";
                 break;
-            case 'b':
-                c = '\b';
-                break;
-            case 'f':
-                c = '\f';
-                break;
-            case 'u': {
-                int code = 0;
-                for (int h = 1; h <= 4; h++) {
-                    int d = hexval(p->s[j + h]);
-                    if (d < 0) {
-                        free(r);
-                        return fail(p, "bad \\u escape");
-                    }
-                    code = 16 * code + d;
+            }
+            if (code >= 0xD800 && code <= 0xDBFF) {
+                const long lo = p->s[j + 1] == '\\' && p->s[j + 2] == 'u'
+                                    ? hex4(p->s + j + 3)
+                                    : -1;
+                if (lo < 0xDC00 || lo > 0xDFFF) {
+                    bad = "a high surrogate \\u escape without its low one";
+                    break;
                 }
-                j += 4;
-                c = code < 0x80 ? (char)code : '?';
-                break;
+                j += 6;
+                code = 0x10000 + ((code - 0xD800) << 10) + (lo - 0xDC00);
             }
-            default:
-                break; /* \" \\ \/ */
-            }
+            k += put_utf8(r + k, code);
+            continue;
+        }
+        default:
+            bad = "an escape JSON does not have";
+        }
+        if (bad) {
+            free(r);
+            p->i = j;
+            return fail(p, bad);
         }
         r[k++] = c;
     }
     r[k] = '\0';
-    p->i++;
+    p->i = end + 1;
     *out = r;
     return DEM_OK;
 }
