@@ -57,10 +57,11 @@ static const char *const usage_run =
     "  -o, --output OUTDIR  output folder (default dembox-out/NAME)\n"
     "  --set KEY=VALUE      override a config key by its dotted path, e.g.\n"
     "                       --set contact.mu=0.3 --set stages.1.pressure=250\n"
+    "                       (also written --set=KEY=VALUE)\n"
     "  --threads N          OpenMP threads (default: all cores or one,\n"
     "                       whichever runs the steps faster, timed now and\n"
     "                       then in the run)\n"
-    "  --quiet              no progress display, and no closing line on\n"
+    "  -q, --quiet          no progress display, and no closing line on\n"
     "                       where the time went (OUTDIR/timing.txt keeps it)\n"
     "  --max-steps N        stop after N steps in all (smoke tests); the\n"
     "                       outputs are written as for a finished run\n"
@@ -73,9 +74,11 @@ static const char *const usage_run =
     "                       bit either build's, as OUTDIR/timing.txt notes\n"
     "\n"
     "OUTDIR receives config.cfg (the resolved config), timeseries.csv,\n"
-    "particles_final.csv and particles_NNNNN.vtu snapshots with\n"
-    "particles.pvd, and timing.txt (where each part's time went). Files\n"
-    "being written end in .part until the run is done.\n"
+    "particles_final.csv, forces_final.csv, contacts_final.csv, snapshots\n"
+    "(particles_, box_ and contacts_NNNNN.vtu with their .pvd files) and\n"
+    "timing.txt (where each part's time went); then the analysis,\n"
+    "summary.json (dembox analyze), and the pictures in plots/ (dembox\n"
+    "plot). Files being written end in .part until the run is done.\n"
     "\n"
     "Every output.checkpoint_interval seconds (default 600) and on Ctrl-C\n"
     "(SIGINT) or SIGTERM the run saves OUTDIR/checkpoint.bin; after a signal\n"
@@ -92,15 +95,16 @@ static const char *const usage_run =
 
 static const char *const usage_plot =
     "usage: dembox plot OUTDIR\n\nRedraw the pictures of the run in OUTDIR "
-    "into OUTDIR/plots from its\ntimeseries.csv, particles_final.csv and "
-    "forces_final.csv. Each picture has\nits gnuplot script (.gp) and data "
-    "(.dat) next to it, to restyle by hand.\n";
+    "into OUTDIR/plots from its\ntimeseries.csv, summary.json, "
+    "particles_final.csv and forces_final.csv.\nEach picture has its gnuplot "
+    "script (.gp) and data (.dat) next to it, to\nrestyle by hand.\n";
 
 static const char *const usage_analyze =
     "usage: dembox analyze OUTDIR\n"
     "\n"
-    "Analyse a finished run from what it wrote (OUTDIR/config.cfg and\n"
-    "OUTDIR/timeseries.csv) and write OUTDIR/summary.json: peak and\n"
+    "Analyse a finished run from what it wrote (OUTDIR/config.cfg,\n"
+    "OUTDIR/timeseries.csv and, in 3D, OUTDIR/particles_final.csv) and\n"
+    "write OUTDIR/summary.json: peak and\n"
     "critical-state friction (sin phi, phi, the Mohr circle sigma_axial and\n"
     "sigma_lateral), volumetric slopes, Poisson ratio, dilatancy angle,\n"
     "initial modulus, void ratios, the largest inertial number, the fit\n"
@@ -127,11 +131,11 @@ static const char *const usage_sweep =
     "\n"
     "  -o, --output DIR    sweep folder (default dembox-out/sweep-NAME)\n"
     "  --param SPEC        a swept parameter (at least one)\n"
-    "  --jobs N            runs at once (default: as many as the cores take\n"
+    "  -j, --jobs N        runs at once (default: as many as the cores take\n"
     "                      at --threads each, and the memory; one per rank\n"
     "                      over MPI)\n"
     "  --threads N         OpenMP threads per run (default 1)\n"
-    "  --set KEY=VALUE     override a key in every run\n"
+    "  --set KEY=VALUE     override a key in every run (or --set=KEY=VALUE)\n"
     "  --max-steps N       stop every run after N steps (smoke tests)\n"
     "  --collect           run nothing: analyse the runs already in DIR\n"
     "                      (runs not finished count as failed) and write\n"
@@ -139,7 +143,7 @@ static const char *const usage_sweep =
     "  --any-build         resume unfinished runs from checkpoints that\n"
     "                      another build wrote (else they run again from\n"
     "                      the start; see dembox help run)\n"
-    "  --quiet             no progress lines\n"
+    "  -q, --quiet         no progress lines\n"
     "\n"
     "Each point runs as `dembox run` into DIR/runs/NAME, NAME made of its\n"
     "KEY=VALUE pairs (or run_NNNN; DIR/runs/index lists them), its output in\n"
@@ -205,7 +209,7 @@ static const char *const usage_bench =
     "  --cache-dir DIR   where prepared packings are kept (default\n"
     "                    $XDG_CACHE_HOME/dembox or ~/.cache/dembox)\n"
     "  --no-cache        prepare the packing again (and overwrite the cache)\n"
-    "  --quiet           no progress display\n"
+    "  -q, --quiet       no progress display\n"
     "\n"
     "The packing is relaxed once (not timed) and cached; only the loop is\n"
     "timed. The summary gives the CPU and the vector instructions the\n"
@@ -258,6 +262,14 @@ static int fail(const char *msg)
     return 1;
 }
 
+/* "CMD: OPT needs WHAT" (OPT as given: -o or --output). */
+static int fail_needs(const char *cmd, const char *opt, const char *what)
+{
+    if (!quiet_rank)
+        fprintf(stderr, "dembox: %s: %s needs %s\n", cmd, opt, what);
+    return 1;
+}
+
 /* The options that take one value and are given once at most (a
  * second would silently win), each with its other name. */
 static const char *const once_options[][2] = {
@@ -294,7 +306,12 @@ static int parse_int(const char *cmd, const char *opt, const char *v, long lo,
     long n = v ? strtol(v, &end, 10) : 0;
     if (!v || !(isdigit((unsigned char)v[0]) || v[0] == '-') || *end ||
         errno == ERANGE || n < lo || n > hi) {
-        if (!quiet_rank)
+        if (quiet_rank)
+            return 1;
+        if (hi == LONG_MAX)
+            fprintf(stderr, "dembox: %s: %s needs an integer >= %ld\n", cmd,
+                    opt, lo);
+        else
             fprintf(stderr, "dembox: %s: %s needs an integer in [%ld, %ld]\n",
                     cmd, opt, lo, hi);
         return 1;
@@ -360,6 +377,8 @@ static int progress_shown;
 static void cli_warning(const char *line, void *user)
 {
     (void)user;
+    if (quiet_rank) /* rank 0 says it (every rank checks the config) */
+        return;
     if (progress_shown)
         fputc('\n', stderr);
     progress_shown = 0;
@@ -423,16 +442,19 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
      * and writes */
     opt->split = mpi_world;
     quiet |= quiet_rank;
+    /* for tests of resuming, and to cut a long run at a step (the run's
+     * own step count, a resumed run's too): stop as if interrupted at the
+     * first sample after this step */
+    const char *stop_after = getenv("DEMBOX_STOP_AFTER_STEP");
+    if (stop_after && *stop_after &&
+        parse_int("run", "DEMBOX_STOP_AFTER_STEP", stop_after, 1, LONG_MAX,
+                  &opt->stop_after_steps))
+        return 1;
     if (!quiet && isatty(STDERR_FILENO))
         opt->progress = cli_progress;
     struct signals old;
     catch_signals(&old);
     opt->stop = &stop_signal;
-    /* for tests of resuming: stop as if interrupted at the first sample
-     * after this step */
-    const char *stop_after = getenv("DEMBOX_STOP_AFTER_STEP");
-    if (stop_after && *stop_after)
-        opt->stop_after_steps = atol(stop_after);
     struct dem_error err = {0, "", cli_warning, NULL};
     struct dem_run_timing timing = {0};
     opt->timing = &timing;
@@ -473,21 +495,22 @@ static int cmd_run(int argc, char **argv)
         if (given_twice("run", a, &seen))
             return 1;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(usage_run, stdout);
+            if (!quiet_rank)
+                fputs(usage_run, stdout);
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             if (++k >= argc)
-                return fail("run: -o needs a folder");
+                return fail_needs("run", a, "a folder");
             outdir = argv[k];
         } else if (!strcmp(a, "--set")) {
             if (++k >= argc)
                 return fail("run: --set needs KEY=VALUE");
             if (nsets >= MAX_SETS)
-                return fail("run: too many --set options");
+                return fail("run: too many --set options (at most 256)");
             sets[nsets++] = argv[k];
         } else if (!strncmp(a, "--set=", 6)) {
             if (nsets >= MAX_SETS)
-                return fail("run: too many --set options");
+                return fail("run: too many --set options (at most 256)");
             sets[nsets++] = a + 6;
         } else if (!strcmp(a, "--threads")) {
             long t;
@@ -523,7 +546,6 @@ static int cmd_run(int argc, char **argv)
         if (target || outdir || nsets || opt.max_steps)
             return fail("run: --resume takes only OUTDIR, --any-build, "
                         "--threads and --quiet (the run keeps its config)");
-        warn_oversubscribed(1, opt.threads);
         return run_with_signals(0, resume, &opt, quiet);
     }
     if (opt.any_build)
@@ -566,7 +588,6 @@ static int cmd_run(int argc, char **argv)
         outdir = outbuf;
     }
     opt.outdir = outdir;
-    warn_oversubscribed(1, opt.threads);
     return run_with_signals(&cfg, 0, &opt, quiet);
 }
 
@@ -576,7 +597,7 @@ static int cmd_sweep(int argc, char **argv)
     const char *sets[MAX_SETS];
     struct dem_sweep_options o = {.sets = sets, .jobs = 0, .threads = 1};
     struct dem_error err = {0, "", cli_warning, NULL};
-    long v;
+    long v = 0;
     int rc = 0, collect = 0;
     unsigned seen = 0;
     for (int k = 0; k < argc && !rc; k++) {
@@ -593,21 +614,25 @@ static int cmd_sweep(int argc, char **argv)
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             rc = more ? (o.outdir = argv[++k], 0)
-                      : fail("sweep: -o needs a folder");
+                      : fail_needs("sweep", a, "a folder");
         } else if (!strcmp(a, "--param")) {
             if (!more)
                 rc = fail("sweep: --param needs KEY[,KEY...]=V1,V2,...");
-            else if (dem_sweep_param_add(&grid, argv[++k], &err))
-                rc = quiet_rank ||
-                     fprintf(stderr, "dembox: sweep: %s\n", err.msg) > 0;
+            else if (dem_sweep_param_add(&grid, argv[++k], &err)) {
+                if (!quiet_rank)
+                    fprintf(stderr, "dembox: sweep: %s\n", err.msg);
+                rc = 1; /* (whether or not stderr took the line) */
+            }
         } else if (!strcmp(a, "--set")) {
-            if (!more || o.nsets >= MAX_SETS)
-                rc = fail("sweep: --set needs KEY=VALUE (at most 256)");
+            if (!more)
+                rc = fail("sweep: --set needs KEY=VALUE");
+            else if (o.nsets >= MAX_SETS)
+                rc = fail("sweep: too many --set options (at most 256)");
             else
                 sets[o.nsets++] = argv[++k];
         } else if (!strncmp(a, "--set=", 6)) { /* as run takes it */
             if (o.nsets >= MAX_SETS)
-                rc = fail("sweep: too many --set options");
+                rc = fail("sweep: too many --set options (at most 256)");
             else
                 sets[o.nsets++] = a + 6;
         } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
@@ -731,7 +756,8 @@ static int cmd_bench(int argc, char **argv)
         if (given_twice("bench", a, &seen))
             return 1;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(usage_bench, stdout);
+            if (!quiet_rank)
+                fputs(usage_bench, stdout);
             return 0;
         } else if (!strcmp(a, "--no-cache")) {
             o.no_cache = 1;
@@ -967,6 +993,22 @@ cpu_guard(void)
 }
 #endif
 
+/* rc, or 1 when what the command wrote to standard output did not all
+ * reach it (a full disk under `dembox example NAME > my.cfg`, or
+ * /dev/full): stdout is flushed only at exit, after the status was
+ * decided, and a cut config or a bench log without its last line must
+ * not end with status 0. */
+static int stdout_status(int rc)
+{
+    errno = 0;
+    if (fflush(stdout) == 0 && !ferror(stdout))
+        return rc;
+    const int e = errno;
+    fprintf(stderr, "dembox: standard output: write failed: %s\n",
+            e ? strerror(e) : "I/O error");
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     int rank, size;
@@ -984,11 +1026,11 @@ int main(int argc, char **argv)
         const int rc = size == 1 ? dispatch(argc, argv)
                                  : main_mpi(argc, argv, rank, size);
         dem_mpi_finalize();
-        return rc;
+        return stdout_status(rc);
     }
     if (size > 1 || (size < 0 && rank > 0)) /* without MPI: refused */
-        return main_mpi(argc, argv, rank, size);
-    return dispatch(argc, argv);
+        return stdout_status(main_mpi(argc, argv, rank, size));
+    return stdout_status(dispatch(argc, argv));
 }
 
 /* The command of argv[1]. */
@@ -1015,8 +1057,12 @@ static int dispatch(int argc, char **argv)
         return cmd_example(argc - 2, argv + 2);
     if (!strcmp(c, "help"))
         return cmd_help(argc - 2, argv + 2);
-    if (!strcmp(c, "--help") || !strcmp(c, "-h"))
+    if (!strcmp(c, "--help") || !strcmp(c, "-h")) {
+        if (argc > 2)
+            return fail("--help takes no arguments (dembox help COMMAND for "
+                        "a command's)");
         return cmd_help(0, 0);
+    }
     if (!strcmp(c, "--version")) {
         if (argc > 2)
             return fail("--version takes no arguments");

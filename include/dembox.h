@@ -284,7 +284,9 @@ struct dem_run_options {
     void *progress_user;
     int threads;    /* OpenMP threads; 0 = all cores (OMP_NUM_THREADS) or
                        one, whichever runs the steps faster, timed now
-                       and then in the run (< 0: DEM_EUSAGE) */
+                       and then in the run (< 0: DEM_EUSAGE); more than
+                       the cores: a warning through err when the run
+                       starts (dem_warn_oversubscribed) */
     long max_steps; /* > 0: end the run after this many steps (smoke
                        tests); outputs are written as for a full run;
                        0 = no limit (< 0: DEM_EUSAGE) */

@@ -1505,6 +1505,15 @@ static void hardness_takes_the_particles_diameter(void **state)
     }
     /* the keys' mean diameter 10 mm, the particles' 1 mm */
     assert_close(hs[1] / hs[0], 10.0, 1e-9);
+    /* a file that is there but not one a run writes is refused at its
+     * line, not passed over for the keys' diameter */
+    write_text(dir, "particles_final.csv",
+               "x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n"
+               "0.01,0.01,0.01,0,0,0,0,0,0,4e-4,1e-6\n"
+               "0.02,0.01,0.01,0,0,0,0,0,0,nan,1e-6\n");
+    struct dem_error err = {0};
+    assert_int_equal(dem_analyze(dir, &err), DEM_EIO);
+    assert_non_null(strstr(err.msg, "particles_final.csv:3"));
 }
 
 static void analyze_counts_cycles_of_a_cyclic_run(void **state)

@@ -494,6 +494,20 @@ static const struct row rows[] = {
      0,
      {"examples", "--bogus"},
      "examples: takes no arguments"},
+    {"--help with more",
+     BASE2D,
+     0,
+     0,
+     {"--help", "run"},
+     "--help takes no arguments"},
+    /* the warning on more threads than cores comes when the run starts,
+     * not before its folder is refused */
+    {"run with many threads into a file's folder",
+     BASE2D,
+     0,
+     0,
+     {"run", "c.cfg", "-o", "c.cfg/out", "--threads", "4096", "--quiet"},
+     "c.cfg/out"},
     {"help of a command with more",
      BASE2D,
      0,
@@ -774,6 +788,29 @@ static const struct row rows[] = {
      "mass of 0 kg"},
 };
 
+/* Commands whose output does not all reach stdout (sent to /dev/full):
+ * the status must not be 0 (a config cut short by a full disk). */
+static const struct row to_full_disk[] = {
+    {"example to a full disk",
+     BASE2D,
+     0,
+     0,
+     {"example", "biaxial2d"},
+     "standard output: write failed"},
+    {"--version to a full disk",
+     BASE2D,
+     0,
+     0,
+     {"--version"},
+     "standard output: write failed"},
+    {"help config to a full disk",
+     BASE2D,
+     0,
+     0,
+     {"help", "config"},
+     "standard output: write failed"},
+};
+
 #define NROWS (sizeof rows / sizeof rows[0])
 
 /* ------------------------------------------------------------ helpers */
@@ -834,7 +871,8 @@ static double now(void)
 
 /* Run bin with args in dir, stdout and stderr to files there; returns the
  * wait status, or -1 after killing a run that outlived TIMEOUT_S. */
-static int run_in(const char *bin, const char *const *args, const char *dir)
+static int run_in(const char *bin, const char *const *args, const char *dir,
+                  const char *stdout_to)
 {
     char *argv[MAX_ARGS + 2];
     int n = 0;
@@ -847,7 +885,8 @@ static int run_in(const char *bin, const char *const *args, const char *dir)
     if (pid == 0) {
         if (chdir(dir) != 0)
             _exit(126);
-        int out = open("stdout.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int out = open(stdout_to ? stdout_to : "stdout.txt",
+                       O_WRONLY | O_CREAT | O_TRUNC, 0644);
         int err = open("stderr.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
         int in = open("/dev/null", O_RDONLY);
         if (out < 0 || err < 0 || in < 0 || dup2(in, 0) < 0 ||
@@ -874,8 +913,8 @@ static int run_in(const char *bin, const char *const *args, const char *dir)
 }
 
 /* Every problem with one row, as one line in fails (empty = fine). */
-static void check_row(const char *bin, const struct row *r, char *fails,
-                      size_t n)
+static void check_row(const char *bin, const struct row *r,
+                      const char *stdout_to, char *fails, size_t n)
 {
     char dir[] = "/tmp/dembox-cli-XXXXXX";
     assert_non_null(mkdtemp(dir));
@@ -885,7 +924,7 @@ static void check_row(const char *bin, const struct row *r, char *fails,
     if (r->particles)
         write_file(dir, "p.csv", r->particles, strlen(r->particles));
 
-    int status = run_in(bin, r->args, dir);
+    int status = run_in(bin, r->args, dir, stdout_to);
     char path[4200];
     snprintf(path, sizeof path, "%s/stderr.txt", dir);
     char *err = read_file(path);
@@ -929,7 +968,9 @@ static void every_bad_input_fails_with_one_line_and_no_output(void **state)
     static char fails[65536];
     fails[0] = '\0';
     for (size_t i = 0; i < NROWS; i++)
-        check_row(bin, &rows[i], fails, sizeof fails);
+        check_row(bin, &rows[i], NULL, fails, sizeof fails);
+    for (size_t i = 0; i < sizeof to_full_disk / sizeof *to_full_disk; i++)
+        check_row(bin, &to_full_disk[i], "/dev/full", fails, sizeof fails);
     if (fails[0])
         fail_msg("rows that failed:%s", fails);
 }
@@ -957,7 +998,7 @@ static void base_configs_run(void **state)
         assert_non_null(mkdtemp(dir));
         write_file(dir, "c.cfg", cfgs[k], strlen(cfgs[k]));
         write_file(dir, "p.csv", "x,y,radius\n0.1,0.1,0.01\n", 24);
-        int status = run_in(bin, args, dir);
+        int status = run_in(bin, args, dir, NULL);
         char path[4200];
         snprintf(path, sizeof path, "%s/stderr.txt", dir);
         char *err = read_file(path);
@@ -981,7 +1022,7 @@ static void every_example_runs_a_few_steps(void **state)
     char dir[] = "/tmp/dembox-cli-XXXXXX";
     assert_non_null(mkdtemp(dir));
     static const char *const list[] = {"examples", 0};
-    assert_int_equal(run_in(bin, list, dir), 0);
+    assert_int_equal(run_in(bin, list, dir, NULL), 0);
     char path[4200];
     snprintf(path, sizeof path, "%s/stdout.txt", dir);
     char *names = read_file(path);
@@ -990,7 +1031,7 @@ static void every_example_runs_a_few_steps(void **state)
         line[strcspn(line, " ")] = '\0';
         const char *args[] = {"run",     line,          "-o", "out",
                               "--quiet", "--max-steps", "20", 0};
-        int status = run_in(bin, args, dir);
+        int status = run_in(bin, args, dir, NULL);
         snprintf(path, sizeof path, "%s/stderr.txt", dir);
         char *err = read_file(path);
         if (status != 0)

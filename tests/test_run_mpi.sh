@@ -7,7 +7,8 @@
 # step 1500 leaves a checkpoint that resumes at 4 ranks and without MPI,
 # each to the same outputs. A box that shrinks until its ranks have no
 # room stops with a checkpoint that resumes on fewer ranks. Too many
-# ranks for the box: one line from rank 0, status 1, no outputs.
+# ranks for the box: one line from rank 0, status 1, no outputs. A
+# warning of the config is said once.
 # Status 77 (skipped): no mpirun, or it cannot start two ranks here.
 set -eu
 BIN=${DEMBOX_BIN:?run through ctest}
@@ -23,6 +24,11 @@ R="biaxial2d --max-steps 3000 --threads 1 --quiet --set output.snapshot_interval
 mpi 2 run $R -o np2 > log2 2>&1 || fail "2 ranks: $(tail -3 log2)"
 mpi 4 run $R -o np4 > log4 2>&1 || fail "4 ranks: $(tail -3 log4)"
 [ ! -s log2 ] || fail "2 ranks, --quiet, said: $(cat log2)"
+# a warning of the config (every rank reads it) is said once, by rank 0
+mpi 2 run biaxial2d --max-steps 10 --threads 1 --quiet \
+    --set time_step=1.0e-6 -o warned > logw 2>&1 || fail "warned: $(tail -3 logw)"
+[ "$(grep -c 'warning: .*t_c/10' logw)" -eq 1 ] && [ "$(wc -l < logw)" -eq 1 ] ||
+    fail "2 ranks, one warning, said: $(cat logw)"
 
 # a file against the serial run's: the same rows and columns, every value
 # within tol of the largest magnitude in its column (NaN only where NaN)

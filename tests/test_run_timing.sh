@@ -35,6 +35,16 @@ DEMBOX_STOP_AFTER_STEP=1500 "$BIN" run biaxial2d --max-steps 3000 --threads 1 \
 rc=$?
 set -e
 [ $rc -eq 130 ] || fail "stop: status $rc: $(tail -3 b.log)"
+# a step that is not a whole number is refused before anything is written
+# (atol read 1.5e3 as step 1)
+set +e
+DEMBOX_STOP_AFTER_STEP=1.5e3 "$BIN" run biaxial2d --max-steps 3000 \
+    --threads 1 -o c > /dev/null 2> c.log
+rc=$?
+set -e
+[ $rc -eq 1 ] && [ ! -e c ] && [ "$(wc -l < c.log)" -eq 1 ] &&
+    grep -q DEMBOX_STOP_AFTER_STEP c.log ||
+    fail "DEMBOX_STOP_AFTER_STEP=1.5e3: status $rc: $(cat c.log)"
 "$BIN" run --resume b --threads 1 > /dev/null 2> b2.log ||
     fail "resume: $(tail -3 b2.log)"
 s1=$(check b.log)

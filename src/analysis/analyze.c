@@ -348,25 +348,33 @@ static int analyze_monotonic(const struct curves *cv, int dim,
     return DEM_OK;
 }
 
-/* The mean diameter of the run's particles, m, from outdir's
+/* *d = the mean diameter of the run's particles, m, from outdir's
  * particles_final.csv (a particle file's spheres need not follow the
- * radius keys); NAN without it. */
-static double final_mean_diameter(const char *outdir)
+ * radius keys); NAN without the file. A file that is there but is not
+ * one the run wrote (a radius not a finite number, a missing column) is
+ * refused at its line, as the timeseries is: it would otherwise fall
+ * back to the radius keys without a word. */
+static int final_mean_diameter(const char *outdir, double *d,
+                               struct dem_error *err)
 {
     char path[DEM_PATH_MAX];
-    struct dem_error e = {.warn = dem_warn_ignore};
-    if (dem_path_join(path, sizeof path, outdir, "particles_final.csv", &e))
-        return NAN;
+    *d = NAN;
+    int rc =
+        dem_path_join(path, sizeof path, outdir, "particles_final.csv", err);
+    if (rc || access(path, F_OK) != 0)
+        return rc;
     const struct dem__csv_want want[] = {DEM_CSV_FINITE("radius", 1)};
     struct dem__csv_table t;
-    if (dem__csv_table_read(&t, path, want, 1, &e))
-        return NAN;
+    rc = dem__csv_table_read(&t, path, want, 1, err);
+    if (rc)
+        return rc;
     double sum = 0.0;
     for (size_t r = 0; r < t.nrow; r++)
         sum += 2.0 * t.col[0][r];
-    const double d = t.nrow ? sum / (double)t.nrow : NAN;
+    if (t.nrow)
+        *d = sum / (double)t.nrow;
     dem__csv_table_free(&t);
-    return d;
+    return DEM_OK;
 }
 
 /* Granular hardness hs of e = e0 - (p/hs)^n: Luding et al. sets hs = k2 (2D,
@@ -375,21 +383,27 @@ static double final_mean_diameter(const char *outdir)
  * particles (particles_final.csv), else of the radius keys, which a
  * particle file's need not follow (NAN then). Hertz's law has no constant
  * stiffness: NAN, and why. */
-static double hardness(const struct dem_config *cfg, const char *outdir,
-                       char *why, size_t n)
+static int hardness(const struct dem_config *cfg, const char *outdir, char *why,
+                    size_t n, double *hs, struct dem_error *err)
 {
+    *hs = NAN;
     if (cfg->contact.normal == DEM_NORMAL_HERTZ) {
         snprintf(why, n,
                  "contact.normal = \"hertz\" has no constant stiffness for "
                  "the granular hardness hs (k2 of Luding's law, k of the "
                  "linear one)");
-        return NAN;
+        return DEM_OK;
     }
     const double k = cfg->contact.normal == DEM_NORMAL_LUDING ? cfg->contact.k2
                                                               : cfg->contact.k;
-    if (cfg->dim == 2)
-        return k;
-    double d = final_mean_diameter(outdir);
+    if (cfg->dim == 2) {
+        *hs = k;
+        return DEM_OK;
+    }
+    double d;
+    const int rc = final_mean_diameter(outdir, &d, err);
+    if (rc)
+        return rc;
     if (!(d > 0.0) && cfg->particles.placement != DEM_PLACE_FILE)
         d = cfg->particles.distribution == DEM_DIST_UNIFORM
                 ? cfg->particles.min + cfg->particles.max
@@ -398,14 +412,16 @@ static double hardness(const struct dem_config *cfg, const char *outdir,
         snprintf(why, n,
                  "no particles_final.csv to take the mean diameter of a "
                  "particle file's spheres from (hs = k2/d in 3D)");
-    return d > 0.0 ? k / d : NAN;
+    *hs = d > 0.0 ? k / d : NAN;
+    return DEM_OK;
 }
 
 /* e(p) at the end of every isotropic stage: with three or more different
  * pressures in one run, the fit of Luding et al. Eq. 6. */
 static int analyze_void_fit(const struct dem_config *cfg,
                             const struct columns *c, long nrow,
-                            const char *outdir, struct result *R)
+                            const char *outdir, struct result *R,
+                            struct dem_error *err)
 {
     double p[DEM_MAX_STAGES], e[DEM_MAX_STAGES];
     long m = 0;
@@ -426,9 +442,11 @@ static int analyze_void_fit(const struct dem_config *cfg,
         m++;
     }
     char why[DEM_REASON_MAX] = "";
-    R->hs = hardness(cfg, outdir, why, sizeof why);
+    int rc = hardness(cfg, outdir, why, sizeof why, &R->hs, err);
+    if (rc)
+        return rc;
     R->vfit_points = m;
-    const int rc = dem_voidfit(p, e, m, R->hs, &R->vfit);
+    rc = dem_voidfit(p, e, m, R->hs, &R->vfit);
     if (!rc && why[0])
         snprintf(R->vfit.reason, sizeof R->vfit.reason, "%s", why);
     return rc;
@@ -975,7 +993,7 @@ static int analyze_folder(const char *outdir, const char *cfg_path,
     if (!rc)
         rc = analyze_loading(cfg, &c, nrow, &R);
     if (!rc)
-        rc = analyze_void_fit(cfg, &c, nrow, outdir, &R);
+        rc = analyze_void_fit(cfg, &c, nrow, outdir, &R, err);
     if (!rc && R.cyc_stage >= 0)
         rc = analyze_cyclic(cfg, &c, nrow, &R);
     if (!rc)

@@ -784,6 +784,10 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
                           struct dem_error *err)
 {
     if (!rc) {
+        /* said here, after every check of the config, the folder and the
+         * checkpoint: a run refused says one line, its reason */
+        if (writer(r))
+            dem_warn_oversubscribed(1, r->opt->threads, err);
         rc = run_stages(r, first, resumed, err);
         if (!rc)
             rc = finish_outputs(r, err);
