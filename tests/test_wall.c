@@ -5,6 +5,7 @@
 
 #include "core/rng.h"
 #include "measure/measure.h"
+#include "measure/network.h"
 
 static void strain_profiles_start_and_end_at_rest(void **state)
 {
@@ -197,6 +198,28 @@ static void love_weber_equals_wall_stress(void **state)
      * n_pw/(n_pp + n_pw), here 98 of 339, 0.29: 0.32 in all) */
     assert_true(smp.n_pw > 0.2 * (smp.n_pp + smp.n_pw));
     assert_true(smp.sliding_fraction < 0.1);
+    /* the contact network (contacts_final.csv, the snapshots) gives the
+     * same sum of b (x) f: a wall's contact point is on its plane, where
+     * the stress takes it (in the middle of the overlap, outside the box,
+     * its sum was larger by sum (delta/2) f over the wall contacts) */
+    s.measure = 1; /* (the sums of this step's forces) */
+    test_step(&s, 1);
+    struct dem_network net;
+    struct dem_error err = {0};
+    assert_int_equal(dem_network_build(&s, &net, &err), DEM_OK);
+    assert_int_equal(net.n - net.npair, s.sums.n_pw);
+    double W[3][3] = {{0}};
+    for (int k = 0; k < net.n; k++) {
+        const struct dem_network_contact *q = &net.c[k];
+        for (int a3 = 0; a3 < 3; a3++)
+            for (int b3 = 0; b3 < 3; b3++)
+                W[a3][b3] += q->b[a3] * (q->fn * q->n[b3] + q->ft[b3]);
+    }
+    for (int a3 = 0; a3 < 3; a3++)
+        for (int b3 = 0; b3 < 3; b3++)
+            assert_true(fabs(W[a3][b3] - s.sums.fabric_stress[a3][b3]) <
+                        1e-12 * fabs(s.sums.fabric_stress[0][0]));
+    dem_network_free(&net);
     dem_sim_destroy(&s);
 }
 

@@ -85,10 +85,13 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         c->j = -1 - w;
         c->image = 0;
         c->delta = P->r[i] - dist;
+        /* the contact point on the wall's plane, where the stress takes
+         * it (dem_measure's Love-Weber sum, contact/forces.c): the middle
+         * of the overlap lies outside the box */
         for (int a = 0; a < 3; a++) {
             c->n[a] = a == wl->axis ? sgn : 0.0;
-            c->x[a] = ri[a] - (dist + 0.5 * c->delta) * c->n[a];
-            c->b[a] = ri[a] - c->x[a];
+            c->x[a] = a == wl->axis ? wl->pos : ri[a];
+            c->b[a] = dist * c->n[a];
         }
         split(c, s->pairs.wf.v[k].f);
         c->sliding = (W->state[k] & DEM_CONTACT_SLIDING) != 0;

@@ -12,7 +12,8 @@
 struct dem_network_contact {
     int i;        /* particle index (engine order; p->id[i] its id) */
     int j;        /* partner: particle index, or -1 - w for wall w */
-    double x[3];  /* m; contact point (the middle of the overlap) */
+    double x[3];  /* m; contact point: the middle of the overlap; on a
+                     wall, the point on its plane */
     double n[3];  /* unit normal, from the partner to i */
     double delta; /* m; overlap */
     double fn;    /* N; normal force on i (> 0 repulsive) */
