@@ -277,9 +277,9 @@ const struct key dem__cfg_keys[] = {
      .def = 1.1,
      GT(1),
      .unit = "-",
-     .doc = "with every wall fixed and no gravity nothing drives the "
-            "packing: the run stops when its total energy grows beyond this "
-            "factor"},
+     .doc = "with every wall fixed (or at the end of its compression) and "
+            "no gravity nothing drives the packing: the run stops when its "
+            "total energy grows beyond this factor"},
 
     {.name = "output.interval",
      .kind = K_DOUBLE,

@@ -90,3 +90,13 @@ void dem_wall_strain_state(const struct dem_wall *w, double t, double *pos,
     *pos = w->x0 + w->delta * g;
     *vel = w->delta * dg;
 }
+
+int dem_wall_drives(const struct dem_wall *w, double t)
+{
+    if (w->mode == DEM_WALL_FIXED)
+        return 0;
+    if (w->mode == DEM_WALL_STRESS || w->profile == DEM_PROFILE_CYCLIC ||
+        w->profile == DEM_PROFILE_SINE)
+        return 1;
+    return t - w->t_start < w->period;
+}

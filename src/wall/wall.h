@@ -67,5 +67,10 @@ double dem_wall_target_stress(const struct dem_wall *w, double t);
 /* Prescribed position and velocity of a strain-controlled wall at time t. */
 void dem_wall_strain_state(const struct dem_wall *w, double t, double *pos,
                            double *vel);
+/* 1 when the wall may still do work on the packing at time t: a
+ * stress-controlled wall, or a strain-controlled one whose profile
+ * returns (cyclic, sine) or has not ended; 0 when fixed, or at the end of
+ * a compression's profile (where the stage after it leaves it). */
+int dem_wall_drives(const struct dem_wall *w, double t);
 
 #endif
