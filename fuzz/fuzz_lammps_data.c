@@ -129,7 +129,7 @@ static void bench_start(const uint8_t *data, size_t size)
         fuzz_one_line(&err);
     else {
         struct dem_sample smp;
-        dem_measure(&s, L0, V0, 0, &smp);
+        dem_measure(&s, L0, V0, 0.0, 0, &smp);
     }
     dem_sim_destroy(&s);
 }

@@ -150,10 +150,10 @@ static int rattlers(int dim, int rank)
     /* a step marks the contacts that are closed */
     s->measure = 1;
     steps(s, 1);
-    dem_measure(s, L0, V0, 0, &ms);
+    dem_measure(s, L0, V0, 0.0, 0, &ms);
     ref->measure = 1;
     steps(ref, 1);
-    dem_measure(ref, L0, V0, 0, &mr);
+    dem_measure(ref, L0, V0, 0.0, 0, &mr);
     int failed = 0;
     if (rank == 0) {
         printf("  %dD lattice with holes, %d particles: rattlers %.6g split, "
@@ -219,7 +219,7 @@ int main(int argc, char **argv)
     double L0[3], V0;
     dem_sim_box(&s, L0, &V0);
     struct dem_sample ms, mr;
-    dem_measure(&s, L0, V0, 0, &ms);
+    dem_measure(&s, L0, V0, 0.0, 0, &ms);
     int moved = 0;
     for (int i = 0; i < s.p.n - s.pairs.nghost; i++)
         moved += !mine[s.p.id[i]];
@@ -250,7 +250,7 @@ int main(int argc, char **argv)
             dforce = fmax(dforce, fabs(s.wall[w].force - ref.wall[w].force));
             fscale = fmax(fscale, fabs(ref.wall[w].force));
         }
-        dem_measure(&ref, L0, V0, 0, &mr);
+        dem_measure(&ref, L0, V0, 0.0, 0, &mr);
         /* the contact sums: a pair across a cut counted once */
         double dsig = 0.0, ssig = 0.0;
         for (int a = 0; a < 3; a++)

@@ -636,7 +636,7 @@ static void inertial_number_counts_the_shear_rate(void **state)
     double L[3], V;
     dem_sim_box(&s, L, &V);
     struct dem_sample smp;
-    dem_measure(&s, L, V, 0, &smp);
+    dem_measure(&s, L, V, 0.0, 0, &smp);
     double m = 0.0, d = 0.0;
     for (int i = 0; i < s.p.n; i++) {
         m += s.p.m[i];

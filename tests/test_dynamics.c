@@ -36,7 +36,7 @@ static double total_energy(struct dem_sim *s)
     dem_sim_forces(s);
     struct dem_sample smp;
     const double L0[3] = {1, 1, 1};
-    dem_measure(s, L0, 1.0, 0, &smp);
+    dem_measure(s, L0, 1.0, 0.0, 0, &smp);
     return smp.e_kin + smp.e_rot + smp.e_pot;
 }
 

@@ -1060,8 +1060,9 @@ static void a_stage_after_shear_holds_the_tilt(void **state)
 }
 
 /* A strain-controlled shear stage ends at its shear_strain while the
- * sample dilates: gamma_xy is the tilt over the reference L_y, the one
- * the control scales shear_strain by. Before, gamma_xy divided the tilt
+ * sample dilates: gamma_xy is the tilt since the reference over the
+ * reference L_y, the one the control scales shear_strain by; so does a
+ * second shear stage. Before, gamma_xy divided the tilt
  * by the current L_y, and shear2d's stage ended 3.5 % short of its
  * shear_strain (a read-only review, session 108). */
 static void a_shear_stage_ends_at_its_shear_strain(void **state)
@@ -1070,6 +1071,8 @@ static void a_shear_stage_ends_at_its_shear_strain(void **state)
     char out[1024];
     run_small_shear("shear-strain",
                     "{type=\"shear\";shear_strain=0.05;duration=4e-4;"
+                    "pressure=500.0;},"
+                    "{type=\"shear\";shear_strain=0.03;duration=4e-4;"
                     "pressure=500.0;}",
                     out, sizeof out);
     static const struct dem__csv_want want[] = {DEM_CSV_FINITE("stage", 1),
@@ -1077,14 +1080,22 @@ static void a_shear_stage_ends_at_its_shear_strain(void **state)
                                                 DEM_CSV_FINITE("gamma_xy", 1)};
     struct dem__csv_table t;
     read_ts(out, want, 3, &t);
-    double lo[2], hi[2];
-    stage_ranges(&t, 2, lo, hi); /* L_y by stage */
-    const size_t r = t.nrow - 1;
-    assert_true(t.col[0][r] == 1.0);
+    double lo[3], hi[3];
+    stage_ranges(&t, 3, lo, hi); /* L_y by stage */
     /* L_y moved during the shear (so that the old measure would miss) */
     assert_true(hi[1] - lo[1] > 1e-4 * hi[1]);
-    /* the tilt started at 0; timeseries.csv gives 10 digits */
-    assert_close(t.col[2][r], 0.05, 1e-9);
+    /* each stage's last row: its own shear_strain, the second counted
+     * from its own start as the eps columns are (counted from the run's
+     * start over the second stage's L0_y, it ended at 0.08 less the
+     * first's 0.05 rescaled); timeseries.csv gives 10 digits */
+    const double want_end[3] = {NAN, 0.05, 0.03};
+    for (int k = 1; k < 3; k++) {
+        size_t last = 0;
+        for (size_t r = 0; r < t.nrow; r++)
+            if (t.col[0][r] == k)
+                last = r;
+        assert_close(t.col[2][last], want_end[k], 1e-9);
+    }
     dem__csv_table_free(&t);
 }
 

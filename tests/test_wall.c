@@ -109,7 +109,7 @@ static void relax(struct dem_sim *s, double tmax)
     while (s->t < tmax) {
         s->measure = 1;
         test_step(s, 500);
-        dem_measure(s, L0, 1.0, 0, &smp);
+        dem_measure(s, L0, 1.0, 0.0, 0, &smp);
         if (smp.e_kin + smp.e_rot < 1e-8 * smp.e_pot &&
             fabs(s->wall[3].vel) < 1e-7)
             return;
@@ -183,7 +183,7 @@ static void love_weber_equals_wall_stress(void **state)
     while (s.t < 20.0 && !relaxed) {
         s.measure = 1;
         test_step(&s, 500);
-        dem_measure(&s, L0, 1.0, 0, &smp);
+        dem_measure(&s, L0, 1.0, 0.0, 0, &smp);
         relaxed = smp.e_kin + smp.e_rot < 1e-7 * smp.e_pot;
     }
     assert_true(relaxed);

@@ -550,7 +550,7 @@ static int analyze_loading(const struct dem_config *cfg,
 }
 
 /* Simple shear: the rows of the last shear stage, with the last row
- * before it as the origin (gamma counted from there), mu = tau/sigma_n
+ * before it as the origin (gamma 0 there), mu = tau/sigma_n
  * = -sigma_lw_xy/sigma_yy (tau the shear stress that resists a positive
  * shear). */
 static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
@@ -580,7 +580,9 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
     double *mu = g + n, *ev = g + 2 * n;
     for (long k = 0; k < n; k++) {
         const long r = origin + k;
-        g[k] = c->gamma_xy[r] - c->gamma_xy[origin];
+        /* gamma_xy, as eps_v, counts from the stage's start (the
+         * reference it sets); the origin row is the last stage's */
+        g[k] = k == 0 && origin < first ? 0.0 : c->gamma_xy[r];
         mu[k] = c->sigma[1][r] > 0.0 ? -c->sigma_xy[r] / c->sigma[1][r] : NAN;
         ev[k] = k == 0 && origin < first ? 0.0 : c->eps_v[r];
     }

@@ -369,7 +369,7 @@ static int relax(struct dem_sim *s, const struct workload *w,
             return rc;
         if (!sample)
             continue;
-        dem_measure(s, L0, V0, 0, &smp);
+        dem_measure(s, L0, V0, 0.0, 0, &smp);
         if (!isfinite(smp.e_kin) || !isfinite(smp.p))
             return dem_error_set(err, DEM_EUNSTABLE,
                                  "bench: preparation unstable at t = %.4g s: "
@@ -512,7 +512,7 @@ static void sample_now(const struct dem_sim *s, struct dem_sample *smp)
 {
     double L0[3], V0;
     dem_sim_box(s, L0, &V0);
-    dem_measure(s, L0, V0, 0, smp);
+    dem_measure(s, L0, V0, 0.0, 0, smp);
 }
 
 long dem_bench_slice(int n, long steps)

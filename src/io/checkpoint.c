@@ -326,6 +326,7 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     for (int a = 0; a < 3; a++)
         io_f64(io, &run->L0[a]);
     io_f64(io, &run->V0);
+    io_f64(io, &run->tilt0);
     io_i64(io, &run->max_steps);
     io_i32(io, &run->noutputs);
     if (io->reading && !io->why &&

@@ -41,7 +41,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 12u
+#define DEM_CKPT_VERSION 13u
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {
@@ -66,6 +66,8 @@ struct dem_ckpt_run {
                              stretch began (< 0: driven now) */
     double L0[3];         /* m; reference box lengths for strains */
     double V0;            /* m^3 (2D: m^2); reference volume */
+    double tilt0;         /* m; a periodic cell's xy tilt at the reference,
+                             re-maps included (gamma_xy counts from it) */
     long max_steps;       /* step limit the run started with (0 = none) */
     int noutputs;         /* outputs of the run, in the order of its list */
     struct dem_output_state out[DEM_CKPT_MAX_OUTPUTS]; /* their state */

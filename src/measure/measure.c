@@ -7,8 +7,15 @@
 #include "contact/models.h"
 #include "contact/tangential.h"
 
+double dem_measure_tilt_xy(const struct dem_sim *s)
+{
+    return s->cell.on
+               ? s->cell.tilt[DEM_TILT_XY].pos + s->cell.remapped[DEM_TILT_XY]
+               : 0.0;
+}
+
 void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
-                 int stage, struct dem_sample *o)
+                 double tilt0, int stage, struct dem_sample *o)
 {
     const struct dem_particles *P = &s->p;
     const struct dem_contact_sums *S = &s->sums;
@@ -20,14 +27,15 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     for (int a = 0; a < dim; a++)
         o->eps[a] = L0[a] > 0.0 ? 1.0 - o->L[a] / L0[a] : 0.0;
     o->eps_v = V0 > 0.0 ? o->V / V0 - 1.0 : 0.0;
-    /* engineering shear strain, over the reference L_y as eps is over
-     * L0: what a shear stage's strain control drives (shear_strain L0_y
-     * of tilt), whatever L_y does meanwhile */
-    o->gamma_xy =
-        s->cell.on && L0[1] > 0.0
-            ? (s->cell.tilt[DEM_TILT_XY].pos + s->cell.remapped[DEM_TILT_XY]) /
-                  L0[1]
-            : 0.0;
+    /* engineering shear strain since the reference, over its L_y as eps
+     * is over L0: what a shear stage's strain control drives
+     * (shear_strain L0_y of tilt), whatever L_y does meanwhile; a second
+     * shear stage counts from its own start, as eps does (counted from
+     * the run's start, its rows were the first stage's tilt over the
+     * second's L0_y) */
+    o->gamma_xy = s->cell.on && L0[1] > 0.0
+                      ? (dem_measure_tilt_xy(s) - tilt0) / L0[1]
+                      : 0.0;
 
     for (int w = 0; w < s->nwall; w++) {
         const struct dem_wall *W = &s->wall[w];

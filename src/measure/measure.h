@@ -50,16 +50,21 @@ struct dem_sample {
     double wall_vel[6];   /* m/s */
     double wall_force[6]; /* N; outward force of the particles on each wall */
     double gamma_xy;      /* periodic cell: shear strain, the x edges'
-                             tilt along y since the start over the
-                             reference L0_y (as eps), re-maps included;
-                             0 with walls */
+                             tilt along y since the reference over its
+                             L0_y (as eps), re-maps included; 0 with
+                             walls */
 };
 
 /* Sample the state; requires that the last force pass measured (set
  * s->measure = 1 before the step). L0 and V0 are the reference sizes of
- * the current loading stage. */
+ * the current loading stage, tilt0 its xy tilt there
+ * (dem_measure_tilt_xy; 0 with walls). */
 void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
-                 int stage, struct dem_sample *out);
+                 double tilt0, int stage, struct dem_sample *out);
+
+/* A periodic cell's xy tilt since the start, re-maps included, m (0 with
+ * walls): what gamma_xy counts from its reference value. */
+double dem_measure_tilt_xy(const struct dem_sim *s);
 
 /* Number of rattlers (see coordination_nr) and the contacts between the
  * remaining particles; scratch holds n ints. Split over ranks: the

@@ -256,6 +256,7 @@ static void drop_whole(struct run_ctx *r)
 static void set_reference(struct run_ctx *r)
 {
     dem_sim_box(&r->sim, r->st.L0, &r->st.V0);
+    r->st.tilt0 = dem_measure_tilt_xy(&r->sim);
 }
 
 /* Save the state at this step boundary: the .part files first, so that
@@ -393,7 +394,7 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
     const struct dem_stage_ops *ops = dem_stage_lookup(st->cfg->type);
     const double ckpt = s->cfg.output.checkpoint_interval;
     struct dem_sample smp;
-    dem_measure(s, r->st.L0, r->st.V0, st->index, &smp);
+    dem_measure(s, r->st.L0, r->st.V0, r->st.tilt0, st->index, &smp);
     struct dem_output_run orun = {s, r->outdir, r->config_text, &smp};
     /* rank 0's plan: an output looks at the particles, stop, checkpoint */
     int plan[3] = {0, 0, 0};

@@ -161,7 +161,7 @@ static void row(const struct dem_sim *s, int track)
 {
     struct dem_sample m;
     const double L0[3] = {1.0, 1.0, 1.0};
-    dem_measure(s, L0, 1.0, 0, &m);
+    dem_measure(s, L0, 1.0, 0.0, 0, &m);
     const struct dem_particles *P = &s->p;
     int i = 0;
     while (i < P->n && P->id[i] != track - 1)
