@@ -237,6 +237,35 @@ static void hertz_step_counts_the_tangential_mode(void **state)
     assert_true(dem_step_time(&c) == dem_contact_time(&c));
 }
 
+/* A stress-controlled wall much lighter than the face of particles it
+ * touches has its own mode on their contacts, omega^2 = k (1/m + n_face /
+ * walls.mass); a step above a fifth of its half period is refused naming
+ * walls.mass (1e-5 kg on the 225 contacts of cyclic3d's face: omega dt
+ * about 7, the wall blew up and the diagnosis blamed the time step). The
+ * default wall passes with a margin, and so does the light wall when no
+ * stage servoes a wall. */
+static void a_light_wall_is_refused(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("cyclic3d");
+    assert_non_null(ex);
+    struct dem_config c;
+    struct dem_error err = {0};
+    assert_int_equal(dem_config_parse(&c, ex->text, "cyclic3d", 0, 0, &err), 0);
+    const double tw = dem_wall_time(&c);
+    assert_true(c.time_step < tw / 30); /* (33 steps: the sphere on a wall) */
+    const char *light[] = {"walls.mass=1.0e-5", "walls.gamma=0.5"};
+    assert_int_equal(dem_config_parse(&c, ex->text, "cyclic3d", light, 2, &err),
+                     DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "walls.mass"));
+    assert_non_null(strstr(err.msg, "half period"));
+    /* the mode: k (1/m + n^(2/3)/M) at the keys' lightest particle */
+    const char *held[] = {"walls.mass=1.0e-5", "walls.gamma=0.5",
+                          "stages=({type=\"hold\";duration=1.0e-3;})"};
+    parse_ok(&c, ex->text, held, 3);
+    assert_true(isinf(dem_wall_time(&c)));
+}
+
 /* --set of contact.mu replaces a given mu_s and mu_d, and of mu_s or mu_d
  * a given mu (the resolved config.cfg writes mu where they are equal):
  * the later override wins, as everywhere (both used to be refused as
@@ -959,6 +988,7 @@ int main(void)
         cmocka_unit_test(set_group_merges_into_the_group),
         cmocka_unit_test(set_friction_aliases_and_paths),
         cmocka_unit_test(hertz_step_counts_the_tangential_mode),
+        cmocka_unit_test(a_light_wall_is_refused),
         cmocka_unit_test(contact_time_matches_david_et_al),
         cmocka_unit_test(auto_time_step_is_a_fiftieth_of_contact_time),
         cmocka_unit_test(every_example_parses),

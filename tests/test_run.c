@@ -1189,6 +1189,26 @@ static void an_isotropic_stage_ends_with_its_walls_at_rest(void **state)
     dem__csv_table_free(&t);
 }
 
+/* A stage whose criterion holds at the sample its max time ends on ended
+ * on its criterion: an isotropic stage after one at the same pressure,
+ * with max_time one output interval, is at rest at its one sample. It
+ * was warned of as having reached max_time before relaxing (a read-only
+ * review, session 110). */
+static void a_stage_at_rest_on_its_last_sample_is_not_timed_out(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("biaxial2d");
+    assert_non_null(ex);
+    const char *const sets[] = {
+        "particles.count=100", "output.snapshot_interval=0",
+        "stages.1={type=\"isotropic\";pressure=500.0;tolerance=1.0e-2;"
+        "max_time=1.0e-4;}"};
+    struct warnings w;
+    run_warnings(ex->text, "iso-last", sets, 3, &w);
+    if (strstr(w.text, "reached max_time"))
+        fail_msg("%s", w.text);
+}
+
 /* A hold after an isotropic stage counts its own steps at the speed
  * cap: it keeps the walls' modes, and before it counted the isotropic
  * compression of the gas at the cap as its own, warning of 39 % at the
@@ -1396,6 +1416,7 @@ int main(void)
         cmocka_unit_test(a_servo_at_its_speed_cap_is_warned_of),
         cmocka_unit_test(a_hold_counts_only_its_own_servo_steps),
         cmocka_unit_test(an_isotropic_stage_ends_with_its_walls_at_rest),
+        cmocka_unit_test(a_stage_at_rest_on_its_last_sample_is_not_timed_out),
         cmocka_unit_test(a_hold_after_cycles_stops_the_cycling),
         cmocka_unit_test(a_hold_after_a_cyclic_shear_stops_the_tilt),
         cmocka_unit_test(a_hold_with_relax_ends_at_rest),

@@ -353,6 +353,18 @@ int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
             "stiffest, lightest pair); use a smaller step or "
             "\"auto\"",
             dt, tc / 5, tc);
+    /* (a particle file's sample: checked with its own particles,
+     * dem_sim_create) */
+    const double tw =
+        c->particles.placement == DEM_PLACE_FILE ? INFINITY : dem_wall_time(c);
+    if (dt > tw / 5)
+        return dem__cfg_fail_key(
+            x, -1, "walls.mass", err,
+            "%g kg is light against the particles a wall touches: the "
+            "wall's mode on their contacts has a half period of %g s, and "
+            "the time step %g s is above a fifth of it (the wall would "
+            "blow up); a heavier wall or a smaller step",
+            c->walls.mass, tw, dt);
     const char *vkey;
     double m;
     const double vlim = dem_damping_step(c, &vkey, &m);

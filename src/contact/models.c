@@ -156,6 +156,26 @@ double dem_step_time_of(const struct dem_config *c, double a, double m)
     return tt < tc ? tt : tc;
 }
 
+double dem_wall_time(const struct dem_config *c)
+{
+    double a, m;
+    lightest(c, &a, &m);
+    return dem_wall_time_of(c, c->particles.count, a, m);
+}
+
+double dem_wall_time_of(const struct dem_config *c, long n, double a, double m)
+{
+    int servo = 0;
+    for (int k = 0; k < c->nstages; k++)
+        servo |= c->stages[k].type != DEM_STAGE_HOLD &&
+                 c->stages[k].type != DEM_STAGE_CONSTANT_VOLUME;
+    if (!servo || n <= 0 || !(m > 0.0))
+        return INFINITY;
+    const double face = fmax(1.0, pow((double)n, (c->dim - 1.0) / c->dim));
+    const double k = dem_contact_stiffness(&c->contact, m, a);
+    return M_PI / sqrt(k * (1.0 / m + face / c->walls.mass));
+}
+
 double dem_damping_step(const struct dem_config *c, const char **key,
                         double *mass)
 {

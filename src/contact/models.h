@@ -226,6 +226,19 @@ double dem_contact_time_of(const struct dem_config *c, double a, double m);
 double dem_step_time(const struct dem_config *c);
 double dem_step_time_of(const struct dem_config *c, double a, double m);
 
+/* The half period of a stress-controlled wall's own mode, s: the wall
+ * (walls.mass) on the springs of the particles it touches, about
+ * n^((d-1)/d) of n (a face of a cubic packing), each of stiffness k
+ * (the contact stiffness at a particle of radius a and mass m on a wall)
+ * to a particle of mass m: omega^2 = k (1/m + n_face/walls.mass). A given
+ * step is refused above a fifth of it, as of t_c; a wall lighter than a
+ * face of particles sets it (walls.mass = 1e-5 kg on 225 contacts blew
+ * up, blamed on the time step). INFINITY when no stage servoes a wall or
+ * tilt (hold and constant_volume alone). dem_wall_time takes n and the
+ * lightest particle from the keys. */
+double dem_wall_time(const struct dem_config *c);
+double dem_wall_time_of(const struct dem_config *c, long n, double a, double m);
+
 /* The explicit viscosities' limit on the time step, s: the step at which
  * the strongest of them, at the lightest particle of the keys, takes
  * gamma dt/m = 1 (gamma_b; gamma_br with the spin's inertia; the spring

@@ -112,6 +112,24 @@ double dem_sim_file_auto_step(const struct dem_config *c,
                 fmin(tc / 50, 0.5 * dem_damping_step_of(c, m, &vkey)));
 }
 
+/* A stress-controlled wall light against the file's particles (the
+ * config's check, dem_wall_time, takes the keys'). */
+static int file_wall_step(const struct dem_sim *s, double a, double m,
+                          struct dem_error *err)
+{
+    const double tw = dem_wall_time_of(&s->cfg, s->p.n, a, m);
+    if (!(s->dt > tw / 5))
+        return DEM_OK;
+    return dem_error_set(err, DEM_ECONFIG,
+                         "walls.mass: %g kg is light against the particles "
+                         "of particles.file = %s a wall touches: the wall's "
+                         "mode on their contacts has a half period of %g s, "
+                         "and the time step %g s is above a fifth of it (the "
+                         "wall would blow up); a heavier wall or a smaller "
+                         "step",
+                         s->cfg.walls.mass, s->cfg.particles.file, tw, s->dt);
+}
+
 static int file_time_step(struct dem_sim *s, struct dem_error *err)
 {
     const struct dem_particles *p = &s->p;
@@ -122,8 +140,10 @@ static int file_time_step(struct dem_sim *s, struct dem_error *err)
     const char *file = s->cfg.particles.file;
     if (s->cfg.time_step_auto) {
         s->dt = s->cfg.time_step = dem_sim_file_auto_step(&s->cfg, p);
-        return DEM_OK;
+        return file_wall_step(s, a, m, err);
     }
+    if (file_wall_step(s, a, m, err))
+        return DEM_ECONFIG;
     /* (a step the config's own check let pass: a config built past
      * dem_config_parse, as a test of the blow-up diagnosis, is its
      * caller's) */

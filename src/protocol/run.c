@@ -433,7 +433,8 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
     }
     show_progress(r, st, 0);
     if (last) {
-        st->timed_out = by_time;
+        /* (a stage whose criterion holds at its max time ended on it) */
+        st->timed_out = by_time && !(ops->done && ops->done(s, st, &smp));
         *end = 1;
         return DEM_OK;
     }
