@@ -508,6 +508,16 @@ static const struct row rows[] = {
      0,
      {"run", "c.cfg", "-o", "c.cfg/out", "--threads", "4096", "--quiet"},
      "c.cfg/out"},
+    /* nothing holds the weight: both y walls at a stress, frictionless */
+    {"gravity along two stress-controlled walls",
+     "dimension = 2; time_step = \"auto\"; gravity = [0.0, -9.81, 0.0];\n"
+     "particles = { count = 16; radius = { distribution = \"mono\"; "
+     "mean = 1.0e-3; }; };\n"
+     "stages = ( { type = \"isotropic\"; pressure = 100.0; } );\n",
+     0,
+     0,
+     {RUN_CFG},
+     "gravity: stage 0 (isotropic) holds both y walls"},
     {"help of a command with more",
      BASE2D,
      0,

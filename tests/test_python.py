@@ -365,11 +365,13 @@ assert os.path.exists(os.path.join(tmp, "warn3", "timeseries.csv"))
 # the texts (a float keeps its point, an int stays an integer, a string
 # is quoted, a list of numbers is an array of floats, a tuple of keys is
 # linked keys)
+# (gravity between servoed walls needs wall friction to hold the weight)
 texts = ["contact.mu=0.3", "seed=2", "gravity=[0.0, -1.0, 0.0]",
+         "contact.wall_mu=0.2",
          "particles.placement=\"random\"", "stages.0.pressure=250.0",
          "stages.1.pressure=250.0"]
 mapping = {"contact.mu": 0.3, "seed": 2, "gravity": [0, -1, 0],
-           "particles.placement": "random",
+           "contact.wall_mu": 0.2, "particles.placement": "random",
            ("stages.0.pressure", "stages.1.pressure"): 250.0}
 assert dembox._texts(mapping) == texts, dembox._texts(mapping)
 cfgs = []

@@ -35,6 +35,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "contact/models.h"
 #include "core/fpmode.h"
 #include "core/numeric.h"
 #include "core/sim.h"
@@ -300,6 +301,50 @@ static int stop_requested(const struct run_ctx *r)
     const struct dem_run_options *o = r->opt;
     return (o->stop && *o->stop) ||
            (o->stop_after_steps > 0 && r->sim.step >= o->stop_after_steps);
+}
+
+/* Gravity along an axis whose two walls a stage servoes, the walls
+ * frictionless (contact.wall_mu = 0): nothing holds the sample's weight.
+ * Both walls keep their stress while the sample and they fall together
+ * at M g/(2 walls.gamma), without end; an isotropic stage never relaxes.
+ * Checked for every stage before anything is written, by beginning the
+ * stages in turn on a copy of the simulation's controls (each stage's
+ * begin is the one source of its walls' modes; it sets walls and tilts
+ * only). With wall friction the side walls may carry the weight: left to
+ * the user. */
+static int check_weight(const struct dem_sim *s, struct dem_error *err)
+{
+    const double *g = s->cfg.gravity;
+    if ((g[0] == 0.0 && g[1] == 0.0 && g[2] == 0.0) || s->cell.on ||
+        dem_contact_wall_view(&s->cp).mu_s > 0.0)
+        return DEM_OK;
+    struct dem_sim *t = malloc(sizeof *t);
+    if (!t)
+        return dem_error_set(err, DEM_ENOMEM, "out of memory");
+    *t = *s; /* (shallow: the particles are not touched) */
+    int rc = DEM_OK;
+    for (int k = 0; !rc && k < s->cfg.nstages; k++) {
+        const struct dem_stage_config *c = &s->cfg.stages[k];
+        const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
+        struct dem_stage_state st = {c, k, t->t, t->t, 0, 0};
+        struct dem_error e2 = {.warn = dem_warn_ignore};
+        if (!ops || ops->begin(t, &st, &e2))
+            break; /* (the run says why, at that stage) */
+        for (int a = 0; !rc && a < s->dim; a++)
+            if (g[a] != 0.0 && t->wall[2 * a].mode == DEM_WALL_STRESS &&
+                t->wall[2 * a + 1].mode == DEM_WALL_STRESS)
+                rc = dem_error_set(
+                    err, DEM_ECONFIG,
+                    "gravity: stage %d (%s) holds both %c walls at a stress, "
+                    "and the walls are frictionless (contact.wall_mu = 0): "
+                    "nothing holds the sample's weight, which falls with the "
+                    "walls at M g/(2 walls.gamma) and never comes to rest; "
+                    "gravity = [0.0, 0.0, 0.0] for such stages, or walls "
+                    "with friction",
+                    k, ops->name, "xyz"[a]);
+    }
+    free(t);
+    return rc;
 }
 
 /* Start stage index: wall modes, friction, reference sizes, next row. */
@@ -898,6 +943,8 @@ static int run_new(const struct dem_config *cfg,
             cfg->particles.placement == DEM_PLACE_FILE ? cfg->particles.file
                                                        : "");
     }
+    if (!rc && (rc = check_weight(&r.sim, err)) != DEM_OK)
+        dem_sim_destroy(&r.sim);
     if (rc)
         return rc;
     r.n_all = r.sim.p.n;
