@@ -52,7 +52,9 @@ static const char *const usage_run =
     "       dembox run --resume OUTDIR [--any-build] [--threads N] [--quiet]\n"
     "\n"
     "Run the stages of a config file or a built-in example "
-    "(default: " DEFAULT_EXAMPLE ").\n"
+    "(default: " DEFAULT_EXAMPLE ");\n"
+    "an example's name wins over a file of that name (./NAME for the file,\n"
+    "with a warning).\n"
     "\n"
     "  -o, --output OUTDIR  output folder (default dembox-out/NAME)\n"
     "  --set KEY=VALUE      override a config key by its dotted path, e.g.\n"
@@ -268,6 +270,29 @@ static int fail_needs(const char *cmd, const char *opt, const char *what)
     if (!quiet_rank)
         fprintf(stderr, "dembox: %s: %s needs %s\n", cmd, opt, what);
     return 1;
+}
+
+/* The value of option argv[*k] (a folder, a file, KEY=VALUE), *k moved
+ * to it; NULL after one line when there is none, or when the next word
+ * is an option (`run -o --quiet` ran quietly-not into ./--quiet). */
+static const char *option_value(const char *cmd, int *k, int argc, char **argv,
+                                const char *what)
+{
+    const char *opt = argv[*k];
+    if (*k + 1 >= argc) {
+        fail_needs(cmd, opt, what);
+        return NULL;
+    }
+    const char *v = argv[++*k];
+    if (!strncmp(v, "--", 2) && v[2]) {
+        if (!quiet_rank)
+            fprintf(stderr,
+                    "dembox: %s: %s needs %s, not the option %s (for a "
+                    "name of that spelling: ./%s)\n",
+                    cmd, opt, what, v, v);
+        return NULL;
+    }
+    return v;
 }
 
 /* The options that take one value and are given once at most (a
@@ -499,9 +524,8 @@ static int cmd_run(int argc, char **argv)
                 fputs(usage_run, stdout);
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (++k >= argc)
-                return fail_needs("run", a, "a folder");
-            outdir = argv[k];
+            if (!(outdir = option_value("run", &k, argc, argv, "a folder")))
+                return 1;
         } else if (!strcmp(a, "--set")) {
             if (++k >= argc)
                 return fail("run: --set needs KEY=VALUE");
@@ -522,9 +546,9 @@ static int cmd_run(int argc, char **argv)
                           &opt.max_steps))
                 return 1;
         } else if (!strcmp(a, "--resume")) {
-            if (++k >= argc)
-                return fail("run: --resume needs an output folder");
-            resume = argv[k];
+            if (!(resume =
+                      option_value("run", &k, argc, argv, "an output folder")))
+                return 1;
         } else if (!strcmp(a, "--any-build")) {
             opt.any_build = 1;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
@@ -562,6 +586,11 @@ static int cmd_run(int argc, char **argv)
     if (ex && !strchr(target, '/')) {
         char source[DEM_PATH_MAX];
         snprintf(source, sizeof source, "example %s", ex->name);
+        if (access(target, F_OK) == 0)
+            dem_warn(&err,
+                     "%s: a file of that name is here too; the built-in "
+                     "example runs (./%s for the file)",
+                     target, target);
         rc = dem_config_parse(&cfg, ex->text, source, sets, nsets, &err);
         snprintf(name, sizeof name, "%s", ex->name);
     } else {
@@ -613,8 +642,8 @@ static int cmd_sweep(int argc, char **argv)
             dem_sweep_grid_free(&grid);
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            rc = more ? (o.outdir = argv[++k], 0)
-                      : fail_needs("sweep", a, "a folder");
+            rc =
+                !(o.outdir = option_value("sweep", &k, argc, argv, "a folder"));
         } else if (!strcmp(a, "--param")) {
             if (!more)
                 rc = fail("sweep: --param needs KEY[,KEY...]=V1,V2,...");
@@ -767,12 +796,9 @@ static int cmd_bench(int argc, char **argv)
                    !strcmp(a, "--steps") || !strcmp(a, "--threads") ||
                    !strcmp(a, "--data") || !strcmp(a, "--cache-dir") ||
                    !strcmp(a, "--boundary")) {
-            if (++k >= argc) {
-                if (!quiet_rank)
-                    fprintf(stderr, "dembox: bench: %s needs a value\n", a);
+            const char *val = option_value("bench", &k, argc, argv, "a value");
+            if (!val)
                 return 1;
-            }
-            const char *val = argv[k];
             if (!strcmp(a, "--dim")) {
                 if (parse_int("bench", a, val, 2, 3, &v))
                     return 1;

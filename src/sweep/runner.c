@@ -50,6 +50,11 @@ static int parse_with(const struct dem_sweep_options *o, char (*extra)[SET_LEN],
     if (ex && !strchr(o->target, '/')) {
         char source[DEM_PATH_MAX];
         snprintf(source, sizeof source, "example %s", ex->name);
+        if (access(o->target, F_OK) == 0)
+            dem_warn(err,
+                     "%s: a file of that name is here too; the built-in "
+                     "example runs (./%s for the file)",
+                     o->target, o->target);
         return dem_config_parse(c, ex->text, source, sets, n, err);
     }
     return dem_config_load_file(c, o->target, sets, n, err);
