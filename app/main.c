@@ -410,15 +410,6 @@ static void cli_warning(const char *line, void *user)
     fprintf(stderr, "dembox: warning: %s\n", line);
 }
 
-/* The library's warning on more threads than cores (not on ranks > 0:
- * rank 0 says it). */
-static void warn_oversubscribed(long jobs, long threads)
-{
-    const struct dem_error err = {0, "", cli_warning, NULL};
-    if (!quiet_rank)
-        dem_warn_oversubscribed(jobs, threads, &err);
-}
-
 /* A time left of t seconds, as a person reads it. */
 static void time_left(char *out, size_t n, double t)
 {
@@ -860,7 +851,6 @@ static int cmd_bench(int argc, char **argv)
     }
     struct dem_bench_result r;
     struct dem_error err = {0, "", cli_warning, NULL};
-    warn_oversubscribed(1, o.threads > o.versus ? o.threads : o.versus);
     if (dem_bench_run(&o, &r, &err))
         return fail(err.msg);
     if (!quiet_rank) /* under MPI: rank 0 speaks for the split run */

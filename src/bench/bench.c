@@ -707,6 +707,11 @@ static int bench_run(const struct dem_bench_options *o,
                  data ? data : "random placement, seed 1");
         r->cache_hit = !o->no_cache && file_exists(r->cache);
     }
+    /* said once the inputs are found, before the long part: a bench
+     * refused says one line, its reason */
+    if (!rc && rank == 0)
+        dem_warn_oversubscribed(
+            1, o->versus > o->threads ? o->versus : o->threads, err);
     int relaxed = 1;
     if (!rc && !r->cache_hit && rank == 0) {
         double t0 = wall_clock();
