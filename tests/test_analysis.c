@@ -1199,15 +1199,10 @@ static void analysis_follows_the_loading_as_it_ran(void **state)
                                         "load-return", "load-volume"};
     char *js[4];
     for (int k = 0; k < 4; k++) {
-        char dir[128], path[160];
+        char dir[128];
         run_dir(dir, sizeof dir, names[k]);
         write_biaxial_loading(dir, 1.0, (enum loading)k);
-        struct dem_error err = {0};
-        if (dem_analyze(dir, &err))
-            fail_msg("%s: %s", names[k], err.msg);
-        snprintf(path, sizeof path, "%s/summary.json", dir);
-        js[k] = slurp(path);
-        assert_non_null(js[k]);
+        js[k] = analyzed_summary(dir);
     }
     const char *ref = js[LOAD_COMPRESS];
     static const char *const blocks[] = {"\"peak\": {", "\"critical\": {"};
@@ -1270,7 +1265,7 @@ static void analysis_follows_the_loading_as_it_ran(void **state)
 static void constant_p_reads_the_minor_stress(void **state)
 {
     (void)state;
-    char dir[128], path[160];
+    char dir[128];
     run_dir(dir, sizeof dir, "constant-p-3d");
     write_text(dir, "config.cfg",
                "dimension = 3;\n"
@@ -1305,12 +1300,7 @@ static void constant_p_reads_the_minor_stress(void **state)
         dem_sample_write_row(f, &s, 3);
     }
     assert_int_equal(fclose(f), 0);
-    struct dem_error err = {0};
-    if (dem_analyze(dir, &err))
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *js = slurp(path);
-    assert_non_null(js);
+    char *js = analyzed_summary(dir);
     const char *pk = strstr(js, "\"peak\": {");
     assert_close(json_get(pk, "sin_phi"), 0.6, 2e-3);
     assert_close(json_get(pk, "sigma_lateral"), 500.0, 1e-9);
@@ -1607,11 +1597,7 @@ static void one_loading_stage_for_analysis_and_plots(void **state)
         dem_sample_write_row(f, &s, 3);
     }
     assert_int_equal(fclose(f), 0);
-    if (dem_analyze(dir, &err))
-        fail_msg("dem_analyze: %s", err.msg);
-    snprintf(path, sizeof path, "%s/summary.json", dir);
-    char *js = slurp(path);
-    assert_non_null(js);
+    char *js = analyzed_summary(dir);
     assert_close(json_get(js, "loading_stage"), 2, 0);
     assert_non_null(strstr(js, "\"loading_type\": \"cyclic\""));
     assert_close(json_get(js, "cyclic_stage"), 2, 0);
