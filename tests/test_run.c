@@ -878,13 +878,26 @@ static void snapshots_and_dump_cover_start_and_end(void **state)
     dem__csv_table_free(&ft);
     contact_densities(out, "");
     assert_false(exists(out, "plots/force_distribution_peak.dat"));
-    /* a second run with fewer snapshots leaves none of the first's */
+    /* a second run with fewer snapshots leaves none of the first's, nor
+     * the temporaries a killed process left of any output */
+    static const char *const left[] = {
+        "particles_00003.vtu.tmp", "particles_final.csv.tmp",
+        "summary.json.tmp", "timeseries.csv.tmp", "checkpoint.bin.tmp"};
+    for (size_t k = 0; k < sizeof left / sizeof *left; k++) {
+        snprintf(path, sizeof path, "%s/%s", out, left[k]);
+        FILE *t = fopen(path, "w");
+        assert_non_null(t);
+        fclose(t);
+    }
     const char *sets2[] = {sets[0], "output.snapshot_interval=0.01"};
     run_text(small_2d, "snapend", sets2, 2, 0, out, sizeof out);
     assert_int_equal(pvd_entries(out, "particles.pvd", &last_p), 3);
     assert_false(exists(out, "particles_00003.vtu"));
     assert_false(exists(out, "box_00003.vtu"));
     assert_false(exists(out, "dump.lammpstrj"));
+    for (size_t k = 0; k < sizeof left / sizeof *left; k++)
+        if (exists(out, left[k]))
+            fail_msg("%s left", left[k]);
 }
 
 /* threads = 0: every core or one, whichever runs the steps faster,

@@ -720,16 +720,25 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
         rc = ckpt_path(r, err);
     /* the results and checkpoint of an earlier run in this folder no
      * longer belong to what is being written now: the outputs' files and
-     * the runner's own */
+     * the runner's own, and the temporaries of each that a killed
+     * process left (X.tmp, renamed to X when complete) */
     static const char *const own[] = {"summary.json", "particles_unstable.csv",
-                                      "checkpoint.bin", "checkpoint.bin.tmp",
-                                      "timing.txt"};
-    for (size_t k = 0; !rc && k < sizeof own / sizeof own[0]; k++)
+                                      "checkpoint.bin", "timing.txt"};
+    char tmp[128];
+    for (size_t k = 0; !rc && k < sizeof own / sizeof own[0]; k++) {
+        snprintf(tmp, sizeof tmp, "%s.tmp", own[k]);
         rc = dem_remove_in(dir, own[k], err);
+        if (!rc)
+            rc = dem_remove_in(dir, tmp, err);
+    }
     for (int k = 0; !rc && k < dem_output_nkinds; k++)
         for (const char *const *f = dem_output_kinds[k]->files; !rc && f && *f;
-             f++)
+             f++) {
+            snprintf(tmp, sizeof tmp, "%s.tmp", *f);
             rc = dem_remove_in(dir, *f, err);
+            if (!rc)
+                rc = dem_remove_in(dir, tmp, err);
+        }
     /* and the pictures of its results */
     if (!rc)
         rc = dem_output_remove_plots(dir, err);
