@@ -75,6 +75,8 @@ out=$(mktemp -d "${TMPDIR:-/tmp}/dembox-speed.XXXXXX")
 cpuinfo() { grep -m1 "^$1\s*:" /proc/cpuinfo 2>/dev/null | sed 's/.*: //'; }
 cpu="$(cpuinfo 'model name') (family $(cpuinfo 'cpu family'), model $(cpuinfo model))"
 echo "# $(date -u +%Y-%m-%dT%H:%MZ)  $(nproc) cores  $cpu"
+# the build timed (an old binary would time old code: the row says which)
+echo "# $("$DEMBOX" --version)"
 echo "# logs in $out"
 
 peers() { # round name args...: one peers.sh case, its figures to $out/name

@@ -10,15 +10,49 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* dir = /tmp/dembox_fuzz_NAME_PID, made; the plots' gnuplot a command
- * that does not exist (DEMBOX_GNUPLOT): the data and scripts are
- * written, not drawn (a gnuplot started per picture took 70 ms an
- * input). */
+/* Remove path and everything under it. */
+static inline void fuzz_remove_tree(const char *path)
+{
+    DIR *d = opendir(path);
+    if (d) {
+        const struct dirent *e;
+        while ((e = readdir(d))) {
+            if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+                continue;
+            char sub[4096];
+            snprintf(sub, sizeof sub, "%s/%s", path, e->d_name);
+            fuzz_remove_tree(sub);
+        }
+        closedir(d);
+        rmdir(path);
+    } else {
+        remove(path);
+    }
+}
+
+static char fuzz_plot_dir[1024];
+
+static inline void fuzz_plot_folder_remove(void)
+{
+    if (fuzz_plot_dir[0])
+        fuzz_remove_tree(fuzz_plot_dir);
+}
+
+/* dir = $TMPDIR (or /tmp)/dembox_fuzz_NAME_PID, made, and removed when
+ * the process exits; the plots' gnuplot a command that does not exist
+ * (DEMBOX_GNUPLOT): the data and scripts are written, not drawn (a
+ * gnuplot started per picture took 70 ms an input). */
 static inline void fuzz_plot_folder(char *dir, size_t n, const char *name)
 {
-    snprintf(dir, n, "/tmp/dembox_fuzz_%s_%ld", name, (long)getpid());
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dir, n, "%s/dembox_fuzz_%s_%ld", tmp && *tmp ? tmp : "/tmp", name,
+             (long)getpid());
     if (mkdir(dir, 0755) && access(dir, W_OK))
         abort();
+    if (!fuzz_plot_dir[0]) {
+        snprintf(fuzz_plot_dir, sizeof fuzz_plot_dir, "%s", dir);
+        atexit(fuzz_plot_folder_remove);
+    }
     setenv("DEMBOX_GNUPLOT", "dembox-fuzz-no-gnuplot", 1);
 }
 

@@ -44,8 +44,10 @@ for ex in $(./build/dembox examples | awk '{print $1}'); do
         bin=./build/dembox
         [ $b = new ] || bin=$WORK/build-$SHA/dembox
         rm -rf "$WORK/out-$b/$ex"
-        "$bin" run "$ex" "${args[@]}" -o "$WORK/out-$b/$ex" > /dev/null 2>&1 ||
+        if ! "$bin" run "$ex" "${args[@]}" -o "$WORK/out-$b/$ex" > /dev/null 2>&1; then
             echo "$ex: the $b build failed (see $WORK/out-$b/$ex)"
+            status=1
+        fi
     done
     # gnuplot.log may name the folder, timing.txt has the times: compare
     # everything else

@@ -11,13 +11,18 @@ BUILD=${1:-build}
 PKGS="build-essential cmake pkg-config libconfig-dev libcairo2-dev libcmocka-dev libomp-dev gnuplot-nox clang libclang-rt-14-dev python3 python3-numpy libopenmpi-dev openmpi-bin qemu-user locales"
 missing=""
 for p in $PKGS; do
-    dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+    # (installed, not only known: a package removed but not purged has a
+    # dpkg status too)
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' ||
+        missing="$missing $p"
 done
 if [ -n "$missing" ]; then
     SUDO=""
     [ "$(id -u)" -eq 0 ] || SUDO=sudo
     $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing >/dev/null
+    # (env: sudo would drop the variable, and a debconf question would
+    # wait unseen)
+    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $missing >/dev/null
 fi
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DDEM_WERROR=ON >/dev/null
 cmake --build "$BUILD" -j "$(nproc)"

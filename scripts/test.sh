@@ -9,6 +9,12 @@
 set -eu
 cd "$(dirname "$0")/.."
 FUZZ_SECONDS=${FUZZ_SECONDS:-20}
+case $FUZZ_SECONDS in
+'' | *[!0-9]*)
+    echo "test.sh: FUZZ_SECONDS=$FUZZ_SECONDS is not a whole number" >&2
+    exit 1
+    ;;
+esac
 J=$(nproc)
 t0=$(date +%s)
 

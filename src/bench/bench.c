@@ -846,7 +846,8 @@ static int bench_run_c(const struct dem_bench_options *o,
      * and flushed all: the flush reaches the team in force and threads
      * created later, not those already started and idle (until session
      * 109 the second thread of --threads 1,2 was not flushed) */
-    const int most = o->versus > o->threads ? o->versus : o->threads;
+    const int most = o->versus > o->threads ? o->versus : o->threads,
+              given = omp_get_max_threads();
     if (most > 0)
         omp_set_num_threads(most);
     struct dem_fpmode fp;
@@ -857,8 +858,7 @@ static int bench_run_c(const struct dem_bench_options *o,
     if (most > 0)
         omp_set_num_threads(most);
     dem_fpmode_restore(&fp);
-    if (o->threads > 0)
-        omp_set_num_threads(o->threads);
+    omp_set_num_threads(given); /* the caller's, as dem_run leaves it */
     const size_t k = strlen(r->simd);
     if (flushed)
         snprintf(r->simd + k, sizeof r->simd - k,

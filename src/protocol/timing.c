@@ -51,7 +51,9 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
                            int status, long step_from, int threads, int ranks,
                            const char *other_build, const struct dem_error *err)
 {
-    char path[DEM_PATH_MAX], buf[1024], when[32] = "?", cpu[160];
+    /* (room for the longest record: another build's name, a long CPU
+     * model, the pass's and the team's tallies came near 1024) */
+    char path[DEM_PATH_MAX], buf[4096], when[32] = "?", cpu[160];
     struct dem_error e = {0};
     if (dem_path_join(path, sizeof path, dir, "timing.txt", &e))
         return;
