@@ -648,6 +648,25 @@ static void t_quantiles_and_the_scatter_dof(void **state)
     assert_close(dem_scatter_dof(64), 36.0 * 64 * 64 / 4444.0, 1e-14);
 }
 
+/* A line through points of one x is no fit: their mean rounds off the
+ * value (0.1 three times: 0.1 + 2^-56), and the spread left was taken for
+ * one, a slope of rounding errors (a read-only review, session 110). A
+ * spread just above round-off is still fitted. */
+static void a_line_needs_more_than_one_x(void **state)
+{
+    (void)state;
+    struct dem_linfit f;
+    const double x[3] = {0.1, 0.1, 0.1}, y[3] = {0.0, 0.0, 1.0};
+    assert_int_equal(dem_linfit(x, y, 3, &f), DEM_EUSAGE);
+    assert_true(isnan(f.b));
+    const double x1[3] = {1e6, 1e6, 1e6};
+    assert_int_equal(dem_linfit(x1, y, 3, &f), DEM_EUSAGE);
+    const double x2[3] = {0.1, 0.1 + 1e-12, 0.1 + 2e-12},
+                 y2[3] = {1.0, 2.0, 3.0};
+    assert_int_equal(dem_linfit(x2, y2, 3, &f), DEM_OK);
+    assert_close(f.b, 1e12, 1e8);
+}
+
 /* Noise alone, after a first loading, shakes down: at 6 cycles the
  * scatter has 1.4 degrees of freedom, and bounds of twice the standard
  * error, in a direction the noise itself chose, called such samples
@@ -925,6 +944,50 @@ static void write_shear_run_profile(const char *dir, double sense, int back)
         dem_sample_write_row(f, &s, 2);
     }
     assert_int_equal(fclose(f), 0);
+}
+
+/* A stress-controlled shear late in a run (t about 10^4 s): the creep
+ * rate is the slope of gamma(t) over the stage's last quarter, fitted
+ * about its mean time. With sums of t and t^2 about 0 it lost about
+ * (t/quarter)^2 ulps: here 0.0020000199 for 0.002 (a read-only review,
+ * session 110). */
+static void creep_rate_late_in_a_run(void **state)
+{
+    (void)state;
+    char dir[128];
+    run_dir(dir, sizeof dir, "creep-late");
+    write_text(dir, "config.cfg",
+               "dimension = 2;\n"
+               "time_step = 1.0e-6;\n"
+               "box = { boundary = \"periodic\"; };\n"
+               "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; "
+               "mu = 0.5; };\n"
+               "stages = (\n"
+               "  { type = \"isotropic\"; pressure = 500.0; max_time = "
+               "1.0e4; },\n"
+               "  { type = \"shear\"; shear_stress = 100.0; duration = 1.0; "
+               "pressure = 500.0; }\n"
+               ");\n"
+               "output = { interval = 1.0e-3; };\n");
+    FILE *f = open_timeseries(dir, 2);
+    struct dem_sample smp;
+    memset(&smp, 0, sizeof smp);
+    for (int i = 0; i <= 1000; i++) {
+        smp.t = 1.0e4 + 1e-3 * i;
+        smp.stage = i ? 1 : 0;
+        smp.gamma_xy = 2e-3 * 1e-3 * i; /* 2e-3 per s */
+        smp.sigma[0] = smp.sigma[1] = 500.0;
+        smp.sigma_lw[0][1] = smp.sigma_lw[1][0] = -100.0;
+        smp.void_ratio = 0.2;
+        dem_sample_write_row(f, &smp, 2);
+    }
+    assert_int_equal(fclose(f), 0);
+    char *js = analyzed_summary(dir);
+    const char *sh = strstr(js, "\"shear\": {");
+    assert_non_null(sh);
+    assert_close(json_get(sh, "creep_rate"), 2e-3, 2e-9);
+    assert_close(json_get(sh, "gamma_end"), 2e-3, 1e-12);
+    free(js);
 }
 
 /* Simple shear either way gives the same mobilised friction, peak,
@@ -1670,6 +1733,7 @@ int main(void)
         cmocka_unit_test(loop_area_of_an_ellipse),
         cmocka_unit_test(a_rate_of_one_over_c_ratchets_at_any_count),
         cmocka_unit_test(t_quantiles_and_the_scatter_dof),
+        cmocka_unit_test(a_line_needs_more_than_one_x),
         cmocka_unit_test(noise_alone_rarely_ratchets),
         cmocka_unit_test(a_flat_middle_third_sets_no_direction),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
@@ -1677,6 +1741,7 @@ int main(void)
         cmocka_unit_test(analysis_follows_the_loading_as_it_ran),
         cmocka_unit_test(elastic_constants_need_the_lateral_stress_held),
         cmocka_unit_test(shear_either_way_gives_the_same_friction),
+        cmocka_unit_test(creep_rate_late_in_a_run),
         cmocka_unit_test(returning_shear_is_analysed_on_its_way_out),
         cmocka_unit_test(analysis_repeats_no_config_warning),
         cmocka_unit_test(older_run_folders_stay_readable),

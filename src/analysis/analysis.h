@@ -190,8 +190,9 @@ struct dem_mohr_fit {
 /* Common tangent tau = c + sigma tan phi of n Mohr circles (sigma1 >=
  * sigma3, compression positive): radius t = (s1 - s3)/2 and centre
  * s = (s1 + s3)/2 satisfy t = c cos phi + s sin phi, which is linear in
- * (c cos phi, sin phi). With cohesion = 0 (or a single circle) the line
- * passes through the origin, t = s sin phi. */
+ * (c cos phi, sin phi). With cohesion = 0 the line passes through the
+ * origin, t = s sin phi (one circle is enough); with cohesion a single
+ * circle is no fit (ok = 0 and a reason). */
 int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
                  int cohesion, struct dem_mohr_fit *out);
 

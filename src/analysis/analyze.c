@@ -613,22 +613,18 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
     R->shear.peak.strain *= sense;
     R->shear.crit.strain_from *= sense;
     R->gamma_end = g[n - 1];
-    /* creep: the slope of gamma(t) over the last quarter of the time */
+    /* creep: the slope of gamma(t) over the last quarter of the time (a
+     * centred fit: t of a late stage is large against its quarter) */
     const double t1 = c->t[origin + n - 1],
                  ta = t1 - 0.25 * (t1 - c->t[origin]);
-    double st = 0.0, sg = 0.0, stt = 0.0, stg = 0.0, m = 0.0;
-    for (long k = 0; k < n; k++) {
-        const double t = c->t[origin + k];
-        if (t < ta)
-            continue;
-        st += t;
-        sg += g[k];
-        stt += t * t;
-        stg += t * g[k];
-        m += 1.0;
-    }
-    const double den = m * stt - st * st;
-    R->creep_rate = m >= 3.0 && den > 0.0 ? (m * stg - st * sg) / den : NAN;
+    long k0 = 0;
+    while (k0 < n && c->t[origin + k0] < ta)
+        k0++;
+    struct dem_linfit lf;
+    R->creep_rate =
+        n - k0 >= 3 && !dem_linfit(c->t + origin + k0, g + k0, n - k0, &lf)
+            ? lf.b
+            : NAN;
     free(g);
     return DEM_OK;
 }

@@ -19,14 +19,20 @@ int dem_linfit(const double *x, const double *y, long n, struct dem_linfit *out)
     }
     mx /= (double)n;
     my /= (double)n;
-    double sxx = 0.0, sxy = 0.0, syy = 0.0;
+    double sxx = 0.0, sxy = 0.0, syy = 0.0, xmax = 0.0;
     for (long i = 0; i < n; i++) {
         const double dx = x[i] - mx, dy = y[i] - my;
         sxx += dx * dx;
         sxy += dx * dy;
         syy += dy * dy;
+        xmax = fmax(xmax, fabs(x[i]));
     }
-    if (!(sxx > 0.0))
+    /* equal x: their mean rounds off the value by an ulp or so, and the
+     * spread left is round-off (x = 0.1 three times: mean 0.1 + 2^-56),
+     * which gave a slope of rounding errors; a spread within a few ulps
+     * of the values is none */
+    const double ulps = 8.0 * 2.220446049250313e-16 * xmax;
+    if (!(sxx > (double)n * ulps * ulps))
         return DEM_EUSAGE;
     out->b = sxy / sxx;
     out->a = my - out->b * mx;

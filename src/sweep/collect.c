@@ -280,6 +280,15 @@ static int flow_functions(struct dem__sweep *s)
     return DEM_OK;
 }
 
+/* The cohesion of a flow function as the sweep's ensembles and kc curve
+ * take it: the free fit's, a cohesion below 0 included (the bounded
+ * ones' mean leans above a cohesion near 0: 0, 15, 0 of free fits -20,
+ * 15, -5), or the bounded one where the free fit is no tangent at all. */
+static double fit_cohesion(const struct dem_mohr_fit *f)
+{
+    return isnan(f->c_free) ? f->c : f->c_free;
+}
+
 static void cohesion_check(struct dem__sweep *s)
 {
     if (!(s->roles & DEM_SWEEP_ROLE_KC)) {
@@ -295,14 +304,17 @@ static void cohesion_check(struct dem__sweep *s)
         return;
     }
     /* the f_min curve scaled to the cohesions by least squares through
-     * the origin: c = A |f_min|/(k2 delta_max) */
+     * the origin: c = A |f_min|/(k2 delta_max); the cohesions those the
+     * picture draws: with seeds the ensembles' means of fit_cohesion,
+     * else each flow function's own */
+    const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
     double num = 0.0, den = 0.0;
     for (int q = 0; q < s->ffg.n; q++) {
         const struct dem__sweep_ff *f = &s->ff[0][q];
         const struct dem__sweep_run *r = &s->runs[s->ffg.rep[q]];
         const double x = dem__sweep_fmin_norm(r->kc, r->k1, r->k2);
         if (f->fit.ok && isfinite(x)) {
-            num += f->fit.c * x;
+            num += (ens ? fit_cohesion(&f->fit) : f->fit.c) * x;
             den += x * x;
         }
     }
@@ -465,15 +477,11 @@ static int ensembles(struct dem__sweep *s)
                 const struct dem_mohr_fit *f = &s->ff[state][g].fit;
                 if (s->ffeg.gid[s->ffg.rep[g]] != q || !f->ok)
                     continue;
-                /* the free fits' values, a cohesion below 0 included:
-                 * the bounded ones' mean leans above a cohesion near 0
-                 * (0, 15, 0 of free fits -20, 15, -5); the bounded values
-                 * where the free fit is no tangent at all */
-                const int free_ok = !isnan(f->c_free);
-                const double phi = free_ok ? f->phi_free_deg : f->phi_deg;
+                const double phi =
+                    isnan(f->c_free) ? f->phi_deg : f->phi_free_deg;
                 b[m] = phi;
                 b[s->ffg.n + m] = tan(phi / DEG);
-                b[2 * s->ffg.n + m] = free_ok ? f->c_free : f->c;
+                b[2 * s->ffg.n + m] = fit_cohesion(f);
                 m++;
                 s->ffe[state][q].bounded += f->bounded;
             }

@@ -79,7 +79,7 @@ struct dem__sweep_ffens {
     int fits;    /* seeds whose flow function was fitted */
     int bounded; /* of them, those whose cohesion was bounded to 0 (their
                     free fits' intercepts below 0): c's mean and s.e. are
-                    of the bounded values */
+                    of the free fits' values (below 0 included) */
     struct dem__sweep_stat phi_deg, tan_phi, c;
     /* the void-ratio fits e = e0 - (p/hs)^n of the same seeds (state as
      * the flow function: initial with [0], critical with [1]) */
