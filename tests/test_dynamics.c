@@ -370,8 +370,11 @@ static void force_passes_give_identical_results(void **state)
         run_normal = laws[u];
         assert_same_runs(1, 1, "gathers", 1, 1, "records");
         assert_same_runs(2, 1, "ring", 1, 0, "gathers");
+        /* the blocks' twins copy and update dmax and kt_last */
+        assert_same_runs(3, 1, "blocks", 1, 1, "gathers");
         run_cell = 1;
         assert_same_runs(2, 1, "gathers", 1, 1, "records");
+        assert_same_runs(2, 1, "ring", 1, 0, "records");
         run_cell = 0;
     }
     run_normal = DEM_NORMAL_LINEAR;
@@ -384,7 +387,16 @@ static void force_passes_give_identical_results(void **state)
     assert_same_runs(1, 1, "ring", 1, 0, "records");
     assert_same_runs(2, 1, "ring", 1, 1, "records");
     assert_same_runs(2, 1, "single", 1, 0, "gathers");
+    /* four threads: a thread waits on several earlier ones, image pairs
+     * of more than one earlier block, and the waiting particles shared
+     * over more than two ranges; blocks on four threads between walls */
+    assert_same_runs(4, 1, "ring", 1, 0, "records");
     run_cell = 0;
+    assert_same_runs(4, 1, "blocks", 1, 0, "records");
+    /* the resistances in a 3D cell */
+    run_cell = run_resist = 1;
+    assert_same_runs(2, 1, "ring", 1, 0, "gathers");
+    run_cell = run_resist = 0;
 #endif
     struct dem_config c;
     test_config(&c, 3);
