@@ -274,7 +274,7 @@ static int fail_needs(const char *cmd, const char *opt, const char *what)
 
 /* The value of option argv[*k] (a folder, a file, KEY=VALUE), *k moved
  * to it; NULL after one line when there is none, or when the next word
- * is an option (`run -o --quiet` ran quietly-not into ./--quiet). */
+ * is an option (`run -o --quiet` ran, not quietly, into ./--quiet). */
 static const char *option_value(const char *cmd, int *k, int argc, char **argv,
                                 const char *what)
 {
