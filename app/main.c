@@ -573,21 +573,12 @@ static int cmd_run(int argc, char **argv)
     struct dem_error err = {0, "", cli_warning, NULL};
     int rc;
     char name[DEM_NAME_MAX];
+    rc = dem_config_load_target(&cfg, target, sets, nsets, &err);
     const struct dem_example *ex = dem_example_find(target);
-    if (ex && !strchr(target, '/')) {
-        char source[DEM_PATH_MAX];
-        snprintf(source, sizeof source, "example %s", ex->name);
-        if (access(target, F_OK) == 0)
-            dem_warn(&err,
-                     "%s: a file of that name is here too; the built-in "
-                     "example runs (./%s for the file)",
-                     target, target);
-        rc = dem_config_parse(&cfg, ex->text, source, sets, nsets, &err);
+    if (ex && !strchr(target, '/'))
         snprintf(name, sizeof name, "%s", ex->name);
-    } else {
-        rc = dem_config_load_file(&cfg, target, sets, nsets, &err);
+    else
         stem(target, name, sizeof name);
-    }
     /* under MPI a rank that cannot read the config (a file only some
      * nodes see) stops the others, which would wait for it in the run */
     if (mpi_world && dem_mpi_any(rc) && !rc) {

@@ -419,6 +419,15 @@ int dem_config_load_file(struct dem_config *c, const char *path,
                          const char *const *sets, int nsets,
                          struct dem_error *err);
 
+/* The config of target as `dembox run` and `dembox sweep` take it: a
+ * built-in example's name (dem_example_find; a name without a '/' wins
+ * over a file of that name in the current folder, with a warning through
+ * err saying ./NAME for the file), else a config file's path; sets as in
+ * dem_config_parse. */
+int dem_config_load_target(struct dem_config *c, const char *target,
+                           const char *const *sets, int nsets,
+                           struct dem_error *err);
+
 /* Read a run folder's resolved config.cfg for its analysis and plots: as
  * dem_config_load_file, but the checks a run passes before it starts
  * (the time step against t_c and the viscosities, keys a stage would

@@ -706,6 +706,17 @@ static int keeps_config_file(const char *dir, const char *source,
                          source, dir);
 }
 
+/* dir/leaf (a '*' pattern allowed, dem_remove_in) and its temporary
+ * leaf.tmp, if they are there. */
+static int remove_with_tmp(const char *dir, const char *leaf,
+                           struct dem_error *err)
+{
+    char tmp[128];
+    snprintf(tmp, sizeof tmp, "%s.tmp", leaf);
+    const int rc = dem_remove_in(dir, leaf, err);
+    return rc ? rc : dem_remove_in(dir, tmp, err);
+}
+
 static int create_outputs(struct run_ctx *r, struct dem_error *err)
 {
     const char *dir = r->outdir;
@@ -724,21 +735,12 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
      * process left (X.tmp, renamed to X when complete) */
     static const char *const own[] = {"summary.json", "particles_unstable.csv",
                                       "checkpoint.bin", "timing.txt"};
-    char tmp[128];
-    for (size_t k = 0; !rc && k < sizeof own / sizeof own[0]; k++) {
-        snprintf(tmp, sizeof tmp, "%s.tmp", own[k]);
-        rc = dem_remove_in(dir, own[k], err);
-        if (!rc)
-            rc = dem_remove_in(dir, tmp, err);
-    }
+    for (size_t k = 0; !rc && k < sizeof own / sizeof own[0]; k++)
+        rc = remove_with_tmp(dir, own[k], err);
     for (int k = 0; !rc && k < dem_output_nkinds; k++)
         for (const char *const *f = dem_output_kinds[k]->files; !rc && f && *f;
-             f++) {
-            snprintf(tmp, sizeof tmp, "%s.tmp", *f);
-            rc = dem_remove_in(dir, *f, err);
-            if (!rc)
-                rc = dem_remove_in(dir, tmp, err);
-        }
+             f++)
+            rc = remove_with_tmp(dir, *f, err);
     /* and the pictures of its results */
     if (!rc)
         rc = dem_output_remove_plots(dir, err);

@@ -46,18 +46,7 @@ static int parse_with(const struct dem_sweep_options *o, char (*extra)[SET_LEN],
         sets[n++] = o->sets[k];
     for (int k = 0; k < nextra; k++)
         sets[n++] = extra[k];
-    const struct dem_example *ex = dem_example_find(o->target);
-    if (ex && !strchr(o->target, '/')) {
-        char source[DEM_PATH_MAX];
-        snprintf(source, sizeof source, "example %s", ex->name);
-        if (access(o->target, F_OK) == 0)
-            dem_warn(err,
-                     "%s: a file of that name is here too; the built-in "
-                     "example runs (./%s for the file)",
-                     o->target, o->target);
-        return dem_config_parse(c, ex->text, source, sets, n, err);
-    }
-    return dem_config_load_file(c, o->target, sets, n, err);
+    return dem_config_load_target(c, o->target, sets, n, err);
 }
 
 /* The most particles a point places, for the runs at once. A particle
