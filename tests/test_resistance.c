@@ -287,6 +287,26 @@ static void kernels_are_symmetric_and_objective(void **state)
     }
 }
 
+/* A 2D sample with torsion, built without the config's checks: the
+ * force pass has no instance of it, so making the simulation ready must
+ * refuse it rather than run without forces. */
+static void torsion_in_2d_is_refused_when_built_by_hand(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 2);
+    c.contact.torsion = DEM_RESIST_LUDING;
+    c.contact.ko = 200.0;
+    c.contact.mu_o = 0.1;
+    struct dem_sim s;
+    test_sim(&s, &c, 2, 0.0, 0.1);
+    test_add(&s, 0.05, 0.05, 0.0, A);
+    struct dem_error err = {0};
+    assert_int_equal(dem_sim_ready(&s, &err), DEM_ECONFIG);
+    assert_non_null(strstr(err.msg, "contact.torsion"));
+    dem_sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -295,6 +315,7 @@ int main(void)
         cmocka_unit_test(incline_holds_below_the_rolling_limit),
         cmocka_unit_test(torsion_friction_stops_a_spin),
         cmocka_unit_test(rolling_and_torsion_springs_oscillate),
+        cmocka_unit_test(torsion_in_2d_is_refused_when_built_by_hand),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -364,6 +364,13 @@ const char *dem_sim_pass_simd(const struct dem_sim *s)
 int dem_sim_pass_setup(struct dem_sim *s, struct dem_error *err)
 {
     const int set = dem_contact_set(&s->cp);
+    /* The pass has no instance of torsion in 2D (contact/pass.c): with
+     * it, no force would ever be computed. The config refuses it
+     * (dem_contact_check); this is for a config built by hand. */
+    if (s->dim == 2 && (set & DEM_SET_TORSION))
+        return dem_error_set(err, DEM_ECONFIG,
+                             "contact.torsion: no torsion in 2D (the spins "
+                             "are along z, the normals in the plane)");
     s->pairs.hist = dem_contact_history_mask(set);
     s->pairs.torques = DEM_SET_TORQUES(set);
     struct dem_pass_choice *C = &s->pass;
