@@ -448,6 +448,164 @@ static void file_placement_box_from_bounds_or_given(void **state)
     remove(dir);
 }
 
+/* In a periodic cell the random gas fills the cell through its faces:
+ * no two particles overlap through the nearest image, every centre is in
+ * [0, L), and the centres within a radius of a face are as many as a
+ * uniform gas puts there (before, none: an empty band along each face). */
+static void random_placement_in_a_cell_fills_it_through_its_faces(void **state)
+{
+    (void)state;
+    for (int dim = 2; dim <= 3; dim++) {
+        struct dem_config c;
+        struct dem_particles p;
+        double lo[3], hi[3];
+        /* solid fractions of about 0.3 (2D) and 0.1 */
+        config_defaults(&c, dim, DEM_PLACE_RANDOM, dim == 2 ? 150 : 1500);
+        c.box.boundary = DEM_BOUNDARY_PERIODIC;
+        for (int a = 0; a < 3; a++)
+            c.box.size[a] = a < dim ? 0.2 : 0.0;
+        place_ok(&p, &c, lo, hi);
+        const double L = 0.2;
+        int near = 0; /* centres within their radius of an x or y face */
+        double want = 0.0;
+        for (int i = 0; i < p.n; i++) {
+            const double c3[3] = {p.x[i], p.y[i], p.z[i]};
+            for (int a = 0; a < dim; a++) {
+                assert_true(c3[a] >= 0.0 && c3[a] < L);
+                near += c3[a] < p.r[i] || c3[a] > L - p.r[i];
+                want += 2.0 * p.r[i] / L;
+            }
+            for (int j = i + 1; j < p.n; j++) {
+                double d2 = 0.0;
+                for (int a = 0; a < dim; a++) {
+                    const double cj = a == 0   ? p.x[j]
+                                      : a == 1 ? p.y[j]
+                                               : p.z[j];
+                    double d = c3[a] - cj;
+                    d -= L * nearbyint(d / L);
+                    d2 += d * d;
+                }
+                const double s = p.r[i] + p.r[j];
+                if (!(d2 > s * s))
+                    fail_msg("%dD: particles %d and %d overlap through the "
+                             "cell's faces",
+                             dim, i, j);
+            }
+        }
+        /* a Poisson count: within 5 standard deviations of its mean (15
+         * in 2D, 226 in 3D), and not 0 (2D: probability e^-15) */
+        if (near == 0 || fabs(near - want) > 5.0 * sqrt(want))
+            fail_msg("%dD: %d centres within a radius of a face, a uniform "
+                     "gas puts %.1f there",
+                     dim, near, want);
+        dem_particles_free(&p);
+    }
+}
+
+/* A particle file's overlap check in a periodic cell counts the pairs
+ * through its faces (before, two centres 0.2 mm apart across a face
+ * passed, and the run stopped at its first step as unstable); a file
+ * that spans more than any box is refused. */
+static void file_overlap_through_a_cell_face_is_an_error(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dembox_place_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    struct dem_config c;
+    struct dem_particles p;
+    struct dem_error err = {0};
+    double lo[3], hi[3];
+    config_defaults(&c, 2, DEM_PLACE_FILE, 0);
+    c.box.boundary = DEM_BOUNDARY_PERIODIC;
+    c.box.size[0] = c.box.size[1] = 0.2;
+    snprintf(c.particles.file, sizeof c.particles.file, "%s/p.csv", dir);
+    FILE *f = fopen(c.particles.file, "w");
+    assert_non_null(f);
+    fputs("x,y,radius\n0.0001,0.1,0.005\n0.1,0.1,0.005\n0.1999,0.1002,0.005\n",
+          f);
+    fclose(f);
+    assert_int_equal(place(&p, &c, lo, hi, &err), DEM_ECONFIG);
+    if (!strstr(err.msg, "particles 1 and 3 have centres 0.000282843 m apart"))
+        fail_msg("message: %s", err.msg);
+    /* the same two a cell's width minus 10 mm apart: no overlap */
+    f = fopen(c.particles.file, "w");
+    assert_non_null(f);
+    fputs("x,y,radius\n0.0051,0.1,0.005\n0.1,0.1,0.005\n0.1949,0.1,0.005\n", f);
+    fclose(f);
+    place_ok(&p, &c, lo, hi);
+    assert_int_equal(p.n, 3);
+    dem_particles_free(&p);
+
+    /* between walls without box.size, centres whose bounding box is not
+     * finite are refused (before, the run began in a box of infinite
+     * size, and its first particle's non-finite position was blamed on
+     * the time step) */
+    c.box.boundary = DEM_BOUNDARY_WALLS;
+    c.box.size[0] = c.box.size[1] = 0.0;
+    f = fopen(c.particles.file, "w");
+    assert_non_null(f);
+    fputs("x,y,radius\n-1e308,0,0.001\n1e308,0,0.001\n", f);
+    fclose(f);
+    assert_int_equal(place(&p, &c, lo, hi, &err), DEM_ECONFIG);
+    if (!strstr(err.msg, "the particles span more than any box along x"))
+        fail_msg("message: %s", err.msg);
+    remove(c.particles.file);
+    remove(dir);
+}
+
+/* A box that holds the lattice only without its gap (a crystal of
+ * touching particles) takes it at the spacing that fits: 100 discs of
+ * radius 5 mm in 0.1 m x 0.1 m, 1000 spheres in a cell of 0.1 m. Before,
+ * it was refused, naming a lattice of "0.1 m per side" for a box.size of
+ * [0.1, 0.1]. */
+static void lattice_fits_a_box_of_touching_particles(void **state)
+{
+    (void)state;
+    for (int dim = 2; dim <= 3; dim++) {
+        struct dem_config c;
+        struct dem_particles p;
+        double lo[3], hi[3];
+        config_defaults(&c, dim, DEM_PLACE_LATTICE, dim == 2 ? 100 : 1000);
+        c.particles.distribution = DEM_DIST_MONO;
+        if (dim == 3)
+            c.box.boundary = DEM_BOUNDARY_PERIODIC;
+        for (int a = 0; a < dim; a++)
+            c.box.size[a] = 0.1;
+        place_ok(&p, &c, lo, hi);
+        assert_true(fabs(p.x[1] - p.x[0] - 0.01) < 1e-15);
+        for (int i = 0; i < p.n; i++) {
+            const double c3[3] = {p.x[i], p.y[i], p.z[i]};
+            for (int a = 0; a < dim; a++)
+                assert_true(c3[a] - p.r[i] >= -1e-15 &&
+                            c3[a] + p.r[i] <= 0.1 + 1e-15);
+        }
+        dem_particles_free(&p);
+        /* a box a part in 10^9 narrower is refused with what it needs */
+        struct dem_error err = {0};
+        c.box.size[0] = 0.1 * (1.0 - 1e-9);
+        assert_int_equal(place(&p, &c, lo, hi, &err), DEM_ECONFIG);
+        assert_non_null(strstr(err.msg, "need a lattice of 0.1 m per side"));
+    }
+}
+
+/* A particle wider than a given box along one axis is named as such,
+ * not as an overlap after a thousand tries. */
+static void a_particle_wider_than_the_box_is_named(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_particles p;
+    struct dem_error err = {0};
+    double lo[3], hi[3];
+    config_defaults(&c, 3, DEM_PLACE_RANDOM, 10);
+    c.box.size[0] = c.box.size[1] = 0.2;
+    c.box.size[2] = 0.008; /* the largest radius is above 4 mm */
+    assert_int_equal(place(&p, &c, lo, hi, &err), DEM_ECONFIG);
+    if (!strstr(err.msg, "box.size: a particle of radius") ||
+        !strstr(err.msg, "is wider than the box along z"))
+        fail_msg("message: %s", err.msg);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -461,6 +619,10 @@ int main(void)
         cmocka_unit_test(impossible_random_placement_is_an_error),
         cmocka_unit_test(bad_radius_parameters_are_errors_not_hangs),
         cmocka_unit_test(file_placement_box_from_bounds_or_given),
+        cmocka_unit_test(random_placement_in_a_cell_fills_it_through_its_faces),
+        cmocka_unit_test(file_overlap_through_a_cell_face_is_an_error),
+        cmocka_unit_test(lattice_fits_a_box_of_touching_particles),
+        cmocka_unit_test(a_particle_wider_than_the_box_is_named),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -5,13 +5,16 @@
  *
  * Lattice: square/cubic, spacing 2 r_max (1 + DEM_LATTICE_GAP), filled
  * x fastest, then y, then z; the box is the lattice extent or the given
- * box.size with the lattice centred in it.
+ * box.size with the lattice centred in it (at a spacing down to 2 r_max
+ * where the box is narrower than the lattice with its gap).
  *
  * Random: random sequential insertion, largest particles first, each
- * centre uniform over the positions that keep the particle inside the box,
- * rejected on overlap with any particle already placed. A cell grid of
- * edge >= 2 r_max limits the overlap test to the 3^dim neighbouring cells,
- * so the whole insertion costs O(N) for a dilute box.
+ * centre uniform over the positions that keep the particle inside the box
+ * (in a periodic cell, over the whole cell, overlaps counted through the
+ * faces: a gas without empty bands along them), rejected on overlap with
+ * any particle already placed. A cell grid of edge >= 2 r_max limits the
+ * overlap test to the 3^dim neighbouring cells, so the whole insertion
+ * costs O(N) for a dilute box.
  */
 #include "core/placement.h"
 
@@ -158,16 +161,24 @@ static int place_lattice(struct dem_particles *p, const struct dem_config *cfg,
         int rc = check_box(cfg, dim, err);
         if (rc)
             return rc;
-        for (int a = 0; a < dim; a++)
-            if (extent > cfg->box.size[a]) {
+        /* a box that holds the lattice only without its gap (a crystal of
+         * touching particles, e.g. a periodic cell of side 2 r_max per
+         * particle) takes it at the spacing that fits, to a rounding */
+        for (int a = 0; a < dim; a++) {
+            const double fit = cfg->box.size[a] / (double)side;
+            if (fit < 2.0 * rmax * (1.0 - 1e-12)) {
                 char size[96];
                 format_size(size, sizeof size, cfg->box.size, dim);
                 return dem_error_set(
                     err, DEM_ECONFIG,
                     "particles.count: %d particles of largest radius %g m "
-                    "need a lattice of %g m per side but box.size is %s m",
-                    p->n, rmax, extent, size);
+                    "need a lattice of %.9g m per side but box.size is %s m",
+                    p->n, rmax, (double)side * 2.0 * rmax, size);
             }
+            if (fit < s)
+                s = fit;
+        }
+        extent = (double)side * s;
         for (int a = 0; a < dim; a++) {
             lo[a] = 0.0;
             hi[a] = cfg->box.size[a];
@@ -209,19 +220,30 @@ struct grid {
     int nc[3];   /* cells per axis */
     double edge; /* m; cell edge, >= 2 r_max */
     double lo[3];
-    int *head; /* first particle in each cell, -1 = empty */
-    int *next; /* next particle in the same cell */
+    double period[3]; /* m; a periodic cell's edge along the axis (the grid
+                         then spans [lo, lo + period) and its cells wrap),
+                         or 0 */
+    int *head;        /* first particle in each cell, -1 = empty */
+    int *next;        /* next particle in the same cell */
 };
 
 static int grid_cell(const struct grid *g, int a, double x)
 {
-    int c = (int)floor((x - g->lo[a]) / g->edge);
+    /* clamped as a double: x far outside the grid (or an edge grown to
+     * infinity) gives no int overflow or NaN cast */
+    const double f = floor((x - g->lo[a]) / g->edge);
     /* The last cell absorbs the remainder L - nc edge, so it is wider. */
-    if (c < 0)
-        c = 0;
-    if (c >= g->nc[a])
-        c = g->nc[a] - 1;
-    return c;
+    if (!(f >= 0.0))
+        return 0;
+    return f >= g->nc[a] ? g->nc[a] - 1 : (int)f;
+}
+
+/* The separation b - a along axis a, through the nearest image in a
+ * periodic cell. */
+static double grid_sep(const struct grid *g, int a, double d)
+{
+    const double P = g->period[a];
+    return P > 0.0 ? d - P * nearbyint(d / P) : d;
 }
 
 /* The first particle in g closer to the sphere (x, y, z, r) than scale
@@ -232,15 +254,28 @@ static int within(const struct grid *g, const struct dem_particles *p, double x,
     int c[3] = {grid_cell(g, 0, x), grid_cell(g, 1, y), grid_cell(g, 2, z)};
     int c0[3], c1[3];
     for (int a = 0; a < 3; a++) {
-        c0[a] = c[a] > 0 ? c[a] - 1 : 0;
-        c1[a] = c[a] < g->nc[a] - 1 ? c[a] + 1 : g->nc[a] - 1;
+        if (g->period[a] > 0.0 && g->nc[a] >= 3) { /* through the faces */
+            c0[a] = c[a] - 1;
+            c1[a] = c[a] + 1;
+        } else if (g->period[a] > 0.0) { /* every cell, each once */
+            c0[a] = 0;
+            c1[a] = g->nc[a] - 1;
+        } else {
+            c0[a] = c[a] > 0 ? c[a] - 1 : 0;
+            c1[a] = c[a] < g->nc[a] - 1 ? c[a] + 1 : g->nc[a] - 1;
+        }
     }
-    for (int k = c0[2]; k <= c1[2]; k++)
-        for (int j = c0[1]; j <= c1[1]; j++)
-            for (int i = c0[0]; i <= c1[0]; i++) {
+    for (int kk = c0[2]; kk <= c1[2]; kk++)
+        for (int jj = c0[1]; jj <= c1[1]; jj++)
+            for (int ii = c0[0]; ii <= c1[0]; ii++) {
+                const int i = (ii + g->nc[0]) % g->nc[0],
+                          j = (jj + g->nc[1]) % g->nc[1],
+                          k = (kk + g->nc[2]) % g->nc[2];
                 int cell = (k * g->nc[1] + j) * g->nc[0] + i;
                 for (int q = g->head[cell]; q >= 0; q = g->next[q]) {
-                    double dx = p->x[q] - x, dy = p->y[q] - y, dz = p->z[q] - z,
+                    double dx = grid_sep(g, 0, p->x[q] - x),
+                           dy = grid_sep(g, 1, p->y[q] - y),
+                           dz = grid_sep(g, 2, p->z[q] - z),
                            s = scale * (p->r[q] + r);
                     if (dx * dx + dy * dy + dz * dz <= s * s)
                         return q;
@@ -322,10 +357,23 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
         key = "lower particles.volume_fraction";
     }
     double volume = dim == 3 ? L[0] * L[1] * L[2] : L[0] * L[1];
+    const int cell = cfg->box.boundary == DEM_BOUNDARY_PERIODIC;
+    for (int a = 0; a < dim; a++)
+        if (L[a] < 2.0 * rmax) { /* (only a given box.size can be) */
+            char size[96];
+            format_size(size, sizeof size, L, dim);
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "box.size: a particle of radius %g m is "
+                                 "wider than the box along %c (box.size is "
+                                 "%s m)",
+                                 rmax, "xyz"[a], size);
+        }
 
     /* Cells of edge 2 r_max; the grid starts at the box's corner (2D: z
      * spans the slab of one largest diameter) */
     struct grid g = {.edge = 2.0 * rmax};
+    for (int a = 0; cell && a < dim; a++)
+        g.period[a] = L[a];
     const double glo[3] = {0.0, 0.0, dim == 2 ? -rmax : 0.0};
     const double gL[3] = {L[0], L[1], dim == 3 ? L[2] : 0.0};
     struct by_radius *order = malloc((size_t)n * sizeof *order);
@@ -353,8 +401,12 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
             /* Draw every coordinate even when one cannot fit, so the
              * stream consumed does not depend on the outcome. */
             for (int a = 0; a < dim; a++) {
-                double free_len = L[a] - 2.0 * r; /* m; room for the centre */
-                pos[a] = r + free_len * dem_rng_uniform(rng);
+                /* m; room for the centre: between walls the particle
+                 * keeps inside, in a cell the whole cell */
+                double free_len = cell ? L[a] : L[a] - 2.0 * r;
+                pos[a] = (cell ? 0.0 : r) + free_len * dem_rng_uniform(rng);
+                if (cell && pos[a] >= L[a]) /* (L u rounded up to L) */
+                    pos[a] = 0.0;
                 fits = fits && free_len >= 0.0;
             }
             placed = fits && within(&g, p, pos[0], pos[1], pos[2], r, 1.0) < 0;
@@ -389,15 +441,15 @@ static int place_random(struct dem_particles *p, const struct dem_config *cfg,
     return DEM_OK;
 }
 
-/* The particles read from particles.file (given, taken over), in box.size
- * or in their bounding box. */
 /* Particles of a file whose centres are closer than half the sum of
  * their radii (a row given twice: centres 0 apart, whose contact normal
  * is 0/0; or lengths in other units): an error naming both, 1-based in
- * the file's order. No packing of a run overlaps so far. */
+ * the file's order; in a periodic cell (period: its edges, the centres
+ * already in [0, period)) through its faces too. No packing of a run
+ * overlaps so far. */
 static int check_file_overlaps(const struct dem_particles *p, int dim,
-                               double rmax, const char *file,
-                               struct dem_error *err)
+                               double rmax, const double *period,
+                               const char *file, struct dem_error *err)
 {
     const int n = p->n;
     double lo[3] = {0.0, 0.0, 0.0}, L[3] = {0.0, 0.0, 0.0};
@@ -410,8 +462,14 @@ static int check_file_overlaps(const struct dem_particles *p, int dim,
             hi = c[i] > hi ? c[i] : hi;
         }
         L[a] = hi - lo[a];
+        if (period) {
+            lo[a] = 0.0;
+            L[a] = period[a];
+        }
     }
     struct grid g = {.edge = 2.0 * rmax};
+    for (int a = 0; period && a < dim; a++)
+        g.period[a] = period[a];
     if (grid_make(&g, lo, L, n))
         return dem_error_set(err, DEM_ENOMEM,
                              "particles: out of memory checking %d particles",
@@ -420,8 +478,9 @@ static int check_file_overlaps(const struct dem_particles *p, int dim,
     for (int i = 0; !rc && i < n; i++) {
         const int q = within(&g, p, p->x[i], p->y[i], p->z[i], p->r[i], 0.5);
         if (q >= 0) {
-            const double dx = p->x[q] - p->x[i], dy = p->y[q] - p->y[i],
-                         dz = p->z[q] - p->z[i];
+            const double dx = grid_sep(&g, 0, p->x[q] - p->x[i]),
+                         dy = grid_sep(&g, 1, p->y[q] - p->y[i]),
+                         dz = grid_sep(&g, 2, p->z[q] - p->z[i]);
             rc = dem_error_set(
                 err, DEM_ECONFIG,
                 "particles.file = %s: particles %d and %d have centres %g m "
@@ -438,6 +497,8 @@ static int check_file_overlaps(const struct dem_particles *p, int dim,
     return rc;
 }
 
+/* The particles read from particles.file (given, taken over), in box.size
+ * or in their bounding box. */
 static int place_file(struct dem_particles *p, struct dem_particles *given,
                       const struct dem_config *cfg, int dim, double *rmax,
                       double lo[3], double hi[3], struct dem_error *err)
@@ -448,7 +509,10 @@ static int place_file(struct dem_particles *p, struct dem_particles *given,
     for (int i = 0; i < p->n; i++)
         if (p->r[i] > *rmax)
             *rmax = p->r[i];
-    const int rc = check_file_overlaps(p, dim, *rmax, cfg->particles.file, err);
+    const int rc = check_file_overlaps(
+        p, dim, *rmax,
+        cfg->box.boundary == DEM_BOUNDARY_PERIODIC ? cfg->box.size : NULL,
+        cfg->particles.file, err);
     if (rc)
         return rc;
     if (box_given(cfg, dim)) {
@@ -473,6 +537,12 @@ static int place_file(struct dem_particles *p, struct dem_particles *given,
         }
         lo[a] -= margin;
         hi[a] += margin;
+        if (!isfinite(hi[a] - lo[a])) /* e.g. centres at -1e308 and 1e308 */
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "particles.file = %s: the particles span "
+                                 "more than any box along %c (from %g to %g "
+                                 "m)",
+                                 cfg->particles.file, "xyz"[a], lo[a], hi[a]);
     }
     return DEM_OK;
 }

@@ -740,6 +740,11 @@ int dem_halo_gather(const struct dem_sim *s, struct dem_particles *out,
     free(mine);
     free(counts);
     const int n = total / NPACK;
+    if (rc)
+        return dem_error_set(err, rc,
+                             "out of memory (gathering %d particles on rank "
+                             "0)",
+                             n);
     if (!rc)
         rc = dem_particles_init(out, H->rank == 0 ? n : 0, err);
     if (!rc && H->rank == 0) {
