@@ -760,6 +760,81 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* With seeds, the f_min curve of cohesion_vs_kc is scaled to the
+ * cohesions its picture draws, the free fits' (finding 182): 2 kc x 3
+ * seeds x 2 pressures of synthetic circles, phi 30 degrees, c = 5 + 20
+ * (seed - 2) at kc = 1e4 (seed 1's free fit -15, bounded to 0 in its own
+ * flow function) and 50 + 10 (seed - 2) at 4e4. The least-squares scale
+ * through the origin over the six flow functions is then (5 x1 + 50 x2) /
+ * (x1^2 + x2^2), x = f_min_norm = (kc/k2)(1 - k1/k2)/(1 + kc/k2) with k1
+ * = 5e4, k2 = 1e5: x1 = 1/22, x2 = 1/7. With the bounded cohesions it
+ * was (10 x1 + 50 x2) / (x1^2 + x2^2), 3.1 % more. */
+static void kc_ensembles_scale_the_curve_to_the_free_cohesions(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/kc-ensembles", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.kc=1e4,4e4");
+    add(&g, "seed=1,2,3");
+    add(&g, "stages.1.pressure=100,400");
+    const long np = dem_sweep_grid_size(&g);
+    assert_int_equal(np, 12);
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(np * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    const double p[2] = {100, 400};
+    for (long i = 0; i < np; i++) {
+        int idx[DEM_SWEEP_MAX_PARAMS];
+        dem_sweep_grid_point(&g, i, idx);
+        const double d = idx[1] - 1.0; /* seed - 2 */
+        const double phi = 30.0 / DEG,
+                     c = idx[0] ? 50.0 + 10.0 * d : 5.0 + 20.0 * d;
+        const double s = sin(phi), pr = p[idx[2]];
+        const double s1 = pr * (1 + s) / (1 - s) + 2 * c * cos(phi) / (1 - s);
+        char summary[1024];
+        snprintf(summary, sizeof summary,
+                 "{\"dimension\": 2, \"loading_stage\": 1, "
+                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": 0.5,"
+                 " \"phi_deg\": 30, \"sigma_axial\": %.17g, \"sigma_lateral\":"
+                 " %.17g}, \"critical\": {\"sin_phi\": null}, "
+                 "\"void_ratio_initial\": 0.2}\n",
+                 pr, s1, pr);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
+        fake_run(dir, cfg, &g, i, summary);
+    }
+    free(names);
+    collect_runs(&g, cfg, out);
+    struct dem_error err = {0};
+    struct dem__jval js;
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(&js, dir, &err))
+        fail_msg("%s", err.msg);
+    const struct dem__jval *kc = dem__jread_get(&js, "cohesion_vs_kc");
+    assert_non_null(kc);
+    assert_int_equal(kc->type, DEM__JSON_OBJECT);
+    const double x1 = 1.0 / 22.0, x2 = 1.0 / 7.0;
+    assert_rel(dem__jread_number(kc, "scale"),
+               (5.0 * x1 + 50.0 * x2) / (x1 * x1 + x2 * x2), 1e-9);
+    const struct dem__jval *pts = dem__jread_get(kc, "points");
+    assert_non_null(pts);
+    assert_int_equal(pts->n, 6); /* one flow function per kc and seed */
+    for (int q = 0; q < pts->n; q++) {
+        const double x = dem__jread_number(&pts->items[q], "f_min_norm");
+        /* (sweep.json keeps 10 significant digits) */
+        assert_true(fabs(x - x1) < 1e-9 * x1 || fabs(x - x2) < 1e-9 * x2);
+    }
+    /* the ensembles' mean cohesions, the points the curve is drawn with */
+    const struct dem__jval *fe = dem__jread_get(&js, "flow_function_ensemble");
+    assert_non_null(fe);
+    assert_int_equal(fe->n, 2);
+    assert_close(dem__jread_number(&fe->items[0], "cohesion.mean"), 5.0, 1e-6);
+    assert_close(dem__jread_number(&fe->items[1], "cohesion.mean"), 50.0, 1e-6);
+    dem__jread_free(&js);
+    dem_sweep_grid_free(&g);
+}
+
 /* A sweep of one cyclic run (seed=1) into tmpdir/NAME whose second cycle
  * ends at end2 with the increment inc2 (the first gains 2e-3), collected;
  * its folder in out. */
@@ -1460,6 +1535,7 @@ int main(void)
         cmocka_unit_test(a_preparation_pressure_is_no_confinement),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),
         cmocka_unit_test(seed_ensembles_give_mean_and_standard_error),
+        cmocka_unit_test(kc_ensembles_scale_the_curve_to_the_free_cohesions),
         cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
         cmocka_unit_test(
