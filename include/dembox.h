@@ -496,6 +496,10 @@ int dem_mpi_init(int *argc, char ***argv, struct dem_error *err);
 void dem_mpi_finalize(void);
 /* Rank and size of MPI_COMM_WORLD; 0 and 1 while MPI is not started. */
 void dem_mpi_world(int *rank, int *size);
+/* The ranks that dem_mpi_init found on this process's machine (its
+ * shared-memory node), 1 without MPI: the processes that share its
+ * memory (the memory check of a sample counts them). */
+int dem_mpi_node_ranks(void);
 /* 1 on every rank when flag is set on some rank (flag while MPI is not
  * started): a collective every rank must call, so that a rank that fails
  * on its own (a file only some nodes see) stops the others instead of

@@ -1356,7 +1356,7 @@ static void memory_a_sample_takes_is_checked_first(void **state)
     (void)state;
     struct dem_error err = {0};
     const double GB = 1e9;
-    assert_int_equal(dem_sim_memory_check(100000000,
+    assert_int_equal(dem_sim_memory_check(100000000, 1,
                                           "particles.count = "
                                           "100000000",
                                           24 * GB, 24 * GB, &err),
@@ -1368,18 +1368,39 @@ static void memory_a_sample_takes_is_checked_first(void **state)
                         "once packed), more than this machine's 24 GB");
     char warned[1024] = "";
     struct dem_error w = {0, "", keep_line, warned};
-    assert_int_equal(dem_sim_memory_check(10000000, "k", 24 * GB, 8 * GB, &w),
-                     DEM_OK);
+    assert_int_equal(
+        dem_sim_memory_check(10000000, 1, "k", 24 * GB, 8 * GB, &w), DEM_OK);
     assert_string_equal(warned, "k: a packed sample of 10000000 particles "
                                 "takes about 12 GB of memory (1.2 kB per "
                                 "particle), more than the 8 GB available "
                                 "now: expect swapping, or the out-of-memory "
                                 "killer to end the run");
     warned[0] = '\0';
-    assert_int_equal(dem_sim_memory_check(10000000, "k", 24 * GB, 16 * GB, &w),
-                     DEM_OK);
-    assert_int_equal(dem_sim_memory_check(100000000, "k", 0, 0, &w), DEM_OK);
+    assert_int_equal(
+        dem_sim_memory_check(10000000, 1, "k", 24 * GB, 16 * GB, &w), DEM_OK);
+    assert_int_equal(dem_sim_memory_check(100000000, 1, "k", 0, 0, &w), DEM_OK);
     assert_string_equal(warned, "");
+    /* MPI ranks on one machine each hold the whole sample (a split run
+     * builds it on every rank; a sweep's ranks each run one): 32 ranks
+     * of 10^7 particles are refused where one fits easily, and 2 ranks
+     * warned of where one is not */
+    assert_int_equal(
+        dem_sim_memory_check(10000000, 32, "k", 24 * GB, 24 * GB, &err),
+        DEM_ENOMEM);
+    assert_string_equal(err.msg,
+                        "k: a run of 10000000 particles on each of 32 MPI "
+                        "ranks takes at least 96 GB of memory (300 bytes per "
+                        "particle before its first step, about 1.2 kB once "
+                        "packed), more than this machine's 24 GB");
+    assert_int_equal(
+        dem_sim_memory_check(10000000, 2, "k", 96 * GB, 16 * GB, &w), DEM_OK);
+    assert_string_equal(warned,
+                        "k: a packed sample of 10000000 particles on each of "
+                        "2 MPI ranks takes about 24 GB of memory (1.2 kB per "
+                        "particle), more than the 16 GB available now: expect "
+                        "swapping, or the out-of-memory killer to end the "
+                        "run");
+    warned[0] = '\0';
 
 #if defined(__SANITIZE_ADDRESS__)
     /* AddressSanitizer's own allocator: glibc's counts stay still */

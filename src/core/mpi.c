@@ -89,6 +89,11 @@ const char *dem_mpi_version(void)
     return v;
 }
 
+/* The ranks on this process's machine (its shared-memory node), counted
+ * once at dem_mpi_init: a collective, which a sample's creation on one
+ * rank of a sweep cannot call. */
+static int node_ranks = 1;
+
 int dem_mpi_init(int *argc, char ***argv, struct dem_error *err)
 {
     int provided = 0;
@@ -100,7 +105,18 @@ int dem_mpi_init(int *argc, char ***argv, struct dem_error *err)
         return dem_error_set(err, DEM_EUSAGE,
                              "the MPI library gives no thread support "
                              "(MPI_THREAD_SERIALIZED), which dembox needs");
+    MPI_Comm node;
+    if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0,
+                            MPI_INFO_NULL, &node) == MPI_SUCCESS) {
+        MPI_Comm_size(node, &node_ranks);
+        MPI_Comm_free(&node);
+    }
     return DEM_OK;
+}
+
+int dem_mpi_node_ranks(void)
+{
+    return node_ranks > 1 ? node_ranks : 1;
 }
 
 void dem_mpi_finalize(void)
@@ -145,6 +161,11 @@ int dem_mpi_init(int *argc, char ***argv, struct dem_error *err)
 }
 
 void dem_mpi_finalize(void) {}
+
+int dem_mpi_node_ranks(void)
+{
+    return 1;
+}
 
 int dem_mpi_any(int flag)
 {

@@ -54,26 +54,30 @@ static void place_walls(struct dem_sim *s, const double lo[3],
     }
 }
 
-int dem_sim_memory_check(long n, const char *what, double total,
+int dem_sim_memory_check(long n, int ranks, const char *what, double total,
                          double available, struct dem_error *err)
 {
     const double GB = 1e9, least = (double)n * DEM_SIM_BYTES_LEAST,
                  packed = (double)n * DEM_SIM_BYTES_PACKED;
-    if (total > 0.0 && least > total)
+    const double K = ranks > 1 ? ranks : 1;
+    char each[64] = ""; /* who holds it, with more than one rank */
+    if (K > 1)
+        snprintf(each, sizeof each, " on each of %d MPI ranks", ranks);
+    if (total > 0.0 && K * least > total)
         return dem_error_set(err, DEM_ENOMEM,
-                             "%s: a run of %ld particles takes at least %.3g "
-                             "GB of memory (%d bytes per particle before its "
-                             "first step, about %.2g kB once packed), more "
-                             "than this machine's %.3g GB",
-                             what, n, least / GB, DEM_SIM_BYTES_LEAST,
+                             "%s: a run of %ld particles%s takes at least "
+                             "%.3g GB of memory (%d bytes per particle before "
+                             "its first step, about %.2g kB once packed), "
+                             "more than this machine's %.3g GB",
+                             what, n, each, K * least / GB, DEM_SIM_BYTES_LEAST,
                              DEM_SIM_BYTES_PACKED / 1e3, total / GB);
-    if (available > 0.0 && packed > available)
+    if (available > 0.0 && K * packed > available)
         dem_warn(err,
-                 "%s: a packed sample of %ld particles takes about %.3g GB "
+                 "%s: a packed sample of %ld particles%s takes about %.3g GB "
                  "of memory (%.2g kB per particle), more than the %.3g GB "
                  "available now: expect swapping, or the out-of-memory "
                  "killer to end the run",
-                 what, n, packed / GB, DEM_SIM_BYTES_PACKED / 1e3,
+                 what, n, each, K * packed / GB, DEM_SIM_BYTES_PACKED / 1e3,
                  available / GB);
     return DEM_OK;
 }
@@ -210,7 +214,8 @@ int dem_sim_create(struct dem_sim *s, const struct dem_config *cfg,
                              "most %d particles",
                              what, DEM_PAIRS_PERIODIC_MAX);
     }
-    if (dem_sim_memory_check(n, what, total, available, err)) {
+    if (dem_sim_memory_check(n, dem_mpi_node_ranks(), what, total, available,
+                             err)) {
         if (given)
             dem_particles_free(given); /* taken over, as placed ones are */
         dem_sim_destroy(s);

@@ -156,8 +156,11 @@ struct dem_sim {
 /* Whether n particles fit in memory: DEM_ENOMEM naming what (the key and
  * its value) when even the least a run takes exceeds total (bytes of
  * memory and swap), a warning when a packed sample would exceed
- * available; 0 = unknown. */
-int dem_sim_memory_check(long n, const char *what, double total,
+ * available; 0 = unknown. ranks: the processes of this run on this
+ * machine that each hold such a sample (MPI ranks: a split run's each
+ * build the whole sample, docs/parallel.md; a sweep's each run one),
+ * whose memory the machine's is shared by. */
+int dem_sim_memory_check(long n, int ranks, const char *what, double total,
                          double available, struct dem_error *err);
 
 /* Build the simulation from a validated config: particles placed, walls
