@@ -429,9 +429,10 @@ static void poisson_and_dilatancy_formulas(void **state)
     assert_close(dem_poisson_plane_strain(s), nu, 1e-12);
     /* beyond incompressibility there is no elastic Poisson ratio */
     assert_true(isnan(dem_poisson_from_slope(0.1, 3)));
-    /* bulk moduli from E and nu */
-    assert_close(dem_bulk_modulus(3.0, 0.25, 3), 2.0, 1e-12);
-    assert_close(dem_bulk_modulus(3.0, 0.25, 2), 2.0, 1e-12);
+    /* bulk moduli from E and nu: 3D E/(3(1 - 2 nu)), 2D E/(2(1 - nu))
+     * (at nu = 0.25 the two coincide, so nu = 0.3 tells them apart) */
+    assert_close(dem_bulk_modulus(3.0, 0.3, 3), 2.5, 1e-12);
+    assert_close(dem_bulk_modulus(3.0, 0.3, 2), 3.0 / 1.4, 1e-12);
     /* Vermeer & de Borst: sin psi = s/(2 + s) */
     assert_close(dem_dilatancy_angle_deg(0.8), asin(0.8 / 2.8) * DEG, 1e-12);
     assert_close(dem_dilatancy_angle_deg(0.0), 0.0, 1e-14);
@@ -1171,21 +1172,52 @@ static void analyze_writes_summary_of_a_biaxial_run(void **state)
     assert_close(json_get(pk, "sin_phi"), 0.6, 2e-3);
     assert_close(json_get(pk, "strain"), 0.02, 2e-3);
     assert_close(json_get(pk, "sigma_lateral"), 500.0, 1e-9);
-    assert_true(json_get(js, "modulus_initial") > 0.0);
-    /* critical: the mean ratio over the last quarter of the strain */
+    /* the initial modulus: the deviator's least-squares slope over the
+     * initial part, the origin (the stage's start, deviator 0) and the
+     * samples of the first quarter of the way to the minimum of eps_v
+     * (at eps = 0.02 + 0.59 x 0.02/1.39 = 0.02849, the samples 1e-4
+     * apart: some 71 of them, the smoothed minimum within a sample or
+     * two; 71 here); the bulk modulus E/(2(1 - nu)) of discs */
+    const double E = json_get(js, "modulus_initial");
+    int window = 0;
+    for (int m = 69; m <= 75 && !window; m++) {
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        for (int j = 0; j <= m; j++) {
+            const double x = 1e-4 * j;
+            const double r = ratio_curve(x) - 0.4 * exp(-x / 0.002);
+            const double q = 500.0 * (1.0 + r) / (1.0 - r) - 500.0;
+            sx += x;
+            sy += q;
+            sxx += x * x;
+            sxy += x * q;
+        }
+        const double b = (sxy - sx * sy / (m + 1)) / (sxx - sx * sx / (m + 1));
+        window = fabs(E - b) <= 1e-9 * b ? m : 0;
+    }
+    if (!window)
+        fail_msg("modulus_initial %.10g is no slope of the deviator over the "
+                 "origin and the first 69 to 75 samples",
+                 E);
+    assert_rel(json_get(js, "bulk_modulus"), E / (2.0 * (1.0 - 0.41)), 1e-6);
+    /* critical: the mean ratio over the last quarter of the strain, and
+     * the mean void ratio there */
     const char *cs = strstr(js, "\"critical\": {");
     const double from = json_get(cs, "strain_from");
     assert_close(from, 0.075, 2e-4);
-    double sum = 0.0;
+    double sum = 0.0, esum = 0.0;
     int cnt = 0;
     for (int i = 1; i <= 1000; i++) {
         const double ea = 0.1 * i / 1000.0;
         if (ea >= from - 1e-12) {
             sum += ratio_curve(ea) - 0.4 * exp(-ea / 0.002);
+            esum += 1.2 * (1.0 + eps_v_curve(ea)) - 1.0;
             cnt++;
         }
     }
     assert_close(json_get(cs, "sin_phi"), sum / cnt, 1e-6);
+    assert_close(json_get(js, "void_ratio_critical"), esum / cnt, 1e-9);
+    /* the granular hardness of discs: k2 (Luding et al.) */
+    assert_rel(json_get(strstr(js, "\"void_ratio_fit\""), "hs"), 1e5, 1e-12);
     /* one isotropic stage: no e(p) fit, and the reason says so */
     assert_non_null(strstr(js, "3 or more different pressures"));
     free(js);
@@ -1556,8 +1588,10 @@ static void hardness_takes_the_particles_diameter(void **state)
         hs[k] = json_get(strstr(js, "\"void_ratio_fit\""), "hs");
         free(js);
     }
-    /* the keys' mean diameter 10 mm, the particles' 1 mm */
-    assert_close(hs[1] / hs[0], 10.0, 1e-9);
+    /* hs = k/d: the default k = 5000 N/m over the keys' mean diameter,
+     * 10 mm, then over the particles', 1 mm */
+    assert_rel(hs[0], 5e5, 1e-9);
+    assert_rel(hs[1], 5e6, 1e-9);
     /* a file that is there but not one a run writes is refused at its
      * line, not passed over for the keys' diameter */
     write_text(dir, "particles_final.csv",

@@ -97,15 +97,17 @@ static void two_d_stays_in_plane(void **state)
         s.p.wz[i] = 10.0 * (i % 3 - 1);
     test_ready(&s);
     test_step(&s, 5000);
-    int moved = 0;
+    int moved = 0; /* of the discs that started without spin */
     for (int i = 0; i < s.p.n; i++) {
         assert_true(s.p.z[i] == 0.0);
         assert_true(s.p.vz[i] == 0.0);
         assert_true(s.p.wx[i] == 0.0);
         assert_true(s.p.wy[i] == 0.0);
-        moved += fabs(s.p.wz[i]) > 0.0;
+        moved += i % 3 == 1 && fabs(s.p.wz[i]) > 0.0;
     }
-    assert_true(moved > 50);
+    /* friction turned most of them (the others' spins only decay) */
+    if (moved < 25)
+        fail_msg("%d of 33 discs turned", moved);
     dem_sim_destroy(&s);
 }
 
@@ -127,7 +129,7 @@ static int run_plane_off;
  * does (protocol/team.h) */
 static int run_team;
 
-/* Positions and spins by particle id (512 of them) after a frictional,
+/* Positions and spins by particle id (all of them) after a frictional,
  * damped run with re-ordering, between walls or (run_cell) in a periodic
  * cell compressed and sheared, on the given number of threads; the steps
  * chained (test_step) or one by one; with the force pass pass (the
@@ -135,7 +137,7 @@ static int run_team;
  * from out[RUN_PARTICLES], the walls' positions and the cell's stress
  * (its virial, whose last bits the particles feel only through the
  * servo). */
-#define RUN_PARTICLES (6 * 512)
+#define RUN_PARTICLES (6 * 729) /* the most a run has: 9^3 in a 3D cell */
 #define RUN_OUT (RUN_PARTICLES + 6 + 9)
 static void run_threads(int threads, int chained, const char *pass, double *out)
 {
@@ -231,7 +233,12 @@ static void run_threads(int threads, int chained, const char *pass, double *out)
     }
     if (pass && !strcmp(pass, "records"))
         assert_int_equal(s.pass.with_blocks, 0);
-    for (int i = 0; i < s.p.n && 6 * s.p.id[i] + 5 < RUN_PARTICLES; i++) {
+    /* every particle (the ids are 0..n-1), the slots beyond n zero: a
+     * buffer reused from an earlier run keeps nothing of it */
+    assert_true(6 * s.p.n <= RUN_PARTICLES);
+    memset(out, 0, RUN_OUT * sizeof *out);
+    for (int i = 0; i < s.p.n; i++) {
+        assert_true(s.p.id[i] >= 0 && s.p.id[i] < s.p.n);
         double *o = out + 6 * s.p.id[i];
         o[0] = s.p.x[i];
         o[1] = s.p.y[i];
