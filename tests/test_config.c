@@ -222,9 +222,17 @@ static void hertz_step_counts_the_tangential_mode(void **state)
     snprintf(text, sizeof text, "%stime_step = \"auto\";\n", base);
     parse_ok(&c, text, 0, 0);
     const double tc = dem_contact_time(&c), ts = dem_step_time(&c);
-    /* omega_t^2 / omega_n^2 about 3 at the largest overlap, against the
-     * collision's pi/t_c: measured 2.2 */
-    assert_true(ts > tc / 2.6 && ts < tc / 1.9);
+    /* t_c = 2.87 (m*^2/(R* E*^2 v))^(1/5); the tangential mode's half
+     * period pi/sqrt(k_t (1 + m a^2/I)/m*), k_t = 8 G* sqrt(R* delta_max)
+     * at delta_max = (15 m* v^2/(16 E* sqrt(R*)))^(2/5): their ratio
+     * depends on nu alone, (2.87/pi) sqrt(8 (1 + 5/2) (15/16)^(1/5) (1 -
+     * nu)/(2 (2 - nu))) = 2.2233 at nu = 0.25 for spheres */
+    const double nu = 0.25;
+    const double want = 2.87 / M_PI *
+                        sqrt(8.0 * 3.5 * pow(15.0 / 16.0, 0.2) * (1.0 - nu) /
+                             (2.0 * (2.0 - nu)));
+    if (!(fabs(tc / ts - want) <= 1e-9 * want))
+        fail_msg("t_c / t_step = %.12g, not %.12g", tc / ts, want);
     assert_true(fabs(c.time_step - tc / 50) <= 1e-12 * tc);
     struct dem_error err = {0};
     snprintf(text, sizeof text, "%stime_step = %.17g;\n", base, tc / 6);

@@ -240,12 +240,16 @@ static void forces_survive_reordering(void **state)
     dem_sim_destroy(&s);
 }
 
-/* A contact's tangential spring and dmax are carried over a rebuild. */
+/* A contact's tangential spring and dmax are carried over a rebuild
+ * (Luding's law, whose history holds dmax). */
 static void history_survives_rebuild(void **state)
 {
     (void)state;
     struct dem_config c;
     test_config(&c, 3);
+    c.contact.normal = DEM_NORMAL_LUDING;
+    c.contact.k1 = 2500.0;
+    c.contact.k2 = 5000.0;
     struct dem_sim s;
     test_sim(&s, &c, 4, 0.0, 0.1);
     test_add(&s, 0.03, 0.05, 0.05, 5e-3);
@@ -257,12 +261,14 @@ static void history_survives_rebuild(void **state)
     test_step(&s, 10);
     const struct dem_contact_list *L = &s.pairs.cur;
     assert_int_equal(L->n, 2);
-    double xi = L->xi_y[0];
+    double xi = L->xi_y[0], dmax = L->dmax[0];
     assert_true(xi != 0.0);
+    assert_true(dmax > 0.0);
     struct dem_error err = {0};
     assert_int_equal(dem_sim_rebuild(&s, &err), 0);
     assert_int_equal(L->n, 2);
     assert_true(L->xi_y[0] == xi);
+    assert_true(L->dmax[0] == dmax);
     assert_true(L->state[0] & DEM_CONTACT_ACTIVE);
     dem_sim_destroy(&s);
 }

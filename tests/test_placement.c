@@ -129,6 +129,12 @@ static void same_seed_gives_same_radii_and_positions(void **state)
     }
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 static void uniform_radii_have_the_midpoint_mean(void **state)
 {
     (void)state;
@@ -150,6 +156,23 @@ static void uniform_radii_have_the_midpoint_mean(void **state)
     double mean = sum / n;
     if (fabs(mean - 2.0e-3) > 3.0 * se)
         fail_msg("uniform mean %g, expected 2e-3 +- %g", mean, 3.0 * se);
+    /* and the shape: the Kolmogorov-Smirnov distance of the sorted radii
+     * from F(r) = (r - min)/(max - min) below its 0.1 % critical value,
+     * 1.95/sqrt(n) (constant radii, or a triangle on [1, 3] mm, are far
+     * beyond it) */
+    double *r = malloc((size_t)n * sizeof *r);
+    assert_non_null(r);
+    memcpy(r, p.r, (size_t)n * sizeof *r);
+    qsort(r, (size_t)n, sizeof *r, cmp_double);
+    double D = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double F = (r[i] - 1.0e-3) / 2.0e-3;
+        D = fmax(D, fmax(fabs((i + 1.0) / n - F), fabs((double)i / n - F)));
+    }
+    free(r);
+    if (!(D < 1.95 / sqrt((double)n)))
+        fail_msg("uniform radii: Kolmogorov-Smirnov distance %g >= %g", D,
+                 1.95 / sqrt((double)n));
     dem_particles_free(&p);
 }
 

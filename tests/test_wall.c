@@ -146,9 +146,12 @@ static void stress_wall_balances_pressure(void **state)
     dem_sim_destroy(&s);
 }
 
-/* All walls stress-controlled at p in 3D: once relaxed, the Love-Weber
+/* All walls stress-controlled at p in 3D: once relaxed (E_kin < 1e-12
+ * E_pot, where each wall's servo has met p to 1e-8), the Love-Weber
  * stress (contacts and walls, kinetic part included) equals the wall
- * stress on every axis within 1%. */
+ * stress on every axis: every particle's net force is then zero, and
+ * sum b f / V = F/A holds to that residual (1.6e-8 measured; a wall
+ * contact's point off the plane by delta/2, finding 163, is 1e-4). */
 static void love_weber_equals_wall_stress(void **state)
 {
     (void)state;
@@ -184,12 +187,12 @@ static void love_weber_equals_wall_stress(void **state)
         s.measure = 1;
         test_step(&s, 500);
         dem_measure(&s, L0, 1.0, 0.0, 0, &smp);
-        relaxed = smp.e_kin + smp.e_rot < 1e-7 * smp.e_pot;
+        relaxed = smp.e_kin + smp.e_rot < 1e-12 * smp.e_pot;
     }
     assert_true(relaxed);
     for (int a3 = 0; a3 < 3; a3++) {
-        assert_rel(smp.sigma[a3], p, 0.01);
-        assert_rel(smp.sigma_lw[a3][a3], smp.sigma[a3], 0.01);
+        assert_rel(smp.sigma[a3], p, 1e-6);
+        assert_rel(smp.sigma_lw[a3][a3], smp.sigma[a3], 1e-6);
     }
     assert_true(smp.coordination > 3.0);
     /* at rest few contacts slide (9 of the 241 pairs sit at their
