@@ -20,12 +20,15 @@ SUDO=""
 PKGS="gcc-aarch64-linux-gnu qemu-user libconfig-dev:arm64 libcairo2-dev:arm64"
 missing=""
 for p in $PKGS; do
-    dpkg -s "$p" > /dev/null 2>&1 || missing="$missing $p"
+    # installed, not merely known (a removed package keeps its status)
+    dpkg-query -W -f='${Status}' "$p" 2> /dev/null | grep -q "install ok installed" ||
+        missing="$missing $p"
 done
 if [ -n "$missing" ]; then
     $SUDO dpkg --add-architecture arm64
     $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing \
+    # (through env: sudo drops a variable set before it)
+    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $missing \
         > /dev/null
 fi
 cmake -S . -B build-arm64 -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake \

@@ -12,7 +12,7 @@
 # Prints phi_peak per seed and the paired difference disc - sphere.
 set -eu
 OUT=${1:?usage: scripts/peak-inertia.sh OUTDIR}
-B=${DEMBOX:-$(pwd)/build/dembox}
+B=${DEMBOX:-$(cd "$(dirname "$0")/.." && pwd)/build/dembox}
 case $B in /*) ;; *) B=$(pwd)/$B ;; esac
 mkdir -p "$OUT"
 cd "$OUT"

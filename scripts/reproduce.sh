@@ -11,15 +11,18 @@
 #   --quick       the scaled built-in examples, one sample per point
 #                 (default; about 25 CPU minutes)
 #   --paper       the papers' sizes and parameters with 3 seeds per point
-#                 (about 48 CPU hours, --list gives each part's: run it
+#                 (about 53 CPU hours, --list gives each part's: run it
 #                 over several sessions)
 #   --jobs N      runs at once (default: the number of cores)
 #   --only NAMES  only these parts (comma-separated; see --list)
 #   --numbers DIR after each part, copy its sweep.json, its pictures
 #                 (plots/: .png with the .dat and .gp that draw them) and
-#                 every run's summary.json and config.cfg to DIR/NAME/
-#                 (the numbers behind docs/reproduction.md), and what a
-#                 part's own command reads from its runs (oc-contacts:
+#                 every run's summary.json, config.cfg, timing.txt (the
+#                 build that ran it) and run.log (its warnings) to
+#                 DIR/NAME/ (the numbers behind docs/reproduction.md; the
+#                 runs there replaced by the part's, so that none of an
+#                 earlier command stays beside them), and what a part's
+#                 own command reads from its runs (oc-contacts:
 #                 scripts/contact-adhesion.py, from the contacts)
 #   --smoke       every run stops after 300 steps (checks the command, not
 #                 the physics; used by CTest)
@@ -33,7 +36,10 @@
 # OUTDIR/reproduce.id records the mode and the parts; a folder made by
 # another mode, another set of parts or another dembox version (its number;
 # a rebuild of the same version goes on) is refused (a resumed sweep must
-# continue the same runs). A part whose runs fail is
+# continue the same runs). OUTDIR/reproduce.builds lists the builds
+# (`dembox --version`) that ran in it: a resume by another one warns that
+# the parts' ensembles then mix engines (finished runs are not run
+# again), which numbers to publish should not. A part whose runs fail is
 # reported and the others go on; the exit status is then 1.
 set -u
 HERE=$(pwd)
@@ -185,6 +191,15 @@ elif [ -n "$(ls -A "$OUT")" ]; then
     die "$OUT is not empty and was not made by reproduce.sh; use another OUTDIR"
 fi
 echo "$ID" > "$OUT/reproduce.id"
+BUILD=$("$B" --version 2>/dev/null | head -1)
+if [ -f "$OUT/reproduce.builds" ] && ! grep -qxF "$BUILD" "$OUT/reproduce.builds"; then
+    echo "reproduce.sh: warning: $OUT holds runs of another build" \
+         "($(tail -1 "$OUT/reproduce.builds")); this one ($BUILD) runs only" \
+         "what is not finished, so a part's ensemble may mix engines:" \
+         "for numbers to publish, use a new OUTDIR" >&2
+fi
+grep -qxF "$BUILD" "$OUT/reproduce.builds" 2>/dev/null ||
+    echo "$BUILD" >> "$OUT/reproduce.builds"
 
 failed=""
 while IFS='|' read -r n m f a x; do
@@ -198,11 +213,15 @@ while IFS='|' read -r n m f a x; do
     if [ -n "$NUMBERS" ] && [ -f "$OUT/$n/sweep.json" ]; then
         mkdir -p "$NUMBERS/$n"
         cp "$OUT/$n/sweep.json" "$NUMBERS/$n/"
+        rm -rf "$NUMBERS/$n/runs" # (the part's runs now, no older ones)
         for r in "$OUT/$n"/runs/*/; do
             [ -f "$r/summary.json" ] || continue
             d="$NUMBERS/$n/runs/$(basename "$r")"
             mkdir -p "$d"
             cp "$r/summary.json" "$r/config.cfg" "$d/"
+            for k in timing.txt run.log; do
+                [ ! -f "$r/$k" ] || cp "$r/$k" "$d/"
+            done
         done
         if [ -n "$x" ] && [ -z "$SMOKE" ]; then # the part's own numbers
             # shellcheck disable=SC2086 # the command is split on purpose

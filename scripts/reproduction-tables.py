@@ -225,7 +225,7 @@ def end_window_trend(s, part):
     for name, a in dat_blocks(lc).items():
         b = ratios.get(name)
         if not a or not b or len(a) != len(b) or name not in sm:
-            return
+            continue  # (a run the pictures do not hold: the others count)
         top = max(r[0] for r in a)
         w = [rb[1] for ra, rb in zip(a, b) if ra[0] >= 0.75 * top]
         groups.setdefault(rest.get(name, "{}"), {}).setdefault(

@@ -247,7 +247,9 @@ def rel(a, b):
 
 def step_one(d_path, l_path):
     """Largest difference of velocities and spins after one step, relative
-    to the largest value of each."""
+    to the largest value of each; where LAMMPS's spins are all zero (a
+    frictionless packing) the spins' absolute difference, rad/s, and
+    whether it is absolute."""
     d, l = read_dump(d_path), read_dump(l_path)
     if set(d) != set(l):
         die("the step-1 dumps hold different atoms")
@@ -255,7 +257,7 @@ def step_one(d_path, l_path):
     vm = max(abs(l[i][k]) for i in l for k in (3, 4, 5))
     dw = max(abs(d[i][k] - l[i][k]) for i in d for k in (6, 7, 8))
     wm = max(abs(l[i][k]) for i in l for k in (6, 7, 8))
-    return dv / vm, dw / wm if wm > 0 else 0.0
+    return dv / vm, (dw / wm if wm > 0 else dw), wm == 0
 
 
 def sigma_zz(r, area):
@@ -299,7 +301,7 @@ def case_packing(a, work, C, results):
         D = C.dembox(tag, data, ["--mu", mu, "--hold", HOLD, "--steps", STEPS,
                                  "--strain", STRAIN, "--duration", DURATION,
                                  "--every", EVERY, "--dump", 1, dd])
-        v1, w1 = step_one(dd, ld)
+        v1, w1, w_abs = step_one(dd, ld)
 
         def eps(k):
             return (box["z"][1] - L[k]["zhi"]) / Lz
@@ -317,7 +319,8 @@ def case_packing(a, work, C, results):
                             (L[k]["e_kin"] + L[k]["e_rot"])) for k in (k1, k2)]
             print("| %g | %s | %s | %s | %.2g | %.2g | %.3f, %.3f | %s |" % (
                 mu, name, "%.2g" % s1[0] if s1 else "",
-                "%.2g" % s1[1] if s1 else "", early,
+                ("%.2g rad/s (LAMMPS's all 0)" if w_abs else "%.2g") % s1[1]
+                if s1 else "", early,
                 rel(sigma_zz(other[k2], area), sigma_zz(L[k2], area)),
                 other[k2]["coordination"], L[k2]["coordination"],
                 ", ".join(ek)))
@@ -409,8 +412,9 @@ def case_classic(a, work, C, results):
         C.lammps("classic_" + name[:4], data, box, mu=0.5, wall_mu=0.0,
                  gz=0.0, gb=GB, hold=1, steps=0, every=1, skin=0.001,
                  dump=ld, track=1, meff=m)
-        v1, w1 = step_one(dd, ld)
-        print("| LAMMPS %s | %.2g | %.2g |" % (name, v1, w1))
+        v1, w1, w_abs = step_one(dd, ld)
+        print("| LAMMPS %s | %.2g | %s |" % (
+            name, v1, ("%.2g rad/s (LAMMPS's all 0)" if w_abs else "%.2g") % w1))
 
 
 def plots(results, outdir):
