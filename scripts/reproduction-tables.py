@@ -154,7 +154,8 @@ def biaxial_pressure(part):
                           for n in names])
         print("| %s | %d | %s | %s | %s | %s | %s | %s |" % (
             json.dumps(e["params"]), e["runs"], pm(e["peak_sin_phi"]),
-            pm(e["critical_sin_phi"]) + " (%d)" % e["critical_sin_phi"]["n"],
+            pm(e["critical_sin_phi"]) + " (%d)" % (
+                (e.get("critical_sin_phi") or {}).get("n") or 0),
             pm(e["void_ratio_initial"]), pm(e["void_ratio_critical"]),
             pm(slope0), pm(slope1)))
     single_sample_trend(s, sm)
