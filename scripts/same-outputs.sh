@@ -33,9 +33,22 @@ fi
 ./scripts/setup.sh build > /dev/null
 
 status=0
-for ex in $(./build/dembox examples | awk '{print $1}'); do
-    dt=$(./build/dembox example "$ex" | sed -n 's/^time_step *= *\([^;]*\);.*/\1/p')
-    case $dt in "" | *auto*) dt=1e-5 ;; esac
+examples=$(./build/dembox examples | awk '{print $1}')
+[ -n "$examples" ] || { echo "same-outputs.sh: no examples listed" >&2; exit 1; }
+for ex in $examples; do
+    # the step the example runs at: "auto" resolved by a run of one step
+    # (a guess would cut its stages at the wrong times: biaxial2d's step
+    # is 1.5e-7 s, and with 1e-5 its loading never began)
+    rm -rf "$WORK/dt/$ex"
+    ./build/dembox run "$ex" --max-steps 1 --threads 1 --quiet \
+        -o "$WORK/dt/$ex" > /dev/null 2>&1 || true
+    dt=$(sed -n 's/^time_step *= *\([0-9.eE+-]*\);.*/\1/p' \
+        "$WORK/dt/$ex/config.cfg" 2> /dev/null || true)
+    if [ -z "$dt" ]; then
+        echo "$ex: no time step read from a run of one step ($WORK/dt/$ex)"
+        status=1
+        continue
+    fi
     args=(--max-steps "$STEPS" --threads 1 --quiet
         --set "stages.0.max_time=$(awk -v d="$dt" -v n="$STEPS" 'BEGIN{print d*n/3}')"
         --set "output.interval=$(awk -v d="$dt" 'BEGIN{print 5*d}')"
