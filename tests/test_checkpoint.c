@@ -486,6 +486,7 @@ static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
     SAME_BITS(a.sums.n_pp, b.sums.n_pp);
     SAME_BITS(a.sums.n_pw, b.sums.n_pw);
     SAME_BITS(a.sums.n_sliding, b.sums.n_sliding);
+    SAME_BITS(a.sums.n_frictional, b.sums.n_frictional);
     SAME_BITS(a.sums.max_overlap_ratio, b.sums.max_overlap_ratio);
     assert_same_walls(&a, &b);
     assert_same_particles(&a, &b);

@@ -324,6 +324,52 @@ static void frictionless_runs_do_not_depend_on_kt(void **state)
     assert_memory_equal(&e_pot[0], &e_pot[1], sizeof e_pot[0]);
 }
 
+/* The same for the rolling and torsion resistances at a zero limit (mu_r
+ * = mu_o = 0, the walls' defaults): no torque whatever their springs'
+ * stiffness, the same run bit for bit with k_r = k_o = 20 and 2000, and
+ * the same elastic energy (counted, their springs' dashpot shares were
+ * 1/2 gamma^2 v^2/k a contact). */
+static void resistances_at_a_zero_limit_store_no_energy(void **state)
+{
+    (void)state;
+    double x[2][64 * 6], e_pot[2];
+    const double ks[] = {20.0, 2000.0};
+    for (int q = 0; q < 2; q++) {
+        struct dem_config c;
+        papers_material(&c, 0.5);
+        c.contact.rolling = c.contact.torsion = DEM_RESIST_LUDING;
+        c.contact.kr = c.contact.ko = ks[q];
+        c.contact.gamma_r = c.contact.gamma_o = 0.01;
+        c.contact.mu_r = c.contact.mu_o = 0.0;
+        c.contact.wall_mu_r = c.contact.wall_mu_o = 0.0;
+        struct dem_sim s;
+        test_sim(&s, &c, 64, 0.0, 0.04);
+        struct dem_rng rng;
+        dem_rng_seed(&rng, 3);
+        for (int k = 0; k < 64; k++) {
+            const int id =
+                test_add(&s, 0.005 + 0.01 * (k % 4), 0.005 + 0.01 * (k / 4 % 4),
+                         0.005 + 0.01 * (k / 16), 5.2e-3);
+            s.p.vx[id] = 0.05 * (2 * dem_rng_uniform(&rng) - 1);
+            s.p.wz[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
+            s.p.wx[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
+        }
+        test_ready(&s);
+        test_step(&s, 2000);
+        step_measured(&s);
+        e_pot[q] = s.sums.e_pot;
+        assert_true(s.sums.n_pp > 0 && e_pot[q] > 0.0);
+        for (int i = 0; i < 64; i++) {
+            const double v[6] = {s.p.x[i],  s.p.y[i],  s.p.z[i],
+                                 s.p.wx[i], s.p.wy[i], s.p.wz[i]};
+            memcpy(&x[q][6 * i], v, sizeof v);
+        }
+        dem_sim_destroy(&s);
+    }
+    assert_memory_equal(x[0], x[1], sizeof x[0]);
+    assert_memory_equal(&e_pot[0], &e_pot[1], sizeof e_pot[0]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -332,6 +378,7 @@ int main(void)
         cmocka_unit_test(oblique_collision_returns_no_more_energy),
         cmocka_unit_test(packing_left_alone_never_gains_energy),
         cmocka_unit_test(frictionless_runs_do_not_depend_on_kt),
+        cmocka_unit_test(resistances_at_a_zero_limit_store_no_energy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

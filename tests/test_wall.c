@@ -3,6 +3,7 @@
  * Love-Weber stress of a relaxed packing equal to the wall stress. */
 #include "testutil.h"
 
+#include "contact/state.h"
 #include "core/rng.h"
 #include "measure/measure.h"
 #include "measure/network.h"
@@ -226,6 +227,52 @@ static void love_weber_equals_wall_stress(void **state)
     dem_sim_destroy(&s);
 }
 
+/* A contact at a zero Coulomb limit "slides" with no force (the slip
+ * bit the force pass needs) but is not counted as sliding: here a pair
+ * opening faster than its dashpot allows (k delta = 0.05 N against
+ * gamma_n ddot = 1 N: f_n < 0, f_C = 0) while its surfaces slip, beside
+ * a pair at rest under load (sticking). The sliding fraction is 0 of 1
+ * contact with friction (before, 1 of 2: 0.5), and the network's flag of
+ * the opening pair 0. */
+static void a_contact_at_a_zero_limit_is_not_sliding(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    c.contact.gamma_n = 10.0;
+    c.contact.mu_s = c.contact.mu_d = 0.5;
+    c.time_step = 1e-6;
+    struct dem_sim s;
+    test_sim(&s, &c, 4, 0.0, 0.1);
+    const double a = 5e-3, delta = 1e-5;
+    test_add(&s, 0.02, 0.05, 0.05, a);
+    test_add(&s, 0.02 + 2 * a - delta, 0.05, 0.05, a);
+    test_add(&s, 0.07, 0.05, 0.05, a);
+    test_add(&s, 0.07 + 2 * a - delta, 0.05, 0.05, a);
+    s.p.vx[0] = -0.05; /* opening at 0.1 m/s */
+    s.p.vx[1] = 0.05;
+    s.p.vy[0] = 0.05; /* and slipping */
+    test_ready(&s);   /* the forces, with the sums */
+    assert_int_equal(s.sums.n_pp, 2);
+    const struct dem_contact_list *L = &s.pairs.cur;
+    int slipping = 0;
+    for (int k = 0; k < L->n; k++)
+        slipping += (L->state[k] & DEM_CONTACT_SLIDING) != 0;
+    assert_int_equal(slipping, 1); /* the force pass's bit */
+    const double L0[3] = {1, 1, 1};
+    struct dem_sample smp;
+    dem_measure(&s, L0, 1.0, 0.0, 0, &smp);
+    assert_true(smp.sliding_fraction == 0.0);
+    struct dem_network nw;
+    struct dem_error err = {0};
+    assert_int_equal(dem_network_build(&s, &nw, &err), 0);
+    assert_int_equal(nw.npair, 2);
+    for (int k = 0; k < nw.npair; k++)
+        assert_int_equal(nw.c[k].sliding, 0);
+    dem_network_free(&nw);
+    dem_sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -233,6 +280,7 @@ int main(void)
         cmocka_unit_test(cyclic_target_follows_formula),
         cmocka_unit_test(stress_wall_balances_pressure),
         cmocka_unit_test(love_weber_equals_wall_stress),
+        cmocka_unit_test(a_contact_at_a_zero_limit_is_not_sliding),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -54,7 +54,8 @@ static struct dem_history list_history(const struct dem_contact_list *L, int k,
 /* Elastic energy of a contact's tangential, rolling and torsion springs,
  * J (the resistances' springs are zero while off), at overlap delta. A
  * frictionless contact's tangential spring holds only the dashpot's share
- * -gamma_t v_t/k_t (dem_coulomb_spring_in), no elastic energy. */
+ * -gamma_t v_t/k_t (dem_coulomb_spring_in), no elastic energy; so do a
+ * resistance's at a zero limit (mu_r or mu_o 0: the walls' defaults). */
 static double shear_energy(const struct dem_history *h,
                            const struct dem_contact_params *cp, double delta,
                            double a12, double m12)
@@ -65,8 +66,8 @@ static double shear_energy(const struct dem_history *h,
     const struct dem_vec3 xr = {h->xr_x, h->xr_y, h->xr_z};
     const struct dem_vec3 xo = {h->xo_x, h->xo_y, h->xo_z};
     const double et = T.mu_s > 0.0 ? dem_tangential_energy(xi, T.kt) : 0.0;
-    return et + dem_resistance_energy(xr, cp->kr) +
-           dem_resistance_energy(xo, cp->ko);
+    return et + (cp->mu_r > 0.0 ? dem_resistance_energy(xr, cp->kr) : 0.0) +
+           (cp->mu_o > 0.0 ? dem_resistance_energy(xo, cp->ko) : 0.0);
 }
 
 /* Sums for the measurements, from the stored contact forces and the
@@ -129,10 +130,12 @@ static void measure_contacts(struct dem_sim *s)
             dem_normal_energy(cp->normal, cp, delta, P->r[i] * P->r[j] / R, &h);
         S->e_pot += e;
         S->n_pp++;
-        /* (a frictionless contact is "sliding" at its zero limit every
-         * step: not counted, dem_measure leaves it out of the whole) */
-        if ((L->state[k] & DEM_CONTACT_SLIDING) && cp->mu_s > 0.0)
-            S->n_sliding++;
+        /* (a contact at a zero Coulomb limit, frictionless or of f_C =
+         * 0, "slides" with no force every step: counted in neither) */
+        S->n_sliding +=
+            dem_contact_slides(L->state[k], F->v[k].c, cp->mu_s, cp->mu_d);
+        S->n_frictional +=
+            dem_contact_frictional(L->state[k], F->v[k].c, cp->mu_s, cp->mu_d);
         const double amin = P->r[i] < P->r[j] ? P->r[i] : P->r[j];
         if (delta / amin > S->max_overlap_ratio) {
             S->max_overlap_ratio = delta / amin;
@@ -160,8 +163,10 @@ static void measure_contacts(struct dem_sim *s)
         e += dem_normal_energy(cpw.normal, &cpw, delta, P->r[i], &h);
         S->e_pot += e;
         S->n_pw++;
-        if ((WL->state[k] & DEM_CONTACT_SLIDING) && cpw.mu_s > 0.0)
-            S->n_sliding++;
+        S->n_sliding +=
+            dem_contact_slides(WL->state[k], WF->v[k].c, cpw.mu_s, cpw.mu_d);
+        S->n_frictional += dem_contact_frictional(WL->state[k], WF->v[k].c,
+                                                  cpw.mu_s, cpw.mu_d);
         if (delta / P->r[i] > S->max_overlap_ratio) {
             S->max_overlap_ratio = delta / P->r[i];
             S->max_overlap_i = P->id[i];
@@ -182,6 +187,7 @@ static void measure_contacts(struct dem_sim *s)
         v[q++] = (double)S->n_pp;
         v[q++] = (double)S->n_pw;
         v[q++] = (double)S->n_sliding;
+        v[q++] = (double)S->n_frictional;
         s->halo->sum(s, v, q, 0);
         q = 0;
         for (int a = 0; a < 3; a++)
@@ -193,6 +199,7 @@ static void measure_contacts(struct dem_sim *s)
         S->n_pp = (long)v[q++];
         S->n_pw = (long)v[q++];
         S->n_sliding = (long)v[q++];
+        S->n_frictional = (long)v[q++];
         /* the largest overlap, and its particles (ids) from the rank
          * that found it (on a tie, the larger id) */
         double m = S->max_overlap_ratio;

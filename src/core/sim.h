@@ -26,7 +26,11 @@ struct dem_contact_sums {
     double e_pot;               /* J; elastic energy in all contacts */
     long n_pp;                  /* particle-particle contacts */
     long n_pw;                  /* particle-wall contacts */
-    long n_sliding;             /* sliding contacts with friction (pp and pw) */
+    long n_sliding;             /* sliding contacts at a positive Coulomb
+                                   limit (pp and pw; dem_contact_slides) */
+    long n_frictional;          /* contacts with friction not at a zero
+                                   limit, the sliding ones' whole
+                                   (dem_contact_frictional) */
     double max_overlap_ratio;   /* largest delta / radius */
     int max_overlap_i;          /* id of a particle of that contact */
     int max_overlap_j;          /* id of the other, -1 for a wall */

@@ -395,6 +395,7 @@ static void codec(struct ck_io *io, struct dem_sim *s, char **config_text,
     io_i64(io, &S->n_pp);
     io_i64(io, &S->n_pw);
     io_i64(io, &S->n_sliding);
+    io_i64(io, &S->n_frictional);
     io_f64(io, &S->max_overlap_ratio);
     io_i32(io, &S->max_overlap_i);
     io_i32(io, &S->max_overlap_j);

@@ -41,7 +41,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 13u
+#define DEM_CKPT_VERSION 14u /* 14: the sums' n_frictional */
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {

@@ -101,11 +101,11 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     o->n_pp = (double)S->n_pp;
     o->n_pw = (double)S->n_pw;
     o->coordination = N > 0 ? 2.0 * (double)S->n_pp / N : 0.0;
-    /* of the contacts with friction: a frictionless one (the walls'
-     * default wall_mu = 0, a stage of mu = 0) slides at its zero limit
-     * every step, and counted it set a floor of n_pw/(n_pp + n_pw) */
-    const long nc = (s->cp.mu_s > 0.0 ? S->n_pp : 0) +
-                    (dem_contact_wall_view(&s->cp).mu_s > 0.0 ? S->n_pw : 0);
+    /* of the contacts with friction: one at a zero Coulomb limit (the
+     * walls' default wall_mu = 0, a stage of mu = 0, a contact of f_C =
+     * 0) slides with no force every step, and counted it set a floor
+     * (n_pw/(n_pp + n_pw) of the frictionless walls') */
+    const long nc = S->n_frictional;
     o->sliding_fraction = nc ? (double)S->n_sliding / (double)nc : 0.0;
     o->solid_fraction = vs / o->V;
     o->void_ratio = (o->V - vs) / vs;

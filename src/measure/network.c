@@ -68,7 +68,9 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
             c->x[a] = plus_zero(ri[a] - (P->r[i] - 0.5 * c->delta) * c->n[a]);
         }
         split(c, s->pairs.f.v[k].f);
-        c->sliding = (L->state[k] & DEM_CONTACT_SLIDING) != 0;
+        /* (at a positive Coulomb limit, as the sliding fraction counts) */
+        c->sliding = dem_contact_slides(L->state[k], s->pairs.f.v[k].c,
+                                        s->cp.mu_s, s->cp.mu_d);
         history(c, L, k, net->hist);
     }
     net->npair = net->n;
@@ -94,7 +96,8 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
             c->b[a] = dist * c->n[a];
         }
         split(c, s->pairs.wf.v[k].f);
-        c->sliding = (W->state[k] & DEM_CONTACT_SLIDING) != 0;
+        c->sliding = dem_contact_slides(W->state[k], s->pairs.wf.v[k].c,
+                                        s->cp.wall_mu, s->cp.wall_mu);
         history(c, W, k, net->hist);
     }
     return DEM_OK;
