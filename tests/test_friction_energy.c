@@ -280,6 +280,39 @@ static void packing_left_alone_never_gains_energy(void **state)
     }
 }
 
+/* 64 spheres of config c on a 4 x 4 x 4 lattice, slightly pressed,
+ * with random velocities and spins (about z, and about x too with
+ * spin_x), run 2000 steps: their positions and spins into x[64 * 6],
+ * the elastic energy of the last step into *e_pot. */
+static void run_64(const struct dem_config *c, int spin_x, double *x,
+                   double *e_pot)
+{
+    struct dem_sim s;
+    test_sim(&s, c, 64, 0.0, 0.04);
+    struct dem_rng rng;
+    dem_rng_seed(&rng, 3);
+    for (int k = 0; k < 64; k++) {
+        const int id =
+            test_add(&s, 0.005 + 0.01 * (k % 4), 0.005 + 0.01 * (k / 4 % 4),
+                     0.005 + 0.01 * (k / 16), 5.2e-3);
+        s.p.vx[id] = 0.05 * (2 * dem_rng_uniform(&rng) - 1);
+        s.p.wz[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
+        if (spin_x)
+            s.p.wx[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
+    }
+    test_ready(&s);
+    test_step(&s, 2000);
+    step_measured(&s);
+    *e_pot = s.sums.e_pot;
+    assert_true(s.sums.n_pp > 0 && *e_pot > 0.0);
+    for (int i = 0; i < 64; i++) {
+        const double v[6] = {s.p.x[i],  s.p.y[i],  s.p.z[i],
+                             s.p.wx[i], s.p.wy[i], s.p.wz[i]};
+        memcpy(&x[6 * i], v, sizeof v);
+    }
+    dem_sim_destroy(&s);
+}
+
 /* Without friction the tangential force is zero whatever k_t is, so a
  * frictionless run with k_t = 0 (accepted by the config) and one with
  * k_t = 1000 N/m are the same bit for bit, and so is their elastic
@@ -297,28 +330,7 @@ static void frictionless_runs_do_not_depend_on_kt(void **state)
         papers_material(&c, 0.01);
         c.contact.kt = kts[q];
         c.contact.mu_s = c.contact.mu_d = c.contact.wall_mu = 0.0;
-        struct dem_sim s;
-        test_sim(&s, &c, 64, 0.0, 0.04);
-        struct dem_rng rng;
-        dem_rng_seed(&rng, 3);
-        for (int k = 0; k < 64; k++) {
-            const int id =
-                test_add(&s, 0.005 + 0.01 * (k % 4), 0.005 + 0.01 * (k / 4 % 4),
-                         0.005 + 0.01 * (k / 16), 5.2e-3);
-            s.p.vx[id] = 0.05 * (2 * dem_rng_uniform(&rng) - 1);
-            s.p.wz[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
-        }
-        test_ready(&s);
-        test_step(&s, 2000);
-        step_measured(&s);
-        e_pot[q] = s.sums.e_pot;
-        assert_true(s.sums.n_pp > 0 && e_pot[q] > 0.0);
-        for (int i = 0; i < 64; i++) {
-            const double v[6] = {s.p.x[i],  s.p.y[i],  s.p.z[i],
-                                 s.p.wx[i], s.p.wy[i], s.p.wz[i]};
-            memcpy(&x[q][6 * i], v, sizeof v);
-        }
-        dem_sim_destroy(&s);
+        run_64(&c, 0, x[q], &e_pot[q]);
     }
     assert_memory_equal(x[0], x[1], sizeof x[0]);
     assert_memory_equal(&e_pot[0], &e_pot[1], sizeof e_pot[0]);
@@ -342,29 +354,7 @@ static void resistances_at_a_zero_limit_store_no_energy(void **state)
         c.contact.gamma_r = c.contact.gamma_o = 0.01;
         c.contact.mu_r = c.contact.mu_o = 0.0;
         c.contact.wall_mu_r = c.contact.wall_mu_o = 0.0;
-        struct dem_sim s;
-        test_sim(&s, &c, 64, 0.0, 0.04);
-        struct dem_rng rng;
-        dem_rng_seed(&rng, 3);
-        for (int k = 0; k < 64; k++) {
-            const int id =
-                test_add(&s, 0.005 + 0.01 * (k % 4), 0.005 + 0.01 * (k / 4 % 4),
-                         0.005 + 0.01 * (k / 16), 5.2e-3);
-            s.p.vx[id] = 0.05 * (2 * dem_rng_uniform(&rng) - 1);
-            s.p.wz[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
-            s.p.wx[id] = 5.0 * (2 * dem_rng_uniform(&rng) - 1);
-        }
-        test_ready(&s);
-        test_step(&s, 2000);
-        step_measured(&s);
-        e_pot[q] = s.sums.e_pot;
-        assert_true(s.sums.n_pp > 0 && e_pot[q] > 0.0);
-        for (int i = 0; i < 64; i++) {
-            const double v[6] = {s.p.x[i],  s.p.y[i],  s.p.z[i],
-                                 s.p.wx[i], s.p.wy[i], s.p.wz[i]};
-            memcpy(&x[q][6 * i], v, sizeof v);
-        }
-        dem_sim_destroy(&s);
+        run_64(&c, 1, x[q], &e_pot[q]);
     }
     assert_memory_equal(x[0], x[1], sizeof x[0]);
     assert_memory_equal(&e_pot[0], &e_pot[1], sizeof e_pot[0]);
