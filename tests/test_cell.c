@@ -7,6 +7,7 @@
 
 #include "config/keys.h"
 #include "core/rng.h"
+#include "measure/measure.h"
 #include "protocol/stage.h"
 
 /* A periodic config and an empty cell [0, L]^dim with tilts t. */
@@ -740,6 +741,14 @@ static void tilt_servo_holds_the_shear_stress(void **state)
     /* measured: p = 346.4 N/m, tau = 17.32 N/m held to 2e-12 relative,
      * the tilt at 7.9e-4 m (a shear strain of 0.9 %) */
     assert_close(got, tau, 1e-8 * tau);
+    /* q, the Mohr circle's radius, takes the shear stress in (before,
+     * |sigma_yy - sigma_xx|/2 alone) */
+    struct dem_sample smp;
+    const double L0[3] = {L[0], L[1], L[2]};
+    dem_measure(&s, L0, V, 0.0, 0, &smp);
+    const double h = 0.5 * (smp.sigma[1] - smp.sigma[0]);
+    assert_close(smp.q, sqrt(h * h + tau * tau), 1e-6 * tau);
+    assert_true(smp.q - fabs(h) > 0.1 * tau); /* (the old q fails) */
     assert_true(s.cell.tilt[DEM_TILT_XY].pos > 0.0);
     assert_true(fabs(s.cell.tilt[DEM_TILT_XY].vel) < 1e-6);
     dem_sim_destroy(&s);

@@ -48,12 +48,26 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
         o->sigma[a] = 0.5 * (o->sigma_wall[2 * a] + o->sigma_wall[2 * a + 1]);
         o->p += o->sigma[a] / dim;
     }
+    /* the shear stresses: in a cell its stress's off-diagonal parts,
+     * symmetrised, those its tilts feel (contact/forces.c); the walls
+     * measure none (their normal stresses alone) */
+    double t[3] = {0.0, 0.0, 0.0}; /* xy, yz, xz */
+    if (s->cell.on && o->V > 0.0) {
+        static const int ab[3][2] = {{0, 1}, {1, 2}, {0, 2}};
+        for (int k = 0; k < 3; k++)
+            t[k] = 0.5 *
+                   (s->cell.stress[ab[k][0]][ab[k][1]] +
+                    s->cell.stress[ab[k][1]][ab[k][0]]) /
+                   o->V;
+    }
     if (dim == 3) {
         double d01 = o->sigma[0] - o->sigma[1], d12 = o->sigma[1] - o->sigma[2],
                d20 = o->sigma[2] - o->sigma[0];
-        o->q = sqrt(0.5 * (d01 * d01 + d12 * d12 + d20 * d20));
-    } else {
-        o->q = 0.5 * fabs(o->sigma[1] - o->sigma[0]);
+        o->q = sqrt(0.5 * (d01 * d01 + d12 * d12 + d20 * d20) +
+                    3.0 * (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]));
+    } else { /* the Mohr circle's radius */
+        const double h = 0.5 * (o->sigma[1] - o->sigma[0]);
+        o->q = sqrt(h * h + t[0] * t[0]);
     }
 
     /* split over ranks (decomp/halo.h): each sums its own particles,

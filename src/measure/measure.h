@@ -26,8 +26,10 @@ struct dem_sample {
     double sigma_lw[3][3];   /* Pa; Love-Weber stress, kinetic part included */
     double sigma_kin[3][3];  /* Pa; its kinetic part */
     double p;                /* Pa; mean wall stress over dim axes */
-    double q;                /* Pa; deviatoric wall stress: 3D sqrt(3 J2),
-                                2D |sigma_yy - sigma_xx|/2 */
+    double q;                /* Pa; deviatoric stress: 3D sqrt(3 J2), 2D
+                                the Mohr radius sqrt(((sigma_yy -
+                                sigma_xx)/2)^2 + sigma_xy^2); in a cell
+                                with its shear stresses */
     double e_kin;            /* J; translational kinetic energy */
     double e_rot;            /* J; rotational kinetic energy */
     double e_pot;            /* J; elastic energy in contacts */
