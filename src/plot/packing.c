@@ -114,10 +114,10 @@ static int read_chains(const char *outdir, struct dem__csv_table *t,
 
 int dem__plot_run_particles(const char *outdir, const char *plotdir,
                             const struct dem__csv_table *pt, int dim,
-                            const double *lo, const double *hi,
+                            const double *lo, const double *hi, int cell,
                             struct dem_error *err)
 {
-    double *fsum = NULL, *speed = NULL;
+    double *fsum = NULL, *speed = NULL, *wx = NULL, *wcx = NULL;
     int rc = read_forces(outdir, pt->nrow, &fsum, err);
     if (rc)
         return rc;
@@ -160,13 +160,39 @@ int dem__plot_run_particles(const char *outdir, const char *plotdir,
         pk.chain_cy = chains.col[4];
         pk.chain_delta = chains.col[5];
     }
+    /* a periodic cell: each centre at its image in [lo, hi) along x (a
+     * lattice vector of any cell, sheared or not: a sheared cell's
+     * parallelogram fills the box), its contacts' points moved with it;
+     * a pair whose partner moved otherwise is drawn as through an image */
+    const double Lx = lo && hi ? hi[0] - lo[0] : 0.0;
+    if (cell && Lx > 0.0 && pk.n > 0) {
+        wx = malloc((size_t)pk.n * sizeof *wx);
+        wcx = malloc((size_t)(pk.nchain > 0 ? pk.nchain : 1) * sizeof *wcx);
+        if (!wx || !wcx) {
+            rc = dem_error_set(err, DEM_ENOMEM, "out of memory");
+        } else {
+            for (int i = 0; i < pk.n; i++)
+                wx[i] = pk.x[i] - Lx * floor((pk.x[i] - lo[0]) / Lx);
+            for (int k = 0; k < pk.nchain; k++) {
+                const double ci = pk.chain_i[k];
+                wcx[k] = pk.chain_cx[k];
+                if (ci >= 0.0 && ci < pk.n)
+                    wcx[k] += wx[(int)ci] - pk.x[(int)ci];
+            }
+            pk.x = wx;
+            pk.chain_cx = wcx;
+        }
+    }
     char png[DEM_PATH_MAX];
-    rc = dem_path_join(png, sizeof png, plotdir, "particles.png", err);
+    if (!rc)
+        rc = dem_path_join(png, sizeof png, plotdir, "particles.png", err);
     if (!rc)
         rc = dem__plot_particles(&pk, png, err);
     if (have)
         dem__csv_table_free(&chains);
     free(fsum);
     free(speed);
+    free(wx);
+    free(wcx);
     return rc;
 }

@@ -106,6 +106,7 @@ struct series {
     int stage;                /* loading stage index */
     size_t lo, hi;            /* its rows [lo, hi) */
     size_t slo, shi;          /* the last shear stage's rows (none: equal) */
+    int cell;                 /* a periodic cell (config.cfg), else 0 */
     double peak_sin, peak_strain; /* summary.json's peak (smoothed, as the
                                      analysis found it), NaN if none */
     struct dem__summary_cycles cyc; /* summary.json's cycles, verdict */
@@ -216,6 +217,7 @@ static int find_loading_from_config(struct series *s, const char *outdir)
         return 0;
     if (cfg.dim != s->dim)
         return -1;
+    s->cell = cfg.box.boundary == DEM_BOUNDARY_PERIODIC;
     for (int q = cfg.nstages - 1; q >= 0; q--)
         if (cfg.stages[q].type == DEM_STAGE_SHEAR && s->c[TS_GXY] &&
             s->c[TS_SXY]) {
@@ -1079,6 +1081,7 @@ static int plot_folder(const char *outdir, struct dem_error *err)
     s.dim = all_zero(s.c[TS_LZ], s.n) && (prc || !dem__plot_packing_3d(&pt))
                 ? 2
                 : 3;
+    s.cell = 0;
     const int from_config = find_loading_from_config(&s, outdir);
     if (from_config < 0)
         rc = dem_error_set(err, DEM_EIO,
@@ -1119,7 +1122,8 @@ static int plot_folder(const char *outdir, struct dem_error *err)
     const int box = final_box(&s, lo, hi);
     if (!rc)
         rc = dem__plot_run_particles(outdir, plotdir, &pt, s.dim,
-                                     box ? lo : NULL, box ? hi : NULL, err);
+                                     box ? lo : NULL, box ? hi : NULL, s.cell,
+                                     err);
     if (!prc)
         dem__csv_table_free(&pt);
     dem__csv_table_free(&ts);

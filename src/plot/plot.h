@@ -107,10 +107,12 @@ int dem__plot_read_packing(const char *outdir, struct dem__csv_table *pt,
 int dem__plot_packing_3d(const struct dem__csv_table *pt);
 /* Draw pt into PLOTDIR/particles.png, coloured by the contact force sums
  * of OUTDIR/forces_final.csv (by speed without it), in the box lo, hi
- * (NULL: the extent of the packing). */
+ * (NULL: the extent of the packing). cell: a periodic cell, whose
+ * centres (in a sheared cell's frame, a parallelogram) are drawn at
+ * their images x - k L_x inside the box. */
 int dem__plot_run_particles(const char *outdir, const char *plotdir,
                             const struct dem__csv_table *pt, int dim,
-                            const double *lo, const double *hi,
+                            const double *lo, const double *hi, int cell,
                             struct dem_error *err);
 
 /* The colour of t in [0, 1]: blue (0) -> green (0.5) -> red (1), as in
