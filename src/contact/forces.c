@@ -70,6 +70,21 @@ static double shear_energy(const struct dem_history *h,
            (cp->mu_o > 0.0 ? dem_resistance_energy(xo, cp->ko) : 0.0);
 }
 
+/* A contact with friction, c its force record's n x f_t, into the
+ * sliding fraction's sums: n_sliding when it slides at a positive limit
+ * (dem_contact_slides), n_frictional then or when it sticks; one at a
+ * zero limit in neither. */
+static void count_friction(struct dem_contact_sums *S, int state,
+                           const double c[3],
+                           const struct dem_contact_params *cp)
+{
+    if (!(cp->mu_s > 0.0))
+        return;
+    const int slides = dem_contact_slides(state, c, cp->mu_s, cp->mu_d);
+    S->n_sliding += slides;
+    S->n_frictional += slides || !(state & DEM_CONTACT_SLIDING);
+}
+
 /* Sums for the measurements, from the stored contact forces and the
  * current positions, in list order. */
 static void measure_contacts(struct dem_sim *s)
@@ -132,10 +147,7 @@ static void measure_contacts(struct dem_sim *s)
         S->n_pp++;
         /* (a contact at a zero Coulomb limit, frictionless or of f_C =
          * 0, "slides" with no force every step: counted in neither) */
-        S->n_sliding +=
-            dem_contact_slides(L->state[k], F->v[k].c, cp->mu_s, cp->mu_d);
-        S->n_frictional +=
-            dem_contact_frictional(L->state[k], F->v[k].c, cp->mu_s, cp->mu_d);
+        count_friction(S, L->state[k], F->v[k].c, cp);
         const double amin = P->r[i] < P->r[j] ? P->r[i] : P->r[j];
         if (delta / amin > S->max_overlap_ratio) {
             S->max_overlap_ratio = delta / amin;
@@ -163,10 +175,7 @@ static void measure_contacts(struct dem_sim *s)
         e += dem_normal_energy(cpw.normal, &cpw, delta, P->r[i], &h);
         S->e_pot += e;
         S->n_pw++;
-        S->n_sliding +=
-            dem_contact_slides(WL->state[k], WF->v[k].c, cpw.mu_s, cpw.mu_d);
-        S->n_frictional += dem_contact_frictional(WL->state[k], WF->v[k].c,
-                                                  cpw.mu_s, cpw.mu_d);
+        count_friction(S, WL->state[k], WF->v[k].c, &cpw);
         if (delta / P->r[i] > S->max_overlap_ratio) {
             S->max_overlap_ratio = delta / P->r[i];
             S->max_overlap_i = P->id[i];

@@ -25,13 +25,4 @@ static inline int dem_contact_slides(int state, const double c[3], double mu_s,
     return !(mu_d > 0.0) || c[0] != 0.0 || c[1] != 0.0 || c[2] != 0.0;
 }
 
-/* Whether a contact counts among those with friction, the whole of the
- * sliding fraction: friction, and not at a zero limit. */
-static inline int dem_contact_frictional(int state, const double c[3],
-                                         double mu_s, double mu_d)
-{
-    return mu_s > 0.0 && (!(state & DEM_CONTACT_SLIDING) ||
-                          dem_contact_slides(state, c, mu_s, mu_d));
-}
-
 #endif

@@ -30,7 +30,7 @@ struct dem_contact_sums {
                                    limit (pp and pw; dem_contact_slides) */
     long n_frictional;          /* contacts with friction not at a zero
                                    limit, the sliding ones' whole
-                                   (dem_contact_frictional) */
+                                   (contact/forces.c, count_friction) */
     double max_overlap_ratio;   /* largest delta / radius */
     int max_overlap_i;          /* id of a particle of that contact */
     int max_overlap_j;          /* id of the other, -1 for a wall */

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "contact/models.h"
 #include "contact/state.h"
 
 /* v, or +0 for -0: the outputs write a zero as 0 (a 2D sample's z
@@ -74,6 +75,7 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         history(c, L, k, net->hist);
     }
     net->npair = net->n;
+    const struct dem_contact_params cpw = dem_contact_wall_view(&s->cp);
     for (int k = 0; k < W->n; k++) {
         if (!(W->state[k] & DEM_CONTACT_ACTIVE))
             continue;
@@ -97,7 +99,7 @@ int dem_network_build(const struct dem_sim *s, struct dem_network *net,
         }
         split(c, s->pairs.wf.v[k].f);
         c->sliding = dem_contact_slides(W->state[k], s->pairs.wf.v[k].c,
-                                        s->cp.wall_mu, s->cp.wall_mu);
+                                        cpw.mu_s, cpw.mu_d);
         history(c, W, k, net->hist);
     }
     return DEM_OK;
