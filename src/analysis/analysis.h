@@ -29,6 +29,9 @@ struct dem_linfit {
     double r2;  /* coefficient of determination (1 if y is constant) */
     double rms; /* root mean square residual, units of y */
     long n;     /* points used */
+    /* standard errors of a and b and their covariance for independent
+     * errors of one variance, estimated as sse/(n - 2); NaN for n < 3 */
+    double se_a, se_b, cov_ab;
 };
 
 /* Fit n points; DEM_EUSAGE when n < 2 or all x are equal. */
@@ -185,6 +188,14 @@ struct dem_mohr_fit {
      * average over samples takes: the bounded values' mean leans above a
      * cohesion near 0. */
     double phi_free_deg, c_free;
+    /* standard errors of phi_deg and c from the scatter of the circles
+     * about the tangent (linear regression of t on s, n - 2 degrees of
+     * freedom, n - 1 through the origin; propagated to phi and c to first
+     * order): NaN where the circles leave no degree of freedom (2 for the
+     * free tangent), and c_se where c is not fitted (bounded or without
+     * cohesion). The spread between independent samples is another
+     * error (a sweep's ensembles). */
+    double phi_se_deg, c_se;
 };
 
 /* Common tangent tau = c + sigma tan phi of n Mohr circles (sigma1 >=

@@ -7,6 +7,7 @@
 int dem_linfit(const double *x, const double *y, long n, struct dem_linfit *out)
 {
     out->a = out->b = out->r2 = out->rms = NAN;
+    out->se_a = out->se_b = out->cov_ab = NAN;
     out->n = n;
     if (n < 2)
         return DEM_EUSAGE;
@@ -43,6 +44,12 @@ int dem_linfit(const double *x, const double *y, long n, struct dem_linfit *out)
     }
     out->rms = sqrt(sse / (double)n);
     out->r2 = syy > 0.0 ? 1.0 - sse / syy : 1.0;
+    if (n > 2) { /* var b = s2/sxx, var a = s2 (1/n + mx^2/sxx) */
+        const double s2 = sse / (double)(n - 2);
+        out->se_b = sqrt(s2 / sxx);
+        out->se_a = sqrt(s2 * (1.0 / (double)n + mx * mx / sxx));
+        out->cov_ab = -mx * s2 / sxx;
+    }
     return DEM_OK;
 }
 

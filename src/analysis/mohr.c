@@ -23,7 +23,7 @@ double dem_mohr_sin_phi(double sigma1, double sigma3)
 }
 
 static int through_origin(const double *s, const double *t, long n,
-                          struct dem_mohr_fit *o)
+                          struct dem_mohr_fit *o, double *se_b)
 {
     double st = 0.0, ss = 0.0, tt = 0.0;
     for (long i = 0; i < n; i++) {
@@ -44,6 +44,7 @@ static int through_origin(const double *s, const double *t, long n,
         sse += r * r;
     }
     o->rms = sqrt(sse / (double)n);
+    *se_b = n > 1 ? sqrt(sse / (double)(n - 1) / ss) : NAN;
     /* R^2 about zero, the model having no intercept; undefined for one
      * circle, which the line always touches */
     o->r2 = n > 1 && tt > 0.0 ? 1.0 - sse / tt : NAN;
@@ -57,6 +58,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     o->n = n;
     o->sin_phi = o->phi_deg = o->c = o->r2 = o->rms = NAN;
     o->phi_free_deg = o->c_free = NAN;
+    o->phi_se_deg = o->c_se = NAN;
     o->reason[0] = o->note[0] = '\0';
     o->bounded = 0;
     if (n < 1 || (cohesion && n < 2)) {
@@ -70,6 +72,9 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     if (!s)
         return DEM_ENOMEM;
     double *t = s + n;
+    /* the regression's standard errors of B = sin phi and A = c cos phi
+     * and their covariance (A's NaN where c is not fitted) */
+    double se_b = NAN, se_a = NAN, cov = NAN;
     /* in a unit of the order of the largest stress, so that the sums of
      * squares below hold any stresses a double holds: sin phi is scale
      * free, c and the rms scale back at the end. A power of 2, so that
@@ -95,6 +100,9 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
             o->c = f.a; /* A = c cos phi; divided below */
             o->r2 = f.r2;
             o->rms = f.rms;
+            se_b = f.se_b;
+            se_a = f.se_a;
+            cov = f.cov_ab;
             fitted = 1;
         } else {
             snprintf(o->reason, sizeof o->reason,
@@ -102,7 +110,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
                      "undetermined");
         }
     } else {
-        fitted = through_origin(s, t, n, o);
+        fitted = through_origin(s, t, n, o, &se_b);
     }
     /* A cohesion below 0 is no material's (a tensile strength below
      * none): the intercept of circles of a cohesionless material that
@@ -116,7 +124,8 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
             o->phi_free_deg = asin(sfree) * DEG;
             o->c_free = afree / sqrt(1.0 - sfree * sfree);
         }
-        fitted = through_origin(s, t, n, o);
+        fitted = through_origin(s, t, n, o, &se_b);
+        se_a = cov = NAN; /* c = 0 is the bound, not a fit */
         o->bounded = 1;
         snprintf(o->note, sizeof o->note,
                  "the free fit's intercept c cos phi, %.4g, is below 0 (its "
@@ -136,6 +145,8 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     free(s);
     o->c *= unit;
     o->rms *= unit;
+    se_a *= unit;
+    cov *= unit;
     if (!fitted)
         return DEM_OK;
     if (!(o->sin_phi > 0.0 && o->sin_phi < 1.0)) {
@@ -146,9 +157,16 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
         o->sin_phi = o->c = NAN;
         return DEM_OK;
     }
-    const double phi = asin(o->sin_phi);
-    o->c /= cos(phi);
+    const double phi = asin(o->sin_phi), cp = cos(phi);
+    o->c /= cp;
     o->phi_deg = phi * DEG;
+    /* first order: dphi = dB / cos phi; c = A / cos phi, so dc = dA / cos
+     * phi + c B dB / cos^2 phi */
+    o->phi_se_deg = se_b / cp * DEG;
+    const double ga = 1.0 / cp, gb = o->c * o->sin_phi / (cp * cp);
+    const double vc =
+        ga * ga * se_a * se_a + gb * gb * se_b * se_b + 2.0 * ga * gb * cov;
+    o->c_se = isnan(vc) ? NAN : sqrt(fmax(vc, 0.0)); /* (fmax drops NaN) */
     if (cohesion && !o->bounded) {
         o->phi_free_deg = o->phi_deg;
         o->c_free = o->c;

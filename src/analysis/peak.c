@@ -110,25 +110,18 @@ int dem_peak_distinct(struct dem_peak *peak, const struct dem_critical *crit,
     return DEM_OK;
 }
 
-/* The standard error of the slope b of the line fitted to (x, y) (its
- * residuals' variance over n - 2 degrees of freedom, inflated by
- * (1 + rho)/(1 - rho) for their lag-one autocorrelation rho, clamped to
- * [0, 0.99]: the samples of a flowing packing are correlated over many
- * rows, and taking them as independent would call any slow fluctuation a
- * trend). */
+/* The standard error of the slope b of the line f fitted to (x, y):
+ * dem_linfit's, for independent residuals, inflated by
+ * sqrt((1 + rho)/(1 - rho)) for their lag-one autocorrelation rho,
+ * clamped to [0, 0.99]: the samples of a flowing packing are correlated
+ * over many rows, and taking them as independent would call any slow
+ * fluctuation a trend. */
 static double slope_stderr(const double *x, const double *y, long n,
                            const struct dem_linfit *f)
 {
-    if (n < 3)
-        return NAN;
-    double mx = 0.0;
-    for (long i = 0; i < n; i++)
-        mx += x[i];
-    mx /= (double)n;
-    double sxx = 0.0, rr = 0.0, r1 = 0.0, prev = 0.0;
+    double rr = 0.0, r1 = 0.0, prev = 0.0;
     for (long i = 0; i < n; i++) {
         const double r = y[i] - (f->a + f->b * x[i]);
-        sxx += (x[i] - mx) * (x[i] - mx);
         rr += r * r;
         if (i > 0)
             r1 += r * prev;
@@ -136,7 +129,7 @@ static double slope_stderr(const double *x, const double *y, long n,
     }
     double rho = rr > 0.0 ? r1 / rr : 0.0;
     rho = rho < 0.0 ? 0.0 : rho > 0.99 ? 0.99 : rho;
-    return sqrt(rr / (double)(n - 2) / sxx * (1.0 + rho) / (1.0 - rho));
+    return f->se_b * sqrt((1.0 + rho) / (1.0 - rho));
 }
 
 int dem_critical_find(const double *strain, const double *y, long n,

@@ -280,8 +280,8 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
                  "k_c/k_2", "cohesion c");
     const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
     fprintf(dat, "# block 0: columns 1 kc/k2  2 cohesion c (from the flow "
-                 "function)  3 its standard error over the seeds (0 without "
-                 "seeds)\n");
+                 "function)  3 its standard error: over the seeds, or "
+                 "without seeds the tangent's own (0 where it has none)\n");
     double xmax = 0.0, k1k2 = NAN;
     int one_ratio = 1; /* every group of one k1/k2: the curve is theirs */
     const int G = ens ? s->ffeg.n : s->ffg.n;
@@ -291,7 +291,9 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
         const double c = ens                  ? s->ffe[0][q].c.mean
                          : s->ff[0][q].fit.ok ? s->ff[0][q].fit.c
                                               : NAN;
-        const double se = ens ? s->ffe[0][q].c.se : 0.0;
+        const double se = ens                  ? s->ffe[0][q].c.se
+                          : s->ff[0][q].fit.ok ? s->ff[0][q].fit.c_se
+                                               : NAN;
         fprintf(dat, "%.9g ", r->kc / r->k2);
         isfinite(c) ? fprintf(dat, "%.9g ", c) : fprintf(dat, "? ");
         fprintf(dat, "%.9g\n", isfinite(se) ? se : 0.0);
@@ -334,7 +336,9 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
             "set xrange [0:%.6g]\nplot \"cohesion_vs_kc.dat\" index 0 "
             "using 1:2:3 with yerrorbars pointtype 7 pointsize 1.5 title "
             "\"flow functions%s\"%s\n",
-            xmax, ens ? ", mean ± s.e. over the seeds" : "",
+            xmax,
+            ens ? ", mean ± s.e. over the seeds"
+                : ", ± s.e. of the tangent (from its circles)",
             !isfinite(s->kc_scale) ? ""
             : one_ratio
                 ? ", \\\n  \"\" index 1 with lines linewidth 2 title "
