@@ -515,6 +515,47 @@ static void void_ratio_fit_recovers_e0_and_n(void **state)
     assert_int_equal(dem_voidfit(p, e, 2, hs, &f), 0);
     assert_false(f.ok);
     assert_non_null(strstr(f.reason, "3 or more"));
+    assert_true(isnan(f.se_e0) && isnan(f.se_n));
+}
+
+/* The void-ratio fit's standard errors against the scatter they
+ * describe, as for the Mohr tangent: 6 states whose void ratios carry
+ * independent normal noise of 0.002, fitted 4000 times; the rms of the
+ * reported errors matches the standard deviation of e0 and n over the
+ * replicas within 5 % (sampling about 1.1 % each side; 40000 replicas
+ * gave 1.0003 and 1.0012). */
+static void void_ratio_fit_standard_errors_match_the_scatter(void **state)
+{
+    (void)state;
+    const double e0 = 0.27, n = 0.42, hs = 1e5, sigma = 2e-3;
+    const double p[] = {100.0, 250.0, 500.0, 1000.0, 2000.0, 5000.0};
+    const int reps = 4000;
+    uint64_t seed = 777;
+    double m[2] = {0}, mm[2] = {0}, se2[2] = {0};
+    for (int r = 0; r < reps; r++) {
+        double e[6];
+        for (int k = 0; k < 6; k++) {
+            const double u1 = 0.5 * (noise(&seed) + 1.0) + 1e-300,
+                         u2 = noise(&seed);
+            e[k] = e0 - pow(p[k] / hs, n) +
+                   sigma * sqrt(-2.0 * log(u1)) * cos(M_PI * u2);
+        }
+        struct dem_voidfit f;
+        assert_int_equal(dem_voidfit(p, e, 6, hs, &f), 0);
+        assert_true(f.ok);
+        const double v[2] = {f.e0, f.n}, se[2] = {f.se_e0, f.se_n};
+        for (int q = 0; q < 2; q++) {
+            m[q] += v[q];
+            mm[q] += v[q] * v[q];
+            se2[q] += se[q] * se[q];
+        }
+    }
+    for (int q = 0; q < 2; q++) {
+        const double mean = m[q] / reps,
+                     sd = sqrt((mm[q] / reps - mean * mean) * reps /
+                               (reps - 1.0));
+        assert_close(sqrt(se2[q] / reps) / sd, 1.0, 0.05);
+    }
 }
 
 /* A cyclic stage starting at t0: eps_D grows by inc[k-1] during cycle k
@@ -1817,6 +1858,7 @@ int main(void)
         cmocka_unit_test(volumetric_slopes_of_a_known_curve),
         cmocka_unit_test(poisson_and_dilatancy_formulas),
         cmocka_unit_test(void_ratio_fit_recovers_e0_and_n),
+        cmocka_unit_test(void_ratio_fit_standard_errors_match_the_scatter),
         cmocka_unit_test(ratchet_increments_recovered),
         cmocka_unit_test(shakedown_recognised),
         cmocka_unit_test(verdict_ignores_the_first_loading),

@@ -581,6 +581,9 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     assert_non_null(vr);
     assert_close(dem__jread_number(&vr->items[0], "initial.e0"), e0, 1e-4);
     assert_close(dem__jread_number(&vr->items[0], "initial.n"), n, 1e-3);
+    /* points on the curve: errors of about zero, written */
+    assert_close(dem__jread_number(&vr->items[0], "initial.e0_se"), 0.0, 1e-4);
+    assert_close(dem__jread_number(&vr->items[0], "initial.n_se"), 0.0, 1e-3);
     /* what the sweep does not vary is null with a reason */
     assert_int_equal(dem__jread_get(&js, "friction_vs_mu")->type,
                      DEM__JSON_NULL);

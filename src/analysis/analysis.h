@@ -215,6 +215,11 @@ struct dem_voidfit {
     double n;   /* exponent */
     double rms; /* rms residual in e */
     double r2;  /* R^2 in e */
+    /* standard errors of e0 and n from the points' scatter about the
+     * curve (Gauss-Newton covariance at the fit, m - 2 degrees of
+     * freedom): how well one sample's states lie on the curve, not the
+     * spread between samples */
+    double se_e0, se_n;
     char reason[DEM_REASON_MAX];
 };
 

@@ -751,6 +751,8 @@ static void write_void_fit(struct dem__json *j, const struct result *R)
     dem__json_number(j, "hs", R->hs);
     dem__json_number(j, "rms", ok ? R->vfit.rms : NAN);
     dem__json_number(j, "r2", ok ? R->vfit.r2 : NAN);
+    dem__json_number(j, "e0_se", ok ? R->vfit.se_e0 : NAN);
+    dem__json_number(j, "n_se", ok ? R->vfit.se_n : NAN);
     dem__json_int(j, "points", R->vfit_points);
     if (!ok)
         dem__json_string(j, "reason", R->vfit.reason);

@@ -50,7 +50,7 @@ int dem_voidfit(const double *p, const double *e, long m, double hs,
                 struct dem_voidfit *o)
 {
     o->ok = 0;
-    o->e0 = o->n = o->rms = o->r2 = NAN;
+    o->e0 = o->n = o->rms = o->r2 = o->se_e0 = o->se_n = NAN;
     o->reason[0] = '\0';
     if (!(hs > 0.0)) {
         snprintf(o->reason, sizeof o->reason,
@@ -111,6 +111,19 @@ int dem_voidfit(const double *p, const double *e, long m, double hs,
     }
     const double n = exp(0.5 * (a + b));
     const double s = sse(x, e, m, n, &e0);
+    /* the covariance s^2 (J^T J)^-1, s^2 = S/(m - 2), of the model's
+     * Jacobian J_i = (1, g_i), g_i = d e_i/d n = -x_i^n ln x_i */
+    double sg = 0.0, sgg = 0.0;
+    for (long i = 0; i < m; i++) {
+        const double gi = -pow(x[i], n) * log(x[i]);
+        sg += gi;
+        sgg += gi * gi;
+    }
+    const double det = (double)m * sgg - sg * sg, s2 = s / (double)(m - 2);
+    if (det > 0.0) {
+        o->se_e0 = sqrt(s2 * sgg / det);
+        o->se_n = sqrt(s2 * (double)m / det);
+    }
     free(x);
     if (best == 0 || best == N_GRID) {
         snprintf(o->reason, sizeof o->reason,

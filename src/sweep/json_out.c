@@ -291,6 +291,8 @@ static void write_voids(struct dem__json *j, const struct dem__sweep *s)
             dem__json_number(j, "n", f->ok ? f->n : NAN);
             dem__json_number(j, "rms", f->ok ? f->rms : NAN);
             dem__json_number(j, "r2", f->ok ? f->r2 : NAN);
+            dem__json_number(j, "e0_se", f->ok ? f->se_e0 : NAN);
+            dem__json_number(j, "n_se", f->ok ? f->se_n : NAN);
             if (!f->ok)
                 dem__json_string(j, "reason", f->reason);
             dem__json_close(j);
