@@ -614,6 +614,21 @@ static void cell_stress_is_the_contacts_sum(void **state)
             assert_close(s.cell.stress[a][b],
                          s.sums.fabric_stress[a][b] + kin[a][b],
                          1e-9 * scale);
+    /* the Love-Weber stress written is the symmetric part: the sum of
+     * l (x) f is not, the contacts' tangential forces leaving the
+     * particles a net torque in this fast shear (it was written
+     * unsymmetrised, sigma_lw_xy = sum l_x f_y / V alone) */
+    double(*F)[3] = s.sums.fabric_stress;
+    assert_true(fabs(F[0][1] - F[1][0]) > 1e-3 * fabs(F[0][1]));
+    double L[3], V;
+    dem_sim_box(&s, L, &V);
+    struct dem_sample smp;
+    dem_measure(&s, L, V, 0.0, 0, &smp);
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            assert_close(smp.sigma_lw[a][b],
+                         (0.5 * (F[a][b] + F[b][a]) + kin[a][b]) / V,
+                         1e-12 * scale / V);
     dem_sim_destroy(&s);
 }
 

@@ -104,11 +104,16 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
         for (int a = 0; a < 9; a++)
             o->sigma_kin[a / 3][a % 3] = v[6 + a];
     }
+    /* the Love-Weber stress symmetrised: sum l (x) f is not, where the
+     * contacts' tangential forces and couples leave the particles a net
+     * torque (an accelerating spin, rolling resistance); its symmetric
+     * part is the Cauchy stress that the cell's tilts feel and q takes */
     for (int a = 0; a < 3; a++)
         for (int c = 0; c < 3; c++) {
             o->sigma_kin[a][c] /= o->V;
             o->sigma_lw[a][c] =
-                S->fabric_stress[a][c] / o->V + o->sigma_kin[a][c];
+                0.5 * (S->fabric_stress[a][c] + S->fabric_stress[c][a]) / o->V +
+                o->sigma_kin[a][c];
             o->fabric[a][c] = S->n_pp ? S->fabric[a][c] / (double)S->n_pp : 0.0;
         }
     o->e_pot = S->e_pot;
