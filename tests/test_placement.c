@@ -447,6 +447,30 @@ static void file_placement_box_from_bounds_or_given(void **state)
         assert_true(fabs(p.y[i] - wy[i]) < 1e-15);
     }
     dem_particles_free(&p);
+    /* a centre far out: a million periods is taken (into the cell to
+     * rounding), beyond that its place in the cell is lost, and it is
+     * refused by line (at 1e20 the wrap left it thousands of metres
+     * outside, at 1e308 at minus infinity: a fuzzing review, session
+     * 112) */
+    const char *far[] = {"-2.5e5", "1e20", "1e308", "-1e308"};
+    for (int k = 0; k < 4; k++) {
+        f = fopen(c.particles.file, "w");
+        assert_non_null(f);
+        fprintf(f, "x,y,radius\n0.1,0.1,0.01\n%s,0.3,0.01\n", far[k]);
+        fclose(f);
+        if (k == 0) {
+            place_ok(&p, &c, lo, hi);
+            assert_true(p.x[1] >= 0.0 && p.x[1] < 0.25);
+            assert_true(p.x[1] < 1e-10 || p.x[1] > 0.25 - 1e-10);
+            dem_particles_free(&p);
+            continue;
+        }
+        assert_int_equal(place(&p, &c, lo, hi, &err), DEM_ECONFIG);
+        snprintf(want, sizeof want, "%s:3: particle at x = ", c.particles.file);
+        if (strncmp(err.msg, want, strlen(want)) != 0 ||
+            !strstr(err.msg, "million periods"))
+            fail_msg("message \"%s\"", err.msg);
+    }
     c.box.boundary = DEM_BOUNDARY_WALLS;
 
     /* A relative file is relative to the folder dembox runs in; one that

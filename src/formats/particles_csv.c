@@ -507,12 +507,27 @@ int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
      * in the file) */
     if (cfg->box.boundary == DEM_BOUNDARY_PERIODIC) {
         double *c[3] = {p->x, p->y, p->z};
-        for (int a = 0; a < dim; a++) {
+        for (int a = 0; a < dim && !rc; a++) {
             const double L = cfg->box.size[a];
             for (int i = 0; i < p->n; i++) {
-                c[a][i] -= L * floor(c[a][i] / L);
-                if (c[a][i] >= L) /* rounding of a centre just below 0 */
-                    c[a][i] = 0.0;
+                /* a centre a million periods out keeps its place in the
+                 * cell to about 1e-10 L; far beyond, the digits that
+                 * place it are gone (at 1e20 m in a 1 cm cell the wrap
+                 * gave centres thousands of metres outside it, at 1e308
+                 * minus infinity) */
+                if (!(fabs(c[a][i]) <= 1e6 * L)) {
+                    rc = dem_error_set(err, DEM_ECONFIG,
+                                       "%s:%d: particle at %c = %g m lies "
+                                       "more than a million periods (%g m) "
+                                       "from the periodic cell: its place "
+                                       "in the cell is lost to rounding",
+                                       path, lines[i], "xyz"[a], c[a][i], L);
+                    break;
+                }
+                /* fmod is exact: the centre's own place in [0, L) */
+                double w = fmod(c[a][i], L);
+                w += w < 0.0 ? L : 0.0;
+                c[a][i] = w < L ? w : 0.0; /* (-tiny + L rounds to L) */
             }
         }
         given = 0;
