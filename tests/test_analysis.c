@@ -379,6 +379,30 @@ static void plateau_weighs_a_trend_against_its_standard_error(void **state)
     assert_true(fabs(cs.drift) > 0.1);
     assert_true(cs.ok);
     assert_close(cs.value, 0.5, 0.05);
+    /* a ratio still softening towards its plateau, without noise:
+     * 0.55 + 0.15 exp(-3 u) across the window (u from 0 to 1, 101 rows)
+     * falls by 20 %; about its line the residuals are a smooth arc whose
+     * lag-one correlation, clamped to 0.99, inflates the error
+     * fourteenfold, and still the fall is 4.5 of its standard errors,
+     * 0.045: no plateau (a read-only review of session 112 expected it
+     * to pass; 21 rows give 0.185 +- 0.041, alike) */
+    enum { M = 401 };
+    for (int i = 0; i < M; i++) {
+        e[i] = 0.2 * i / (M - 1);
+        const double u = e[i] < 0.15 ? 0.0 : (e[i] - 0.15) / 0.05;
+        y[i] = 0.55 + 0.15 * exp(-3.0 * u);
+    }
+    assert_int_equal(dem_critical_find(e, y, M, 0.25, 0.1, &cs), 0);
+    assert_false(cs.ok);
+    assert_close(cs.drift, -0.204, 0.002);
+    assert_true(fabs(cs.drift) > 4.0 * cs.drift_stderr);
+    assert_non_null(strstr(cs.reason, "no plateau"));
+    /* with noise on it as well */
+    s = 3;
+    for (int i = 0; i < M; i++)
+        y[i] += 0.02 * noise(&s);
+    assert_int_equal(dem_critical_find(e, y, M, 0.25, 0.1, &cs), 0);
+    assert_false(cs.ok);
 }
 
 static void smoothing_keeps_a_line_and_its_ends(void **state)
