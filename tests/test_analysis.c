@@ -148,6 +148,61 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_true(isnan(f.c_se));
 }
 
+/* A tensor's six components, for dem_stress_sin_phi. */
+static double sin_phi_of(double t[3][3], int dim)
+{
+    return dem_stress_sin_phi(t[0][0], t[1][1], t[2][2], t[0][1], t[0][2],
+                              t[1][2], dim);
+}
+
+/* sin phi of a stress tensor is that of its extreme principal stresses,
+ * whatever its axes: diag(3, 2, 1) and diag(3, 1) turned by rotations
+ * give 1/2; simple shear's sigma_xx = sigma_yy = s, tau gives tau/s (the
+ * circle centred at s), which atan(tau/s) is not; a tension beyond the
+ * centre gives no angle below 1 and no centre at zero none at all. */
+static void stress_sin_phi_is_the_principal_circles(void **state)
+{
+    (void)state;
+    const double a = 0.7, b = -1.1, c = 2.3; /* Euler angles */
+    const double R[3][3] = {
+        {cos(a) * cos(c) - sin(a) * cos(b) * sin(c),
+         -cos(a) * sin(c) - sin(a) * cos(b) * cos(c), sin(a) * sin(b)},
+        {sin(a) * cos(c) + cos(a) * cos(b) * sin(c),
+         -sin(a) * sin(c) + cos(a) * cos(b) * cos(c), -cos(a) * sin(b)},
+        {sin(b) * sin(c), sin(b) * cos(c), cos(b)}};
+    const double d[3] = {2.0, 3.0, 1.0}; /* the major one in the middle */
+    double sig[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            sig[i][j] = 0.0;
+            for (int k = 0; k < 3; k++)
+                sig[i][j] += R[i][k] * d[k] * R[j][k];
+        }
+    assert_close(sin_phi_of(sig, 3), 0.5, 1e-14);
+    /* 2D: diag(3, 1) turned by 0.4 rad */
+    const double t = 0.4, ct = cos(t), st = sin(t);
+    double s2[3][3] = {{3.0 * ct * ct + st * st, 2.0 * ct * st, 0.0},
+                       {2.0 * ct * st, 3.0 * st * st + ct * ct, 0.0},
+                       {0.0, 0.0, 0.0}};
+    assert_close(sin_phi_of(s2, 2), 0.5, 1e-14);
+    /* simple shear: sigma_xx = sigma_yy = sigma_zz = 500, tau = 300 */
+    double sh[3][3] = {
+        {500.0, -300.0, 0.0}, {-300.0, 500.0, 0.0}, {0.0, 0.0, 500.0}};
+    assert_close(sin_phi_of(sh, 2), 0.6, 1e-14);
+    assert_close(sin_phi_of(sh, 3), 0.6, 1e-14);
+    /* isotropic: 0; the degenerate eigenvalues of axisymmetry */
+    double iso[3][3] = {{5.0, 0, 0}, {0, 5.0, 0}, {0, 0, 5.0}};
+    assert_close(sin_phi_of(iso, 3), 0.0, 0.0);
+    double ax[3][3] = {{3.0, 0, 0}, {0, 1.0, 0}, {0, 0, 1.0}};
+    assert_close(sin_phi_of(ax, 3), 0.5, 1e-8); /* (acos at -1) */
+    /* a minor principal stress in tension: above 1; no centre: NaN */
+    double ten[3][3] = {{3.0, 0, 0}, {0, -1.0, 0}, {0, 0, 1.0}};
+    assert_close(sin_phi_of(ten, 3), 2.0, 1e-14);
+    double neg[3][3] = {{-1.0, 0, 0}, {0, -1.0, 0}, {0, 0, -1.0}};
+    assert_true(isnan(sin_phi_of(neg, 3)));
+    assert_true(isnan(sin_phi_of(neg, 2)));
+}
+
 /* The standard errors of the tangent against the scatter they describe:
  * 5 circles of a known material whose radii carry independent normal
  * noise of one sigma, fitted 4000 times. The root mean square of the
@@ -1056,7 +1111,8 @@ static void write_shear_run_profile(const char *dir, double sense, int back)
         s.t = 0.02 + 1e-3 * i;
         s.stage = i ? 1 : 0;
         s.gamma_xy = sense * x;
-        s.sigma[0] = s.sigma[1] = 500.0;
+        s.sigma[0] = 400.0; /* sigma_xx below sigma_n */
+        s.sigma[1] = 500.0;
         /* on the way back the shear stress reverses: -0.3 sigma_n */
         s.sigma_lw[0][1] = s.sigma_lw[1][0] =
             i <= 1000 ? -sense * ratio_curve(x / 10.0) * 500.0
@@ -1134,10 +1190,18 @@ static void check_shear_either_way(int back)
         const char *pk = strstr(sh, "\"peak\": {"),
                    *cr = strstr(sh, "\"critical\": {");
         assert_close(json_get(pk, "tau_over_sigma_n"), 0.6, 2e-3);
+        assert_close(json_get(pk, "phi_plane_deg"), atan(0.6) * DEG, 0.1);
         assert_close(json_get(pk, "gamma"), 0.2 * sense, 0.01);
+        /* the friction angle of the whole stress's Mohr circle, centre
+         * 450, radius sqrt(50^2 + 300^2), comparable with a triaxial
+         * test's (atan of tau/sigma_n is not: a session-112 review) */
+        const double sp = sqrt(50.0 * 50.0 + 300.0 * 300.0) / 450.0;
+        assert_close(json_get(pk, "sin_phi"), sp, 2e-3);
+        assert_close(json_get(pk, "phi_deg"), asin(sp) * DEG, 0.2);
         /* (the mean of the curve over gamma 0.75 to 1, still 0.03 above
          * its plateau) */
         assert_close(json_get(cr, "tau_over_sigma_n"), 0.431, 2e-3);
+        assert_true(json_get(cr, "sin_phi") > 0.431 * 500.0 / 450.0);
         assert_close(json_get(cr, "gamma_from"), 0.75 * sense, 2e-3);
         assert_close(json_get(sh, "dilatancy_max"), 0.08, 1e-3);
     }
@@ -1873,6 +1937,7 @@ int main(void)
         cmocka_unit_test(mohr_fit_is_invariant_to_the_unit_of_stress),
         cmocka_unit_test(mohr_fit_without_cohesion_passes_origin),
         cmocka_unit_test(mohr_fit_standard_errors_match_the_scatter),
+        cmocka_unit_test(stress_sin_phi_is_the_principal_circles),
         cmocka_unit_test(peak_and_plateau_of_noisy_ratio),
         cmocka_unit_test(too_short_run_has_no_peak),
         cmocka_unit_test(rising_or_flat_end_has_no_peak),

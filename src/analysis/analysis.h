@@ -171,6 +171,14 @@ double dem_dilatancy_angle_extension_deg(double s);
 /* sin phi = (s1 - s3)/(s1 + s3) of one Mohr circle (NaN if s1 + s3 <= 0). */
 double dem_mohr_sin_phi(double sigma1, double sigma3);
 
+/* sin phi of the largest Mohr circle of a symmetric stress tensor
+ * (compression positive), (s1 - s3)/(s1 + s3) of its extreme principal
+ * stresses: in 2D of the xy block (szz, sxz, syz unused), in 3D of the
+ * whole tensor. The mobilised friction of a state with shear stresses,
+ * comparable with a triaxial test's; NaN if s1 + s3 <= 0. */
+double dem_stress_sin_phi(double sxx, double syy, double szz, double sxy,
+                          double sxz, double syz, int dim);
+
 struct dem_mohr_fit {
     int ok;
     long n;         /* circles used */
@@ -314,12 +322,16 @@ struct dem_shear {
     long n;                    /* samples */
     struct dem_peak peak;      /* of mu(gamma) (strain: gamma) */
     struct dem_critical crit;  /* mean mu over the last quarter of gamma */
+    struct dem_peak peak_sin;  /* the same of sin phi(gamma) of the cell's */
+    struct dem_critical crit_sin; /* whole stress (dem_stress_sin_phi) */
     struct dem_slopes slopes;  /* of eps_v(gamma): dilatant = the largest
                                   windowed d eps_v / d gamma = tan psi */
 };
 
-/* The shear curves of one stage (gamma from 0 at its start). */
-void dem_shear_analyze(const double *gamma, const double *mu,
-                       const double *eps_v, long n, struct dem_shear *out);
+/* The shear curves of one stage (gamma from 0 at its start): mu =
+ * tau/sigma_n, sin_phi of the whole stress, eps_v. 0, or DEM_ENOMEM. */
+int dem_shear_analyze(const double *gamma, const double *mu,
+                      const double *sin_phi, const double *eps_v, long n,
+                      struct dem_shear *out);
 
 #endif

@@ -39,6 +39,7 @@ struct columns {
     const double *t, *stage, *eps[3], *eps_v, *sigma[3], *void_ratio;
     const double *inertial;            /* NULL in runs older than the column */
     const double *gamma_xy, *sigma_xy; /* NULL in runs older than them */
+    const double *sigma_xz, *sigma_yz; /* NULL in 2D (and older runs) */
 };
 
 /* The rows of one loading stage as axial/lateral curves. When the stage
@@ -108,6 +109,8 @@ enum {
     COL_SIG = COL_EPS + 3,
     COL_GXY = COL_SIG + 3,
     COL_SXY,
+    COL_SXZ,
+    COL_SYZ,
     COL_LZ,
     NCOL
 };
@@ -129,6 +132,8 @@ static const struct dem__csv_want wanted[NCOL] = {
     [COL_SIG + 2] = DEM_CSV_FINITE("sigma_zz", 1),
     [COL_GXY] = DEM_CSV_FINITE("gamma_xy", 0),
     [COL_SXY] = DEM_CSV_FINITE("sigma_lw_xy", 0),
+    [COL_SXZ] = DEM_CSV_FINITE("sigma_lw_xz", 0),
+    [COL_SYZ] = DEM_CSV_FINITE("sigma_lw_yz", 0),
     [COL_LZ] = DEM_CSV_FINITE("Lz", 0), /* 0 in 2D: the data's dimension */
 };
 
@@ -152,6 +157,8 @@ static void get_columns(const struct dem__csv_table *tb, struct columns *c)
     c->inertial = tb->col[COL_I];
     c->gamma_xy = tb->col[COL_GXY];
     c->sigma_xy = tb->col[COL_SXY];
+    c->sigma_xz = tb->col[COL_SXZ];
+    c->sigma_yz = tb->col[COL_SYZ];
     for (int a = 0; a < 3; a++) {
         c->eps[a] = tb->col[COL_EPS + a];
         c->sigma[a] = tb->col[COL_SIG + a];
@@ -574,16 +581,23 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
         return DEM_OK;
     const long origin = first > 0 ? first - 1 : first;
     n += first - origin;
-    double *g = malloc(3 * (size_t)n * sizeof *g);
+    double *g = malloc(4 * (size_t)n * sizeof *g);
     if (!g)
         return DEM_ENOMEM;
-    double *mu = g + n, *ev = g + 2 * n;
+    double *mu = g + n, *ev = g + 2 * n, *sp = g + 3 * n;
     for (long k = 0; k < n; k++) {
         const long r = origin + k;
         /* gamma_xy, as eps_v, counts from the stage's start (the
          * reference it sets); the origin row is the last stage's */
         g[k] = k == 0 && origin < first ? 0.0 : c->gamma_xy[r];
         mu[k] = c->sigma[1][r] > 0.0 ? -c->sigma_xy[r] / c->sigma[1][r] : NAN;
+        /* the whole stress's largest Mohr circle: sigma_* are the cell's
+         * stress as sigma_lw_* are (docs/outputs.md) */
+        const double xz = c->sigma_xz ? c->sigma_xz[r] : 0.0,
+                     yz = c->sigma_yz ? c->sigma_yz[r] : 0.0;
+        sp[k] = dem_stress_sin_phi(c->sigma[0][r], c->sigma[1][r],
+                                   cfg->dim == 3 ? c->sigma[2][r] : 0.0,
+                                   c->sigma_xy[r], xz, yz, cfg->dim);
         ev[k] = k == 0 && origin < first ? 0.0 : c->eps_v[r];
     }
     /* along the shear as it was driven: a negative shear_strain (or
@@ -607,11 +621,16 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
         g[k] *= sense;
         mu[k] *= sense;
     }
-    dem_shear_analyze(g, mu, ev, out, &R->shear);
+    if (dem_shear_analyze(g, mu, sp, ev, out, &R->shear)) {
+        free(g);
+        return DEM_ENOMEM;
+    }
     for (long k = 0; k < n; k++)
         g[k] *= sense;
     R->shear.peak.strain *= sense;
     R->shear.crit.strain_from *= sense;
+    R->shear.peak_sin.strain *= sense;
+    R->shear.crit_sin.strain_from *= sense;
     R->gamma_end = g[n - 1];
     /* creep: the slope of gamma(t) over the last quarter of the time (a
      * centred fit: t of a late stage is large against its quarter) */
@@ -858,18 +877,29 @@ static void write_shear(struct dem__json *j, const struct result *R)
         S->n ? "fewer than 3 samples in the last quarter of the stage" : none);
     dem__json_object(j, "peak", 0);
     const int pk = S->n && !stress && S->peak.ok,
-              cr = S->n && !stress && S->crit.ok;
+              cr = S->n && !stress && S->crit.ok,
+              pks = S->n && !stress && S->peak_sin.ok,
+              crs = S->n && !stress && S->crit_sin.ok;
+    const double deg = 180.0 / M_PI;
     num(j, "tau_over_sigma_n", pk ? S->peak.value : NAN,
         none ? none : S->peak.reason);
-    num(j, "phi_deg", pk ? atan(S->peak.value) * 180.0 / M_PI : NAN,
+    num(j, "phi_plane_deg", pk ? atan(S->peak.value) * deg : NAN,
         none ? none : S->peak.reason);
     num(j, "gamma", pk ? S->peak.strain : NAN, none ? none : S->peak.reason);
+    num(j, "sin_phi", pks ? S->peak_sin.value : NAN,
+        none ? none : S->peak_sin.reason);
+    num(j, "phi_deg", pks ? asin(S->peak_sin.value) * deg : NAN,
+        none ? none : S->peak_sin.reason);
     dem__json_close(j);
     dem__json_object(j, "critical", 0);
     num(j, "tau_over_sigma_n", cr ? S->crit.value : NAN,
         none ? none : S->crit.reason);
-    num(j, "phi_deg", cr ? atan(S->crit.value) * 180.0 / M_PI : NAN,
+    num(j, "phi_plane_deg", cr ? atan(S->crit.value) * deg : NAN,
         none ? none : S->crit.reason);
+    num(j, "sin_phi", crs ? S->crit_sin.value : NAN,
+        none ? none : S->crit_sin.reason);
+    num(j, "phi_deg", crs ? asin(S->crit_sin.value) * deg : NAN,
+        none ? none : S->crit_sin.reason);
     num(j, "gamma_from", S->n ? S->crit.strain_from : NAN, none);
     num(j, "drift", S->n ? S->crit.drift : NAN, none);
     num(j, "drift_stderr", S->n ? S->crit.drift_stderr : NAN, none);

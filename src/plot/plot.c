@@ -25,6 +25,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "analysis/analysis.h"
 #include "analysis/summary_read.h"
 #include "core/numeric.h"
 #include "formats/csvtable.h"
@@ -64,6 +65,8 @@ enum ts_col {
     TS_ZMAX,
     TS_GXY,
     TS_SXY,
+    TS_SXZ,
+    TS_SYZ,
     TS_NCOL
 };
 
@@ -92,6 +95,8 @@ static const struct dem__csv_want ts_want[TS_NCOL] = {
     /* simple shear of a periodic cell */
     [TS_GXY] = DEM_CSV_FINITE("gamma_xy", 0),
     [TS_SXY] = DEM_CSV_FINITE("sigma_lw_xy", 0),
+    [TS_SXZ] = DEM_CSV_FINITE("sigma_lw_xz", 0),
+    [TS_SYZ] = DEM_CSV_FINITE("sigma_lw_yz", 0),
 };
 
 /* The timeseries with what the plots derive from it. */
@@ -107,6 +112,7 @@ struct series {
     size_t lo, hi;            /* its rows [lo, hi) */
     size_t slo, shi;          /* the last shear stage's rows (none: equal) */
     int cell;                 /* a periodic cell (config.cfg), else 0 */
+    double shear_mu, shear_gamma; /* summary.json's shear peak, the same */
     double peak_sin, peak_strain; /* summary.json's peak (smoothed, as the
                                      analysis found it), NaN if none */
     struct dem__summary_cycles cyc; /* summary.json's cycles, verdict */
@@ -268,6 +274,7 @@ enum qty {
     Q_EPOT,
     Q_GAMMA,
     Q_MU,
+    Q_SIN_PHI,
     Q_COUNT
 };
 
@@ -351,6 +358,17 @@ static double q_mu(const struct series *s, size_t i)
     return sn > 0.0 ? -s->c[TS_SXY][i] / sn : NAN;
 }
 
+/* sin phi of the cell stress's largest Mohr circle (summary.json's
+ * shear sin_phi) */
+static double q_sin_phi(const struct series *s, size_t i)
+{
+    const int d3 = s->dim == 3;
+    return dem_stress_sin_phi(
+        s->c[TS_SXX][i], s->c[TS_SYY][i], d3 ? s->c[TS_SZZ][i] : 0.0,
+        s->c[TS_SXY][i], d3 && s->c[TS_SXZ] ? s->c[TS_SXZ][i] : 0.0,
+        d3 && s->c[TS_SYZ] ? s->c[TS_SYZ][i] : 0.0, s->dim);
+}
+
 /* Labels are gnuplot enhanced text; "$a" stands for the loading axis
  * pair ("yy"), "$r" for the stress ratio's text, major stress first (the
  * lateral stress 2D: the other wall stress, 3D: the mean of the two
@@ -381,6 +399,8 @@ static const struct quantity qtab[Q_COUNT] = {
     [Q_EPOT] = {"e_pot", "elastic E_{pot}", 2, q_epot},
     [Q_GAMMA] = {"gamma", "shear strain γ_{xy}", 2, q_gamma},
     [Q_MU] = {"tau_over_sigma_n", "τ/σ_n = −σ_{xy}/σ_{yy}", 2, q_mu},
+    [Q_SIN_PHI] = {"sin_phi", "sin φ of the stress's Mohr circle", 2,
+                   q_sin_phi},
 };
 
 /* Expand the "$a", "$r" and "$u" (stress unit) placeholders. */
@@ -517,10 +537,10 @@ static const struct plot_spec plots[] = {
      write_cycles},
     {"shear",
      "Simple shear: mobilised friction",
-     "τ/σ_n",
+     "τ/σ_n, sin φ",
      ROWS_SHEAR,
      Q_GAMMA,
-     {Q_MU, Q_NONE},
+     {Q_MU, Q_SIN_PHI, Q_NONE},
      Q_MU,
      F_ZERO,
      NULL},
@@ -669,6 +689,13 @@ static void gp_peak(FILE *gp, const struct series *s, const struct plot_spec *p,
          * agree (the analysis smooths before it takes the maximum) */
         vmax = s->peak_sin;
         x = s->peak_strain;
+        how = " (summary.json)";
+    } else if (p->peak == Q_MU && isfinite(s->shear_mu) &&
+               isfinite(s->shear_gamma)) {
+        /* the same for simple shear, whose summary reads the shear along
+         * its sense (tau/sigma_n > 0) and keeps gamma's sign */
+        vmax = s->shear_gamma < 0.0 ? -s->shear_mu : s->shear_mu;
+        x = s->shear_gamma;
         how = " (summary.json)";
     }
     if (!isfinite(x))
@@ -878,7 +905,7 @@ static int read_summary(struct series *s, const char *outdir,
                         struct dem_error *err)
 {
     char path[DEM_PATH_MAX], why[300];
-    s->peak_sin = s->peak_strain = NAN;
+    s->peak_sin = s->peak_strain = s->shear_mu = s->shear_gamma = NAN;
     if (dem_path_join(path, sizeof path, outdir, "summary.json", NULL) ||
         access(path, F_OK))
         return DEM_OK;
@@ -890,10 +917,14 @@ static int read_summary(struct series *s, const char *outdir,
         dem_warn(err, "%s; the plots go without it", jerr.msg);
         return DEM_OK;
     }
-    double sin_phi = NAN, strain = NAN;
+    double sin_phi = NAN, strain = NAN, mu = NAN, gamma = NAN;
     const int got =
         dem__summary_number(&js, "peak.sin_phi", &sin_phi, why, sizeof why) &&
                 dem__summary_number(&js, "peak.strain", &strain, why,
+                                    sizeof why) &&
+                dem__summary_number(&js, "shear.peak.tau_over_sigma_n", &mu,
+                                    why, sizeof why) &&
+                dem__summary_number(&js, "shear.peak.gamma", &gamma, why,
                                     sizeof why)
             ? dem__summary_read_cycles(&js, &s->cyc, why, sizeof why)
             : 0;
@@ -909,6 +940,8 @@ static int read_summary(struct series *s, const char *outdir,
     }
     s->peak_sin = sin_phi;
     s->peak_strain = strain;
+    s->shear_mu = mu;
+    s->shear_gamma = gamma;
     return DEM_OK;
 }
 
