@@ -821,6 +821,52 @@ static void shear_stage_targets(void **state)
     dem_sim_destroy(&s);
 }
 
+/* A fixed tilt keeps its share of the length it displaces along: a
+ * tilted cell (xy 0.3 Lx, xz 0.2 Lx, yz -0.1 Ly) whose x and y faces
+ * move is stretched, not sheared, its affine velocity gradient diagonal
+ * throughout. Held at their lengths, the tilts sheared it by
+ * -(dLx/Lx)(txy/Ly) (a read-only review of the stages, session 112). */
+static void fixed_tilts_follow_the_faces(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    struct dem_sim s;
+    const double t0[3] = {0.03, 0.02, -0.01};
+    cell_sim(&s, &c, 3, 10, 0.1, t0);
+    const double f[3] = {0.5, 0.5, 0.5};
+    add_frac(&s, f, 1e-3);
+    test_ready(&s);
+    for (int k = 0; k < 3; k++)
+        dem_wall_set_fixed(&s.cell.tilt[k]);
+    dem_wall_set_strain(&s.wall[1], DEM_PROFILE_COSINE, -0.01, 0.01, s.t);
+    dem_wall_set_strain(&s.wall[3], DEM_PROFILE_LINEAR, 0.005, 0.01, s.t);
+    double Lb[3];
+    dem_sim_box(&s, Lb, 0);
+    s.dt = 1e-5;
+    double gmax = 0.0;
+    for (int n = 0; n < 1000; n++) {
+        test_step(&s, 1);
+        double g[6];
+        dem_sim_cell_grad(&s, g);
+        gmax = fmax(gmax, fmax(fabs(g[1]), fmax(fabs(g[2]), fabs(g[4]))));
+    }
+    double L[3];
+    dem_sim_box(&s, L, 0);
+    assert_close(L[0], Lb[0] - 0.01, 1e-12);
+    assert_close(L[1], Lb[1] + 0.005, 1e-12);
+    assert_close(s.cell.tilt[DEM_TILT_XY].pos / L[0], 0.03 / Lb[0], 1e-14);
+    assert_close(s.cell.tilt[DEM_TILT_XZ].pos / L[0], 0.02 / Lb[0], 1e-14);
+    assert_close(s.cell.tilt[DEM_TILT_YZ].pos / L[1], -0.01 / Lb[1], 1e-14);
+    assert_true(gmax < 1e-12); /* (measured 1.8e-15) */
+    /* and gamma_xy, F_xy since the start, reads none */
+    s.measure = 1;
+    dem_sim_forces(&s);
+    struct dem_sample smp;
+    dem_measure(&s, Lb, Lb[0] * Lb[1] * Lb[2], 0.03, 0, &smp);
+    assert_close(smp.gamma_xy, 0.0, 1e-15);
+    dem_sim_destroy(&s);
+}
+
 /* constant_volume: while the z faces close by 10 % the x and y faces
  * follow so that the volume stays what it was, to round-off (a dilute
  * gas: nothing else moves the cell). */
@@ -911,6 +957,7 @@ int main(void)
         cmocka_unit_test(tilt_servo_relaxes_with_its_mass_and_viscosity),
         cmocka_unit_test(tilt_servo_holds_the_shear_stress),
         cmocka_unit_test(shear_stage_targets),
+        cmocka_unit_test(fixed_tilts_follow_the_faces),
         cmocka_unit_test(constant_volume_keeps_the_volume),
         cmocka_unit_test(constant_p_targets_hold_p_and_b),
     };

@@ -1064,11 +1064,13 @@ static void a_stage_after_shear_holds_the_tilt(void **state)
     /* gamma_xy by stage: the tilt over the stage's fixed reference L_y */
     double lo[4], hi[4];
     stage_ranges(&t, 4, lo, hi);
-    /* the shear moved the tilt; the compression did not (to the 10
-     * digits timeseries.csv gives gamma_xy) */
-    assert_true(hi[1] - lo[1] > 1e-9);
-    assert_true(isfinite(lo[2]));
-    assert_true(hi[2] - lo[2] <= 1e-8 * fabs(hi[2]));
+    /* the shear moved the tilt; the compression, which moves the x
+     * faces, sheared nothing: its tilt kept its share of L_x, and
+     * gamma_xy, F_xy of the stage's reference, is 0 to round-off in it
+     * and in the hold after it */
+    assert_true(hi[1] - lo[1] > 1e-5);
+    for (int k = 2; k < 4; k++)
+        assert_true(fabs(lo[k]) < 1e-15 && fabs(hi[k]) < 1e-15);
     dem__csv_table_free(&t);
 }
 

@@ -575,13 +575,39 @@ static void wall_drift(struct dem_sim *s, struct dem_wall *W, double t_new)
 
 /* The walls move; in a periodic cell they and the tilts move the cell,
  * and every particle follows it affinely: its engine position stays in
- * the frame of the last build (core/cell.h). */
+ * the frame of the last build (core/cell.h). A fixed tilt (every stage
+ * but shear and hold) keeps its share of the length it displaces along,
+ * tilt/L_a (a = dem_tilt_axes[k][0]), so that the faces' motion
+ * stretches the cell without shearing it: held at its length, a tilt of
+ * 0.3 Lx sheared the sample by 0.3 dLx/Ly as Lx changed, unseen by
+ * gamma_xy. Its velocity is the stretch's, tilt dL_a/dt / L_a, and the
+ * tilt removed by re-maps scales alike (the shear displacement it
+ * stands for is stretched with the cell). */
 static void walls_drift(struct dem_sim *s, double t_new)
 {
+    double L0[3];
+    if (s->cell.on)
+        dem_sim_box(s, L0, 0);
     for (int w = 0; w < s->nwall; w++)
         wall_drift(s, &s->wall[w], t_new);
-    for (int k = 0; s->cell.on && k < 3; k++)
-        wall_drift(s, &s->cell.tilt[k], t_new);
+    if (!s->cell.on)
+        return;
+    double L[3];
+    dem_sim_box(s, L, 0);
+    for (int k = 0; k < 3; k++) {
+        struct dem_wall *T = &s->cell.tilt[k];
+        if (T->mode != DEM_WALL_FIXED) {
+            wall_drift(s, T, t_new);
+            continue;
+        }
+        const int a = dem_tilt_axes[k][0];
+        if (a >= s->dim || !(L0[a] > 0.0))
+            continue;
+        const double f = L[a] / L0[a];
+        T->pos *= f;
+        s->cell.remapped[k] *= f;
+        T->vel = T->pos * (s->wall[2 * a + 1].vel - s->wall[2 * a].vel) / L[a];
+    }
 }
 
 static double now(void)

@@ -32,10 +32,15 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
      * (shear_strain L0_y of tilt), whatever L_y does meanwhile; a second
      * shear stage counts from its own start, as eps does (counted from
      * the run's start, its rows were the first stage's tilt over the
-     * second's L0_y) */
-    o->gamma_xy = s->cell.on && L0[1] > 0.0
-                      ? (dem_measure_tilt_xy(s) - tilt0) / L0[1]
-                      : 0.0;
+     * second's L0_y). The xy component of F = h h0^-1: the reference
+     * tilt stretched with L_x first, (tilt - tilt0 L_x/L0_x)/L0_y, so
+     * that a stage after a shear that moves the x faces, whose fixed
+     * tilt keeps its share of L_x (core/sim.c), reads no shear (the
+     * same while L_x stays, as in a shear stage) */
+    o->gamma_xy =
+        s->cell.on && L0[1] > 0.0 && L0[0] > 0.0
+            ? (dem_measure_tilt_xy(s) - tilt0 * o->L[0] / L0[0]) / L0[1]
+            : 0.0;
 
     for (int w = 0; w < s->nwall; w++) {
         const struct dem_wall *W = &s->wall[w];
