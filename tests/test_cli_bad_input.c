@@ -253,6 +253,17 @@ static const struct row rows[] = {
      0,
      {RUN_CFG},
      "c.cfg:4: stages.0.profile: not with shear_stress"},
+    /* so did a cosine ramp asked for (a read-only review of the stages,
+     * session 112); a run's config.cfg, which writes the default cosine
+     * out, is still read (test_run a_stage_after_shear_holds_the_tilt
+     * analyses such a run) */
+    {"shear_stress with a cosine profile",
+     CELL2D "stages = ( { type = \"shear\"; shear_stress = 20.0;\n"
+            "  profile = \"cosine\"; duration = 0.1; pressure = 100.0; } );\n",
+     0,
+     0,
+     {RUN_CFG},
+     "c.cfg:4: stages.0.profile: not with shear_stress"},
     {"shear with neither a strain nor a stress target",
      CELL2D "stages = ( { type = \"shear\"; duration = 0.1;\n"
             "  pressure = 100.0; } );\n",

@@ -504,6 +504,16 @@ static const struct bad bad_inputs[] = {
     {"time_step = 1.0e-5;\nstages = (\n { type = \"cyclic\"; pressure = "
      "100.0; amplitude = 10.0;\n   period = 1.0e-5; cycles = 3; }\n);\n",
      0, "stages.0.period: a period of 1e-05 s is 1 time steps", 4},
+    /* so of a strain profile over its duration: a returning one over a
+     * step loaded nothing, a ramp moved its whole strain in a step (a
+     * read-only review of the stages, session 112) */
+    {"time_step = 1.0e-5;\nstages = (\n { type = \"compress\"; axis = "
+     "\"y\"; strain = 0.1;\n   profile = \"cyclic\"; duration = 1.0e-5; "
+     "pressure = 100.0; }\n);\n",
+     0, "stages.0.duration: a period of 1e-05 s is 1 time steps", 4},
+    {"time_step = 1.0e-5;\nstages = (\n { type = \"constant_p\"; axis = "
+     "\"y\"; strain = 0.1;\n   duration = 5.0e-5; pressure = 100.0; }\n);\n",
+     0, "stages.0.duration: a ramp of 5e-05 s is 5 time steps", 4},
     /* a wall servo whose damping reverses its velocity every step */
     {"time_step = 1.0e-5;\nwalls = { mass = 1.0e-3;\n  gamma = 200.0; };\n", 0,
      "walls.gamma: 200 kg/s with walls.mass = 0.001 kg", 3},

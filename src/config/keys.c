@@ -387,7 +387,9 @@ const struct key dem__cfg_keys[] = {
      .uses = T_AXIAL | T_HOLD | T_SHEAR,
      .needs = T_AXIAL | T_HOLD | T_SHEAR,
      .unit = "s",
-     .doc = "compress, shear: time to reach the strain; hold: time to run"},
+     .doc = "compress, constant_p, constant_volume, shear: time to reach "
+            "the strain (at least 20 time steps, per cycle of a returning "
+            "profile); hold: time to run"},
     {.name = "profile",
      .kind = K_ENUM,
      STG(profile),
@@ -414,7 +416,7 @@ const struct key dem__cfg_keys[] = {
      .uses = T_CYC,
      .needs = T_CYC,
      .unit = "s",
-     .doc = "cyclic: period t0 of one cycle"},
+     .doc = "cyclic: period t0 of one cycle (at least 20 time steps)"},
     {.name = "cycles",
      .kind = K_INT,
      STG(cycles),
@@ -458,8 +460,9 @@ const struct key dem__cfg_keys[] = {
      .def_text = "this or shear_strain",
      .doc = "shear: stress control of the tilt instead: its servo (walls' "
             "mass and viscosity) holds tau = -sigma_xy at this value for "
-            "duration (a creep test: profile cosine, the default; "
-            "\"linear\" is refused), or with profile \"cyclic\" cycles it "
+            "duration (a creep test: no profile given; \"linear\" and "
+            "\"cosine\" are refused, a ramp not offered), or with profile "
+            "\"cyclic\" cycles it "
             "0 -> shear_stress -> 0, with \"sine\" between +-shear_stress"},
     {.name = "mu",
      .kind = K_DOUBLE,

@@ -369,10 +369,13 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
                                      "(stress control)");
         /* the stress target is held from the start (a creep test; the
          * default profile, cosine, which a run's config.cfg writes out) or
-         * cycled: a linear ramp asked for would run as a step */
+         * cycled: a ramp asked for, linear or cosine, would run as a step
+         * (cosine accepted only as a resolved config.cfg writes it) */
         const config_setting_t *profile =
             x->stage_at[i][dem__cfg_find_key("profile", S_STAGE)];
-        if (stress && profile && st->profile == DEM_PROFILE_LINEAR) {
+        if (stress && profile &&
+            (st->profile == DEM_PROFILE_LINEAR ||
+             (st->profile == DEM_PROFILE_COSINE && !x->recorded))) {
             snprintf(kname, sizeof kname, "stages.%d.profile", i);
             return dem__cfg_fail_at(x, profile, kname, err,
                                     "not with shear_stress, which is held "

@@ -390,12 +390,16 @@ int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
             "diverges; a heavier wall, less viscosity or a smaller step",
             c->walls.gamma, c->walls.mass, dt, damp);
     /* a period of a few steps samples its cosine at a few phases (at one
-     * step, only at its crest: a cyclic stage that loads nothing) */
+     * step, only at its crest: a cyclic stage that loads nothing); so
+     * does a strain profile over its duration (a returning one over one
+     * step loaded nothing, a ramp moved the whole strain in a step and
+     * wrote a speed of 0) */
     for (int i = 0; i < c->nstages; i++) {
         const struct dem_stage_config *st = &c->stages[i];
+        const unsigned bit = 1u << st->type;
         const int returns = st->profile == DEM_PROFILE_CYCLIC ||
                             st->profile == DEM_PROFILE_SINE;
-        const char *key = NULL;
+        const char *key = NULL, *what = "a period";
         double T = INFINITY;
         if (st->type == DEM_STAGE_CYCLIC) {
             key = "period";
@@ -403,13 +407,18 @@ int dem__cfg_check_time_step(const struct ctx *x, const struct dem_config *c,
         } else if (st->type == DEM_STAGE_SHEAR && returns && st->cycles > 0) {
             key = "duration";
             T = st->duration / st->cycles;
+        } else if ((bit & T_AXIAL) ||
+                   (st->type == DEM_STAGE_SHEAR && !isnan(st->shear_strain))) {
+            key = "duration";
+            T = st->duration;
+            what = returns ? "a period" : "a ramp";
         }
         if (key && !(T >= DEM_MIN_STEPS_PER_PERIOD * dt))
             return dem__cfg_fail_key(
                 x, i, key, err,
-                "a period of %g s is %.3g time steps of %g s: at least %d "
-                "are needed to follow its cosine",
-                T, T / dt, dt, DEM_MIN_STEPS_PER_PERIOD);
+                "%s of %g s is %.3g time steps of %g s: at least %d are "
+                "needed to follow its profile",
+                what, T, T / dt, dt, DEM_MIN_STEPS_PER_PERIOD);
     }
     return 0;
 }
