@@ -937,6 +937,18 @@ static void constant_p_targets_hold_p_and_b(void **state)
     assert_close((s2 - s3) / (s1 - s3), 0.3, 1e-12);
     assert_int_equal(s.wall[5].mode, DEM_WALL_STRAIN);
     assert_int_equal(s.wall[0].mode, DEM_WALL_STRESS);
+    assert_true(s.wall[0].floored == 0 && s.wall[2].floored == 0);
+    /* sigma_1 above 3p/(1 + b): sigma_3 = (3000 - 1.3 s1)/1.7 < 0 is held
+     * at 0 and counted; sigma_2 = 411.8 is not */
+    s.wall[4].force = s.wall[5].force = 3500.0 * A;
+    ops->control(&s, &st);
+    assert_close(s.wall[0].p0,
+                 3000.0 / 1.7 - 1.3 * 3500.0 / 1.7 +
+                     0.3 * (3500.0 - (3000.0 - 4550.0) / 1.7),
+                 1e-9);
+    assert_true(s.wall[2].p0 == 0.0 && s.wall[3].p0 == 0.0);
+    assert_true(s.wall[2].floored == 1 && s.wall[3].floored == 1);
+    assert_true(s.wall[0].floored == 0 && s.wall[1].floored == 0);
     dem_sim_destroy(&s);
 }
 

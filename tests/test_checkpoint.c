@@ -373,6 +373,12 @@ static void assert_same_walls(const struct dem_sim *a, const struct dem_sim *b)
         SAME_BITS(x->p0, y->p0);
         SAME_BITS(x->amp, y->amp);
         SAME_BITS(x->t0, y->t0);
+        /* the servo's counts, which the stage's warnings read (format
+         * 15: a resumed run warned otherwise than the run uninterrupted,
+         * a review of session 112) */
+        SAME_BITS(x->kicks, y->kicks);
+        SAME_BITS(x->capped, y->capped);
+        SAME_BITS(x->floored, y->floored);
     }
 }
 
@@ -397,6 +403,9 @@ static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
     a.measure = 1;
     test_step(&a, 1);
     assert_true(a.nbuild > 1);
+    assert_true(a.wall[0].kicks > 0); /* (the counts compared count) */
+    a.wall[0].capped = 17;
+    a.wall[1].floored = 5;
     assert_true(a.pairs.cur.n > 0 && a.pairs.wcur.n > 0);
     if (a.pairs.torques) { /* the resistances are at work */
         double msum = 0.0;

@@ -1170,6 +1170,33 @@ static void a_servo_at_its_speed_cap_is_warned_of(void **state)
     assert_null(strstr(w.text, "stage 0: stress servos"));
 }
 
+/* A constant_p path that asks for tension: a cohesive sample prepared
+ * at 500 N/m and then held at p = 20 keeps sigma_1 near 600, above 2 p,
+ * so the lateral target 2 p - sigma_1 is below 0 and held at 0 by walls
+ * that only push; the mean stress is not p there. The stage said
+ * nothing (a read-only review of the stages, session 112); it now warns,
+ * naming the walls and their share of steps. */
+static void a_constant_p_path_into_tension_is_warned_of(void **state)
+{
+    (void)state;
+    const struct dem_example *ex = dem_example_find("biaxial2d-cohesive");
+    assert_non_null(ex);
+    const char *const sets[] = {
+        "particles.count=100", "output.snapshot_interval=0",
+        "stages=({type=\"isotropic\";pressure=500.0;max_time=0.02;},"
+        "{type=\"constant_p\";axis=\"y\";strain=0.1;duration=0.02;"
+        "pressure=20.0;})"};
+    struct warnings w;
+    run_warnings(ex->text, "tension", sets, 3, &w);
+    if (!strstr(w.text, "stage 1: the stress path asked for tension on "
+                        "walls that only push") ||
+        !strstr(w.text, "the x min wall (") ||
+        !strstr(w.text, "the x max wall ("))
+        fail_msg("warnings: %s", w.text);
+    assert_null(strstr(w.text, "the y min wall ("));
+    assert_null(strstr(w.text, "stage 0: the stress path"));
+}
+
 /* An isotropic stage ends at rest, its walls' servos included: the
  * particles' kinetic energy with the walls' 1/2 walls.mass v^2 below
  * tolerance times E_pot at the stage's last row. Before, the particles'
@@ -1450,6 +1477,7 @@ int main(void)
         cmocka_unit_test(a_shear_stage_ends_at_its_shear_strain),
         cmocka_unit_test(a_decimal_comma_locale_writes_the_same_files),
         cmocka_unit_test(a_servo_at_its_speed_cap_is_warned_of),
+        cmocka_unit_test(a_constant_p_path_into_tension_is_warned_of),
         cmocka_unit_test(a_hold_counts_only_its_own_servo_steps),
         cmocka_unit_test(an_isotropic_stage_ends_with_its_walls_at_rest),
         cmocka_unit_test(a_stage_at_rest_on_its_last_sample_is_not_timed_out),

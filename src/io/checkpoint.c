@@ -193,6 +193,9 @@ static void io_wall(struct ck_io *io, struct dem_wall *w)
                    &w->gamma, &w->vmax,  &w->p0,     &w->amp,     &w->t0};
     for (size_t k = 0; k < sizeof d / sizeof d[0]; k++)
         io_f64(io, d[k]);
+    io_i64(io, &w->kicks);
+    io_i64(io, &w->capped);
+    io_i64(io, &w->floored);
 }
 
 /* A list with its history values of mask hist, its forces and, with

@@ -41,7 +41,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 14u /* 14: the sums' n_frictional */
+#define DEM_CKPT_VERSION 15u /* 15: the walls' servo counts */
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {

@@ -36,13 +36,16 @@ static void control(struct dem_sim *s, const struct dem_stage_state *st)
         s3 = (3.0 * p - (1.0 + b) * s1) / (2.0 - b);
         s2 = s3 + b * (s1 - s3);
     }
-    /* a target below zero would pull the sample apart */
-    s2 = s2 > 0.0 ? s2 : 0.0;
-    s3 = s3 > 0.0 ? s3 : 0.0;
+    /* a target below zero would pull the sample apart, which walls that
+     * only push cannot: held at 0, and counted (the stage's end says so,
+     * protocol/run.c) */
     for (int w = 0; w < s->nwall; w++) {
         const int ax = s->wall[w].axis;
-        if (ax != a)
-            s->wall[w].p0 = ax == (a + 1) % 3 ? s2 : s3;
+        if (ax == a)
+            continue;
+        const double target = ax == (a + 1) % 3 ? s2 : s3;
+        s->wall[w].floored += !(target >= 0.0);
+        s->wall[w].p0 = target > 0.0 ? target : 0.0;
     }
 }
 

@@ -374,9 +374,10 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
      * the modes, and counted the isotropic stage's compression at the cap
      * before it as its own) */
     for (int w = 0; w < s->nwall; w++)
-        s->wall[w].kicks = s->wall[w].capped = 0;
+        s->wall[w].kicks = s->wall[w].capped = s->wall[w].floored = 0;
     for (int k = 0; k < 3; k++)
-        s->cell.tilt[k].kicks = s->cell.tilt[k].capped = 0;
+        s->cell.tilt[k].kicks = s->cell.tilt[k].capped =
+            s->cell.tilt[k].floored = 0;
     if (r->stage.sets_reference)
         set_reference(r);
     r->st.stage = index;
@@ -510,9 +511,10 @@ static void team_for_step(struct run_ctx *r)
 /* A stress-controlled wall or tilt held at walls.max_speed for much of
  * the stage has not followed its target (a shear_stress of 400 N/m met
  * 245 on average at the cap, without a word): one warning a stage,
- * naming each such servo and its share of steps at the cap. */
-static void servo_capped(const struct run_ctx *r, int index,
-                         struct dem_error *err)
+ * naming each such servo and its share of steps at the cap; and one for
+ * the walls whose targets the stage held at 0 from below. */
+static void servo_warnings(const struct run_ctx *r, int index,
+                           struct dem_error *err)
 {
     if (!writer(r)) /* (every rank has the walls: rank 0 says it) */
         return;
@@ -544,6 +546,28 @@ static void servo_capped(const struct run_ctx *r, int index,
                  "their targets there: %s; raise walls.max_speed, or load "
                  "more slowly",
                  index, vmax, list);
+    /* a target a stage held at 0 from below (constant_p's lateral
+     * stresses, where sigma_1 > 3p/(1 + b), 2D 2p): the stage's path
+     * left there, without a word */
+    list[0] = '\0';
+    for (int w = 0; w < s->nwall; w++) {
+        const struct dem_wall *W = &s->wall[w];
+        if (W->floored == 0 || W->kicks == 0)
+            continue;
+        const size_t len = strlen(list);
+        snprintf(list + len, sizeof list - len, "%sthe %s wall (%.0f %%)",
+                 len ? ", " : "", wall_name[w],
+                 100.0 *
+                     fmin((double)W->floored / (0.5 * (double)W->kicks), 1.0));
+    }
+    if (list[0])
+        dem_warn(err,
+                 "stage %d: the stress path asked for tension on walls that "
+                 "only push, and their targets were held at 0 for part of "
+                 "the steps: %s; the mean stress (and b) were not the "
+                 "stage's there (a cohesive sample, or sigma_1 above 3 p/(1 "
+                 "+ b), 2D 2 p)",
+                 index, list);
 }
 
 /* The steps of the stage under way, from wherever it stands, to its end.
@@ -617,7 +641,7 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     /* (an isotropic stage compresses a gas at the cap by design, and
      * ends when its stress has reached the target) */
     if (c->type != DEM_STAGE_ISOTROPIC)
-        servo_capped(r, index, err);
+        servo_warnings(r, index, err);
     if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
         dem_warn(err,
                  "stage %d (isotropic) reached max_time %.4g s before "

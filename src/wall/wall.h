@@ -44,9 +44,11 @@ struct dem_wall {
     double p0;    /* Pa (2D: N/m); mean target stress */
     double amp;   /* Pa; Dsigma of the cyclic target, 0 = constant */
     double t0;    /* s; period of the cyclic target */
-    /* the servo's half kicks since the stage began, and those clipped at
-     * vmax (a diagnosis of the stage, not kept in checkpoints) */
-    long kicks, capped;
+    /* the servo's half kicks since the stage began, those clipped at
+     * vmax, and the steps whose target a stage held at 0 from below
+     * (constant_p: a lateral target under tension); a diagnosis of the
+     * stage, kept in checkpoints so that a resumed run warns alike */
+    long kicks, capped, floored;
 };
 
 /* Outward direction of wall w along its axis: -1 for side 0, +1 for side 1. */
