@@ -517,6 +517,11 @@ static const struct bad bad_inputs[] = {
     /* a wall servo whose damping reverses its velocity every step */
     {"time_step = 1.0e-5;\nwalls = { mass = 1.0e-3;\n  gamma = 200.0; };\n", 0,
      "walls.gamma: 200 kg/s with walls.mass = 0.001 kg", 3},
+    /* a periodic cell has no walls that touch the particles: their keys
+     * would be read by nothing (a read-only review, session 112) */
+    {"box = { boundary = \"periodic\"; };\ncontact = { normal = \"luding\";\n"
+     "  wall_kc = 100.0; };\n",
+     0, "contact.wall_kc: not used with box.boundary = \"periodic\"", 3},
     /* a periodic cell from a particle file needs its period */
     {"box = { boundary = \"periodic\"; };\nparticles = { placement = "
      "\"file\"; file = \"p.csv\"; };\n",

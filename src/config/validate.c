@@ -140,6 +140,17 @@ static double key_default(const char *name)
 static int check_unused(const struct ctx *x, const struct dem_config *c,
                         struct dem_error *err)
 {
+    /* a periodic cell has no walls that touch a particle: the
+     * particle-wall keys would be read by nothing */
+    static const char *const wall_keys[4] = {
+        "contact.wall_mu", "contact.wall_kc", "contact.wall_mu_r",
+        "contact.wall_mu_o"};
+    for (int q = 0; q < 4 && c->box.boundary == DEM_BOUNDARY_PERIODIC; q++)
+        if (unused_key(x, c, wall_keys[q], key_default(wall_keys[q]),
+                       "with box.boundary = \"periodic\" (a cell has no "
+                       "walls that touch the particles)",
+                       err))
+            return DEM_ECONFIG;
     /* with a particle file the count and the radii are the file's; the
      * radius keys still set the config's own checks (docs/config.md),
      * and an example turned to a file by --set keeps its keys */
