@@ -39,6 +39,7 @@ import csv
 import ctypes
 import ctypes.util
 import errno
+import io
 import json
 import math
 import numbers
@@ -637,6 +638,19 @@ def summary(outdir):
     return _json(_run_file(outdir, "summary.json"))
 
 
+def _text(path):
+    """A text file's contents, UTF-8 as dembox writes; ValueError naming
+    the file and the line of a byte that is not."""
+    with open(path, "rb") as f:
+        raw = f.read()
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ValueError("%s:%d: not UTF-8 text (%s)" %
+                         (path, raw.count(b"\n", 0, e.start) + 1,
+                          e.reason)) from None
+
+
 def _json(path):
     """A JSON file dembox wrote: numbers as RFC 8259 writes them (no NaN
     or Infinity, which json.load takes); ValueError naming the file and
@@ -649,13 +663,15 @@ def _json(path):
         if not math.isfinite(v):
             raise ValueError("%s is beyond a double" % text[:40])
         return v
-    with open(path) as f:
-        text = f.read()
+    text = _text(path)
     try:
         return json.loads(text, parse_constant=constant, parse_float=number)
     except json.JSONDecodeError as e:
         raise ValueError("%s:%d: %s (column %d)" % (path, e.lineno, e.msg,
                                                      e.colno)) from None
+    except RecursionError:  # arrays in arrays thousands deep
+        raise ValueError("%s: nested too deeply: not a file dembox wrote"
+                         % path) from None
     except ValueError as e:
         raise ValueError("%s: %s" % (path, e)) from None
 
@@ -691,21 +707,34 @@ def _csv(path):
     them: lines starting with # and blank lines skipped, fields trimmed;
     ValueError naming the file and line of what is not such a file."""
     head, cols = None, None
-    with open(path, newline="") as f:
+    with io.StringIO(_text(path), newline="") as f:
         rows = csv.reader(f)
-        for r in rows:
-            if not r or not "".join(r).strip() or r[0].lstrip()[:1] == "#":
-                continue
-            if head is None:
-                head = [name.strip() for name in r]
-                cols = [[] for _ in head]
-                continue
-            if len(r) != len(head):
-                raise ValueError("%s:%d: %d fields for the header's %d "
-                                 "columns" % (path, rows.line_num, len(r),
-                                              len(head)))
-            for k, text in enumerate(r):
-                cols[k].append(_number(text, path, rows.line_num, head[k]))
+        try:
+            for r in rows:
+                if (not r or not "".join(r).strip() or
+                        r[0].lstrip()[:1] == "#"):
+                    continue
+                if head is None:
+                    head = [name.strip() for name in r]
+                    seen = set()
+                    for name in head:  # one dict key would hold both
+                        if name in seen:
+                            raise ValueError(
+                                "%s:%d: column %r named twice in the "
+                                "header" % (path, rows.line_num, name))
+                        seen.add(name)
+                    cols = [[] for _ in head]
+                    continue
+                if len(r) != len(head):
+                    raise ValueError("%s:%d: %d fields for the header's %d "
+                                     "columns" % (path, rows.line_num,
+                                                  len(r), len(head)))
+                for k, text in enumerate(r):
+                    cols[k].append(_number(text, path, rows.line_num,
+                                           head[k]))
+        except csv.Error as e:  # a NUL, a field over the reader's limit
+            raise ValueError("%s:%d: %s" % (path, rows.line_num,
+                                            e)) from None
     if head is None:
         raise ValueError("%s: no header: not a CSV file dembox wrote" % path)
     return {name: _column(c) for name, c in zip(head, cols)}
@@ -757,8 +786,7 @@ def dump_local(outdir):
     ValueError naming the file and line of
     what is not such a file."""
     path = _run_file(outdir, "dump_local.lammpstrj")
-    with open(path) as f:
-        lines = f.read().splitlines()
+    lines = _text(path).splitlines()
 
     def line(k, what):
         if k >= len(lines):
@@ -775,7 +803,7 @@ def dump_local(outdir):
 
     def count(k, what):
         text = line(k, what).strip()
-        if not text.isdigit():
+        if not (text.isascii() and text.isdigit()):  # (not "²")
             raise ValueError("%s:%d: %s %r is not a count" %
                              (path, k + 1, what, text[:40]))
         return int(text)

@@ -466,8 +466,29 @@ for name, text, read, want in (
          "dump_local.lammpstrj:%d: the file ends before entry" % len(dump)),
         ("dump_local.lammpstrj", "".join(dump[:3]) + "x\n",
          dembox.dump_local, "dump_local.lammpstrj:4: the number of entries "
-         "'x' is not a count")):
-    with open(os.path.join(bad, name), "w") as f:
+         "'x' is not a count"),
+        # a fuzzing review (session 112): a superscript digit passed
+        # isdigit and int() failed naming neither; csv's own errors, a
+        # header naming a column twice (one dict key kept one of them),
+        # nesting past the recursion limit and bytes that are not UTF-8
+        # escaped as other exceptions or read silently wrong
+        ("dump_local.lammpstrj", "".join(dump[:3]) + "\u00b2\n",
+         dembox.dump_local, "dump_local.lammpstrj:4: the number of entries "
+         "'\u00b2' is not a count"),
+        ("particles_final.csv", "x,y\n1,\"" + "2" * 200000 + "\"\n",
+         dembox.particles, "particles_final.csv:2: field larger than"),
+        ("particles_final.csv", "x,y\n1,2\x00\n", dembox.particles,
+         "particles_final.csv:2: "),  # (csv refuses a NUL before 3.11)
+        ("particles_final.csv", "x,y,x\n1,2,3\n", dembox.particles,
+         "particles_final.csv:1: column 'x' named twice"),
+        ("summary.json", "[" * 100000 + "]" * 100000, dembox.summary,
+         "summary.json: nested too deeply"),
+        ("timeseries.csv", "t,x\n0,\udcff\n", dembox.timeseries,
+         "timeseries.csv:2: not UTF-8 text"),
+        ("summary.json", '{"a":\n "\udcff"}', dembox.summary,
+         "summary.json:2: not UTF-8 text")):
+    with open(os.path.join(bad, name), "w", encoding="utf-8",
+              errors="surrogateescape") as f:
         f.write(text)
     try:
         read(bad)
