@@ -493,6 +493,16 @@ static const struct row rows[] = {
      0,
      {"run", "c.cfg", "-o", "out", "--threads", " +2"},
      "--threads needs an integer"},
+    /* two values of one config ran one point twice and counted its
+     * circle twice (a fuzzing review, session 112) */
+    {"sweep --param values that give the same config",
+     BASE2D,
+     0,
+     0,
+     {"sweep", "c.cfg", "--param", "contact.normal=linear,\"linear\"", "-o",
+      "out"},
+     "sweep: --param 'contact.normal=linear,\"linear\"': values linear and "
+     "\"linear\" give the same config: the point would run twice"},
     {"sweep --set=KEY=VALUE read as run reads it (an unknown key here)",
      BASE2D,
      0,

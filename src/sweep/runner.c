@@ -86,6 +86,8 @@ static int parse_counted(const struct dem_sweep_options *o,
     return DEM_OK;
 }
 
+static char *config_text(struct dem_config *c);
+
 /* dem_sweep_validate; s: the particles the points place. */
 static int validate(const struct dem_sweep_grid *g,
                     const struct dem_sweep_options *o, struct sizes *s,
@@ -114,6 +116,12 @@ static int validate(const struct dem_sweep_grid *g,
      * name the --param and its key */
     for (int k = 0; !rc && k < g->nparams; k++) {
         const struct dem_sweep_param *p = &g->params[k];
+        /* and two values that give one config (linear and "linear", a
+         * key no stage reads) would run one point twice and count its
+         * circle twice: the configs as a run's config.cfg writes them */
+        char **text = calloc((size_t)p->nvalues, sizeof *text);
+        if (!text)
+            rc = dem_error_set(err, DEM_ENOMEM, "out of memory");
         for (int v = 0; !rc && v < p->nvalues; v++) {
             char sets[DEM_SWEEP_MAX_KEYS][SET_LEN];
             for (int m = 0; m < p->nkeys; m++)
@@ -121,12 +129,29 @@ static int validate(const struct dem_sweep_grid *g,
             /* (the first parse said its warnings) */
             struct dem_error e = {.warn = dem_warn_ignore};
             rc = parse_counted(o, sets, p->nkeys, c, s, &e);
-            if (rc)
+            if (rc) {
                 dem_error_set(
                     err, rc, "sweep: --param '%s': value %s for %s%s: %s",
                     p->text, p->values[v], p->keys[0],
                     p->nkeys > 1 ? " (and the keys linked to it)" : "", e.msg);
+                break;
+            }
+            text[v] = config_text(c);
+            if (!text[v]) {
+                rc = dem_error_set(err, DEM_ENOMEM, "out of memory");
+                break;
+            }
+            for (int u = 0; u < v && !rc; u++)
+                if (!strcmp(text[u], text[v]))
+                    rc = dem_error_set(
+                        err, DEM_EUSAGE,
+                        "sweep: --param '%s': values %s and %s give the same "
+                        "config: the point would run twice",
+                        p->text, p->values[u], p->values[v]);
         }
+        for (int v = 0; text && v < p->nvalues; v++)
+            free(text[v]);
+        free(text);
     }
     /* then every combination */
     const long n = dem_sweep_grid_size(g);
