@@ -1057,6 +1057,47 @@ static void write_biaxial_loading(const char *dir, double unit,
     assert_int_equal(fclose(f), 0);
 }
 
+/* A compress stage that is the run's first (a packing from a file): no
+ * row before it is its origin, and no row at t = 0 is written, so the
+ * void ratio at its start was its first row's, one output interval into
+ * the loading (0.19999 for 0.2 here). It is the start's exactly: e and
+ * eps_v of any row fix V0/V_s = (1 + e)/(1 + eps_v) (a read-only review
+ * of the analysis, session 112). */
+static void a_first_loading_stage_starts_at_its_void_ratio(void **state)
+{
+    (void)state;
+    char dir[128];
+    run_dir(dir, sizeof dir, "first-stage");
+    write_text(dir, "config.cfg",
+               "dimension = 2;\n"
+               "time_step = 1.0e-6;\n"
+               "contact = { normal = \"luding\"; k1 = 5.0e4; k2 = 1.0e5; "
+               "kc = 0.0; mu = 0.5; };\n"
+               "stages = (\n"
+               "  { type = \"compress\"; axis = \"y\"; strain = 0.1; "
+               "duration = 1.0; pressure = 500.0; }\n"
+               ");\n"
+               "output = { interval = 1.0e-3; };\n");
+    FILE *f = open_timeseries(dir, 2);
+    struct dem_sample s;
+    memset(&s, 0, sizeof s);
+    for (int i = 1; i <= 1000; i++) {
+        const double x = 0.1 * i / 1000.0;
+        s.t = 1e-3 * i;
+        s.eps[1] = x;
+        s.eps_v = -0.08 * x; /* contracting: e falls from 0.2 */
+        s.eps[0] = 1.0 - (1.0 + s.eps_v) / (1.0 - x);
+        s.sigma[0] = 500.0;
+        s.sigma[1] = 500.0 * (1.0 + ratio_curve(x)) / (1.0 - ratio_curve(x));
+        s.void_ratio = 1.2 * (1.0 + s.eps_v) - 1.0;
+        dem_sample_write_row(f, &s, 2);
+    }
+    assert_int_equal(fclose(f), 0);
+    char *js = analyzed_summary(dir);
+    assert_close(json_get(js, "void_ratio_initial"), 0.2, 1e-12);
+    free(js);
+}
+
 /* A compress stage whose pressure is not where the isotropic stage left
  * the sample: the lateral stress moves during the initial part, and the
  * elastic constants, which assume it held, are not written (Poisson ratio
@@ -1959,6 +2000,7 @@ int main(void)
         cmocka_unit_test(noise_alone_rarely_ratchets),
         cmocka_unit_test(a_flat_middle_third_sets_no_direction),
         cmocka_unit_test(analyze_writes_summary_of_a_biaxial_run),
+        cmocka_unit_test(a_first_loading_stage_starts_at_its_void_ratio),
         cmocka_unit_test(analysis_is_invariant_to_the_unit_of_stress),
         cmocka_unit_test(analysis_follows_the_loading_as_it_ran),
         cmocka_unit_test(elastic_constants_need_the_lateral_stress_held),

@@ -224,7 +224,11 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
             cv->pm[i] += c->sigma[a][r] / dim;
         cv->s3[i] =
             minor >= 0 ? c->sigma[minor][r] : lateral(c->sigma, r, axis, dim);
-        cv->e[i] = c->void_ratio[r];
+        /* the added start's void ratio is exact (V0/V_s = (1 + e)/(1 +
+         * eps_v) of its first row), its stresses the first row's */
+        cv->e[i] = start && i == 0
+                       ? (1.0 + c->void_ratio[r]) / (1.0 + c->eps_v[r]) - 1.0
+                       : c->void_ratio[r];
         cv->inertial[i] = c->inertial && !o ? c->inertial[r] : NAN;
     }
     /* without a predecessor the stage started at t = 0 (first stage) or,
@@ -493,7 +497,12 @@ static int analyze_cyclic(const struct dem_config *cfg, const struct columns *c,
 static void loading_scalars(const struct curves *cv, struct result *R)
 {
     R->samples = cv->n;
-    R->e_init = cv->e[0];
+    /* the void ratio where the stage's strains are 0: V0/V_s = (1 + e)/(1
+     * + eps_v) of any of its rows; the first row's own e where it is
+     * the origin (eps_v 0), one output interval into a first stage (no
+     * row at t = 0) otherwise */
+    R->e_init = cv->ev[0] == 0.0 ? cv->e[0]
+                                 : (1.0 + cv->e[0]) / (1.0 + cv->ev[0]) - 1.0;
     R->inertial_max = NAN;
     for (long i = 0; i < cv->n; i++)
         if (isfinite(cv->inertial[i]) && !(cv->inertial[i] <= R->inertial_max))
