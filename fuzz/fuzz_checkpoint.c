@@ -20,6 +20,7 @@
 
 #include "dembox.h"
 #include "io/checkpoint.h"
+#include "memfile.h"
 #include "oracles.h"
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
@@ -45,8 +46,8 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    char dir[64], path[128];
-    snprintf(dir, sizeof dir, "/tmp/dembox_fuzz_ckpt_tmpl_%ld", (long)getpid());
+    char dir[512], path[600];
+    fuzz_tmp_path(dir, sizeof dir, "ckpt_tmpl");
     struct dem_config c;
     struct dem_error err = {0};
     if (dem_config_parse(&c, tiny, "fuzz template", 0, 0, &err))
@@ -68,7 +69,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     if (!tmpl || fread(tmpl, 1, tmpl_n, f) != tmpl_n)
         abort();
     fclose(f);
-    char cmd[160];
+    char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0)
         abort();
@@ -113,9 +114,8 @@ static void read_file(const char *path, const uint8_t *data, size_t size)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char path[64];
-    snprintf(path, sizeof path, "/tmp/dembox_fuzz_ckpt_%ld.bin",
-             (long)getpid());
+    char path[512];
+    fuzz_tmp_path(path, sizeof path, "ckpt.bin");
     if (size == 0 || !(data[0] & 1)) {
         read_file(path, data, size);
     } else {

@@ -97,10 +97,9 @@ static void read_from_memory(const uint8_t *data, size_t size)
 /* The benchmark's start from the same bytes as a file, then a few steps. */
 static void bench_start(const uint8_t *data, size_t size)
 {
-    static char path[64];
+    static char path[512];
     if (!path[0])
-        snprintf(path, sizeof path, "/tmp/dembox_fuzz_lammps_%ld.data",
-                 (long)getpid());
+        fuzz_tmp_path(path, sizeof path, "lammps.data");
     FILE *f = fopen(path, "wb");
     if (!f)
         abort();

@@ -1,10 +1,13 @@
 /* The fuzzers' input as a stream to read from (fmemopen), for the readers
- * that take a FILE. */
+ * that take a FILE; and the path of a file of the harness's own in the
+ * temporary folder. */
 #ifndef DEM_FUZZ_MEMFILE_H
 #define DEM_FUZZ_MEMFILE_H
 
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 /* data[0..size) opened for reading, or NULL. fmemopen of 0 bytes is
  * allowed since glibc 2.22; a 1-byte buffer of which none is left to read
@@ -17,6 +20,15 @@ static inline FILE *fuzz_memfile(const uint8_t *data, size_t size)
     if (f && !size)
         fgetc(f);
     return f;
+}
+
+/* $TMPDIR (else /tmp)/dembox_fuzz_NAME_PID into out (the process's own:
+ * the harnesses run side by side). */
+static inline void fuzz_tmp_path(char *out, size_t n, const char *name)
+{
+    const char *tmp = getenv("TMPDIR");
+    snprintf(out, n, "%s/dembox_fuzz_%s_%ld", tmp && tmp[0] ? tmp : "/tmp",
+             name, (long)getpid());
 }
 
 #endif
