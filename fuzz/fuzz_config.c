@@ -5,9 +5,10 @@
  * (so that the override parser, which edits the libconfig tree, sees
  * fuzzed keys and values too); and with fixed overrides that reach into
  * the stages list and the gravity vector of whatever tree the text
- * produced. Whatever parses must validate and survive the round trip
- * through the resolved config writer. Any crash, leak, sanitizer report or
- * message that is not one line is a finding.
+ * produced, and apart from those the luding law. Whatever parses must
+ * validate and survive the round trip through the resolved config
+ * writer. Any crash, leak, sanitizer report, or message that is not one
+ * line naming the source or the --set it came from, is a finding.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -53,7 +54,7 @@ static void parse(const char *text, const char *const *sets, int nsets)
         return;
     int rc = dem_config_parse(c, text, "fuzz.cfg", sets, nsets, &err);
     if (rc != DEM_OK) {
-        fuzz_one_line(&err);
+        fuzz_one_line_at(&err, "fuzz.cfg");
     } else {
         /* A config that parsed must validate, and its resolved text must
          * parse back to the same struct ("auto" is written resolved). */
@@ -95,9 +96,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
 
     static const char *const fixed[] = {"stages.0.pressure=250",
-                                        "gravity.1=-9.81", "stages.1={}",
-                                        "contact.normal=luding"};
-    parse(text, fixed, 4);
+                                        "gravity.1=-9.81", "stages.1={}"};
+    parse(text, fixed, 3);
+    /* a law of its own, apart: with the others, a config of the linear
+     * law's k was refused on that pass before it reached them */
+    static const char *const law[] = {"contact.normal=luding"};
+    parse(text, law, 1);
     free(text);
     return 0;
 }

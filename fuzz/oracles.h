@@ -26,4 +26,14 @@ static inline void fuzz_json_reads_back(const char *path)
     dem__jread_free(&js);
 }
 
+/* ... and names where: the source (a file name, or "example NAME")
+ * or the --set override it came from. */
+static inline void fuzz_one_line_at(const struct dem_error *err,
+                                    const char *source)
+{
+    fuzz_one_line(err);
+    if (!strstr(err->msg, source) && !strstr(err->msg, "--set "))
+        abort();
+}
+
 #endif
