@@ -624,6 +624,21 @@ static void resumed_periodic_shear_run_is_bit_identical(void **state)
     stop_and_resume(small_cell_2d, NULL, 0, "resumecell", 6000, stops, 3, 0);
 }
 
+/* The same with a stress-controlled shear (a creep test, its profile not
+ * given): the checkpoint's config is read back as a new config, which
+ * refuses a ramp of the stress given, and config.cfg wrote the default
+ * profile out, so no such run could resume (a review of session 112's
+ * changes); the writer now leaves it out. */
+static void resumed_stress_shear_run_is_bit_identical(void **state)
+{
+    (void)state;
+    const char *const sets[] = {
+        "stages.1={type=\"shear\";shear_stress=20.0;duration=4.0e-4;"
+        "pressure=500.0;}"};
+    const long stops[] = {900, 3000};
+    stop_and_resume(small_cell_2d, sets, 1, "resumecreep", 5000, stops, 2, 0);
+}
+
 static void resumed_3d_cyclic_run_is_bit_identical(void **state)
 {
     (void)state;
@@ -1181,6 +1196,7 @@ int main(void)
         cmocka_unit_test(resumed_2d_run_is_bit_identical),
         cmocka_unit_test(resumed_3d_cyclic_run_is_bit_identical),
         cmocka_unit_test(resumed_periodic_shear_run_is_bit_identical),
+        cmocka_unit_test(resumed_stress_shear_run_is_bit_identical),
         cmocka_unit_test(resumed_hertz_run_is_bit_identical),
         cmocka_unit_test(resumed_resistance_run_is_bit_identical),
         cmocka_unit_test(resume_after_a_finish_cut_short),

@@ -125,6 +125,18 @@ static const char *omitted(const struct key *k, const struct dem_config *c)
     return 0;
 }
 
+/* The profile of a stress-controlled shear whose stress is held from the
+ * start: not given, since a profile given there is a ramp asked for,
+ * which the parser refuses (config.cfg and a checkpoint's config are read
+ * back as new configs). */
+static int held_shear_profile(const struct dem_stage_config *st,
+                              const struct key *k)
+{
+    return st->type == DEM_STAGE_SHEAR && !isnan(st->shear_stress) &&
+           st->profile != DEM_PROFILE_CYCLIC &&
+           st->profile != DEM_PROFILE_SINE && !strcmp(k->name, "profile");
+}
+
 static void write_stages(const struct dem_config *c, FILE *f)
 {
     fprintf(f, "stages = (\n");
@@ -139,7 +151,8 @@ static void write_stages(const struct dem_config *c, FILE *f)
                 ((dem__cfg_keys[k].flags & F_UNSET_NEG) &&
                  dem__cfg_key_value(st, &dem__cfg_keys[k]) < 0) ||
                 ((dem__cfg_keys[k].flags & F_UNSET_NAN) &&
-                 isnan(dem__cfg_key_value(st, &dem__cfg_keys[k]))))
+                 isnan(dem__cfg_key_value(st, &dem__cfg_keys[k]))) ||
+                held_shear_profile(st, &dem__cfg_keys[k]))
                 continue;
             value_text(&dem__cfg_keys[k], st, v, sizeof v);
             write_line(f, 2, dem__cfg_keys[k].name, v, &dem__cfg_keys[k], 0);
