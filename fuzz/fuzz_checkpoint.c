@@ -12,10 +12,13 @@
  * Any crash, leak, sanitizer report or message that is not one line is a
  * finding; an accepted file must give a simulation that can be freed.
  */
+#define _XOPEN_SOURCE 700 /* nftw */
+#include <ftw.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "dembox.h"
@@ -41,6 +44,17 @@ static const char *const tiny =
     ");\n"
     "output = { interval = 1.0e-5; snapshot_interval = 0.0;"
     " checkpoint_interval = 0.0; };\n";
+
+/* nftw: the template run's folder, its files first (no shell: the
+ * path is TMPDIR's, whatever it holds) */
+static int remove_one(const char *path, const struct stat *st, int type,
+                      struct FTW *ftw)
+{
+    (void)st;
+    (void)type;
+    (void)ftw;
+    return remove(path);
+}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
@@ -69,9 +83,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     if (!tmpl || fread(tmpl, 1, tmpl_n, f) != tmpl_n)
         abort();
     fclose(f);
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    if (system(cmd) != 0)
+    if (nftw(dir, remove_one, 16, FTW_DEPTH | FTW_PHYS) != 0)
         abort();
     return 0;
 }

@@ -20,6 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <unistd.h>
+
 #include "core/sim.h"
 #include "dembox.h"
 #include "formats/particles_csv.h"
@@ -63,8 +65,12 @@ static void read_as(const uint8_t *data, size_t size, int dim, int model)
 static void sample_of(const uint8_t *data, size_t size)
 {
     static char path[512];
-    if (!path[0])
+    if (!path[0]) {
         fuzz_tmp_path(path, sizeof path, "sample.csv");
+        if (strpbrk(path, "\"\\")) /* (it goes into the config's text) */
+            snprintf(path, sizeof path, "/tmp/dembox_fuzz_sample_%ld.csv",
+                     (long)getpid());
+    }
     unsigned mode = 0;
     for (size_t k = 0; k < size; k++)
         mode += data[k];

@@ -27,8 +27,11 @@ static inline FILE *fuzz_memfile(const uint8_t *data, size_t size)
 static inline void fuzz_tmp_path(char *out, size_t n, const char *name)
 {
     const char *tmp = getenv("TMPDIR");
-    snprintf(out, n, "%s/dembox_fuzz_%s_%ld", tmp && tmp[0] ? tmp : "/tmp",
-             name, (long)getpid());
+    const int len =
+        snprintf(out, n, "%s/dembox_fuzz_%s_%ld", tmp && tmp[0] ? tmp : "/tmp",
+                 name, (long)getpid());
+    if (len < 0 || (size_t)len >= n)
+        abort(); /* a TMPDIR too long for the harness's buffers */
 }
 
 #endif

@@ -224,11 +224,7 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
             cv->pm[i] += c->sigma[a][r] / dim;
         cv->s3[i] =
             minor >= 0 ? c->sigma[minor][r] : lateral(c->sigma, r, axis, dim);
-        /* the added start's void ratio is exact (V0/V_s = (1 + e)/(1 +
-         * eps_v) of its first row), its stresses the first row's */
-        cv->e[i] = start && i == 0
-                       ? (1.0 + c->void_ratio[r]) / (1.0 + c->eps_v[r]) - 1.0
-                       : c->void_ratio[r];
+        cv->e[i] = c->void_ratio[r];
         cv->inertial[i] = c->inertial && !o ? c->inertial[r] : NAN;
     }
     /* without a predecessor the stage started at t = 0 (first stage) or,
@@ -890,6 +886,10 @@ static void write_shear(struct dem__json *j, const struct result *R)
               pks = S->n && !stress && S->peak_sin.ok,
               crs = S->n && !stress && S->crit_sin.ok;
     const double deg = 180.0 / M_PI;
+    /* (asin of sin phi > 1: null, and why) */
+    static const char tension[] =
+        "sin phi above 1: the minor principal stress is a tension (a "
+        "cohesive sample), which no friction angle describes";
     num(j, "tau_over_sigma_n", pk ? S->peak.value : NAN,
         none ? none : S->peak.reason);
     num(j, "phi_plane_deg", pk ? atan(S->peak.value) * deg : NAN,
@@ -898,7 +898,9 @@ static void write_shear(struct dem__json *j, const struct result *R)
     num(j, "sin_phi", pks ? S->peak_sin.value : NAN,
         none ? none : S->peak_sin.reason);
     num(j, "phi_deg", pks ? asin(S->peak_sin.value) * deg : NAN,
-        none ? none : S->peak_sin.reason);
+        none  ? none
+        : pks ? tension
+              : S->peak_sin.reason);
     dem__json_close(j);
     dem__json_object(j, "critical", 0);
     num(j, "tau_over_sigma_n", cr ? S->crit.value : NAN,
@@ -908,7 +910,9 @@ static void write_shear(struct dem__json *j, const struct result *R)
     num(j, "sin_phi", crs ? S->crit_sin.value : NAN,
         none ? none : S->crit_sin.reason);
     num(j, "phi_deg", crs ? asin(S->crit_sin.value) * deg : NAN,
-        none ? none : S->crit_sin.reason);
+        none  ? none
+        : crs ? tension
+              : S->crit_sin.reason);
     num(j, "gamma_from", S->n ? S->crit.strain_from : NAN, none);
     num(j, "drift", S->n ? S->crit.drift : NAN, none);
     num(j, "drift_stderr", S->n ? S->crit.drift_stderr : NAN, none);

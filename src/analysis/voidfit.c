@@ -112,17 +112,16 @@ int dem_voidfit(const double *p, const double *e, long m, double hs,
     const double n = exp(0.5 * (a + b));
     const double s = sse(x, e, m, n, &e0);
     /* the covariance s^2 (J^T J)^-1, s^2 = S/(m - 2), of the model's
-     * Jacobian J_i = (1, g_i), g_i = d e_i/d n = -x_i^n ln x_i */
-    double sg = 0.0, sgg = 0.0;
+     * Jacobian J_i = (1, g_i), g_i = d e_i/d n = -x_i^n ln x_i: with
+     * S_gg = sum (g - mean g)^2 (centred: no cancellation), var n =
+     * s^2/S_gg and var e0 = s^2 (1/m + mean(g)^2/S_gg) */
+    double gm = 0.0, sgg = 0.0;
+    for (long i = 0; i < m; i++)
+        gm += -pow(x[i], n) * log(x[i]);
+    gm /= (double)m;
     for (long i = 0; i < m; i++) {
-        const double gi = -pow(x[i], n) * log(x[i]);
-        sg += gi;
-        sgg += gi * gi;
-    }
-    const double det = (double)m * sgg - sg * sg, s2 = s / (double)(m - 2);
-    if (det > 0.0) {
-        o->se_e0 = sqrt(s2 * sgg / det);
-        o->se_n = sqrt(s2 * (double)m / det);
+        const double d = -pow(x[i], n) * log(x[i]) - gm;
+        sgg += d * d;
     }
     free(x);
     if (best == 0 || best == N_GRID) {
@@ -140,6 +139,11 @@ int dem_voidfit(const double *p, const double *e, long m, double hs,
     o->n = n;
     o->rms = sqrt(s / (double)m);
     o->r2 = sst > 0.0 ? 1.0 - s / sst : NAN;
+    if (sgg > 0.0) {
+        const double s2 = s / (double)(m - 2);
+        o->se_n = sqrt(s2 / sgg);
+        o->se_e0 = sqrt(s2 * (1.0 / (double)m + gm * gm / sgg));
+    }
     o->ok = 1;
     return DEM_OK;
 }

@@ -389,7 +389,8 @@ const struct key dem__cfg_keys[] = {
      .unit = "s",
      .doc = "compress, constant_p, constant_volume, shear: time to reach "
             "the strain (at least 20 time steps, per cycle of a returning "
-            "profile); hold: time to run"},
+            "profile), or a stress-controlled shear's time to hold or cycle "
+            "its stress; hold: time to run"},
     {.name = "profile",
      .kind = K_ENUM,
      STG(profile),

@@ -525,7 +525,7 @@ int dem_particles_load(struct dem_particles *p, const struct dem_config *cfg,
                     break;
                 }
                 /* fmod is exact: the centre's own place in [0, L) */
-                double w = fmod(c[a][i], L);
+                double w = fmod(c[a][i], L) + 0.0; /* (-0.0 to 0.0) */
                 w += w < 0.0 ? L : 0.0;
                 c[a][i] = w < L ? w : 0.0; /* (-tiny + L rounds to L) */
             }

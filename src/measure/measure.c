@@ -152,20 +152,24 @@ void dem_measure(const struct dem_sim *s, const double L0[3], double V0,
     }
 
     /* inertial number from the fastest strain rate of the box: the axial
-     * ones, and in a periodic cell the shear rates of its tilts (t_xy
-     * over L_y, t_xz and t_yz over L_z), which a shear stage drives */
+     * ones, and in a periodic cell the shear rates of its affine field
+     * (the off-diagonal velocity gradients: a shear stage's tilt over
+     * L_y; a fixed tilt that follows the stretch of the faces adds none,
+     * where its rate over L_y counted as shear) */
     double rate = 0.0;
     for (int a = 0; a < dim; a++) {
         double Ld = s->wall[2 * a + 1].vel - s->wall[2 * a].vel;
         double r = fabs(Ld) / o->L[a];
         rate = r > rate ? r : rate;
     }
-    if (s->cell.on)
-        for (int k = 0; k < (dim == 3 ? 3 : 1); k++) {
-            const double Lb = o->L[k == DEM_TILT_XY ? 1 : 2];
-            const double r = Lb > 0.0 ? fabs(s->cell.tilt[k].vel) / Lb : 0.0;
-            rate = r > rate ? r : rate;
-        }
+    if (s->cell.on) {
+        double g[6];
+        dem_sim_cell_grad(s, g);
+        const double shear[3] = {g[1], dim == 3 ? g[2] : 0.0,
+                                 dim == 3 ? g[4] : 0.0};
+        for (int k = 0; k < 3; k++)
+            rate = fabs(shear[k]) > rate ? fabs(shear[k]) : rate;
+    }
     if (N > 0 && o->p > 0.0) {
         double m = msum / N, d = dsum / N;
         double F = o->p * (dim == 3 ? d * d : d);

@@ -346,9 +346,12 @@ static double q_epot(const struct series *s, size_t i)
     return s->c[TS_EPOT][i];
 }
 
+/* gamma_xy counts from the shear stage's start (its reference), as
+ * summary.json's gamma does: the stage's first row is an output interval
+ * into it */
 static double q_gamma(const struct series *s, size_t i)
 {
-    return s->c[TS_GXY][i] - s->c[TS_GXY][s->slo];
+    return s->c[TS_GXY][i];
 }
 
 /* tau/sigma_n: tau = -sigma_lw_xy resists a positive shear */

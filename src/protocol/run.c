@@ -552,21 +552,21 @@ static void servo_warnings(const struct run_ctx *r, int index,
     list[0] = '\0';
     for (int w = 0; w < s->nwall; w++) {
         const struct dem_wall *W = &s->wall[w];
-        if (W->floored == 0 || W->kicks == 0)
+        /* (kicks: two a step) */
+        if (W->kicks < 100 ||
+            !((double)W->floored > SERVO_CAPPED_SHARE * 0.5 * (double)W->kicks))
             continue;
         const size_t len = strlen(list);
-        snprintf(list + len, sizeof list - len, "%sthe %s wall (%.0f %%)",
-                 len ? ", " : "", wall_name[w],
-                 100.0 *
-                     fmin((double)W->floored / (0.5 * (double)W->kicks), 1.0));
+        snprintf(list + len, sizeof list - len, "%sthe %s %s (%.0f %%)",
+                 len ? ", " : "", wall_name[w], s->cell.on ? "face" : "wall",
+                 100.0 * (double)W->floored / (0.5 * (double)W->kicks));
     }
     if (list[0])
         dem_warn(err,
-                 "stage %d: the stress path asked for tension on walls that "
-                 "only push, and their targets were held at 0 for part of "
-                 "the steps: %s; the mean stress (and b) were not the "
-                 "stage's there (a cohesive sample, or sigma_1 above 3 p/(1 "
-                 "+ b), 2D 2 p)",
+                 "stage %d: the stress path asked for tension, and the "
+                 "targets were held at 0 for part of the steps: %s; the "
+                 "mean stress (and b) were not the stage's there (a "
+                 "cohesive sample, or sigma_1 above 3 p/(1 + b), 2D 2 p)",
                  index, list);
 }
 

@@ -119,7 +119,7 @@ static int validate(const struct dem_sweep_grid *g,
         /* and two values that give one config (linear and "linear", a
          * key no stage reads) would run one point twice and count its
          * circle twice: the configs as a run's config.cfg writes them */
-        char **text = calloc((size_t)p->nvalues, sizeof *text);
+        char **text = calloc((size_t)p->nvalues + 1, sizeof *text);
         if (!text)
             rc = dem_error_set(err, DEM_ENOMEM, "out of memory");
         for (int v = 0; !rc && v < p->nvalues; v++) {
