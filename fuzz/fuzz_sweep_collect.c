@@ -13,8 +13,8 @@
  * and scripts are written, not drawn.
  * Any crash, leak or sanitizer report (float-to-int overflow included), a
  * message that is empty or not one line, a sweep.json that the project's
- * own JSON reader cannot read back, or a plot script that could run a
- * command (plots.h), is a finding.
+ * own JSON reader cannot read back or that a refusal left behind, or a
+ * plot script that could run a command (plots.h), is a finding.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -182,10 +182,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     struct dem_sweep_options o = {
         .target = target, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
     struct dem_error err = {0};
-    if (dem_sweep_collect(&grid[g], &o, &err))
+    if (dem_sweep_collect(&grid[g], &o, &err)) {
         fuzz_one_line(&err);
-    else
+        if (access(path, F_OK) == 0)
+            abort(); /* a refusal leaves no sweep.json that looks done */
+    } else {
         fuzz_json_reads_back(path);
+    }
     snprintf(path, sizeof path, "%s/plots", out);
     fuzz_gp_scripts_inert(path);
     return 0;
