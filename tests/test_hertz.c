@@ -113,6 +113,43 @@ static void restitution_is_the_one_asked_for_at_any_speed(void **state)
             }
 }
 
+/* The time step rule bounds the Hertz dashpot too, which the damping
+ * check (dem_damping_step) leaves out: its rate gamma/m* = alpha
+ * omega/sqrt(1.5), omega = sqrt(dF/ddelta / m*), has alpha below about 2
+ * for any restitution above 0, and at the largest step the config
+ * accepts (a fifth of dem_step_time: of the impact at v_impact, and of
+ * Mindlin's tangential mode, 2.2 times faster) gamma dt/m* at the
+ * impact's deepest overlap stays far below 2, where the explicit dashpot
+ * would reverse the velocity it damps: 0.43 at e = 0.001 (alpha 2.04),
+ * and no speed grows. (At that coarse a step the restitution is 0.15,
+ * not 0.001: "auto" takes a tenth of it.) */
+static void the_step_rule_bounds_the_hertz_dashpot(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    hertz_config(&c, 0.001);
+    dem_model_hertz_derive(&c.contact);
+    c.time_step = dem_step_time(&c) / 5.0;
+    struct dem_sim s;
+    test_sim(&s, &c, 1, 0.0, 0.1);
+    test_add(&s, 0.05, 0.05, A + 1e-6, A);
+    s.p.vz[0] = -c.contact.v_impact;
+    test_ready(&s);
+    const double m = s.p.m[0];
+    double dmax = 0.0, vmax = 0.0;
+    for (int k = 0; k < 2000; k++) {
+        test_step(&s, 1);
+        dmax = fmax(dmax, A - s.p.z[0]);
+        vmax = fmax(vmax, fabs(s.p.vz[0]));
+    }
+    const double rate = c.contact.hertz_gn * sqrt(sqrt(A) * m) *
+                        sqrt(sqrt(dmax)) * c.time_step / m;
+    assert_true(c.contact.hertz_alpha > 2.0 && c.contact.hertz_alpha < 2.1);
+    assert_true(dmax > 0.0 && rate > 0.3 && rate < 1.0);
+    assert_true(vmax <= c.contact.v_impact);
+    dem_sim_destroy(&s);
+}
+
 /* The scaled collision behind the damping: alpha = 0 is elastic, the
  * restitution falls with alpha (to 0.04 at alpha = 1.6; from about 2 on
  * the sphere creeps back without ever leaving: e = 0), and _derive
@@ -284,6 +321,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(derived_damping_inverts_the_restitution),
+        cmocka_unit_test(the_step_rule_bounds_the_hertz_dashpot),
         cmocka_unit_test(elastic_collision_lasts_the_hertz_time),
         cmocka_unit_test(restitution_is_the_one_asked_for_at_any_speed),
         cmocka_unit_test(tangential_spring_gives_back_no_more_than_it_took),
