@@ -5,10 +5,12 @@
  * The input is a run folder in one text: the first byte's two low bits
  * choose the config.cfg among four built-in examples (biaxial2d,
  * shear2d, cyclic3d, triaxial3d), its third whether the plots are made
- * too (they take some 100 ms an input, the analysis a few); the rest is timeseries.csv up to a line "@@X", after which
- * come the files named by X: p particles_final.csv, c contacts_final.csv,
- * f forces_final.csv, s summary.json (read by the plots), t
- * timeseries.csv again. The plots' gnuplot is a command that does not
+ * too (they take some 100 ms an input, the analysis a few); the rest is
+ * timeseries.csv up to a line "@@X", after which come the files named by X: p
+ * particles_final.csv, c contacts_final.csv, f forces_final.csv, s summary.json
+ * (read by the plots), t timeseries.csv again, g config.cfg in place of the
+ * example's (the record's reader, and the stages no example has: constant_p, a
+ * held shear stress, hertz). The plots' gnuplot is a command that does not
  * exist (DEMBOX_GNUPLOT): their data and scripts are written, not drawn
  * (a gnuplot started per picture took 70 ms an input); the particle
  * picture is drawn (cairo).
@@ -87,8 +89,8 @@ static int write_folder(const uint8_t *data, size_t size)
                 data[q + 1] == '@') {
                 static const char *const by[] = {
                     ['p'] = "particles_final.csv", ['c'] = "contacts_final.csv",
-                    ['f'] = "forces_final.csv", ['s'] = "summary.json",
-                    ['t'] = "timeseries.csv"};
+                    ['f'] = "forces_final.csv",    ['s'] = "summary.json",
+                    ['t'] = "timeseries.csv",      ['g'] = "config.cfg"};
                 const uint8_t x = data[q + 2];
                 if (x < sizeof by / sizeof *by && by[x]) {
                     end = q;
