@@ -100,13 +100,7 @@ static void bench_start(const uint8_t *data, size_t size)
     static char path[512];
     if (!path[0])
         fuzz_tmp_path(path, sizeof path, "lammps.data");
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        abort();
-    if (size && fwrite(data, 1, size, f) != size)
-        abort();
-    if (fclose(f))
-        abort();
+    fuzz_write_file(path, data, size);
     const int dim = size && (data[0] & 1) ? 2 : 3;
     const int periodic = size && (data[0] & 2);
     struct dem_sim s;

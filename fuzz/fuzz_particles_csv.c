@@ -94,13 +94,7 @@ static void sample_of(const uint8_t *data, size_t size)
         fprintf(stderr, "the harness's own config: %s\n", err.msg);
         abort(); /* the config is this harness's, not the input */
     }
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        abort();
-    if (size && fwrite(data, 1, size, f) != size)
-        abort();
-    if (fclose(f))
-        abort();
+    fuzz_write_file(path, data, size);
     struct dem_particles given = {0};
     int rc = dem_particles_load(&given, &c, &err);
     unlink(path);

@@ -22,6 +22,16 @@ static inline FILE *fuzz_memfile(const uint8_t *data, size_t size)
     return f;
 }
 
+/* data[0..size) as the file at path (the harness stops where it cannot
+ * write its own file). */
+static inline void fuzz_write_file(const char *path, const uint8_t *data,
+                                   size_t size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f || (size && fwrite(data, 1, size, f) != size) || fclose(f))
+        abort();
+}
+
 /* $TMPDIR (else /tmp)/dembox_fuzz_NAME_PID into out (the process's own:
  * the harnesses run side by side). */
 static inline void fuzz_tmp_path(char *out, size_t n, const char *name)

@@ -23,6 +23,36 @@ static double noise(uint64_t *s)
     return (double)(*s >> 11) / (double)(1ULL << 52) - 1.0;
 }
 
+/* Deterministic normal noise, mean 0 and variance 1 (Box-Muller). */
+static double gauss(uint64_t *s)
+{
+    const double u1 = 0.5 * (noise(s) + 1.0) + 1e-300, u2 = noise(s);
+    return sqrt(-2.0 * log(u1)) * cos(M_PI * u2);
+}
+
+/* A fitted value over noisy replicas with its reported standard error:
+ * sums for the ratio of the errors' rms to the values' standard
+ * deviation, 1 when the errors describe the scatter. */
+struct scatter {
+    double m, mm, se2;
+    int n;
+};
+
+static void scatter_add(struct scatter *a, double v, double se)
+{
+    a->m += v;
+    a->mm += v * v;
+    a->se2 += se * se;
+    a->n++;
+}
+
+static double scatter_ratio(const struct scatter *a)
+{
+    const double n = a->n, mean = a->m / n,
+                 sd = sqrt((a->mm / n - mean * mean) * n / (n - 1.0));
+    return sqrt(a->se2 / n) / sd;
+}
+
 /* sigma1 of a Mohr-Coulomb material at sigma3. */
 static double mc_sigma1(double s3, double phi, double c)
 {
@@ -221,35 +251,21 @@ static void mohr_fit_standard_errors_match_the_scatter(void **state)
     for (int cohesion = 0; cohesion < 2; cohesion++) {
         const double c = cohesion ? 1000.0 : 0.0, sigma = 10.0;
         const int reps = 4000;
-        double m[2] = {0}, mm[2] = {0}, se2[2] = {0};
+        struct scatter a[2] = {{0}};
         for (int r = 0; r < reps; r++) {
             double s1[5];
-            for (int k = 0; k < 5; k++) {
-                /* the circle's radius moved by sigma z: s1 by 2 sigma z
-                 * (Box-Muller; s3 kept) */
-                const double u1 = 0.5 * (noise(&seed) + 1.0) + 1e-300,
-                             u2 = noise(&seed);
-                const double z = sqrt(-2.0 * log(u1)) * cos(M_PI * u2);
-                s1[k] = mc_sigma1(s3[k], phi, c) + 2.0 * sigma * z;
-            }
+            for (int k = 0; k < 5; k++) /* s1 moved by 2 sigma z, s3 kept */
+                s1[k] = mc_sigma1(s3[k], phi, c) + 2.0 * sigma * gauss(&seed);
             struct dem_mohr_fit f;
             assert_int_equal(dem_mohr_fit(s1, s3, 5, cohesion, &f), 0);
             assert_true(f.ok && !f.bounded);
-            const double v[2] = {f.phi_deg, f.c}, e[2] = {f.phi_se_deg, f.c_se};
-            for (int q = 0; q < 1 + cohesion; q++) {
-                m[q] += v[q];
-                mm[q] += v[q] * v[q];
-                se2[q] += e[q] * e[q];
-            }
+            scatter_add(&a[0], f.phi_deg, f.phi_se_deg);
+            scatter_add(&a[1], f.c, f.c_se);
             if (!cohesion)
                 assert_true(isnan(f.c_se));
         }
-        for (int q = 0; q < 1 + cohesion; q++) {
-            const double mean = m[q] / reps,
-                         sd = sqrt((mm[q] / reps - mean * mean) * reps /
-                                   (reps - 1.0));
-            assert_close(sqrt(se2[q] / reps) / sd, 1.0, 0.05);
-        }
+        for (int q = 0; q < 1 + cohesion; q++)
+            assert_close(scatter_ratio(&a[q]), 1.0, 0.05);
     }
 }
 
@@ -610,31 +626,19 @@ static void void_ratio_fit_standard_errors_match_the_scatter(void **state)
     const double p[] = {100.0, 250.0, 500.0, 1000.0, 2000.0, 5000.0};
     const int reps = 4000;
     uint64_t seed = 777;
-    double m[2] = {0}, mm[2] = {0}, se2[2] = {0};
+    struct scatter a[2] = {{0}};
     for (int r = 0; r < reps; r++) {
         double e[6];
-        for (int k = 0; k < 6; k++) {
-            const double u1 = 0.5 * (noise(&seed) + 1.0) + 1e-300,
-                         u2 = noise(&seed);
-            e[k] = e0 - pow(p[k] / hs, n) +
-                   sigma * sqrt(-2.0 * log(u1)) * cos(M_PI * u2);
-        }
+        for (int k = 0; k < 6; k++)
+            e[k] = e0 - pow(p[k] / hs, n) + sigma * gauss(&seed);
         struct dem_voidfit f;
         assert_int_equal(dem_voidfit(p, e, 6, hs, &f), 0);
         assert_true(f.ok);
-        const double v[2] = {f.e0, f.n}, se[2] = {f.se_e0, f.se_n};
-        for (int q = 0; q < 2; q++) {
-            m[q] += v[q];
-            mm[q] += v[q] * v[q];
-            se2[q] += se[q] * se[q];
-        }
+        scatter_add(&a[0], f.e0, f.se_e0);
+        scatter_add(&a[1], f.n, f.se_n);
     }
-    for (int q = 0; q < 2; q++) {
-        const double mean = m[q] / reps,
-                     sd = sqrt((mm[q] / reps - mean * mean) * reps /
-                               (reps - 1.0));
-        assert_close(sqrt(se2[q] / reps) / sd, 1.0, 0.05);
-    }
+    for (int q = 0; q < 2; q++)
+        assert_close(scatter_ratio(&a[q]), 1.0, 0.05);
 }
 
 /* A cyclic stage starting at t0: eps_D grows by inc[k-1] during cycle k
