@@ -856,6 +856,25 @@ static void write_criteria(struct dem__json *j, const struct result *R)
     dem__json_close(j);
 }
 
+/* The friction of one state of a shear (its peak or critical state):
+ * tau/sigma_n and its angle on the horizontal plane, where mu was found,
+ * sin phi of the stress's largest circle and its angle, where that was;
+ * each null with why otherwise. */
+static void shear_friction(struct dem__json *j, int mu_ok, double mu,
+                           const char *mu_why, int sin_ok, double sp,
+                           const char *sin_why)
+{
+    const double deg = 180.0 / M_PI;
+    num(j, "tau_over_sigma_n", mu_ok ? mu : NAN, mu_why);
+    num(j, "phi_plane_deg", mu_ok ? atan(mu) * deg : NAN, mu_why);
+    num(j, "sin_phi", sin_ok ? sp : NAN, sin_why);
+    /* (asin of sin phi > 1: null, and why) */
+    num(j, "phi_deg", sin_ok ? asin(sp) * deg : NAN,
+        sin_ok ? "sin phi above 1: the minor principal stress is a tension "
+                 "(a cohesive sample), which no friction angle describes"
+               : sin_why);
+}
+
 static void write_shear(struct dem__json *j, const struct result *R)
 {
     const struct dem_shear *S = &R->shear;
@@ -885,34 +904,14 @@ static void write_shear(struct dem__json *j, const struct result *R)
               cr = S->n && !stress && S->crit.ok,
               pks = S->n && !stress && S->peak_sin.ok,
               crs = S->n && !stress && S->crit_sin.ok;
-    const double deg = 180.0 / M_PI;
-    /* (asin of sin phi > 1: null, and why) */
-    static const char tension[] =
-        "sin phi above 1: the minor principal stress is a tension (a "
-        "cohesive sample), which no friction angle describes";
-    num(j, "tau_over_sigma_n", pk ? S->peak.value : NAN,
-        none ? none : S->peak.reason);
-    num(j, "phi_plane_deg", pk ? atan(S->peak.value) * deg : NAN,
-        none ? none : S->peak.reason);
+    /* (none is set exactly where no state is found: S->n 0 or stress) */
+    shear_friction(j, pk, S->peak.value, none ? none : S->peak.reason, pks,
+                   S->peak_sin.value, none ? none : S->peak_sin.reason);
     num(j, "gamma", pk ? S->peak.strain : NAN, none ? none : S->peak.reason);
-    num(j, "sin_phi", pks ? S->peak_sin.value : NAN,
-        none ? none : S->peak_sin.reason);
-    num(j, "phi_deg", pks ? asin(S->peak_sin.value) * deg : NAN,
-        none  ? none
-        : pks ? tension
-              : S->peak_sin.reason);
     dem__json_close(j);
     dem__json_object(j, "critical", 0);
-    num(j, "tau_over_sigma_n", cr ? S->crit.value : NAN,
-        none ? none : S->crit.reason);
-    num(j, "phi_plane_deg", cr ? atan(S->crit.value) * deg : NAN,
-        none ? none : S->crit.reason);
-    num(j, "sin_phi", crs ? S->crit_sin.value : NAN,
-        none ? none : S->crit_sin.reason);
-    num(j, "phi_deg", crs ? asin(S->crit_sin.value) * deg : NAN,
-        none  ? none
-        : crs ? tension
-              : S->crit_sin.reason);
+    shear_friction(j, cr, S->crit.value, none ? none : S->crit.reason, crs,
+                   S->crit_sin.value, none ? none : S->crit_sin.reason);
     num(j, "gamma_from", S->n ? S->crit.strain_from : NAN, none);
     num(j, "drift", S->n ? S->crit.drift : NAN, none);
     num(j, "drift_stderr", S->n ? S->crit.drift_stderr : NAN, none);
