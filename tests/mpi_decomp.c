@@ -109,7 +109,8 @@ static void steps(struct dem_sim *s, long n)
 
 /* A lattice with holes: spheres (discs) overlapping their lattice
  * neighbours and the walls, a tenth of the sites empty (2D: 40 %), so
- * that many have fewer than d + 1 contacts and their removal cascades.
+ * that many are rattlers and their removal cascades: in 3D without
+ * friction (fewer than d + 1 contacts), in 2D with (fewer than 2).
  * Split over the ranks, the rattlers and the contacts between the others
  * must be those of the undivided sample. Returns 1 on failure. */
 static int rattlers(int dim, int rank)
@@ -118,6 +119,8 @@ static int rattlers(int dim, int rank)
     const double r = 5e-3, a = 1.9 * r;
     struct dem_config c;
     config(&c, dim, dim == 3 ? m * m * m : m * m);
+    if (dim == 3) /* both rules: without friction, fewer than d + 1 */
+        c.contact.mu_s = c.contact.mu_d = 0.0;
     const double lo[3] = {-0.95 * r, -0.95 * r, dim == 3 ? -0.95 * r : 0.0};
     const double e = (m - 1) * a + 0.95 * r;
     const double hi[3] = {e, e, dim == 3 ? e : 0.0};

@@ -227,6 +227,66 @@ static void love_weber_equals_wall_stress(void **state)
     dem_sim_destroy(&s);
 }
 
+/* Rattlers: particles with fewer contacts (walls counted) than can hold
+ * one in equilibrium, 2 with friction, d + 1 without, removed until
+ * every survivor has that many among survivors. A square (cubic)
+ * lattice of r layers between its side walls and on the floor, each
+ * pair overlapping by delta, has none: every particle has d + 1 or more
+ * (2D: a top corner has its wall, its neighbour and the one below). On
+ * it stand two columns: A, of 3, on its corner against the side wall(s),
+ * each of whose members has d + 1 contacts (walls, below, above) but the
+ * top one d; and B, of 2, on an inner particle, whose members have 2 but
+ * the top one 1. With friction B goes and A stands; without, the removal
+ * of either column's top cascades down it, one a round, and stops at the
+ * lattice. The coordination without the rattlers counts the lattice's
+ * pairs and the standing column's. (Before, 2D took fewer than 2 and 3D
+ * fewer than 4 with or without friction.) */
+static void rattlers_cascade_down_a_column(void **state)
+{
+    (void)state;
+    for (int run = 0; run < 4; run++) {
+        const int dim = 2 + run / 2, frictional = run % 2;
+        struct dem_config c;
+        test_config(&c, dim);
+        if (!frictional)
+            c.contact.mu_s = c.contact.mu_d = 0.0;
+        const int m = 6, r = 2, ka = 3, kb = 2;
+        const double a = 5e-3, delta = 1e-5, sp = 2 * a - delta;
+        const int nlat = dim == 3 ? m * m * r : m * r;
+        struct dem_sim s;
+        test_sim(&s, &c, nlat + ka + kb, 0.0, m * sp);
+        const double o = a - delta / 2;
+        /* (x, y, up): 2D layers along y, 3D along z */
+        for (int i = 0; i < nlat; i++) {
+            const double x = o + (i % m) * sp,
+                         y = dim == 3 ? o + ((i / m) % m) * sp : 0.0,
+                         up = o + (dim == 3 ? i / (m * m) : i / m) * sp;
+            test_add(&s, x, dim == 3 ? y : up, dim == 3 ? up : 0.0, a);
+        }
+        for (int j = 1; j <= ka + kb; j++) {
+            const double x = j <= ka ? o : o + 3 * sp,
+                         up = o + (r - 1 + (j <= ka ? j : j - ka)) * sp;
+            test_add(&s, x, dim == 3 ? x : up, dim == 3 ? up : 0.0, a);
+        }
+        test_ready(&s);
+        /* lattice pairs: m - 1 on each line along each axis */
+        const long pairs = dim == 3
+                               ? 2L * (m - 1) * m * r + (long)m * m * (r - 1)
+                               : (long)(m - 1) * r + (long)m * (r - 1);
+        assert_int_equal(s.sums.n_pp, pairs + ka + kb);
+        const double L0[3] = {1, 1, 1};
+        struct dem_sample smp;
+        dem_measure(&s, L0, 1.0, 0.0, 0, &smp);
+        const int gone = frictional ? kb : ka + kb;
+        const long kept = frictional ? pairs + ka : pairs;
+        assert_rel(smp.rattler_fraction, (double)gone / (nlat + ka + kb),
+                   1e-15);
+        assert_rel(smp.coordination_nr, 2.0 * kept / (nlat + ka + kb - gone),
+                   1e-15);
+        dem_sim_destroy(&s);
+    }
+}
+
 /* A contact at a zero Coulomb limit "slides" with no force (the slip
  * bit the force pass needs) but is not counted as sliding: here a pair
  * opening faster than its dashpot allows (k delta = 0.05 N against
@@ -281,6 +341,7 @@ int main(void)
         cmocka_unit_test(stress_wall_balances_pressure),
         cmocka_unit_test(love_weber_equals_wall_stress),
         cmocka_unit_test(a_contact_at_a_zero_limit_is_not_sliding),
+        cmocka_unit_test(rattlers_cascade_down_a_column),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -201,7 +201,10 @@ long dem_measure_rattlers(const struct dem_sim *s, int *cnt, long *contacts_nr)
 {
     const struct dem_particles *P = &s->p;
     const struct dem_contact_list *L = &s->pairs.cur;
-    const int need = s->dim == 3 ? 4 : 2;
+    /* the fewest contacts that hold a particle in equilibrium: 2 with
+     * friction (two collinear forces within their cones), d + 1 without
+     * (normal forces only) */
+    const int need = s->cp.mu_s > 0.0 ? 2 : s->dim + 1;
     /* split over ranks, each decides for its own particles, all of whose
      * contacts it lists; the ghosts take their owners' verdicts before
      * the next round */

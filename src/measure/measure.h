@@ -35,8 +35,9 @@ struct dem_sample {
     double e_pot;            /* J; elastic energy in contacts */
     double coordination;     /* 2 N_pp / N: particle contacts per particle */
     double coordination_nr;  /* the same without rattlers: particles with
-                                fewer than 2 (2D) or 4 (3D) contacts, walls
-                                counted, removed recursively */
+                                fewer than 2 contacts (dim + 1 without
+                                friction), walls counted, removed
+                                recursively */
     double rattler_fraction; /* rattlers / N */
     double inertial_number;  /* I = rate sqrt(m d / (p d^(dim-1))): rate the
                                 fastest axial strain rate of the box, m and d
