@@ -25,9 +25,9 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 }
 
 const struct dem_stage_ops dem_stage_compress = {
-    "compress",
-    "strain-controlled axial compression, lateral walls at pressure",
-    begin,
-    0,
-    1,
-    0};
+    .name = "compress",
+    .doc = "strain-controlled axial compression, lateral walls at pressure",
+    .begin = begin,
+    .loading = 1,
+    .quasi_static = 1,
+};

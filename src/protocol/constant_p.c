@@ -50,9 +50,10 @@ static void control(struct dem_sim *s, const struct dem_stage_state *st)
 }
 
 const struct dem_stage_ops dem_stage_constant_p = {
-    "constant_p",
-    "axial compression at constant mean stress pressure (3D: with b)",
-    begin,
-    0,
-    1,
-    control};
+    .name = "constant_p",
+    .doc = "axial compression at constant mean stress pressure (3D: with b)",
+    .begin = begin,
+    .loading = 1,
+    .control = control,
+    .quasi_static = 1,
+};

@@ -41,9 +41,10 @@ static void control(struct dem_sim *s, const struct dem_stage_state *st)
 }
 
 const struct dem_stage_ops dem_stage_constant_volume = {
-    "constant_volume",
-    "axial compression at constant volume (lateral walls follow)",
-    begin,
-    0,
-    1,
-    control};
+    .name = "constant_volume",
+    .doc = "axial compression at constant volume (lateral walls follow)",
+    .begin = begin,
+    .loading = 1,
+    .control = control,
+    .quasi_static = 1,
+};

@@ -21,6 +21,9 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 }
 
 const struct dem_stage_ops dem_stage_cyclic = {
-    "cyclic", "stress along axis cycled around pressure, other walls at it",
-    begin,    0,
-    1,        0};
+    .name = "cyclic",
+    .doc = "stress along axis cycled around pressure, other walls at it",
+    .begin = begin,
+    .loading = 1,
+    .quasi_static = 1,
+};

@@ -49,10 +49,11 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 }
 
 const struct dem_stage_ops dem_stage_hold = {
-    "hold",
-    "run for duration with the walls as they are (or until E_kin/E_pot < "
-    "relax)",
-    begin,
-    done,
-    0,
-    0};
+    .name = "hold",
+    .doc =
+        "run for duration with the walls as they are (or until E_kin/E_pot < "
+        "relax)",
+    .begin = begin,
+    .done = done,
+    .keeps_modes = 1,
+};

@@ -29,9 +29,10 @@ static int done(const struct dem_sim *s, const struct dem_stage_state *st,
 }
 
 const struct dem_stage_ops dem_stage_isotropic = {
-    "isotropic",
-    "all walls stress-controlled at pressure until E_kin/E_pot < tolerance",
-    begin,
-    done,
-    0,
-    0};
+    .name = "isotropic",
+    .doc =
+        "all walls stress-controlled at pressure until E_kin/E_pot < tolerance",
+    .begin = begin,
+    .done = done,
+    .settles = 1,
+};

@@ -113,7 +113,7 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
         .t = s->t,
         .fraction = frac,
         .eta = speed > 0 ? steps_left * n / speed : 0.0,
-        .eta_is_bound = st->cfg->type == DEM_STAGE_ISOTROPIC,
+        .eta_is_bound = dem_stage_lookup(st->cfg->type)->done != 0,
         .speed = speed,
         .stage_done = done,
     };
@@ -364,7 +364,7 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     /* a stage sets every control it does not leave as it is: a cell's
      * tilts are fixed (a shear stage then drives its own), but for a hold,
      * which keeps every mode (SPEC) */
-    if (s->cell.on && c->type != DEM_STAGE_HOLD)
+    if (s->cell.on && !ops->keeps_modes)
         for (int k = 0; k < 3; k++)
             dem_wall_set_fixed(&s->cell.tilt[k]);
     int rc = ops->begin(s, &r->stage, err);
@@ -468,8 +468,8 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
         rc = check_stable(r, &smp, err);
     if (rc)
         return rc;
-    if ((ops->loading || st->cfg->type == DEM_STAGE_SHEAR) &&
-        !r->st.warned_inertia && smp.inertial_number > 1e-3) {
+    if (ops->quasi_static && !r->st.warned_inertia &&
+        smp.inertial_number > 1e-3) {
         r->st.warned_inertia = 1;
         dem_warn(err,
                  "stage %d: inertial number %.2g > 1e-3 at t = %.4g s: "
@@ -640,13 +640,13 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
     show_progress(r, st, 1);
     /* (an isotropic stage compresses a gas at the cap by design, and
      * ends when its stress has reached the target) */
-    if (c->type != DEM_STAGE_ISOTROPIC)
+    if (!ops->settles)
         servo_warnings(r, index, err);
-    if (st->timed_out && c->type == DEM_STAGE_ISOTROPIC)
+    if (st->timed_out && ops->settles)
         dem_warn(err,
-                 "stage %d (isotropic) reached max_time %.4g s before "
+                 "stage %d (%s) reached max_time %.4g s before "
                  "relaxing (E_kin/E_pot >= %.3g or wall stress off target)",
-                 index, c->max_time, c->tolerance);
+                 index, ops->name, c->max_time, c->tolerance);
     return DEM_OK;
 }
 

@@ -64,6 +64,8 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
 }
 
 const struct dem_stage_ops dem_stage_shear = {
-    "shear", "simple shear of a periodic cell (x along y), y faces at pressure",
-    begin,   0,
-    0,       0};
+    .name = "shear",
+    .doc = "simple shear of a periodic cell (x along y), y faces at pressure",
+    .begin = begin,
+    .quasi_static = 1,
+};

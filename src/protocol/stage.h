@@ -37,6 +37,16 @@ struct dem_stage_ops {
      * follow the state, e.g. a mean stress held constant. It may change
      * wall modes, targets and prescribed motions, nothing else. */
     void (*control)(struct dem_sim *s, const struct dem_stage_state *st);
+    int quasi_static; /* 1: it deforms the sample at a rate it sets, which
+                         must be slow: a warning where the inertial number
+                         exceeds 1e-3 */
+    int keeps_modes;  /* 1: it leaves every control as it is; otherwise a
+                         periodic cell's tilts are fixed before begin()
+                         (a stage that shears sets its own) */
+    int settles;      /* 1: it brings the sample to a state and ends there
+                         (done()), its t_end only a bound: its servos run
+                         at walls.max_speed by design (no warning), and
+                         reaching t_end first is a warning */
 };
 
 /* The stage type table entry, or NULL for an unknown type. */
