@@ -68,6 +68,10 @@ static int have_gnuplot(void)
     return system("command -v gnuplot >/dev/null 2>&1") == 0;
 }
 
+/* The shear stress sigma_lw_xy of write_timeseries's loading stage, in
+ * units of p0 (0: none). */
+static double ts_shear = 0.0;
+
 /* A biaxial-like history: stage 0 isotropic (all strains equal),
  * stage 1 compression along `axis` with a stress peak and dilation. */
 static void write_timeseries(const char *dir, int dim, int axis, int rows)
@@ -97,6 +101,7 @@ static void write_timeseries(const char *dir, int dim, int axis, int rows)
                     s.eps[a] = -0.1 * ea + 0.5 * ea * ea;
             s.sigma[axis] = p0 * (1.0 + 2.0 * ea / (0.02 + ea));
             s.eps_v = -0.3 * ea + 2.0 * ea * ea;
+            s.sigma_lw[0][1] = s.sigma_lw[1][0] = ts_shear * p0;
         }
         for (int a = 0; a < dim; a++) {
             s.L[a] = L0 * (1.0 - s.eps[a]);
@@ -601,6 +606,107 @@ static void mohr_peak_is_the_summary_peak(void **state)
     remove_dir(dir);
 }
 
+/* Where the analysis found no peak (summary.json's peak null: a curve
+ * whose largest ratio is not above its plateau, a cyclic stage), the
+ * pictures mark none: not the raw maximum as "peak" (they did, beside a
+ * summary saying there was none). The critical state, where there is
+ * one, is drawn as its level in stress_ratio.png and its line in
+ * mohr_circles.png, whose first circle is then the largest ratio's,
+ * named so, without a tangent of its own. */
+static void a_summary_without_a_peak_marks_none(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 200);
+    write_particles(dir, 2, 0);
+    write_text(dir, "summary.json",
+               "{\"peak\": {\"sin_phi\": null, \"strain\": null}, "
+               "\"critical\": {\"sin_phi\": 0.2}}\n");
+    run_ok(dir);
+    assert_false(file_contains(dir, "plots/stress_ratio.gp", "peak"));
+    assert_true(file_contains(dir, "plots/stress_ratio.gp",
+                              "0.2 with lines dashtype 3"));
+    assert_true(file_contains(dir, "plots/stress_ratio.gp",
+                              "critical state 0.2 (summary.json)"));
+    assert_true(file_contains(dir, "plots/mohr_circles.dat",
+                              "# largest stress ratio: t = 0.4 s,"));
+    assert_false(file_contains(dir, "plots/mohr_circles.dat", "# tangent"));
+    char want[128];
+    snprintf(want, sizeof want,
+             "# critical state tau = sigma tan(phi), phi = %.9g deg",
+             asin(0.2) * 180.0 / M_PI);
+    assert_true(file_contains(dir, "plots/mohr_circles.dat", want));
+    /* with a peak: its mark and tangent, and the critical line too */
+    write_text(dir, "summary.json",
+               "{\"peak\": {\"sin_phi\": 0.31, \"strain\": 0.1}, "
+               "\"critical\": {\"sin_phi\": 0.2}}\n");
+    run_ok(dir);
+    assert_true(file_contains(dir, "plots/stress_ratio.gp", "peak"));
+    assert_true(file_contains(dir, "plots/mohr_circles.dat", "# tangent"));
+    assert_true(file_contains(dir, "plots/mohr_circles.dat", want));
+    remove_dir(dir);
+}
+
+/* A run whose config.cfg has no loading stage (an isotropic compression
+ * and a simple shear) has no loading curves: they were drawn against the
+ * strain of the most anisotropic stage, here the shear's ε_yy, which the
+ * servo moves back and forth, under a title of wall stresses "during
+ * loading" in a cell without walls. The energies stay. */
+static void a_run_without_a_loading_stage_draws_no_loading_curves(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    write_timeseries(dir, 2, 1, 20);
+    write_particles(dir, 2, 0);
+    const struct dem_example *ex = dem_example_find("shear2d");
+    assert_non_null(ex);
+    write_text(dir, "config.cfg", ex->text);
+    run_ok(dir);
+    static const char *const loading[] = {
+        "stress_strain", "volumetric_strain", "stress_ratio",
+        "deviatoric_stress_strain", "mohr_circles"};
+    for (size_t k = 0; k < sizeof loading / sizeof *loading; k++) {
+        char leaf[128];
+        snprintf(leaf, sizeof leaf, "plots/%s.gp", loading[k]);
+        assert_int_equal(file_size(dir, leaf), -1);
+    }
+    assert_true(file_size(dir, "plots/energies.gp") > 0);
+    remove_dir(dir);
+}
+
+/* In a periodic cell the Mohr circle is the cell stress's, its shear
+ * stress included: here sigma_xy = 0.3 p0 beside sigma_xx = p0 and
+ * sigma_yy = 3 p0 at the end of loading, whose circle has centre 2 p0
+ * and radius sqrt(p0^2 + (0.3 p0)^2); the diagonal alone gave radius p0. */
+static void mohr_circles_of_a_cell_take_its_shear_stress(void **state)
+{
+    (void)state;
+    char *dir = make_dir();
+    ts_shear = 0.3;
+    write_timeseries(dir, 2, 1, 20);
+    ts_shear = 0.0;
+    write_particles(dir, 2, 0);
+    write_text(dir, "config.cfg",
+               "dimension = 2;\n"
+               "particles = { count = 100; volume_fraction = 0.4; };\n"
+               "box = { boundary = \"periodic\"; };\n"
+               "stages = ( { type = \"isotropic\"; pressure = 500.0; },\n"
+               "  { type = \"compress\"; strain = 0.2; duration = 0.3;\n"
+               "    pressure = 500.0; } );\n");
+    run_ok(dir);
+    /* the last row: eps_a = 0.2, sigma_a = p0 (1 + 0.4/0.22) */
+    const double p0 = 500.0, sa = p0 * (1.0 + 0.4 / 0.22),
+                 c = 0.5 * (sa + p0), h = 0.5 * (sa - p0),
+                 r = sqrt(h * h + 0.09 * p0 * p0);
+    char want[160];
+    snprintf(want, sizeof want,
+             "# end of loading: t = 0.04 s, sigma_1 = %.9g, sigma_3 = %.9g",
+             c + r, c - r);
+    if (!file_contains(dir, "plots/mohr_circles.dat", want))
+        fail_msg("mohr_circles.dat lacks '%s'", want);
+    remove_dir(dir);
+}
+
 /* A run folder named "-run", given as a relative path: gnuplot's cd does
  * not take it for an option. */
 static void a_folder_named_like_an_option_is_plotted(void **state)
@@ -749,6 +855,9 @@ int main(void)
         cmocka_unit_test(contact_rose_is_on_the_loading_axis),
         cmocka_unit_test(cycles_of_the_summary_are_drawn),
         cmocka_unit_test(mohr_peak_is_the_summary_peak),
+        cmocka_unit_test(a_summary_without_a_peak_marks_none),
+        cmocka_unit_test(a_run_without_a_loading_stage_draws_no_loading_curves),
+        cmocka_unit_test(mohr_circles_of_a_cell_take_its_shear_stress),
         cmocka_unit_test(a_folder_named_like_an_option_is_plotted),
         cmocka_unit_test(config_warnings_are_not_given_again),
         cmocka_unit_test(summary_not_written_by_analyze_is_left_out),

@@ -171,6 +171,13 @@ double dem_dilatancy_angle_extension_deg(double s);
 /* sin phi = (s1 - s3)/(s1 + s3) of one Mohr circle (NaN if s1 + s3 <= 0). */
 double dem_mohr_sin_phi(double sigma1, double sigma3);
 
+/* The largest and the smallest principal stress of a symmetric stress
+ * tensor: in 2D of the xy block (szz, sxz, syz unused), in 3D of the
+ * whole tensor (equal where it has no deviator). */
+void dem_stress_principal(double sxx, double syy, double szz, double sxy,
+                          double sxz, double syz, int dim, double *s1,
+                          double *s3);
+
 /* sin phi of the largest Mohr circle of a symmetric stress tensor
  * (compression positive), (s1 - s3)/(s1 + s3) of its extreme principal
  * stresses: in 2D of the xy block (szz, sxz, syz unused), in 3D of the

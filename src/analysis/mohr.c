@@ -22,12 +22,16 @@ double dem_mohr_sin_phi(double sigma1, double sigma3)
     return sum > 0.0 ? (sigma1 - sigma3) / sum : NAN;
 }
 
-double dem_stress_sin_phi(double sxx, double syy, double szz, double sxy,
-                          double sxz, double syz, int dim)
+void dem_stress_principal(double sxx, double syy, double szz, double sxy,
+                          double sxz, double syz, int dim, double *s1,
+                          double *s3)
 {
     if (dim == 2) {
-        const double c = 0.5 * (sxx + syy), h = 0.5 * (sxx - syy);
-        return c > 0.0 ? sqrt(h * h + sxy * sxy) / c : NAN;
+        const double c = 0.5 * (sxx + syy), h = 0.5 * (sxx - syy),
+                     r = sqrt(h * h + sxy * sxy);
+        *s1 = c + r;
+        *s3 = c - r;
+        return;
     }
     /* the eigenvalues of a symmetric 3x3 matrix, trigonometric form:
      * sig = m + 2 sqrt(J2/3) cos(theta + 2 pi k/3) of its deviator's
@@ -37,19 +41,30 @@ double dem_stress_sin_phi(double sxx, double syy, double szz, double sxy,
     const double a = sxx - m, b = syy - m, c = szz - m;
     const double j2 =
         0.5 * (a * a + b * b + c * c) + sxy * sxy + sxz * sxz + syz * syz;
-    if (!(m > 0.0))
-        return NAN;
-    if (!(j2 > 0.0))
-        return 0.0;
+    if (!(j2 > 0.0)) {
+        *s1 = *s3 = m;
+        return;
+    }
     const double j3 = a * (b * c - syz * syz) - sxy * (sxy * c - syz * sxz) +
                       sxz * (sxy * syz - b * sxz);
     const double r = sqrt(j2 / 3.0);
     double x = j3 / (2.0 * r * r * r); /* cos 3 theta */
     x = x < -1.0 ? -1.0 : x > 1.0 ? 1.0 : x;
     const double th = acos(x) / 3.0;
-    const double s1 = m + 2.0 * r * cos(th),
-                 s3 = m + 2.0 * r * cos(th + 2.0 * M_PI / 3.0);
-    return dem_mohr_sin_phi(s1, s3);
+    *s1 = m + 2.0 * r * cos(th);
+    *s3 = m + 2.0 * r * cos(th + 2.0 * M_PI / 3.0);
+}
+
+double dem_stress_sin_phi(double sxx, double syy, double szz, double sxy,
+                          double sxz, double syz, int dim)
+{
+    /* (NaN where the mean stress is not positive) */
+    const double m = dim == 2 ? 0.5 * (sxx + syy) : (sxx + syy + szz) / 3.0;
+    if (!(m > 0.0))
+        return NAN;
+    double s1, s3;
+    dem_stress_principal(sxx, syy, szz, sxy, sxz, syz, dim, &s1, &s3);
+    return s1 == s3 ? 0.0 : dem_mohr_sin_phi(s1, s3);
 }
 
 static int through_origin(const double *s, const double *t, long n,

@@ -110,11 +110,14 @@ struct series {
                   lateral stress the mean of the others) */
     int stage;                /* loading stage index */
     size_t lo, hi;            /* its rows [lo, hi) */
+    int no_loading; /* config.cfg has no loading stage: no loading plots */
     size_t slo, shi;          /* the last shear stage's rows (none: equal) */
     int cell;                 /* a periodic cell (config.cfg), else 0 */
     double shear_mu, shear_gamma; /* summary.json's shear peak, the same */
     double peak_sin, peak_strain; /* summary.json's peak (smoothed, as the
                                      analysis found it), NaN if none */
+    double crit_sin;              /* summary.json's critical state, same */
+    int summary;                  /* 1: summary.json was read */
     struct dem__summary_cycles cyc; /* summary.json's cycles, verdict */
 };
 
@@ -232,6 +235,8 @@ static int find_loading_from_config(struct series *s, const char *outdir)
             break;
         }
     const int k = dem_stage_loading_index(&cfg);
+    /* (the axis from the data, for the contact pictures) */
+    s->no_loading = k < 0;
     if (k < 0)
         return 0;
     size_t lo, hi;
@@ -686,6 +691,8 @@ static void gp_peak(FILE *gp, const struct series *s, const struct plot_spec *p,
     }
     double x = best < hi ? qtab[p->x].eval(s, best) : NAN;
     const char *how = "";
+    if (p->peak == Q_SIN_PSI && s->summary && !isfinite(s->peak_sin))
+        return; /* the analysis found no peak: the raw maximum is none */
     if (p->peak == Q_SIN_PSI && isfinite(s->peak_sin) &&
         isfinite(s->peak_strain)) {
         /* the peak of summary.json, so that the picture and the numbers
@@ -790,17 +797,31 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
     if (p->flags & F_ZERO)
         fprintf(gp, "%s0 with lines dashtype 2 linecolor \"gray40\" notitle",
                 sep);
+    if (p->peak == Q_SIN_PSI && isfinite(s->crit_sin))
+        fprintf(gp,
+                "%s%.9g with lines dashtype 3 linewidth 1.5 linecolor "
+                "\"gray30\" title \"critical state %.4g (summary.json)\"",
+                sep, s->crit_sin, s->crit_sin);
     fputc('\n', gp);
     return DEM_OK;
 }
 
 /* ------------------------------------------------------- Mohr circles */
 
-/* Principal stresses of row i: the wall stresses are principal because
- * the walls are frictionless and axis-aligned; sigma_1 the largest,
- * sigma_3 the smallest. */
+/* Principal stresses of row i, sigma_1 the largest, sigma_3 the
+ * smallest: between walls of the wall stresses, which are principal
+ * because the walls are frictionless and axis-aligned; in a periodic cell
+ * of the cell's whole stress, its shear stresses included. */
 static void principal(const struct series *s, size_t i, double *s1, double *s3)
 {
+    if (s->cell && s->c[TS_SXY]) {
+        const double xz = s->c[TS_SXZ] ? s->c[TS_SXZ][i] : 0.0,
+                     yz = s->c[TS_SYZ] ? s->c[TS_SYZ][i] : 0.0;
+        dem_stress_principal(sig(s, 0, i), sig(s, 1, i),
+                             s->dim == 3 ? sig(s, 2, i) : 0.0,
+                             s->c[TS_SXY][i], xz, yz, s->dim, s1, s3);
+        return;
+    }
     *s1 = -INFINITY;
     *s3 = INFINITY;
     for (int a = 0; a < s->dim; a++) {
@@ -824,16 +845,21 @@ static void mohr_block(FILE *dat, const char *what, double t, double s1,
 
 /* The circle at the peak of the stress ratio and at the end of loading,
  * with the line through the origin, tau = sigma tan phi: the friction
- * angle of a cohesionless material. The peak is summary.json's (its
- * smoothed sin phi, at the row of its strain), so that the picture and
- * the numbers agree; before an analysis, the row of the largest ratio
- * (s1 - s3)/(s1 + s3), whose circle the line then touches. Cohesion
- * needs the circles of several confining pressures (dembox sweep). */
+ * angle of a cohesionless material, and the critical state's line. The
+ * peak is summary.json's (its smoothed sin phi, at the row of its
+ * strain), so that the picture and the numbers agree; before an
+ * analysis, the row of the largest ratio (s1 - s3)/(s1 + s3), whose
+ * circle the line then touches. Where the analysis found no peak (a
+ * cyclic stage, a curve without a peak above its plateau) the first
+ * circle is that of the largest ratio, named so, without a line of its
+ * own. Cohesion needs the circles of several confining pressures
+ * (dembox sweep). */
 static int write_mohr(const struct series *s, const struct plot_spec *p,
                       FILE *dat, FILE *gp)
 {
     size_t peak = peak_row(s);
     double best = s->peak_sin, s1, s3;
+    int is_peak = 1;
     if (peak == s->hi || !(best > 0.0 && best < 1.0)) {
         peak = s->hi;
         best = -INFINITY;
@@ -845,10 +871,17 @@ static int write_mohr(const struct series *s, const struct plot_spec *p,
                 peak = i;
             }
         }
+        is_peak = !s->summary;
     }
+    const int crit = s->crit_sin > 0.0 && s->crit_sin < 1.0;
+    const char *first = is_peak ? "peak" : "largest stress ratio";
     dat_head(dat, s, p, 1);
-    fprintf(dat, "# columns: 1 sigma (normal stress)  2 tau (shear "
-                 "stress); blocks: 0 peak, 1 end of loading, 2 tangent\n");
+    fprintf(dat,
+            "# columns: 1 sigma (normal stress)  2 tau (shear stress); "
+            "blocks: 0 %s, 1 end of loading%s%s\n",
+            first, is_peak ? ", 2 tangent" : "",
+            crit ? (is_peak ? ", 3 critical state" : ", 2 critical state")
+                 : "");
     gp_head(gp, s, p, "normal stress σ ($u)");
     if (peak == s->hi) {
         gp_no_data(gp, 0);
@@ -856,27 +889,50 @@ static int write_mohr(const struct series *s, const struct plot_spec *p,
     }
     const double *t = s->c[TS_T];
     principal(s, peak, &s1, &s3);
-    mohr_block(dat, "peak", t[peak], s1, s3);
+    mohr_block(dat, first, t[peak], s1, s3);
     double e1, e3;
     principal(s, s->hi - 1, &e1, &e3);
     mohr_block(dat, "end of loading", t[s->hi - 1], e1, e3);
-    const double phi = asin(best), xmax = 1.1 * fmax(s1, e1);
-    fprintf(dat,
-            "# tangent tau = sigma tan(phi), phi = %.9g deg\n0 0\n"
-            "%.9g %.9g\n",
-            phi * 180.0 / M_PI, xmax, xmax * tan(phi));
+    const double smax = fmax(s1, e1), smin = fmin(s3, e3);
+    double x0 = 0.0, x1 = 1.1 * smax;
+    if (!is_peak && !crit) { /* no line through the origin: the circles */
+        const double w = fmax(smax - smin, 1e-12 * fabs(smax));
+        x0 = smin - 0.1 * w;
+        x1 = smax + 0.1 * w;
+    }
+    const double phi = is_peak ? asin(best) : NAN,
+                 phic = crit ? asin(s->crit_sin) : NAN;
+    if (is_peak)
+        fprintf(dat,
+                "# tangent tau = sigma tan(phi), phi = %.9g deg\n0 0\n"
+                "%.9g %.9g\n\n\n",
+                phi * 180.0 / M_PI, x1, x1 * tan(phi));
+    if (crit)
+        fprintf(dat,
+                "# critical state tau = sigma tan(phi), phi = %.9g deg\n0 0\n"
+                "%.9g %.9g\n\n\n",
+                phic * 180.0 / M_PI, x1, x1 * tan(phic));
     fprintf(gp,
             /* equal scales so circles look round; the y range fills the
              * 1000x700 picture */
-            "set size ratio -1\nset xrange [0:%.6g]\nset yrange [0:%.6g]\n"
+            "set size ratio -1\nset xrange [%.6g:%.6g]\nset yrange [0:%.6g]\n"
             "plot \"%s.dat\" index 0 with lines linewidth 2 "
-            "title \"peak (t = %.4g s)\", \\\n"
+            "title \"%s (t = %.4g s)\", \\\n"
             "     \"\" index 1 with lines linewidth 2 "
-            "title \"end of loading (t = %.4g s)\", \\\n"
-            "     \"\" index 2 with lines dashtype 2 linecolor \"gray40\" "
-            "title \"τ = σ tan φ, φ = %.1f°\"\n",
-            xmax, 0.55 * xmax, p->name, t[peak], t[s->hi - 1],
-            phi * 180.0 / M_PI);
+            "title \"end of loading (t = %.4g s)\"",
+            x0, x1, 0.55 * (x1 - x0), p->name, first, t[peak], t[s->hi - 1]);
+    int block = 2;
+    if (is_peak)
+        fprintf(gp,
+                ", \\\n     \"\" index %d with lines dashtype 2 linecolor "
+                "\"gray40\" title \"τ = σ tan φ, φ = %.1f°\"",
+                block++, phi * 180.0 / M_PI);
+    if (crit)
+        fprintf(gp,
+                ", \\\n     \"\" index %d with lines dashtype 3 linewidth 1.5 "
+                "linecolor \"gray30\" title \"critical state, φ = %.1f°\"",
+                block, phic * 180.0 / M_PI);
+    fputc('\n', gp);
     return DEM_OK;
 }
 
@@ -908,7 +964,8 @@ static int read_summary(struct series *s, const char *outdir,
                         struct dem_error *err)
 {
     char path[DEM_PATH_MAX], why[300];
-    s->peak_sin = s->peak_strain = s->shear_mu = s->shear_gamma = NAN;
+    s->peak_sin = s->peak_strain = s->shear_mu = s->shear_gamma =
+        s->crit_sin = NAN;
     if (dem_path_join(path, sizeof path, outdir, "summary.json", NULL) ||
         access(path, F_OK))
         return DEM_OK;
@@ -920,10 +977,12 @@ static int read_summary(struct series *s, const char *outdir,
         dem_warn(err, "%s; the plots go without it", jerr.msg);
         return DEM_OK;
     }
-    double sin_phi = NAN, strain = NAN, mu = NAN, gamma = NAN;
+    double sin_phi = NAN, strain = NAN, mu = NAN, gamma = NAN, crit = NAN;
     const int got =
         dem__summary_number(&js, "peak.sin_phi", &sin_phi, why, sizeof why) &&
                 dem__summary_number(&js, "peak.strain", &strain, why,
+                                    sizeof why) &&
+                dem__summary_number(&js, "critical.sin_phi", &crit, why,
                                     sizeof why) &&
                 dem__summary_number(&js, "shear.peak.tau_over_sigma_n", &mu,
                                     why, sizeof why) &&
@@ -941,8 +1000,10 @@ static int read_summary(struct series *s, const char *outdir,
                  path, why);
         return DEM_OK;
     }
+    s->summary = 1;
     s->peak_sin = sin_phi;
     s->peak_strain = strain;
+    s->crit_sin = crit;
     s->shear_mu = mu;
     s->shear_gamma = gamma;
     return DEM_OK;
@@ -1008,11 +1069,14 @@ static int final_box(const struct series *s, double lo[3], double hi[3])
 
 /* Whether plot k of the table is drawn for this run (the shear plots
  * only with a shear stage, the strain per cycle only with the cycles of
- * a cyclic stage in summary.json). */
+ * a cyclic stage in summary.json, the loading stage's not when config.cfg
+ * has none: a shear or an isotropic compression has no loading axis). */
 static int plot_wanted(const struct series *s, int k)
 {
     if (plots[k].rows == ROWS_CYCLES)
         return s->cyc.n > 0;
+    if (plots[k].rows == ROWS_LOADING)
+        return !s->no_loading;
     return plots[k].rows != ROWS_SHEAR || s->shi > s->slo;
 }
 
