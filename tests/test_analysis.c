@@ -685,7 +685,10 @@ static void ratchet_increments_recovered(void **state)
     assert_int_equal(sum.verdict, DEM_VERDICT_RATCHETING);
     assert_int_equal(sum.late_count, 10);
     assert_true(sum.ratio > 0.5);
-    assert_non_null(strstr(sum.reason, "above"));
+    /* the reason states each test as made: the three passed */
+    assert_non_null(strstr(sum.reason, "more than"));
+    assert_non_null(strstr(sum.reason, "from zero and at least 0.001"));
+    assert_non_null(strstr(sum.reason, "not below"));
 }
 
 static void shakedown_recognised(void **state)
@@ -703,6 +706,14 @@ static void shakedown_recognised(void **state)
     assert_close(cyc[0].strain_increment, 5e-4, 1e-12);
     assert_close(cyc[4].strain_increment, 1e-3 / 32.0, 1e-12);
     assert_int_equal(sum.verdict, DEM_VERDICT_SHAKEDOWN);
+    /* dying out faster than 1/c: the last third below its share of the
+     * middle's by more than the scatter (the reason said "below" of a
+     * bound it did not name before: f mid, less q s.e.) */
+    char want[160];
+    snprintf(want, sizeof want, "; below %.4g x the middle 10's mean (%.4g)",
+             sum.fraction, sum.fraction * sum.mid_mean);
+    if (!strstr(sum.reason, want))
+        fail_msg("'%s' lacks '%s'", sum.reason, want);
 
     /* fewer than 6 cycles: no verdict; a cut last cycle does not count */
     assert_int_equal(dem_cycles_analyze(t, ed, sd, 5 * PER + 10, 0.0, 1.0, 1e-6,

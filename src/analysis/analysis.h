@@ -276,7 +276,7 @@ struct dem_cycles {
     double fraction;  /* dem_ratchet_fraction(n): the verdict's f */
     int late_count;   /* cycles in the last (and in the middle) third */
     int verdict;      /* enum dem_verdict */
-    char reason[DEM_REASON_MAX];
+    char reason[2 * DEM_REASON_MAX]; /* the verdict's tests, with numbers */
 };
 
 /* Ratcheting when the mean increment of the last third of the cycles,

@@ -153,12 +153,20 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     const int steady = late >= f * mid - q * se * sqrt(1.0 + f * f);
     o->verdict =
         significant && steady ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
+    /* each test as it is made, with its bound (along the accumulation:
+     * the signs of the means' where dir < 0) */
     snprintf(o->reason, sizeof o->reason,
-             "last %d cycles: %.4g +- %.2g per cycle, %s %.3g s.e. and %g "
-             "of cycle 1 (%.4g); %s %.4g x the middle %d (%.4g)",
-             L, o->late_mean, se, significant ? "above" : "not above", q,
-             DEM_RATCHET_MIN_RATE, o->first, steady ? "not below" : "below", f,
-             L, o->mid_mean);
+             "last %d cycles: %.4g +- %.2g per cycle; along the accumulation "
+             "%s %.3g s.e. (%.4g) %s zero and %s %g of cycle 1 (%.4g); "
+             "%s %.4g x the middle %d's mean (%.4g) by more than %.3g "
+             "s.e. of the difference (%.4g)",
+             L, o->late_mean, se, late > q * se ? "more than" : "within", q,
+             q * se, late > q * se ? "from" : "of",
+             late >= DEM_RATCHET_MIN_RATE * fabs(o->first) ? "at least"
+                                                           : "less than",
+             DEM_RATCHET_MIN_RATE, DEM_RATCHET_MIN_RATE * fabs(o->first),
+             steady ? "not below" : "below", f, L, f * o->mid_mean, q,
+             q * se * sqrt(1.0 + f * f));
 }
 
 int dem_cycles_analyze(const double *t, const double *eps_d,
