@@ -517,8 +517,10 @@ static int analyze_loading(const struct dem_config *cfg,
                      type == DEM_STAGE_CONSTANT_VOLUME;
     R->cyc_stage = type == DEM_STAGE_CYCLIC ? R->stage : -1;
     if (R->stage < 0) {
-        snprintf(R->none_reason, sizeof R->none_reason,
-                 "the run has no compress or cyclic stage");
+        snprintf(
+            R->none_reason, sizeof R->none_reason,
+            "the run has no loading stage (compress, cyclic, constant_p or "
+            "constant_volume)");
         snprintf(R->mono_reason, sizeof R->mono_reason, "%s", R->none_reason);
         return DEM_OK;
     }
