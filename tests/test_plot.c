@@ -232,6 +232,14 @@ static void loading_stage_is_the_anisotropic_one(void **state)
     assert_true(file_contains(dir, "plots/stress_strain.dat",
                               "3D, loading stage 1, loading axis x"));
     assert_true(file_contains(dir, "plots/stress_strain.gp", "σ_{zz}"));
+    /* the loading axis' stress solid, the equal lateral ones (here both
+     * p0) dashed and dash-dot, so that neither hides the other */
+    assert_true(file_contains(dir, "plots/stress_strain.gp",
+                              "using 1:2 with lines linewidth 2 dashtype 1 "));
+    assert_true(file_contains(dir, "plots/stress_strain.gp",
+                              "using 1:3 with lines linewidth 2 dashtype 2 "));
+    assert_true(file_contains(dir, "plots/stress_strain.gp",
+                              "using 1:4 with lines linewidth 2 dashtype 4 "));
     assert_outputs(dir);
     remove_dir(dir);
 }

@@ -175,10 +175,12 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
             "angle theta from %c towards %c (%s), both senses, %d sectors; "
             "isotropic: 1/(2 pi) = 0.159\n# theta_deg  E(theta)\n",
             c->name[1], a0, a1, c->dim == 2 ? "2D" : plane, NROSE);
+    double emax = 1.0 / (2.0 * M_PI);
     for (int k = 0; k <= NROSE; k++) {
         const int q = k % NROSE;
         const double e =
             n ? (double)count[q] / ((double)n * 2.0 * M_PI / NROSE) : 0.0;
+        emax = fmax(emax, e);
         /* each sector drawn as its two edges (a step outline); 9 digits,
          * so that the densities integrate to 1 within 1e-7 from the
          * file (6 digits: within 3e-6 at worst) */
@@ -191,9 +193,14 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
         snprintf(on, sizeof on, ", projected on the %c-%c plane", a0, a1);
     snprintf(title, sizeof title, "Contact normals at %s (%zu pairs)%s",
              c->state, c->m, on);
-    char xl[64];
-    snprintf(xl, sizeof xl, "%c; up: %c", a0, a1);
+    char xl[96];
+    snprintf(xl, sizeof xl, "θ from %c towards %c (up); radius: E(θ) (1/rad)",
+             a0, a1);
     dem__gp_head(gp, c->name[1], title, xl, "");
+    /* a radius of round ticks with room for the largest sector, the
+     * angles written round it */
+    const double step = emax < 0.27 ? 0.05 : 0.1,
+                 R = step * ceil(1.1 * emax / step);
     fprintf(gp,
             "set polar\n"
             "set angles degrees\n"
@@ -202,7 +209,15 @@ static void fill_rose(FILE *dat, FILE *gp, const void *ctx)
             "unset ytics\n"
             "set grid polar 30\n"
             "set border 0\n"
-            "set rtics\n"
+            "set rtics %g scale 0.5 font \",9\"\n"
+            "set rrange [0:%.9g]\n"
+            "set xrange [-%.9g:%.9g]\nset yrange [-%.9g:%.9g]\n",
+            step, R, 1.15 * R, 1.15 * R, 1.15 * R, 1.15 * R);
+    for (int d = 0; d < 360; d += 30)
+        fprintf(gp, "set label \"%d°\" at %.6g, %.6g center font \",10\"\n", d,
+                1.07 * R * cos(d * M_PI / 180.0),
+                1.07 * R * sin(d * M_PI / 180.0));
+    fprintf(gp,
             "plot '%s.dat' using 1:2 with lines lw 2 "
             "title 'E(θ)', \\\n"
             "     1/(2*pi) with lines dt 2 title 'isotropic 1/(2π)'\n",

@@ -40,7 +40,9 @@ void dem__gp_head(FILE *f, const char *name, const char *title,
             "set xlabel \"%s\"\n"
             "set ylabel \"%s\"\n"
             "set grid\n"
-            "set key below box\n"
+            /* below, a blank title line between it and the x label,
+             * which a box's top edge crossed */
+            "set key below nobox width 1.5 spacing 1.3 title \" \"\n"
             /* draw a segment whose both ends lie outside the ranges (a
              * flow function from a negative c to the edge) */
             "set clip two\n",

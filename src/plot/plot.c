@@ -457,6 +457,10 @@ enum rows { ROWS_LOADING, ROWS_ALL, ROWS_SHEAR, ROWS_CYCLES };
 #define F_LOGY 1u   /* log y axis; non-positive values are left out */
 #define F_ZERO 2u   /* dashed line y = 0 */
 #define F_STAGES 4u /* dashed vertical line at each stage change */
+#define F_DASHES                                                               \
+    8u /* curves k = 0, 1, 2 the axes': the loading axis'                      \
+          solid, the others dashed and dash-dot, so that                       \
+          equal lateral stresses both stay visible */
 
 struct plot_spec;
 typedef int (*plot_writer)(const struct series *s, const struct plot_spec *p,
@@ -487,7 +491,7 @@ static const struct plot_spec plots[] = {
      Q_EPS_AX,
      {Q_SXX, Q_SYY, Q_SZZ, Q_NONE},
      Q_SIG_AX,
-     0,
+     F_DASHES,
      NULL},
     {"volumetric_strain",
      "Volumetric strain during loading (ε_v > 0: dilation)",
@@ -772,6 +776,32 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
     }
 
     gp_head(gp, s, p, qtab[p->x].label);
+    /* an axis whose data start at about 0 starts at 0 (a strain of -1e-5
+     * in the first row took it to -0.05: a tenth of the picture empty),
+     * and x ends where the data do, not at the next tick */
+    double xr[2] = {INFINITY, -INFINITY}, yr[2] = {INFINITY, -INFINITY};
+    for (size_t i = lo; i < hi; i += stride) {
+        const double x = qtab[p->x].eval(s, i);
+        if (!isfinite(x))
+            continue;
+        xr[0] = fmin(xr[0], x);
+        xr[1] = fmax(xr[1], x);
+        for (int k = 0; k < ny; k++) {
+            const double v = y[k]->eval(s, i);
+            if (isfinite(v)) {
+                yr[0] = fmin(yr[0], v);
+                yr[1] = fmax(yr[1], v);
+            }
+        }
+    }
+    if (xr[1] > xr[0]) {
+        fprintf(gp, "set autoscale xfixmax\n");
+        if (fabs(xr[0]) <= 0.01 * (xr[1] - xr[0]))
+            fprintf(gp, "set xrange [0:*]\n");
+    }
+    if (!(p->flags & F_LOGY) && yr[1] > yr[0] && yr[0] < 0.0 &&
+        -yr[0] <= 0.01 * (yr[1] - yr[0]))
+        fprintf(gp, "set yrange [0:*]\n");
     if (p->flags & F_LOGY)
         fprintf(gp, "set logscale y\nset format y \"10^{%%L}\"\n");
     if (p->flags & F_STAGES)
@@ -779,15 +809,19 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
     if (p->peak != Q_NONE)
         gp_peak(gp, s, p, lo, hi);
     const char *sep = "plot ";
+    int lateral = 0;
     for (int k = 0; k < ny; k++) {
         if (!valid[k])
             continue;
         char lab[128];
         expand(lab, sizeof lab, y[k]->label, s);
+        const int dash = !(p->flags & F_DASHES) || k == s->axis ? 1
+                         : lateral++                            ? 4
+                                                                : 2;
         fprintf(gp,
-                "%s\"%s.dat\" using 1:%d with lines linewidth 2 "
+                "%s\"%s.dat\" using 1:%d with lines linewidth 2 dashtype %d "
                 "title \"%s\"",
-                sep, p->name, k + 2, lab);
+                sep, p->name, k + 2, dash, lab);
         sep = ", \\\n     ";
     }
     if (sep[0] == 'p') {
