@@ -615,6 +615,9 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     char *gp = dem_read_text(dir, NULL);
     assert_non_null(gp);
     assert_non_null(strstr(gp, "set clip two"));
+    /* the stresses' unit, of the runs' dimension (2D: N/m) */
+    assert_non_null(strstr(gp, "set xlabel \"normal stress σ (N/m)\""));
+    assert_non_null(strstr(gp, "set ylabel \"shear stress τ (N/m)\""));
     const char *xr = strstr(gp, "set xrange [0:");
     assert_non_null(xr);
     const double xmax = strtod(xr + strlen("set xrange [0:"), NULL);

@@ -84,12 +84,26 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The unit of a stress in the sweep's runs: Pa in 3D, N/m in 2D, both
+ * where the dimension was swept. */
+static const char *stress_unit(const struct dem__sweep *s)
+{
+    int dims = 0;
+    for (long k = 0; k < s->n; k++)
+        if (s->runs[k].dim == 2 || s->runs[k].dim == 3)
+            dims |= s->runs[k].dim;
+    return dims == 2 ? "N/m" : dims == 3 ? "Pa" : "Pa; 2D: N/m";
+}
+
 static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
+    char xl[64], yl[64];
+    snprintf(xl, sizeof xl, "normal stress σ (%s)", stress_unit(s));
+    snprintf(yl, sizeof yl, "shear stress τ (%s)", stress_unit(s));
     dem__gp_head(gp, "mohr_circles",
                  "Mohr circles at peak and the flow function "
                  "τ = c + σ tan φ",
-                 "normal stress σ", "shear stress τ");
+                 xl, yl);
     fprintf(dat, "# Mohr circles at peak of the runs of the sweep, then per "
                  "group the fitted flow function\n# tau = c + sigma tan(phi)."
                  " columns: 1 sigma  2 tau; one block per curve\n");
@@ -275,9 +289,11 @@ static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
 
 static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
+    char yl[64];
+    snprintf(yl, sizeof yl, "cohesion c (%s)", stress_unit(s));
     dem__gp_head(gp, "cohesion_vs_kc",
                  "Macroscopic cohesion versus k_c/k_2 (flow functions at peak)",
-                 "k_c/k_2", "cohesion c");
+                 "k_c/k_2", yl);
     const int ens = (s->roles & DEM_SWEEP_ROLE_SEED) != 0;
     fprintf(dat, "# block 0: columns 1 kc/k2  2 cohesion c (from the flow "
                  "function)  3 its standard error: over the seeds, or "
@@ -354,9 +370,11 @@ static int w_cohesion(const struct dem__sweep *s, FILE *dat, FILE *gp)
 static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
 {
     static const char *const state[2] = {"initial", "critical"};
+    char xl[64];
+    snprintf(xl, sizeof xl, "pressure p (%s)", stress_unit(s));
     dem__gp_head(gp, "void_ratio_vs_pressure",
-                 "Void ratio versus pressure, fits e = e_0 - (p/h_s)^n",
-                 "pressure p", "void ratio e");
+                 "Void ratio versus pressure, fits e = e_0 - (p/h_s)^n", xl,
+                 "void ratio e");
     fprintf(dat, "# columns 1 p  2 e; per group: block initial points, "
                  "block critical points, block initial fit, block critical "
                  "fit (empty when not fitted)\n");
@@ -609,8 +627,8 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
     fclose(fs);
     fprintf(gp, "set ylabel \"volumetric strain ε_v (expansion > 0)\"\n%s\n",
             block ? pv : "plot 0 notitle");
-    fprintf(gp, "set ylabel \"σ_{axial} - σ_{lateral} (Pa; 2D: N/m)\"\n%s\n",
-            block ? ps : "plot 0 notitle");
+    fprintf(gp, "set ylabel \"σ_{axial} - σ_{lateral} (%s)\"\n%s\n",
+            stress_unit(s), block ? ps : "plot 0 notitle");
     fprintf(gp, "unset multiplot\n");
     free(pv);
     free(ps);
