@@ -1213,6 +1213,8 @@ static void creep_rate_late_in_a_run(void **state)
         smp.sigma[0] = smp.sigma[1] = 500.0;
         smp.sigma_lw[0][1] = smp.sigma_lw[1][0] = -100.0;
         smp.void_ratio = 0.2;
+        /* the shear stage's largest at row 700, a larger one before it */
+        smp.inertial_number = i == 0 ? 5e-3 : i == 700 ? 2e-4 : 1e-5;
         dem_sample_write_row(f, &smp, 2);
     }
     assert_int_equal(fclose(f), 0);
@@ -1221,6 +1223,8 @@ static void creep_rate_late_in_a_run(void **state)
     assert_non_null(sh);
     assert_close(json_get(sh, "creep_rate"), 2e-3, 2e-9);
     assert_close(json_get(sh, "gamma_end"), 2e-3, 1e-12);
+    /* quasi-static or not, as the loading stage's: the stage's rows */
+    assert_close(json_get(sh, "inertial_number_max"), 2e-4, 1e-15);
     free(js);
 }
 

@@ -95,6 +95,7 @@ struct result {
     double gamma_end;    /* gamma at the stage's last row */
     double creep_rate;   /* 1/s; d gamma/dt, least squares over the last
                             quarter of the stage's time */
+    double shear_inertial_max; /* the stage's largest inertial number */
     struct dem_shear shear;
 };
 
@@ -639,6 +640,11 @@ static int analyze_shear(const struct dem_config *cfg, const struct columns *c,
     R->shear.peak_sin.strain *= sense;
     R->shear.crit_sin.strain_from *= sense;
     R->gamma_end = g[n - 1];
+    /* quasi-static or not: the stage's rows, as the loading stage's */
+    for (long r = first; c->inertial && r < origin + n; r++)
+        if (isfinite(c->inertial[r]) &&
+            !(c->inertial[r] <= R->shear_inertial_max))
+            R->shear_inertial_max = c->inertial[r];
     /* creep: the slope of gamma(t) over the last quarter of the time (a
      * centred fit: t of a late stage is large against its quarter) */
     const double t1 = c->t[origin + n - 1],
@@ -665,7 +671,8 @@ static void result_init(struct result *R, int dim)
                      &R->crit_p,       &R->modulus,      &R->nu,
                      &R->nu_ps,        &R->bulk,         &R->psi_deg,
                      &R->e_init,       &R->inertial_max, &R->hs,
-                     &R->shear_stress, &R->gamma_end,    &R->creep_rate};
+                     &R->shear_stress, &R->gamma_end,    &R->creep_rate,
+                     &R->shear_inertial_max};
     for (size_t k = 0; k < sizeof nan / sizeof *nan; k++)
         *nan[k] = NAN;
     R->peak.value = R->crit.value = NAN;
@@ -901,6 +908,8 @@ static void write_shear(struct dem__json *j, const struct result *R)
     num(j, "gamma_end", S->n ? R->gamma_end : NAN, S->n ? 0 : none);
     num(j, "creep_rate", S->n ? R->creep_rate : NAN,
         S->n ? "fewer than 3 samples in the last quarter of the stage" : none);
+    num(j, "inertial_number_max", S->n ? R->shear_inertial_max : NAN,
+        S->n ? "timeseries.csv has no inertial_number column" : none);
     dem__json_object(j, "peak", 0);
     const int pk = S->n && !stress && S->peak.ok,
               cr = S->n && !stress && S->crit.ok,
