@@ -571,6 +571,10 @@ static void cycles_of_the_summary_are_drawn(void **state)
                               "verdict: shakedown"));
     assert_true(
         file_contains(dir, "plots/strain_accumulation.gp", "open: negative"));
+    /* one run: no error bars, whose glyph the key showed of errors 0 */
+    assert_true(
+        file_contains(dir, "plots/strain_accumulation.gp", "linespoints"));
+    assert_false(file_contains(dir, "plots/strain_accumulation.gp", "yerror"));
     assert_outputs(dir);
     if (have_gnuplot()) {
         char plotdir[1024];

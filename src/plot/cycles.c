@@ -39,7 +39,7 @@ int dem__plot_cycles_block(FILE *dat, const struct dem__plot_cycles *c)
 }
 
 void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
-                             int negative, const char *what)
+                             int negative, int errors, const char *what)
 {
     /* the key sits in the left panel: longer titles (a parameter besides
      * mu) take a smaller font, and a key narrower than gnuplot's estimate
@@ -51,25 +51,45 @@ void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
             widest = strlen(title[b]);
     fprintf(gp,
             "set multiplot layout 1,2 title \"Strain accumulation%s\"\n"
-            "set logscale xy\nset format y \"%%.0e\"\nunset title\n"
-            "set key inside top left box opaque font %s\n",
+            /* cycles 1, 2, 4, 8, ... */
+            "set logscale xy\nset xtics 1, 2\nset autoscale xfixmax\n"
+            "unset title\n"
+            "set key inside top left box opaque title \"\" font %s\n",
             what, widest > 44 ? "\",8\" width -10" : "\",10\"");
     for (int b = 0; b < m; b++)
         dem__gp_text(title[b]);
+    /* error bars only where there are errors (an ensemble of seeds); the
+     * accumulated strain on the range of its data, on a linear axis where
+     * it spans less than a decade (a shakedown's varies by a per cent: a
+     * flat line at the foot of a decade without a tick), the gains on
+     * whole decades */
+    char err[16] = "";
     for (int panel = 0; panel < 2; panel++) {
-        fprintf(gp, "%sset ylabel \"%s\"\nplot \\\n",
+        fprintf(gp, "%sset ylabel \"%s\"\n%s\nplot \\\n",
                 panel ? "unset key\n" : "",
-                panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c");
+                panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c",
+                panel ? "set logscale y\nset autoscale y\n"
+                        "set offsets 0, 0, 0, 0\nset format y \"%.0e\""
+                      : "set autoscale yfix\nset offsets 0, 0, graph 0.08, "
+                        "graph 0.08\nset format y \"%.0e\"\n"
+                        "stats \"strain_accumulation.dat\" using (abs($4)) "
+                        "nooutput\n"
+                        "if (STATS_min > 0 && STATS_max < 10 * STATS_min) {\n"
+                        "    unset logscale y\n    set format y \"%.4g\"\n}");
         const int y = panel ? 2 : 4; /* the column drawn */
+        if (errors)
+            snprintf(err, sizeof err, ":%d", y + 1);
         for (int b = 0; b < m; b++)
             fprintf(gp,
                     "  \"strain_accumulation.dat\" index %d using 1:($%d > 0 "
-                    "? $%d : 1/0):%d with yerrorlines pointtype 7 pointsize "
+                    "? $%d : 1/0)%s with %s pointtype 7 pointsize "
                     "0.6 linecolor %d title \"%s\" noenhanced, \\\n"
-                    "  \"\" index %d using 1:($%d < 0 ? -$%d : 1/0):%d with "
-                    "yerrorbars pointtype 6 pointsize 0.9 linecolor %d "
+                    "  \"\" index %d using 1:($%d < 0 ? -$%d : 1/0)%s with "
+                    "%s pointtype 6 pointsize 0.9 linecolor %d "
                     "notitle, \\\n",
-                    b, y, y, y + 1, b + 1, title[b], b, y, y, y + 1, b + 1);
+                    b, y, y, err, errors ? "yerrorlines" : "linespoints", b + 1,
+                    title[b], b, y, y, err, errors ? "yerrorbars" : "points",
+                    b + 1);
         if (negative)
             fprintf(gp, "  1/0 with points pointtype 6 pointsize 0.9 "
                         "linecolor \"black\" title \"open: negative, "

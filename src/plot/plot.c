@@ -986,7 +986,7 @@ static int write_cycles(const struct series *s, const struct plot_spec *p,
     dem__plot_title title[1];
     snprintf(title[0], sizeof title[0], "%s%s",
              s->cyc.verdict[0] ? "verdict: " : "this run", s->cyc.verdict);
-    dem__plot_cycles_panels(gp, title, 1, negative, "");
+    dem__plot_cycles_panels(gp, title, 1, negative, 0, "");
     return DEM_OK;
 }
 

@@ -60,10 +60,11 @@ int dem__plot_cycles_block(FILE *dat, const struct dem__plot_cycles *c);
 
 /* The two panels of m blocks, with their titles; negative: whether a
  * block had a negative value, which is drawn at its magnitude as an open
- * circle and named in the key; what follows "Strain accumulation" in the
- * picture's title. */
+ * circle and named in the key; errors: whether the blocks' standard
+ * errors are drawn (an ensemble's); what follows "Strain accumulation"
+ * in the picture's title. */
 void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
-                             int negative, const char *what);
+                             int negative, int errors, const char *what);
 
 /* ---------------------------------------------------------- particles */
 

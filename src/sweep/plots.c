@@ -544,7 +544,7 @@ static int w_curves(const struct dem__sweep *s, FILE *dat, FILE *gp)
     dem__gp_head(gp, "loading_curves", "", "axial strain", "");
     fprintf(gp, "set terminal pngcairo size 1000,1100 enhanced font "
                 "\"Sans,12\"\nset output outfile\nunset title\n"
-                "set key outside right top\nset tmargin 5\n"
+                "set key outside right top title \"\"\nset tmargin 5\n"
                 "set multiplot layout 2,1 title \"Loading curves: the "
                 "loading stage of every run\"\n");
     fprintf(dat, "# columns 1 axial strain  2 volumetric strain  3 "
@@ -698,7 +698,7 @@ static int w_cyclic(const struct dem__sweep *s, FILE *dat, FILE *gp)
             snprintf(title[m++], sizeof *title, "μ = %.3g%s%s%s", r->mu, par,
                      r->cyc.verdict[0] ? ": " : "", r->cyc.verdict);
     }
-    dem__plot_cycles_panels(gp, title, m, negative,
+    dem__plot_cycles_panels(gp, title, m, negative, ens,
                             ens ? ", mean ± s.e. over the seeds" : "");
     free(title);
     return DEM_OK;
