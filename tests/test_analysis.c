@@ -312,6 +312,44 @@ static void peak_and_plateau_of_noisy_ratio(void **state)
     assert_true(fabs(cs.drift) < 0.1);
 }
 
+/* The critical state's standard error describes the scatter of its mean
+ * over replicas of a correlated plateau: 0.3 plus AR(1) noise of lag-one
+ * correlation 0.8 (as the rows of a flowing packing are), 400 samples in
+ * the window. The errors' rms over the means' standard deviation was
+ * 0.97 over 2000 replicas; taken as independent samples, 0.33. */
+static void critical_state_error_matches_the_scatter(void **state)
+{
+    (void)state;
+    enum { N = 1600, REPS = 2000 };
+    static double e[N], y[N];
+    uint64_t seed = 41;
+    const double rho = 0.8, sigma = 0.02;
+    struct scatter a = {0};
+    int trend = 0;
+    for (int r = 0; r < REPS; r++) {
+        double x = sigma * gauss(&seed);
+        for (int i = 0; i < N; i++) {
+            e[i] = 0.2 * i / (N - 1);
+            y[i] = 0.3 + x;
+            x = rho * x + sigma * sqrt(1.0 - rho * rho) * gauss(&seed);
+        }
+        struct dem_critical cs;
+        assert_int_equal(dem_critical_find(e, y, N, 0.25, 0.1, &cs), 0);
+        if (!cs.ok) { /* (a chance trend taken for no plateau) */
+            trend++;
+            continue;
+        }
+        scatter_add(&a, cs.value, cs.value_stderr);
+    }
+    const double ratio = scatter_ratio(&a);
+    printf("  critical state: errors' rms / means' sd = %.4g, %d of %d "
+           "replicas without a plateau\n",
+           ratio, trend, REPS);
+    assert_true(trend < REPS / 10);
+    if (!(ratio > 0.9 && ratio < 1.1))
+        fail_msg("errors' rms / means' sd = %.4g", ratio);
+}
+
 static void too_short_run_has_no_peak(void **state)
 {
     (void)state;
@@ -1999,6 +2037,7 @@ int main(void)
         cmocka_unit_test(mohr_fit_standard_errors_match_the_scatter),
         cmocka_unit_test(stress_sin_phi_is_the_principal_circles),
         cmocka_unit_test(peak_and_plateau_of_noisy_ratio),
+        cmocka_unit_test(critical_state_error_matches_the_scatter),
         cmocka_unit_test(too_short_run_has_no_peak),
         cmocka_unit_test(rising_or_flat_end_has_no_peak),
         cmocka_unit_test(plateau_weighs_a_trend_against_its_standard_error),

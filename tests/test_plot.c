@@ -633,13 +633,13 @@ static void a_summary_without_a_peak_marks_none(void **state)
     write_particles(dir, 2, 0);
     write_text(dir, "summary.json",
                "{\"peak\": {\"sin_phi\": null, \"strain\": null}, "
-               "\"critical\": {\"sin_phi\": 0.2}}\n");
+               "\"critical\": {\"sin_phi\": 0.2, \"sin_phi_se\": 0.01}}\n");
     run_ok(dir);
     assert_false(file_contains(dir, "plots/stress_ratio.gp", "peak"));
     assert_true(file_contains(dir, "plots/stress_ratio.gp",
                               "0.2 with lines dashtype 3"));
     assert_true(file_contains(dir, "plots/stress_ratio.gp",
-                              "critical state 0.2 (summary.json)"));
+                              "critical state 0.2 ± 0.01 (summary.json)"));
     assert_true(file_contains(dir, "plots/mohr_circles.dat",
                               "# largest stress ratio: t = 0.4 s,"));
     assert_false(file_contains(dir, "plots/mohr_circles.dat", "# tangent"));

@@ -82,6 +82,11 @@ struct dem_critical {
     long first;         /* first sample of the averaging window */
     long count;         /* samples in the window */
     double value;       /* mean of y over the window */
+    double value_stderr; /* its standard error: the deviations' standard
+                            deviation over sqrt(count), inflated by
+                            sqrt((1 + rho)/(1 - rho)) for their lag-one
+                            autocorrelation rho (the samples of a flowing
+                            packing are correlated over many rows) */
     double drift;       /* change of the fitted line across the window divided
                            by |value|; NaN when it cannot be computed */
     double drift_stderr; /* its standard error (residuals' lag-one

@@ -722,6 +722,13 @@ static void write_critical(struct dem__json *j, const struct result *R)
     dem__json_object(j, "critical", 0);
     dem__json_number(j, "sin_phi", ok ? R->crit.value : NAN);
     dem__json_number(j, "phi_deg", ok ? asin(R->crit.value) * DEG : NAN);
+    /* the mean's error, the samples' correlation counted; phi's to first
+     * order, d phi = d sin phi / cos phi */
+    dem__json_number(j, "sin_phi_se", ok ? R->crit.value_stderr : NAN);
+    dem__json_number(j, "phi_deg_se",
+                     ok ? R->crit.value_stderr /
+                              sqrt(1.0 - R->crit.value * R->crit.value) * DEG
+                        : NAN);
     dem__json_number(j, "sigma_axial", ok ? R->crit_s1 : NAN);
     dem__json_number(j, "sigma_lateral", ok ? R->crit_s3 : NAN);
     dem__json_number(j, "mean_stress", ok ? R->crit_p : NAN);
@@ -923,6 +930,10 @@ static void write_shear(struct dem__json *j, const struct result *R)
     dem__json_object(j, "critical", 0);
     shear_friction(j, cr, S->crit.value, none ? none : S->crit.reason, crs,
                    S->crit_sin.value, none ? none : S->crit_sin.reason);
+    num(j, "tau_over_sigma_n_se", cr ? S->crit.value_stderr : NAN,
+        none ? none : S->crit.reason);
+    num(j, "sin_phi_se", crs ? S->crit_sin.value_stderr : NAN,
+        none ? none : S->crit_sin.reason);
     num(j, "gamma_from", S->n ? S->crit.strain_from : NAN, none);
     num(j, "drift", S->n ? S->crit.drift : NAN, none);
     num(j, "drift_stderr", S->n ? S->crit.drift_stderr : NAN, none);

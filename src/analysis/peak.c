@@ -110,18 +110,18 @@ int dem_peak_distinct(struct dem_peak *peak, const struct dem_critical *crit,
     return DEM_OK;
 }
 
-/* The standard error of the slope b of the line f fitted to (x, y):
- * dem_linfit's, for independent residuals, inflated by
- * sqrt((1 + rho)/(1 - rho)) for their lag-one autocorrelation rho,
- * clamped to [0, 0.99]: the samples of a flowing packing are correlated
- * over many rows, and taking them as independent would call any slow
- * fluctuation a trend. */
-static double slope_stderr(const double *x, const double *y, long n,
-                           const struct dem_linfit *f)
+/* sqrt((1 + rho)/(1 - rho)) for the lag-one autocorrelation rho of the
+ * residuals y - (a + b x), clamped to [0, 0.99]: the factor by which
+ * correlated samples widen a standard error computed as for independent
+ * ones (an AR(1) process's). The samples of a flowing packing are
+ * correlated over many rows; taken as independent, any slow fluctuation
+ * would be a trend and the mean far too precise. */
+static double correlation_factor(const double *x, const double *y, long n,
+                                 double a, double b)
 {
     double rr = 0.0, r1 = 0.0, prev = 0.0;
     for (long i = 0; i < n; i++) {
-        const double r = y[i] - (f->a + f->b * x[i]);
+        const double r = y[i] - (a + b * x[i]);
         rr += r * r;
         if (i > 0)
             r1 += r * prev;
@@ -129,7 +129,7 @@ static double slope_stderr(const double *x, const double *y, long n,
     }
     double rho = rr > 0.0 ? r1 / rr : 0.0;
     rho = rho < 0.0 ? 0.0 : rho > 0.99 ? 0.99 : rho;
-    return f->se_b * sqrt((1.0 + rho) / (1.0 - rho));
+    return sqrt((1.0 + rho) / (1.0 - rho));
 }
 
 int dem_critical_find(const double *strain, const double *y, long n,
@@ -139,7 +139,8 @@ int dem_critical_find(const double *strain, const double *y, long n,
     out->ok = 0;
     out->first = -1;
     out->count = 0;
-    out->value = out->drift = out->drift_stderr = out->strain_from = NAN;
+    out->value = out->value_stderr = out->drift = out->drift_stderr =
+        out->strain_from = NAN;
     out->reason[0] = '\0';
     if (n < 2) {
         snprintf(out->reason, sizeof out->reason,
@@ -185,8 +186,16 @@ int dem_critical_find(const double *strain, const double *y, long n,
     }
     const double span = strain[n - 1] - strain[first];
     out->drift = f.b * span / fabs(out->value);
-    out->drift_stderr = slope_stderr(strain + first, y + first, count, &f) *
-                        span / fabs(out->value);
+    out->drift_stderr =
+        f.se_b *
+        correlation_factor(strain + first, y + first, count, f.a, f.b) * span /
+        fabs(out->value);
+    double ss = 0.0;
+    for (long i = first; i < n; i++)
+        ss += (y[i] - out->value) * (y[i] - out->value);
+    out->value_stderr =
+        sqrt(ss / (double)(count - 1) / (double)count) *
+        correlation_factor(strain + first, y + first, count, out->value, 0.0);
     /* a trend within twice its standard error is not told from none:
      * critical-state flow fluctuates strongly in small samples (Luding et
      * al. Sec. 3.2) */
@@ -198,7 +207,7 @@ int dem_critical_find(const double *strain, const double *y, long n,
                  "or twice its standard error)",
                  100.0 * out->drift, 100.0 * out->drift_stderr,
                  100.0 * fraction, 100.0 * tolerance);
-        out->value = NAN;
+        out->value = out->value_stderr = NAN;
         return DEM_OK;
     }
     out->ok = 1;

@@ -22,6 +22,7 @@ static const struct {
     {"peak.sin_phi", -1.0, 1.0, "in [-1, 1]"},
     {"peak.phi_deg", -90.0, 90.0, "in [-90, 90]"},
     {"critical.sin_phi", -1.0, 1.0, "in [-1, 1]"},
+    {"critical.sin_phi_se", 0.0, 1.0, "in [0, 1]"},
     {"critical.phi_deg", -90.0, 90.0, "in [-90, 90]"},
     {"void_ratio_initial", DBL_MIN, HUGE_VAL, "above 0"},
     {"void_ratio_critical", DBL_MIN, HUGE_VAL, "above 0"},

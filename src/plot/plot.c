@@ -116,7 +116,8 @@ struct series {
     double shear_mu, shear_gamma; /* summary.json's shear peak, the same */
     double peak_sin, peak_strain; /* summary.json's peak (smoothed, as the
                                      analysis found it), NaN if none */
-    double crit_sin;              /* summary.json's critical state, same */
+    double crit_sin, crit_se;     /* summary.json's critical state and its
+                                     standard error, the same */
     int summary;                  /* 1: summary.json was read */
     struct dem__summary_cycles cyc; /* summary.json's cycles, verdict */
 };
@@ -831,11 +832,15 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
     if (p->flags & F_ZERO)
         fprintf(gp, "%s0 with lines dashtype 2 linecolor \"gray40\" notitle",
                 sep);
-    if (p->peak == Q_SIN_PSI && isfinite(s->crit_sin))
+    if (p->peak == Q_SIN_PSI && isfinite(s->crit_sin)) {
+        char se[32] = "";
+        if (isfinite(s->crit_se))
+            snprintf(se, sizeof se, " ± %.2g", s->crit_se);
         fprintf(gp,
                 "%s%.9g with lines dashtype 3 linewidth 1.5 linecolor "
-                "\"gray30\" title \"critical state %.4g (summary.json)\"",
-                sep, s->crit_sin, s->crit_sin);
+                "\"gray30\" title \"critical state %.4g%s (summary.json)\"",
+                sep, s->crit_sin, s->crit_sin, se);
+    }
     fputc('\n', gp);
     return DEM_OK;
 }
@@ -998,8 +1003,8 @@ static int read_summary(struct series *s, const char *outdir,
                         struct dem_error *err)
 {
     char path[DEM_PATH_MAX], why[300];
-    s->peak_sin = s->peak_strain = s->shear_mu = s->shear_gamma =
-        s->crit_sin = NAN;
+    s->peak_sin = s->peak_strain = s->shear_mu = s->shear_gamma = s->crit_sin =
+        s->crit_se = NAN;
     if (dem_path_join(path, sizeof path, outdir, "summary.json", NULL) ||
         access(path, F_OK))
         return DEM_OK;
@@ -1011,12 +1016,15 @@ static int read_summary(struct series *s, const char *outdir,
         dem_warn(err, "%s; the plots go without it", jerr.msg);
         return DEM_OK;
     }
-    double sin_phi = NAN, strain = NAN, mu = NAN, gamma = NAN, crit = NAN;
+    double sin_phi = NAN, strain = NAN, mu = NAN, gamma = NAN, crit = NAN,
+           crit_se = NAN;
     const int got =
         dem__summary_number(&js, "peak.sin_phi", &sin_phi, why, sizeof why) &&
                 dem__summary_number(&js, "peak.strain", &strain, why,
                                     sizeof why) &&
                 dem__summary_number(&js, "critical.sin_phi", &crit, why,
+                                    sizeof why) &&
+                dem__summary_number(&js, "critical.sin_phi_se", &crit_se, why,
                                     sizeof why) &&
                 dem__summary_number(&js, "shear.peak.tau_over_sigma_n", &mu,
                                     why, sizeof why) &&
@@ -1038,6 +1046,7 @@ static int read_summary(struct series *s, const char *outdir,
     s->peak_sin = sin_phi;
     s->peak_strain = strain;
     s->crit_sin = crit;
+    s->crit_se = crit_se;
     s->shear_mu = mu;
     s->shear_gamma = gamma;
     return DEM_OK;
