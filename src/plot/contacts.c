@@ -139,13 +139,20 @@ static void fill_forces(FILE *dat, FILE *gp, const void *ctx)
              c->n, c->mean);
     dem__gp_head(gp, c->name[0], sub, "f_n / <f_n>",
                  "probability density P(f_n/<f_n>)");
+    if (beyond)
+        fprintf(gp,
+                "set label \"%ld pair%s beyond %g <f_n>, not drawn\" at "
+                "graph 0.98, graph 0.95 right\n",
+                beyond, beyond > 1 ? "s" : "", FMAX);
+    /* the foot of the y axis below one pair a bin, which sat on it */
     fprintf(gp,
             "set logscale y\n"
             "set xrange [0:*]\n"
+            "set yrange [%.6g:*]\n"
             "plot '%s.dat' using 1:2 with points pt 7 "
             "title 'this run', \\\n"
             "     '' using 1:3 with lines dt 2 lw 2 title 'exp(-f/<f>)'\n",
-            c->name[0]);
+            c->n > 0 ? 0.3 / ((double)c->n * FBIN) : 1e-3, c->name[0]);
 }
 
 static void fill_rose(FILE *dat, FILE *gp, const void *ctx)

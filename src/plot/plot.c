@@ -752,9 +752,14 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
     const size_t stride = stride_of(lo, hi);
     int ny = 0, valid[4] = {0, 0, 0, 0};
     const struct quantity *y[4];
+    int colour[4]; /* a quantity's colour is its place in the entry, so
+                      that it keeps it when another is left out (E_rot
+                      all zero, σ_zz in 2D) */
     for (int k = 0; k < 4 && p->y[k] != Q_NONE; k++)
-        if (has_qty(s, p->y[k]))
+        if (has_qty(s, p->y[k])) {
+            colour[ny] = k + 1;
             y[ny++] = &qtab[p->y[k]];
+        }
 
     dat_head(dat, s, p, stride);
     fprintf(dat, "# 1 %s", qtab[p->x].column);
@@ -821,8 +826,8 @@ static int write_curves(const struct series *s, const struct plot_spec *p,
                                                                 : 2;
         fprintf(gp,
                 "%s\"%s.dat\" using 1:%d with lines linewidth 2 dashtype %d "
-                "title \"%s\"",
-                sep, p->name, k + 2, dash, lab);
+                "linecolor %d title \"%s\"",
+                sep, p->name, k + 2, dash, colour[k], lab);
         sep = ", \\\n     ";
     }
     if (sep[0] == 'p') {
