@@ -799,7 +799,8 @@ static void shear_stage_targets(void **state)
         {0.0, 30.0, 0.0, -30.0}, {0.0, 15.0, 30.0, 15.0}, {30, 30, 30, 30}};
     for (int q = 0; q < 3; q++) {
         sc.profile = profiles[q];
-        struct dem_stage_state st = {&sc, 1, s.t, s.t, 0, 0};
+        struct dem_stage_state st = {
+            .cfg = &sc, .index = 1, .t_start = s.t, .t_end = s.t};
         assert_int_equal(ops->begin(&s, &st, &err), 0);
         const struct dem_wall *W = &s.cell.tilt[DEM_TILT_XY];
         assert_int_equal(W->mode, DEM_WALL_STRESS);
@@ -810,7 +811,8 @@ static void shear_stage_targets(void **state)
     sc.shear_stress = NAN;
     sc.shear_strain = 0.1;
     sc.profile = DEM_PROFILE_SINE;
-    struct dem_stage_state st = {&sc, 1, s.t, s.t, 0, 0};
+    struct dem_stage_state st = {
+        .cfg = &sc, .index = 1, .t_start = s.t, .t_end = s.t};
     assert_int_equal(ops->begin(&s, &st, &err), 0);
     double x, v, L[3];
     dem_sim_box(&s, L, 0);

@@ -106,6 +106,11 @@ fi
 "$BIN" run biaxial2d --max-steps 50 --threads 1 --quiet -o c 2> c.log ||
     fail "quiet run failed"
 [ -z "$(line c.log)" ] || fail "--quiet printed: $(line c.log)"
+# a run cut short says so (here and in timing.txt, summary.json)
+grep -q "warning: stopped by --max-steps after 50 steps, in stage 0 (isotropic)" \
+    c.log || fail "cut short, not said: $(cat c.log)"
+grep -q '"complete": false' c/summary.json ||
+    fail "cut short, summary.json: $(head -5 c/summary.json)"
 # OUTDIR/timing.txt keeps the same line for each part of a run, after
 # when it ended, how, its steps, build, threads, CPU and vectors; a quiet run
 # keeps it too, and a new run in the folder starts the record anew
@@ -121,17 +126,17 @@ rec() { # lines of $1/timing.txt that say "$3, steps $4, $build, 1 thread, "
         END { print k + 0 }' "$1/timing.txt"
 }
 [ "$(wc -l < a/timing.txt)" -eq 1 ] &&
-    [ "$(rec a a.log finished "0 to 3000")" = 1 ] ||
+    [ "$(rec a a.log "stopped by --max-steps" "0 to 3000")" = 1 ] ||
     fail "a/timing.txt: $(cat a/timing.txt)"
 [ "$(wc -l < b/timing.txt)" -eq 2 ] &&
     [ "$(rec b b.log interrupted "0 to $s1")" = 1 ] &&
-    [ "$(rec b b2.log finished "$s1 to 3000")" = 1 ] ||
+    [ "$(rec b b2.log "stopped by --max-steps" "$s1 to 3000")" = 1 ] ||
     fail "b/timing.txt: $(cat b/timing.txt)"
-grep -q "Z finished, steps 0 to 50, $build, 1 thread, .*: 50 steps of 500 " \
+grep -q "Z stopped by --max-steps, steps 0 to 50, $build, 1 thread, .*: 50 steps of 500 " \
     c/timing.txt || fail "quiet run: c/timing.txt: $(cat c/timing.txt)"
 "$BIN" run biaxial2d --max-steps 20 --threads 1 --quiet -o a 2> /dev/null ||
     fail "second run in a"
-grep -q "^[0-9T:-]*Z finished, steps 0 to 20, " a/timing.txt &&
+grep -q "^[0-9T:-]*Z stopped by --max-steps, steps 0 to 20, " a/timing.txt &&
     [ "$(wc -l < a/timing.txt)" -eq 1 ] ||
     fail "a new run in a: a/timing.txt: $(cat a/timing.txt)"
 echo "ok: 3000 steps; stopped $s1 + resumed $s2; force pass $tally"

@@ -97,6 +97,8 @@ struct result {
                             quarter of the stage's time */
     double shear_inertial_max; /* the stage's largest inertial number */
     struct dem_shear shear;
+    /* why the timeseries ends before the run's end ("": it does not) */
+    char cut_reason[DEM_REASON_MAX];
 };
 
 /* Positions in `wanted` of the columns read from timeseries.csv. */
@@ -960,6 +962,10 @@ static void write_summary(FILE *f, const struct result *R)
     dem__json_begin(&j, f);
     dem__json_string(&j, "dembox_version", DEM_VERSION);
     dem__json_int(&j, "dimension", R->dim);
+    /* false for a run cut short, whose numbers are of what it did */
+    dem__json_bool(&j, "complete", !R->cut_reason[0]);
+    if (R->cut_reason[0])
+        dem__json_string(&j, "complete_reason", R->cut_reason);
     if (R->stage >= 0) {
         dem__json_int(&j, "loading_stage", R->stage);
         char ax[2] = {axes[R->axis], '\0'};
@@ -1026,6 +1032,50 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     return rc;
 }
 
+/* Whether the rows reach the run's end: its last stage has rows, and a
+ * loading stage of fixed length (compress, constant_p, constant_volume:
+ * duration; cyclic: cycles x period) runs to its end, within half an
+ * output interval. A run cut short (--max-steps) writes its outputs as a
+ * finished one; its analysis says so here. */
+static void check_complete(const struct dem_config *cfg,
+                           const struct columns *c, long nrow, struct result *R)
+{
+    const int last = nrow > 0 ? (int)c->stage[nrow - 1] : -1;
+    if (last < cfg->nstages - 1) {
+        snprintf(R->cut_reason, sizeof R->cut_reason,
+                 "the rows end in stage %d of stages 0 to %d: a run cut short "
+                 "(--max-steps)",
+                 last, cfg->nstages - 1);
+        return;
+    }
+    const int k = R->stage;
+    if (k < 0)
+        return;
+    const struct dem_stage_config *sc = &cfg->stages[k];
+    const double len = sc->type == DEM_STAGE_CYCLIC ? sc->cycles * sc->period
+                       : sc->type == DEM_STAGE_COMPRESS ||
+                               sc->type == DEM_STAGE_CONSTANT_P ||
+                               sc->type == DEM_STAGE_CONSTANT_VOLUME
+                           ? sc->duration
+                           : NAN;
+    long first = -1, end = -1;
+    for (long r = 0; r < nrow; r++)
+        if ((int)c->stage[r] == k) {
+            if (first < 0)
+                first = r;
+            end = r;
+        }
+    if (!isfinite(len) || first < 0)
+        return;
+    /* the stage starts where the row before it is (a first stage: 0) */
+    const double t0 = first > 0 ? c->t[first - 1] : 0.0;
+    if (c->t[end] < t0 + len - 0.5 * cfg->output.interval)
+        snprintf(R->cut_reason, sizeof R->cut_reason,
+                 "the loading stage %d's rows end at t = %.6g s, before its "
+                 "end at %.6g s: a run cut short (--max-steps)",
+                 k, c->t[end], t0 + len);
+}
+
 static int analyze_folder(const char *outdir, const char *cfg_path,
                           const char *ts_path, struct dem_error *err)
 {
@@ -1062,6 +1112,12 @@ static int analyze_folder(const char *outdir, const char *cfg_path,
         rc = analyze_cyclic(cfg, &c, nrow, &R);
     if (!rc)
         rc = analyze_shear(cfg, &c, nrow, &R);
+    if (!rc) {
+        check_complete(cfg, &c, nrow, &R);
+        if (R.cut_reason[0])
+            dem_warn(err, "%s: %s; summary.json is of the rows there are",
+                     ts_path, R.cut_reason);
+    }
     if (rc == DEM_ENOMEM)
         dem_error_set(err, rc, "%s: out of memory", outdir);
     if (!rc)

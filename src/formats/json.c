@@ -168,6 +168,12 @@ void dem__json_string(struct dem__json *j, const char *key, const char *s)
     dem__json_write_string(j->f, s);
 }
 
+void dem__json_bool(struct dem__json *j, const char *key, int v)
+{
+    item(j, key);
+    fputs(v ? "true" : "false", j->f);
+}
+
 void dem__json_null(struct dem__json *j, const char *key)
 {
     item(j, key);

@@ -33,6 +33,7 @@ void dem__json_number(struct dem__json *j, const char *key, double v);
 void dem__json_int(struct dem__json *j, const char *key, long v);
 void dem__json_string(struct dem__json *j, const char *key, const char *s);
 void dem__json_null(struct dem__json *j, const char *key);
+void dem__json_bool(struct dem__json *j, const char *key, int v);
 
 /* Write s as a quoted, escaped JSON string. */
 void dem__json_write_string(FILE *f, const char *s);

@@ -70,6 +70,7 @@ struct run_ctx {
     struct dem_sim whole;  /* rank 0 of a split run: the whole sample at
                               this sample, when gathered */
     int have_whole;
+    int cut; /* --max-steps ended the run before its last stage's end */
     double last_ckpt;             /* wall clock of the last checkpoint */
     struct dem_team team;         /* the threads of each step */
     /* progress */
@@ -326,7 +327,8 @@ static int check_weight(const struct dem_sim *s, struct dem_error *err)
     for (int k = 0; !rc && k < s->cfg.nstages; k++) {
         const struct dem_stage_config *c = &s->cfg.stages[k];
         const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
-        struct dem_stage_state st = {c, k, t->t, t->t, 0, 0};
+        struct dem_stage_state st = {
+            .cfg = c, .index = k, .t_start = t->t, .t_end = t->t};
         struct dem_error e2 = {.warn = dem_warn_ignore};
         if (!ops || ops->begin(t, &st, &e2))
             break; /* (the run says why, at that stage) */
@@ -356,7 +358,8 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     if (!ops)
         return dem_error_set(err, DEM_EINTERNAL, "stage %d: unknown type",
                              index);
-    struct dem_stage_state st = {c, index, s->t, s->t, 0, 0};
+    struct dem_stage_state st = {
+        .cfg = c, .index = index, .t_start = s->t, .t_end = s->t};
     r->stage = st;
     double mu_s = c->mu >= 0 ? c->mu : s->cfg.contact.mu_s;
     double mu_d = c->mu >= 0 ? c->mu : s->cfg.contact.mu_d;
@@ -480,7 +483,9 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
     show_progress(r, st, 0);
     if (last) {
         /* (a stage whose criterion holds at its max time ended on it) */
-        st->timed_out = by_time && !(ops->done && ops->done(s, st, &smp));
+        const int done = ops->done && ops->done(s, st, &smp);
+        st->timed_out = by_time && !done;
+        st->cut = !by_time && !done;
         *end = 1;
         return DEM_OK;
     }
@@ -654,8 +659,8 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
 static int run_stages(struct run_ctx *r, int first, int resumed,
                       struct dem_error *err)
 {
-    int rc = DEM_OK;
-    for (int k = first; !rc && k < r->sim.cfg.nstages; k++) {
+    int rc = DEM_OK, k;
+    for (k = first; !rc && k < r->sim.cfg.nstages; k++) {
         if (r->st.max_steps > 0 && r->sim.step >= r->st.max_steps)
             break;
         if (!(resumed && k == first))
@@ -663,6 +668,16 @@ static int run_stages(struct run_ctx *r, int first, int resumed,
         if (!rc)
             rc = stage_loop(r, err);
     }
+    /* cut short by --max-steps: said, so that outputs written as for a
+     * full run do not pass for one */
+    r->cut = !rc && (k < r->sim.cfg.nstages || r->stage.cut);
+    if (r->cut && writer(r))
+        dem_warn(err,
+                 "stopped by --max-steps after %ld steps, in stage %d (%s) at "
+                 "t = %.6g s: the outputs, their analysis and plots are of a "
+                 "run cut short",
+                 r->sim.step, r->stage.index,
+                 dem_stage_lookup(r->stage.cfg->type)->name, r->sim.t);
     return rc;
 }
 
@@ -858,7 +873,7 @@ static void report_timing(const struct run_ctx *r, int status,
     if (r->opt->timing)
         *r->opt->timing = T;
     if (writer(r))
-        dem_run_timing_record(r->outdir, &T, status, r->step0,
+        dem_run_timing_record(r->outdir, &T, status, r->cut, r->step0,
                               r->team.full > 1 ? r->team.full
                                                : omp_get_max_threads(),
                               r->nranks, r->other_build, err);
@@ -1119,9 +1134,11 @@ static int run_resumed(const char *outdir, const struct dem_run_options *opt,
     rc = rank0_status(&r, rc, err);
     int first = r.st.stage;
     if (!rc) {
-        struct dem_stage_state st = {&r.sim.cfg.stages[first], first,
-                                     r.st.stage_t_start,       r.st.stage_t_end,
-                                     r.st.sets_reference,      0};
+        struct dem_stage_state st = {.cfg = &r.sim.cfg.stages[first],
+                                     .index = first,
+                                     .t_start = r.st.stage_t_start,
+                                     .t_end = r.st.stage_t_end,
+                                     .sets_reference = r.st.sets_reference};
         r.stage = st;
         start_progress(&r);
     }

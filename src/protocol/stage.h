@@ -19,6 +19,8 @@ struct dem_stage_state {
     double t_end;       /* s; the stage ends at this time at the latest */
     int sets_reference; /* 1: strains are referred to this stage's start */
     int timed_out;      /* set by the runner when t_end ended the stage */
+    int cut;            /* set by the runner when --max-steps ended it
+                           before its end */
 };
 
 struct dem_stage_ops {

@@ -48,8 +48,9 @@ int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n)
 }
 
 void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
-                           int status, long step_from, int threads, int ranks,
-                           const char *other_build, const struct dem_error *err)
+                           int status, int cut, long step_from, int threads,
+                           int ranks, const char *other_build,
+                           const struct dem_error *err)
 {
     /* (room for the longest record: another build's name, a long CPU
      * model, the pass's and the team's tallies came near 1024) */
@@ -65,7 +66,8 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
     const size_t n = sizeof buf;
     size_t at0 = 0, *at = &at0;
     PUT("%s %s, steps %ld to %ld", when,
-        status == DEM_OK             ? "finished"
+        status == DEM_OK && cut      ? "stopped by --max-steps"
+        : status == DEM_OK           ? "finished"
         : status == DEM_EINTERRUPTED ? "interrupted"
                                      : "failed",
         step_from, step_from + T->steps);

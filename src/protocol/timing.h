@@ -9,15 +9,16 @@
 #include "dembox.h"
 
 /* Appends one line to dir/timing.txt: when the part ended (UTC), how
- * (status: 0 finished, DEM_EINTERRUPTED, or the failure's status), the
+ * (status: 0 finished, or stopped by --max-steps where cut, or
+ * DEM_EINTERRUPTED, or the failure's status), the
  * steps it went from and to, the build that ran it (dembox version and
  * source id; other_build, when not NULL or "", names the build whose
  * checkpoint this part resumed), the threads and ranks, the CPU and the
  * vector width, then dem_run_timing_line. A record that cannot be
  * written is a warning on err, not a failure of the run. */
 void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
-                           int status, long step_from, int threads, int ranks,
-                           const char *other_build,
+                           int status, int cut, long step_from, int threads,
+                           int ranks, const char *other_build,
                            const struct dem_error *err);
 
 #endif
