@@ -71,6 +71,10 @@ struct run_ctx {
                               this sample, when gathered */
     int have_whole;
     int cut; /* --max-steps ended the run before its last stage's end */
+    /* per wall, over the stage's samples: sum |sigma - target| / target
+     * of a stress-controlled wall, and the samples */
+    double servo_err[DEM_MAX_WALLS];
+    long servo_n[DEM_MAX_WALLS];
     double last_ckpt;             /* wall clock of the last checkpoint */
     struct dem_team team;         /* the threads of each step */
     /* progress */
@@ -376,8 +380,11 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     /* the servos' counts at walls.max_speed are the stage's (a hold keeps
      * the modes, and counted the isotropic stage's compression at the cap
      * before it as its own) */
-    for (int w = 0; w < s->nwall; w++)
+    for (int w = 0; w < s->nwall; w++) {
         s->wall[w].kicks = s->wall[w].capped = s->wall[w].floored = 0;
+        r->servo_err[w] = 0.0;
+        r->servo_n[w] = 0;
+    }
     for (int k = 0; k < 3; k++)
         s->cell.tilt[k].kicks = s->cell.tilt[k].capped =
             s->cell.tilt[k].floored = 0;
@@ -469,6 +476,17 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
     rc = rank0_status(r, rc, err);
     if (!rc)
         rc = check_stable(r, &smp, err);
+    /* how far the stress servos are from their targets (servo_warnings) */
+    for (int w = 0; w < s->nwall; w++) {
+        const struct dem_wall *W = &s->wall[w];
+        if (W->mode == DEM_WALL_STRESS && W->p0 > 0.0 &&
+            isfinite(smp.sigma_wall[w])) {
+            r->servo_err[w] +=
+                fabs(smp.sigma_wall[w] - dem_wall_target_stress(W, s->t)) /
+                W->p0;
+            r->servo_n[w]++;
+        }
+    }
     if (rc)
         return rc;
     if (ops->quasi_static && !r->st.warned_inertia &&
@@ -512,6 +530,10 @@ static void team_for_step(struct run_ctx *r)
 /* The share of its half kicks a stress servo may spend at walls.max_speed
  * before the stage's end says that its stress did not follow the target. */
 #define SERVO_CAPPED_SHARE 0.05
+/* The mean relative distance of a stress servo's wall stress from its
+ * target, over a stage's samples, above which the stage's end says that
+ * it did not hold it. */
+#define SERVO_OFF_TARGET 0.1
 
 /* A stress-controlled wall or tilt held at walls.max_speed for much of
  * the stage has not followed its target (a shear_stress of 400 N/m met
@@ -551,6 +573,29 @@ static void servo_warnings(const struct run_ctx *r, int index,
                  "their targets there: %s; raise walls.max_speed, or load "
                  "more slowly",
                  index, vmax, list);
+    /* a servo that kept off its target (its mass and viscosity too large
+     * for the particles': the lateral stress of docs/config.md's example
+     * with the walls' defaults climbed from 500 to 809 N/m while it
+     * compressed, without a word) */
+    list[0] = '\0';
+    for (int w = 0; w < s->nwall; w++) {
+        const double e =
+            r->servo_n[w] >= 10 ? r->servo_err[w] / r->servo_n[w] : 0.0;
+        if (!(e > SERVO_OFF_TARGET))
+            continue;
+        const size_t len = strlen(list);
+        snprintf(list + len, sizeof list - len, "%sthe %s %s (%.0f %%)",
+                 len ? ", " : "", wall_name[w], s->cell.on ? "face" : "wall",
+                 100.0 * e);
+    }
+    if (list[0])
+        dem_warn(err,
+                 "stage %d: stress servos off their targets by %.0f %% or "
+                 "more on average over the stage's samples: %s; their mass "
+                 "and viscosity (walls.mass, walls.gamma) must suit the "
+                 "particles: scale them as the examples do (docs/config.md, "
+                 "\"Walls\")",
+                 index, 100.0 * SERVO_OFF_TARGET, list);
     /* a target a stage held at 0 from below (constant_p's lateral
      * stresses, where sigma_1 > 3p/(1 + b), 2D 2p): the stage's path
      * left there, without a word */
