@@ -495,8 +495,12 @@ static int run_with_signals(const struct dem_config *cfg, const char *resume,
         rc = dem_plot_run(dir, &err);
     if (rc)
         return fail(err.msg);
-    if (!quiet)
+    if (!quiet) {
+        char line[512];
+        if (dem_summary_line(dir, line, sizeof line))
+            fprintf(stderr, "dembox: %s\n", line);
         fprintf(stderr, "dembox: results in %s\n", dir);
+    }
     return 0;
 }
 
@@ -754,6 +758,10 @@ static int cmd_analyze(int argc, char **argv)
     struct dem_error err = {0, "", cli_warning, NULL};
     if (dem_analyze(argv[0], &err))
         return fail(err.msg);
+    char line[512];
+    if (dem_summary_line(argv[0], line, sizeof line))
+        fprintf(stderr, "dembox: %s\n", line);
+    fprintf(stderr, "dembox: wrote %s/summary.json\n", argv[0]);
     return 0;
 }
 

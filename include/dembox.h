@@ -352,6 +352,13 @@ int dem_run_resume(const char *outdir, const struct dem_run_options *opt,
  * Formulas and criteria: docs/analysis.md. */
 int dem_analyze(const char *outdir, struct dem_error *err);
 
+/* The material parameters of outdir/summary.json in one line for a person
+ * (peak and critical friction angles, the latter with its standard
+ * error, dilatancy angle, Poisson ratio; a cyclic run's verdict; a
+ * shear's friction), those the analysis found: 1 when it wrote any, 0
+ * when there were none or no readable summary.json (buf then ""). */
+int dem_summary_line(const char *outdir, char *buf, size_t n);
+
 /* ----------------------------------------------------------------- plot */
 
 /* Pictures of a finished run (SPEC §7): write OUTDIR/plots/ from the files

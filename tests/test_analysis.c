@@ -1218,6 +1218,32 @@ static void write_shear_run_profile(const char *dir, double sense, int back)
     assert_int_equal(fclose(f), 0);
 }
 
+/* The line `dembox run` and `dembox analyze` end with: the parameters
+ * the summary has, the critical state with its error, and a run cut
+ * short said; nothing without a summary or without parameters. */
+static void the_summary_line_gives_what_was_found(void **state)
+{
+    (void)state;
+    char dir[128], line[512];
+    run_dir(dir, sizeof dir, "summary-line");
+    assert_int_equal(dem_summary_line(dir, line, sizeof line), 0);
+    assert_string_equal(line, "");
+    write_text(dir, "summary.json",
+               "{\"complete\": false, \"peak\": {\"phi_deg\": 28.47}, "
+               "\"critical\": {\"phi_deg\": 17.33, \"phi_deg_se\": 0.99},"
+               " \"dilatancy_angle_deg\": null, \"poisson_ratio\": 0.368}");
+    assert_int_equal(dem_summary_line(dir, line, sizeof line), 1);
+    assert_string_equal(line, "peak friction 28.5°; critical state 17.3° ± "
+                              "1.0°; Poisson ratio 0.368 (a run cut short)");
+    write_text(dir, "summary.json",
+               "{\"complete\": true, \"peak\": {\"phi_deg\": null}, "
+               "\"verdict\": \"shakedown\", \"cycles\": [{}, {}, {}]}");
+    assert_int_equal(dem_summary_line(dir, line, sizeof line), 1);
+    assert_string_equal(line, "shakedown after 3 cycles");
+    write_text(dir, "summary.json", "{\"peak\": {\"phi_deg\": null}}");
+    assert_int_equal(dem_summary_line(dir, line, sizeof line), 0);
+}
+
 /* A stress-controlled shear late in a run (t about 10^4 s): the creep
  * rate is the slope of gamma(t) over the stage's last quarter, fitted
  * about its mean time. With sums of t and t^2 about 0 it lost about
@@ -2064,6 +2090,7 @@ int main(void)
         cmocka_unit_test(elastic_constants_need_the_lateral_stress_held),
         cmocka_unit_test(shear_either_way_gives_the_same_friction),
         cmocka_unit_test(creep_rate_late_in_a_run),
+        cmocka_unit_test(the_summary_line_gives_what_was_found),
         cmocka_unit_test(returning_shear_is_analysed_on_its_way_out),
         cmocka_unit_test(analysis_repeats_no_config_warning),
         cmocka_unit_test(older_run_folders_stay_readable),

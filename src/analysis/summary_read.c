@@ -153,3 +153,57 @@ int dem__run_folder_check(const char *outdir, int need_config, char *cfg_path,
         no_cfg ? "config.cfg" : "", no_cfg && !has_ts ? ", no " : "",
         has_ts ? "" : "timeseries.csv");
 }
+
+/* "a = v" for a finite v, appended with a separator. */
+static void put(char *buf, size_t n, const char *fmt, double v, double se)
+{
+    if (!isfinite(v))
+        return;
+    const size_t len = strlen(buf);
+    if (len + 2 >= n)
+        return;
+    snprintf(buf + len, n - len, len ? "; " : "");
+    const size_t at = strlen(buf);
+    snprintf(buf + at, n - at, fmt, v, se);
+}
+
+int dem_summary_line(const char *outdir, char *buf, size_t n)
+{
+    if (!n)
+        return 0;
+    buf[0] = '\0';
+    char path[DEM_PATH_MAX];
+    struct dem_error e = {0};
+    struct dem__jval js;
+    if (dem_path_join(path, sizeof path, outdir, "summary.json", NULL) ||
+        dem__jread_file(&js, path, &e))
+        return 0;
+    put(buf, n, "peak friction %.1f°", dem__jread_number(&js, "peak.phi_deg"),
+        0.0);
+    const double cse = dem__jread_number(&js, "critical.phi_deg_se");
+    put(buf, n,
+        isfinite(cse) ? "critical state %.1f° ± %.1f°" : "critical state %.1f°",
+        dem__jread_number(&js, "critical.phi_deg"), cse);
+    put(buf, n, "dilatancy angle %.1f°",
+        dem__jread_number(&js, "dilatancy_angle_deg"), 0.0);
+    put(buf, n, "Poisson ratio %.3g", dem__jread_number(&js, "poisson_ratio"),
+        0.0);
+    const char *verdict = dem__jread_string(&js, "verdict");
+    const struct dem__jval *cy = dem__jread_get(&js, "cycles");
+    if (verdict && cy && cy->type == DEM__JSON_ARRAY) {
+        const size_t len = strlen(buf);
+        snprintf(buf + len, n - len, "%s%s after %d cycles", len ? "; " : "",
+                 verdict, cy->n);
+    }
+    put(buf, n, "peak friction in shear %.1f°",
+        dem__jread_number(&js, "shear.peak.phi_deg"), 0.0);
+    put(buf, n, "critical state in shear %.1f°",
+        dem__jread_number(&js, "shear.critical.phi_deg"), 0.0);
+    const struct dem__jval *done = dem__jread_get(&js, "complete");
+    if (done && done->type == DEM__JSON_BOOL && !done->num) {
+        const size_t len = strlen(buf);
+        snprintf(buf + len, n - len, "%s(a run cut short)", len ? " " : "");
+    }
+    dem__jread_free(&js);
+    return buf[0] != '\0';
+}
