@@ -999,10 +999,43 @@ static void byte_order_mark_and_crlf_are_read_through(void **state)
     assert_non_null(strstr(err.msg, "win.cfg:1: "));
 }
 
+static void keep_warning(const char *msg, void *user)
+{
+    snprintf(user, 512, "%s", msg);
+}
+
+/* A warning about a value names where it was given: a --set value named
+ * itself (it blamed the file, "test.cfg: time_step: ... above t_c/10",
+ * while an error named the --set; a new user's first hour, session 113),
+ * a file's value its line. */
+static void a_warning_names_where_the_value_was_given(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse_ok(&c, "dimension = 2;\n", 0, 0);
+    /* between t_c/10 (a warning) and t_c/5 (an error) */
+    char set[64], text[128], w[512] = "";
+    snprintf(set, sizeof set, "time_step=%.6g", 0.15 * dem_contact_time(&c));
+    snprintf(text, sizeof text, "dimension = 2;\n%s;\n", set);
+    struct dem_error err = {.warn = keep_warning, .warn_user = w};
+    const char *const sets[] = {set};
+    assert_int_equal(
+        dem_config_parse(&c, "dimension = 2;\n", SRC, sets, 1, &err), 0);
+    char want[128];
+    snprintf(want, sizeof want, "--set %s: time_step: ", set);
+    if (!strstr(w, want) || !strstr(w, "above t_c/10"))
+        fail_msg("warning: %s", w);
+    w[0] = '\0';
+    assert_int_equal(dem_config_parse(&c, text, SRC, 0, 0, &err), 0);
+    if (!strstr(w, "test.cfg:2: time_step: ") || !strstr(w, "above t_c/10"))
+        fail_msg("warning: %s", w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(defaults_are_david_et_al_values),
+        cmocka_unit_test(a_warning_names_where_the_value_was_given),
         cmocka_unit_test(two_d_defaults_resolve_by_dimension),
         cmocka_unit_test(resolved_config_reads_back_identically),
         cmocka_unit_test(resolved_config_keeps_a_long_escaped_path),

@@ -60,8 +60,8 @@ int dem_voidfit(const double *p, const double *e, long m, double hs,
     if (m < 3 || distinct(p, m) < 3) {
         snprintf(o->reason, sizeof o->reason,
                  "the fit of e0 and n needs states at 3 or more different "
-                 "pressures (have %ld points)",
-                 m);
+                 "pressures (%ld state%s)",
+                 m, m == 1 ? "" : "s");
         return DEM_OK;
     }
     double *x = malloc((size_t)m * sizeof *x);

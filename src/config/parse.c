@@ -45,19 +45,27 @@ static void one_line(char *s)
             *s = ' ';
 }
 
+/* Where setting s (may be NULL) was given: "--set KEY=VALUE", FILE:LINE,
+ * or FILE. */
+static void setting_loc(const struct ctx *x, const config_setting_t *s,
+                        char *loc, size_t n)
+{
+    const char *origin = set_origin(s);
+    if (origin)
+        snprintf(loc, n, "--set %s", origin);
+    else if (s && config_setting_source_line(s) > 0)
+        snprintf(loc, n, "%s:%u", x->source,
+                 (unsigned)config_setting_source_line(s));
+    else
+        snprintf(loc, n, "%s", x->source);
+}
+
 static int vfail(const struct ctx *x, const config_setting_t *s,
                  const char *key, struct dem_error *err, const char *fmt,
                  va_list ap)
 {
     char loc[DEM_PATH_MAX + 64], msg[DEM_ERRMSG_MAX];
-    const char *origin = set_origin(s);
-    if (origin)
-        snprintf(loc, sizeof loc, "--set %s", origin);
-    else if (s && config_setting_source_line(s) > 0)
-        snprintf(loc, sizeof loc, "%s:%u", x->source,
-                 (unsigned)config_setting_source_line(s));
-    else
-        snprintf(loc, sizeof loc, "%s", x->source);
+    setting_loc(x, s, loc, sizeof loc);
     vsnprintf(msg, sizeof msg, fmt, ap);
     if (key)
         dem_error_set(err, DEM_ECONFIG, "%s: %s: %s", loc, key, msg);
@@ -294,6 +302,12 @@ static int check_sentinel(const struct ctx *x, const struct key *k,
 
 /* One element of the stages list: type first (it decides which keys are
  * used), then every member, then the keys this type requires. */
+/* "an" before a stage name that starts with a vowel (isotropic), else "a" */
+static const char *article(const char *name)
+{
+    return name[0] && strchr("aeiou", name[0]) ? "an" : "a";
+}
+
 static int walk_stage(struct ctx *x, struct dem_config *c, int i,
                       const config_setting_t *g, struct dem_error *err)
 {
@@ -338,7 +352,8 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
         if (k == ktype)
             continue;
         if (!(dem__cfg_keys[k].uses & bit))
-            return dem__cfg_fail_at(x, s, kname, err, "not used by a %s stage",
+            return dem__cfg_fail_at(x, s, kname, err, "not used by %s %s stage",
+                                    article(dem__cfg_stage_names[st->type]),
                                     dem__cfg_stage_names[st->type]);
         if (convert(x, &dem__cfg_keys[k], s, kname, st, err) ||
             check_sentinel(x, &dem__cfg_keys[k], s, kname, st, err))
@@ -349,7 +364,8 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
         if (dem__cfg_keys[k].scope == S_STAGE &&
             (dem__cfg_keys[k].needs & bit) && !x->stage_at[i][k])
             return dem__cfg_fail_key(x, i, dem__cfg_keys[k].name, err,
-                                     "required by a %s stage",
+                                     "required by %s %s stage",
+                                     article(dem__cfg_stage_names[st->type]),
                                      dem__cfg_stage_names[st->type]);
     if (st->type == DEM_STAGE_SHEAR) {
         /* the tilt is strain- or stress-controlled: one target */
@@ -707,11 +723,15 @@ static void warn_time_step(const struct ctx *x, const struct dem_config *c,
                            struct dem_error *err)
 {
     const double tc = dem_step_time(c);
+    char loc[DEM_PATH_MAX + 64];
+    /* (where time_step was given: a --set names itself) */
+    setting_loc(x, x->at[dem__cfg_find_key("time_step", S_TOP)], loc,
+                sizeof loc);
     if (c->time_step > tc / 10)
         dem_warn(err,
                  "%s: time_step: %g s is above t_c/10 = %g s; collisions "
                  "are resolved by fewer than 10 steps",
-                 x->source, c->time_step, tc / 10);
+                 loc, c->time_step, tc / 10);
 }
 
 static int parse_text_c(struct dem_config *c, const char *text,
