@@ -179,7 +179,7 @@ echo "mode --$MODE: about $total CPU minutes in all, $wall minutes with $JOBS jo
      "(finished runs are skipped)"
 [ -z "$LIST" ] || exit 0
 
-[ -x "$B" ] || ./scripts/setup.sh build >/dev/null || die "build failed"
+[ -x "$B" ] || ./scripts/setup.sh build dembox >/dev/null || die "build failed"
 [ -x "$B" ] || die "$B: not executable"
 VERSION=$("$B" --version 2>/dev/null | head -1 | cut -d' ' -f1-2)
 ID="mode=$MODE smoke=${SMOKE:-0} version=$VERSION parts=$(echo $CHOSEN)"

@@ -1,9 +1,11 @@
 #!/bin/sh
 # Install the Debian packages dembox needs (when missing) and build it.
-# Usage: scripts/setup.sh [BUILD_DIR]
+# Usage: scripts/setup.sh [BUILD_DIR [TARGET]]
+#   TARGET: build only that (e.g. dembox: the program without the tests)
 set -eu
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}
+TARGET=${2:-}
 # (qemu-user: the tests run the build on an emulated older CPU, which it
 # must refuse with one line, tests/test_machine.c; locales: a locale with a
 # decimal comma made by localedef, under which the library must write the
@@ -25,4 +27,4 @@ if [ -n "$missing" ]; then
     $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $missing >/dev/null
 fi
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DDEM_WERROR=ON >/dev/null
-cmake --build "$BUILD" -j "$(nproc)"
+cmake --build "$BUILD" -j "$(nproc)" ${TARGET:+--target "$TARGET"}
