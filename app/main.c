@@ -433,9 +433,12 @@ static void cli_progress(const struct dem_progress *p, void *user)
     char eta[32];
     time_left(eta, sizeof eta, p->eta);
     fprintf(stderr,
-            "\r\033[Kstage %d/%d %-9s t = %.4g s  %5.1f%%  ETA %s%s  "
+            /* the stage's index as stages.N, the timeseries and the
+             * warnings count it (from 0), then its place */
+            "\r\033[Kstage %d %s (%d of %d)  t = %.4g s  %5.1f%%  ETA %s%s  "
             "%.3g particle-steps/s",
-            p->stage, p->nstages, p->stage_type, p->t, 100.0 * p->fraction,
+            p->stage - 1, p->stage_type, p->stage, p->nstages, p->t,
+            100.0 * p->fraction,
             p->eta_is_bound ? "<= " : "", eta, p->speed);
     progress_shown = !p->stage_done;
     if (p->stage_done)
