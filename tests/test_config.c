@@ -494,6 +494,11 @@ struct bad {
 static const struct bad bad_inputs[] = {
     /* unknown keys, anywhere */
     {"dimension = 3;\nfoo = 1;\n", 0, "foo: unknown key", 2},
+    /* a slip of a letter or two: the key meant, not another word */
+    {"particles = {\n  densty = 2000.0; };\n", 0,
+     "particles.densty: unknown key (did you mean particles.density?)", 2},
+    {"stages = (\n { type = \"isotropic\";\n   pressur = 1.0; }\n);", 0,
+     "stages.0.pressur: unknown key (did you mean stages.0.pressure?)", 3},
     {"contact = {\n  k = 5000.0;\n  kk = 1.0;\n};\n", 0, "contact.kk", 3},
     {"particles = { radius = {\n  sdev = 1.0; }; };", 0,
      "particles.radius.sdev", 2},
@@ -644,6 +649,15 @@ static const struct bad bad_inputs[] = {
     {"", "contact.k=-5", "--set contact.k=-5: contact.k: must be > 0", 0},
     {"", "contact.k=stiff", "--set contact.k", 0},
     {"", "contact.kk=1", "--set contact.kk: unknown key", 0},
+    {"", "contact.kcc=1",
+     "--set contact.kcc: unknown key (did you mean "
+     "contact.kc?)",
+     0},
+    {"", "stages.0.pressur=1",
+     "--set stages.0.pressur: unknown key (did "
+     "you mean stages.0.pressure?)",
+     0},
+    {"", "contact.foo=1", "--set contact.foo: unknown key (see", 0},
     {"", "contact.k", "--set contact.k", 0},
     {"", "contact.k=[1,", "--set contact.k", 0},
     {"", "stages.3.pressure=1.0", "--set stages.3.pressure: index 3", 0},

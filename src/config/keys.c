@@ -491,6 +491,56 @@ int dem__cfg_find_key(const char *name, int scope)
     return -1;
 }
 
+/* Levenshtein distance of a and b, capped at cap + 1. */
+static size_t edit_distance(const char *a, const char *b, size_t cap)
+{
+    const size_t na = strlen(a), nb = strlen(b);
+    if (na > nb + cap || nb > na + cap || nb >= 128)
+        return cap + 1;
+    size_t row[128];
+    for (size_t j = 0; j <= nb; j++)
+        row[j] = j;
+    for (size_t i = 1; i <= na; i++) {
+        size_t diag = row[0], best = row[0] = i;
+        for (size_t j = 1; j <= nb; j++) {
+            const size_t up = row[j];
+            size_t v = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < v)
+                v = up + 1;
+            if (row[j - 1] + 1 < v)
+                v = row[j - 1] + 1;
+            row[j] = v;
+            diag = up;
+            if (v < best)
+                best = v;
+        }
+        if (best > cap)
+            return cap + 1;
+    }
+    return row[nb];
+}
+
+const char *dem__cfg_nearest_key(const char *name, int scope)
+{
+    /* a slip of a letter or two, not another word: at most 2 edits and
+     * a third of the name's last part (contact.foo is not contact.ko) */
+    const char *leaf = strrchr(name, '.');
+    const size_t third = strlen(leaf ? leaf + 1 : name) / 3,
+                 cap = third < 2 ? third : 2;
+    const char *best = NULL;
+    size_t d = cap + 1;
+    for (size_t i = 0; i < dem__cfg_nkeys; i++) {
+        if (dem__cfg_keys[i].scope != scope)
+            continue;
+        const size_t e = edit_distance(name, dem__cfg_keys[i].name, cap);
+        if (e < d) {
+            d = e;
+            best = dem__cfg_keys[i].name;
+        }
+    }
+    return d >= 1 && d <= cap ? best : NULL;
+}
+
 /* True if name is a group of top-level keys, e.g. "particles.radius".
  */
 int dem__cfg_is_group_path(const char *name)

@@ -347,8 +347,14 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
         const char *name = config_setting_name(s);
         snprintf(kname, sizeof kname, "stages.%d.%s", i, name);
         int k = dem__cfg_find_key(name, S_STAGE);
-        if (k < 0)
-            return dem__cfg_fail_at(x, s, kname, err, "unknown key");
+        if (k < 0) {
+            const char *near = dem__cfg_nearest_key(name, S_STAGE);
+            return near ? dem__cfg_fail_at(x, s, kname, err,
+                                           "unknown key (did you mean "
+                                           "stages.%d.%s?)",
+                                           i, near)
+                        : dem__cfg_fail_at(x, s, kname, err, "unknown key");
+        }
         if (k == ktype)
             continue;
         if (!(dem__cfg_keys[k].uses & bit))
@@ -451,9 +457,15 @@ static int walk_group(struct ctx *x, struct dem_config *c,
             continue;
         }
         int k = dem__cfg_find_key(name, S_TOP);
-        if (k < 0)
-            return dem__cfg_fail_at(x, s, name, err,
-                                    "unknown key (see `dembox help config`)");
+        if (k < 0) {
+            const char *near = dem__cfg_nearest_key(name, S_TOP);
+            return near ? dem__cfg_fail_at(x, s, name, err,
+                                           "unknown key (did you mean %s?)",
+                                           near)
+                        : dem__cfg_fail_at(
+                              x, s, name, err,
+                              "unknown key (see `dembox help config`)");
+        }
         x->at[k] = s;
         if (dem__cfg_keys[k].kind == K_STAGES) {
             if (walk_stages(x, c, s, err))

@@ -381,11 +381,26 @@ static int split_set(const char *set, char *key, size_t keysz, char *path,
                                  key);
         seg[n++] = tok;
     }
-    if (!settable(seg, n))
+    if (!settable(seg, n)) {
+        /* a slip of a letter: the key meant (stages.N.KEY: of a stage) */
+        const int stage =
+            n == 3 && !strcmp(seg[0], "stages") && is_index(seg[1]);
+        const char *near =
+            dem__cfg_nearest_key(stage ? seg[2] : key, stage ? S_STAGE : S_TOP);
+        if (near && stage)
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "--set %s: unknown key (did you mean "
+                                 "stages.%s.%s?)",
+                                 key, seg[1], near);
+        if (near)
+            return dem_error_set(err, DEM_ECONFIG,
+                                 "--set %s: unknown key (did you mean %s?)",
+                                 key, near);
         return dem_error_set(err, DEM_ECONFIG,
                              "--set %s: unknown key (see `dembox help "
                              "config`)",
                              key);
+    }
     *nseg = n;
     return 0;
 }
