@@ -706,9 +706,13 @@ static int cmd_sweep(int argc, char **argv)
     if (!rc && collect) {
         if (dem_sweep_collect(&grid, &o, &err))
             rc = fail(err.msg);
-        else if (!o.quiet)
+        else if (!o.quiet) {
+            char line[1024];
+            if (dem_sweep_summary_line(o.outdir, line, sizeof line))
+                fprintf(stderr, "dembox: sweep: %s\n", line);
             fprintf(stderr, "dembox: sweep: collected %s/sweep.json\n",
                     o.outdir);
+        }
         dem_sweep_grid_free(&grid);
         return rc;
     }
@@ -728,6 +732,10 @@ static int cmd_sweep(int argc, char **argv)
         if (stop_signal)
             rc = 128 + (int)stop_signal;
     }
+    char line[1024];
+    if (!rc && !o.quiet && !quiet_rank &&
+        dem_sweep_summary_line(o.outdir, line, sizeof line))
+        fprintf(stderr, "dembox: sweep: %s\n", line);
     if (!rc && !o.quiet && !quiet_rank)
         fprintf(stderr,
                 "dembox: sweep: %ld runs (%ld run now, %ld skipped as "

@@ -359,6 +359,11 @@ int dem_analyze(const char *outdir, struct dem_error *err);
  * when there were none or no readable summary.json (buf then ""). */
 int dem_summary_line(const char *outdir, char *buf, size_t n);
 
+/* The same for a sweep folder's sweep.json: the flow function at peak
+ * and in critical state (of the first group where there are several),
+ * with their errors, or why there is none. */
+int dem_sweep_summary_line(const char *dir, char *buf, size_t n);
+
 /* ----------------------------------------------------------------- plot */
 
 /* Pictures of a finished run (SPEC §7): write OUTDIR/plots/ from the files

@@ -1242,6 +1242,19 @@ static void the_summary_line_gives_what_was_found(void **state)
     assert_string_equal(line, "shakedown after 3 cycles");
     write_text(dir, "summary.json", "{\"peak\": {\"phi_deg\": null}}");
     assert_int_equal(dem_summary_line(dir, line, sizeof line), 0);
+    /* a sweep's: its flow functions, or why there are none (a sweep
+     * whose runs had no peak said only where its results were) */
+    assert_int_equal(dem_sweep_summary_line(dir, line, sizeof line), 0);
+    write_text(dir, "sweep.json",
+               "{\"flow_function\": [{\"phi_deg\": 27.62, \"phi_se_deg\": "
+               "0.34, \"cohesion\": 12.5, \"cohesion_se\": 1.25, "
+               "\"circles\": 3}], \"flow_function_critical\": null, "
+               "\"flow_function_critical_reason\": \"no critical circles\"}");
+    assert_int_equal(dem_sweep_summary_line(dir, line, sizeof line), 1);
+    assert_string_equal(line,
+                        "flow function at peak φ = 27.6° ± 0.3°, c = "
+                        "12.5 ± 1.2 (3 circles); no flow function in critical "
+                        "state: no critical circles");
 }
 
 /* A stress-controlled shear late in a run (t about 10^4 s): the creep

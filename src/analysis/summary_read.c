@@ -207,3 +207,62 @@ int dem_summary_line(const char *outdir, char *buf, size_t n)
     dem__jread_free(&js);
     return buf[0] != '\0';
 }
+
+/* One flow function of sweep.json (key: flow_function or
+ * flow_function_critical) into buf, as "LABEL φ = …° ± …°, c = … (n
+ * circles)" for its first group, or "no LABEL: reason". */
+static void flow_function_part(const struct dem__jval *js, const char *key,
+                               const char *label, char *buf, size_t n)
+{
+    const size_t len = strlen(buf);
+    char *at = buf + len;
+    const size_t room = n - len;
+    const char *sep = len ? "; " : "";
+    const struct dem__jval *ff = dem__jread_get(js, key);
+    const struct dem__jval *g =
+        ff && ff->type == DEM__JSON_ARRAY && ff->n > 0 ? &ff->items[0] : NULL;
+    const double phi = g ? dem__jread_number(g, "phi_deg") : NAN;
+    if (isfinite(phi)) {
+        const double se = dem__jread_number(g, "phi_se_deg"),
+                     c = dem__jread_number(g, "cohesion"),
+                     cse = dem__jread_number(g, "cohesion_se");
+        char ps[64], cs[64] = "";
+        if (isfinite(se))
+            snprintf(ps, sizeof ps, "%.1f° ± %.1f°", phi, se);
+        else
+            snprintf(ps, sizeof ps, "%.1f°", phi);
+        if (isfinite(c) && isfinite(cse))
+            snprintf(cs, sizeof cs, ", c = %.3g ± %.2g", c, cse);
+        else if (isfinite(c))
+            snprintf(cs, sizeof cs, ", c = %.3g", c);
+        snprintf(at, room, "%s%s φ = %s%s (%.0f circles%s)", sep, label, ps, cs,
+                 dem__jread_number(g, "circles"),
+                 ff->n > 1 ? "; first group" : "");
+        return;
+    }
+    char rk[96];
+    snprintf(rk, sizeof rk, "%s_reason", key);
+    const char *why = g ? dem__jread_string(g, "reason") : NULL;
+    if (!why)
+        why = dem__jread_string(js, rk);
+    snprintf(at, room, "%sno %s%s%s", sep, label, why ? ": " : "",
+             why ? why : "");
+}
+
+int dem_sweep_summary_line(const char *dir, char *buf, size_t n)
+{
+    if (!n)
+        return 0;
+    buf[0] = '\0';
+    char path[DEM_PATH_MAX];
+    struct dem_error e = {0};
+    struct dem__jval js;
+    if (dem_path_join(path, sizeof path, dir, "sweep.json", NULL) ||
+        dem__jread_file(&js, path, &e))
+        return 0;
+    flow_function_part(&js, "flow_function", "flow function at peak", buf, n);
+    flow_function_part(&js, "flow_function_critical",
+                       "flow function in critical state", buf, n);
+    dem__jread_free(&js);
+    return buf[0] != '\0';
+}
