@@ -268,9 +268,8 @@ struct dem_progress {
     double t;               /* s; simulated time */
     double fraction;        /* of the stage done, 0 to 1 */
     double eta;             /* s of wall-clock time left in the stage (an
-                               upper bound for a stage with an end
-                               criterion, isotropic or hold, which may end
-                               early) */
+                               upper bound for a stage that may end at its
+                               criterion: isotropic, a hold with relax) */
     int eta_is_bound;       /* 1: eta is an upper bound */
     double speed;           /* particle-steps per second so far */
     int stage_done;         /* 1: the last report of this stage */

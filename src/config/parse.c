@@ -300,13 +300,14 @@ static int check_sentinel(const struct ctx *x, const struct key *k,
     return 0;
 }
 
-/* One element of the stages list: type first (it decides which keys are
- * used), then every member, then the keys this type requires. */
 /* "an" before a stage name that starts with a vowel (isotropic), else "a" */
 static const char *article(const char *name)
 {
     return name[0] && strchr("aeiou", name[0]) ? "an" : "a";
 }
+
+/* One element of the stages list: type first (it decides which keys are
+ * used), then every member, then the keys this type requires. */
 
 static int walk_stage(struct ctx *x, struct dem_config *c, int i,
                       const config_setting_t *g, struct dem_error *err)

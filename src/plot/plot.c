@@ -696,8 +696,11 @@ static void gp_peak(FILE *gp, const struct series *s, const struct plot_spec *p,
     }
     double x = best < hi ? qtab[p->x].eval(s, best) : NAN;
     const char *how = "";
-    if (p->peak == Q_SIN_PSI && s->summary && !isfinite(s->peak_sin))
-        return; /* the analysis found no peak: the raw maximum is none */
+    /* the analysis found no peak (a stress-controlled shear has none):
+     * the raw maximum is none */
+    if (s->summary && ((p->peak == Q_SIN_PSI && !isfinite(s->peak_sin)) ||
+                       (p->peak == Q_MU && !isfinite(s->shear_mu))))
+        return;
     if (p->peak == Q_SIN_PSI && isfinite(s->peak_sin) &&
         isfinite(s->peak_strain)) {
         /* the peak of summary.json, so that the picture and the numbers

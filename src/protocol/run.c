@@ -71,8 +71,10 @@ struct run_ctx {
                               this sample, when gathered */
     int have_whole;
     int cut; /* --max-steps ended the run before its last stage's end */
-    /* per wall, over the stage's samples: sum |sigma - target| / target
-     * of a stress-controlled wall, and the samples */
+    /* per wall, over the stage's samples: sum (sigma - target) / scale of
+     * a stress-controlled wall (scale the stage's pressure, else the
+     * target's mean), and the samples; not in the checkpoint: a resumed
+     * stage judges its samples since the resumption */
     double servo_err[DEM_MAX_WALLS];
     long servo_n[DEM_MAX_WALLS];
     double last_ckpt;             /* wall clock of the last checkpoint */
@@ -118,7 +120,10 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
         .t = s->t,
         .fraction = frac,
         .eta = speed > 0 ? steps_left * n / speed : 0.0,
-        .eta_is_bound = dem_stage_lookup(st->cfg->type)->done != 0,
+        /* (a stage that may end at its criterion: a hold only with
+         * relax) */
+        .eta_is_bound =
+            dem_stage_lookup(st->cfg->type)->settles || st->cfg->relax > 0.0,
         .speed = speed,
         .stage_done = done,
     };
@@ -479,11 +484,14 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
     /* how far the stress servos are from their targets (servo_warnings) */
     for (int w = 0; w < s->nwall; w++) {
         const struct dem_wall *W = &s->wall[w];
-        if (W->mode == DEM_WALL_STRESS && W->p0 > 0.0 &&
+        /* (constant_p moves p0 with the state, towards 0 near tension:
+         * the stage's pressure is the scale there) */
+        const double scale =
+            st->cfg->pressure > 0.0 ? st->cfg->pressure : W->p0;
+        if (W->mode == DEM_WALL_STRESS && scale > 0.0 &&
             isfinite(smp.sigma_wall[w])) {
             r->servo_err[w] +=
-                fabs(smp.sigma_wall[w] - dem_wall_target_stress(W, s->t)) /
-                W->p0;
+                (smp.sigma_wall[w] - dem_wall_target_stress(W, s->t)) / scale;
             r->servo_n[w]++;
         }
     }
@@ -579,8 +587,9 @@ static void servo_warnings(const struct run_ctx *r, int index,
      * compressed, without a word) */
     list[0] = '\0';
     for (int w = 0; w < s->nwall; w++) {
+        /* the mean offset, not the scatter about the target */
         const double e =
-            r->servo_n[w] >= 10 ? r->servo_err[w] / r->servo_n[w] : 0.0;
+            r->servo_n[w] >= 10 ? fabs(r->servo_err[w]) / r->servo_n[w] : 0.0;
         if (!(e > SERVO_OFF_TARGET))
             continue;
         const size_t len = strlen(list);
@@ -590,8 +599,8 @@ static void servo_warnings(const struct run_ctx *r, int index,
     }
     if (list[0])
         dem_warn(err,
-                 "stage %d: stress servos off their targets by %.0f %% or "
-                 "more on average over the stage's samples: %s; their mass "
+                 "stage %d: stress servos off their targets by more than "
+                 "%.0f %% on average over the stage's samples: %s; their mass "
                  "and viscosity (walls.mass, walls.gamma) must suit the "
                  "particles: scale them as the examples do (docs/config.md, "
                  "\"Walls\")",
@@ -716,13 +725,15 @@ static int run_stages(struct run_ctx *r, int first, int resumed,
     /* cut short by --max-steps: said, so that outputs written as for a
      * full run do not pass for one */
     r->cut = !rc && (k < r->sim.cfg.nstages || r->stage.cut);
+    /* in the stage it cut, or before the next one, which never began */
+    const int at = r->stage.cut ? r->stage.index : k;
     if (r->cut && writer(r))
         dem_warn(err,
-                 "stopped by --max-steps after %ld steps, in stage %d (%s) at "
-                 "t = %.6g s: the outputs, their analysis and plots are of a "
-                 "run cut short",
-                 r->sim.step, r->stage.index,
-                 dem_stage_lookup(r->stage.cfg->type)->name, r->sim.t);
+                 "stopped by --max-steps after %ld steps, %s stage %d (%s) "
+                 "at t = %.6g s: the outputs, their analysis and plots are "
+                 "of a run cut short",
+                 r->sim.step, r->stage.cut ? "in" : "before", at,
+                 dem_stage_lookup(r->sim.cfg.stages[at].type)->name, r->sim.t);
     return rc;
 }
 

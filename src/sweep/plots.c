@@ -91,8 +91,8 @@ static const char *stress_unit(const struct dem__sweep *s)
     int dims = 0;
     for (long k = 0; k < s->n; k++)
         if (s->runs[k].dim == 2 || s->runs[k].dim == 3)
-            dims |= s->runs[k].dim;
-    return dims == 2 ? "N/m" : dims == 3 ? "Pa" : "Pa; 2D: N/m";
+            dims |= 1 << s->runs[k].dim;
+    return dims == 1 << 2 ? "N/m" : dims == 1 << 3 ? "Pa" : "Pa; 2D: N/m";
 }
 
 static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
