@@ -167,16 +167,24 @@ static void put(char *buf, size_t n, const char *fmt, double v, double se)
     snprintf(buf + at, n - at, fmt, v, se);
 }
 
-int dem_summary_line(const char *outdir, char *buf, size_t n)
+/* The start of a summary line: buf emptied, dir/leaf read into js; 0
+ * when there is no room or no readable file. */
+static int line_start(const char *dir, const char *leaf, struct dem__jval *js,
+                      char *buf, size_t n)
 {
     if (!n)
         return 0;
     buf[0] = '\0';
     char path[DEM_PATH_MAX];
     struct dem_error e = {0};
+    return !dem_path_join(path, sizeof path, dir, leaf, NULL) &&
+           !dem__jread_file(js, path, &e);
+}
+
+int dem_summary_line(const char *outdir, char *buf, size_t n)
+{
     struct dem__jval js;
-    if (dem_path_join(path, sizeof path, outdir, "summary.json", NULL) ||
-        dem__jread_file(&js, path, &e))
+    if (!line_start(outdir, "summary.json", &js, buf, n))
         return 0;
     put(buf, n, "peak friction %.1f°", dem__jread_number(&js, "peak.phi_deg"),
         0.0);
@@ -251,14 +259,8 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
 
 int dem_sweep_summary_line(const char *dir, char *buf, size_t n)
 {
-    if (!n)
-        return 0;
-    buf[0] = '\0';
-    char path[DEM_PATH_MAX];
-    struct dem_error e = {0};
     struct dem__jval js;
-    if (dem_path_join(path, sizeof path, dir, "sweep.json", NULL) ||
-        dem__jread_file(&js, path, &e))
+    if (!line_start(dir, "sweep.json", &js, buf, n))
         return 0;
     flow_function_part(&js, "flow_function", "flow function at peak", buf, n);
     flow_function_part(&js, "flow_function_critical",
