@@ -184,6 +184,19 @@ static double lateral(const double *const v[3], long r, int axis, int dim)
     return s / (dim - 1);
 }
 
+/* The first and last row of stage k (*first -1 when it has none). */
+static void stage_span(const struct columns *c, long nrow, int k, long *first,
+                       long *last)
+{
+    *first = *last = -1;
+    for (long r = 0; r < nrow; r++)
+        if ((int)c->stage[r] == k) {
+            if (*first < 0)
+                *first = r;
+            *last = r;
+        }
+}
+
 /* minor: the axis whose stress is s3, or -1 for the mean of the axes
  * other than `axis`. zero_start: a first stage (no row at t = 0) starts
  * with a sample at t = 0 of zero strains, the stresses of its first row
@@ -193,13 +206,8 @@ static int build_curves(const struct columns *c, long nrow, int stage, int axis,
                         struct curves *cv)
 {
     memset(cv, 0, sizeof *cv);
-    long first = -1, last = -1;
-    for (long r = 0; r < nrow; r++)
-        if ((int)c->stage[r] == stage) {
-            if (first < 0)
-                first = r;
-            last = r;
-        }
+    long first, last;
+    stage_span(c, nrow, stage, &first, &last);
     if (first < 0)
         return DEM_OK;
     const int origin = first > 0 && (int)c->stage[first - 1] < stage;
@@ -1058,13 +1066,8 @@ static void check_complete(const struct dem_config *cfg,
                                sc->type == DEM_STAGE_CONSTANT_VOLUME
                            ? sc->duration
                            : NAN;
-    long first = -1, end = -1;
-    for (long r = 0; r < nrow; r++)
-        if ((int)c->stage[r] == k) {
-            if (first < 0)
-                first = r;
-            end = r;
-        }
+    long first, end;
+    stage_span(c, nrow, k, &first, &end);
     if (!isfinite(len) || first < 0)
         return;
     /* the stage starts where the row before it is (a first stage: 0) */
