@@ -1218,6 +1218,41 @@ static void write_shear_run_profile(const char *dir, double sense, int back)
     assert_int_equal(fclose(f), 0);
 }
 
+/* A run cut short (--max-steps) in its last stage, of fixed length but not
+ * the loading stage: the rows reach that stage, but not its end. Its
+ * summary says so, naming the stage and both times; the whole run's says
+ * complete. */
+static void a_run_cut_in_its_last_stage_is_not_complete(void **state)
+{
+    (void)state;
+    char dir[128], path[256];
+    run_dir(dir, sizeof dir, "cut-in-shear");
+    write_shear_run_profile(dir, 1.0, 0);
+    char *js = analyzed_summary(dir);
+    assert_non_null(strstr(js, "\"complete\": true"));
+    assert_null(strstr(js, "complete_reason"));
+    free(js);
+    /* the header and the rows to t = 0.62 s, of the shear's 0.02 to 1.02 */
+    snprintf(path, sizeof path, "%s/timeseries.csv", dir);
+    char *ts = slurp(path), *p = ts;
+    assert_non_null(ts);
+    for (int k = 0; k < 602; k++) {
+        p = strchr(p, '\n');
+        assert_non_null(p);
+        p++;
+    }
+    *p = '\0';
+    write_text(dir, "timeseries.csv", ts);
+    free(ts);
+    js = analyzed_summary(dir);
+    assert_non_null(strstr(js, "\"complete\": false"));
+    assert_non_null(
+        strstr(js, "\"complete_reason\": \"stage 1 (shear)'s rows end at t "
+                   "= 0.62 s, before its end at 1.02 s: a run cut short "
+                   "(--max-steps)\""));
+    free(js);
+}
+
 /* The line `dembox run` and `dembox analyze` end with: the parameters
  * the summary has, the critical state with its error, and a run cut
  * short said; nothing without a summary or without parameters. */
@@ -2104,6 +2139,7 @@ int main(void)
         cmocka_unit_test(shear_either_way_gives_the_same_friction),
         cmocka_unit_test(creep_rate_late_in_a_run),
         cmocka_unit_test(the_summary_line_gives_what_was_found),
+        cmocka_unit_test(a_run_cut_in_its_last_stage_is_not_complete),
         cmocka_unit_test(returning_shear_is_analysed_on_its_way_out),
         cmocka_unit_test(analysis_repeats_no_config_warning),
         cmocka_unit_test(older_run_folders_stay_readable),

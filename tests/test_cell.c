@@ -799,8 +799,10 @@ static void shear_stage_targets(void **state)
         {0.0, 30.0, 0.0, -30.0}, {0.0, 15.0, 30.0, 15.0}, {30, 30, 30, 30}};
     for (int q = 0; q < 3; q++) {
         sc.profile = profiles[q];
-        struct dem_stage_state st = {
-            .cfg = &sc, .index = 1, .t_start = s.t, .t_end = s.t};
+        struct dem_stage_state st = {.cfg = &sc,
+                                     .index = 1,
+                                     .t_start = s.t,
+                                     .t_end = s.t + dem_stage_length(&sc)};
         assert_int_equal(ops->begin(&s, &st, &err), 0);
         const struct dem_wall *W = &s.cell.tilt[DEM_TILT_XY];
         assert_int_equal(W->mode, DEM_WALL_STRESS);
@@ -811,8 +813,10 @@ static void shear_stage_targets(void **state)
     sc.shear_stress = NAN;
     sc.shear_strain = 0.1;
     sc.profile = DEM_PROFILE_SINE;
-    struct dem_stage_state st = {
-        .cfg = &sc, .index = 1, .t_start = s.t, .t_end = s.t};
+    struct dem_stage_state st = {.cfg = &sc,
+                                 .index = 1,
+                                 .t_start = s.t,
+                                 .t_end = s.t + dem_stage_length(&sc)};
     assert_int_equal(ops->begin(&s, &st, &err), 0);
     double x, v, L[3];
     dem_sim_box(&s, L, 0);
@@ -887,7 +891,8 @@ static void constant_volume_keeps_the_volume(void **state)
                                   .strain = 0.1,
                                   .duration = 0.01,
                                   .profile = DEM_PROFILE_COSINE};
-    struct dem_stage_state st = {.cfg = &sc};
+    struct dem_stage_state st = {
+        .cfg = &sc, .t_start = s.t, .t_end = s.t + dem_stage_length(&sc)};
     const struct dem_stage_ops *ops = dem_stage_lookup(sc.type);
     struct dem_error err = {0};
     assert_int_equal(ops->begin(&s, &st, &err), DEM_OK);

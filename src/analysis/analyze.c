@@ -1040,11 +1040,12 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     return rc;
 }
 
-/* Whether the rows reach the run's end: its last stage has rows, and a
- * loading stage of fixed length (compress, constant_p, constant_volume:
- * duration; cyclic: cycles x period) runs to its end, within half an
- * output interval. A run cut short (--max-steps) writes its outputs as a
- * finished one; its analysis says so here. */
+/* Whether the rows reach the run's end: its last stage has rows, and
+ * runs to its end, within half an output interval, where it is a stage
+ * of fixed length (every type but isotropic and a hold with relax: their
+ * end is a state, which the rows do not show). A stage before the last
+ * one ended, or the rows would not go on. A run cut short (--max-steps)
+ * writes its outputs as a finished one; its analysis says so here. */
 static void check_complete(const struct dem_config *cfg,
                            const struct columns *c, long nrow, struct result *R)
 {
@@ -1056,27 +1057,19 @@ static void check_complete(const struct dem_config *cfg,
                  last, cfg->nstages - 1);
         return;
     }
-    const int k = R->stage;
-    if (k < 0)
+    const struct dem_stage_config *sc = &cfg->stages[last];
+    if (dem_stage_may_end_early(sc))
         return;
-    const struct dem_stage_config *sc = &cfg->stages[k];
-    const double len = sc->type == DEM_STAGE_CYCLIC ? sc->cycles * sc->period
-                       : sc->type == DEM_STAGE_COMPRESS ||
-                               sc->type == DEM_STAGE_CONSTANT_P ||
-                               sc->type == DEM_STAGE_CONSTANT_VOLUME
-                           ? sc->duration
-                           : NAN;
     long first, end;
-    stage_span(c, nrow, k, &first, &end);
-    if (!isfinite(len) || first < 0)
-        return;
+    stage_span(c, nrow, last, &first, &end);
     /* the stage starts where the row before it is (a first stage: 0) */
     const double t0 = first > 0 ? c->t[first - 1] : 0.0;
-    if (c->t[end] < t0 + len - 0.5 * cfg->output.interval)
+    const double t_end = t0 + dem_stage_length(sc);
+    if (c->t[end] < t_end - 0.5 * cfg->output.interval)
         snprintf(R->cut_reason, sizeof R->cut_reason,
-                 "the loading stage %d's rows end at t = %.6g s, before its "
-                 "end at %.6g s: a run cut short (--max-steps)",
-                 k, c->t[end], t0 + len);
+                 "stage %d (%s)'s rows end at t = %.6g s, before its end at "
+                 "%.6g s: a run cut short (--max-steps)",
+                 last, dem_stage_lookup(sc->type)->name, c->t[end], t_end);
 }
 
 static int analyze_folder(const char *outdir, const char *cfg_path,

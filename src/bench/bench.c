@@ -349,7 +349,8 @@ static int relax(struct dem_sim *s, const struct workload *w,
     c.max_time = w->prep_time;
     c.mu = 0.0;
     const struct dem_stage_ops *ops = dem_stage_lookup(DEM_STAGE_ISOTROPIC);
-    struct dem_stage_state st = {.cfg = &c, .t_start = s->t, .t_end = s->t};
+    struct dem_stage_state st = {
+        .cfg = &c, .t_start = s->t, .t_end = s->t + dem_stage_length(&c)};
     int rc = ops->begin(s, &st, err);
     if (rc)
         return rc;
@@ -772,7 +773,8 @@ static int bench_run(const struct dem_bench_options *o,
     c.pressure = smp.p > 0 ? smp.p : w->p0;
     c.mu = -1.0;
     const struct dem_stage_ops *ops = dem_stage_lookup(DEM_STAGE_COMPRESS);
-    struct dem_stage_state st = {.cfg = &c, .t_start = s.t, .t_end = s.t};
+    struct dem_stage_state st = {
+        .cfg = &c, .t_start = s.t, .t_end = s.t + dem_stage_length(&c)};
     rc = ops->begin(&s, &st, err);
     if (rc) {
         dem_sim_destroy(&s);

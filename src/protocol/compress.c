@@ -28,6 +28,7 @@ const struct dem_stage_ops dem_stage_compress = {
     .name = "compress",
     .doc = "strain-controlled axial compression, lateral walls at pressure",
     .begin = begin,
+    .length = dem__stage_duration,
     .loading = 1,
     .quasi_static = 1,
 };

@@ -53,6 +53,7 @@ const struct dem_stage_ops dem_stage_constant_p = {
     .name = "constant_p",
     .doc = "axial compression at constant mean stress pressure (3D: with b)",
     .begin = begin,
+    .length = dem__stage_duration,
     .loading = 1,
     .control = control,
     .quasi_static = 1,

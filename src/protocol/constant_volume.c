@@ -44,6 +44,7 @@ const struct dem_stage_ops dem_stage_constant_volume = {
     .name = "constant_volume",
     .doc = "axial compression at constant volume (lateral walls follow)",
     .begin = begin,
+    .length = dem__stage_duration,
     .loading = 1,
     .control = control,
     .quasi_static = 1,

@@ -15,15 +15,20 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
         else
             dem__stage_walls_stress(s, w, c->pressure, 0.0, 0.0);
     }
-    st->t_end = s->t + c->cycles * c->period;
     st->sets_reference = 1;
     return DEM_OK;
+}
+
+static double length(const struct dem_stage_config *c)
+{
+    return c->cycles * c->period;
 }
 
 const struct dem_stage_ops dem_stage_cyclic = {
     .name = "cyclic",
     .doc = "stress along axis cycled around pressure, other walls at it",
     .begin = begin,
+    .length = length,
     .loading = 1,
     .quasi_static = 1,
 };

@@ -43,7 +43,6 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
             dem_wall_set_fixed(W);
         }
     }
-    st->t_end = s->t + st->cfg->duration;
     st->sets_reference = 0;
     return DEM_OK;
 }
@@ -54,6 +53,7 @@ const struct dem_stage_ops dem_stage_hold = {
         "run for duration with the walls as they are (or until E_kin/E_pot < "
         "relax)",
     .begin = begin,
+    .length = dem__stage_duration,
     .done = done,
     .keeps_modes = 1,
 };

@@ -12,7 +12,6 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
     (void)err;
     for (int w = 0; w < s->nwall; w++)
         dem__stage_walls_stress(s, w, st->cfg->pressure, 0.0, 0.0);
-    st->t_end = s->t + st->cfg->max_time;
     st->sets_reference = 1;
     return DEM_OK;
 }
@@ -28,11 +27,17 @@ static int done(const struct dem_sim *s, const struct dem_stage_state *st,
     return 1;
 }
 
+static double length(const struct dem_stage_config *c)
+{
+    return c->max_time;
+}
+
 const struct dem_stage_ops dem_stage_isotropic = {
     .name = "isotropic",
     .doc =
         "all walls stress-controlled at pressure until E_kin/E_pot < tolerance",
     .begin = begin,
+    .length = length,
     .done = done,
     .settles = 1,
 };

@@ -1,3 +1,5 @@
+#include <math.h>
+
 #include "protocol/stage.h"
 
 extern const struct dem_stage_ops dem_stage_isotropic;
@@ -33,6 +35,23 @@ int dem_stage_loading_index(const struct dem_config *c)
             return k;
     }
     return -1;
+}
+
+double dem_stage_length(const struct dem_stage_config *c)
+{
+    const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
+    return ops ? ops->length(c) : NAN;
+}
+
+int dem_stage_may_end_early(const struct dem_stage_config *c)
+{
+    const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
+    return ops && (ops->settles || c->relax > 0.0);
+}
+
+double dem__stage_duration(const struct dem_stage_config *c)
+{
+    return c->duration;
 }
 
 int dem__stage_at_rest(const struct dem_sim *s, const struct dem_sample *smp,
@@ -72,7 +91,6 @@ void dem__stage_lateral(struct dem_sim *s, const struct dem_stage_state *st,
 void dem__stage_axial(struct dem_sim *s, struct dem_stage_state *st)
 {
     const struct dem_stage_config *c = st->cfg;
-    st->t_end = s->t + c->duration;
     st->sets_reference = 1;
     double L[3];
     dem_sim_box(s, L, 0);

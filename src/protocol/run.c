@@ -120,10 +120,7 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
         .t = s->t,
         .fraction = frac,
         .eta = speed > 0 ? steps_left * n / speed : 0.0,
-        /* (a stage that may end at its criterion: a hold only with
-         * relax) */
-        .eta_is_bound =
-            dem_stage_lookup(st->cfg->type)->settles || st->cfg->relax > 0.0,
+        .eta_is_bound = dem_stage_may_end_early(st->cfg),
         .speed = speed,
         .stage_done = done,
     };
@@ -336,8 +333,10 @@ static int check_weight(const struct dem_sim *s, struct dem_error *err)
     for (int k = 0; !rc && k < s->cfg.nstages; k++) {
         const struct dem_stage_config *c = &s->cfg.stages[k];
         const struct dem_stage_ops *ops = dem_stage_lookup(c->type);
-        struct dem_stage_state st = {
-            .cfg = c, .index = k, .t_start = t->t, .t_end = t->t};
+        struct dem_stage_state st = {.cfg = c,
+                                     .index = k,
+                                     .t_start = t->t,
+                                     .t_end = t->t + dem_stage_length(c)};
         struct dem_error e2 = {.warn = dem_warn_ignore};
         if (!ops || ops->begin(t, &st, &e2))
             break; /* (the run says why, at that stage) */
@@ -367,8 +366,10 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
     if (!ops)
         return dem_error_set(err, DEM_EINTERNAL, "stage %d: unknown type",
                              index);
-    struct dem_stage_state st = {
-        .cfg = c, .index = index, .t_start = s->t, .t_end = s->t};
+    struct dem_stage_state st = {.cfg = c,
+                                 .index = index,
+                                 .t_start = s->t,
+                                 .t_end = s->t + ops->length(c)};
     r->stage = st;
     double mu_s = c->mu >= 0 ? c->mu : s->cfg.contact.mu_s;
     double mu_d = c->mu >= 0 ? c->mu : s->cfg.contact.mu_d;

@@ -58,7 +58,6 @@ static int begin(struct dem_sim *s, struct dem_stage_state *st,
     } else {
         dem_wall_set_strain(txy, c->profile, c->shear_strain * L[1], T, s->t);
     }
-    st->t_end = s->t + c->duration;
     st->sets_reference = 1;
     return DEM_OK;
 }
@@ -67,5 +66,6 @@ const struct dem_stage_ops dem_stage_shear = {
     .name = "shear",
     .doc = "simple shear of a periodic cell (x along y), y faces at pressure",
     .begin = begin,
+    .length = dem__stage_duration,
     .quasi_static = 1,
 };

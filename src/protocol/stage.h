@@ -26,9 +26,13 @@ struct dem_stage_state {
 struct dem_stage_ops {
     const char *name; /* the config's type string */
     const char *doc;  /* one line for --help */
-    /* Set wall modes; set st->t_end and st->sets_reference. */
+    /* Set wall modes and st->sets_reference (st->t_end is set before,
+     * from length()). */
     int (*begin)(struct dem_sim *s, struct dem_stage_state *st,
                  struct dem_error *err);
+    /* s: the longest the stage runs, t_end - t_start (its whole length
+     * unless done() ends it first) */
+    double (*length)(const struct dem_stage_config *c);
     /* 1 when the end criterion holds at this sample (time-bounded stages
      * may leave this NULL: they end at t_end). */
     int (*done)(const struct dem_sim *s, const struct dem_stage_state *st,
@@ -59,7 +63,18 @@ const struct dem_stage_ops *dem_stage_lookup(int type);
  * analysis and the plots use. */
 int dem_stage_loading_index(const struct dem_config *c);
 
+/* A stage's longest time, t_end - t_start (s); NAN for an unknown type. */
+double dem_stage_length(const struct dem_stage_config *c);
+
+/* 1 when the stage may end at its criterion before its length (it
+ * settles; a hold with relax), 0 when it runs its whole length: the
+ * runner's ETA is then exact, and the analysis can tell a run cut short
+ * from its rows. */
+int dem_stage_may_end_early(const struct dem_stage_config *c);
+
 /* Helpers shared by the stage types. */
+/* length() of the stages that run for `duration` */
+double dem__stage_duration(const struct dem_stage_config *c);
 /* At rest: the kinetic energy of the particles (with rotation) and of
  * the stress servos (walls and tilts, 1/2 walls.mass v^2 each) below tol
  * times the elastic energy. The servos count: a stage that ended on the
@@ -71,8 +86,8 @@ void dem__stage_walls_stress(struct dem_sim *s, int w, double p0, double amp,
                              double t0);
 /* The compression of compress, constant_p and constant_volume: the max
  * wall of the stage's axis moves by -strain L0 over duration with
- * profile, the min wall is fixed; the stage ends after duration and
- * refers the strains to its start. */
+ * profile, the min wall is fixed; the stage refers the strains to its
+ * start (and ends after duration: length dem__stage_duration). */
 void dem__stage_axial(struct dem_sim *s, struct dem_stage_state *st);
 /* The walls off the stage's axis: stress-controlled at pressure, or
  * fixed when pressure is 0 (constant_p, constant_volume). */
