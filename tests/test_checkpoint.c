@@ -379,6 +379,9 @@ static void assert_same_walls(const struct dem_sim *a, const struct dem_sim *b)
         SAME_BITS(x->kicks, y->kicks);
         SAME_BITS(x->capped, y->capped);
         SAME_BITS(x->floored, y->floored);
+        /* their offsets from their targets (format 16: the same) */
+        SAME_BITS(x->off_sum, y->off_sum);
+        SAME_BITS(x->off_n, y->off_n);
     }
 }
 
@@ -406,6 +409,8 @@ static void round_trip(const char *cfg_text, const char *const *sets, int nsets)
     assert_true(a.wall[0].kicks > 0); /* (the counts compared count) */
     a.wall[0].capped = 17;
     a.wall[1].floored = 5;
+    a.wall[2].off_sum = -0.37;
+    a.wall[3].off_n = 11;
     assert_true(a.pairs.cur.n > 0 && a.pairs.wcur.n > 0);
     if (a.pairs.torques) { /* the resistances are at work */
         double msum = 0.0;

@@ -196,6 +196,8 @@ static void io_wall(struct ck_io *io, struct dem_wall *w)
     io_i64(io, &w->kicks);
     io_i64(io, &w->capped);
     io_i64(io, &w->floored);
+    io_f64(io, &w->off_sum);
+    io_i64(io, &w->off_n);
 }
 
 /* A list with its history values of mask hist, its forces and, with

@@ -41,7 +41,7 @@
 
 #include "core/sim.h"
 
-#define DEM_CKPT_VERSION 15u /* 15: the walls' servo counts */
+#define DEM_CKPT_VERSION 16u /* 16: the walls' offsets from their targets */
 
 /* The resumable state of one output of a run (src/output/output.h). */
 struct dem_output_state {

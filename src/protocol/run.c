@@ -71,12 +71,6 @@ struct run_ctx {
                               this sample, when gathered */
     int have_whole;
     int cut; /* --max-steps ended the run before its last stage's end */
-    /* per wall, over the stage's samples: sum (sigma - target) / scale of
-     * a stress-controlled wall (scale the stage's pressure, else the
-     * target's mean), and the samples; not in the checkpoint: a resumed
-     * stage judges its samples since the resumption */
-    double servo_err[DEM_MAX_WALLS];
-    long servo_n[DEM_MAX_WALLS];
     double last_ckpt;             /* wall clock of the last checkpoint */
     struct dem_team team;         /* the threads of each step */
     /* progress */
@@ -388,8 +382,8 @@ static int begin_stage(struct run_ctx *r, int index, struct dem_error *err)
      * before it as its own) */
     for (int w = 0; w < s->nwall; w++) {
         s->wall[w].kicks = s->wall[w].capped = s->wall[w].floored = 0;
-        r->servo_err[w] = 0.0;
-        r->servo_n[w] = 0;
+        s->wall[w].off_sum = 0.0;
+        s->wall[w].off_n = 0;
     }
     for (int k = 0; k < 3; k++)
         s->cell.tilt[k].kicks = s->cell.tilt[k].capped =
@@ -484,16 +478,16 @@ static int take_sample(struct run_ctx *r, int last, int by_time, int *end,
         rc = check_stable(r, &smp, err);
     /* how far the stress servos are from their targets (servo_warnings) */
     for (int w = 0; w < s->nwall; w++) {
-        const struct dem_wall *W = &s->wall[w];
+        struct dem_wall *W = &s->wall[w];
         /* (constant_p moves p0 with the state, towards 0 near tension:
          * the stage's pressure is the scale there) */
         const double scale =
             st->cfg->pressure > 0.0 ? st->cfg->pressure : W->p0;
         if (W->mode == DEM_WALL_STRESS && scale > 0.0 &&
             isfinite(smp.sigma_wall[w])) {
-            r->servo_err[w] +=
+            W->off_sum +=
                 (smp.sigma_wall[w] - dem_wall_target_stress(W, s->t)) / scale;
-            r->servo_n[w]++;
+            W->off_n++;
         }
     }
     if (rc)
@@ -589,8 +583,8 @@ static void servo_warnings(const struct run_ctx *r, int index,
     list[0] = '\0';
     for (int w = 0; w < s->nwall; w++) {
         /* the mean offset, not the scatter about the target */
-        const double e =
-            r->servo_n[w] >= 10 ? fabs(r->servo_err[w]) / r->servo_n[w] : 0.0;
+        const struct dem_wall *W = &s->wall[w];
+        const double e = W->off_n >= 10 ? fabs(W->off_sum) / W->off_n : 0.0;
         if (!(e > SERVO_OFF_TARGET))
             continue;
         const size_t len = strlen(list);

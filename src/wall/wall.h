@@ -49,6 +49,11 @@ struct dem_wall {
      * (constant_p: a lateral target under tension); a diagnosis of the
      * stage, kept in checkpoints so that a resumed run warns alike */
     long kicks, capped, floored;
+    /* its stress's offsets from the target at the stage's samples, in
+     * units of the stage's pressure, summed, and their count: whether it
+     * kept off its target (the runner's, a diagnosis as the above) */
+    double off_sum;
+    long off_n;
 };
 
 /* Outward direction of wall w along its axis: -1 for side 0, +1 for side 1. */
