@@ -725,7 +725,7 @@ static void ratchet_increments_recovered(void **state)
     assert_true(sum.ratio > 0.5);
     /* the reason states each test as made: the three passed */
     assert_non_null(strstr(sum.reason, "more than"));
-    assert_non_null(strstr(sum.reason, "from zero and at least 0.001"));
+    assert_non_null(strstr(sum.reason, "above zero and at least 0.001"));
     assert_non_null(strstr(sum.reason, "not below"));
 }
 
@@ -752,6 +752,19 @@ static void shakedown_recognised(void **state)
              sum.fraction, sum.fraction * sum.mid_mean);
     if (!strstr(sum.reason, want))
         fail_msg("'%s' lacks '%s'", sum.reason, want);
+
+    /* a middle third that accumulates and a last third that goes back:
+     * along the accumulation the last third is below zero, not "within"
+     * the scatter of it, as the reason said */
+    for (int k = 0; k < C; k++)
+        inc[k] = (k < 20 ? 1e-3 : -1e-3) * (1.0 + 0.1 * (k % 3));
+    const long nb = make_cycles(0.0, inc, C, PER, t, ed, sd);
+    assert_int_equal(
+        dem_cycles_analyze(t, ed, sd, nb, 0.0, 1.0, 1e-6, C, cyc, &sum), C);
+    assert_int_equal(sum.verdict, DEM_VERDICT_SHAKEDOWN);
+    if (!strstr(sum.reason, "along the accumulation more than") ||
+        !strstr(sum.reason, "below zero and"))
+        fail_msg("'%s'", sum.reason);
 
     /* fewer than 6 cycles: no verdict; a cut last cycle does not count */
     assert_int_equal(dem_cycles_analyze(t, ed, sd, 5 * PER + 10, 0.0, 1.0, 1e-6,

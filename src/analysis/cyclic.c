@@ -154,14 +154,19 @@ static void verdict(const struct dem_cycle *c, int nc, struct dem_cycles *o)
     o->verdict =
         significant && steady ? DEM_VERDICT_RATCHETING : DEM_VERDICT_SHAKEDOWN;
     /* each test as it is made, with its bound (along the accumulation:
-     * the signs of the means' where dir < 0) */
+     * the signs of the means' where dir < 0; a last third that went back
+     * is below zero, not within the scatter of it) */
+    const int above = late > q * se, below = late < -q * se;
     snprintf(o->reason, sizeof o->reason,
              "last %d cycles: %.4g +- %.2g per cycle; along the accumulation "
              "%s %.3g s.e. (%.4g) %s zero and %s %g of cycle 1 (%.4g); "
              "%s %.4g x the middle %d's mean (%.4g) by more than %.3g "
              "s.e. of the difference (%.4g)",
-             L, o->late_mean, se, late > q * se ? "more than" : "within", q,
-             q * se, late > q * se ? "from" : "of",
+             L, o->late_mean, se, above || below ? "more than" : "within", q,
+             q * se,
+             above   ? "above"
+             : below ? "below"
+                     : "of",
              late >= DEM_RATCHET_MIN_RATE * fabs(o->first) ? "at least"
                                                            : "less than",
              DEM_RATCHET_MIN_RATE, DEM_RATCHET_MIN_RATE * fabs(o->first),
