@@ -171,10 +171,10 @@ static void mohr_fit_without_cohesion_passes_origin(void **state)
     assert_true(isnan(f.r2) && isnan(f.rms));
     assert_non_null(strstr(f.note, "2 circles fix the tangent"));
     /* nor standard errors: no degree of freedom is left */
-    assert_true(isnan(f.phi_se_deg) && isnan(f.c_se));
+    assert_true(isnan(f.phi_deg_se) && isnan(f.c_se));
     /* the bounded tangent's slope has one (n - 1), its c = 0 none */
     assert_int_equal(dem_mohr_fit(b1, b3, 2, 1, &f), 0);
-    assert_true(f.bounded && isfinite(f.phi_se_deg) && f.phi_se_deg > 0.0);
+    assert_true(f.bounded && isfinite(f.phi_deg_se) && f.phi_deg_se > 0.0);
     assert_true(isnan(f.c_se));
 }
 
@@ -259,7 +259,7 @@ static void mohr_fit_standard_errors_match_the_scatter(void **state)
             struct dem_mohr_fit f;
             assert_int_equal(dem_mohr_fit(s1, s3, 5, cohesion, &f), 0);
             assert_true(f.ok && !f.bounded);
-            scatter_add(&a[0], f.phi_deg, f.phi_se_deg);
+            scatter_add(&a[0], f.phi_deg, f.phi_deg_se);
             scatter_add(&a[1], f.c, f.c_se);
             if (!cohesion)
                 assert_true(isnan(f.c_se));
@@ -1294,7 +1294,7 @@ static void the_summary_line_gives_what_was_found(void **state)
      * whose runs had no peak said only where its results were) */
     assert_int_equal(dem_sweep_summary_line(dir, line, sizeof line), 0);
     write_text(dir, "sweep.json",
-               "{\"flow_function\": [{\"phi_deg\": 27.62, \"phi_se_deg\": "
+               "{\"flow_function\": [{\"phi_deg\": 27.62, \"phi_deg_se\": "
                "0.34, \"cohesion\": 12.5, \"cohesion_se\": 1.25, "
                "\"circles\": 3}], \"flow_function_critical\": null, "
                "\"flow_function_critical_reason\": \"no critical circles\"}");

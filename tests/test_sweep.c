@@ -399,7 +399,7 @@ static void summary_not_written_by_analyze_is_left_out(void **state)
      * r2 = 1, rms = 0; a read-only review, session 108) */
     assert_true(isnan(dem__jread_number(&ff->items[0], "r2")));
     assert_true(isnan(dem__jread_number(&ff->items[0], "rms")));
-    assert_true(isnan(dem__jread_number(&ff->items[0], "phi_se_deg")));
+    assert_true(isnan(dem__jread_number(&ff->items[0], "phi_deg_se")));
     assert_true(isnan(dem__jread_number(&ff->items[0], "cohesion_se")));
     assert_non_null(strstr(dem__jread_string(&ff->items[0], "note"),
                            "2 circles fix the tangent"));
@@ -565,7 +565,7 @@ static void flow_function_and_void_fit_recover_known_values(void **state)
     assert_close(dem__jread_number(&ff->items[0], "circles"), 4, 0);
     assert_close(dem__jread_number(&ff->items[0], "r2"), 1.0, 1e-9);
     /* circles on the line: standard errors of zero, written */
-    assert_close(dem__jread_number(&ff->items[0], "phi_se_deg"), 0.0, 1e-6);
+    assert_close(dem__jread_number(&ff->items[0], "phi_deg_se"), 0.0, 1e-6);
     assert_close(dem__jread_number(&ff->items[0], "cohesion_se"), 0.0,
                  1e-6 * c);
     /* each circle as its major and minor stresses, the extension's too */

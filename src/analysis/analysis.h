@@ -215,7 +215,7 @@ struct dem_mohr_fit {
      * free tangent), and c_se where c is not fitted (bounded or without
      * cohesion). The spread between independent samples is another
      * error (a sweep's ensembles). */
-    double phi_se_deg, c_se;
+    double phi_deg_se, c_se;
 };
 
 /* Common tangent tau = c + sigma tan phi of n Mohr circles (sigma1 >=

@@ -103,7 +103,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     o->n = n;
     o->sin_phi = o->phi_deg = o->c = o->r2 = o->rms = NAN;
     o->phi_free_deg = o->c_free = NAN;
-    o->phi_se_deg = o->c_se = NAN;
+    o->phi_deg_se = o->c_se = NAN;
     o->reason[0] = o->note[0] = '\0';
     o->bounded = 0;
     if (n < 1 || (cohesion && n < 2)) {
@@ -207,7 +207,7 @@ int dem_mohr_fit(const double *sigma1, const double *sigma3, long n,
     o->phi_deg = phi * DEG;
     /* first order: dphi = dB / cos phi; c = A / cos phi, so dc = dA / cos
      * phi + c B dB / cos^2 phi */
-    o->phi_se_deg = se_b / cp * DEG;
+    o->phi_deg_se = se_b / cp * DEG;
     const double ga = 1.0 / cp, gb = o->c * o->sin_phi / (cp * cp);
     const double vc =
         ga * ga * se_a * se_a + gb * gb * se_b * se_b + 2.0 * ga * gb * cov;

@@ -231,7 +231,7 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
         ff && ff->type == DEM__JSON_ARRAY && ff->n > 0 ? &ff->items[0] : NULL;
     const double phi = g ? dem__jread_number(g, "phi_deg") : NAN;
     if (isfinite(phi)) {
-        const double se = dem__jread_number(g, "phi_se_deg"),
+        const double se = dem__jread_number(g, "phi_deg_se"),
                      c = dem__jread_number(g, "cohesion"),
                      cse = dem__jread_number(g, "cohesion_se");
         char ps[64], cs[64] = "";

@@ -157,7 +157,7 @@ static void write_fit(struct dem__json *j, const struct dem_mohr_fit *f)
     dem__json_number(j, "cohesion", f->ok ? f->c : NAN);
     dem__json_number(j, "r2", f->ok ? f->r2 : NAN);
     dem__json_number(j, "rms", f->ok ? f->rms : NAN);
-    dem__json_number(j, "phi_se_deg", f->ok ? f->phi_se_deg : NAN);
+    dem__json_number(j, "phi_deg_se", f->ok ? f->phi_deg_se : NAN);
     dem__json_number(j, "cohesion_se", f->ok ? f->c_se : NAN);
     if (!f->ok)
         dem__json_string(j, "reason", f->reason);
