@@ -912,10 +912,17 @@ static int cmd_example(int argc, char **argv)
         return fail("example: give one NAME (see dembox examples)");
     const struct dem_example *ex = dem_example_find(argv[0]);
     if (!ex) {
-        fprintf(
-            stderr,
-            "dembox: example: no example called '%s' (see dembox examples)\n",
-            argv[0]);
+        const struct dem_example *near = dem_example_nearest(argv[0]);
+        if (near)
+            fprintf(stderr,
+                    "dembox: example: no example called '%s': did you mean "
+                    "%s?\n",
+                    argv[0], near->name);
+        else
+            fprintf(stderr,
+                    "dembox: example: no example called '%s' (see dembox "
+                    "examples)\n",
+                    argv[0]);
         return 1;
     }
     fputs(ex->text, stdout);

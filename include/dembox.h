@@ -483,6 +483,9 @@ extern const int dem_n_examples;
 
 /* The example called name, or NULL. */
 const struct dem_example *dem_example_find(const char *name);
+/* The built-in example a slip of a letter or two from name (not name
+ * itself), or NULL: for "did you mean". */
+const struct dem_example *dem_example_nearest(const char *name);
 
 /* ------------------------------------------------------------------ MPI */
 

@@ -1,8 +1,11 @@
 #include "dembox.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "config/keys.h"
 
 const struct dem_example *dem_example_find(const char *name)
 {
@@ -12,11 +15,42 @@ const struct dem_example *dem_example_find(const char *name)
     return 0;
 }
 
+const struct dem_example *dem_example_nearest(const char *name)
+{
+    /* a slip of a letter or two, as for keys (dem__cfg_nearest_key) */
+    const size_t third = strlen(name) / 3, cap = third < 2 ? third : 2;
+    const struct dem_example *best = NULL;
+    size_t d = cap + 1;
+    for (int i = 0; i < dem_n_examples; i++) {
+        const size_t e =
+            dem__cfg_edit_distance(name, dem_examples[i].name, cap);
+        if (e < d) {
+            d = e;
+            best = &dem_examples[i];
+        }
+    }
+    return d >= 1 && d <= cap ? best : NULL;
+}
+
 int dem_config_load_target(struct dem_config *c, const char *target,
                            const char *const *sets, int nsets,
                            struct dem_error *err)
 {
     const struct dem_example *ex = dem_example_find(target);
+    /* a name that is neither: a misspelt example, most likely */
+    if (!ex && !strchr(target, '/') && access(target, F_OK) != 0 &&
+        errno == ENOENT) {
+        const struct dem_example *near = dem_example_nearest(target);
+        if (near)
+            return dem_error_set(err, DEM_EIO,
+                                 "%s: cannot open: no such file, nor a "
+                                 "built-in example: did you mean %s?",
+                                 target, near->name);
+        return dem_error_set(err, DEM_EIO,
+                             "%s: cannot open: no such file, nor a built-in "
+                             "example (dembox examples lists them)",
+                             target);
+    }
     if (!ex || strchr(target, '/'))
         return dem_config_load_file(c, target, sets, nsets, err);
     char source[DEM_PATH_MAX];

@@ -491,8 +491,7 @@ int dem__cfg_find_key(const char *name, int scope)
     return -1;
 }
 
-/* Levenshtein distance of a and b, capped at cap + 1. */
-static size_t edit_distance(const char *a, const char *b, size_t cap)
+size_t dem__cfg_edit_distance(const char *a, const char *b, size_t cap)
 {
     const size_t na = strlen(a), nb = strlen(b);
     if (na > nb + cap || nb > na + cap || nb >= 128)
@@ -532,7 +531,8 @@ const char *dem__cfg_nearest_key(const char *name, int scope)
     for (size_t i = 0; i < dem__cfg_nkeys; i++) {
         if (dem__cfg_keys[i].scope != scope)
             continue;
-        const size_t e = edit_distance(name, dem__cfg_keys[i].name, cap);
+        const size_t e =
+            dem__cfg_edit_distance(name, dem__cfg_keys[i].name, cap);
         if (e < d) {
             d = e;
             best = dem__cfg_keys[i].name;

@@ -111,6 +111,8 @@ int dem__cfg_find_key(const char *name, int scope);
 /* The key of that scope a slip of one or two letters from name (not
  * name itself), for "did you mean"; NULL when there is none. */
 const char *dem__cfg_nearest_key(const char *name, int scope);
+/* Levenshtein distance of a and b, capped at cap + 1. */
+size_t dem__cfg_edit_distance(const char *a, const char *b, size_t cap);
 /* True if name is a group of top-level keys, e.g. "particles.radius". */
 int dem__cfg_is_group_path(const char *name);
 /* The field of key k in base (a struct dem_config or dem_stage_config). */
