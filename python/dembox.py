@@ -44,6 +44,7 @@ import json
 import math
 import numbers
 import os
+import re
 import signal
 import sys
 import threading
@@ -227,13 +228,11 @@ def _library():
     lib.dem_build.restype = ctypes.c_char_p
     lib.dem_example_find.restype = ctypes.POINTER(_Example)
     lib.dem_example_find.argtypes = [ctypes.c_char_p]
-    lib.dem_config_parse.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
-                                     ctypes.c_char_p, ctypes.c_void_p,
-                                     ctypes.c_int,
-                                     ctypes.POINTER(_ErrorStruct)]
-    lib.dem_config_load_file.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
-                                         ctypes.c_void_p, ctypes.c_int,
-                                         ctypes.POINTER(_ErrorStruct)]
+    lib.dem_example_nearest.restype = ctypes.POINTER(_Example)
+    lib.dem_example_nearest.argtypes = [ctypes.c_char_p]
+    lib.dem_config_load_target.argtypes = [ctypes.c_void_p, ctypes.c_char_p,
+                                           ctypes.c_void_p, ctypes.c_int,
+                                           ctypes.POINTER(_ErrorStruct)]
     lib.dem_run.argtypes = [ctypes.c_void_p, ctypes.POINTER(_RunOptions),
                             ctypes.POINTER(_ErrorStruct)]
     lib.dem_run_resume.argtypes = [ctypes.c_char_p,
@@ -277,6 +276,12 @@ def _error(warnings=None):
     """A struct dem_error whose warnings go to the list warnings, or, when
     it is None, to Python's warnings as DemboxWarning. An exception from
     those (a filter "error") is raised by _check after the call."""
+    if warnings is not None and not callable(getattr(warnings, "append",
+                                                     None)):
+        # (a tuple's warnings were lost, each with a traceback printed
+        # from the callback)
+        raise TypeError("warnings must be a list (or None), not %s"
+                        % type(warnings).__name__)
     err = _ErrorStruct()
     err.pending = None
 
@@ -307,7 +312,14 @@ def _value(v, key):
     """A Python value as a config file writes it: a number (an int as an
     integer, a float with its point or exponent), a string quoted, a
     list, tuple or array of numbers as an array of floats (a config's
-    arrays do not mix integers and floats), a bool as true/false."""
+    arrays do not mix integers and floats), a bool as true/false; numpy's
+    scalars and 0-d arrays as Python's. A number must be finite."""
+    if numpy is not None and isinstance(v, (numpy.generic, numpy.ndarray)) \
+            and numpy.ndim(v) == 0:
+        v = v.item()  # numpy.bool_, a 0-d array: Python's bool, float, ...
+    if isinstance(v, numbers.Real) and not isinstance(v, bool) and \
+            not math.isfinite(v):
+        raise ValueError("%s = %r: not a finite number" % (key, v))
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, numbers.Integral):  # also numpy's integers
@@ -320,6 +332,10 @@ def _value(v, key):
         v = list(v)  # a list, a tuple, a numpy array
         if all(isinstance(x, numbers.Real) and not isinstance(x, bool)
                for x in v):
+            for x in v:
+                if not math.isfinite(x):
+                    raise ValueError("%s = %r: not a finite number"
+                                     % (key, x))
             return "[%s]" % ", ".join(repr(float(x)) for x in v)
     raise TypeError("%s: a value of type %s (give a number, a string or a "
                     "list of numbers)" % (key, type(v).__name__))
@@ -340,8 +356,8 @@ def _int(name, v, bits=32):
 
 
 def _key(k):
-    """A key of a mapping of overrides: "a.b", or linked keys as "a,b" or a
-    tuple ("a", "b")."""
+    """A key of a mapping of overrides: "a.b", or linked keys as a tuple
+    ("a", "b") (a swept key's also as "a,b", as --param writes them)."""
     if isinstance(k, tuple) and k and all(isinstance(x, str) for x in k):
         return ",".join(k)
     if isinstance(k, str):
@@ -414,27 +430,26 @@ def examples():
 
 def example_text(name):
     """The config text of a built-in example."""
+    if not isinstance(name, str):
+        raise TypeError("an example's name is a str, not %s (%r)"
+                        % (type(name).__name__, name))
     ex = _lib.dem_example_find(name.encode())
     if not ex:
-        raise Error(-6, "no built-in example '%s' (see examples())" % name)
+        near = _lib.dem_example_nearest(name.encode())
+        raise Error(-6, "no built-in example '%s' (%s)" % (
+            name, "did you mean %s?" % near.contents.name.decode() if near
+            else "see examples()"))
     return ex.contents.text.decode()
 
 
 def _config(target, sets, err):
-    """Parse target (a built-in example's name or a config file's path)."""
+    """Parse target as `dembox run` does: a built-in example's name (which
+    wins over a file of that name here, with a warning), else a config
+    file's path."""
     buf = ctypes.create_string_buffer(_lib.dem_config_size())
     arr = (ctypes.c_char_p * max(len(sets), 1))(*[s.encode() for s in sets])
-    target = os.fspath(target)
-    if isinstance(target, bytes):
-        target = os.fsdecode(target)
-    if "/" not in target and _lib.dem_example_find(_path(target)):
-        rc = _lib.dem_config_parse(buf, example_text(target).encode(),
-                                   ("example " + target).encode(), arr,
-                                   len(sets), ctypes.byref(err))
-    else:
-        rc = _lib.dem_config_load_file(buf, _path(target), arr, len(sets),
-                                       ctypes.byref(err))
-    _check(rc, err)
+    _check(_lib.dem_config_load_target(buf, _path(target), arr, len(sets),
+                                       ctypes.byref(err)), err)
     return buf
 
 
@@ -488,7 +503,9 @@ class _Stop:
             return
         try:
             item = self.view(report)
-            if item is not None and self.user(item):
+            # True stops, not any value that is true (a progress bar's
+            # update() returned one, and stopped the run)
+            if item is not None and _is_true(self.user(item)):
                 self.flag.value = 1
         except BaseException as e:  # raised again after the call
             self.raised = e
@@ -511,6 +528,12 @@ class _Stop:
         if rc == _DEM_EINTERRUPTED and (self.flag.value or self.follows):
             raise Interrupted(rc, msg, outdir)
         _check(rc, err)
+
+
+def _is_true(v):
+    """v is True (Python's or numpy's)."""
+    return v is True or (numpy is not None and isinstance(v, numpy.bool_)
+                         and bool(v))
 
 
 def _progress(p):
@@ -673,7 +696,24 @@ def _json(path):
         raise ValueError("%s: nested too deeply: not a file dembox wrote"
                          % path) from None
     except ValueError as e:
-        raise ValueError("%s: %s" % (path, e)) from None
+        line = _json_bad_line(text)
+        raise ValueError("%s%s: %s" % (path, ":%d" % line if line else "",
+                                       e)) from None
+
+
+_JSON_TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|NaN|-?Infinity|-?(?:0|[1-9]'
+                         r'[0-9]*)(?:\.[0-9]+)?(?:[eE][-+]?[0-9]+)?')
+
+
+def _json_bad_line(text):
+    """The line of the first NaN, Infinity or number beyond a double of a
+    JSON text (outside its strings), or 0."""
+    for m in _JSON_TOKEN.finditer(text):
+        tok = m.group()
+        if tok[0] != '"' and (tok[-1] in "Ny" or
+                              not math.isfinite(float(tok))):
+            return text.count("\n", 0, m.start()) + 1
+    return 0
 
 
 def _number(text, path, line, name):
@@ -869,9 +909,13 @@ def sweep(target, outdir, params, sets=(), jobs=0, threads=1, max_steps=0,
     any_build=True (as --any-build), else that run starts again.
     Returns outdir."""
     err = _error(warnings)
+    texts = _params(params)
+    if not texts:
+        raise ValueError("sweep: give at least one swept key in params (a "
+                         "single run is dembox.run)")
     grid = ctypes.create_string_buffer(_lib.dem_sweep_grid_bytes())
     try:
-        for p in _params(params):
+        for p in texts:
             _check(_lib.dem_sweep_param_add(grid, p.encode(),
                                             ctypes.byref(err)), err)
         enc = [s.encode() for s in _texts(sets)]
@@ -895,4 +939,11 @@ def sweep(target, outdir, params, sets=(), jobs=0, threads=1, max_steps=0,
 
 def sweep_summary(outdir):
     """outdir/sweep.json (a sweep's cross-run analysis) as a dict."""
-    return _json(os.path.join(outdir, "sweep.json"))
+    path = os.path.join(outdir, "sweep.json")
+    if (not os.path.exists(path) and
+            os.path.exists(os.path.join(outdir, "runs", "index"))):
+        raise FileNotFoundError(
+            errno.ENOENT, "the sweep has not finished (its runs are there, "
+            "not its sweep.json): the same dembox.sweep call goes on with "
+            "them", path)
+    return _json(path)

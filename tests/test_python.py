@@ -457,11 +457,13 @@ for name, text, read, want in (
         ("contacts_final.csv", "", dembox.contacts,
          "contacts_final.csv: no header"),
         ("summary.json", '{"a": NaN}', dembox.summary,
-         "summary.json: NaN is not a number of JSON"),
+         "summary.json:1: NaN is not a number of JSON"),
+        ("summary.json", '{"a": "NaN",\n "b": -Infinity}', dembox.summary,
+         "summary.json:2: -Infinity is not a number of JSON"),
         ("summary.json", '{"a": 1,\n}', dembox.summary,
          "summary.json:2: Expecting property name"),
         ("summary.json", '{"a": 1e400}', dembox.summary,
-         "summary.json: 1e400 is beyond a double"),
+         "summary.json:1: 1e400 is beyond a double"),
         ("dump_local.lammpstrj", "".join(dump[:-1]), dembox.dump_local,
          "dump_local.lammpstrj:%d: the file ends before entry" % len(dump)),
         ("dump_local.lammpstrj", "".join(dump[:3]) + "x\n",
@@ -530,5 +532,73 @@ except dembox.Error as e:
     assert "contact.mu" in str(e), str(e)
 else:
     raise AssertionError("a negative friction was accepted")
+# a python user's first hour (session 114): arguments a user gets
+# wrong, each refused naming the cause, and what the command does
+few = ["particles.count=60", "output.interval=5.0e-6"]  # (sets is rebound above)
+
+
+def refused(call, kind, want):
+    try:
+        call()
+    except kind as e:
+        assert want in str(e), (want, str(e))
+    else:
+        raise AssertionError("accepted: " + want)
+
+
+# a tuple for warnings: its warnings were lost, with tracebacks printed
+refused(lambda: dembox.run("biaxial2d", os.path.join(tmp, "w"), sets=few,
+                           max_steps=10, warnings=()),
+        TypeError, "warnings must be a list (or None), not tuple")
+# a number that is not finite was sent as the string "inf"
+refused(lambda: dembox.run("biaxial2d", os.path.join(tmp, "inf"),
+                           sets={"contact.mu": float("inf")}),
+        ValueError, "contact.mu = inf: not a finite number")
+refused(lambda: dembox.sweep("biaxial2d", os.path.join(tmp, "nan"),
+                             {"contact.mu": [0.1, float("nan")]}),
+        ValueError, "contact.mu = nan: not a finite number")
+assert not os.path.exists(os.path.join(tmp, "inf"))
+if dembox.numpy is not None:  # numpy's scalars and 0-d arrays as Python's
+    np = dembox.numpy
+    for v, text in ((np.array(0.3), "0.3"), (np.bool_(True), "true"),
+                    (np.float32(0.5), "0.5"), (np.int64(3), "3")):
+        assert dembox._value(v, "k") == text, (v, dembox._value(v, "k"))
+# a misspelt example: "cannot open" only, before
+refused(lambda: dembox.example_text("biaxial2dd"), dembox.Error,
+        "no built-in example 'biaxial2dd' (did you mean biaxial2d?)")
+refused(lambda: dembox.example_text(pathlib.Path("biaxial2d")), TypeError,
+        "an example's name is a str, not PosixPath")
+refused(lambda: dembox.run("biaxial2dd", os.path.join(tmp, "typo")),
+        dembox.Error, "biaxial2dd: cannot open: no such file, nor a "
+        "built-in example: did you mean biaxial2d?")
+# a file of an example's name here: the example runs, and a warning says
+# so, as the dembox command's (it ran silently)
+here = os.getcwd()
+os.chdir(tmp)
+try:
+    with open("biaxial2d", "w") as f:
+        f.write("dimension = 2;\n")
+    said = []
+    dembox.run("biaxial2d", "shadowed", sets=few, max_steps=10,
+               analyze=False, warnings=said)
+    assert any("biaxial2d: a file of that name is here too; the built-in "
+               "example runs (./biaxial2d for the file)" in w
+               for w in said), said
+finally:
+    os.chdir(here)
+# a callback's value that is true but not True goes on (a progress bar's
+# update() returned one, and stopped the run)
+dembox.run("biaxial2d", os.path.join(tmp, "truthy"), sets=few,
+           max_steps=400, analyze=False, progress=lambda p: "shown")
+assert same_bytes(os.path.join(tmp, "truthy"), out_py)
+# a sweep of no key, which the command refuses
+refused(lambda: dembox.sweep("biaxial2d", os.path.join(tmp, "nokey"), []),
+        ValueError, "give at least one swept key")
+# a sweep not finished: its folder has runs, no sweep.json
+os.makedirs(os.path.join(tmp, "unfinished", "runs"))
+open(os.path.join(tmp, "unfinished", "runs", "index"), "w").close()
+refused(lambda: dembox.sweep_summary(os.path.join(tmp, "unfinished")),
+        FileNotFoundError, "the sweep has not finished")
+
 print("test_python: ok (%d rows, dembox %s)"
       % (len(ts["t"]), dembox.version()))
