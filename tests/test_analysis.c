@@ -1303,6 +1303,21 @@ static void the_summary_line_gives_what_was_found(void **state)
                         "flow function at peak φ = 27.6° ± 0.3°, c = "
                         "12.5 ± 1.2 (3 circles); no flow function in critical "
                         "state: no critical circles");
+    /* over seeds: the ensemble's mean, not its first seed's fit (a
+     * visual review of sweeps, session 114: "28.1 ± 2.0" of seed 1 for
+     * the seeds' 28.40 ± 0.26) */
+    write_text(dir, "sweep.json",
+               "{\"flow_function\": [{\"phi_deg\": 28.1, \"phi_deg_se\": 2.0,"
+               " \"circles\": 3}], \"flow_function_ensemble\": [{\"fits\": "
+               "3, \"phi_deg\": {\"mean\": 28.404, \"se\": 0.26, \"n\": 3}, "
+               "\"cohesion\": {\"mean\": 5.28, \"se\": 7.6, \"n\": 3}}], "
+               "\"flow_function_critical\": null, "
+               "\"flow_function_critical_reason\": \"no critical circles\"}");
+    assert_int_equal(dem_sweep_summary_line(dir, line, sizeof line), 1);
+    assert_string_equal(line,
+                        "flow function at peak φ = 28.4° ± 0.3°, c = "
+                        "5.28 ± 7.6 (mean over 3 seeds); no flow function in "
+                        "critical state: no critical circles");
 }
 
 /* A stress-controlled shear late in a run (t about 10^4 s): the creep

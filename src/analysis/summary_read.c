@@ -218,7 +218,9 @@ int dem_summary_line(const char *outdir, char *buf, size_t n)
 
 /* One flow function of sweep.json (key: flow_function or
  * flow_function_critical) into buf, as "LABEL φ = …° ± …°, c = … (n
- * circles)" for its first group, or "no LABEL: reason". */
+ * circles)" for its first group, or "no LABEL: reason". A sweep over
+ * seeds gives its first ensemble's mean over the seeds (KEY_ensemble):
+ * the first group there is one seed's. */
 static void flow_function_part(const struct dem__jval *js, const char *key,
                                const char *label, char *buf, size_t n)
 {
@@ -226,6 +228,30 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
     char *at = buf + len;
     const size_t room = n - len;
     const char *sep = len ? "; " : "";
+    char ek[96];
+    snprintf(ek, sizeof ek, "%s_ensemble", key);
+    const struct dem__jval *fe = dem__jread_get(js, ek);
+    const struct dem__jval *ge =
+        fe && fe->type == DEM__JSON_ARRAY && fe->n > 0 ? &fe->items[0] : NULL;
+    const double phe = ge ? dem__jread_number(ge, "phi_deg.mean") : NAN;
+    if (isfinite(phe)) {
+        const double se = dem__jread_number(ge, "phi_deg.se"),
+                     c = dem__jread_number(ge, "cohesion.mean"),
+                     cse = dem__jread_number(ge, "cohesion.se");
+        char ps[64], cs[64] = "";
+        if (isfinite(se))
+            snprintf(ps, sizeof ps, "%.1f° ± %.1f°", phe, se);
+        else
+            snprintf(ps, sizeof ps, "%.1f°", phe);
+        if (isfinite(c) && isfinite(cse))
+            snprintf(cs, sizeof cs, ", c = %.3g ± %.2g", c, cse);
+        else if (isfinite(c))
+            snprintf(cs, sizeof cs, ", c = %.3g", c);
+        snprintf(at, room, "%s%s φ = %s%s (mean over %.0f seeds%s)", sep, label,
+                 ps, cs, dem__jread_number(ge, "fits"),
+                 fe->n > 1 ? "; first group" : "");
+        return;
+    }
     const struct dem__jval *ff = dem__jread_get(js, key);
     const struct dem__jval *g =
         ff && ff->type == DEM__JSON_ARRAY && ff->n > 0 ? &ff->items[0] : NULL;
