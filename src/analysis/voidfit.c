@@ -57,11 +57,14 @@ int dem_voidfit(const double *p, const double *e, long m, double hs,
                  "granular hardness hs = %g is not positive", hs);
         return DEM_OK;
     }
-    if (m < 3 || distinct(p, m) < 3) {
+    const int np = distinct(p, m);
+    if (m < 3 || np < 3) {
+        /* (how many of each: three states of one pressure said "3
+         * states" under "3 or more different pressures") */
         snprintf(o->reason, sizeof o->reason,
                  "the fit of e0 and n needs states at 3 or more different "
-                 "pressures (%ld state%s)",
-                 m, m == 1 ? "" : "s");
+                 "pressures (%ld state%s at %d pressure%s)",
+                 m, m == 1 ? "" : "s", np, np == 1 ? "" : "s");
         return DEM_OK;
     }
     double *x = malloc((size_t)m * sizeof *x);

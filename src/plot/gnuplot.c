@@ -12,6 +12,11 @@
 #include "io/fsutil.h"
 #include "plot/plot.h"
 
+void dem__gp_block_end(FILE *dat, long records)
+{
+    fprintf(dat, "%s\n\n", records > 0 ? "" : "NaN NaN\n");
+}
+
 void dem__gp_text(char *s)
 {
     for (; *s; s++)

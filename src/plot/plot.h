@@ -24,6 +24,13 @@ void dem__gp_head(FILE *f, const char *name, const char *title,
  * backquotes become ', backslashes /, control characters spaces. */
 void dem__gp_text(char *s);
 
+/* End a data block of records lines: two blank lines, after a record
+ * of NaN where it has none. gnuplot skips an empty block when it counts
+ * them for `index`, so every later index named the next block's data:
+ * a sweep's void ratios were drawn under another group's legend when one
+ * group's critical state had no fit (a visual review, session 114). */
+void dem__gp_block_end(FILE *dat, long records);
+
 /* 1 if the gnuplot command can be run. */
 int dem__gp_available(const char *cmd);
 

@@ -624,6 +624,17 @@ static void loading_roles(struct dem_sweep_grid *g,
     }
 }
 
+/* A parameter of one value varies nothing: no role (its value is one
+ * more label of every group). --param contact.mu=0.3 drew
+ * friction_vs_mu of one point, half on its frame (a visual review,
+ * session 114). */
+static void single_values_have_no_role(struct dem_sweep_grid *g)
+{
+    for (int k = 0; k < g->nparams; k++)
+        if (g->params[k].nvalues < 2)
+            g->params[k].roles = 0;
+}
+
 int dem__sweep_collect(const struct dem_sweep_grid *g,
                        const struct dem_sweep_options *o, struct dem_error *err)
 {
@@ -675,6 +686,7 @@ int dem__sweep_collect(const struct dem_sweep_grid *g,
     if (!rc) {
         *gl = *g;
         loading_roles(gl, s.runs, s.n);
+        single_values_have_no_role(gl);
         s.g = gl;
         s.roles = 0;
         for (int k = 0; k < gl->nparams; k++)

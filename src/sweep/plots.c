@@ -239,10 +239,14 @@ static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
                  "microscopic friction μ", "sin φ = (σ_1 - σ_3)/(σ_1 + σ_3)");
     fprintf(dat,
             "# columns: 1 mu  2 peak sin(phi)  3 its standard error  "
-            "4 critical sin(phi)  5 its standard error  6 runs; %s; one "
+            "4 critical sin(phi)  5 its standard error  6 runs  7 of "
+            "them with a peak  8 with a critical state; %s; one "
             "block per group of the other parameters; ? = none\n",
             ens ? "means over the seeds" : "one run per line (errors 0)");
-    fprintf(gp, "set xrange [0:*]\nset yrange [0:*]\nplot \\\n");
+    /* (a margin right and above: the largest mu's points sat on the
+     * frame) */
+    fprintf(gp, "set xrange [0:*]\nset yrange [0:*]\n"
+                "set offsets 0, graph 0.05, graph 0.08, 0\nplot \\\n");
     for (int g = 0; g < G->n; g++) {
         char lab[512], par[520];
         label(s, G->rep[g], role, lab, sizeof lab);
@@ -268,17 +272,38 @@ static int w_friction(const struct dem__sweep *s, FILE *dat, FILE *gp)
             for (int c = 0; c < 4; c++)
                 isfinite(v[c]) ? fprintf(dat, " %.9g", v[c])
                                : fprintf(dat, " ?");
-            fprintf(dat, " %d\n", e ? e->runs : 1);
+            fprintf(dat, " %d %d %d\n", e ? e->runs : 1,
+                    e ? e->peak_sin.n : isfinite(v[0]),
+                    e ? e->crit_sin.n : isfinite(v[2]));
         }
         fprintf(dat, "\n\n");
-        fprintf(gp,
-                "  \"friction_vs_mu.dat\" index %d using 1:2:3 with "
-                "yerrorlines pointtype 6 pointsize 1.5 linecolor %d "
-                "title \"peak%s%s\" noenhanced, \\\n"
-                "  \"\" index %d using 1:4:5 with yerrorlines pointtype 7 "
-                "pointsize 1.5 linecolor %d title \"critical state%s%s\" "
-                "noenhanced, \\\n",
-                g, g + 1, stat, par, g, g + 1, stat, par);
+        if (ens)
+            /* a mean of fewer seeds than the ensemble's says of how many
+             * (one of three looked as exact as three of three) */
+            fprintf(gp,
+                    "  \"friction_vs_mu.dat\" index %d using 1:2:3 with "
+                    "yerrorlines pointtype 6 pointsize 1.5 linecolor %d "
+                    "title \"peak%s%s\" noenhanced, \\\n"
+                    "  \"\" index %d using 1:4:5 with yerrorlines pointtype 7 "
+                    "pointsize 1.5 linecolor %d title \"critical state%s%s\" "
+                    "noenhanced, \\\n"
+                    "  \"\" index %d using 1:2:($7 < $6 ? sprintf(\"%%d of "
+                    "%%d\", $7, $6) : \"\") with labels offset 0,1.2 "
+                    "textcolor lt %d notitle, \\\n"
+                    "  \"\" index %d using 1:4:($8 < $6 ? sprintf(\"%%d of "
+                    "%%d\", $8, $6) : \"\") with labels offset 0,-1.2 "
+                    "textcolor lt %d notitle, \\\n",
+                    g, g + 1, stat, par, g, g + 1, stat, par, g, g + 1, g,
+                    g + 1);
+        else
+            fprintf(gp,
+                    "  \"friction_vs_mu.dat\" index %d using 1:2 with "
+                    "linespoints pointtype 6 pointsize 1.5 linecolor %d "
+                    "title \"peak%s\" noenhanced, \\\n"
+                    "  \"\" index %d using 1:4 with linespoints pointtype 7 "
+                    "pointsize 1.5 linecolor %d title \"critical state%s\" "
+                    "noenhanced, \\\n",
+                    g, g + 1, par, g, g + 1, par);
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
     free(idx);
@@ -377,7 +402,11 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
                  "void ratio e");
     fprintf(dat, "# columns 1 p  2 e; per group: block initial points, "
                  "block critical points, block initial fit, block critical "
-                 "fit (empty when not fitted)\n");
+                 "fit, each over its points' pressures (NaN when none or "
+                 "not fitted)\n");
+    /* four entries a group: more than two groups' beside the axes */
+    if (s->ffg.n > 2)
+        fprintf(gp, "set key outside right top font \",9\"\n");
     fprintf(gp, "plot \\\n");
     int block = 0;
     for (int q = 0; q < s->ffg.n; q++) {
@@ -385,14 +414,15 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
         char lab[512], par[520];
         label(s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE, lab, sizeof lab);
         paren(lab, par, sizeof par);
-        double pmax = 0.0;
+        double pmin[2] = {INFINITY, INFINITY}, pmax[2] = {0.0, 0.0};
         for (int k = 0; k < 2; k++) {
             fprintf(dat, "# %s state%s\n", state[k], par);
             for (long m = 0; m < v->m[k]; m++) {
                 fprintf(dat, "%.9g %.9g\n", v->p[k][m], v->e[k][m]);
-                pmax = fmax(pmax, v->p[k][m]);
+                pmin[k] = fmin(pmin[k], v->p[k][m]);
+                pmax[k] = fmax(pmax[k], v->p[k][m]);
             }
-            fprintf(dat, "\n\n");
+            dem__gp_block_end(dat, v->m[k]);
             fprintf(gp,
                     "  \"void_ratio_vs_pressure.dat\" index %d with "
                     "points pointtype %d pointsize 1.5 linecolor %d "
@@ -402,19 +432,22 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
         for (int k = 0; k < 2; k++) {
             const struct dem_voidfit *f = &v->fit[k];
             fprintf(dat, "# fit %s%s\n", state[k], par);
+            /* over the pressures fitted, not from 0: e0 (at p = 0) lay
+             * far above the points and pressed them to the bottom */
+            const double lo = 0.9 * pmin[k], hi = 1.1 * pmax[k];
             for (int i = 0; f->ok && i <= 100; i++) {
-                const double p = 1.1 * pmax * i / 100.0;
+                const double p = lo + (hi - lo) * i / 100.0;
                 fprintf(dat, "%.9g %.9g\n", p, f->e0 - pow(p / v->hs, f->n));
             }
-            fprintf(dat, "\n\n");
+            dem__gp_block_end(dat, f->ok);
             if (f->ok)
                 fprintf(gp,
                         "  \"void_ratio_vs_pressure.dat\" index %d with "
                         "lines linewidth 2 linecolor %d title \"fit %s: "
-                        "e0 = %.4f, n = %.3f, h_s = %.4g, R² = %.3f%s\" "
-                        "noenhanced, \\\n",
-                        block, 2 * q + k + 1, state[k], f->e0, f->n, v->hs,
-                        f->r2, par);
+                        "e0 = %.4f ± %.2g, n = %.3f ± %.2g, h_s = %.4g, "
+                        "R² = %.3f%s\" noenhanced, \\\n",
+                        block, 2 * q + k + 1, state[k], f->e0, f->se_e0, f->n,
+                        f->se_n, v->hs, f->r2, par);
             block++;
         }
     }
@@ -480,7 +513,7 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
         struct dem__csv_table t;
         const long rows = read_loading(s, r, want, 5, &t, dat);
         if (rows < 0) {
-            fprintf(dat, "\n\n");
+            dem__gp_block_end(dat, 0);
             fprintf(gp,
                     "  \"stress_ratio_vs_void_ratio.dat\" index %d with "
                     "lines notitle, \\\n",
@@ -489,7 +522,7 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
         }
         const long every = rows > 400 ? (rows + 399) / 400 : 1;
         fprintf(dat, "# %s: confining pressure %.6g\n", r->name, r->pressure);
-        long seen = 0;
+        long seen = 0, written = 0;
         for (size_t k = 0; k < t.nrow; k++) {
             if ((int)t.col[0][k] != r->stage || seen++ % every)
                 continue;
@@ -502,9 +535,10 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 s3 = fmin(s3, t.col[2 + a][k]);
             }
             if (s1 + s3 > 0.0)
-                fprintf(dat, "%.9g %.9g\n", t.col[1][k], (s1 - s3) / (s1 + s3));
+                written += fprintf(dat, "%.9g %.9g\n", t.col[1][k],
+                                   (s1 - s3) / (s1 + s3)) > 0;
         }
-        fprintf(dat, "\n\n");
+        dem__gp_block_end(dat, written);
         dem__csv_table_free(&t);
         char lab[512], par[520];
         label(s, i, DEM_SWEEP_ROLE_PRESSURE, lab, sizeof lab);
