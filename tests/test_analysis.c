@@ -1303,6 +1303,16 @@ static void the_summary_line_gives_what_was_found(void **state)
                         "flow function at peak φ = 27.6° ± 0.3°, c = "
                         "12.5 ± 1.2 (3 circles); no flow function in critical "
                         "state: no critical circles");
+    /* a first group without one: the next group's (the line said "no
+     * flow function" of a sweep whose other groups had one) */
+    write_text(dir, "sweep.json",
+               "{\"flow_function\": [{\"phi_deg\": null, \"circles\": 0, "
+               "\"reason\": \"no peak\"}, {\"phi_deg\": 25.9, \"circles\": "
+               "3}], \"flow_function_critical\": null}");
+    assert_int_equal(dem_sweep_summary_line(dir, line, sizeof line), 1);
+    assert_string_equal(line, "flow function at peak φ = 25.9° (3 circles; "
+                              "group 2 of 2); no flow function in critical "
+                              "state");
     /* over seeds: the ensemble's mean, not its first seed's fit (a
      * visual review of sweeps, session 114: "28.1 ± 2.0" of seed 1 for
      * the seeds' 28.40 ± 0.26) */

@@ -524,6 +524,28 @@ static void a_preparation_pressure_is_no_confinement(void **state)
     }
     dem__jread_free(&js);
     dem_sweep_grid_free(&g);
+    /* two groups' circles: each group in its colour, its envelope too
+     * (coloured by pressure, no circle could be told to its group) */
+    char path[1024];
+    snprintf(path, sizeof path, "%s/prep-and-load/plots/mohr_circles.gp",
+             tmpdir);
+    char *gp = dem_read_text(path, NULL);
+    assert_non_null(gp);
+    for (int q = 0; q < 2; q++) {
+        char want[160];
+        snprintf(want, sizeof want,
+                 "linecolor %d title \"3 circles (stages.0.pressure=%s)\"",
+                 q + 1, q ? "1000" : "250");
+        if (!strstr(gp, want))
+            fail_msg("no '%s' in %s", want, gp);
+        snprintf(want, sizeof want,
+                 "dashtype 2 linewidth 2 linecolor %d title \"flow function "
+                 "φ = %.1f°",
+                 q + 1, asin(q ? 0.6 : 0.4) * DEG);
+        if (!strstr(gp, want))
+            fail_msg("no '%s' in %s", want, gp);
+    }
+    free(gp);
 }
 
 /* Circles touching tau = c + sigma tan(phi) at confining pressures p:

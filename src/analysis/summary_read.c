@@ -218,7 +218,8 @@ int dem_summary_line(const char *outdir, char *buf, size_t n)
 
 /* One flow function of sweep.json (key: flow_function or
  * flow_function_critical) into buf, as "LABEL φ = …° ± …°, c = … (n
- * circles)" for its first group, or "no LABEL: reason". A sweep over
+ * circles)" for its first group that has one, or "no LABEL: reason"
+ * (the first group's). A sweep over
  * seeds gives its first ensemble's mean over the seeds (KEY_ensemble):
  * the first group there is one seed's. */
 static void flow_function_part(const struct dem__jval *js, const char *key,
@@ -249,12 +250,22 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
             snprintf(cs, sizeof cs, ", c = %.3g", c);
         snprintf(at, room, "%s%s φ = %s%s (mean over %.0f seeds%s)", sep, label,
                  ps, cs, dem__jread_number(ge, "fits"),
-                 fe->n > 1 ? "; first group" : "");
+                 fe->n > 1 ? "; the first ensemble" : "");
         return;
     }
     const struct dem__jval *ff = dem__jread_get(js, key);
-    const struct dem__jval *g =
-        ff && ff->type == DEM__JSON_ARRAY && ff->n > 0 ? &ff->items[0] : NULL;
+    /* the first group with a flow function (a first group without one
+     * said there was none, of a sweep whose other groups had one) */
+    const struct dem__jval *g = NULL;
+    int gk = 0;
+    for (int k = 0; ff && ff->type == DEM__JSON_ARRAY && k < ff->n; k++)
+        if (isfinite(dem__jread_number(&ff->items[k], "phi_deg"))) {
+            g = &ff->items[k];
+            gk = k;
+            break;
+        }
+    if (!g && ff && ff->type == DEM__JSON_ARRAY && ff->n > 0)
+        g = &ff->items[0];
     const double phi = g ? dem__jread_number(g, "phi_deg") : NAN;
     if (isfinite(phi)) {
         const double se = dem__jread_number(g, "phi_deg_se"),
@@ -269,9 +280,11 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
             snprintf(cs, sizeof cs, ", c = %.3g ± %.2g", c, cse);
         else if (isfinite(c))
             snprintf(cs, sizeof cs, ", c = %.3g", c);
+        char grp[48] = "";
+        if (ff->n > 1)
+            snprintf(grp, sizeof grp, "; group %d of %d", gk + 1, ff->n);
         snprintf(at, room, "%s%s φ = %s%s (%.0f circles%s)", sep, label, ps, cs,
-                 dem__jread_number(g, "circles"),
-                 ff->n > 1 ? "; first group" : "");
+                 dem__jread_number(g, "circles"), grp);
         return;
     }
     char rk[96];

@@ -120,9 +120,13 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 notitle\n");
         return DEM_OK;
     }
-    /* one colour and one key entry per side pressure, whichever group
-     * its circle belongs to (a group that lacks a pressure must not
-     * shift the colours of the others) */
+    /* one group: one colour and one key entry per side pressure (a
+     * group that lacks a pressure must not shift the colours of the
+     * others); several: one colour per group, its circles and its
+     * envelope alike, which circles a line is the envelope of being what
+     * the picture is read for (coloured by pressure, no circle could be
+     * told to a group: a visual review, session 114) */
+    const int by_group = s->ffg.n > 1;
     double pres[DEM_SWEEP_MAX_POINTS];
     int npres = 0;
     for (int q = 0; q < s->ffg.n; q++)
@@ -146,6 +150,21 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
         char lab[512], par[520];
         label(s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE, lab, sizeof lab);
         paren(lab, par, sizeof par);
+        if (by_group && !f->fit.ok) {
+            char *why = malloc(strlen(f->fit.reason) + 1);
+            if (!why)
+                return DEM_ENOMEM;
+            strcpy(why, f->fit.reason);
+            dem__gp_text(why);
+            fprintf(dat, "# no flow function%s: %s\n", par, why);
+            free(why);
+            /* a group without circles says so, in its colour */
+            if (f->circles == 0)
+                fprintf(gp,
+                        "  1/0 with lines linewidth 2 linecolor %d title "
+                        "\"no peak circle%s\" noenhanced, \\\n",
+                        q + 1, par);
+        }
         for (long c = 0; c < f->circles; c++) {
             const struct dem__sweep_run *r = &s->runs[f->members[c]];
             const double m = 0.5 * (r->peak_s1 + r->peak_s3);
@@ -156,6 +175,22 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 fprintf(dat, "%.9g %.9g\n", m + rad * cos(M_PI * k / 180.0),
                         rad * sin(M_PI * k / 180.0));
             fprintf(dat, "\n\n");
+            if (by_group) {
+                if (c == 0)
+                    fprintf(gp,
+                            "  \"mohr_circles.dat\" index %d with lines "
+                            "linewidth 2 linecolor %d title \"%ld circle%s%s%s"
+                            "\" noenhanced, \\\n",
+                            block++, q + 1, f->circles,
+                            f->circles == 1 ? "" : "s", par,
+                            f->fit.ok ? "" : ", no flow function");
+                else
+                    fprintf(gp,
+                            "  \"mohr_circles.dat\" index %d with lines "
+                            "linewidth 2 linecolor %d notitle, \\\n",
+                            block++, q + 1);
+                continue;
+            }
             int k = 0;
             while (k < npres - 1 && pres[k] != r->pressure)
                 k++;
@@ -167,9 +202,9 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             else
                 fprintf(gp,
                         "  \"mohr_circles.dat\" index %d with lines "
-                        "linewidth 2 linecolor %d title \"p = %.4g\" "
+                        "linewidth 2 linecolor %d title \"p = %.4g %s\" "
                         "noenhanced, \\\n",
-                        block++, k + 1, r->pressure);
+                        block++, k + 1, r->pressure, stress_unit(s));
             shown[k] = 1;
         }
         if (f->fit.ok) {
@@ -179,15 +214,31 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                     "%.9g %.9g\n\n\n",
                     par, f->fit.phi_deg, f->fit.c, f->fit.c, xmax,
                     f->fit.c + xmax * t);
+            /* with their errors, where the circles give them (none for
+             * two circles; c none where bounded to 0), and c's unit */
             char gof[48] = ", 2 circles"; /* (no goodness of fit) */
             if (f->fit.n != 2)
                 snprintf(gof, sizeof gof, ", R² = %.3f", f->fit.r2);
+            char ps[48], cs[64];
+            if (isfinite(f->fit.phi_deg_se))
+                snprintf(ps, sizeof ps, "%.1f° ± %.1f°", f->fit.phi_deg,
+                         f->fit.phi_deg_se);
+            else
+                snprintf(ps, sizeof ps, "%.1f°", f->fit.phi_deg);
+            if (isfinite(f->fit.c_se))
+                snprintf(cs, sizeof cs, "%.3g ± %.2g %s", f->fit.c, f->fit.c_se,
+                         stress_unit(s));
+            else
+                snprintf(cs, sizeof cs, "%.3g %s", f->fit.c, stress_unit(s));
+            char colour[32] = "\"black\"";
+            if (by_group)
+                snprintf(colour, sizeof colour, "%d", q + 1);
             fprintf(gp,
                     "  \"mohr_circles.dat\" index %d with lines "
-                    "dashtype %d linewidth 2 linecolor \"black\" title "
-                    "\"flow function φ = %.1f°, c = %.3g%s%s\" "
+                    "dashtype %d linewidth 2 linecolor %s title "
+                    "\"flow function φ = %s, c = %s%s%s\" "
                     "noenhanced, \\\n",
-                    block++, q + 2, f->fit.phi_deg, f->fit.c, gof, par);
+                    block++, by_group ? 2 : q + 2, colour, ps, cs, gof, par);
         }
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
@@ -440,7 +491,15 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 fprintf(dat, "%.9g %.9g\n", p, f->e0 - pow(p / v->hs, f->n));
             }
             dem__gp_block_end(dat, f->ok);
-            if (f->ok)
+            /* (more than three groups: the fits' numbers are
+             * sweep.json's, or the key would crowd the axes out) */
+            if (f->ok && s->ffg.n > 3)
+                fprintf(gp,
+                        "  \"void_ratio_vs_pressure.dat\" index %d with "
+                        "lines linewidth 2 linecolor %d title \"fit %s%s\" "
+                        "noenhanced, \\\n",
+                        block, 2 * q + k + 1, state[k], par);
+            else if (f->ok)
                 fprintf(gp,
                         "  \"void_ratio_vs_pressure.dat\" index %d with "
                         "lines linewidth 2 linecolor %d title \"fit %s: "
