@@ -18,8 +18,21 @@
 
 #define DEG (180.0 / M_PI)
 
+/* The unit of a stress in the sweep's runs: Pa in 3D, N/m in 2D, both
+ * where the dimension was swept. */
+static const char *stress_unit(const struct dem__sweep *s)
+{
+    int dims = 0;
+    for (long k = 0; k < s->n; k++)
+        if (s->runs[k].dim == 2 || s->runs[k].dim == 3)
+            dims |= 1 << s->runs[k].dim;
+    return dims == 1 << 2 ? "N/m" : dims == 1 << 3 ? "Pa" : "Pa; 2D: N/m";
+}
+
 /* "key=value, ..." of the parameters of run i without the role bits,
- * first key of each parameter only, quotes dropped. */
+ * first key of each parameter only, quotes dropped; the confining
+ * pressure as "p = value unit" (its first key was the preparation's,
+ * stages.0.pressure=250, where the other pictures said p = 250). */
 static void label(const struct dem__sweep *s, long i, int role, char *out,
                   size_t n)
 {
@@ -29,8 +42,12 @@ static void label(const struct dem__sweep *s, long i, int role, char *out,
         if (p->roles & role)
             continue;
         size_t len = strlen(out);
-        snprintf(out + len, n - len, "%s%s=%s", len ? ", " : "", p->keys[0],
-                 p->values[s->runs[i].idx[k]]);
+        if (p->roles & DEM_SWEEP_ROLE_PRESSURE)
+            snprintf(out + len, n - len, "%sp = %s %s", len ? ", " : "",
+                     p->values[s->runs[i].idx[k]], stress_unit(s));
+        else
+            snprintf(out + len, n - len, "%s%s=%s", len ? ", " : "", p->keys[0],
+                     p->values[s->runs[i].idx[k]]);
     }
     dem__gp_text(out);
 }
@@ -82,17 +99,6 @@ static int cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
-}
-
-/* The unit of a stress in the sweep's runs: Pa in 3D, N/m in 2D, both
- * where the dimension was swept. */
-static const char *stress_unit(const struct dem__sweep *s)
-{
-    int dims = 0;
-    for (long k = 0; k < s->n; k++)
-        if (s->runs[k].dim == 2 || s->runs[k].dim == 3)
-            dims |= 1 << s->runs[k].dim;
-    return dims == 1 << 2 ? "N/m" : dims == 1 << 3 ? "Pa" : "Pa; 2D: N/m";
 }
 
 static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
