@@ -50,7 +50,19 @@ void dem__gp_head(FILE *f, const char *name, const char *title,
             "set key below nobox width 1.5 spacing 1.3 title \" \"\n"
             /* draw a segment whose both ends lie outside the ranges (a
              * flow function from a negative c to the edge) */
-            "set clip two\n",
+            "set clip two\n"
+            /* 16 colours before they repeat, not gnuplot's 8: a sweep's
+             * ninth run was drawn in its first run's colour (a visual
+             * review, session 114) */
+            "set linetype 9 linecolor rgb \"#8c564b\"\n"
+            "set linetype 10 linecolor rgb \"#e377c2\"\n"
+            "set linetype 11 linecolor rgb \"#7f7f7f\"\n"
+            "set linetype 12 linecolor rgb \"#bcbd22\"\n"
+            "set linetype 13 linecolor rgb \"#17becf\"\n"
+            "set linetype 14 linecolor rgb \"#ff7f0e\"\n"
+            "set linetype 15 linecolor rgb \"#1f3a93\"\n"
+            "set linetype 16 linecolor rgb \"#d62728\"\n"
+            "set linetype cycle 16\n",
             name, name, name, name, title, xlabel, ylabel);
 }
 

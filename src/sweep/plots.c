@@ -610,8 +610,8 @@ static int w_psi_e(const struct dem__sweep *s, FILE *dat, FILE *gp)
         paren(lab, par, sizeof par);
         fprintf(gp,
                 "  \"stress_ratio_vs_void_ratio.dat\" index %d with lines "
-                "title \"p = %.4g%s\" noenhanced, \\\n",
-                block++, r->pressure, par);
+                "title \"p = %.4g %s%s\" noenhanced, \\\n",
+                block++, r->pressure, stress_unit(s), par);
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
     return DEM_OK;
