@@ -826,6 +826,54 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* A cohesion curve needs flow functions at two kc or more: with the
+ * peaks of kc = 4e4 missing, the one of kc = 1e4 was drawn as a lone
+ * point (a visual review, session 114). Now null, saying why. */
+static void one_kc_with_a_flow_function_draws_no_curve(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/kc-one-fit", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.kc=1e4,4e4");
+    add(&g, "stages.1.pressure=100,400");
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(4 * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    for (long i = 0; i < 4; i++) {
+        int idx[DEM_SWEEP_MAX_PARAMS];
+        dem_sweep_grid_point(&g, i, idx);
+        const double pr = idx[1] ? 400.0 : 100.0;
+        char summary[1024];
+        snprintf(summary, sizeof summary,
+                 "{\"dimension\": 2, \"loading_stage\": 1, "
+                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": %s,"
+                 " \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
+                 "\"critical\": {\"sin_phi\": null}}\n",
+                 pr, idx[0] ? "null" : "0.5", idx[0] ? NAN : 3.0 * pr + 20.0,
+                 idx[0] ? NAN : pr);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
+        fake_run(dir, cfg, &g, i, summary);
+    }
+    free(names);
+    collect_runs(&g, cfg, out);
+    dem_sweep_grid_free(&g);
+    struct dem_error err = {0};
+    struct dem__jval js;
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(&js, dir, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(dem__jread_get(&js, "cohesion_vs_kc")->type,
+                     DEM__JSON_NULL);
+    const char *why = dem__jread_string(&js, "cohesion_vs_kc_reason");
+    assert_non_null(why);
+    if (!strstr(why, "needs flow functions at 2 or more values of "
+                     "contact.kc: only kc = 10000 has one"))
+        fail_msg("%s", why);
+    dem__jread_free(&js);
+}
+
 /* With seeds, the f_min curve of cohesion_vs_kc is scaled to the
  * cohesions its picture draws, the free fits' (finding 182): 2 kc x 3
  * seeds x 2 pressures of synthetic circles, phi 30 degrees, c = 5 + 20
@@ -1646,6 +1694,7 @@ int main(void)
         cmocka_unit_test(one_seed_cyclic_sweep_draws_its_cycles),
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
         cmocka_unit_test(a_parameter_of_one_value_has_no_role),
+        cmocka_unit_test(one_kc_with_a_flow_function_draws_no_curve),
         cmocka_unit_test(
             jobs_left_to_the_library_take_the_cores_and_the_memory),
         cmocka_unit_test(jobs_given_that_the_memory_cannot_hold_are_warned),

@@ -303,6 +303,29 @@ static void cohesion_check(struct dem__sweep *s)
                  "pressures");
         return;
     }
+    /* a curve of cohesion against kc needs two kc with a flow function
+     * (one drew a lone point, a cohesion bounded to 0 at that: a visual
+     * review, session 114) */
+    double kcs[2];
+    int nkc = 0;
+    for (int q = 0; q < s->ffg.n && nkc < 2; q++) {
+        const double kc = s->runs[s->ffg.rep[q]].kc;
+        if (s->ff[0][q].fit.ok && (nkc == 0 || kc != kcs[0]))
+            kcs[nkc++] = kc;
+    }
+    if (nkc == 0) {
+        snprintf(s->kc_reason, sizeof s->kc_reason,
+                 "the cohesion curve needs flow functions at 2 or more "
+                 "values of contact.kc: none has one");
+        return;
+    }
+    if (nkc == 1) {
+        snprintf(s->kc_reason, sizeof s->kc_reason,
+                 "the cohesion curve needs flow functions at 2 or more "
+                 "values of contact.kc: only kc = %g has one",
+                 kcs[0]);
+        return;
+    }
     /* the f_min curve scaled to the cohesions by least squares through
      * the origin: c = A |f_min|/(k2 delta_max); the cohesions those the
      * picture draws: with seeds the ensembles' means of fit_cohesion,
