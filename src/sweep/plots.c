@@ -101,29 +101,47 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
+/* The circle of run r at its peak (state 0) or in its critical state (1):
+ * its two stresses, major or minor in either order. */
+static void circle_of(const struct dem__sweep_run *r, int state, double *a,
+                      double *b)
 {
+    *a = state ? r->crit_s1 : r->peak_s1;
+    *b = state ? r->crit_s3 : r->peak_s3;
+}
+
+/* The Mohr circles of every run at its peak (state 0) or in its critical
+ * state (1), and each group's flow function of that state. */
+static int mohr(const struct dem__sweep *s, FILE *dat, FILE *gp, int state)
+{
+    const char *name = state ? "mohr_circles_critical" : "mohr_circles";
+    const char *at = state ? "in critical state" : "at peak";
+    char title[96];
+    snprintf(title, sizeof title,
+             "Mohr circles %s and the flow function τ = c + σ tan φ", at);
     char xl[64], yl[64];
     snprintf(xl, sizeof xl, "normal stress σ (%s)", stress_unit(s));
     snprintf(yl, sizeof yl, "shear stress τ (%s)", stress_unit(s));
-    dem__gp_head(gp, "mohr_circles",
-                 "Mohr circles at peak and the flow function "
-                 "τ = c + σ tan φ",
-                 xl, yl);
-    fprintf(dat, "# Mohr circles at peak of the runs of the sweep, then per "
-                 "group the fitted flow function\n# tau = c + sigma tan(phi)."
-                 " columns: 1 sigma  2 tau; one block per curve\n");
+    dem__gp_head(gp, name, title, xl, yl);
+    fprintf(dat,
+            "# Mohr circles %s of the runs of the sweep, then per group the "
+            "fitted flow function\n# tau = c + sigma tan(phi). columns: 1 "
+            "sigma  2 tau; one block per curve\n",
+            at);
     double xmax = 0.0;
     for (int q = 0; q < s->ffg.n; q++)
-        for (long c = 0; c < s->ff[0][q].circles; c++)
-            xmax = fmax(xmax, fmax(s->runs[s->ff[0][q].members[c]].peak_s1,
-                                   s->runs[s->ff[0][q].members[c]].peak_s3));
+        for (long c = 0; c < s->ff[state][q].circles; c++) {
+            double a, b;
+            circle_of(&s->runs[s->ff[state][q].members[c]], state, &a, &b);
+            xmax = fmax(xmax, fmax(a, b));
+        }
     xmax *= 1.1;
     if (!(xmax > 0.0)) {
-        fprintf(
-            gp,
-            "set label \"no run has a peak\" at graph 0.5, 0.5 center\n"
-            "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 notitle\n");
+        fprintf(gp,
+                "set label \"no run has a %s\" at graph 0.5, 0.5 center\n"
+                "set xrange [0:1]\nset yrange [0:1]\nplot 0 linetype -3 "
+                "notitle\n",
+                state ? "critical state" : "peak");
         return DEM_OK;
     }
     /* one group: one colour and one key entry per side pressure (a
@@ -136,8 +154,8 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
     double pres[DEM_SWEEP_MAX_POINTS];
     int npres = 0;
     for (int q = 0; q < s->ffg.n; q++)
-        for (long c = 0; c < s->ff[0][q].circles; c++) {
-            const double pc = s->runs[s->ff[0][q].members[c]].pressure;
+        for (long c = 0; c < s->ff[state][q].circles; c++) {
+            const double pc = s->runs[s->ff[state][q].members[c]].pressure;
             int k = 0;
             while (k < npres && pres[k] != pc)
                 k++;
@@ -152,7 +170,7 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             "plot \\\n",
             xmax, 0.6 * xmax);
     for (int q = 0; q < s->ffg.n; q++) {
-        const struct dem__sweep_ff *f = &s->ff[0][q];
+        const struct dem__sweep_ff *f = &s->ff[state][q];
         char lab[512], par[520];
         label(s, s->ffg.rep[q], DEM_SWEEP_ROLE_PRESSURE, lab, sizeof lab);
         paren(lab, par, sizeof par);
@@ -168,15 +186,16 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             if (f->circles == 0)
                 fprintf(gp,
                         "  1/0 with lines linewidth 2 linecolor %d title "
-                        "\"no peak circle%s\" noenhanced, \\\n",
-                        q + 1, par);
+                        "\"no circle %s%s\" noenhanced, \\\n",
+                        q + 1, at, par);
         }
         for (long c = 0; c < f->circles; c++) {
             const struct dem__sweep_run *r = &s->runs[f->members[c]];
-            const double m = 0.5 * (r->peak_s1 + r->peak_s3);
-            const double rad = 0.5 * fabs(r->peak_s1 - r->peak_s3);
+            double a, b;
+            circle_of(r, state, &a, &b);
+            const double m = 0.5 * (a + b), rad = 0.5 * fabs(a - b);
             fprintf(dat, "# %s: sigma_1 = %.9g, sigma_3 = %.9g\n", r->name,
-                    fmax(r->peak_s1, r->peak_s3), fmin(r->peak_s1, r->peak_s3));
+                    fmax(a, b), fmin(a, b));
             for (int k = 0; k <= 180; k++)
                 fprintf(dat, "%.9g %.9g\n", m + rad * cos(M_PI * k / 180.0),
                         rad * sin(M_PI * k / 180.0));
@@ -184,17 +203,17 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             if (by_group) {
                 if (c == 0)
                     fprintf(gp,
-                            "  \"mohr_circles.dat\" index %d with lines "
+                            "  \"%s.dat\" index %d with lines "
                             "linewidth 2 linecolor %d title \"%ld circle%s%s%s"
                             "\" noenhanced, \\\n",
-                            block++, q + 1, f->circles,
+                            name, block++, q + 1, f->circles,
                             f->circles == 1 ? "" : "s", par,
                             f->fit.ok ? "" : ", no flow function");
                 else
                     fprintf(gp,
-                            "  \"mohr_circles.dat\" index %d with lines "
+                            "  \"%s.dat\" index %d with lines "
                             "linewidth 2 linecolor %d notitle, \\\n",
-                            block++, q + 1);
+                            name, block++, q + 1);
                 continue;
             }
             int k = 0;
@@ -202,15 +221,15 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 k++;
             if (shown[k])
                 fprintf(gp,
-                        "  \"mohr_circles.dat\" index %d with lines "
+                        "  \"%s.dat\" index %d with lines "
                         "linewidth 2 linecolor %d notitle, \\\n",
-                        block++, k + 1);
+                        name, block++, k + 1);
             else
                 fprintf(gp,
-                        "  \"mohr_circles.dat\" index %d with lines "
+                        "  \"%s.dat\" index %d with lines "
                         "linewidth 2 linecolor %d title \"p = %.4g %s\" "
                         "noenhanced, \\\n",
-                        block++, k + 1, r->pressure, stress_unit(s));
+                        name, block++, k + 1, r->pressure, stress_unit(s));
             shown[k] = 1;
         }
         if (f->fit.ok) {
@@ -240,15 +259,26 @@ static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
             if (by_group)
                 snprintf(colour, sizeof colour, "%d", q + 1);
             fprintf(gp,
-                    "  \"mohr_circles.dat\" index %d with lines "
+                    "  \"%s.dat\" index %d with lines "
                     "dashtype %d linewidth 2 linecolor %s title "
                     "\"flow function φ = %s, c = %s%s%s\" "
                     "noenhanced, \\\n",
-                    block++, by_group ? 2 : q + 2, colour, ps, cs, gof, par);
+                    name, block++, by_group ? 2 : q + 2, colour, ps, cs, gof,
+                    par);
         }
     }
     fprintf(gp, "  0 linetype -3 notitle\n");
     return DEM_OK;
+}
+
+static int w_mohr(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    return mohr(s, dat, gp, 0);
+}
+
+static int w_mohr_critical(const struct dem__sweep *s, FILE *dat, FILE *gp)
+{
+    return mohr(s, dat, gp, 1);
 }
 
 /* ---------------------------------------------------- friction vs mu */
@@ -807,6 +837,14 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
                      struct dem_error *err)
 {
     const char *curves_reason = "no run was loaded by a compress stage";
+    /* the critical-state envelope, where some run has a critical circle
+     * (it was in sweep.json and in the closing line, never drawn: a
+     * visual review, session 114) */
+    const char *crit_reason =
+        s->ff_reason[0] ? s->ff_reason : "no run has a critical state";
+    for (int q = 0; !s->ff_reason[0] && q < s->ffg.n; q++)
+        if (s->ff[1][q].circles > 0)
+            crit_reason = "";
     for (long i = 0; i < s->n; i++)
         if (compressed(&s->runs[i]))
             curves_reason = "";
@@ -816,6 +854,7 @@ int dem__sweep_plots(const struct dem__sweep *s, const char *outdir,
         writer w;
     } plots[] = {
         {"mohr_circles", s->ff_reason, w_mohr},
+        {"mohr_circles_critical", crit_reason, w_mohr_critical},
         {"friction_vs_mu", s->mu_reason, w_friction},
         {"cohesion_vs_kc", s->kc_reason, w_cohesion},
         {"void_ratio_vs_pressure", s->void_reason, w_voids},
