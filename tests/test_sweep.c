@@ -874,6 +874,56 @@ static void one_kc_with_a_flow_function_draws_no_curve(void **state)
     dem__jread_free(&js);
 }
 
+/* The critical-state envelope is drawn (it was in sweep.json only):
+ * circles at 20 degrees in critical state, 30 at peak, at two
+ * pressures; a sweep without critical circles draws none. */
+static void the_critical_envelope_is_drawn(void **state)
+{
+    (void)state;
+    char cfg[512], out[512], dir[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, sizeof out, "%s/critical-envelope", tmpdir);
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "stages.1.pressure=100,400");
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(2 * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    const double sp = sin(30.0 / DEG), sc = sin(20.0 / DEG);
+    for (long i = 0; i < 2; i++) {
+        const double p = i ? 400.0 : 100.0;
+        char summary[1024];
+        snprintf(summary, sizeof summary,
+                 "{\"dimension\": 2, \"loading_stage\": 1, "
+                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
+                 "%.17g, \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
+                 "\"critical\": {\"sin_phi\": %.17g, \"sigma_axial\": %.17g, "
+                 "\"sigma_lateral\": %.17g}}\n",
+                 p, sp, p * (1 + sp) / (1 - sp), p, sc, p * (1 + sc) / (1 - sc),
+                 p);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
+        fake_run(dir, cfg, &g, i, summary);
+    }
+    free(names);
+    collect_runs(&g, cfg, out);
+    dem_sweep_grid_free(&g);
+    snprintf(dir, sizeof dir, "%s/plots/mohr_circles_critical.gp", out);
+    char *gp = dem_read_text(dir, NULL);
+    assert_non_null(gp);
+    if (!strstr(gp, "Mohr circles in critical state") ||
+        !strstr(gp, "flow function φ = 20.0°"))
+        fail_msg("%s", gp);
+    free(gp);
+    snprintf(dir, sizeof dir, "%s/plots/mohr_circles.gp", out);
+    gp = dem_read_text(dir, NULL);
+    assert_non_null(gp);
+    assert_non_null(strstr(gp, "flow function φ = 30.0°"));
+    free(gp);
+    /* without critical circles (the kc sweep above): none */
+    snprintf(dir, sizeof dir, "%s/kc-one-fit/plots/mohr_circles_critical.gp",
+             tmpdir);
+    assert_int_equal(access(dir, F_OK), -1);
+}
+
 /* With seeds, the f_min curve of cohesion_vs_kc is scaled to the
  * cohesions its picture draws, the free fits' (finding 182): 2 kc x 3
  * seeds x 2 pressures of synthetic circles, phi 30 degrees, c = 5 + 20
@@ -1695,6 +1745,7 @@ int main(void)
         cmocka_unit_test(relaxing_cycle_is_drawn_as_an_open_circle),
         cmocka_unit_test(a_parameter_of_one_value_has_no_role),
         cmocka_unit_test(one_kc_with_a_flow_function_draws_no_curve),
+        cmocka_unit_test(the_critical_envelope_is_drawn),
         cmocka_unit_test(
             jobs_left_to_the_library_take_the_cores_and_the_memory),
         cmocka_unit_test(jobs_given_that_the_memory_cannot_hold_are_warned),
