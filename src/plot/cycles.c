@@ -41,21 +41,26 @@ int dem__plot_cycles_block(FILE *dat, const struct dem__plot_cycles *c)
 void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
                              int negative, int errors, const char *what)
 {
-    /* the key sits in the left panel: longer titles (a parameter besides
-     * mu) take a smaller font, and a key narrower than gnuplot's estimate
-     * (made at the terminal's 12 points, a third too wide at 8), so that
-     * it does not reach into the right panel */
+    /* the key below both panels, the panels' foot raised to make room
+     * for its rows: inside the left panel its opaque box hid the curves
+     * under it (a sweep's lowest series: a visual review, session 114);
+     * longer titles (a parameter besides mu) one to a row */
     size_t widest = 0;
     for (int b = 0; b < m; b++)
         if (strlen(title[b]) > widest)
             widest = strlen(title[b]);
+    const int cols = widest > 44 ? 1 : 2;
+    const int rows = (m + (negative != 0) + cols - 1) / cols;
+    const double foot = fmin(0.5, 0.15 + 0.035 * rows);
     fprintf(gp,
             "set multiplot layout 1,2 title \"Strain accumulation%s\"\n"
-            /* cycles 1, 2, 4, 8, ... */
-            "set logscale xy\nset xtics 1, 2\nset autoscale xfixmax\n"
-            "unset title\n"
-            "set key inside top left box opaque title \"\" font %s\n",
-            what, widest > 44 ? "\",8\" width -10" : "\",10\"");
+            /* cycles 1, 2, 4, 8, ...; a margin either side, where the
+             * first and last cycles' error bars fell on the frame */
+            "set logscale xy\nset xtics 1, 2\nset autoscale xfix\n"
+            "unset title\nset bmargin at screen %.3f\n"
+            "set key at screen 0.5, %.3f center top horizontal maxcols %d "
+            "nobox title \"\" font \",10\"\n",
+            what, foot, foot - 0.1, cols);
     for (int b = 0; b < m; b++)
         dem__gp_text(title[b]);
     /* error bars only where there are errors (an ensemble of seeds); the
@@ -69,9 +74,11 @@ void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
                 panel ? "unset key\n" : "",
                 panel ? "Δε_D gained in cycle c" : "ε_D at the end of cycle c",
                 panel ? "set logscale y\nset autoscale y\n"
-                        "set offsets 0, 0, 0, 0\nset format y \"%.0e\""
-                      : "set autoscale yfix\nset offsets 0, 0, graph 0.08, "
-                        "graph 0.08\nset format y \"%.0e\"\n"
+                        "set offsets graph 0.03, graph 0.03, 0, 0\n"
+                        "set format y \"%.0e\""
+                      : "set autoscale yfix\nset offsets graph 0.03, graph "
+                        "0.03, graph 0.08, graph 0.08\nset format y "
+                        "\"%.0e\"\n"
                         "stats \"strain_accumulation.dat\" using (abs($4)) "
                         "nooutput\n"
                         "if (STATS_min > 0 && STATS_max < 10 * STATS_min) {\n"
