@@ -1313,6 +1313,16 @@ static void the_summary_line_gives_what_was_found(void **state)
     assert_string_equal(line, "flow function at peak φ = 25.9° (3 circles; "
                               "group 2 of 2); no flow function in critical "
                               "state");
+    /* a cyclic sweep over mu: its verdicts, and no flow functions it
+     * never meant to have */
+    write_text(dir, "sweep.json",
+               "{\"flow_function\": null, \"flow_function_reason\": \"the "
+               "sweep does not vary\", \"strain_accumulation\": [{\"verdict\":"
+               " \"ratcheting\"}, {\"verdict\": \"shakedown\"}, {\"verdict\": "
+               "null}]}");
+    assert_int_equal(dem_sweep_summary_line(dir, line, sizeof line), 1);
+    assert_string_equal(line, "3 cyclic runs: 1 ratcheting, 1 shakedown, the "
+                              "others without a verdict");
     /* over seeds: the ensemble's mean, not its first seed's fit (a
      * visual review of sweeps, session 114: "28.1 ± 2.0" of seed 1 for
      * the seeds' 28.40 ± 0.26) */

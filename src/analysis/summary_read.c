@@ -301,9 +301,33 @@ int dem_sweep_summary_line(const char *dir, char *buf, size_t n)
     struct dem__jval js;
     if (!line_start(dir, "sweep.json", &js, buf, n))
         return 0;
-    flow_function_part(&js, "flow_function", "flow function at peak", buf, n);
-    flow_function_part(&js, "flow_function_critical",
-                       "flow function in critical state", buf, n);
+    /* a cyclic sweep: its runs' verdicts, and its flow functions only
+     * where it has them (twice "no flow function: the sweep does not
+     * vary the confining pressure" was all a sweep over mu said) */
+    const struct dem__jval *cyc = dem__jread_get(&js, "strain_accumulation");
+    const struct dem__jval *ff = dem__jread_get(&js, "flow_function");
+    const int cyclic = cyc && cyc->type == DEM__JSON_ARRAY && cyc->n > 0;
+    if (cyclic) {
+        int ratch = 0, shake = 0;
+        for (int k = 0; k < cyc->n; k++) {
+            const char *v = dem__jread_string(&cyc->items[k], "verdict");
+            ratch += v && !strcmp(v, "ratcheting");
+            shake += v && !strcmp(v, "shakedown");
+        }
+        const size_t len = strlen(buf);
+        snprintf(buf + len, n - len,
+                 "%s%d cyclic run%s: %d ratcheting, %d "
+                 "shakedown%s",
+                 len ? "; " : "", cyc->n, cyc->n == 1 ? "" : "s", ratch, shake,
+                 ratch + shake < cyc->n ? ", the others without a verdict"
+                                        : "");
+    }
+    if (!cyclic || (ff && ff->type == DEM__JSON_ARRAY)) {
+        flow_function_part(&js, "flow_function", "flow function at peak", buf,
+                           n);
+        flow_function_part(&js, "flow_function_critical",
+                           "flow function in critical state", buf, n);
+    }
     dem__jread_free(&js);
     return buf[0] != '\0';
 }
