@@ -524,8 +524,9 @@ static void a_preparation_pressure_is_no_confinement(void **state)
     }
     dem__jread_free(&js);
     dem_sweep_grid_free(&g);
-    /* two groups' circles: each group in its colour, its envelope too
-     * (coloured by pressure, no circle could be told to its group) */
+    /* two groups' circles: each group in its colour, its envelope too,
+     * whose key entry names the group (coloured by pressure, no circle
+     * could be told to its group) */
     char path[1024];
     snprintf(path, sizeof path, "%s/prep-and-load/plots/mohr_circles.gp",
              tmpdir);
@@ -533,9 +534,11 @@ static void a_preparation_pressure_is_no_confinement(void **state)
     assert_non_null(gp);
     for (int q = 0; q < 2; q++) {
         char want[160];
-        snprintf(want, sizeof want,
-                 "linecolor %d title \"3 circles (stages.0.pressure=%s)\"",
-                 q + 1, q ? "1000" : "250");
+        snprintf(want, sizeof want, "linewidth 2 linecolor %d notitle", q + 1);
+        if (!strstr(gp, want))
+            fail_msg("no '%s' in %s", want, gp);
+        snprintf(want, sizeof want, "R² = 1.000 (stages.0.pressure=%s)\"",
+                 q ? "1000" : "250");
         if (!strstr(gp, want))
             fail_msg("no '%s' in %s", want, gp);
         snprintf(want, sizeof want,

@@ -201,7 +201,9 @@ static int mohr(const struct dem__sweep *s, FILE *dat, FILE *gp, int state)
                         rad * sin(M_PI * k / 180.0));
             fprintf(dat, "\n\n");
             if (by_group) {
-                if (c == 0)
+                /* (a group's key entry is its envelope's, or this one
+                 * where it has none: half the entries) */
+                if (c == 0 && !f->fit.ok)
                     fprintf(gp,
                             "  \"%s.dat\" index %d with lines "
                             "linewidth 2 linecolor %d title \"%ld circle%s%s%s"
@@ -491,10 +493,22 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
                  "block critical points, block initial fit, block critical "
                  "fit, each over its points' pressures (NaN when none or "
                  "not fitted)\n");
-    /* four entries a group: more than two groups' beside the axes */
+    /* up to three groups: four entries a group, the fits' numbers in
+     * them (more than two beside the axes); more: one entry and one
+     * colour a group, the markers said once and the fits' numbers left
+     * to sweep.json (nine groups' 36 entries crowded the axes out: a
+     * visual review, session 114) */
+    const int compact = s->ffg.n > 3;
     if (s->ffg.n > 2)
         fprintf(gp, "set key outside right top font \",9\"\n");
     fprintf(gp, "plot \\\n");
+    if (compact)
+        fprintf(gp, "  1/0 with points pointtype 6 pointsize 1.5 linecolor "
+                    "\"black\" title \"initial state\", \\\n"
+                    "  1/0 with points pointtype 7 pointsize 1.5 linecolor "
+                    "\"black\" title \"critical state\", \\\n"
+                    "  1/0 with lines linewidth 2 linecolor \"black\" title "
+                    "\"fits (sweep.json)\", \\\n");
     int block = 0;
     for (int q = 0; q < s->ffg.n; q++) {
         const struct dem__sweep_void *v = &s->vr[q];
@@ -510,11 +524,24 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 pmax[k] = fmax(pmax[k], v->p[k][m]);
             }
             dem__gp_block_end(dat, v->m[k]);
-            fprintf(gp,
-                    "  \"void_ratio_vs_pressure.dat\" index %d with "
-                    "points pointtype %d pointsize 1.5 linecolor %d "
-                    "title \"%s%s\" noenhanced, \\\n",
-                    block++, k ? 7 : 6, 2 * q + k + 1, state[k], par);
+            if (compact && k)
+                fprintf(gp,
+                        "  \"void_ratio_vs_pressure.dat\" index %d with "
+                        "points pointtype 7 pointsize 1.5 linecolor %d "
+                        "notitle, \\\n",
+                        block++, q + 1);
+            else if (compact)
+                fprintf(gp,
+                        "  \"void_ratio_vs_pressure.dat\" index %d with "
+                        "points pointtype 6 pointsize 1.5 linecolor %d "
+                        "title \"%s\" noenhanced, \\\n",
+                        block++, q + 1, lab);
+            else
+                fprintf(gp,
+                        "  \"void_ratio_vs_pressure.dat\" index %d with "
+                        "points pointtype %d pointsize 1.5 linecolor %d "
+                        "title \"%s%s\" noenhanced, \\\n",
+                        block++, k ? 7 : 6, 2 * q + k + 1, state[k], par);
         }
         for (int k = 0; k < 2; k++) {
             const struct dem_voidfit *f = &v->fit[k];
@@ -527,14 +554,11 @@ static int w_voids(const struct dem__sweep *s, FILE *dat, FILE *gp)
                 fprintf(dat, "%.9g %.9g\n", p, f->e0 - pow(p / v->hs, f->n));
             }
             dem__gp_block_end(dat, f->ok);
-            /* (more than three groups: the fits' numbers are
-             * sweep.json's, or the key would crowd the axes out) */
-            if (f->ok && s->ffg.n > 3)
+            if (f->ok && compact)
                 fprintf(gp,
                         "  \"void_ratio_vs_pressure.dat\" index %d with "
-                        "lines linewidth 2 linecolor %d title \"fit %s%s\" "
-                        "noenhanced, \\\n",
-                        block, 2 * q + k + 1, state[k], par);
+                        "lines linewidth 2 linecolor %d notitle, \\\n",
+                        block, q + 1);
             else if (f->ok)
                 fprintf(gp,
                         "  \"void_ratio_vs_pressure.dat\" index %d with "
