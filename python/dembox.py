@@ -317,8 +317,8 @@ def _value(v, key):
     if numpy is not None and isinstance(v, (numpy.generic, numpy.ndarray)) \
             and numpy.ndim(v) == 0:
         v = v.item()  # numpy.bool_, a 0-d array: Python's bool, float, ...
-    if isinstance(v, numbers.Real) and not isinstance(v, bool) and \
-            not math.isfinite(v):
+    if isinstance(v, numbers.Real) and \
+            not isinstance(v, numbers.Integral) and not math.isfinite(v):
         raise ValueError("%s = %r: not a finite number" % (key, v))
     if isinstance(v, bool):
         return "true" if v else "false"
@@ -333,7 +333,8 @@ def _value(v, key):
         if all(isinstance(x, numbers.Real) and not isinstance(x, bool)
                for x in v):
             for x in v:
-                if not math.isfinite(x):
+                if not isinstance(x, numbers.Integral) and \
+                        not math.isfinite(x):
                     raise ValueError("%s = %r: not a finite number"
                                      % (key, x))
             return "[%s]" % ", ".join(repr(float(x)) for x in v)

@@ -1338,6 +1338,17 @@ static void the_summary_line_gives_what_was_found(void **state)
                         "flow function at peak φ = 28.4° ± 0.3°, c = "
                         "5.28 ± 7.6 (mean over 3 seeds); no flow function in "
                         "critical state: no critical circles");
+    /* a first ensemble without a mean: the next one's, not a seed's fit
+     * of the groups (a review of the session's diff) */
+    write_text(dir, "sweep.json",
+               "{\"flow_function\": [{\"phi_deg\": 28.1, \"circles\": 3}], "
+               "\"flow_function_ensemble\": [{\"fits\": 0, \"phi_deg\": "
+               "{\"mean\": null}}, {\"fits\": 1, \"phi_deg\": {\"mean\": "
+               "30.0, \"se\": null}}], \"flow_function_critical\": null}");
+    assert_int_equal(dem_sweep_summary_line(dir, line, sizeof line), 1);
+    assert_string_equal(line, "flow function at peak φ = 30.0° (of 1 seed; "
+                              "ensemble 2 of 2); no flow function in critical "
+                              "state");
 }
 
 /* A stress-controlled shear late in a run (t about 10^4 s): the creep

@@ -542,13 +542,18 @@ static void a_preparation_pressure_is_no_confinement(void **state)
         if (!strstr(gp, want))
             fail_msg("no '%s' in %s", want, gp);
         snprintf(want, sizeof want,
-                 "dashtype 2 linewidth 2 linecolor %d title \"flow function "
-                 "φ = %.1f°",
-                 q + 1, asin(q ? 0.6 : 0.4) * DEG);
+                 "dashtype 2 linewidth 2 linecolor %d title \"φ = %.1f°", q + 1,
+                 asin(q ? 0.6 : 0.4) * DEG);
         if (!strstr(gp, want))
             fail_msg("no '%s' in %s", want, gp);
     }
     free(gp);
+    /* and gnuplot fitted the key (it had dropped its line samples) */
+    snprintf(path, sizeof path, "%s/prep-and-load/plots/gnuplot.log", tmpdir);
+    char *log = dem_read_text(path, NULL);
+    if (log && strstr(log, "difficulty"))
+        fail_msg("gnuplot: %s", log);
+    free(log);
 }
 
 /* Circles touching tau = c + sigma tan(phi) at confining pressures p:
@@ -829,9 +834,11 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
     dem_sweep_grid_free(&g);
 }
 
-/* A cohesion curve needs flow functions at two kc or more: with the
+/* A cohesion curve needs flow functions at two kc/k2 or more: with the
  * peaks of kc = 4e4 missing, the one of kc = 1e4 was drawn as a lone
- * point (a visual review, session 114). Now null, saying why. */
+ * point (a visual review, session 114). Now null, saying why. (Its x is
+ * kc/k2: a sweep over k2 at one kc draws it, the reviewed check counted
+ * kc alone and refused it: a review of the session's diff.) */
 static void one_kc_with_a_flow_function_draws_no_curve(void **state)
 {
     (void)state;
@@ -872,8 +879,41 @@ static void one_kc_with_a_flow_function_draws_no_curve(void **state)
     const char *why = dem__jread_string(&js, "cohesion_vs_kc_reason");
     assert_non_null(why);
     if (!strstr(why, "needs flow functions at 2 or more values of "
-                     "contact.kc: only kc = 10000 has one"))
+                     "k_c/k_2: only k_c/k_2 = 0.1 has one"))
         fail_msg("%s", why);
+    dem__jread_free(&js);
+
+    /* one kc, two k2, every run with its peak: two kc/k2, a curve */
+    snprintf(out, sizeof out, "%s/k2-at-one-kc", tmpdir);
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.kc=1e4");
+    add(&g, "contact.k2=1e5,2e5");
+    add(&g, "stages.1.pressure=100,400");
+    names = malloc(4 * sizeof *names);
+    dem_sweep_point_names(&g, names);
+    for (long i = 0; i < 4; i++) {
+        int idx[DEM_SWEEP_MAX_PARAMS];
+        dem_sweep_grid_point(&g, i, idx);
+        const double pr = idx[2] ? 400.0 : 100.0;
+        char summary[1024];
+        snprintf(summary, sizeof summary,
+                 "{\"dimension\": 2, \"loading_stage\": 1, "
+                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
+                 "0.5, \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
+                 "\"critical\": {\"sin_phi\": null}}\n",
+                 pr, 3.0 * pr + 20.0 * (1 + idx[1]), pr);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
+        fake_run(dir, cfg, &g, i, summary);
+    }
+    free(names);
+    collect_runs(&g, cfg, out);
+    dem_sweep_grid_free(&g);
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    if (dem__jread_file(&js, dir, &err))
+        fail_msg("%s", err.msg);
+    const struct dem__jval *kc = dem__jread_get(&js, "cohesion_vs_kc");
+    if (!kc || kc->type != DEM__JSON_OBJECT)
+        fail_msg("%s", dem__jread_string(&js, "cohesion_vs_kc_reason"));
     dem__jread_free(&js);
 }
 

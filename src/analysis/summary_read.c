@@ -220,8 +220,8 @@ int dem_summary_line(const char *outdir, char *buf, size_t n)
  * flow_function_critical) into buf, as "LABEL φ = …° ± …°, c = … (n
  * circles)" for its first group that has one, or "no LABEL: reason"
  * (the first group's). A sweep over
- * seeds gives its first ensemble's mean over the seeds (KEY_ensemble):
- * the first group there is one seed's. */
+ * seeds gives its first ensemble's mean over the seeds that has one
+ * (KEY_ensemble): the first group there is one seed's. */
 static void flow_function_part(const struct dem__jval *js, const char *key,
                                const char *label, char *buf, size_t n)
 {
@@ -232,9 +232,21 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
     char ek[96];
     snprintf(ek, sizeof ek, "%s_ensemble", key);
     const struct dem__jval *fe = dem__jread_get(js, ek);
-    const struct dem__jval *ge =
-        fe && fe->type == DEM__JSON_ARRAY && fe->n > 0 ? &fe->items[0] : NULL;
+    /* the first ensemble with a mean (one without fell through to a
+     * seed's fit: a review of the session's diff) */
+    const struct dem__jval *ge = NULL;
+    int ek_at = 0;
+    for (int k = 0; fe && fe->type == DEM__JSON_ARRAY && k < fe->n; k++)
+        if (isfinite(dem__jread_number(&fe->items[k], "phi_deg.mean"))) {
+            ge = &fe->items[k];
+            ek_at = k;
+            break;
+        }
     const double phe = ge ? dem__jread_number(ge, "phi_deg.mean") : NAN;
+    if (fe && fe->type == DEM__JSON_ARRAY && fe->n > 0 && !ge) {
+        snprintf(at, room, "%sno %s in any ensemble", sep, label);
+        return;
+    }
     if (isfinite(phe)) {
         const double se = dem__jread_number(ge, "phi_deg.se"),
                      c = dem__jread_number(ge, "cohesion.mean"),
@@ -248,9 +260,13 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
             snprintf(cs, sizeof cs, ", c = %.3g ± %.2g", c, cse);
         else if (isfinite(c))
             snprintf(cs, sizeof cs, ", c = %.3g", c);
-        snprintf(at, room, "%s%s φ = %s%s (mean over %.0f seeds%s)", sep, label,
-                 ps, cs, dem__jread_number(ge, "fits"),
-                 fe->n > 1 ? "; the first ensemble" : "");
+        const double fits = dem__jread_number(ge, "fits");
+        char grp[48] = "";
+        if (fe->n > 1)
+            snprintf(grp, sizeof grp, "; ensemble %d of %d", ek_at + 1, fe->n);
+        snprintf(at, room, "%s%s φ = %s%s (%s %.0f seed%s%s)", sep, label, ps,
+                 cs, fits == 1 ? "of" : "mean over", fits, fits == 1 ? "" : "s",
+                 grp);
         return;
     }
     const struct dem__jval *ff = dem__jread_get(js, key);

@@ -49,7 +49,8 @@ void dem__plot_cycles_panels(FILE *gp, dem__plot_title *title, int m,
     for (int b = 0; b < m; b++)
         if (strlen(title[b]) > widest)
             widest = strlen(title[b]);
-    const int cols = widest > 44 ? 1 : 2;
+    /* (past 16 series three columns: the key's rows are capped below) */
+    const int cols = widest > 44 ? 1 : m > 16 ? 3 : 2;
     const int rows = (m + (negative != 0) + cols - 1) / cols;
     const double foot = fmin(0.5, 0.15 + 0.035 * rows);
     fprintf(gp,

@@ -53,15 +53,17 @@ void dem__gp_head(FILE *f, const char *name, const char *title,
             "set clip two\n"
             /* 16 colours before they repeat, not gnuplot's 8: a sweep's
              * ninth run was drawn in its first run's colour (a visual
-             * review, session 114) */
-            "set linetype 9 linecolor rgb \"#8c564b\"\n"
-            "set linetype 10 linecolor rgb \"#e377c2\"\n"
-            "set linetype 11 linecolor rgb \"#7f7f7f\"\n"
-            "set linetype 12 linecolor rgb \"#bcbd22\"\n"
-            "set linetype 13 linecolor rgb \"#17becf\"\n"
-            "set linetype 14 linecolor rgb \"#ff7f0e\"\n"
-            "set linetype 15 linecolor rgb \"#1f3a93\"\n"
-            "set linetype 16 linecolor rgb \"#d62728\"\n"
+             * review, session 114); hues or shades apart from the first
+             * eight (purple, green, sky blue, orange, yellow, blue, red,
+             * black) */
+            "set linetype 9 linecolor rgb \"#8c564b\"\n"  /* brown */
+            "set linetype 10 linecolor rgb \"#e377c2\"\n" /* pink */
+            "set linetype 11 linecolor rgb \"#7f7f7f\"\n" /* grey */
+            "set linetype 12 linecolor rgb \"#bcbd22\"\n" /* olive */
+            "set linetype 13 linecolor rgb \"#000080\"\n" /* navy */
+            "set linetype 14 linecolor rgb \"#800000\"\n" /* maroon */
+            "set linetype 15 linecolor rgb \"#32cd32\"\n" /* lime */
+            "set linetype 16 linecolor rgb \"#00ced1\"\n" /* turquoise */
             "set linetype cycle 16\n",
             name, name, name, name, title, xlabel, ylabel);
 }

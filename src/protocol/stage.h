@@ -31,7 +31,7 @@ struct dem_stage_ops {
     int (*begin)(struct dem_sim *s, struct dem_stage_state *st,
                  struct dem_error *err);
     /* s: the longest the stage runs, t_end - t_start (its whole length
-     * unless done() ends it first) */
+     * unless done() ends it first); required */
     double (*length)(const struct dem_stage_config *c);
     /* 1 when the end criterion holds at this sample (time-bounded stages
      * may leave this NULL: they end at t_end). */

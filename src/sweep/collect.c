@@ -303,27 +303,29 @@ static void cohesion_check(struct dem__sweep *s)
                  "pressures");
         return;
     }
-    /* a curve of cohesion against kc needs two kc with a flow function
-     * (one drew a lone point, a cohesion bounded to 0 at that: a visual
-     * review, session 114) */
-    double kcs[2];
-    int nkc = 0;
-    for (int q = 0; q < s->ffg.n && nkc < 2; q++) {
-        const double kc = s->runs[s->ffg.rep[q]].kc;
-        if (s->ff[0][q].fit.ok && (nkc == 0 || kc != kcs[0]))
-            kcs[nkc++] = kc;
+    /* a curve of cohesion against kc/k2 (its x: a sweep over k1 or k2
+     * is one too) needs two values of it with a flow function (one drew
+     * a lone point, a cohesion bounded to 0 at that: a visual review,
+     * session 114) */
+    double xs[2];
+    int nx = 0;
+    for (int q = 0; q < s->ffg.n && nx < 2; q++) {
+        const struct dem__sweep_run *r = &s->runs[s->ffg.rep[q]];
+        const double x = r->kc / r->k2;
+        if (s->ff[0][q].fit.ok && (nx == 0 || x != xs[0]))
+            xs[nx++] = x;
     }
-    if (nkc == 0) {
+    if (nx == 0) {
         snprintf(s->kc_reason, sizeof s->kc_reason,
                  "the cohesion curve needs flow functions at 2 or more "
-                 "values of contact.kc: none has one");
+                 "values of k_c/k_2: none has one");
         return;
     }
-    if (nkc == 1) {
+    if (nx == 1) {
         snprintf(s->kc_reason, sizeof s->kc_reason,
                  "the cohesion curve needs flow functions at 2 or more "
-                 "values of contact.kc: only kc = %g has one",
-                 kcs[0]);
+                 "values of k_c/k_2: only k_c/k_2 = %g has one",
+                 xs[0]);
         return;
     }
     /* the f_min curve scaled to the cohesions by least squares through

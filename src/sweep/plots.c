@@ -42,9 +42,9 @@ static void label(const struct dem__sweep *s, long i, int role, char *out,
         if (p->roles & role)
             continue;
         size_t len = strlen(out);
-        if (p->roles & DEM_SWEEP_ROLE_PRESSURE)
-            snprintf(out + len, n - len, "%sp = %s %s", len ? ", " : "",
-                     p->values[s->runs[i].idx[k]], stress_unit(s));
+        if (p->roles & DEM_SWEEP_ROLE_PRESSURE) /* (as the Mohr key's) */
+            snprintf(out + len, n - len, "%sp = %.4g %s", len ? ", " : "",
+                     s->runs[i].pressure, stress_unit(s));
         else
             snprintf(out + len, n - len, "%s%s=%s", len ? ", " : "", p->keys[0],
                      p->values[s->runs[i].idx[k]]);
@@ -165,7 +165,13 @@ static int mohr(const struct dem__sweep *s, FILE *dat, FILE *gp, int state)
     qsort(pres, (size_t)npres, sizeof *pres, cmp_double);
     char shown[DEM_SWEEP_MAX_POINTS] = {0};
     int block = 0;
+    /* (a smaller key, and gnuplot's estimate of its width less what it
+     * counts too much: a byte for a character, and φ, °, ±, ², each two
+     * bytes, are in every title; with a group's label the key lost its
+     * line samples, "difficulty fitting plot titles into key": a review
+     * of the session's diff) */
     fprintf(gp,
+            "set key font \",10\" width -6\n"
             "set size ratio -1\nset xrange [0:%.9g]\nset yrange [0:%.9g]\n"
             "plot \\\n",
             xmax, 0.6 * xmax);
@@ -263,10 +269,10 @@ static int mohr(const struct dem__sweep *s, FILE *dat, FILE *gp, int state)
             fprintf(gp,
                     "  \"%s.dat\" index %d with lines "
                     "dashtype %d linewidth 2 linecolor %s title "
-                    "\"flow function φ = %s, c = %s%s%s\" "
+                    "\"%sφ = %s, c = %s%s%s\" "
                     "noenhanced, \\\n",
-                    name, block++, by_group ? 2 : q + 2, colour, ps, cs, gof,
-                    par);
+                    name, block++, by_group ? 2 : q + 2, colour,
+                    by_group ? "" : "flow function ", ps, cs, gof, par);
         }
     }
     fprintf(gp, "  0 linetype -3 notitle\n");

@@ -50,7 +50,8 @@ struct dem_wall {
      * stage, kept in checkpoints so that a resumed run warns alike */
     long kicks, capped, floored;
     /* its stress's offsets from the target at the stage's samples, in
-     * units of the stage's pressure, summed, and their count: whether it
+     * units of the stage's pressure (else of the wall's p0), summed, and
+     * their count: whether it
      * kept off its target (the runner's, a diagnosis as the above) */
     double off_sum;
     long off_n;
