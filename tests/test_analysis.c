@@ -1266,6 +1266,43 @@ static void a_run_cut_in_its_last_stage_is_not_complete(void **state)
     free(js);
 }
 
+/* A last hold cut short: a run cut when it ends at its duration, but
+ * not when it may end at rest before (relax > 0), which the rows do not
+ * tell from a cut. */
+static void a_hold_with_relax_may_end_early(void **state)
+{
+    (void)state;
+    for (int relax = 0; relax < 2; relax++) {
+        char dir[128], cfg[512];
+        run_dir(dir, sizeof dir, relax ? "hold-relax" : "hold-cut");
+        snprintf(cfg, sizeof cfg,
+                 "dimension = 2;\n"
+                 "time_step = 1.0e-6;\n"
+                 "stages = (\n"
+                 "  { type = \"isotropic\"; pressure = 500.0; },\n"
+                 "  { type = \"hold\"; duration = 1.0; relax = %s; }\n"
+                 ");\n"
+                 "output = { interval = 1.0e-3; };\n",
+                 relax ? "0.01" : "0.0");
+        write_text(dir, "config.cfg", cfg);
+        FILE *f = open_timeseries(dir, 2);
+        struct dem_sample s;
+        memset(&s, 0, sizeof s);
+        for (int i = 0; i <= 500; i++) { /* the hold's rows to 0.52 of 1.02 */
+            s.t = 0.02 + 1e-3 * i;
+            s.stage = i ? 1 : 0;
+            s.sigma[0] = s.sigma[1] = 500.0;
+            s.void_ratio = 0.2;
+            dem_sample_write_row(f, &s, 2);
+        }
+        assert_int_equal(fclose(f), 0);
+        char *js = analyzed_summary(dir);
+        if (!strstr(js, relax ? "\"complete\": true" : "\"complete\": false"))
+            fail_msg("relax %d: %s", relax, js);
+        free(js);
+    }
+}
+
 /* The line `dembox run` and `dembox analyze` end with: the parameters
  * the summary has, the critical state with its error, and a run cut
  * short said; nothing without a summary or without parameters. */
@@ -2199,6 +2236,7 @@ int main(void)
         cmocka_unit_test(creep_rate_late_in_a_run),
         cmocka_unit_test(the_summary_line_gives_what_was_found),
         cmocka_unit_test(a_run_cut_in_its_last_stage_is_not_complete),
+        cmocka_unit_test(a_hold_with_relax_may_end_early),
         cmocka_unit_test(returning_shear_is_analysed_on_its_way_out),
         cmocka_unit_test(analysis_repeats_no_config_warning),
         cmocka_unit_test(older_run_folders_stay_readable),
