@@ -216,12 +216,40 @@ int dem_summary_line(const char *outdir, char *buf, size_t n)
     return buf[0] != '\0';
 }
 
+/* The first item of the array arr whose number at path is finite (its
+ * index in *at), or NULL. */
+static const struct dem__jval *first_with(const struct dem__jval *arr,
+                                          const char *path, int *at)
+{
+    for (int k = 0; arr && arr->type == DEM__JSON_ARRAY && k < arr->n; k++)
+        if (isfinite(dem__jread_number(&arr->items[k], path))) {
+            *at = k;
+            return &arr->items[k];
+        }
+    return NULL;
+}
+
+/* "φ = …° ± …°, c = … ± …" into out, each error where it is finite. */
+static void fit_text(char *out, size_t n, double phi, double se, double c,
+                     double cse)
+{
+    const int k = isfinite(se) ? snprintf(out, n, "φ = %.1f° ± %.1f°", phi, se)
+                               : snprintf(out, n, "φ = %.1f°", phi);
+    if (k < 0 || (size_t)k >= n)
+        return;
+    if (isfinite(c) && isfinite(cse))
+        snprintf(out + k, n - (size_t)k, ", c = %.3g ± %.2g", c, cse);
+    else if (isfinite(c))
+        snprintf(out + k, n - (size_t)k, ", c = %.3g", c);
+}
+
 /* One flow function of sweep.json (key: flow_function or
  * flow_function_critical) into buf, as "LABEL φ = …° ± …°, c = … (n
  * circles)" for its first group that has one, or "no LABEL: reason"
- * (the first group's). A sweep over
- * seeds gives its first ensemble's mean over the seeds that has one
- * (KEY_ensemble): the first group there is one seed's. */
+ * (the first group's). A sweep over seeds gives its first ensemble's
+ * mean over the seeds that has one (KEY_ensemble): the first group there
+ * is one seed's (a first ensemble without a mean fell through to a
+ * seed's fit: a review of the session's diff). */
 static void flow_function_part(const struct dem__jval *js, const char *key,
                                const char *label, char *buf, size_t n)
 {
@@ -229,80 +257,45 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
     char *at = buf + len;
     const size_t room = n - len;
     const char *sep = len ? "; " : "";
-    char ek[96];
+    char ek[96], fit[128], grp[48] = "";
     snprintf(ek, sizeof ek, "%s_ensemble", key);
     const struct dem__jval *fe = dem__jread_get(js, ek);
-    /* the first ensemble with a mean (one without fell through to a
-     * seed's fit: a review of the session's diff) */
-    const struct dem__jval *ge = NULL;
-    int ek_at = 0;
-    for (int k = 0; fe && fe->type == DEM__JSON_ARRAY && k < fe->n; k++)
-        if (isfinite(dem__jread_number(&fe->items[k], "phi_deg.mean"))) {
-            ge = &fe->items[k];
-            ek_at = k;
-            break;
-        }
-    const double phe = ge ? dem__jread_number(ge, "phi_deg.mean") : NAN;
-    if (fe && fe->type == DEM__JSON_ARRAY && fe->n > 0 && !ge) {
-        snprintf(at, room, "%sno %s in any ensemble", sep, label);
-        return;
-    }
-    if (isfinite(phe)) {
-        const double se = dem__jread_number(ge, "phi_deg.se"),
-                     c = dem__jread_number(ge, "cohesion.mean"),
-                     cse = dem__jread_number(ge, "cohesion.se");
-        char ps[64], cs[64] = "";
-        if (isfinite(se))
-            snprintf(ps, sizeof ps, "%.1f° ± %.1f°", phe, se);
-        else
-            snprintf(ps, sizeof ps, "%.1f°", phe);
-        if (isfinite(c) && isfinite(cse))
-            snprintf(cs, sizeof cs, ", c = %.3g ± %.2g", c, cse);
-        else if (isfinite(c))
-            snprintf(cs, sizeof cs, ", c = %.3g", c);
+    int k = 0;
+    const struct dem__jval *ge = first_with(fe, "phi_deg.mean", &k);
+    if (ge) {
+        fit_text(fit, sizeof fit, dem__jread_number(ge, "phi_deg.mean"),
+                 dem__jread_number(ge, "phi_deg.se"),
+                 dem__jread_number(ge, "cohesion.mean"),
+                 dem__jread_number(ge, "cohesion.se"));
         const double fits = dem__jread_number(ge, "fits");
-        char grp[48] = "";
         if (fe->n > 1)
-            snprintf(grp, sizeof grp, "; ensemble %d of %d", ek_at + 1, fe->n);
-        snprintf(at, room, "%s%s φ = %s%s (%s %.0f seed%s%s)", sep, label, ps,
-                 cs, fits == 1 ? "of" : "mean over", fits, fits == 1 ? "" : "s",
+            snprintf(grp, sizeof grp, "; ensemble %d of %d", k + 1, fe->n);
+        snprintf(at, room, "%s%s %s (%s %.0f seed%s%s)", sep, label, fit,
+                 fits == 1 ? "of" : "mean over", fits, fits == 1 ? "" : "s",
                  grp);
         return;
     }
-    const struct dem__jval *ff = dem__jread_get(js, key);
+    if (fe && fe->type == DEM__JSON_ARRAY && fe->n > 0) {
+        snprintf(at, room, "%sno %s in any ensemble", sep, label);
+        return;
+    }
     /* the first group with a flow function (a first group without one
      * said there was none, of a sweep whose other groups had one) */
-    const struct dem__jval *g = NULL;
-    int gk = 0;
-    for (int k = 0; ff && ff->type == DEM__JSON_ARRAY && k < ff->n; k++)
-        if (isfinite(dem__jread_number(&ff->items[k], "phi_deg"))) {
-            g = &ff->items[k];
-            gk = k;
-            break;
-        }
-    if (!g && ff && ff->type == DEM__JSON_ARRAY && ff->n > 0)
-        g = &ff->items[0];
-    const double phi = g ? dem__jread_number(g, "phi_deg") : NAN;
-    if (isfinite(phi)) {
-        const double se = dem__jread_number(g, "phi_deg_se"),
-                     c = dem__jread_number(g, "cohesion"),
-                     cse = dem__jread_number(g, "cohesion_se");
-        char ps[64], cs[64] = "";
-        if (isfinite(se))
-            snprintf(ps, sizeof ps, "%.1f° ± %.1f°", phi, se);
-        else
-            snprintf(ps, sizeof ps, "%.1f°", phi);
-        if (isfinite(c) && isfinite(cse))
-            snprintf(cs, sizeof cs, ", c = %.3g ± %.2g", c, cse);
-        else if (isfinite(c))
-            snprintf(cs, sizeof cs, ", c = %.3g", c);
-        char grp[48] = "";
+    const struct dem__jval *ff = dem__jread_get(js, key);
+    const struct dem__jval *g = first_with(ff, "phi_deg", &k);
+    if (g) {
+        fit_text(fit, sizeof fit, dem__jread_number(g, "phi_deg"),
+                 dem__jread_number(g, "phi_deg_se"),
+                 dem__jread_number(g, "cohesion"),
+                 dem__jread_number(g, "cohesion_se"));
         if (ff->n > 1)
-            snprintf(grp, sizeof grp, "; group %d of %d", gk + 1, ff->n);
-        snprintf(at, room, "%s%s φ = %s%s (%.0f circles%s)", sep, label, ps, cs,
+            snprintf(grp, sizeof grp, "; group %d of %d", k + 1, ff->n);
+        snprintf(at, room, "%s%s %s (%.0f circles%s)", sep, label, fit,
                  dem__jread_number(g, "circles"), grp);
         return;
     }
+    if (ff && ff->type == DEM__JSON_ARRAY && ff->n > 0)
+        g = &ff->items[0];
     char rk[96];
     snprintf(rk, sizeof rk, "%s_reason", key);
     const char *why = g ? dem__jread_string(g, "reason") : NULL;
