@@ -834,6 +834,61 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
     dem_sweep_grid_free(&g);
 }
 
+/* The summary.json of point i (its value indices idx) of a faked sweep. */
+typedef void (*fake_summary)(long i, const int *idx, char *out, size_t n);
+
+/* Fake every point of grid g as a finished run in tmpdir/name (the tiny
+ * config, the summary summary() writes), then collect them into
+ * out (n bytes: the sweep's folder). */
+static void fake_sweep(const struct dem_sweep_grid *g, const char *name,
+                       fake_summary summary, char *out, size_t n)
+{
+    char cfg[512], dir[1024], text[1024];
+    tiny_config(cfg, sizeof cfg);
+    snprintf(out, n, "%s/%s", tmpdir, name);
+    const long np = dem_sweep_grid_size(g);
+    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(np * sizeof *names);
+    assert_non_null(names);
+    dem_sweep_point_names(g, names);
+    for (long i = 0; i < np; i++) {
+        int idx[DEM_SWEEP_MAX_PARAMS];
+        dem_sweep_grid_point(g, i, idx);
+        summary(i, idx, text, sizeof text);
+        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
+        fake_run(dir, cfg, g, i, text);
+    }
+    free(names);
+    collect_runs(g, cfg, out);
+}
+
+/* kc (index 0) x pressure 100, 400 (index 1): peaks at kc = 1e4 only */
+static void peaks_at_the_first_kc(long i, const int *idx, char *out, size_t n)
+{
+    (void)i;
+    const double pr = idx[1] ? 400.0 : 100.0;
+    snprintf(out, n,
+             "{\"dimension\": 2, \"loading_stage\": 1, "
+             "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": %s,"
+             " \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
+             "\"critical\": {\"sin_phi\": null}}\n",
+             pr, idx[0] ? "null" : "0.5", idx[0] ? NAN : 3.0 * pr + 20.0,
+             idx[0] ? NAN : pr);
+}
+
+/* kc (one value) x k2 (index 1) x pressure 100, 400 (index 2): every run
+ * with its peak */
+static void peaks_at_every_k2(long i, const int *idx, char *out, size_t n)
+{
+    (void)i;
+    const double pr = idx[2] ? 400.0 : 100.0;
+    snprintf(out, n,
+             "{\"dimension\": 2, \"loading_stage\": 1, "
+             "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
+             "0.5, \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
+             "\"critical\": {\"sin_phi\": null}}\n",
+             pr, 3.0 * pr + 20.0 * (1 + idx[1]), pr);
+}
+
 /* A cohesion curve needs flow functions at two kc/k2 or more: with the
  * peaks of kc = 4e4 missing, the one of kc = 1e4 was drawn as a lone
  * point (a visual review, session 114). Now null, saying why. (Its x is
@@ -842,32 +897,12 @@ static void seed_ensembles_give_mean_and_standard_error(void **state)
 static void one_kc_with_a_flow_function_draws_no_curve(void **state)
 {
     (void)state;
-    char cfg[512], out[512], dir[1024];
-    tiny_config(cfg, sizeof cfg);
-    snprintf(out, sizeof out, "%s/kc-one-fit", tmpdir);
+    char out[512], dir[1024];
     struct dem_sweep_grid g;
     memset(&g, 0, sizeof g);
     add(&g, "contact.kc=1e4,4e4");
     add(&g, "stages.1.pressure=100,400");
-    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(4 * sizeof *names);
-    dem_sweep_point_names(&g, names);
-    for (long i = 0; i < 4; i++) {
-        int idx[DEM_SWEEP_MAX_PARAMS];
-        dem_sweep_grid_point(&g, i, idx);
-        const double pr = idx[1] ? 400.0 : 100.0;
-        char summary[1024];
-        snprintf(summary, sizeof summary,
-                 "{\"dimension\": 2, \"loading_stage\": 1, "
-                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": %s,"
-                 " \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
-                 "\"critical\": {\"sin_phi\": null}}\n",
-                 pr, idx[0] ? "null" : "0.5", idx[0] ? NAN : 3.0 * pr + 20.0,
-                 idx[0] ? NAN : pr);
-        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
-        fake_run(dir, cfg, &g, i, summary);
-    }
-    free(names);
-    collect_runs(&g, cfg, out);
+    fake_sweep(&g, "kc-one-fit", peaks_at_the_first_kc, out, sizeof out);
     dem_sweep_grid_free(&g);
     struct dem_error err = {0};
     struct dem__jval js;
@@ -884,29 +919,11 @@ static void one_kc_with_a_flow_function_draws_no_curve(void **state)
     dem__jread_free(&js);
 
     /* one kc, two k2, every run with its peak: two kc/k2, a curve */
-    snprintf(out, sizeof out, "%s/k2-at-one-kc", tmpdir);
     memset(&g, 0, sizeof g);
     add(&g, "contact.kc=1e4");
     add(&g, "contact.k2=1e5,2e5");
     add(&g, "stages.1.pressure=100,400");
-    names = malloc(4 * sizeof *names);
-    dem_sweep_point_names(&g, names);
-    for (long i = 0; i < 4; i++) {
-        int idx[DEM_SWEEP_MAX_PARAMS];
-        dem_sweep_grid_point(&g, i, idx);
-        const double pr = idx[2] ? 400.0 : 100.0;
-        char summary[1024];
-        snprintf(summary, sizeof summary,
-                 "{\"dimension\": 2, \"loading_stage\": 1, "
-                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
-                 "0.5, \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
-                 "\"critical\": {\"sin_phi\": null}}\n",
-                 pr, 3.0 * pr + 20.0 * (1 + idx[1]), pr);
-        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
-        fake_run(dir, cfg, &g, i, summary);
-    }
-    free(names);
-    collect_runs(&g, cfg, out);
+    fake_sweep(&g, "k2-at-one-kc", peaks_at_every_k2, out, sizeof out);
     dem_sweep_grid_free(&g);
     snprintf(dir, sizeof dir, "%s/sweep.json", out);
     if (dem__jread_file(&js, dir, &err))
@@ -917,37 +934,32 @@ static void one_kc_with_a_flow_function_draws_no_curve(void **state)
     dem__jread_free(&js);
 }
 
+/* pressure 100, 400: circles at 30 degrees at peak, 20 in critical state */
+static void circles_at_30_and_20(long i, const int *idx, char *out, size_t n)
+{
+    (void)idx;
+    const double p = i ? 400.0 : 100.0;
+    const double sp = sin(30.0 / DEG), sc = sin(20.0 / DEG);
+    snprintf(out, n,
+             "{\"dimension\": 2, \"loading_stage\": 1, "
+             "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
+             "%.17g, \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
+             "\"critical\": {\"sin_phi\": %.17g, \"sigma_axial\": %.17g, "
+             "\"sigma_lateral\": %.17g}}\n",
+             p, sp, p * (1 + sp) / (1 - sp), p, sc, p * (1 + sc) / (1 - sc), p);
+}
+
 /* The critical-state envelope is drawn (it was in sweep.json only):
  * circles at 20 degrees in critical state, 30 at peak, at two
  * pressures; a sweep without critical circles draws none. */
 static void the_critical_envelope_is_drawn(void **state)
 {
     (void)state;
-    char cfg[512], out[512], dir[1024];
-    tiny_config(cfg, sizeof cfg);
-    snprintf(out, sizeof out, "%s/critical-envelope", tmpdir);
+    char out[512], dir[1024];
     struct dem_sweep_grid g;
     memset(&g, 0, sizeof g);
     add(&g, "stages.1.pressure=100,400");
-    char(*names)[DEM_SWEEP_RUNNAME_MAX + 8] = malloc(2 * sizeof *names);
-    dem_sweep_point_names(&g, names);
-    const double sp = sin(30.0 / DEG), sc = sin(20.0 / DEG);
-    for (long i = 0; i < 2; i++) {
-        const double p = i ? 400.0 : 100.0;
-        char summary[1024];
-        snprintf(summary, sizeof summary,
-                 "{\"dimension\": 2, \"loading_stage\": 1, "
-                 "\"confining_pressure\": %.17g, \"peak\": {\"sin_phi\": "
-                 "%.17g, \"sigma_axial\": %.17g, \"sigma_lateral\": %.17g}, "
-                 "\"critical\": {\"sin_phi\": %.17g, \"sigma_axial\": %.17g, "
-                 "\"sigma_lateral\": %.17g}}\n",
-                 p, sp, p * (1 + sp) / (1 - sp), p, sc, p * (1 + sc) / (1 - sc),
-                 p);
-        snprintf(dir, sizeof dir, "%s/runs/%s", out, names[i]);
-        fake_run(dir, cfg, &g, i, summary);
-    }
-    free(names);
-    collect_runs(&g, cfg, out);
+    fake_sweep(&g, "critical-envelope", circles_at_30_and_20, out, sizeof out);
     dem_sweep_grid_free(&g);
     snprintf(dir, sizeof dir, "%s/plots/mohr_circles_critical.gp", out);
     char *gp = dem_read_text(dir, NULL);
