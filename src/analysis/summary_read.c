@@ -229,10 +229,16 @@ static const struct dem__jval *first_with(const struct dem__jval *arr,
     return NULL;
 }
 
-/* "φ = …° ± …°, c = … ± …" into out, each error where it is finite. */
-static void fit_text(char *out, size_t n, double phi, double se, double c,
-                     double cse)
+/* "φ = …° ± …°, c = … ± …" into out from the numbers of item at the
+ * paths key[0..3] (φ, its error, c, its error), each error where it is
+ * finite. */
+static void fit_text(char *out, size_t n, const struct dem__jval *item,
+                     const char *const key[4])
 {
+    const double phi = dem__jread_number(item, key[0]),
+                 se = dem__jread_number(item, key[1]),
+                 c = dem__jread_number(item, key[2]),
+                 cse = dem__jread_number(item, key[3]);
     const int k = isfinite(se) ? snprintf(out, n, "φ = %.1f° ± %.1f°", phi, se)
                                : snprintf(out, n, "φ = %.1f°", phi);
     if (k < 0 || (size_t)k >= n)
@@ -263,10 +269,9 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
     int k = 0;
     const struct dem__jval *ge = first_with(fe, "phi_deg.mean", &k);
     if (ge) {
-        fit_text(fit, sizeof fit, dem__jread_number(ge, "phi_deg.mean"),
-                 dem__jread_number(ge, "phi_deg.se"),
-                 dem__jread_number(ge, "cohesion.mean"),
-                 dem__jread_number(ge, "cohesion.se"));
+        static const char *const mean[4] = {"phi_deg.mean", "phi_deg.se",
+                                            "cohesion.mean", "cohesion.se"};
+        fit_text(fit, sizeof fit, ge, mean);
         const double fits = dem__jread_number(ge, "fits");
         if (fe->n > 1)
             snprintf(grp, sizeof grp, "; ensemble %d of %d", k + 1, fe->n);
@@ -284,10 +289,9 @@ static void flow_function_part(const struct dem__jval *js, const char *key,
     const struct dem__jval *ff = dem__jread_get(js, key);
     const struct dem__jval *g = first_with(ff, "phi_deg", &k);
     if (g) {
-        fit_text(fit, sizeof fit, dem__jread_number(g, "phi_deg"),
-                 dem__jread_number(g, "phi_deg_se"),
-                 dem__jread_number(g, "cohesion"),
-                 dem__jread_number(g, "cohesion_se"));
+        static const char *const own[4] = {"phi_deg", "phi_deg_se", "cohesion",
+                                           "cohesion_se"};
+        fit_text(fit, sizeof fit, g, own);
         if (ff->n > 1)
             snprintf(grp, sizeof grp, "; group %d of %d", k + 1, ff->n);
         snprintf(at, room, "%s%s %s (%.0f circles%s)", sep, label, fit,

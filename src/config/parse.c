@@ -308,7 +308,6 @@ static const char *article(const char *name)
 
 /* One element of the stages list: type first (it decides which keys are
  * used), then every member, then the keys this type requires. */
-
 static int walk_stage(struct ctx *x, struct dem_config *c, int i,
                       const config_setting_t *g, struct dem_error *err)
 {
