@@ -17,19 +17,12 @@ const struct dem_example *dem_example_find(const char *name)
 
 const struct dem_example *dem_example_nearest(const char *name)
 {
-    /* a slip of a letter or two, as for keys (dem__cfg_nearest_key) */
-    const size_t third = strlen(name) / 3, cap = third < 2 ? third : 2;
-    const struct dem_example *best = NULL;
-    size_t d = cap + 1;
-    for (int i = 0; i < dem_n_examples; i++) {
-        const size_t e =
-            dem__cfg_edit_distance(name, dem_examples[i].name, cap);
-        if (e < d) {
-            d = e;
-            best = &dem_examples[i];
-        }
-    }
-    return d >= 1 && d <= cap ? best : NULL;
+    /* a slip of a letter or two, as for keys */
+    struct dem__cfg_slip s;
+    dem__cfg_slip_start(&s, name);
+    for (int i = 0; i < dem_n_examples; i++)
+        dem__cfg_slip_try(&s, dem_examples[i].name, i);
+    return s.best < 0 ? NULL : &dem_examples[s.best];
 }
 
 int dem_config_load_target(struct dem_config *c, const char *target,

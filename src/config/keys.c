@@ -491,7 +491,8 @@ int dem__cfg_find_key(const char *name, int scope)
     return -1;
 }
 
-size_t dem__cfg_edit_distance(const char *a, const char *b, size_t cap)
+/* Levenshtein distance of a and b, capped at cap + 1. */
+static size_t edit_distance(const char *a, const char *b, size_t cap)
 {
     const size_t na = strlen(a), nb = strlen(b);
     if (na > nb + cap || nb > na + cap || nb >= 128)
@@ -519,26 +520,33 @@ size_t dem__cfg_edit_distance(const char *a, const char *b, size_t cap)
     return row[nb];
 }
 
+void dem__cfg_slip_start(struct dem__cfg_slip *s, const char *name)
+{
+    const char *leaf = strrchr(name, '.');
+    const size_t third = strlen(leaf ? leaf + 1 : name) / 3;
+    s->name = name;
+    s->cap = third < 2 ? third : 2;
+    s->d = s->cap + 1;
+    s->best = -1;
+}
+
+void dem__cfg_slip_try(struct dem__cfg_slip *s, const char *cand, int index)
+{
+    const size_t e = edit_distance(s->name, cand, s->cap);
+    if (e >= 1 && e < s->d) {
+        s->d = e;
+        s->best = index;
+    }
+}
+
 const char *dem__cfg_nearest_key(const char *name, int scope)
 {
-    /* a slip of a letter or two, not another word: at most 2 edits and
-     * a third of the name's last part (contact.foo is not contact.ko) */
-    const char *leaf = strrchr(name, '.');
-    const size_t third = strlen(leaf ? leaf + 1 : name) / 3,
-                 cap = third < 2 ? third : 2;
-    const char *best = NULL;
-    size_t d = cap + 1;
-    for (size_t i = 0; i < dem__cfg_nkeys; i++) {
-        if (dem__cfg_keys[i].scope != scope)
-            continue;
-        const size_t e =
-            dem__cfg_edit_distance(name, dem__cfg_keys[i].name, cap);
-        if (e < d) {
-            d = e;
-            best = dem__cfg_keys[i].name;
-        }
-    }
-    return d >= 1 && d <= cap ? best : NULL;
+    struct dem__cfg_slip s;
+    dem__cfg_slip_start(&s, name);
+    for (size_t i = 0; i < dem__cfg_nkeys; i++)
+        if (dem__cfg_keys[i].scope == scope)
+            dem__cfg_slip_try(&s, dem__cfg_keys[i].name, (int)i);
+    return s.best < 0 ? NULL : dem__cfg_keys[s.best].name;
 }
 
 /* True if name is a group of top-level keys, e.g. "particles.radius".

@@ -111,8 +111,18 @@ int dem__cfg_find_key(const char *name, int scope);
 /* The key of that scope a slip of one or two letters from name (not
  * name itself), for "did you mean"; NULL when there is none. */
 const char *dem__cfg_nearest_key(const char *name, int scope);
-/* Levenshtein distance of a and b, capped at cap + 1. */
-size_t dem__cfg_edit_distance(const char *a, const char *b, size_t cap);
+/* The search for the candidate a slip of a letter or two from a name
+ * (keys, examples): at most 2 edits and a third of the name's last part
+ * (contact.foo is not contact.ko), not the name itself. Start it with the
+ * name, try each candidate with its index; best is the nearest's index,
+ * or -1. */
+struct dem__cfg_slip {
+    const char *name;
+    size_t cap, d;
+    int best;
+};
+void dem__cfg_slip_start(struct dem__cfg_slip *s, const char *name);
+void dem__cfg_slip_try(struct dem__cfg_slip *s, const char *cand, int index);
 /* True if name is a group of top-level keys, e.g. "particles.radius". */
 int dem__cfg_is_group_path(const char *name);
 /* The field of key k in base (a struct dem_config or dem_stage_config). */
