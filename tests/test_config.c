@@ -162,6 +162,24 @@ static void resolved_config_documents_each_key(void **state)
     /* keys of the other law are shown, but commented out */
     assert_non_null(strstr(out, "# k1 = 50000.0;"));
     free(out);
+    /* so are the keys that this sample reads nothing of: a uniform
+     * distribution's mean, written as the default 5 mm in a run of radii
+     * in [0.5, 1.5] mm, read as its mean radius (session 115); a lattice's
+     * gas fraction; a periodic cell's particle-wall keys */
+    const char *text = "dimension = 2; time_step = \"auto\";\n"
+                       "box = { boundary = \"periodic\"; };\n"
+                       "particles = { radius = { distribution = \"uniform\";"
+                       " min = 0.5e-3; max = 1.5e-3; }; };";
+    parse_ok(&c, text, 0, 0);
+    out = written(&c);
+    assert_non_null(strstr(out, "# mean = 0.005;  (not used by uniform"));
+    assert_non_null(strstr(out, "# std = 0.0007;  (not used by uniform"));
+    assert_non_null(strstr(out, "\n    min = 0.0005;"));
+    assert_non_null(strstr(out, "# volume_fraction = 0.2;  (not used by a "
+                                "lattice"));
+    assert_non_null(strstr(out, "# wall_mu = 0.0;  (no walls touch"));
+    free(out);
+    assert_round_trip(text);
 }
 
 /* A group given by --set is merged into the config's group of that name:

@@ -133,6 +133,13 @@ double dem__cfg_key_value(const void *base, const struct key *k);
 void dem__cfg_set_key_default(void *base, const struct key *k);
 void dem__cfg_stage_defaults(struct dem_stage_config *s);
 
+/* validate.c: why the top-level key called name is read by nothing in
+ * config c, or NULL when something reads it: in full (for the refusal of
+ * a value given) and in a few words in *brief (may be NULL; for the
+ * comment that config.cfg writes in its place). */
+const char *dem__cfg_unread(const struct dem_config *c, const char *name,
+                            const char **brief);
+
 /* parse.c: an error at setting s (may be NULL) about key; about the top
  * key called name, or the key name of stage `stage` (>= 0), located where
  * it (or else its stage) was given. One line, DEM_ECONFIG. */

@@ -117,73 +117,86 @@ static int check_radii(const struct ctx *x, const struct dem_config *c,
     return 0;
 }
 
-/* A particles key given at another value than its default (which every
- * resolved config.cfg writes, and which changes nothing) where this
- * combination of keys never reads it: refused, as a law's keys given with
- * another law are, rather than ignored without a word (the closing note
- * of session 108). */
-static int unused_key(const struct ctx *x, const struct dem_config *c,
-                      const char *name, double def, const char *why,
-                      struct dem_error *err)
+/* Why the top-level key called name is read by nothing in config c, or
+ * NULL when something reads it: in full (why, for the refusal of a value
+ * given) and in a few words (brief, for the comment that config.cfg
+ * writes in its place). */
+const char *dem__cfg_unread(const struct dem_config *c, const char *name,
+                            const char **brief)
 {
-    const int k = dem__cfg_find_key(name, S_TOP);
-    if (k < 0 || !x->at[k] || dem__cfg_key_value(c, &dem__cfg_keys[k]) == def)
-        return 0;
-    return dem__cfg_fail_key(x, -1, name, err, "not used %s: remove it", why);
-}
-
-static double key_default(const char *name)
-{
-    return dem__cfg_keys[dem__cfg_find_key(name, S_TOP)].def;
-}
-
-static int check_unused(const struct ctx *x, const struct dem_config *c,
-                        struct dem_error *err)
-{
-    /* a periodic cell has no walls that touch a particle: the
-     * particle-wall keys would be read by nothing */
     static const char *const wall_keys[4] = {
         "contact.wall_mu", "contact.wall_kc", "contact.wall_mu_r",
         "contact.wall_mu_o"};
-    for (int q = 0; q < 4 && c->box.boundary == DEM_BOUNDARY_PERIODIC; q++)
-        if (unused_key(x, c, wall_keys[q], key_default(wall_keys[q]),
-                       "with box.boundary = \"periodic\" (a cell has no "
-                       "walls that touch the particles)",
-                       err))
-            return DEM_ECONFIG;
-    /* with a particle file the count and the radii are the file's; the
-     * radius keys still set the config's own checks (docs/config.md),
-     * and an example turned to a file by --set keeps its keys */
-    if (c->particles.placement == DEM_PLACE_FILE)
-        return 0;
     static const char *const radius[4] = {
         "particles.radius.mean", "particles.radius.std", "particles.radius.min",
         "particles.radius.max"};
+    const char *b = 0, *why = 0;
+    /* a periodic cell has no walls that touch a particle: the
+     * particle-wall keys would be read by nothing */
+    for (int q = 0; q < 4; q++)
+        if (c->box.boundary == DEM_BOUNDARY_PERIODIC &&
+            !strcmp(name, wall_keys[q])) {
+            b = "no walls touch a periodic cell's particles";
+            why = "with box.boundary = \"periodic\" (a cell has no walls "
+                  "that touch the particles)";
+        }
+    /* with a particle file the count and the radii are the file's; the
+     * radius keys still set the config's own checks (docs/config.md),
+     * and an example turned to a file by --set keeps its keys */
+    const int dist = c->particles.distribution;
     /* which radius keys each distribution reads: mono the mean, uniform
      * min and max, gaussian all four */
-    const int dist = c->particles.distribution;
     const int reads[4] = {dist != DEM_DIST_UNIFORM, dist == DEM_DIST_GAUSSIAN,
                           dist != DEM_DIST_MONO, dist != DEM_DIST_MONO};
     for (int q = 0; q < 4; q++)
-        if (!reads[q] &&
-            unused_key(x, c, radius[q], key_default(radius[q]),
-                       dist == DEM_DIST_MONO
-                           ? "by particles.radius.distribution = \"mono\" "
-                             "(every radius is the mean)"
-                           : "by particles.radius.distribution = "
-                             "\"uniform\" (radii drawn from [min, max])",
-                       err))
-            return DEM_ECONFIG;
+        if (c->particles.placement != DEM_PLACE_FILE && !reads[q] &&
+            !strcmp(name, radius[q])) {
+            b = dist == DEM_DIST_MONO ? "not used by mono radii"
+                                      : "not used by uniform radii";
+            why = dist == DEM_DIST_MONO
+                      ? "by particles.radius.distribution = \"mono\" "
+                        "(every radius is the mean)"
+                      : "by particles.radius.distribution = \"uniform\" "
+                        "(radii drawn from [min, max])";
+        }
     int box = 0;
     for (int d = 0; d < c->dim; d++)
         box |= c->box.size[d] > 0;
-    if (c->particles.placement == DEM_PLACE_LATTICE || box)
-        return unused_key(
-            x, c, "particles.volume_fraction", c->dim == 2 ? 0.2 : 0.1,
-            box ? "with box.size given (the box sets the gas's fraction)"
-                : "with particles.placement = \"lattice\" (a spacing of "
-                  "2 r_max)",
-            err);
+    if (c->particles.placement != DEM_PLACE_FILE &&
+        (c->particles.placement == DEM_PLACE_LATTICE || box) &&
+        !strcmp(name, "particles.volume_fraction")) {
+        b = box ? "not used with box.size given"
+                : "not used by a lattice placement";
+        why = box ? "with box.size given (the box sets the gas's fraction)"
+                  : "with particles.placement = \"lattice\" (a spacing of "
+                    "2 r_max)";
+    }
+    if (brief)
+        *brief = b;
+    return why;
+}
+
+/* The keys given at another value than their default (which every
+ * resolved config.cfg writes, and which changes nothing) where this
+ * combination of keys never reads them: refused, as a law's keys given
+ * with another law are, rather than ignored without a word (the closing
+ * note of session 108). */
+static int check_unused(const struct ctx *x, const struct dem_config *c,
+                        struct dem_error *err)
+{
+    for (size_t k = 0; k < dem__cfg_nkeys; k++) {
+        const struct key *key = &dem__cfg_keys[k];
+        const char *why;
+        if (key->scope != S_TOP || !x->at[k] ||
+            !(why = dem__cfg_unread(c, key->name, 0)))
+            continue;
+        const double def = !strcmp(key->name, "particles.volume_fraction")
+                               ? (c->dim == 2 ? 0.2 : 0.1)
+                               : key->def;
+        if (dem__cfg_key_value(c, key) != def)
+            return dem__cfg_fail_key(x, -1, key->name, err,
+                                     "not used %s: remove it", why);
+    }
     return 0;
 }
 

@@ -114,6 +114,9 @@ static const char *omitted(const struct key *k, const struct dem_config *c)
             if ((owner >> (16 + r)) & 1)
                 return off[r];
     }
+    const char *brief;
+    if (k->scope == S_TOP && dem__cfg_unread(c, k->name, &brief))
+        return brief;
     if ((k->flags & F_UNSET_ZERO) && dem__cfg_key_value(c, k) == 0)
         return "not given";
     if ((k->flags & F_MU) && c->contact.mu_s != c->contact.mu_d)
