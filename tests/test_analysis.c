@@ -1301,6 +1301,39 @@ static void a_hold_with_relax_may_end_early(void **state)
             fail_msg("relax %d: %s", relax, js);
         free(js);
     }
+    /* which the run's own record tells: its timing.txt's last line (a
+     * part that was stopped, resumed and finished is complete; a line
+     * not of a record is no record) */
+    static const struct {
+        const char *text;
+        int complete;
+    } timing[] = {
+        {"2026-12-08T00:54:21Z stopped by --max-steps, steps 0 to 520, "
+         "dembox 0.1.0\n",
+         0},
+        {"2026-12-08T00:54:21Z stopped by --max-steps, steps 0 to 20\n"
+         "2026-12-08T00:55:02Z finished, steps 20 to 520\n",
+         1},
+        {"2026-12-08T00:54:21Z interrupted, steps 0 to 20\n"
+         "2026-12-08T00:55:02Z stopped by --max-steps, steps 20 to 520\n",
+         0},
+        {"stopped by --max-steps\n", 1},
+        {"2026-12-08T00:54:21Z stopped by --max-steps-ish, steps 0 to 5\n", 1},
+    };
+    char dir[128];
+    snprintf(dir, sizeof dir, "%s/hold-relax", tmpdir);
+    for (size_t k = 0; k < sizeof timing / sizeof timing[0]; k++) {
+        write_text(dir, "timing.txt", timing[k].text);
+        char *js = analyzed_summary(dir);
+        if (!strstr(js, timing[k].complete ? "\"complete\": true"
+                                           : "\"complete\": false") ||
+            (!timing[k].complete &&
+             !strstr(js, "\"complete_reason\": \"a run cut short by "
+                         "--max-steps (its timing.txt says so): its rows end "
+                         "in stage 1 at t = 0.52 s\"")))
+            fail_msg("timing.txt %zu: %s", k, js);
+        free(js);
+    }
 }
 
 /* The line `dembox run` and `dembox analyze` end with: the parameters

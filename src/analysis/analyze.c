@@ -21,6 +21,7 @@
 #include "io/fsutil.h"
 #include "io/outfile.h"
 #include "protocol/stage.h"
+#include "protocol/timing.h"
 
 #define DEG (180.0 / M_PI)
 
@@ -1040,16 +1041,25 @@ int dem_analyze(const char *outdir, struct dem_error *err)
     return rc;
 }
 
-/* Whether the rows reach the run's end: its last stage has rows, and
- * runs to its end, within half an output interval, where it is a stage
- * of fixed length (every type but isotropic and a hold with relax: their
- * end is a state, which the rows do not show). A stage before the last
- * one ended, or the rows would not go on. A run cut short (--max-steps)
- * writes its outputs as a finished one; its analysis says so here. */
-static void check_complete(const struct dem_config *cfg,
+/* Whether the rows reach the run's end. A run cut short (--max-steps)
+ * writes its outputs as a finished one; its analysis says so here: by
+ * the run's own record (timing.txt's last line), or without one by the
+ * rows: its last stage has rows, and runs to its end, within half an
+ * output interval, where it is a stage of fixed length (every type but
+ * isotropic and a hold with relax: their end is a state, which the rows
+ * do not show). A stage before the last one ended, or the rows would not
+ * go on. */
+static void check_complete(const char *outdir, const struct dem_config *cfg,
                            const struct columns *c, long nrow, struct result *R)
 {
     const int last = nrow > 0 ? (int)c->stage[nrow - 1] : -1;
+    if (dem_run_timing_was_cut(outdir) == 1) {
+        snprintf(R->cut_reason, sizeof R->cut_reason,
+                 "a run cut short by --max-steps (its timing.txt says "
+                 "so): its rows end in stage %d at t = %.6g s",
+                 last, nrow > 0 ? c->t[nrow - 1] : 0.0);
+        return;
+    }
     if (last < cfg->nstages - 1) {
         snprintf(R->cut_reason, sizeof R->cut_reason,
                  "the rows end in stage %d of stages 0 to %d: a run cut short "
@@ -1109,7 +1119,7 @@ static int analyze_folder(const char *outdir, const char *cfg_path,
     if (!rc)
         rc = analyze_shear(cfg, &c, nrow, &R);
     if (!rc) {
-        check_complete(cfg, &c, nrow, &R);
+        check_complete(outdir, cfg, &c, nrow, &R);
         if (R.cut_reason[0])
             dem_warn(err, "%s: %s; summary.json is of the rows there are",
                      ts_path, R.cut_reason);

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include <time.h>
 
 #include "core/machine.h"
@@ -47,6 +48,8 @@ int dem_run_timing_line(const struct dem_run_timing *T, char *buf, size_t n)
     return 1;
 }
 
+static const char cut_word[] = "stopped by --max-steps";
+
 void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
                            int status, int cut, long step_from, int threads,
                            int ranks, const char *other_build,
@@ -66,7 +69,7 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
     const size_t n = sizeof buf;
     size_t at0 = 0, *at = &at0;
     PUT("%s %s, steps %ld to %ld", when,
-        status == DEM_OK && cut      ? "stopped by --max-steps"
+        status == DEM_OK && cut      ? cut_word
         : status == DEM_OK           ? "finished"
         : status == DEM_EINTERRUPTED ? "interrupted"
                                      : "failed",
@@ -86,4 +89,30 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
     const int ok = f && fprintf(f, "%s\n", buf) > 0;
     if ((f && fclose(f) != 0) || !ok)
         dem_warn(err, "%s: cannot write the timing record", path);
+}
+
+int dem_run_timing_was_cut(const char *dir)
+{
+    char path[DEM_PATH_MAX], line[4096], last[4096] = "";
+    if (dem_path_join(path, sizeof path, dir, "timing.txt", NULL))
+        return -1;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    /* a record is one line: the last one begun is the last part's (a
+     * line longer than the buffer goes on in the next read, which does
+     * not begin with a time) */
+    int whole = 1;
+    while (fgets(line, sizeof line, f)) {
+        if (whole)
+            memcpy(last, line, sizeof line);
+        whole = strchr(line, '\n') != NULL;
+    }
+    fclose(f);
+    /* "2026-12-08T00:54:21Z finished, ..." */
+    const char *word = strchr(last, ' ');
+    if (strlen(last) < 21 || last[10] != 'T' || !word || word - last != 20)
+        return -1;
+    return !strncmp(word + 1, cut_word, sizeof cut_word - 1) &&
+           word[sizeof cut_word] == ',';
 }

@@ -21,4 +21,9 @@ void dem_run_timing_record(const char *dir, const struct dem_run_timing *T,
                            int ranks, const char *other_build,
                            const struct dem_error *err);
 
+/* The word of dir/timing.txt's last record for how the run ended:
+ * 1 stopped by --max-steps, 0 any other way, -1 no record (no file, or
+ * one not of this form). */
+int dem_run_timing_was_cut(const char *dir);
+
 #endif
