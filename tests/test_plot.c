@@ -116,10 +116,16 @@ static void write_timeseries(const char *dir, int dim, int axis, int rows)
     assert_int_equal(fclose(f), 0);
 }
 
-/* A lattice of n x n (x n) particles filling the 0.1 m box. */
+/* A lattice of n x n (x n) particles filling the 0.1 m box, none
+ * touching another (contacts_final.csv has no rows). */
 static int write_particles(const char *dir, int dim, int with_forces)
 {
     char p[1024], q[1024];
+    path_of(p, sizeof p, dir, "contacts_final.csv");
+    FILE *c = fopen(p, "w");
+    assert_non_null(c);
+    fprintf(c, "id_i,id_j,x,y,z,nx,ny,nz,delta,fn,ft_x,ft_y,ft_z,sliding\n");
+    assert_int_equal(fclose(c), 0);
     path_of(p, sizeof p, dir, "particles_final.csv");
     path_of(q, sizeof q, dir, "forces_final.csv");
     FILE *f = fopen(p, "w"), *g = with_forces ? fopen(q, "w") : NULL;
@@ -787,6 +793,14 @@ static void config_warnings_are_not_given_again(void **state)
         fail_msg("dem_plot_run: %s", err.msg);
     assert_string_equal(warned, "");
     assert_false(file_contains(dir, "stderr.txt", "warning"));
+    /* a folder without its contacts is drawn without their pictures, but
+     * not without a word (session 115) */
+    path_of(path, sizeof path, dir, "contacts_final.csv");
+    assert_int_equal(remove(path), 0);
+    assert_int_equal(dem_plot_run(dir, &err), 0);
+    if (!strstr(warned, "contacts_final.csv: No such file or directory: the "
+                        "pictures of the contact network"))
+        fail_msg("warnings '%s'", warned);
     remove_dir(dir);
 }
 

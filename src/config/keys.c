@@ -80,7 +80,7 @@ const struct key dem__cfg_keys[] = {
      GE(1),
      LE(DEM_MAX_PARTICLES),
      .unit = "-",
-     .doc = "number of particles"},
+     .doc = "number of particles (placement file: the file's count instead)"},
     {.name = "particles.density",
      .kind = K_DOUBLE,
      TOP(particles.density),

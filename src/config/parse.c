@@ -389,10 +389,11 @@ static int walk_stage(struct ctx *x, struct dem_config *c, int i,
                                      "a shear stage needs shear_strain "
                                      "(strain control) or shear_stress "
                                      "(stress control)");
-        /* the stress target is held from the start (a creep test; the
-         * default profile, cosine, which a run's config.cfg writes out) or
-         * cycled: a ramp asked for, linear or cosine, would run as a step
-         * (cosine accepted only as a resolved config.cfg writes it) */
+        /* the stress target is held from the start (a creep test; no
+         * profile, which a run's config.cfg leaves out) or cycled: a ramp
+         * asked for, linear or cosine, would run as a step (cosine read
+         * only in a recorded config: the config.cfg of earlier builds
+         * wrote the default out) */
         const config_setting_t *profile =
             x->stage_at[i][dem__cfg_find_key("profile", S_STAGE)];
         if (stress && profile &&

@@ -1260,6 +1260,16 @@ static int plot_folder(const char *outdir, struct dem_error *err)
             rc = write_plot(&s, &plots[k], plotdir, err);
     const char *extra[4];
     int nextra = 0;
+    /* (a folder whose contacts were removed, or of an older build:
+     * drawn without them, but not without a word) */
+    if (!rc &&
+        !dem_path_join(path, sizeof path, outdir, "contacts_final.csv", NULL) &&
+        access(path, R_OK))
+        dem_warn(err,
+                 "%s: %s: the pictures of the contact network "
+                 "(contact_normals, force_distribution, the force chains) "
+                 "are not drawn",
+                 path, strerror(errno));
     if (!rc) /* the contact network's pictures (plot/contacts.c) */
         rc = dem__plot_contacts(outdir, plotdir, s.dim, s.axis, peak_time(&s),
                                 extra, &nextra, err);
