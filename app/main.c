@@ -90,12 +90,13 @@ static const char *const usage_run =
     "plot). Files being written end in .part until the run is done.\n"
     "\n"
     "Every output.checkpoint_interval seconds (default 600) and on Ctrl-C\n"
-    "(SIGINT) or SIGTERM the run saves OUTDIR/checkpoint.bin; after a signal\n"
-    "it stops (exit status 130 or 143) and says how to resume. A second\n"
-    "Ctrl-C stops at once, without a checkpoint. A finished run removes its\n"
-    "checkpoint; resuming it is refused (exit status 1). The environment\n"
-    "variable DEMBOX_STOP_AFTER_STEP=S stops the run so, as if interrupted,\n"
-    "at its first sample past step S (to cut a long run where you choose).\n"
+    "(SIGINT), SIGTERM or SIGHUP (a terminal closed) the run saves\n"
+    "OUTDIR/checkpoint.bin; after a signal it stops (exit status 130, 143\n"
+    "or 129) and says how to resume. A second Ctrl-C stops at once, without\n"
+    "a checkpoint. A finished run removes its checkpoint; resuming it is\n"
+    "refused (exit status 1). The environment variable\n"
+    "DEMBOX_STOP_AFTER_STEP=S stops the run so, as if interrupted, at its\n"
+    "first sample past step S (to cut a long run where you choose).\n"
     "\n"
     "Under mpirun (a build with MPI) the sample is split over the ranks by\n"
     "domain decomposition (docs/parallel.md): the same outputs, written by\n"
@@ -387,9 +388,10 @@ static void on_signal(int sig)
     stop_signal = sig;
 }
 
-/* SIGINT and SIGTERM turned into stop_signal, and back. */
+/* SIGINT, SIGTERM and SIGHUP (a terminal closed, an ssh session
+ * dropped) turned into stop_signal, and back. */
 struct signals {
-    struct sigaction sint, sterm;
+    struct sigaction sint, sterm, shup;
 };
 
 static void catch_signals(struct signals *old)
@@ -401,6 +403,7 @@ static void catch_signals(struct signals *old)
     sa.sa_flags = SA_RESTART;
     sigaction(SIGINT, &sa, &old->sint);
     sigaction(SIGTERM, &sa, &old->sterm);
+    sigaction(SIGHUP, &sa, &old->shup);
     stop_signal = 0;
 }
 
@@ -408,6 +411,7 @@ static void restore_signals(const struct signals *old)
 {
     sigaction(SIGINT, &old->sint, 0);
     sigaction(SIGTERM, &old->sterm, 0);
+    sigaction(SIGHUP, &old->shup, 0);
 }
 
 /* Whether a progress line is on the terminal (it has no newline yet). */
@@ -1060,6 +1064,11 @@ static int stdout_status(int rc)
 
 int main(int argc, char **argv)
 {
+    /* a file-size limit (ulimit -f) is a write that fails (EFBIG), which
+     * the outputs report, naming the file, and the run stops with its
+     * checkpoint kept; by default the signal ended the process without a
+     * word, its lock left behind (a read-only review, session 115) */
+    signal(SIGXFSZ, SIG_IGN);
     int rank, size;
     dem_mpi_launch(&rank, &size);
     if (size != 1 && dem_mpi_built()) {
