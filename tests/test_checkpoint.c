@@ -1144,6 +1144,16 @@ static void sigint_checkpoints_and_resumes_identically(void **state)
         log_contains(log, "(expected exit status 129)");
     log_contains(log, "resume with: dembox run --resume");
     assert_true(exists(out, "checkpoint.bin"));
+    /* the same command again does not throw the checkpoint away (it did
+     * until session 115): refused, naming both ways on, nothing touched */
+    const long part = file_size(out, "timeseries.csv.part");
+    code = wait_exit(spawn(args, log, 0));
+    if (code != 1)
+        log_contains(log, "(expected exit status 1)");
+    log_contains(log, "holds the checkpoint of an unfinished run: go on "
+                      "with it by dembox run --resume");
+    assert_true(exists(out, "checkpoint.bin"));
+    assert_true(file_size(out, "timeseries.csv.part") == part);
 }
 
 /* kill -9 at an arbitrary moment between (or during) checkpoints taken at

@@ -819,6 +819,15 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
         rc = keeps_config_file(dir, r->sim.cfg.source, err);
     if (!rc)
         rc = ckpt_path(r, err);
+    /* an unfinished run's checkpoint is hours of work that a new run in
+     * the folder would remove: the same command typed again after a
+     * Ctrl-C lost them without a word (a read-only review, session 115) */
+    if (!rc && access(r->ckpt_path, F_OK) == 0)
+        rc = dem_error_set(err, DEM_EUSAGE,
+                           "%s holds the checkpoint of an unfinished run: "
+                           "go on with it by dembox run --resume %s, or "
+                           "remove %s to start a new run there",
+                           dir, dir, r->ckpt_path);
     /* the results and checkpoint of an earlier run in this folder no
      * longer belong to what is being written now: the outputs' files and
      * the runner's own, and the temporaries of each that a killed

@@ -511,9 +511,13 @@ int dem__sweep_run_point(const struct dem_sweep_grid *g,
         struct dem_config *c = malloc(sizeof *c);
         rc = c ? parse_with(o, sets, ns, c, &e)
                : dem_error_set(&e, DEM_ENOMEM, "out of memory");
-        /* the limit beside the run, before its first output */
+        /* the limit beside the run, before its first output; a
+         * checkpoint there is of another point, or one that did not
+         * resume: the point runs again from the start */
         if (!rc)
             rc = step_limit_write(o, rundir, &e);
+        if (!rc)
+            rc = dem_remove_in(rundir, "checkpoint.bin", &e);
         if (!rc)
             rc = dem_run(c, &opt, &e);
         free(c);
