@@ -970,6 +970,15 @@ static void resume_gives_config_warnings_to_the_caller(void **state)
         fail_msg("warning: \"%s\"", warning);
 }
 
+/* A progress callback: the checkpoint's temporary (user) made /dev/full
+ * at the first report. */
+static void fill_disk(const struct dem_progress *p, void *user)
+{
+    (void)p;
+    if (symlink("/dev/full", user) != 0 && errno != EEXIST)
+        fail_msg("symlink: %s", strerror(errno));
+}
+
 static void write_error_keeps_the_last_checkpoint(void **state)
 {
     (void)state;
@@ -1000,6 +1009,26 @@ static void write_error_keeps_the_last_checkpoint(void **state)
         fail_msg("%s", err.msg);
     assert_same_outputs(ref, out, 1);
     free(good);
+    /* a run's first checkpoint that fails leaves none to resume from:
+     * said so (it claimed one kept); the disk fills at the end of the
+     * isotropic stage (the run starts by removing checkpoint.bin.tmp) */
+    struct dem_config c;
+    parse(&c, small_2d);
+    dir_path(out, sizeof out, "diskfull-first");
+    file_path(ckpt, sizeof ckpt, out, "checkpoint.bin");
+    snprintf(tmp, sizeof tmp, "%s.tmp", ckpt);
+    struct dem_run_options o = {.outdir = out,
+                                .threads = 1,
+                                .max_steps = 4000,
+                                .stop_after_steps = 3000,
+                                .progress = fill_disk,
+                                .progress_user = tmp};
+    if (dem_run(&c, &o, &err) != DEM_EIO)
+        fail_msg("%s", err.msg);
+    assert_one_line_naming(&err, tmp,
+                           "No space left on device (there is no "
+                           "checkpoint to resume from)");
+    assert_false(exists(out, "checkpoint.bin"));
 }
 
 /* --------------------------------------------------- the dembox command */

@@ -555,12 +555,15 @@ int dem_checkpoint_write(const char *path, const char *config_text,
     char tmp[DEM_PATH_MAX + 8];
     if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp)
         return dem_error_set(err, DEM_EIO, "%s: path too long", path);
+    /* what a failure leaves: the checkpoint before, if there is one */
+    const char *kept = access(path, F_OK) == 0
+                           ? "the last checkpoint is kept"
+                           : "there is no checkpoint to resume from";
     FILE *f = fopen(tmp, "wb");
     if (!f)
         return dem_error_set(err, DEM_EIO,
-                             "%s: cannot write checkpoint: %s (the last "
-                             "checkpoint is kept)",
-                             tmp, strerror(errno));
+                             "%s: cannot write checkpoint: %s (%s)", tmp,
+                             strerror(errno), kept);
     struct ck_io io = {0};
     io.f = f;
     header(&io, length);
@@ -581,9 +584,8 @@ int dem_checkpoint_write(const char *path, const char *config_text,
     if (io.werr) {
         remove(tmp);
         return dem_error_set(err, DEM_EIO,
-                             "%s: cannot write checkpoint: %s (the last "
-                             "checkpoint is kept)",
-                             tmp, strerror(io.werr));
+                             "%s: cannot write checkpoint: %s (%s)", tmp,
+                             strerror(io.werr), kept);
     }
     sync_folder(path);
     return DEM_OK;
