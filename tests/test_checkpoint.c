@@ -603,7 +603,23 @@ static void stop_and_resume(const char *text, const char *const *sets,
         fail_msg("%s", err.msg);
     assert_same_file(ref, out, "summary.json");
 
-    /* a finished run is not resumed */
+    /* a finished run is not resumed, nor one cut by --max-steps (as
+     * these are, which its timing.txt says: without it, finished) */
+    char timing[1100];
+    file_path(timing, sizeof timing, out, "timing.txt");
+    size_t len = 0;
+    char *t = (char *)read_all(timing, &len);
+    assert_non_null(t);
+    const char *last = t + len - 1; /* the last line */
+    while (last > t && last[-1] != '\n')
+        last--;
+    const int cut = !memcmp(last + 21, "stopped by --max-steps,", 23);
+    free(t);
+    rc = resume(out, 0, 1, &err);
+    assert_int_equal(rc, DEM_EUSAGE);
+    assert_one_line_naming(
+        &err, out, cut ? "cut short by --max-steps" : "already finished");
+    assert_int_equal(remove(timing), 0);
     rc = resume(out, 0, 1, &err);
     assert_int_equal(rc, DEM_EUSAGE);
     assert_one_line_naming(&err, out, "already finished");
@@ -970,6 +986,40 @@ static void resume_gives_config_warnings_to_the_caller(void **state)
         fail_msg("warning: \"%s\"", warning);
 }
 
+/* The commands a stopped run prints can be pasted into a shell: a folder
+ * with a space and a quote is quoted (it was printed bare: `--resume my
+ * run` pasted took two arguments); a run cut by --max-steps is not
+ * "already finished" to a resume, but cut short, which ends it. */
+static void resume_messages_can_be_pasted(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    parse(&c, small_2d);
+    char out[1024], want[2200];
+    struct dem_error err = {0};
+    dir_path(out, sizeof out, "my run's");
+    assert_int_equal(run(&c, out, 4000, 1500, 1, &err), DEM_EINTERRUPTED);
+    snprintf(want, sizeof want,
+             "resume with: dembox run --resume '%s/my run'\\''s'", tmpdir);
+    if (!strstr(err.msg, want))
+        fail_msg("\"%s\" should say \"%s\"", err.msg, want);
+    assert_int_equal(run(&c, out, 4000, 0, 1, &err), DEM_EUSAGE);
+    snprintf(
+        want, sizeof want,
+        "go on with it by dembox run --resume '%s/my run'\\''s', or remove",
+        tmpdir);
+    if (!strstr(err.msg, want))
+        fail_msg("\"%s\" should say \"%s\"", err.msg, want);
+
+    dir_path(out, sizeof out, "cut");
+    assert_int_equal(run(&c, out, 1500, 0, 1, &err), DEM_OK);
+    assert_int_equal(resume(out, 0, 1, &err), DEM_EUSAGE);
+    assert_one_line_naming(&err, out,
+                           "the run was cut short by --max-steps (its "
+                           "timing.txt says so), which ends a run: it cannot "
+                           "go on; run it again without --max-steps");
+}
+
 /* A progress callback: the checkpoint's temporary (user) made /dev/full
  * at the first report. */
 static void fill_disk(const struct dem_progress *p, void *user)
@@ -1264,6 +1314,7 @@ int main(void)
         cmocka_unit_test(another_build_is_refused_unless_any_build),
         cmocka_unit_test(resume_gives_config_warnings_to_the_caller),
         cmocka_unit_test(write_error_keeps_the_last_checkpoint),
+        cmocka_unit_test(resume_messages_can_be_pasted),
         cmocka_unit_test(sigint_checkpoints_and_resumes_identically),
         cmocka_unit_test(kill_9_between_checkpoints_resumes_identically),
         cmocka_unit_test(write_error_in_outputs_stops_the_command),

@@ -298,3 +298,32 @@ void dem_sync_file_system(const char *dir)
     (void)dir;
     sync();
 }
+
+int dem_shell_word(char *out, size_t n, const char *s)
+{
+    size_t k = strnlen(out, n);
+    const int plain = *s && strspn(s, "abcdefghijklmnopqrstuvwxyz"
+                                      "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                      "0123456789_./:=+,-@%") == strlen(s);
+    if (k + 1 >= n)
+        return -1;
+    if (!plain)
+        out[k++] = '\'';
+    for (; *s; s++) {
+        const char *piece = *s == '\'' ? "'\\''" : NULL;
+        const size_t len = piece ? 4 : 1;
+        if (k + len + 2 >= n) {
+            out[k] = '\0';
+            return -1;
+        }
+        if (piece)
+            memcpy(out + k, piece, len);
+        else
+            out[k] = *s;
+        k += len;
+    }
+    if (!plain)
+        out[k++] = '\'';
+    out[k] = '\0';
+    return 0;
+}

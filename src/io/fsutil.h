@@ -56,6 +56,13 @@ int dem_remove_in(const char *dir, const char *leaf, struct dem_error *err);
  * message of a command that wants a run's folder. */
 int dem_is_sweep_folder(const char *dir);
 
+/* Append s to out (n bytes, NUL-terminated) as one word of the shell:
+ * as it is where every character is plain (letters, digits, _ . / : = +
+ * , - @ %), else in single quotes ('\'' for a quote), so that a command
+ * printed for the user can be pasted. -1, out cut short, when it does not
+ * fit. */
+int dem_shell_word(char *out, size_t n, const char *s);
+
 /* The file a folder's writer locks (flock, advisory). */
 #define DEM_LOCK_FILE ".dembox.lock"
 

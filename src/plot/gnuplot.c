@@ -74,29 +74,6 @@ const char *dem__gp_command(void)
     return c && *c ? c : "gnuplot";
 }
 
-/* Append s to out in single quotes for the shell ('\'' for a quote). */
-static int shell_quote(char *out, size_t n, const char *s)
-{
-    size_t k = strlen(out);
-    if (k + 1 >= n)
-        return -1;
-    out[k++] = '\'';
-    for (; *s; s++) {
-        const char *piece = *s == '\'' ? "'\\''" : NULL;
-        size_t len = piece ? 4 : 1;
-        if (k + len + 2 >= n)
-            return -1;
-        if (piece)
-            memcpy(out + k, piece, len);
-        else
-            out[k] = *s;
-        k += len;
-    }
-    out[k++] = '\'';
-    out[k] = '\0';
-    return 0;
-}
-
 /* Append plain text. */
 static int append(char *out, size_t n, const char *s)
 {
@@ -116,7 +93,7 @@ int dem__gp_available(const char *cmd)
 {
     char line[DEM_PATH_MAX + 64] = "";
     if (append(line, sizeof line, "command -v ") ||
-        shell_quote(line, sizeof line, cmd) ||
+        dem_shell_word(line, sizeof line, cmd) ||
         append(line, sizeof line, " >/dev/null 2>&1"))
         return 0;
     return exit_ok(system(line));
@@ -179,9 +156,10 @@ int dem__gp_run(const char *cmd, const char *plotdir, const char *name,
     snprintf(gp, sizeof gp, " -e \"outfile='%s.png.tmp'\" %s.gp", name, name);
     /* (a folder named -x would be read by cd as an option) */
     if ((plotdir[0] == '-' && append(line, sizeof line, "./")) ||
-        shell_quote(line, sizeof line, plotdir) ||
+        dem_shell_word(line, sizeof line, plotdir) ||
         append(line, sizeof line, " && ") ||
-        shell_quote(line, sizeof line, cmd) || append(line, sizeof line, gp) ||
+        dem_shell_word(line, sizeof line, cmd) ||
+        append(line, sizeof line, gp) ||
         append(line, sizeof line, " >/dev/null 2>gnuplot.err"))
         return dem_error_set(err, DEM_EIO, "%s: path too long", plotdir);
 

@@ -404,10 +404,12 @@ static int stop_here(struct run_ctx *r, struct dem_error *err)
     show_progress(r, &r->stage, 1);
     if (rc)
         return rc;
+    char word[2 * DEM_PATH_MAX + 8] = "";
+    dem_shell_word(word, sizeof word, r->outdir);
     return dem_error_set(err, DEM_EINTERRUPTED,
                          "interrupted at t = %.6g s (step %ld); "
                          "resume with: dembox run --resume %s",
-                         r->sim.t, r->sim.step, r->outdir);
+                         r->sim.t, r->sim.step, word);
 }
 
 /* The room the box must leave the ranks' subdomains, over the ghost
@@ -428,13 +430,15 @@ static int stop_cramped(struct run_ctx *r, struct dem_error *err)
     show_progress(r, &r->stage, 1);
     if (rc)
         return rc;
+    char word[2 * DEM_PATH_MAX + 8] = "";
+    dem_shell_word(word, sizeof word, r->outdir);
     return dem_error_set(
         err, DEM_EUSAGE,
         "stage %d: at t = %.6g s (step %ld) the box has shrunk so that %d "
         "ranks can no longer cut it into subdomains wider than the ghost "
         "range; checkpoint written: resume on fewer ranks with: mpirun -np "
         "K dembox run --resume %s",
-        r->stage.index, r->sim.t, r->sim.step, r->nranks, r->outdir);
+        r->stage.index, r->sim.t, r->sim.step, r->nranks, word);
 }
 
 /* A sample of the stage under way: the measurement, the outputs, the
@@ -822,12 +826,15 @@ static int create_outputs(struct run_ctx *r, struct dem_error *err)
     /* an unfinished run's checkpoint is hours of work that a new run in
      * the folder would remove: the same command typed again after a
      * Ctrl-C lost them without a word (a read-only review, session 115) */
-    if (!rc && access(r->ckpt_path, F_OK) == 0)
+    if (!rc && access(r->ckpt_path, F_OK) == 0) {
+        char word[2 * DEM_PATH_MAX + 8] = "";
+        dem_shell_word(word, sizeof word, dir);
         rc = dem_error_set(err, DEM_EUSAGE,
                            "%s holds the checkpoint of an unfinished run: "
                            "go on with it by dembox run --resume %s, or "
                            "remove %s to start a new run there",
-                           dir, dir, r->ckpt_path);
+                           dir, word, r->ckpt_path);
+    }
     /* the results and checkpoint of an earlier run in this folder no
      * longer belong to what is being written now: the outputs' files and
      * the runner's own, and the temporaries of each that a killed
@@ -1100,10 +1107,17 @@ static int read_checkpoint(struct run_ctx *r, struct dem_error *err)
     if (rc)
         return rc;
     if (file_exists(path) && !file_exists(part))
-        return dem_error_set(err, DEM_EUSAGE,
-                             "%s: the run has already finished (%s exists); "
-                             "nothing to resume",
-                             outdir, path);
+        return dem_run_timing_was_cut(outdir) == 1
+                   ? dem_error_set(err, DEM_EUSAGE,
+                                   "%s: the run was cut short by --max-steps "
+                                   "(its timing.txt says so), which ends a "
+                                   "run: it cannot go on; run it again "
+                                   "without --max-steps",
+                                   outdir)
+                   : dem_error_set(err, DEM_EUSAGE,
+                                   "%s: the run has already finished (%s "
+                                   "exists); nothing to resume",
+                                   outdir, path);
     if (!file_exists(r->ckpt_path) && dem_is_sweep_folder(outdir))
         return dem_error_set(err, DEM_EUSAGE,
                              "%s: a sweep's folder, not a run's: the same "
