@@ -757,7 +757,7 @@ static int cmd_sweep(int argc, char **argv)
         fprintf(stderr, "dembox: sweep: %s\n", line);
     if (!rc && !o.quiet && !quiet_rank)
         fprintf(stderr,
-                "dembox: sweep: %ld runs (%ld run now, %ld skipped as "
+                "dembox: sweep: %ld runs (%ld made now, %ld skipped as "
                 "finished); results in %s/sweep.json\n",
                 rep.points, rep.ran, rep.skipped, o.outdir);
     dem_sweep_grid_free(&grid);
@@ -1134,6 +1134,19 @@ static int dispatch(int argc, char **argv)
             printf("without MPI)\n");
         return 0;
     }
-    fprintf(stderr, "dembox: unknown command '%s' (see dembox --help)\n", c);
+    /* a slip of a letter or two (analyse, exmaple): the command meant */
+    static const char *const commands[] = {"run",     "sweep", "analyze",
+                                           "plot",    "bench", "examples",
+                                           "example", "help"};
+    const char *near = dem_nearest_name(
+        c, commands, (int)(sizeof commands / sizeof *commands));
+    if (near)
+        fprintf(stderr,
+                "dembox: unknown command '%s': did you mean %s? (see dembox "
+                "--help)\n",
+                c, near);
+    else
+        fprintf(stderr, "dembox: unknown command '%s' (see dembox --help)\n",
+                c);
     return 1;
 }

@@ -486,6 +486,9 @@ const struct dem_example *dem_example_find(const char *name);
 /* The built-in example a slip of a letter or two from name (not name
  * itself), or NULL: for "did you mean". */
 const struct dem_example *dem_example_nearest(const char *name);
+/* Of the n names, the one a slip of a letter or two from name (not name
+ * itself), or NULL: the same rule for a command's "did you mean". */
+const char *dem_nearest_name(const char *name, const char *const *names, int n);
 
 /* ------------------------------------------------------------------ MPI */
 

@@ -69,7 +69,7 @@ same np4
 rm "np2/runs/contact.mu=0.3_seed=2/summary.json"
 "$MPIRUN" -np 2 "$BIN" ${S% --quiet} -o np2 > log2b 2>&1 || fail "restart: $(tail -5 log2b)"
 grep -q "5 of 6 runs already finished" log2b || fail "restart: $(cat log2b)"
-grep -q "1 run now" log2b || fail "restart ran more than one: $(cat log2b)"
+grep -q "1 made now" log2b || fail "restart ran more than one: $(cat log2b)"
 same np2
 
 # --collect over ranks: rank 0 alone writes the same sweep.json

@@ -539,6 +539,15 @@ void dem__cfg_slip_try(struct dem__cfg_slip *s, const char *cand, int index)
     }
 }
 
+const char *dem_nearest_name(const char *name, const char *const *names, int n)
+{
+    struct dem__cfg_slip s;
+    dem__cfg_slip_start(&s, name);
+    for (int i = 0; i < n; i++)
+        dem__cfg_slip_try(&s, names[i], i);
+    return s.best < 0 ? NULL : names[s.best];
+}
+
 const char *dem__cfg_nearest_key(const char *name, int scope)
 {
     struct dem__cfg_slip s;

@@ -1123,6 +1123,11 @@ static int read_checkpoint(struct run_ctx *r, struct dem_error *err)
                              "%s: a sweep's folder, not a run's: the same "
                              "`dembox sweep` command goes on with its runs",
                              outdir);
+    /* (a file there is refused by the folder's lock, before) */
+    struct stat sb;
+    if (stat(outdir, &sb) != 0)
+        return dem_error_set(err, DEM_EIO, "%s: %s; nothing to resume", outdir,
+                             strerror(errno));
     if (!file_exists(r->ckpt_path))
         return dem_error_set(err, DEM_EIO,
                              "%s: no checkpoint (%s is missing); nothing to "
