@@ -1061,6 +1061,9 @@ enum loading {
     LOAD_LATERAL_MOVES,   /* LOAD_COMPRESS at a pressure of 250, half the
                              isotropic stage's: the lateral stress falls
                              to it over the first 1 % of strain */
+    LOAD_TENSILE,         /* LOAD_COMPRESS with the lateral stress pulled
+                             into tension around eps_a = 0.03 (to -100),
+                             and back to it by the last third */
 };
 
 /* 2D biaxial: isotropic at 500 N/m, then a loading along y with the
@@ -1116,11 +1119,37 @@ static void write_biaxial_loading(const char *dir, double unit,
         s.eps[0] = 1.0 - (1.0 + s.eps_v) / (1.0 - ea);
         s.sigma[0] = (p3 + (500.0 - p3) * exp(-x / 0.002)) * unit;
         s.sigma[1] = s.sigma[0] * (1.0 + sense * r) / (1.0 - sense * r);
+        if (how == LOAD_TENSILE)
+            s.sigma[0] -= 600.0 * unit * exp(-pow((x - 0.03) / 0.008, 2));
         s.void_ratio = (1.0 + e0) * (1.0 + s.eps_v) - 1.0;
         s.inertial_number = 1e-4 * sin(M_PI * j / 1000.0);
         dem_sample_write_row(f, &s, 2);
     }
     assert_int_equal(fclose(f), 0);
+}
+
+/* A lateral stress in tension at the peak (a sample off its walls, a
+ * loading far too fast): (s1 - s3)/(s1 + s3) beyond 1 is no friction
+ * angle. It was written as sin phi = 2.4 (a run of 100 discs in 5 ms),
+ * which every reader of summary.json then refused as not dembox
+ * analyze's (session 115); now null with the reason. */
+static void a_tensile_minor_stress_has_no_friction_angle(void **state)
+{
+    (void)state;
+    char dir[128];
+    run_dir(dir, sizeof dir, "tensile");
+    write_biaxial_loading(dir, 1.0, LOAD_TENSILE);
+    char *js = analyzed_summary(dir);
+    if (!strstr(js, "\"peak\": {\n    \"sin_phi\": null") ||
+        !strstr(js, "\"reason\": \"the minor principal stress at the peak "
+                    "is tensile (-"))
+        fail_msg("%s", js);
+    /* the critical state, past it, is as the compression's */
+    assert_null(strstr(js, "\"critical\": {\n    \"sin_phi\": null"));
+    free(js);
+    /* and the summary reads back (the plots' and sweeps' reader) */
+    char line[512];
+    assert_true(dem_summary_line(dir, line, sizeof line));
 }
 
 /* A compress stage that is the run's first (a packing from a file): no
@@ -2269,6 +2298,7 @@ int main(void)
         cmocka_unit_test(creep_rate_late_in_a_run),
         cmocka_unit_test(the_summary_line_gives_what_was_found),
         cmocka_unit_test(a_run_cut_in_its_last_stage_is_not_complete),
+        cmocka_unit_test(a_tensile_minor_stress_has_no_friction_angle),
         cmocka_unit_test(a_hold_with_relax_may_end_early),
         cmocka_unit_test(returning_shear_is_analysed_on_its_way_out),
         cmocka_unit_test(analysis_repeats_no_config_warning),

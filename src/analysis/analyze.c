@@ -293,6 +293,27 @@ static int analyze_monotonic(const struct curves *cv, int dim,
         free(ratio);
         return rc;
     }
+    /* a minor stress in tension (a sample that has come off its walls,
+     * a loading far too fast): (s1 - s3)/(s1 + s3) beyond 1 is no angle
+     * (it was written as sin phi = 2.4, which every reader refused as
+     * not dembox analyze's; session 115) */
+    const double minor = sense > 0.0 ? R->peak_s3 : R->peak_s1;
+    if (R->peak.ok && !(R->peak.value <= 1.0)) {
+        R->peak.ok = 0;
+        snprintf(R->peak.reason, sizeof R->peak.reason,
+                 "the minor principal stress at the peak is tensile (%.4g "
+                 "Pa): a ratio (s1 - s3)/(s1 + s3) above 1, no friction "
+                 "angle (a sample off its walls, or pulled)",
+                 minor);
+    }
+    if (R->crit.ok && !(R->crit.value <= 1.0)) {
+        R->crit.ok = 0;
+        snprintf(R->crit.reason, sizeof R->crit.reason,
+                 "the stress ratio (s1 - s3)/(s1 + s3) of the last part is "
+                 "%.4g: above 1, a minor principal stress in tension, no "
+                 "friction angle",
+                 R->crit.value);
+    }
     rc = dem_peak_distinct(&R->peak, &R->crit, x, ratio, n, R->half);
     if (rc) {
         free(ratio);
