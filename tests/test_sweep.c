@@ -161,9 +161,12 @@ static int count_entries(const char *dir)
 }
 
 /* A warning kept in the buffer of 512 characters at user. */
+/* The warnings, one a line, into a buffer of 1024 bytes. */
 static void keep_warning(const char *line, void *user)
 {
-    snprintf((char *)user, 512, "%s", line);
+    char *all = user;
+    const size_t len = strlen(all);
+    snprintf(all + len, 1024 - len, "%s\n", line);
 }
 
 static void bad_grid_point_is_refused_before_running(void **state)
@@ -244,7 +247,7 @@ static void bad_grid_point_is_refused_before_running(void **state)
                                     "this folder (process "));
     assert_int_equal(rep.ran, 0);
     /* collected all the same (a look at a sweep under way), saying so */
-    char runs[1100], sj[1100], said[512] = "";
+    char runs[1100], sj[1100], said[1024] = "";
     snprintf(runs, sizeof runs, "%s/runs", out);
     snprintf(sj, sizeof sj, "%s/sweep.json", out);
     assert_int_equal(dem_mkdir_p(runs, &err), 0);
@@ -259,7 +262,11 @@ static void bad_grid_point_is_refused_before_running(void **state)
     said[0] = '\0';
     assert_int_equal(remove(sj), 0);
     assert_int_equal(dem_sweep_collect(&ok, &o, &werr), DEM_OK);
-    assert_string_equal(said, "");
+    /* (what sweep.json lacks, said: it was only in its reasons) */
+    char want[1200];
+    snprintf(want, sizeof want, "%s: 0 of 2 runs finished; 2 not started\n",
+             out);
+    assert_string_equal(said, want);
     assert_true(access(sj, F_OK) == 0);
     /* a folder no sweep ran into: nothing to collect, nothing written
      * (it wrote a sweep.json of runs that were all missing) */
@@ -934,6 +941,64 @@ static void one_kc_with_a_flow_function_draws_no_curve(void **state)
     dem__jread_free(&js);
 }
 
+/* `--collect` of a sweep some of whose runs are not finished says how
+ * many and how each stands (it said "collected", exit 0, the counts in
+ * sweep.json only), and each reason fits: a point never started has no
+ * run.log to see, an interrupted one is resumed by the sweep's command
+ * (a read-only review of resuming, session 115). */
+static void collect_says_which_runs_are_missing(void **state)
+{
+    (void)state;
+    char out[512], dir[1100], cfg[512], cmd[1200];
+    struct dem_sweep_grid g;
+    memset(&g, 0, sizeof g);
+    add(&g, "contact.kc=1e4,4e4");
+    add(&g, "stages.1.pressure=100,400");
+    fake_sweep(&g, "missing", peaks_at_the_first_kc, out, sizeof out);
+    char names[4][DEM_SWEEP_RUNNAME_MAX + 8];
+    dem_sweep_point_names(&g, names);
+    /* run 1 not started, 2 interrupted, 3 failed */
+    snprintf(cmd, sizeof cmd, "rm -rf '%s/runs/%s'", out, names[1]);
+    assert_int_equal(system(cmd), 0);
+    snprintf(dir, sizeof dir, "%s/runs/%s/checkpoint.bin", out, names[2]);
+    write_file(dir, "");
+    snprintf(dir, sizeof dir, "%s/runs/%s/summary.json", out, names[3]);
+    assert_int_equal(remove(dir), 0);
+    tiny_config(cfg, sizeof cfg);
+    struct dem_sweep_options o = {
+        .target = cfg, .outdir = out, .jobs = 1, .threads = 1, .quiet = 1};
+    char said[1024] = "", want[1200];
+    struct dem_error err = {.warn = keep_warning, .warn_user = said};
+    if (dem_sweep_collect(&g, &o, &err))
+        fail_msg("%s", err.msg);
+    snprintf(want, sizeof want,
+             "%s: 1 of 4 runs finished; 1 not started, 1 interrupted (the "
+             "sweep's command run again resumes them), 1 not finished "
+             "(their run.log)\n",
+             out);
+    assert_string_equal(said, want);
+    snprintf(dir, sizeof dir, "%s/sweep.json", out);
+    FILE *f = fopen(dir, "r");
+    assert_non_null(f);
+    static char js[1 << 16];
+    js[fread(js, 1, sizeof js - 1, f)] = '\0';
+    fclose(f);
+    char reasons[3][512];
+    snprintf(reasons[0], 512, "the run has not started (no runs/%s)", names[1]);
+    snprintf(reasons[1], 512,
+             "the run was interrupted (runs/%s/checkpoint.bin: the sweep's "
+             "command run again resumes it)",
+             names[2]);
+    snprintf(reasons[2], 512,
+             "the run did not finish (no config.cfg or summary.json, or "
+             "timeseries.csv.part; see runs/%s/run.log)",
+             names[3]);
+    for (int k = 0; k < 3; k++)
+        if (!strstr(js, reasons[k]))
+            fail_msg("no \"%s\" in %s", reasons[k], js);
+    dem_sweep_grid_free(&g);
+}
+
 /* pressure 100, 400: circles at 30 degrees at peak, 20 in critical state */
 static void circles_at_30_and_20(long i, const int *idx, char *out, size_t n)
 {
@@ -1278,7 +1343,7 @@ static void jobs_given_that_the_memory_cannot_hold_are_warned(void **state)
         {4, 10, 0, 1.0 * GB, ""},       /* the particles not known */
     };
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
-        char said[512] = "";
+        char said[1024] = "";
         struct dem_error err = {.warn = keep_warning, .warn_user = said};
         dem__sweep_memory_warn(rows[k].jobs, rows[k].todo, rows[k].largest,
                                rows[k].available, &err);
@@ -1801,6 +1866,7 @@ int main(void)
         cmocka_unit_test(a_parameter_of_one_value_has_no_role),
         cmocka_unit_test(one_kc_with_a_flow_function_draws_no_curve),
         cmocka_unit_test(the_critical_envelope_is_drawn),
+        cmocka_unit_test(collect_says_which_runs_are_missing),
         cmocka_unit_test(
             jobs_left_to_the_library_take_the_cores_and_the_memory),
         cmocka_unit_test(jobs_given_that_the_memory_cannot_hold_are_warned),

@@ -114,9 +114,25 @@ static int read_summary(struct dem__sweep_run *r, const struct dem__jval *js,
 static int read_run(struct dem__sweep_run *r, const char *rundir)
 {
     run_init(r);
+    struct stat st;
+    if (stat(rundir, &st) != 0) {
+        r->unfinished = DEM__RUN_NOT_STARTED;
+        snprintf(r->reason, sizeof r->reason,
+                 "the run has not started (no runs/%s)", r->name);
+        return DEM_OK;
+    }
+    if (dem__sweep_exists(rundir, "checkpoint.bin")) {
+        r->unfinished = DEM__RUN_INTERRUPTED;
+        snprintf(r->reason, sizeof r->reason,
+                 "the run was interrupted (runs/%s/checkpoint.bin: the "
+                 "sweep's command run again resumes it)",
+                 r->name);
+        return DEM_OK;
+    }
     if (!dem__sweep_exists(rundir, "config.cfg") ||
         !dem__sweep_exists(rundir, "summary.json") ||
         dem__sweep_exists(rundir, "timeseries.csv.part")) {
+        r->unfinished = DEM__RUN_DID_NOT_FINISH;
         snprintf(r->reason, sizeof r->reason,
                  "the run did not finish (no config.cfg or summary.json, or "
                  "timeseries.csv.part; see runs/%s/run.log)",
@@ -661,7 +677,8 @@ static void single_values_have_no_role(struct dem_sweep_grid *g)
 }
 
 int dem__sweep_collect(const struct dem_sweep_grid *g,
-                       const struct dem_sweep_options *o, struct dem_error *err)
+                       const struct dem_sweep_options *o, long unfinished[4],
+                       struct dem_error *err)
 {
     struct dem__sweep s;
     memset(&s, 0, sizeof s);
@@ -704,6 +721,9 @@ int dem__sweep_collect(const struct dem_sweep_grid *g,
         }
     }
     free(names);
+    for (long i = 0; !rc && unfinished && i < s.n; i++)
+        if (!s.runs[i].ok)
+            unfinished[s.runs[i].unfinished]++;
     /* (a shallow copy: the values stay the caller's) */
     struct dem_sweep_grid *gl = rc ? NULL : malloc(sizeof *gl);
     if (!rc && !gl)
@@ -768,9 +788,28 @@ static int sweep_collect_c(const struct dem_sweep_grid *g,
         }
         rc = DEM_OK;
     }
+    long left[4] = {0};
     if (!rc)
-        rc = dem__sweep_collect(g, o, err);
+        rc = dem__sweep_collect(g, o, left, err);
     dem_folder_unlock(lock_fd);
+    /* what sweep.json lacks, said (it was only in its reasons) */
+    const long n = dem_sweep_grid_size(g),
+               missing = left[0] + left[1] + left[2] + left[3];
+    if (!rc && missing > 0) {
+        char parts[256] = "";
+        static const char *const what[4] = {
+            "not read (their reasons in sweep.json)", "not started",
+            "interrupted (the sweep's command run again resumes them)",
+            "not finished (their run.log)"};
+        for (int k = 0; k < 4; k++)
+            if (left[k] > 0) {
+                const size_t len = strlen(parts);
+                snprintf(parts + len, sizeof parts - len, "%s%ld %s",
+                         len ? ", " : "", left[k], what[k]);
+            }
+        dem_warn(err, "%s: %ld of %ld runs finished; %s", o->outdir,
+                 n - missing, n, parts);
+    }
     return rc;
 }
 

@@ -791,7 +791,7 @@ static int sweep_run_c(const struct dem_sweep_grid *g,
     free(names);
     free(todo);
     if (!rc)
-        rc = dem__sweep_collect(g, o, err);
+        rc = dem__sweep_collect(g, o, NULL, err);
     dem_folder_unlock(lock_fd);
     if (!rc && rep->failed)
         rc = dem_error_set(err, DEM_EINTERRUPTED,

@@ -7,6 +7,14 @@
 #include "dembox.h"
 #include <pthread.h>
 
+/* How a run that is not in a sweep's numbers stands. */
+enum dem__sweep_unfinished {
+    DEM__RUN_READ_FAILED,   /* finished, but not read, or another sweep's */
+    DEM__RUN_NOT_STARTED,   /* no folder */
+    DEM__RUN_INTERRUPTED,   /* a checkpoint: the sweep's command resumes it */
+    DEM__RUN_DID_NOT_FINISH /* failed, or under way */
+};
+
 /* One grid point's run: its parameters, config and summary numbers.
  * Numbers that the summary does not have are NaN. */
 struct dem__sweep_run {
@@ -15,6 +23,7 @@ struct dem__sweep_run {
     int ok;                        /* 1: finished and read */
     long max_steps;                /* dem__sweep_step_limit (0: none) */
     char reason[DEM_ERRMSG_MAX];   /* why not, when ok = 0 */
+    int unfinished;                /* enum dem__sweep_unfinished, when ok = 0 */
     int dim;
     int stage, axis;   /* loading stage and its axis (-1: none) */
     double mu;         /* friction of the loading stage */
@@ -242,9 +251,10 @@ int dem__sweep_mpi_work(const struct dem_sweep_grid *g,
 /* ------------------------------------------ collecting and plotting */
 
 /* dem_sweep_collect without the folder's lock, for dem_sweep_run, which
- * holds it (collect.c). */
+ * holds it (collect.c); unfinished (may be NULL) gets the runs of each
+ * enum dem__sweep_unfinished that sweep.json has no numbers of. */
 int dem__sweep_collect(const struct dem_sweep_grid *g,
-                       const struct dem_sweep_options *o,
+                       const struct dem_sweep_options *o, long unfinished[4],
                        struct dem_error *err);
 
 /* Write sweep.json of s (json_out.c). */
