@@ -435,7 +435,9 @@ static void cli_warning(const char *line, void *user)
 /* A time left of t seconds, as a person reads it. */
 static void time_left(char *out, size_t n, double t)
 {
-    if (t < 120.0)
+    if (!isfinite(t))
+        snprintf(out, n, "..."); /* not measured yet */
+    else if (t < 120.0)
         snprintf(out, n, "%.0f s", t);
     else if (t < 7200.0)
         snprintf(out, n, "%.0f min", t / 60.0);
@@ -458,7 +460,7 @@ static void cli_progress(const struct dem_progress *p, void *user)
             "%.3g particle-steps/s",
             p->stage - 1, p->stage_type, p->stage, p->nstages, p->t,
             100.0 * p->fraction,
-            p->eta_is_bound ? "<= " : "", eta, p->speed);
+            p->eta_is_bound && isfinite(p->eta) ? "<= " : "", eta, p->speed);
     progress_shown = !p->stage_done;
     if (p->stage_done)
         fputc('\n', stderr);

@@ -269,7 +269,9 @@ struct dem_progress {
     double fraction;        /* of the stage done, 0 to 1 */
     double eta;             /* s of wall-clock time left in the stage (an
                                upper bound for a stage that may end at its
-                               criterion: isotropic, a hold with relax) */
+                               criterion: isotropic, a hold with relax);
+                               NaN until the speed is measured, in the
+                               first half second after a start or resume */
     int eta_is_bound;       /* 1: eta is an upper bound */
     double speed;           /* particle-steps per second so far */
     int stage_done;         /* 1: the last report of this stage */

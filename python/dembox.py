@@ -96,7 +96,8 @@ Progress.__doc__ = """Where a run stands (struct dem_progress): stage
 (1-based) of nstages, its type ("isotropic", "compress", ...), the
 simulated time t (s), the fraction of the stage done (0 to 1), eta the
 wall-clock seconds left in the stage (an upper bound when eta_is_bound,
-an isotropic stage that may end early), speed in particle-steps per
+an isotropic stage that may end early; NaN until measured, in the first
+half second after a start or resume), speed in particle-steps per
 second, stage_done True at the stage's last report."""
 
 SweepProgress = namedtuple("SweepProgress",

@@ -75,6 +75,11 @@ struct run_ctx {
     struct dem_team team;         /* the threads of each step */
     /* progress */
     double wall_t0, last_show;
+    /* the progress's speed counts from its first report after a quarter
+     * second (the first steps build lists and time the passes' variants:
+     * an ETA from them was 200 times too long after a resume); -1 before */
+    double show_t0;
+    long show_step0;
     long step0, nbuild0;
 };
 
@@ -97,9 +102,19 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
         return;
     r->last_show = now;
     const struct dem_sim *s = &r->sim;
-    double el = now - r->wall_t0;
+    if (r->show_t0 < 0.0 && now - r->wall_t0 >= 0.25) {
+        r->show_t0 = now;
+        r->show_step0 = s->step;
+    }
+    /* before a window from there: the run's own speed so far, and no
+     * ETA yet */
+    const int measured = r->show_t0 >= 0.0 && now - r->show_t0 > 0.1;
+    const double el = measured ? now - r->show_t0 : now - r->wall_t0;
     const int n = r->n_all;
-    double speed = el > 0 ? (double)(s->step - r->step0) * n / el : 0.0;
+    const double speed =
+        el > 0
+            ? (double)(s->step - (measured ? r->show_step0 : r->step0)) * n / el
+            : 0.0;
     double span = st->t_end - st->t_start;
     double frac = span > 0 ? (s->t - st->t_start) / span : 1.0;
     if (frac > 1.0)
@@ -113,7 +128,9 @@ static void show_progress(struct run_ctx *r, const struct dem_stage_state *st,
         .stage_type = dem_stage_lookup(st->cfg->type)->name,
         .t = s->t,
         .fraction = frac,
-        .eta = speed > 0 ? steps_left * n / speed : 0.0,
+        .eta = done                    ? 0.0
+               : measured && speed > 0 ? steps_left * n / speed
+                                       : NAN,
         .eta_is_bound = dem_stage_may_end_early(st->cfg),
         .speed = speed,
         .stage_done = done,
@@ -905,6 +922,8 @@ static void start_progress(struct run_ctx *r)
 {
     r->wall_t0 = wall_clock();
     r->last_ckpt = r->wall_t0;
+    r->last_show = 0.0; /* (a report at once) */
+    r->show_t0 = -1.0;
     r->step0 = r->sim.step;
     r->nbuild0 = r->sim.nbuild;
     r->sim.timing = 1;
