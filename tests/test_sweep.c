@@ -1724,6 +1724,15 @@ static void stop_from_progress_saves_checkpoints_then_resumes(void **state)
                                   ", source 0123456789ab"),
                          any_build == 1);
         free(timing);
+        /* the log keeps the stopped part's lines (a resume wrote it anew
+         * until session 115), and says why a point ran again */
+        snprintf(path, sizeof path, "%s/runs/contact.mu=0.4/run.log", out);
+        char *log = dem_read_text(path, NULL);
+        assert_non_null(log);
+        if (!strstr(log, "dembox: interrupted at t = ") ||
+            (any_build == 2) != !!strstr(log, "dembox: resuming failed ("))
+            fail_msg("any_build %d: run.log:\n%s", any_build, log);
+        free(log);
     }
 
     /* a checkpoint of another config (the sweep's --set changed since)

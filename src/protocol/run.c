@@ -1211,16 +1211,21 @@ static int run_resumed(const char *outdir, const struct dem_run_options *opt,
     if (!rc && writer(&r))
         rc = dem_path_join(path, sizeof path, outdir, "config.cfg", err);
     if (!rc && writer(&r)) {
-        char *text = dem_read_text(path, NULL);
-        if (!text || strcmp(text, r.config_text) != 0)
+        struct dem_error rerr = {0};
+        char *text = dem_read_text(path, &rerr);
+        if (!text)
             rc = dem_error_set(err, DEM_ECONFIG,
-                               "%s: %s; a resumed run keeps the config of "
-                               "its checkpoint (restore config.cfg or start "
-                               "a new run)",
-                               path,
-                               text ? "differs from the config in "
-                                      "checkpoint.bin"
-                                    : "cannot be read");
+                               "%s; a resumed run keeps the config of its "
+                               "checkpoint (restore config.cfg or start a "
+                               "new run)",
+                               rerr.msg);
+        else if (strcmp(text, r.config_text) != 0)
+            rc = dem_error_set(err, DEM_ECONFIG,
+                               "%s: differs from the config in "
+                               "checkpoint.bin; a resumed run keeps the "
+                               "config of its checkpoint (restore config.cfg "
+                               "or start a new run)",
+                               path);
         free(text);
     }
     const struct dem_output_run orun = {&r.sim, outdir, r.config_text, NULL};

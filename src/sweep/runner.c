@@ -467,7 +467,9 @@ int dem__sweep_run_point(const struct dem_sweep_grid *g,
         rc = dem_path_join(log, sizeof log, rundir, "run.log", err);
     if (rc)
         return rc;
-    FILE *f = fopen(log, "w");
+    /* a resume goes on with the log of the parts before (it was
+     * started anew, and their warnings and stop were lost) */
+    FILE *f = fopen(log, resume ? "a" : "w");
     if (!f)
         return dem_error_set(err, DEM_EIO, "%s: cannot write", log);
     struct dem_error e = {0, "", log_warning, f};
