@@ -98,15 +98,16 @@ static const char *const usage_run =
     "refused (exit status 1), and so is a new run into a folder that holds\n"
     "an unfinished run's checkpoint (resume it, or remove the file). The\n"
     "environment variable DEMBOX_STOP_AFTER_STEP=S stops the run so, as if\n"
-    "interrupted, at its first sample past step S (to cut a long run where\n"
-    "you choose).\n"
+    "interrupted, just past step S (split over ranks: within 16 steps), to\n"
+    "cut a long run where you choose.\n"
     "\n"
     "Under mpirun (a build with MPI) the sample is split over the ranks by\n"
-    "domain decomposition (docs/parallel.md): the same outputs, written by\n"
-    "rank 0, which gathers the particles for snapshots, dumps, the final\n"
-    "state and checkpoints; a checkpoint resumes at any number of ranks\n"
-    "(to round-off, not byte for byte). OUTDIR must be on a file system\n"
-    "every rank sees.\n";
+    "domain decomposition (docs/parallel.md): the same outputs, to\n"
+    "round-off (which grows over a long run), written by rank 0, which\n"
+    "gathers the particles for snapshots, dumps, the final state and\n"
+    "checkpoints; a checkpoint resumes at any number of ranks. No progress\n"
+    "display (mpirun's output is not a terminal). OUTDIR must be on a file\n"
+    "system every rank sees.\n";
 
 static const char *const usage_plot =
     "usage: dembox plot OUTDIR\n\nRedraw the pictures of the run in OUTDIR "

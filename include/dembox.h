@@ -528,10 +528,12 @@ int dem_mpi_any(int flag);
 /* When jobs x threads OpenMP threads, times the MPI ranks on this node
  * (OMPI_COMM_WORLD_LOCAL_SIZE), are more than this machine's cores and
  * threads > 1 (threads <= 0: a run's threads left to the library, at
- * most omp_get_max_threads()): one warning through err (waiting OpenMP
- * threads spin, so an oversubscribed machine runs every one of them many
- * times slower; 10-100x seen on 2 cores). */
-void dem_warn_oversubscribed(long jobs, long threads,
+ * most omp_get_max_threads()), or, split (a run split over the ranks,
+ * which wait on each other in MPI), at one thread too: one warning
+ * through err (waiting threads and ranks spin, so an oversubscribed
+ * machine runs every one of them many times slower; 10-100x seen on 2
+ * cores). */
+void dem_warn_oversubscribed(long jobs, long threads, int split,
                              const struct dem_error *err);
 
 /* ---------------------------------------------------------------- sweep */

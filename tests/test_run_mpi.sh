@@ -77,6 +77,43 @@ same cut
 "$BIN" run --resume cut1 --threads 1 --quiet > logr1 2>&1 || fail "resume without MPI: $(cat logr1)"
 same cut1
 
+# more ranks than cores, one thread each: the ranks of a split run wait on
+# each other in MPI and spin; warned of once (it was not, at one thread:
+# a review of MPI, session 115), but not with mpi_yield_when_idle
+cores=$(getconf _NPROCESSORS_ONLN)
+over=$((cores + 1))
+"$MPIRUN" -np $over --oversubscribe "$BIN" run biaxial2d --max-steps 10 \
+    --threads 1 --quiet -o over > logo 2>&1 || fail "$over ranks: $(cat logo)"
+[ "$(grep -c "warning: $over ranks on $cores cores: ranks waiting in MPI spin" logo)" -eq 1 ] ||
+    fail "$over ranks: $(cat logo)"
+"$MPIRUN" -np $over --oversubscribe --mca mpi_yield_when_idle 1 "$BIN" run \
+    biaxial2d --max-steps 10 --threads 1 --quiet -o overy > logy 2>&1 ||
+    fail "$over ranks, yielding: $(cat logy)"
+! grep -q "ranks waiting in MPI" logy || fail "$over ranks, yielding: $(cat logy)"
+
+# SIGTERM to mpirun between samples far apart (here 0.05 s of simulated
+# time, many seconds of steps): Open MPI passes the signal on and kills
+# the ranks a second or two later, so the ranks must stop and checkpoint
+# between samples (they waited for the next sample, and lost everything
+# since the last checkpoint: a review of MPI, session 115)
+"$MPIRUN" -np 2 $(mpi_opts 2) "$BIN" run biaxial2d --threads 1 --quiet \
+    --set output.interval=0.05 --set output.checkpoint_interval=0 \
+    -o termed > logt 2>&1 &
+pid=$!
+k=0
+while [ ! -e termed/timeseries.csv.part ] && [ $k -lt 600 ]; do
+    sleep 0.1; k=$((k + 1))
+done
+sleep 1
+kill -TERM $pid
+set +e
+wait $pid; rc=$?
+set -e
+[ $rc -ne 0 ] && [ -f termed/checkpoint.bin ] && [ ! -e termed/timeseries.csv ] ||
+    fail "SIGTERM between samples: status $rc, $(ls termed): $(cat logt)"
+grep -q "resume with: dembox run --resume termed" logt ||
+    fail "SIGTERM between samples: $(cat logt)"
+
 # a box that shrinks until its 8 ranks have no grid of subdomains wider
 # than the ghost range: one line and a checkpoint before the rebuild that
 # would fail, and the checkpoint resumed on 2 ranks gives the serial run

@@ -712,7 +712,7 @@ static int bench_run(const struct dem_bench_options *o,
      * refused says one line, its reason */
     if (!rc && rank == 0)
         dem_warn_oversubscribed(
-            1, o->versus > o->threads ? o->versus : o->threads, err);
+            1, o->versus > o->threads ? o->versus : o->threads, ranks > 1, err);
     int relaxed = 1;
     if (!rc && !r->cache_hit && rank == 0) {
         double t0 = wall_clock();

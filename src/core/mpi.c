@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #ifdef DEM_HAVE_MPI
 #include <mpi.h>
@@ -45,7 +46,7 @@ void dem_mpi_launch(int *rank, int *size)
     }
 }
 
-void dem_warn_oversubscribed(long jobs, long threads,
+void dem_warn_oversubscribed(long jobs, long threads, int split,
                              const struct dem_error *err)
 {
     /* a run's threads left to the library: at most its OpenMP default */
@@ -55,6 +56,21 @@ void dem_warn_oversubscribed(long jobs, long threads,
     const long local = env_int("OMPI_COMM_WORLD_LOCAL_SIZE");
     const long ranks = local > 0 ? local : 1;
     const long cores = omp_get_num_procs(), total = ranks * jobs * threads;
+    /* (Open MPI passes its --mca parameters on in the environment) */
+    const char *yield = getenv("OMPI_MCA_mpi_yield_when_idle");
+    const int yields = yield && (!strcmp(yield, "1") || !strcmp(yield, "true"));
+    /* ranks alone: against the machine's cores (each rank, bound to its
+     * core by mpirun, sees only its own in omp_get_num_procs) */
+    const long online = sysconf(_SC_NPROCESSORS_ONLN);
+    if (threads < 2 && split && ranks > 1 && !yields && online > 0 &&
+        ranks > online) {
+        dem_warn(err,
+                 "%ld ranks on %ld cores: ranks waiting in MPI spin, so "
+                 "this can run 10-100 times slower; use at most %ld ranks "
+                 "a machine (or mpirun --mca mpi_yield_when_idle 1)",
+                 ranks, online, online);
+        return;
+    }
     if (threads < 2 || total <= cores)
         return;
     char what[96] = "";

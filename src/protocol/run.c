@@ -669,8 +669,12 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         /* A stop asked for, or a checkpoint due (the clock read every 256
          * steps), between samples: after this step, unchained so that it
          * ends whole (chained or not, the same numbers). Samples can be
-         * minutes apart in a large run. Split over ranks both wait for
-         * the next sample, where rank 0 tells the others. */
+         * minutes apart in a large run. Split over ranks, rank 0 tells
+         * the others every 16 steps (a broadcast of two ints): mpirun
+         * sends its ranks SIGTERM a second after Ctrl-C and SIGKILL a
+         * second later (Open MPI's odls_base_sigkill_timeout), and a
+         * stop left to the next sample lost everything since the last
+         * checkpoint (a read-only review of MPI, session 115). */
         enum { GO_ON, STOP, CHECKPOINT } halt = GO_ON;
         if (!sample && r->nranks < 2) {
             if (stop_requested(r))
@@ -678,6 +682,14 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
             else if (ckpt > 0 && (s->step & 255) == 0 &&
                      wall_clock() - r->last_ckpt >= ckpt)
                 halt = CHECKPOINT;
+        } else if (!sample && (s->step & 15) == 0) {
+            int plan[2] = {0, 0};
+            if (writer(r)) {
+                plan[0] = stop_requested(r);
+                plan[1] = ckpt > 0 && wall_clock() - r->last_ckpt >= ckpt;
+            }
+            dem_halo_bcast(plan, 2);
+            halt = plan[0] ? STOP : plan[1] ? CHECKPOINT : GO_ON;
         }
         /* a split box about to leave its ranks too little room: this
          * step unchained, then a checkpoint (the same on every rank:
@@ -691,10 +703,20 @@ static int stage_loop(struct run_ctx *r, struct dem_error *err)
         rc = dem_sim_step(s, err);
         if (rc)
             return rc;
-        if (halt == STOP)
-            return stop_here(r, err);
-        if (halt == CHECKPOINT && (rc = write_checkpoint(r, err)) != DEM_OK)
+        /* (split: the checkpoint holds the whole sample) */
+        if (halt != GO_ON && s->halo && (rc = gather_whole(r, err)) != DEM_OK)
             return rc;
+        if (halt == STOP) {
+            rc = stop_here(r, err);
+            drop_whole(r);
+            return rc;
+        }
+        if (halt == CHECKPOINT) {
+            rc = write_checkpoint(r, err);
+            drop_whole(r);
+            if (rc)
+                return rc;
+        }
         if (cramped && !sample)
             return stop_cramped(r, err);
         if (!sample) {
@@ -975,7 +997,7 @@ static int run_and_finish(struct run_ctx *r, int rc, int first, int resumed,
         /* said here, after every check of the config, the folder and the
          * checkpoint: a run refused says one line, its reason */
         if (writer(r))
-            dem_warn_oversubscribed(1, r->opt->threads, err);
+            dem_warn_oversubscribed(1, r->opt->threads, r->nranks > 1, err);
         rc = run_stages(r, first, resumed, err);
         if (!rc)
             rc = finish_outputs(r, err);

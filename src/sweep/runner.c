@@ -761,7 +761,7 @@ static int prepare(const struct dem_sweep_grid *g,
     } else if (!rc) /* given: a warning if the memory cannot hold them */
         dem__sweep_memory_warn(o->jobs, left, s.largest, available, err);
     if (!rc) /* after the check: bad input still gives one line */
-        dem_warn_oversubscribed(*jobs, o->threads, err);
+        dem_warn_oversubscribed(*jobs, o->threads, 0, err);
     return rc;
 }
 
