@@ -36,6 +36,15 @@ int dem__outfile_commit(struct dem__outfile *o, struct dem_error *err)
     errno = 0;
     int bad = ferror(o->f) || fflush(o->f) != 0;
     int e = errno;
+    if (bad && !e) {
+        /* a write that failed before: its errno is gone, so one more
+         * byte asks the file system again (the temporary goes anyway):
+         * "No space left on device" rather than "I/O error" */
+        clearerr(o->f);
+        errno = 0;
+        if (fputc('\n', o->f) == EOF || fflush(o->f) != 0)
+            e = errno;
+    }
     if (fclose(o->f) != 0 && !bad) {
         bad = 1;
         e = errno;
