@@ -300,11 +300,13 @@ static void isotropic_stage_reaches_target_pressure(void **state)
     size_t r = t.nrow - 1;
     double Lx = t.col[4][r], Ly = t.col[5][r];
     const double p = 500.0;
-    /* x walls carry sigma Ly, y walls sigma Lx (2D: stress = force/length) */
-    assert_rel(t.col[0][r] / Ly, p, 0.02);
-    assert_rel(t.col[1][r] / Ly, p, 0.02);
-    assert_rel(t.col[2][r] / Lx, p, 0.02);
-    assert_rel(t.col[3][r] / Lx, p, 0.02);
+    /* x walls carry sigma Ly, y walls sigma Lx (2D: stress = force/length),
+     * each within the stage's criterion, 1 % (2 % was asked here: the
+     * criterion at 1.9 % passed; a review of the tests, session 115) */
+    assert_rel(t.col[0][r] / Ly, p, 0.01);
+    assert_rel(t.col[1][r] / Ly, p, 0.01);
+    assert_rel(t.col[2][r] / Lx, p, 0.01);
+    assert_rel(t.col[3][r] / Lx, p, 0.01);
     assert_rel(t.col[6][r], p, 0.02);
     assert_rel(t.col[7][r], p, 0.02);
     assert_true(t.col[8][r] + t.col[9][r] < 1e-4 * t.col[10][r]);

@@ -73,6 +73,31 @@ static void strain_profiles_start_and_end_at_rest(void **state)
     dem_wall_strain_state(&w, 2.0, &x, &v);
     assert_close(x, 1.0, 1e-15);
     assert_close(v, 2.0 * M_PI * D / T, 1e-15);
+    /* every profile's velocity is its position's rate: a central
+     * difference at times where the speed is not 0 (the cyclic one
+     * moved at 2 pi D/T, twice its position's rate, and no test read its
+     * speed away from its ends: a review of the tests, session 115) */
+    static const int prof[4] = {DEM_PROFILE_LINEAR, DEM_PROFILE_COSINE,
+                                DEM_PROFILE_CYCLIC, DEM_PROFILE_SINE};
+    const double h = 1e-6;
+    for (int q = 0; q < 4; q++)
+        for (int k = 1; k < 8; k++) {
+            const double t = 0.2347 * k; /* within T = 2 s */
+            double xa, xb, vt;
+            w.pos = 1.0;
+            dem_wall_set_strain(&w, prof[q], D, T, 0.0);
+            dem_wall_strain_state(&w, t - h, &xa, &vt);
+            dem_wall_strain_state(&w, t + h, &xb, &vt);
+            dem_wall_strain_state(&w, t, &x, &v);
+            if (fabs((xb - xa) / (2 * h) - v) > 1e-7 * fabs(D))
+                fail_msg("profile %d at t = %g: v = %.9g, dx/dt = %.9g",
+                         prof[q], t, v, (xb - xa) / (2 * h));
+        }
+    /* and the cyclic one's at a quarter period: pi D/T, half way */
+    dem_wall_set_strain(&w, DEM_PROFILE_CYCLIC, D, T, 0.0);
+    dem_wall_strain_state(&w, 0.5, &x, &v);
+    assert_close(x, 1.0 + 0.5 * D, 1e-15);
+    assert_close(v, M_PI * D / T, 1e-15);
 }
 
 /* 2 sigma = 2 p0 + Dsigma [1 - cos(2 pi t/t0)] (David et al.) at sampled times.
