@@ -252,6 +252,54 @@ static void love_weber_equals_wall_stress(void **state)
     dem_sim_destroy(&s);
 }
 
+/* The measured quantities from their definitions, on a lattice at rest
+ * whose walls are given forces by hand: sigma along an axis the mean of
+ * its two walls' F/A (walls that differ), q (3D sqrt(3 J2) = 2p for
+ * (3p, p, p); 2D the Mohr radius), p, the solid fraction and the void
+ * ratio from the radii and the box. (3D q, the two walls' mean, and
+ * (V - Vs)/Vs survived mutations: a review of the tests, session 115.) */
+static void measures_follow_their_definitions(void **state)
+{
+    (void)state;
+    for (int dim = 2; dim <= 3; dim++) {
+        struct dem_config c;
+        test_config(&c, dim);
+        const int nside = 4, n = dim == 3 ? 64 : 16;
+        const double a = 5e-3, L = 2 * nside * a;
+        struct dem_sim s;
+        test_sim(&s, &c, n, 0.0, L);
+        double vs = 0.0;
+        for (int k = 0; k < (dim == 3 ? nside : 1); k++)
+            for (int j = 0; j < nside; j++)
+                for (int i = 0; i < nside; i++) {
+                    const double r = a * (0.6 + 0.1 * ((i + 2 * j + k) % 4));
+                    test_add(&s, (2 * i + 1) * a, (2 * j + 1) * a,
+                             dim == 3 ? (2 * k + 1) * a : 0.0, r);
+                    vs +=
+                        dim == 3 ? 4.0 / 3.0 * M_PI * r * r * r : M_PI * r * r;
+                }
+        test_ready(&s);
+        /* sigma_x: walls at 0.9 p and 1.1 p, sigma_y = 3p, sigma_z = p */
+        const double p = 100.0, A = dim == 3 ? L * L : L;
+        const double sig[3][2] = {{0.9 * p, 1.1 * p}, {3 * p, 3 * p}, {p, p}};
+        for (int w = 0; w < 2 * dim; w++)
+            s.wall[w].force = sig[w / 2][w % 2] * A;
+        const double L0[3] = {L, L, dim == 3 ? L : 0.0};
+        const double V = dim == 3 ? L * L * L : L * L;
+        struct dem_sample smp;
+        dem_measure(&s, L0, V, 0.0, 0, &smp);
+        assert_rel(smp.sigma_wall[0], 0.9 * p, 1e-12);
+        assert_rel(smp.sigma_wall[1], 1.1 * p, 1e-12);
+        assert_rel(smp.sigma[0], p, 1e-12);
+        assert_rel(smp.sigma[1], 3 * p, 1e-12);
+        assert_rel(smp.p, dim == 3 ? 5.0 / 3.0 * p : 2 * p, 1e-12);
+        assert_rel(smp.q, dim == 3 ? 2 * p : p, 1e-12);
+        assert_rel(smp.solid_fraction, vs / V, 1e-12);
+        assert_rel(smp.void_ratio, (V - vs) / vs, 1e-12);
+        dem_sim_destroy(&s);
+    }
+}
+
 /* Rattlers: particles with fewer contacts (walls counted) than can hold
  * one in equilibrium, 2 with friction, d + 1 without, removed until
  * every survivor has that many among survivors. A square (cubic)
@@ -365,6 +413,7 @@ int main(void)
         cmocka_unit_test(cyclic_target_follows_formula),
         cmocka_unit_test(stress_wall_balances_pressure),
         cmocka_unit_test(love_weber_equals_wall_stress),
+        cmocka_unit_test(measures_follow_their_definitions),
         cmocka_unit_test(a_contact_at_a_zero_limit_is_not_sliding),
         cmocka_unit_test(rattlers_cascade_down_a_column),
     };
