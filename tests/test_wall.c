@@ -300,6 +300,43 @@ static void measures_follow_their_definitions(void **state)
     }
 }
 
+/* One pair of spheres of radii a and 2a overlapping by delta along x:
+ * the overlap ratio is delta over the smaller radius, the fabric n (x) n
+ * is diag(1, 0, 0), and the contact point (contacts_final.csv's x, y, z)
+ * is the middle of the overlap, a - delta/2 from the small sphere's
+ * centre. (Each survived a mutation: the larger radius, b (x) b, the
+ * point on the far side; a review of the tests, session 115.) */
+static void a_pair_measures_its_overlap_normal_and_point(void **state)
+{
+    (void)state;
+    struct dem_config c;
+    test_config(&c, 3);
+    struct dem_sim s;
+    test_sim(&s, &c, 2, 0.0, 0.1);
+    const double a = 5e-3, delta = 1e-4, x0 = 0.03;
+    test_add(&s, x0, 0.05, 0.05, a);
+    test_add(&s, x0 + 3 * a - delta, 0.05, 0.05, 2 * a);
+    test_ready(&s);
+    s.measure = 1;
+    test_step(&s, 1); /* (one step of 1e-6 s: the overlap moves by 1e-10) */
+    assert_int_equal(s.sums.n_pp, 1);
+    assert_rel(s.sums.max_overlap_ratio, delta / a, 1e-5);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            assert_close(s.sums.fabric[i][j], i == 0 && j == 0 ? 1.0 : 0.0,
+                         1e-12);
+    struct dem_network net;
+    struct dem_error err = {0};
+    assert_int_equal(dem_network_build(&s, &net, &err), DEM_OK);
+    assert_int_equal(net.npair, 1);
+    assert_rel(net.c[0].x[0], x0 + a - 0.5 * delta, 1e-6);
+    assert_close(net.c[0].x[1], 0.05, 1e-12);
+    assert_close(net.c[0].x[2], 0.05, 1e-12);
+    assert_rel(net.c[0].delta, delta, 1e-5);
+    dem_network_free(&net);
+    dem_sim_destroy(&s);
+}
+
 /* Rattlers: particles with fewer contacts (walls counted) than can hold
  * one in equilibrium, 2 with friction, d + 1 without, removed until
  * every survivor has that many among survivors. A square (cubic)
@@ -414,6 +451,7 @@ int main(void)
         cmocka_unit_test(stress_wall_balances_pressure),
         cmocka_unit_test(love_weber_equals_wall_stress),
         cmocka_unit_test(measures_follow_their_definitions),
+        cmocka_unit_test(a_pair_measures_its_overlap_normal_and_point),
         cmocka_unit_test(a_contact_at_a_zero_limit_is_not_sliding),
         cmocka_unit_test(rattlers_cascade_down_a_column),
     };
