@@ -957,6 +957,22 @@ static void constant_p_targets_hold_p_and_b(void **state)
     assert_true(s.wall[2].floored == 1 && s.wall[3].floored == 1);
     assert_true(s.wall[0].floored == 0 && s.wall[1].floored == 0);
     dem_sim_destroy(&s);
+
+    /* 2D: p = (s1 + s3)/2, so s3 = 2p - s1 (the 3D formula at b = 0,
+     * (3p - s1)/2, passed the test above, which is 3D only: a review of
+     * the tests, session 115) */
+    cell_sim(&s, &c, 2, 10, 0.1, t0);
+    add_frac(&s, f, 1e-3);
+    test_ready(&s);
+    sc.axis = 1;
+    sc.b = 0.0;
+    assert_int_equal(ops->begin(&s, &st, &err), DEM_OK);
+    s.wall[2].force = s.wall[3].force = s1 * 0.1; /* (the y faces' length) */
+    ops->control(&s, &st);
+    assert_close(s.wall[0].p0, 2.0 * 1000.0 - s1, 1e-9);
+    assert_close(s.wall[1].p0, 2.0 * 1000.0 - s1, 1e-9);
+    assert_close(0.5 * (s1 + s.wall[0].p0), 1000.0, 1e-9);
+    dem_sim_destroy(&s);
 }
 
 int main(void)
