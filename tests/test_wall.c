@@ -334,6 +334,24 @@ static void a_pair_measures_its_overlap_normal_and_point(void **state)
     assert_close(net.c[0].x[2], 0.05, 1e-12);
     assert_rel(net.c[0].delta, delta, 1e-5);
     dem_network_free(&net);
+    /* its stored energy: 1/2 k delta^2, no sliding (the linear law) */
+    assert_rel(s.sums.e_pot, 0.5 * c.contact.k * delta * delta, 1e-5);
+    dem_sim_destroy(&s);
+
+    /* with Hertz's law (8/15) E* sqrt(R*) delta^(5/2), R* = a 2a/(3a):
+     * the law's effective radius (0.5 R survived a mutation) */
+    c.contact.normal = DEM_NORMAL_HERTZ;
+    c.contact.E = 1e7;
+    c.contact.nu = 0.3;
+    test_sim(&s, &c, 2, 0.0, 0.1);
+    test_add(&s, x0, 0.05, 0.05, a);
+    test_add(&s, x0 + 3 * a - delta, 0.05, 0.05, 2 * a);
+    test_ready(&s);
+    s.measure = 1;
+    test_step(&s, 1);
+    const double es = c.contact.E / (2.0 * (1.0 - 0.09));
+    assert_rel(s.sums.e_pot,
+               8.0 / 15.0 * es * sqrt(2.0 * a / 3.0) * pow(delta, 2.5), 1e-5);
     dem_sim_destroy(&s);
 }
 
