@@ -296,6 +296,19 @@ static void measures_follow_their_definitions(void **state)
         assert_rel(smp.q, dim == 3 ? 2 * p : p, 1e-12);
         assert_rel(smp.solid_fraction, vs / V, 1e-12);
         assert_rel(smp.void_ratio, (V - vs) / vs, 1e-12);
+        /* the inertial number of the fastest strain rate (the y walls
+         * closing at 0.01 m/s): I = rate d sqrt(rho_eff/p), here
+         * rate sqrt(m d/F), F = p d^2 in 3D and p d in 2D (the 3D force
+         * scale as the 2D one survived a mutation) */
+        s.wall[3].vel = -0.01;
+        dem_measure(&s, L0, V, 0.0, 0, &smp);
+        double m = 0.0, d = 0.0;
+        for (int i = 0; i < s.p.n; i++) {
+            m += s.p.m[i] / s.p.n;
+            d += 2.0 * s.p.r[i] / s.p.n;
+        }
+        const double F = smp.p * (dim == 3 ? d * d : d);
+        assert_rel(smp.inertial_number, 0.01 / L * sqrt(m * d / F), 1e-12);
         dem_sim_destroy(&s);
     }
 }
