@@ -677,7 +677,8 @@ static void single_values_have_no_role(struct dem_sweep_grid *g)
 }
 
 int dem__sweep_collect(const struct dem_sweep_grid *g,
-                       const struct dem_sweep_options *o, long unfinished[4],
+                       const struct dem_sweep_options *o,
+                       long unfinished[DEM__RUN_NUNFINISHED],
                        struct dem_error *err)
 {
     struct dem__sweep s;
@@ -788,20 +789,22 @@ static int sweep_collect_c(const struct dem_sweep_grid *g,
         }
         rc = DEM_OK;
     }
-    long left[4] = {0};
+    long left[DEM__RUN_NUNFINISHED] = {0};
     if (!rc)
         rc = dem__sweep_collect(g, o, left, err);
     dem_folder_unlock(lock_fd);
     /* what sweep.json lacks, said (it was only in its reasons) */
-    const long n = dem_sweep_grid_size(g),
-               missing = left[0] + left[1] + left[2] + left[3];
+    const long n = dem_sweep_grid_size(g);
+    long missing = 0;
+    for (int k = 0; k < DEM__RUN_NUNFINISHED; k++)
+        missing += left[k];
     if (!rc && missing > 0) {
         char parts[256] = "";
-        static const char *const what[4] = {
+        static const char *const what[DEM__RUN_NUNFINISHED] = {
             "not read (their reasons in sweep.json)", "not started",
             "interrupted (the sweep's command run again resumes them)",
             "not finished (their run.log)"};
-        for (int k = 0; k < 4; k++)
+        for (int k = 0; k < DEM__RUN_NUNFINISHED; k++)
             if (left[k] > 0) {
                 const size_t len = strlen(parts);
                 snprintf(parts + len, sizeof parts - len, "%s%ld %s",

@@ -9,10 +9,11 @@
 
 /* How a run that is not in a sweep's numbers stands. */
 enum dem__sweep_unfinished {
-    DEM__RUN_READ_FAILED,   /* finished, but not read, or another sweep's */
-    DEM__RUN_NOT_STARTED,   /* no folder */
-    DEM__RUN_INTERRUPTED,   /* a checkpoint: the sweep's command resumes it */
-    DEM__RUN_DID_NOT_FINISH /* failed, or under way */
+    DEM__RUN_READ_FAILED,    /* finished, but not read, or another sweep's */
+    DEM__RUN_NOT_STARTED,    /* no folder */
+    DEM__RUN_INTERRUPTED,    /* a checkpoint: the sweep's command resumes it */
+    DEM__RUN_DID_NOT_FINISH, /* failed, or under way */
+    DEM__RUN_NUNFINISHED
 };
 
 /* One grid point's run: its parameters, config and summary numbers.
@@ -254,7 +255,8 @@ int dem__sweep_mpi_work(const struct dem_sweep_grid *g,
  * holds it (collect.c); unfinished (may be NULL) gets the runs of each
  * enum dem__sweep_unfinished that sweep.json has no numbers of. */
 int dem__sweep_collect(const struct dem_sweep_grid *g,
-                       const struct dem_sweep_options *o, long unfinished[4],
+                       const struct dem_sweep_options *o,
+                       long unfinished[DEM__RUN_NUNFINISHED],
                        struct dem_error *err);
 
 /* Write sweep.json of s (json_out.c). */
